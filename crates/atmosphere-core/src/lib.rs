@@ -1,0 +1,19 @@
+//! atmosphere-core: the physics of atmos, without a GPU.
+//!
+//! Data flows one way: an [`atmosphere::Atmosphere`] (parameters) is sampled at the
+//! wavelengths a model carries, tables are built from it, and the models answer the
+//! radiance and transmittance of view rays. The CPU code here is the specification that
+//! every shader matches.
+
+pub mod atmosphere;
+pub mod cie1931;
+pub mod color;
+pub mod column;
+pub mod density;
+pub mod geometry;
+pub mod ozone;
+pub mod phase;
+pub mod presets;
+pub mod quadrature;
+pub mod solar;
+pub mod spectral;
