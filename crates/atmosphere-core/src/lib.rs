@@ -17,3 +17,4 @@ pub mod presets;
 pub mod quadrature;
 pub mod solar;
 pub mod spectral;
+pub mod transmittance_table;

@@ -25,7 +25,7 @@ pub enum Spectral {
     /// `scale` is (1 au / distance)^2 for other planets.
     SolarAstmG173 { scale: f64 },
     /// Ozone absorption: `number_density_per_m3` times the Serdyuchenko et al. (2014)
-    /// cross-section at 293 K.
+    /// cross-section (233 K, as binned to 10 nm in Bruneton 2017's demo).
     OzoneSerdyuchenko { number_density_per_m3: f64 },
 }
 
