@@ -1,1 +1,27 @@
-//! atmos
+//! The `atmos` binary as a library: the command line and its subcommands, so that tests
+//! and other tools can run them in-process.
+
+pub mod cli;
+pub mod probe;
+
+use std::ffi::OsString;
+
+use clap::{CommandFactory, Parser};
+
+use crate::cli::{Cli, Command};
+
+/// Runs `atmos` with these arguments (the first is the program name). Usage errors come
+/// back as a [`clap::Error`] inside the [`anyhow::Error`].
+pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
+    match Cli::try_parse_from(args)?.command {
+        Some(Command::Probe(args)) => probe::run(&args),
+        None => {
+            Cli::command().print_help()?;
+            println!(
+                "\nThe viewer is not built yet. Try:\n  \
+                 atmos probe --model reference --input assets/probe/example_rays.csv"
+            );
+            Ok(())
+        }
+    }
+}

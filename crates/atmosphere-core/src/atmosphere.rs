@@ -149,11 +149,10 @@ impl Atmosphere {
 
     /// Parses and validates TOML text.
     pub fn from_toml(text: &str) -> Result<Atmosphere, AtmosphereError> {
-        let atmosphere: Atmosphere =
-            toml::from_str(text).map_err(|e| AtmosphereError::Parse {
-                path: "<text>".into(),
-                message: e.to_string(),
-            })?;
+        let atmosphere: Atmosphere = toml::from_str(text).map_err(|e| AtmosphereError::Parse {
+            path: "<text>".into(),
+            message: e.to_string(),
+        })?;
         atmosphere.validate()?;
         Ok(atmosphere)
     }

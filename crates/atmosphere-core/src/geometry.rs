@@ -105,13 +105,16 @@ mod tests {
         assert_eq!(distance_to_exit(R, 1.0, TOP), TOP - R);
         assert_eq!(distance_to_exit(TOP, -1.0, TOP), 2.0 * TOP);
         assert_eq!(distance_to_entry(TOP + 1000.0, -1.0, TOP), Some(1000.0));
-        assert_eq!(distance_to_entry(TOP + 1000.0, -1.0, R), Some(TOP + 1000.0 - R));
+        assert_eq!(
+            distance_to_entry(TOP + 1000.0, -1.0, R),
+            Some(TOP + 1000.0 - R)
+        );
         assert_eq!(distance_to_entry(TOP + 1000.0, 1.0, TOP), None);
     }
 
     #[test]
     fn horizontal_ray_on_the_ground_reaches_the_top_at_the_tangent_distance() {
-        let expected = ((TOP * TOP - R * R) as f64).sqrt();
+        let expected = (TOP * TOP - R * R).sqrt();
         let got = distance_to_exit(R, 0.0, TOP);
         assert!((got - expected).abs() < 1e-6, "{got} vs {expected}");
     }
@@ -128,7 +131,10 @@ mod tests {
         ] {
             let d = distance_to_exit(r, mu, TOP);
             let reached = radius_at(r, mu, d);
-            assert!((reached - TOP).abs() < 1e-6 * TOP, "r={r} mu={mu}: {reached}");
+            assert!(
+                (reached - TOP).abs() < 1e-6 * TOP,
+                "r={r} mu={mu}: {reached}"
+            );
         }
     }
 

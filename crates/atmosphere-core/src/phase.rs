@@ -48,14 +48,19 @@ impl PhaseFunction {
             PhaseFunction::CornetteShanks { g } | PhaseFunction::HenyeyGreenstein { g }
                 if !(g.is_finite() && g.abs() < 1.0) =>
             {
-                Some(format!("asymmetry g = {g} must lie strictly between -1 and 1"))
+                Some(format!(
+                    "asymmetry g = {g} must lie strictly between -1 and 1"
+                ))
             }
             PhaseFunction::Tabulated { angles_deg, values } => {
                 if angles_deg.len() < 2 || angles_deg.len() != values.len() {
                     Some("a tabulated phase function needs at least two angles and one value per angle".into())
                 } else if angles_deg[0] != 0.0 || angles_deg[angles_deg.len() - 1] != 180.0 {
                     Some("tabulated angles_deg must run from 0 to 180".into())
-                } else if angles_deg.windows(2).any(|w| !(w[1] > w[0])) {
+                } else if angles_deg
+                    .windows(2)
+                    .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+                {
                     Some("tabulated angles_deg must be strictly increasing".into())
                 } else if values.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
                     Some("tabulated values must be finite and >= 0".into())
@@ -157,7 +162,10 @@ mod tests {
             table,
         ] {
             let integral = sphere_integral(&p);
-            assert!((integral - 1.0).abs() < 1e-6, "{p:?} integrates to {integral}");
+            assert!(
+                (integral - 1.0).abs() < 1e-6,
+                "{p:?} integrates to {integral}"
+            );
         }
     }
 
@@ -188,7 +196,11 @@ mod tests {
     #[test]
     fn bad_parameters_are_named() {
         assert!(PhaseFunction::CornetteShanks { g: 1.0 }.problem().is_some());
-        assert!(PhaseFunction::HenyeyGreenstein { g: f64::NAN }.problem().is_some());
+        assert!(
+            PhaseFunction::HenyeyGreenstein { g: f64::NAN }
+                .problem()
+                .is_some()
+        );
         let t = PhaseFunction::Tabulated {
             angles_deg: vec![0.0, 90.0],
             values: vec![1.0, 1.0],

@@ -94,7 +94,9 @@ impl Spectral {
                 exponent,
             } => {
                 if !finite_non_negative(*value_at_1um) {
-                    Some(format!("value_at_1um {value_at_1um} must be finite and >= 0"))
+                    Some(format!(
+                        "value_at_1um {value_at_1um} must be finite and >= 0"
+                    ))
                 } else if !exponent.is_finite() {
                     Some(format!("exponent {exponent} must be finite"))
                 } else {
@@ -111,16 +113,15 @@ impl Spectral {
                         wavelengths_nm.len(),
                         values.len()
                     ))
-                } else if wavelengths_nm
-                    .iter()
-                    .any(|w| !w.is_finite() || *w <= 0.0)
+                } else if wavelengths_nm.iter().any(|w| !w.is_finite() || *w <= 0.0)
                     || wavelengths_nm.windows(2).any(|w| w[1] <= w[0])
                 {
                     Some("wavelengths_nm must be positive and strictly increasing".into())
-                } else if let Some(v) = values.iter().find(|v| !finite_non_negative(**v)) {
-                    Some(format!("table value {v} must be finite and >= 0"))
                 } else {
-                    None
+                    values
+                        .iter()
+                        .find(|v| !finite_non_negative(**v))
+                        .map(|v| format!("table value {v} must be finite and >= 0"))
                 }
             }
             Spectral::SolarAstmG173 { scale } if !finite_non_negative(*scale) => {

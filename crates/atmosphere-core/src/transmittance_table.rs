@@ -9,6 +9,8 @@
 //! wavelength. This is the CPU twin of `shaders/transmittance_table.wgsl`: texel centres,
 //! mapping and quadrature ([`table_column`]) are the same.
 
+use rayon::prelude::*;
+
 use crate::atmosphere::Atmosphere;
 use crate::column::{densities, optical_depth};
 use crate::geometry::{distance_to_exit, radius_at, safe_sqrt};
@@ -115,8 +117,10 @@ impl TransmittanceTable {
             top_radius_m: atmosphere.top_radius_m,
         };
         let columns = (0..width * height)
+            .into_par_iter()
             .map(|index| {
-                let (r, mu) = Self::texel_r_mu_of(&mapping, width, height, index % width, index / width);
+                let (r, mu) =
+                    Self::texel_r_mu_of(&mapping, width, height, index % width, index / width);
                 table_column(atmosphere, r, mu)
             })
             .collect();
@@ -162,7 +166,12 @@ impl TransmittanceTable {
         let j0 = (fy as usize).min(self.height.saturating_sub(2));
         let (ax, ay) = (fx - i0 as f64, fy - j0 as f64);
         let at = |i: usize, j: usize| self.columns[j * self.width + i];
-        let (c00, c10, c01, c11) = (at(i0, j0), at(i0 + 1, j0), at(i0, j0 + 1), at(i0 + 1, j0 + 1));
+        let (c00, c10, c01, c11) = (
+            at(i0, j0),
+            at(i0 + 1, j0),
+            at(i0, j0 + 1),
+            at(i0 + 1, j0 + 1),
+        );
         let mut out = [0.0; 3];
         for k in 0..3 {
             let bottom = c00[k] + ax * (c10[k] - c00[k]);
@@ -188,7 +197,10 @@ mod tests {
         for &(x_mu, x_r) in &[(0.0, 0.0), (0.3, 0.5), (1.0, 1.0), (0.99, 0.01), (0.5, 1.0)] {
             let (r, mu) = m.r_mu_from_unit(x_mu, x_r);
             let (x_mu2, x_r2) = m.unit_from_r_mu(r, mu);
-            assert!((x_mu - x_mu2).abs() < 1e-9 && (x_r - x_r2).abs() < 1e-9, "{x_mu} {x_r}");
+            assert!(
+                (x_mu - x_mu2).abs() < 1e-9 && (x_r - x_r2).abs() < 1e-9,
+                "{x_mu} {x_r}"
+            );
         }
         // The last column is the horizon.
         let (r, mu) = m.r_mu_from_unit(1.0, 0.5);
@@ -216,7 +228,10 @@ mod tests {
                 }
             }
         }
-        assert!(worst[0] < 2e-5 && worst[1] < 2e-5 && worst[2] < 1e-3, "worst relative errors {worst:?}");
+        assert!(
+            worst[0] < 2e-5 && worst[1] < 2e-5 && worst[2] < 1e-3,
+            "worst relative errors {worst:?}"
+        );
     }
 
     #[test]
@@ -233,7 +248,12 @@ mod tests {
         let exact = column(&earth, r, mu, distance_to_exit(r, mu, earth.top_radius_m));
         let got = table.column(r, mu);
         for k in 0..2 {
-            assert!((got[k] / exact[k] - 1.0).abs() < 1e-3, "{k}: {} vs {}", got[k], exact[k]);
+            assert!(
+                (got[k] / exact[k] - 1.0).abs() < 1e-3,
+                "{k}: {} vs {}",
+                got[k],
+                exact[k]
+            );
         }
     }
 }

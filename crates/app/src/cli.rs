@@ -1,0 +1,79 @@
+//! The command line of `atmos` (clap derive).
+
+use std::path::PathBuf;
+use std::str::FromStr;
+
+use atmosphere_core::model::{MODEL_IDS, ModelSettings};
+use clap::builder::PossibleValuesParser;
+use clap::{Args, Parser, Subcommand};
+
+/// Physically based atmospheric scattering.
+#[derive(Debug, Parser)]
+#[command(name = "atmos", version)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Radiance and transmittance of given view rays for a given model, CSV in and out.
+    Probe(ProbeArgs),
+}
+
+/// The flags of `atmos probe`.
+#[derive(Debug, Args)]
+pub struct ProbeArgs {
+    /// Scattering model.
+    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
+    pub model: String,
+    /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
+    #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
+    pub atmosphere: String,
+    /// Wavelengths in nm, comma-separated.
+    #[arg(
+        long,
+        value_name = "NM,...",
+        value_delimiter = ',',
+        default_value = "680,550,440"
+    )]
+    pub wavelengths: Vec<Wavelength>,
+    /// Highest scattering order (1 = single scattering) [default: all orders].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub orders: Option<u32>,
+    /// Relative standard error of the radiance that stochastic models aim for.
+    #[arg(long, value_name = "REL", default_value_t = ModelSettings::default().target_relative_error)]
+    pub target_error: f64,
+    /// Seed of the random sequence of stochastic models.
+    #[arg(long, default_value_t = ModelSettings::default().seed)]
+    pub seed: u64,
+    /// CSV of view rays: altitude_m, view_zenith_deg, sun_zenith_deg,
+    /// view_sun_azimuth_deg and optionally distance_m, with a header.
+    #[arg(long, value_name = "FILE.csv")]
+    pub input: PathBuf,
+    /// Where to write the CSV of results (atomically) [default: stdout].
+    #[arg(long, value_name = "FILE.csv")]
+    pub output: Option<PathBuf>,
+}
+
+/// A wavelength as the user wrote it: the text names the output columns.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Wavelength {
+    pub nm: f64,
+    pub label: String,
+}
+
+impl FromStr for Wavelength {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let label = s.trim();
+        match label.parse::<f64>() {
+            Ok(nm) if nm.is_finite() => Ok(Wavelength {
+                nm,
+                label: label.to_string(),
+            }),
+            _ => Err(format!("'{label}' is not a wavelength in nm")),
+        }
+    }
+}

@@ -1,0 +1,565 @@
+//! `atmos probe`: the radiance and transmittance of view rays read from a CSV file, for
+//! one model, written as CSV (numbers instead of pictures).
+//!
+//! Input: a header naming the columns `altitude_m`, `view_zenith_deg`, `sun_zenith_deg`,
+//! `view_sun_azimuth_deg` and optionally `distance_m` (any order; an empty distance: the
+//! ray runs to the ground or to space), then one ray per line. Lines starting with `#`
+//! are comments. Output: the input columns as given, then per wavelength `L_<nm>`, then
+//! `T_<nm>`, then `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
+
+use std::fs;
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use anyhow::Context;
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::color::SpectrumToColor;
+use atmosphere_core::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay, prepare};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use thiserror::Error;
+
+use crate::cli::ProbeArgs;
+
+/// The columns every input needs, in the order of [`ViewRay::from_angles`].
+pub const REQUIRED_COLUMNS: [&str; 4] = [
+    "altitude_m",
+    "view_zenith_deg",
+    "sun_zenith_deg",
+    "view_sun_azimuth_deg",
+];
+
+/// The optional column: the distance to an object ending the ray.
+pub const DISTANCE_COLUMN: &str = "distance_m";
+
+/// What is wrong with an input file. Lines count from 1.
+#[derive(Debug, Error)]
+pub enum InputError {
+    #[error("{file} has no header line (expected {})", REQUIRED_COLUMNS.join(","))]
+    NoHeader { file: String },
+    #[error("{file} line {line}: {reason}")]
+    Csv {
+        file: String,
+        line: u64,
+        reason: csv::Error,
+    },
+    #[error(
+        "{file} line {line}: unknown column(s) {} (expected {}, and optionally {DISTANCE_COLUMN})",
+        quoted(.columns), REQUIRED_COLUMNS.join(", ")
+    )]
+    UnknownColumns {
+        file: String,
+        line: u64,
+        columns: Vec<String>,
+    },
+    #[error("{file} line {line}: column(s) given more than once: {}", quoted(.columns))]
+    RepeatedColumns {
+        file: String,
+        line: u64,
+        columns: Vec<String>,
+    },
+    #[error("{file} line {line}: missing column(s) {}", quoted(.columns))]
+    MissingColumns {
+        file: String,
+        line: u64,
+        columns: Vec<String>,
+    },
+    #[error("{file} line {line}: {found} fields, but the header has {expected}")]
+    FieldCount {
+        file: String,
+        line: u64,
+        expected: usize,
+        found: usize,
+    },
+    #[error("{file} line {line}, column {column}: '{value}' is not a number")]
+    NotANumber {
+        file: String,
+        line: u64,
+        column: &'static str,
+        value: String,
+    },
+    #[error("{file} line {line}: {reason}")]
+    Ray {
+        file: String,
+        line: u64,
+        reason: ModelError,
+    },
+}
+
+fn quoted(columns: &[String]) -> String {
+    let quoted: Vec<String> = columns.iter().map(|c| format!("'{c}'")).collect();
+    quoted.join(", ")
+}
+
+/// The rays of an input file, with its columns as given.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProbeInput {
+    pub header: Vec<String>,
+    pub rows: Vec<ProbeRow>,
+}
+
+/// One ray of an input file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProbeRow {
+    /// Line of the file, from 1.
+    pub line: u64,
+    /// The fields as given (trimmed).
+    pub fields: Vec<String>,
+    pub ray: ViewRay,
+}
+
+/// Reads the rays of CSV text named `file` (for messages), on a planet of this radius.
+/// Each record is one line (so that errors name the line); blank lines and lines
+/// starting with `#` are skipped.
+pub fn read_rays(text: &str, file: &str, bottom_radius_m: f64) -> Result<ProbeInput, InputError> {
+    let mut records = (1..).zip(text.lines()).filter(|(_, l)| {
+        let l = l.trim_start();
+        !l.is_empty() && !l.starts_with('#')
+    });
+    let fields = |line: u64, text: &str| -> Result<Vec<String>, InputError> {
+        let record = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .trim(csv::Trim::All)
+            .from_reader(text.as_bytes())
+            .records()
+            .next()
+            .transpose()
+            .map_err(|reason| InputError::Csv {
+                file: file.to_string(),
+                line,
+                reason,
+            })?;
+        Ok(record.map_or_else(Vec::new, |r| r.iter().map(str::to_string).collect()))
+    };
+    let Some((header_line, header_text)) = records.next() else {
+        return Err(InputError::NoHeader {
+            file: file.to_string(),
+        });
+    };
+    let header = fields(header_line, header_text)?;
+    let known = |h: &str| REQUIRED_COLUMNS.contains(&h) || h == DISTANCE_COLUMN;
+    let (mut unknown, mut repeated) = (Vec::new(), Vec::new());
+    for (i, h) in header.iter().enumerate() {
+        let list = if !known(h) {
+            &mut unknown
+        } else if header[..i].contains(h) {
+            &mut repeated
+        } else {
+            continue;
+        };
+        if !list.contains(h) {
+            list.push(h.clone());
+        }
+    }
+    let index = |name: &str| header.iter().position(|h| h == name);
+    let missing: Vec<String> = REQUIRED_COLUMNS
+        .iter()
+        .filter(|c| index(c).is_none())
+        .map(|c| c.to_string())
+        .collect();
+    let (file_name, line) = (file.to_string(), header_line);
+    if !unknown.is_empty() {
+        return Err(InputError::UnknownColumns {
+            file: file_name,
+            line,
+            columns: unknown,
+        });
+    }
+    if !repeated.is_empty() {
+        return Err(InputError::RepeatedColumns {
+            file: file_name,
+            line,
+            columns: repeated,
+        });
+    }
+    if !missing.is_empty() {
+        return Err(InputError::MissingColumns {
+            file: file_name,
+            line,
+            columns: missing,
+        });
+    }
+    let required = REQUIRED_COLUMNS.map(|c| index(c).unwrap_or_default());
+    let distance = index(DISTANCE_COLUMN);
+
+    let mut rows = Vec::new();
+    for (line, text) in records {
+        let record = fields(line, text)?;
+        if record.len() != header.len() {
+            return Err(InputError::FieldCount {
+                file: file.to_string(),
+                line,
+                expected: header.len(),
+                found: record.len(),
+            });
+        }
+        let number = |column: &'static str, value: &str| {
+            value.parse::<f64>().map_err(|_| InputError::NotANumber {
+                file: file.to_string(),
+                line,
+                column,
+                value: value.to_string(),
+            })
+        };
+        let mut values = [0.0; 4];
+        for ((value, column), i) in values.iter_mut().zip(REQUIRED_COLUMNS).zip(required) {
+            *value = number(column, &record[i])?;
+        }
+        let distance_m = match distance.map(|i| record[i].as_str()) {
+            None | Some("") => None,
+            Some(text) => Some(number(DISTANCE_COLUMN, text)?),
+        };
+        let [altitude, view_zenith, sun_zenith, azimuth] = values;
+        let ray = ViewRay::from_angles(
+            bottom_radius_m,
+            altitude,
+            view_zenith,
+            sun_zenith,
+            azimuth,
+            distance_m,
+        )
+        .map_err(|reason| InputError::Ray {
+            file: file.to_string(),
+            line,
+            reason,
+        })?;
+        rows.push(ProbeRow {
+            line,
+            fields: record,
+            ray,
+        });
+    }
+    Ok(ProbeInput { header, rows })
+}
+
+/// Runs `atmos probe`.
+pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
+    let settings = ModelSettings {
+        wavelengths_nm: args.wavelengths.iter().map(|w| w.nm).collect(),
+        max_orders: args.orders,
+        target_relative_error: args.target_error,
+        seed: args.seed,
+    };
+    settings.validate()?;
+    // The model answers at the settings' wavelengths, in their order.
+    let color = SpectrumToColor::new(&settings.wavelengths_nm)?;
+    let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)?;
+    let file = args.input.display().to_string();
+    let text = fs::read_to_string(&args.input).with_context(|| format!("cannot read {file}"))?;
+    let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
+    let model = prepare(&args.model, &atmosphere, &settings)?;
+
+    let results = evaluate(model.as_ref(), &input.rows)
+        .into_iter()
+        .zip(&input.rows)
+        .map(|(result, row)| {
+            result.map_err(|reason| InputError::Ray {
+                file: file.clone(),
+                line: row.line,
+                reason,
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let labels: Vec<&str> = args.wavelengths.iter().map(|w| w.label.as_str()).collect();
+    let table = Table {
+        labels: &labels,
+        solar_irradiance: model.solar_irradiance_w_m2_nm(),
+        color: &color,
+    };
+    let text = table.write(&input, &results)?;
+    match &args.output {
+        Some(path) => write_atomically(path, &text),
+        None => Ok(std::io::stdout().lock().write_all(&text)?),
+    }
+}
+
+/// The radiance of every row, in parallel, in the order of the rows.
+fn evaluate(model: &dyn SkyModel, rows: &[ProbeRow]) -> Vec<Result<RayRadiance, ModelError>> {
+    let progress = Progress::new(rows.len() as u64);
+    let results = rows
+        .par_iter()
+        .map(|row| {
+            let result = model.radiance(&row.ray);
+            progress.inc();
+            result
+        })
+        .collect();
+    progress.finish();
+    results
+}
+
+/// The output table's columns beyond the input's.
+struct Table<'a> {
+    labels: &'a [&'a str],
+    solar_irradiance: &'a [f64],
+    color: &'a SpectrumToColor,
+}
+
+impl Table<'_> {
+    /// The CSV text of the input rows and their results.
+    fn write(&self, input: &ProbeInput, results: &[RayRadiance]) -> anyhow::Result<Vec<u8>> {
+        let mut out = csv::Writer::from_writer(Vec::new());
+        let mut header = input.header.clone();
+        for prefix in ["L_", "T_", "E_sun_"] {
+            header.extend(self.labels.iter().map(|l| format!("{prefix}{l}")));
+        }
+        header.extend(["luminance_cd_m2", "r", "g", "b"].map(String::from));
+        header.extend(self.labels.iter().map(|l| format!("L_stderr_{l}")));
+        out.write_record(&header)?;
+        for (row, result) in input.rows.iter().zip(results) {
+            let luminance = self.color.luminance_cd_m2(&result.radiance);
+            let rgb = self.color.linear_srgb_cd_m2(&result.radiance);
+            let numbers = [
+                &result.radiance[..],
+                &result.transmittance,
+                self.solar_irradiance,
+                &[luminance],
+                &rgb,
+                &result.radiance_std_error,
+            ];
+            let mut record = row.fields.clone();
+            record.extend(numbers.iter().flat_map(|n| n.iter()).map(|&x| number(x)));
+            out.write_record(&record)?;
+        }
+        Ok(out.into_inner()?)
+    }
+}
+
+/// The shortest text that reads back as `x`, in exponent form when very small or large.
+fn number(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Writes `path.partial` next to `path`, then renames it; on error leaves neither.
+fn write_atomically(path: &Path, contents: &[u8]) -> anyhow::Result<()> {
+    let mut partial = path.as_os_str().to_owned();
+    partial.push(".partial");
+    let partial = PathBuf::from(partial);
+    let result = fs::File::create(&partial)
+        .and_then(|mut f| f.write_all(contents).and_then(|()| f.sync_all()))
+        .and_then(|()| fs::rename(&partial, path));
+    if result.is_err() {
+        // Best effort: the file may never have been created.
+        let _ = fs::remove_file(&partial);
+    }
+    result.with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// More rays than this get progress lines on stderr when it is not a terminal.
+const FEW_RAYS: u64 = 16;
+
+/// Progress of the rays on stderr: a bar on a terminal, else a line per tenth of the rays
+/// when there are more than a few.
+enum Progress {
+    Bar(ProgressBar),
+    Lines { done: AtomicU64, total: u64 },
+    Quiet,
+}
+
+impl Progress {
+    fn new(total: u64) -> Progress {
+        if std::io::stderr().is_terminal() {
+            let style = ProgressStyle::with_template(
+                "{elapsed_precise} [{wide_bar}] {pos}/{len} rays, {eta} left",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+            Progress::Bar(ProgressBar::new(total).with_style(style))
+        } else if total > FEW_RAYS {
+            Progress::Lines {
+                done: AtomicU64::new(0),
+                total,
+            }
+        } else {
+            Progress::Quiet
+        }
+    }
+
+    fn inc(&self) {
+        match self {
+            Progress::Bar(bar) => bar.inc(1),
+            Progress::Lines { done, total } => {
+                let done = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if done * 10 / total != (done - 1) * 10 / total {
+                    eprintln!("probe: {done}/{total} rays");
+                }
+            }
+            Progress::Quiet => {}
+        }
+    }
+
+    fn finish(&self) {
+        if let Progress::Bar(bar) = self {
+            bar.finish();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const R: f64 = 6_360_000.0;
+
+    fn read(text: &str) -> Result<ProbeInput, InputError> {
+        read_rays(text, "rays.csv", R)
+    }
+
+    #[test]
+    fn reads_columns_in_any_order_with_comments() {
+        let input = read(
+            "# a comment\n\
+             sun_zenith_deg, altitude_m ,view_sun_azimuth_deg,view_zenith_deg\n\
+             30,0,0,0\n\
+             # another\n\
+             \n\
+             95.5,1000,180,90\n",
+        )
+        .unwrap();
+        assert_eq!(
+            input.header,
+            [
+                "sun_zenith_deg",
+                "altitude_m",
+                "view_sun_azimuth_deg",
+                "view_zenith_deg"
+            ]
+        );
+        assert_eq!(input.rows.len(), 2);
+        assert_eq!(input.rows[1].fields, ["95.5", "1000", "180", "90"]);
+        assert_eq!(input.rows[1].line, 6);
+        let ray = input.rows[1].ray;
+        let expected = ViewRay::from_angles(R, 1000.0, 90.0, 95.5, 180.0, None).unwrap();
+        assert_eq!(ray, expected);
+    }
+
+    #[test]
+    fn shipped_example_reads() {
+        let text = include_str!("../../../assets/probe/example_rays.csv");
+        let input = read_rays(text, "example_rays.csv", R).unwrap();
+        assert_eq!(input.rows.len(), 8);
+        assert_eq!(input.rows[7].ray.max_distance_m, Some(5000.0));
+    }
+
+    #[test]
+    fn empty_or_absent_distance_means_no_object() {
+        let input = read(
+            "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,distance_m\n\
+             0,90,60,0,\n\
+             0,90,60,0,5000\n",
+        )
+        .unwrap();
+        assert_eq!(input.rows[0].ray.max_distance_m, None);
+        assert_eq!(input.rows[1].ray.max_distance_m, Some(5000.0));
+        assert_eq!(input.rows[0].fields[4], "");
+    }
+
+    #[test]
+    fn missing_column_is_named() {
+        let err = read("altitude_m,view_zenith_deg,view_sun_azimuth_deg\n0,0,0\n").unwrap_err();
+        assert!(matches!(&err, InputError::MissingColumns { columns, .. }
+            if columns == &["sun_zenith_deg"]));
+        assert!(
+            err.to_string()
+                .contains("missing column(s) 'sun_zenith_deg'")
+        );
+    }
+
+    #[test]
+    fn unknown_column_is_named() {
+        let err = read(
+            "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,label,x\n\
+             0,0,0,0,noon,1\n",
+        )
+        .unwrap_err();
+        assert!(matches!(&err, InputError::UnknownColumns { columns, .. }
+            if columns == &["label", "x"]));
+        assert!(err.to_string().contains("unknown column(s) 'label', 'x'"));
+    }
+
+    #[test]
+    fn repeated_column_is_an_error() {
+        let err = read(
+            "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,altitude_m\n\
+             0,0,0,0,0\n",
+        )
+        .unwrap_err();
+        assert!(matches!(&err, InputError::RepeatedColumns { columns, .. }
+            if columns == &["altitude_m"]));
+    }
+
+    #[test]
+    fn wrong_field_count_names_the_line() {
+        let err = read(
+            "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg\n\
+             0,0,0,0\n\
+             0,0,0\n",
+        )
+        .unwrap_err();
+        assert!(matches!(
+            err,
+            InputError::FieldCount {
+                line: 3,
+                expected: 4,
+                found: 3,
+                ..
+            }
+        ));
+        assert_eq!(
+            err.to_string(),
+            "rays.csv line 3: 3 fields, but the header has 4"
+        );
+    }
+
+    #[test]
+    fn bad_number_names_line_and_column() {
+        let err = read(
+            "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg\n\
+             0,0,0,0\n\
+             0,0,0,0\n\
+             0,0,abc,0\n",
+        )
+        .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "rays.csv line 4, column sun_zenith_deg: 'abc' is not a number"
+        );
+        let err = read("altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg\n,0,0,0\n")
+            .unwrap_err();
+        assert!(matches!(
+            err,
+            InputError::NotANumber {
+                line: 2,
+                column: "altitude_m",
+                ..
+            }
+        ));
+    }
+
+    #[test]
+    fn ray_the_model_rejects_names_the_line() {
+        let err = read(
+            "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,distance_m\n\
+             -5,0,0,0,\n",
+        )
+        .unwrap_err();
+        assert!(matches!(err, InputError::Ray { line: 2, .. }));
+        let message = err.to_string();
+        assert!(message.starts_with("rays.csv line 2: ") && message.contains("altitude_m"));
+    }
+
+    #[test]
+    fn numbers_round_trip() {
+        for x in [0.0, 1.0, 0.25, 1.5e-12, 3.1e20, -2.0e-7, 123456.789] {
+            assert_eq!(number(x).parse::<f64>().unwrap(), x);
+        }
+        assert_eq!(number(0.5), "0.5");
+        assert_eq!(number(1.5e-12), "1.5e-12");
+    }
+}

@@ -1,0 +1,273 @@
+//! The spectral reference: the ground truth every model is measured against.
+//!
+//! Radiance = single scattering and single ground reflection by converged quadrature
+//! ([`single_scattering`]) + all higher orders by Monte Carlo path tracing
+//! ([`path_tracer`]) with a reported standard error, refined per ray until it is below
+//! the requested fraction of the radiance. f64 throughout. See docs/models/reference.md
+//! for why this split, and how convergence is checked.
+
+mod majorant;
+mod path_tracer;
+mod single_scattering;
+mod sun;
+mod view_path;
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+pub use majorant::DensityBounds;
+pub use path_tracer::PathTracer;
+pub use single_scattering::single_scattering;
+pub use sun::disk_mean_transmittance;
+pub use view_path::{RayEnd, ViewPath};
+
+use crate::atmosphere::Atmosphere;
+use crate::column::{Fineness, optical_depth};
+use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::phase_sampling::PhaseSampler;
+use crate::sampling::{Sampler, cosine_weighted, direction_around, mix_seed};
+use crate::transmittance_table::TransmittanceTable;
+
+/// Size of the columns table for the sun's transmittance in Monte Carlo events.
+const MC_TABLE_SIZE: (usize, usize) = (512, 128);
+/// Paths per batch between checks of the standard error.
+const BATCH: usize = 256;
+/// Fewest paths before the standard error is trusted.
+const MIN_PATHS: usize = 256;
+/// Most paths per ray and wavelength.
+const MAX_PATHS: usize = 1 << 18;
+/// Radiance below this fraction of the solar irradiance (sr^-1) counts as darkness: its
+/// error is not refined further.
+const DARKNESS: f64 = 1e-10;
+
+/// The coefficients of the atmosphere at each wavelength of a model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spectra {
+    pub wavelengths_nm: Vec<f64>,
+    /// Extinction per species (Rayleigh, Mie, ozone) at density 1, m^-1.
+    pub extinction: Vec<[f64; 3]>,
+    pub rayleigh_scattering: Vec<f64>,
+    pub mie_scattering: Vec<f64>,
+    pub solar_irradiance: Vec<f64>,
+}
+
+impl Spectra {
+    pub fn new(atmosphere: &Atmosphere, wavelengths_nm: &[f64]) -> Spectra {
+        let c: Vec<_> = wavelengths_nm
+            .iter()
+            .map(|l| atmosphere.coefficients(*l))
+            .collect();
+        Spectra {
+            wavelengths_nm: wavelengths_nm.to_vec(),
+            extinction: c.iter().map(|c| c.extinction_per_species()).collect(),
+            rayleigh_scattering: c.iter().map(|c| c.rayleigh_scattering_per_m).collect(),
+            mie_scattering: c.iter().map(|c| c.mie_scattering_per_m).collect(),
+            solar_irradiance: c.iter().map(|c| c.solar_irradiance_w_m2_nm).collect(),
+        }
+    }
+}
+
+/// The reference model, prepared for one atmosphere.
+#[derive(Debug)]
+pub struct Reference {
+    atmosphere: Atmosphere,
+    settings: ModelSettings,
+    spectra: Spectra,
+    table: TransmittanceTable,
+    bounds: DensityBounds,
+    mie_sampler: PhaseSampler,
+}
+
+/// Monte Carlo estimate of orders two and up, at one wavelength.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate {
+    pub mean: f64,
+    pub std_error: f64,
+    pub paths: usize,
+}
+
+impl Reference {
+    pub fn prepare(atmosphere: &Atmosphere, settings: &ModelSettings) -> Reference {
+        let (w, h) = MC_TABLE_SIZE;
+        Reference {
+            atmosphere: atmosphere.clone(),
+            settings: settings.clone(),
+            spectra: Spectra::new(atmosphere, &settings.wavelengths_nm),
+            table: TransmittanceTable::build(atmosphere, w, h),
+            bounds: DensityBounds::new(atmosphere),
+            mie_sampler: PhaseSampler::new(&atmosphere.mie.phase),
+        }
+    }
+
+    pub fn spectra(&self) -> &Spectra {
+        &self.spectra
+    }
+
+    /// The path tracer at wavelength index `w`.
+    pub fn tracer(&self, w: usize, sun_direction: DVec3) -> PathTracer<'_> {
+        PathTracer {
+            atmosphere: &self.atmosphere,
+            table: &self.table,
+            bounds: &self.bounds,
+            mie_sampler: &self.mie_sampler,
+            extinction: self.spectra.extinction[w],
+            rayleigh_scattering: self.spectra.rayleigh_scattering[w],
+            mie_scattering: self.spectra.mie_scattering[w],
+            solar_irradiance: self.spectra.solar_irradiance[w],
+            max_orders: self.settings.max_orders,
+            sun_direction,
+        }
+    }
+
+    /// Orders two and up along a discretised view ray at wavelength index `w`, refined
+    /// until the standard error is below `target` times (`known` + the estimate).
+    pub fn multiple_scattering(
+        &self,
+        path: &ViewPath,
+        sun_direction: DVec3,
+        w: usize,
+        known: f64,
+        sampler: &mut Sampler,
+    ) -> Estimate {
+        let none = Estimate {
+            mean: 0.0,
+            std_error: 0.0,
+            paths: 0,
+        };
+        if self.settings.max_orders == Some(1) {
+            return none;
+        }
+        let ext = self.spectra.extinction[w];
+        let (br, bm) = (
+            self.spectra.rayleigh_scattering[w],
+            self.spectra.mie_scattering[w],
+        );
+        // Where the light of order two and up is scattered towards the camera for the
+        // last time: a view node (mass = weight * T * sigma_s) or the ground
+        // (mass = T * albedo).
+        let mut masses: Vec<f64> = path
+            .nodes
+            .iter()
+            .map(|n| {
+                n.weight
+                    * (-optical_depth(n.column_from_camera, ext)).exp()
+                    * (br * n.densities[0] + bm * n.densities[1])
+            })
+            .collect();
+        if let RayEnd::Ground(_) = path.end {
+            masses.push(
+                (-optical_depth(path.total_column, ext)).exp() * self.atmosphere.ground_albedo,
+            );
+        }
+        let total: f64 = masses.iter().sum();
+        if total <= 0.0 {
+            return none;
+        }
+        let mut cdf = masses;
+        let mut acc = 0.0;
+        for m in cdf.iter_mut() {
+            acc += *m;
+            *m = acc / total;
+        }
+        let tracer = self.tracer(w, sun_direction);
+        let darkness = DARKNESS * self.spectra.solar_irradiance[w];
+        let (mut sum, mut sum_sq, mut n) = (0.0, 0.0, 0usize);
+        loop {
+            for _ in 0..BATCH {
+                let u = sampler.uniform();
+                let i = cdf.partition_point(|c| *c < u).min(cdf.len() - 1);
+                let value = if i < path.nodes.len() {
+                    let node = &path.nodes[i];
+                    let sr = br * node.densities[0];
+                    let sm = bm * node.densities[1];
+                    let (nu, weight) = if sampler.uniform() * (sr + sm) < sr {
+                        (
+                            crate::phase_sampling::sample_rayleigh(sampler.uniform()),
+                            1.0,
+                        )
+                    } else {
+                        self.mie_sampler.sample(sampler)
+                    };
+                    let direction =
+                        direction_around(path.direction, nu, 2.0 * PI * sampler.uniform());
+                    weight * tracer.incoming_scattered(node.position, direction, 2, sampler)
+                } else {
+                    let RayEnd::Ground(point) = path.end else {
+                        unreachable!()
+                    };
+                    let direction = cosine_weighted(point.normalize(), sampler);
+                    tracer.incoming_scattered(point, direction, 2, sampler)
+                };
+                let value = total * value;
+                sum += value;
+                sum_sq += value * value;
+            }
+            n += BATCH;
+            let mean = sum / n as f64;
+            let variance = ((sum_sq / n as f64) - mean * mean).max(0.0) * n as f64 / (n - 1) as f64;
+            let std_error = (variance / n as f64).sqrt();
+            let converged = std_error <= self.settings.target_relative_error * (known + mean)
+                || std_error <= darkness;
+            if n >= MAX_PATHS || (n >= MIN_PATHS && converged) {
+                return Estimate {
+                    mean,
+                    std_error,
+                    paths: n,
+                };
+            }
+        }
+    }
+}
+
+impl SkyModel for Reference {
+    fn id(&self) -> &'static str {
+        "reference"
+    }
+
+    fn wavelengths_nm(&self) -> &[f64] {
+        &self.spectra.wavelengths_nm
+    }
+
+    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
+        &self.spectra.solar_irradiance
+    }
+
+    fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
+        let path = ViewPath::new(&self.atmosphere, ray, Fineness::VIEW)?;
+        let sun = ray.sun_direction.normalize();
+        let single = single_scattering(&self.atmosphere, &self.spectra, &path, sun);
+        let transmittance = self
+            .spectra
+            .extinction
+            .iter()
+            .map(|e| (-optical_depth(path.total_column, *e)).exp())
+            .collect();
+        let seed = mix_seed(&[
+            self.settings.seed,
+            ray.origin_m.x.to_bits(),
+            ray.origin_m.y.to_bits(),
+            ray.origin_m.z.to_bits(),
+            ray.direction.x.to_bits(),
+            ray.direction.y.to_bits(),
+            ray.direction.z.to_bits(),
+            ray.sun_direction.x.to_bits(),
+            ray.sun_direction.y.to_bits(),
+            ray.sun_direction.z.to_bits(),
+            ray.max_distance_m.unwrap_or(-1.0).to_bits(),
+        ]);
+        let mut radiance = Vec::with_capacity(single.len());
+        let mut std_error = Vec::with_capacity(single.len());
+        for (w, l1) in single.iter().enumerate() {
+            let mut sampler = Sampler::new(mix_seed(&[seed, w as u64]));
+            let ms = self.multiple_scattering(&path, sun, w, *l1, &mut sampler);
+            radiance.push(l1 + ms.mean);
+            std_error.push(ms.std_error);
+        }
+        Ok(RayRadiance {
+            radiance,
+            transmittance,
+            radiance_std_error: std_error,
+        })
+    }
+}

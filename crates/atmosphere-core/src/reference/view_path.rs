@@ -1,0 +1,149 @@
+//! The view ray cut into quadrature nodes: where it enters and leaves the atmosphere, how
+//! it ends (ground, object, space), and at every node the position, densities and the
+//! columns of matter back to the camera.
+
+use glam::DVec3;
+
+use crate::atmosphere::Atmosphere;
+use crate::column::{Fineness, densities, panels};
+use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
+use crate::model::{ModelError, ViewRay};
+use crate::quadrature::{GAUSS_LEGENDRE_8, mapped};
+
+/// How a view ray ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RayEnd {
+    /// On the ground at this point (planet-centred, m).
+    Ground(DVec3),
+    /// On an object inside the atmosphere.
+    Object,
+    /// In space (or the ray never met the atmosphere).
+    Space,
+}
+
+/// One quadrature node of the view ray.
+#[derive(Clone, Copy, Debug)]
+pub struct ViewNode {
+    /// Planet-centred position, m.
+    pub position: DVec3,
+    /// Quadrature weight, m.
+    pub weight: f64,
+    /// Relative densities (Rayleigh, Mie, ozone).
+    pub densities: [f64; 3],
+    /// Columns from the camera to the node, m.
+    pub column_from_camera: [f64; 3],
+}
+
+/// The view ray, discretised.
+#[derive(Clone, Debug)]
+pub struct ViewPath {
+    pub direction: DVec3,
+    pub nodes: Vec<ViewNode>,
+    /// Columns from the camera to the end of the ray, m.
+    pub total_column: [f64; 3],
+    pub end: RayEnd,
+}
+
+impl ViewPath {
+    /// Cuts `ray` into nodes with the given fineness.
+    pub fn new(
+        atmosphere: &Atmosphere,
+        ray: &ViewRay,
+        fineness: Fineness,
+    ) -> Result<ViewPath, ModelError> {
+        let bottom = atmosphere.bottom_radius_m;
+        let top = atmosphere.top_radius_m;
+        let direction = ray.direction.normalize();
+        let empty = |end| ViewPath {
+            direction,
+            nodes: Vec::new(),
+            total_column: [0.0; 3],
+            end,
+        };
+        let r_camera = ray.origin_m.length();
+        if !(direction.is_finite() && ray.origin_m.is_finite() && ray.sun_direction.is_finite()) {
+            return Err(ModelError::Ray("non-finite position or direction".into()));
+        }
+        if r_camera < bottom * (1.0 - 1e-12) {
+            return Err(ModelError::Ray(format!(
+                "camera {} m below the ground",
+                bottom - r_camera
+            )));
+        }
+        // Move the origin to where the ray enters the atmosphere.
+        let mu_camera = (ray.origin_m.dot(direction) / r_camera).clamp(-1.0, 1.0);
+        let t_enter = if r_camera > top {
+            match distance_to_entry(r_camera, mu_camera, top) {
+                Some(t) => t,
+                None => return Ok(empty(RayEnd::Space)),
+            }
+        } else {
+            0.0
+        };
+        let start = ray.origin_m + direction * t_enter;
+        let r = start.length().clamp(bottom, top);
+        let mu = (start.dot(direction) / start.length()).clamp(-1.0, 1.0);
+        let (mut length, mut end_on_ground) = if ray_hits_ground(r, mu, bottom) {
+            (distance_to_entry(r, mu, bottom).unwrap_or(0.0), true)
+        } else {
+            (distance_to_exit(r, mu, top), false)
+        };
+        let mut object = false;
+        if let Some(d) = ray.max_distance_m {
+            let remaining = d - t_enter;
+            if remaining <= 0.0 {
+                return Ok(empty(RayEnd::Object));
+            }
+            if remaining < length {
+                length = remaining;
+                end_on_ground = false;
+                object = true;
+            }
+        }
+        let mut nodes = Vec::new();
+        let mut column = [0.0; 3];
+        for (a, b) in panels(atmosphere, r, mu, length, fineness) {
+            for (t, w) in mapped(&GAUSS_LEGENDRE_8, a, b) {
+                let mut partial = column;
+                for (s, ws) in mapped(&GAUSS_LEGENDRE_8, a, t) {
+                    let rho = densities(atmosphere, altitude(start + direction * s, bottom));
+                    for k in 0..3 {
+                        partial[k] += ws * rho[k];
+                    }
+                }
+                let position = start + direction * t;
+                nodes.push(ViewNode {
+                    position,
+                    weight: w,
+                    densities: densities(atmosphere, altitude(position, bottom)),
+                    column_from_camera: partial,
+                });
+            }
+            for (s, ws) in mapped(&GAUSS_LEGENDRE_8, a, b) {
+                let rho = densities(atmosphere, altitude(start + direction * s, bottom));
+                for k in 0..3 {
+                    column[k] += ws * rho[k];
+                }
+            }
+        }
+        let end = if end_on_ground {
+            let p = start + direction * length;
+            RayEnd::Ground(p * (bottom / p.length()))
+        } else if object {
+            RayEnd::Object
+        } else {
+            RayEnd::Space
+        };
+        Ok(ViewPath {
+            direction,
+            nodes,
+            total_column: column,
+            end,
+        })
+    }
+}
+
+/// Altitude above the ground of a planet-centred position, never negative.
+pub fn altitude(position: DVec3, bottom_radius_m: f64) -> f64 {
+    (position.length() - bottom_radius_m).max(0.0)
+}

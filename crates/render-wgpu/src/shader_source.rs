@@ -1,0 +1,93 @@
+//! WGSL sources from the workspace's `shaders/` folder, embedded with `include_str!` so
+//! the binary needs no files at run time, and composed by a tiny textual resolver: a line
+//! `#import name.wgsl` is replaced by that module's text, each module included once per
+//! composed shader, so shared code lives in one file.
+
+use crate::error::GpuError;
+
+/// Every file of `shaders/`, by file name. The validation test checks that this list and
+/// the folder agree.
+const SHADERS: &[(&str, &str)] = &[
+    (
+        "atmosphere_params.wgsl",
+        include_str!("../../../shaders/atmosphere_params.wgsl"),
+    ),
+    (
+        "transmittance_table.wgsl",
+        include_str!("../../../shaders/transmittance_table.wgsl"),
+    ),
+];
+
+/// The names of all embedded shader files.
+pub fn shader_names() -> impl Iterator<Item = &'static str> {
+    SHADERS.iter().map(|(name, _)| *name)
+}
+
+/// Every embedded shader file with its imports resolved, by file name.
+pub fn all_composed() -> Result<Vec<(&'static str, String)>, GpuError> {
+    shader_names()
+        .map(|name| Ok((name, composed(name)?)))
+        .collect()
+}
+
+/// The source of shader `name` (a file name such as `transmittance_table.wgsl`) with its
+/// `#import` lines resolved.
+pub fn composed(name: &str) -> Result<String, GpuError> {
+    let mut out = String::new();
+    let mut included = Vec::new();
+    append(name, name, &mut included, &mut out)?;
+    Ok(out)
+}
+
+fn raw(name: &str) -> Option<&'static str> {
+    SHADERS.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+}
+
+/// Appends `name`'s text to `out`, replacing each import by the module's text unless
+/// already included (which also ends import cycles).
+fn append<'a>(
+    root: &str,
+    name: &'a str,
+    included: &mut Vec<&'a str>,
+    out: &mut String,
+) -> Result<(), GpuError> {
+    let text = raw(name).ok_or_else(|| {
+        if name == root {
+            GpuError::UnknownShader(name.to_string())
+        } else {
+            GpuError::UnknownImport {
+                shader: root.to_string(),
+                import: name.to_string(),
+            }
+        }
+    })?;
+    included.push(name);
+    for line in text.lines() {
+        if let Some(import) = line.trim().strip_prefix("#import") {
+            let import = import.trim();
+            if !included.contains(&import) {
+                append(root, import, included, out)?;
+            }
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn imports_are_resolved_once_and_unknown_names_are_errors() {
+        let table = composed("transmittance_table.wgsl").unwrap();
+        assert!(!table.contains("#import"));
+        assert_eq!(table.matches("struct AtmosphereParams").count(), 1);
+        assert!(matches!(
+            composed("missing.wgsl"),
+            Err(GpuError::UnknownShader(_))
+        ));
+    }
+}

@@ -1,0 +1,201 @@
+//! The compute pass that builds the transmittance table T(r, mu) of
+//! `shaders/transmittance_table.wgsl` into an `Rgba32Float` texture: rgb = transmittance
+//! at the uniform's three wavelengths, a = 1. Its CPU twin is atmosphere-core's
+//! `transmittance_table.rs`.
+
+use atmosphere_core::transmittance_table::BRUNETON_TABLE_SIZE;
+
+use crate::atmosphere_uniform::AtmosphereUniform;
+use crate::device::GpuContext;
+use crate::error::GpuError;
+use crate::shader_source;
+
+/// Texture format of the table.
+pub const TABLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// Side of the shader's square workgroup (`@workgroup_size(8, 8)`).
+const WORKGROUP_SIDE: u32 = 8;
+
+/// Pipeline, uniform buffer and table texture, made once; [`TransmittancePass::run`]
+/// rebuilds the table for an atmosphere.
+#[derive(Debug)]
+pub struct TransmittancePass {
+    pipeline: wgpu::ComputePipeline,
+    uniform: wgpu::Buffer,
+    texture: wgpu::Texture,
+    bind_group: wgpu::BindGroup,
+}
+
+impl TransmittancePass {
+    /// The pipeline and a table of `BRUNETON_TABLE_SIZE` (256 x 64).
+    pub fn new(gpu: &GpuContext) -> Result<TransmittancePass, GpuError> {
+        let device = &gpu.device;
+        let source = shader_source::composed("transmittance_table.wgsl")?;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("transmittance_table.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("transmittance table"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(
+                            size_of::<AtmosphereUniform>() as u64
+                        ),
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: TABLE_FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("transmittance table"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("transmittance table"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("atmosphere"),
+            size: size_of::<AtmosphereUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let (width, height) = BRUNETON_TABLE_SIZE;
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("transmittance table"),
+            size: wgpu::Extent3d {
+                width: width as u32,
+                height: height as u32,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: TABLE_FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("transmittance table"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+            ],
+        });
+        if let Some(source) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Validation {
+                what: "the transmittance pipeline",
+                source,
+            });
+        }
+        Ok(TransmittancePass {
+            pipeline,
+            uniform,
+            texture,
+            bind_group,
+        })
+    }
+
+    /// The table texture, for later passes to sample.
+    pub fn texture(&self) -> &wgpu::Texture {
+        &self.texture
+    }
+
+    /// Uploads `atmosphere` and submits the dispatch that fills the table.
+    pub fn run(&self, gpu: &GpuContext, atmosphere: &AtmosphereUniform) {
+        gpu.queue
+            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(atmosphere));
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("transmittance table"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.dispatch_workgroups(
+                self.texture.width().div_ceil(WORKGROUP_SIDE),
+                self.texture.height().div_ceil(WORKGROUP_SIDE),
+                1,
+            );
+        }
+        gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// The table's texels, row-major (row = r, column = mu), waiting for the GPU.
+    pub fn read_back(&self, gpu: &GpuContext) -> Result<Vec<[f32; 4]>, GpuError> {
+        let (width, height) = (self.texture.width(), self.texture.height());
+        let texel_bytes = size_of::<[f32; 4]>() as u32;
+        let row_bytes = width * texel_bytes;
+        let padded_row_bytes = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("transmittance read-back"),
+            size: u64::from(padded_row_bytes * height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_texture_to_buffer(
+            self.texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded_row_bytes),
+                    rows_per_image: Some(height),
+                },
+            },
+            self.texture.size(),
+        );
+        gpu.queue.submit([encoder.finish()]);
+
+        let (sender, receiver) = std::sync::mpsc::channel();
+        buffer.map_async(wgpu::MapMode::Read, .., move |result| {
+            // The receiver lives until the poll below has returned.
+            let _ = sender.send(result);
+        });
+        gpu.device.poll(wgpu::PollType::wait_indefinitely())?;
+        receiver
+            .recv()
+            .expect("map_async calls back during a waiting poll")?;
+        let bytes = buffer.get_mapped_range(..)?;
+        let texels = bytes
+            .chunks_exact(padded_row_bytes as usize)
+            .flat_map(|row| bytemuck::cast_slice::<u8, [f32; 4]>(&row[..row_bytes as usize]))
+            .copied()
+            .collect();
+        Ok(texels)
+    }
+}

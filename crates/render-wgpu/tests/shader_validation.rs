@@ -1,0 +1,136 @@
+//! Every shader of `shaders/`, composed, must pass naga's WGSL front end and validator,
+//! without a GPU; and the WGSL uniform layout must match its Rust twin.
+
+use std::path::Path;
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+use render_wgpu::atmosphere_uniform::{
+    AtmosphereUniform, DensityLayerUniform, DensityProfileUniform,
+};
+use render_wgpu::shader_source;
+
+/// What the device offers shaders: WebGPU's defaults (naga's default capabilities).
+/// Add a capability here when `GpuContext` starts requesting the feature behind it.
+const PROJECT_CAPABILITIES: Capabilities =
+    Capabilities::MULTISAMPLED_SHADING.union(Capabilities::CUBE_ARRAY_TEXTURES);
+
+/// Parses and validates `source`; the error is naga's report with source lines.
+fn validate(name: &str, source: &str) -> Result<naga::Module, String> {
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| e.emit_to_string_with_path(source, name))?;
+    Validator::new(ValidationFlags::all(), PROJECT_CAPABILITIES)
+        .validate(&module)
+        .map_err(|e| e.emit_to_string_with_path(source, name))?;
+    Ok(module)
+}
+
+#[test]
+fn every_shader_file_is_embedded() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders");
+    let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".wgsl"))
+        .collect();
+    on_disk.sort();
+    let mut embedded: Vec<String> = shader_source::shader_names().map(String::from).collect();
+    embedded.sort();
+    assert_eq!(on_disk, embedded, "shaders/ and shader_source.rs disagree");
+}
+
+#[test]
+fn every_shader_validates() {
+    let shaders = shader_source::all_composed().unwrap();
+    let failures: Vec<String> = shaders
+        .iter()
+        .filter_map(|(name, source)| validate(name, source).err())
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn broken_shaders_are_rejected() {
+    // A type error, caught by the front end.
+    let err = validate("type.wgsl", "fn f() -> f32 { return vec2<f32>(1.0); }").unwrap_err();
+    assert!(err.contains("type.wgsl"), "{err}");
+    // An array of stride 4 in a uniform, caught by the validator.
+    let uniform = "struct S { a: array<f32, 4> }\n@group(0) @binding(0) var<uniform> s: S;\n";
+    assert!(validate("layout.wgsl", uniform).is_err());
+}
+
+#[test]
+fn atmosphere_uniform_matches_its_wgsl_layout() {
+    let source = shader_source::composed("atmosphere_params.wgsl").unwrap();
+    let module = validate("atmosphere_params.wgsl", &source).unwrap();
+    let layout = |struct_name: &str| {
+        module
+            .types
+            .iter()
+            .find_map(|(_, ty)| match (&ty.name, &ty.inner) {
+                (Some(n), naga::TypeInner::Struct { members, span }) if n == struct_name => Some((
+                    *span as usize,
+                    members
+                        .iter()
+                        .map(|m| (m.name.clone().unwrap(), m.offset as usize))
+                        .collect::<Vec<_>>(),
+                )),
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no struct {struct_name}"))
+    };
+    let (span, members) = layout("AtmosphereParams");
+    assert_eq!(span, size_of::<AtmosphereUniform>());
+    let rust = [
+        (
+            "bottom_radius_m",
+            std::mem::offset_of!(AtmosphereUniform, bottom_radius_m),
+        ),
+        (
+            "top_radius_m",
+            std::mem::offset_of!(AtmosphereUniform, top_radius_m),
+        ),
+        (
+            "rayleigh_density",
+            std::mem::offset_of!(AtmosphereUniform, rayleigh_density),
+        ),
+        (
+            "mie_density",
+            std::mem::offset_of!(AtmosphereUniform, mie_density),
+        ),
+        (
+            "ozone_density",
+            std::mem::offset_of!(AtmosphereUniform, ozone_density),
+        ),
+        (
+            "rayleigh_extinction_per_m",
+            std::mem::offset_of!(AtmosphereUniform, rayleigh_extinction_per_m),
+        ),
+        (
+            "mie_extinction_per_m",
+            std::mem::offset_of!(AtmosphereUniform, mie_extinction_per_m),
+        ),
+        (
+            "ozone_extinction_per_m",
+            std::mem::offset_of!(AtmosphereUniform, ozone_extinction_per_m),
+        ),
+    ];
+    for (name, offset) in rust {
+        assert!(
+            members.contains(&(name.to_string(), offset)),
+            "{name} at {offset}: WGSL has {members:?}"
+        );
+    }
+    assert_eq!(
+        layout("DensityProfile").0,
+        size_of::<DensityProfileUniform>()
+    );
+    let (span, members) = layout("DensityLayer");
+    assert_eq!(span, size_of::<DensityLayerUniform>());
+    assert_eq!(
+        members[4],
+        (
+            "constant_term".to_string(),
+            std::mem::offset_of!(DensityLayerUniform, constant_term)
+        )
+    );
+}
