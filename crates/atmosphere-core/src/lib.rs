@@ -18,6 +18,7 @@ pub mod phase_sampling;
 pub mod presets;
 pub mod quadrature;
 pub mod reference;
+pub mod riley;
 pub mod sampling;
 pub mod solar;
 pub mod spectral;

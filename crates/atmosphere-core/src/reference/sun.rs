@@ -10,9 +10,11 @@ use crate::atmosphere::Atmosphere;
 use crate::column::{column, optical_depth};
 use crate::geometry::{distance_to_exit, horizon_mu, ray_hits_ground};
 
-/// Within this angle (radians) of the geometric horizon the disk is integrated; further
-/// up the centre's transmittance stands for the disk (the error, of order
-/// alpha^2 / 8 * T''/T, is below 1e-6 there).
+/// Within this angle (radians, 15 degrees) of the geometric horizon the disk is
+/// integrated; further up the centre's transmittance stands for the disk. The error
+/// there, alpha^2 / 8 * T''/T, is at most 5e-5 (3e-5 for the earth preset at 440 nm
+/// seen from the ground, 5e-5 under an optical depth 0.1 slab; tested against a point-sun
+/// closed form).
 const NEAR_HORIZON_RAD: f64 = 0.26;
 
 /// Points of the Gauss-Chebyshev rule (second kind) across the disk's height: its weight
