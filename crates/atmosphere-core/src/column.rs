@@ -60,7 +60,8 @@ impl Fineness {
 
 /// Cuts the ray from (r, mu) over [0, d] into panels on which every density is smooth:
 /// cuts at the tangent point, where the ray crosses a profile's breakpoint or the top of
-/// the atmosphere, and then into pieces over which the altitude changes by at most a
+/// the atmosphere, at `extra_cuts` (where the caller's integrand has kinks), and then
+/// into pieces over which the altitude changes by at most a
 /// fraction of the shortest density scale.
 pub fn panels(
     atmosphere: &Atmosphere,
@@ -68,9 +69,11 @@ pub fn panels(
     mu: f64,
     d: f64,
     fineness: Fineness,
+    extra_cuts: &[f64],
 ) -> Vec<(f64, f64)> {
     let bottom = atmosphere.bottom_radius_m;
     let mut cuts = vec![0.0, d];
+    cuts.extend(extra_cuts.iter().filter(|t| **t > 0.0 && **t < d));
     let tangent = -r * mu;
     if tangent > 0.0 && tangent < d {
         cuts.push(tangent);
@@ -162,7 +165,7 @@ pub fn column_with(
 ) -> [f64; 3] {
     let bottom = atmosphere.bottom_radius_m;
     let mut sum = [0.0; 3];
-    for (a, b) in panels(atmosphere, r, mu, d, fineness) {
+    for (a, b) in panels(atmosphere, r, mu, d, fineness, &[]) {
         for (t, w) in mapped(&GAUSS_LEGENDRE_8, a, b) {
             let rho = densities(atmosphere, radius_at(r, mu, t) - bottom);
             for k in 0..3 {

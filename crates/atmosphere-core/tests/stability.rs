@@ -1,0 +1,241 @@
+//! Stiff and extreme cases give finite, non-negative, bounded and continuous results
+//! (DESIGN.md, "Numerical stability").
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::density::DensityProfile;
+use atmosphere_core::geometry::horizon_mu;
+use atmosphere_core::model::{ModelSettings, SkyModel, ViewRay, prepare};
+use atmosphere_core::spectral::Spectral;
+
+/// A Venus-thick atmosphere: dense CO2 (Rayleigh 100 times Earth's at 1 um... the
+/// column, scale height 15.9 km) under a thick haze, so that grazing optical depths pass
+/// 10^3.
+fn venus_like() -> Atmosphere {
+    let mut a = Atmosphere::preset("earth").unwrap();
+    a.name = "venus-like".into();
+    a.bottom_radius_m = 6_051_800.0;
+    a.top_radius_m = 6_051_800.0 + 150_000.0;
+    a.rayleigh.scattering_per_m = Spectral::PowerLaw {
+        value_at_1um: 1.2e-4,
+        exponent: 4.0,
+    };
+    a.rayleigh.density = DensityProfile::exponential(15_900.0);
+    a.mie.scattering_per_m = Spectral::Constant { value: 1.9e-3 };
+    a.mie.extinction_per_m = Spectral::Constant { value: 2.0e-3 };
+    a.mie.density = DensityProfile::exponential(5_000.0);
+    a.ozone.absorption_per_m = Spectral::Constant { value: 0.0 };
+    a.validate().unwrap();
+    a
+}
+
+fn atmospheres() -> Vec<Atmosphere> {
+    let earth = Atmosphere::preset("earth").unwrap();
+    vec![
+        earth.clone(),
+        earth.with_aerosol_scale(0.0),
+        earth.with_aerosol_scale(100.0),
+        Atmosphere::preset("mars").unwrap(),
+        venus_like(),
+    ]
+}
+
+fn model(a: &Atmosphere, orders: Option<u32>, target: f64) -> Box<dyn SkyModel> {
+    prepare(
+        "reference",
+        a,
+        &ModelSettings {
+            max_orders: orders,
+            target_relative_error: target,
+            ..ModelSettings::default()
+        },
+    )
+    .unwrap()
+}
+
+fn ray(
+    a: &Atmosphere,
+    altitude_m: f64,
+    view_zenith_deg: f64,
+    sun_zenith_deg: f64,
+    azimuth_deg: f64,
+) -> ViewRay {
+    ViewRay::from_angles(
+        a.bottom_radius_m,
+        altitude_m,
+        view_zenith_deg,
+        sun_zenith_deg,
+        azimuth_deg,
+        None,
+    )
+    .unwrap()
+}
+
+fn assert_sane(a: &Atmosphere, what: &str, r: &atmosphere_core::model::RayRadiance) {
+    for w in 0..r.radiance.len() {
+        let (l, t) = (r.radiance[w], r.transmittance[w]);
+        assert!(
+            l.is_finite() && l >= 0.0,
+            "{}: {what}: radiance {l}",
+            a.name
+        );
+        // Nothing is brighter than the sun's irradiance spread over a hemisphere, times a
+        // generous factor for the forward peak of aerosols.
+        assert!(l < 50.0, "{}: {what}: radiance {l} unbounded", a.name);
+        assert!(
+            t.is_finite() && (0.0..=1.0).contains(&t),
+            "{}: {what}: transmittance {t}",
+            a.name
+        );
+        assert!(
+            r.radiance_std_error[w].is_finite(),
+            "{}: {what}: error",
+            a.name
+        );
+    }
+}
+
+#[test]
+fn single_scattering_is_finite_and_non_negative_over_extreme_rays() {
+    for a in atmospheres() {
+        let m = model(&a, Some(1), 0.01);
+        let top = a.thickness_m();
+        let altitudes = [0.0, 1e-3, 1.0, top - 1e-6, top, top + 1.0, 1e5, 1e8];
+        for altitude in altitudes {
+            let r = a.bottom_radius_m + altitude;
+            let horizon = horizon_mu(r, a.bottom_radius_m).acos().to_degrees();
+            let views = [
+                0.0,
+                45.0,
+                89.999,
+                90.0,
+                90.001,
+                horizon - 1e-9,
+                horizon + 1e-9,
+                135.0,
+                180.0,
+            ];
+            for view in views {
+                for sun in [0.0, 60.0, 89.9, 90.0, 95.0, 110.0] {
+                    for azimuth in [0.0, 120.0] {
+                        let what =
+                            format!("altitude {altitude} view {view} sun {sun} azimuth {azimuth}");
+                        let result = m.radiance(&ray(&a, altitude, view, sun, azimuth)).unwrap();
+                        assert_sane(&a, &what, &result);
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn all_orders_are_finite_and_non_negative_in_extreme_atmospheres() {
+    for a in atmospheres() {
+        let m = model(&a, None, 0.05);
+        for (altitude, view, sun) in [
+            (0.0, 0.0, 30.0),
+            (0.0, 89.99, 89.5),
+            (10_000.0, 120.0, 100.0),
+            (1e7, 179.0, 45.0),
+        ] {
+            let what = format!("altitude {altitude} view {view} sun {sun}");
+            let result = m.radiance(&ray(&a, altitude, view, sun, 0.0)).unwrap();
+            assert_sane(&a, &what, &result);
+        }
+    }
+}
+
+#[test]
+fn grazing_optical_depths_pass_a_thousand_without_trouble() {
+    let a = venus_like();
+    let m = model(&a, Some(1), 0.01);
+    let r = a.bottom_radius_m + 10.0;
+    let horizon = horizon_mu(r, a.bottom_radius_m).acos().to_degrees();
+    let result = m
+        .radiance(&ray(&a, 10.0, horizon - 1e-6, 80.0, 0.0))
+        .unwrap();
+    let tau = -result.transmittance[2].max(f64::MIN_POSITIVE).ln();
+    assert!(
+        result.transmittance[2] < 1e-300 || tau > 1000.0,
+        "optical depth {tau}"
+    );
+    assert_sane(&a, "grazing", &result);
+}
+
+/// As the sun sets, the radiance falls smoothly: the disk sinks over half a degree and
+/// only its visible part lights the air, so there is no step when its centre crosses the
+/// horizon.
+#[test]
+fn radiance_is_continuous_as_the_sun_crosses_the_horizon() {
+    let a = Atmosphere::preset("earth").unwrap();
+    let m = model(&a, Some(1), 0.01);
+    let values: Vec<f64> = (0..=100)
+        .map(|i| {
+            let sun = 89.5 + 0.01 * i as f64;
+            m.radiance(&ray(&a, 0.0, 85.0, sun, 0.0)).unwrap().radiance[0]
+        })
+        .collect();
+    let largest = values.iter().cloned().fold(0.0, f64::max);
+    for pair in values.windows(2) {
+        let step = (pair[1] - pair[0]).abs() / largest;
+        assert!(step < 0.05, "step {step} of the largest value: {values:?}");
+    }
+}
+
+/// A camera just under, on and just above the top of the atmosphere sees the same.
+#[test]
+fn radiance_is_continuous_across_the_top_boundary() {
+    let a = Atmosphere::preset("earth").unwrap();
+    let m = model(&a, Some(1), 0.01);
+    let top = a.thickness_m();
+    for (view, sun) in [(120.0, 30.0), (100.0, 80.0), (170.0, 95.0)] {
+        let at = |altitude: f64| m.radiance(&ray(&a, altitude, view, sun, 45.0)).unwrap();
+        let reference = at(top);
+        for altitude in [top - 1e-3, top + 1e-3, top + 1.0] {
+            let other = at(altitude);
+            for w in 0..3 {
+                let (x, y) = (reference.radiance[w], other.radiance[w]);
+                assert!(
+                    (x - y).abs() <= 1e-4 * x.max(1e-12),
+                    "view {view} sun {sun} at {altitude}: {x} vs {y}"
+                );
+                let (x, y) = (reference.transmittance[w], other.transmittance[w]);
+                assert!(
+                    (x - y).abs() <= 1e-4,
+                    "transmittance at {altitude}: {x} vs {y}"
+                );
+            }
+        }
+    }
+}
+
+/// Rays ever closer to the horizon converge, above it (sky) and below it (ground). Below
+/// it the point where the ray meets the ground moves as the square root of the angle to
+/// the horizon (1.2 km at 1e-6 degrees, 37 m at 1e-9 degrees from 10 km up), which sets
+/// the tolerances.
+#[test]
+fn radiance_converges_as_rays_graze_the_horizon() {
+    let a = Atmosphere::preset("earth").unwrap();
+    let m = model(&a, Some(1), 0.01);
+    let altitude = 10_000.0;
+    let r = a.bottom_radius_m + altitude;
+    let horizon = horizon_mu(r, a.bottom_radius_m).acos().to_degrees();
+    for side in [-1.0, 1.0] {
+        let at = |offset: f64| {
+            m.radiance(&ray(&a, altitude, horizon + side * offset, 60.0, 0.0))
+                .unwrap()
+                .radiance
+        };
+        let (coarse, fine, finest) = (at(1e-6), at(1e-9), at(1e-12));
+        for w in 0..3 {
+            assert!(
+                (coarse[w] - finest[w]).abs() < 1e-3 * finest[w],
+                "side {side}: {coarse:?} {finest:?}"
+            );
+            assert!(
+                (fine[w] - finest[w]).abs() < 1e-4 * finest[w],
+                "side {side}: {fine:?} {finest:?}"
+            );
+        }
+    }
+}
