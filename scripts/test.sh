@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Runs the whole test suite, GPU tests included, on any machine: a real GPU where there
+# is one, Mesa's software Vulkan (lavapipe) elsewhere. On Debian it installs lavapipe when
+# it is missing (as root, or through sudo).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+lavapipe=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
+if [ ! -f "$lavapipe" ] && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
+  packages="mesa-vulkan-drivers libvulkan1"
+  if [ "$(id -u)" = 0 ]; then sudo=""; elif command -v sudo >/dev/null; then sudo="sudo"; else
+    echo "Software Vulkan is missing: install $packages (Debian), or set ATMOS_SKIP_GPU_TESTS=1" >&2
+    exit 1
+  fi
+  echo "Installing software Vulkan for the GPU tests: $packages" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $packages >/dev/null
+fi
+# Without a real GPU, fail loudly if lavapipe is missing rather than fall back to GL.
+if [ -f "$lavapipe" ] && ! ls /usr/share/vulkan/icd.d/ | grep -qv lvp_icd; then
+  export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
+  export VK_ICD_FILENAMES="${VK_ICD_FILENAMES:-$lavapipe}"
+fi
+exec cargo test --workspace "$@"
