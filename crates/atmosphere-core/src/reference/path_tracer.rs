@@ -49,11 +49,11 @@ enum Event {
 }
 
 /// A straight stretch of a path, from a point to the ground or to space.
-struct Segment {
-    r: f64,
-    mu: f64,
-    length: f64,
-    hits_ground: bool,
+pub(crate) struct Segment {
+    pub r: f64,
+    pub mu: f64,
+    pub length: f64,
+    pub hits_ground: bool,
 }
 
 impl PathTracer<'_> {
@@ -61,9 +61,11 @@ impl PathTracer<'_> {
     /// scattered at least once (no direct sunlight), where the first event met along
     /// `direction` is of scattering order `first_order`.
     ///
-    /// Each event's next place is drawn by delta tracking; at each, the sun's disk is
-    /// sampled (next-event estimation) and a new direction drawn from the phase function
-    /// or, on the ground, the cosine.
+    /// Each event's next place is drawn by delta tracking, and a new direction from the
+    /// phase function or, on the ground, the cosine. The sunlight scattered once more on
+    /// each segment is estimated by next-event estimation of the sun's disk at that event,
+    /// or, on segments that cross the planet's umbra, by sampling their lit part
+    /// (`shadow.rs`).
     pub fn incoming_scattered(
         &self,
         position: DVec3,
@@ -81,7 +83,16 @@ impl PathTracer<'_> {
                 return radiance;
             }
             let segment = self.segment(position, direction);
+            let umbra = self.umbra_interval(position, direction, &segment);
+            if let Some(dark) = umbra {
+                radiance += throughput
+                    * self.lit_in_scattering(position, direction, &segment, dark, sampler);
+            }
+            let at_event = umbra.is_none();
             let last = self.max_orders.is_some_and(|max| order >= max);
+            if last && !at_event {
+                return radiance;
+            }
             match self.next_event(position, direction, &segment, sampler) {
                 Event::Escape => return radiance,
                 Event::Scatter {
@@ -92,17 +103,20 @@ impl PathTracer<'_> {
                     throughput *= albedo;
                     let sr = self.rayleigh_scattering * rho[0];
                     let sm = self.mie_scattering * rho[1];
-                    let sun_dir = uniform_in_cone(
-                        self.sun_direction,
-                        self.atmosphere.sun.angular_radius_rad,
-                        sampler,
-                    );
-                    let sun_t = self.sun_transmittance(p, sun_dir);
-                    if sun_t > 0.0 {
-                        let nu = direction.dot(sun_dir);
-                        let phase = (sr * rayleigh(nu) + sm * self.atmosphere.mie.phase.eval(nu))
-                            / (sr + sm);
-                        radiance += throughput * phase * self.solar_irradiance * sun_t;
+                    if at_event {
+                        let sun_dir = uniform_in_cone(
+                            self.sun_direction,
+                            self.atmosphere.sun.angular_radius_rad,
+                            sampler,
+                        );
+                        let sun_t = self.sun_transmittance(p, sun_dir);
+                        if sun_t > 0.0 {
+                            let nu = direction.dot(sun_dir);
+                            let phase = (sr * rayleigh(nu)
+                                + sm * self.atmosphere.mie.phase.eval(nu))
+                                / (sr + sm);
+                            radiance += throughput * phase * self.solar_irradiance * sun_t;
+                        }
                     }
                     if last {
                         return radiance;
@@ -119,17 +133,19 @@ impl PathTracer<'_> {
                 Event::Ground(p) => {
                     let normal = p.normalize();
                     let albedo = self.atmosphere.ground_albedo;
-                    let sun_dir = uniform_in_cone(
-                        self.sun_direction,
-                        self.atmosphere.sun.angular_radius_rad,
-                        sampler,
-                    );
-                    let cosine = normal.dot(sun_dir);
-                    if cosine > 0.0 {
-                        radiance += throughput * albedo / PI
-                            * self.solar_irradiance
-                            * self.sun_transmittance(p, sun_dir)
-                            * cosine;
+                    if at_event {
+                        let sun_dir = uniform_in_cone(
+                            self.sun_direction,
+                            self.atmosphere.sun.angular_radius_rad,
+                            sampler,
+                        );
+                        let cosine = normal.dot(sun_dir);
+                        if cosine > 0.0 {
+                            radiance += throughput * albedo / PI
+                                * self.solar_irradiance
+                                * self.sun_transmittance(p, sun_dir)
+                                * cosine;
+                        }
                     }
                     if last {
                         return radiance;
@@ -153,7 +169,7 @@ impl PathTracer<'_> {
         }
     }
 
-    fn segment(&self, position: DVec3, direction: DVec3) -> Segment {
+    pub(crate) fn segment(&self, position: DVec3, direction: DVec3) -> Segment {
         let bottom = self.atmosphere.bottom_radius_m;
         let top = self.atmosphere.top_radius_m;
         let r = position.length().clamp(bottom, top);
@@ -173,7 +189,7 @@ impl PathTracer<'_> {
     }
 
     /// Transmittance from `position` to space towards `sun_dir`; zero behind the ground.
-    fn sun_transmittance(&self, position: DVec3, sun_dir: DVec3) -> f64 {
+    pub(crate) fn sun_transmittance(&self, position: DVec3, sun_dir: DVec3) -> f64 {
         let bottom = self.atmosphere.bottom_radius_m;
         let r = position
             .length()
