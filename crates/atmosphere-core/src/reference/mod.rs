@@ -37,7 +37,7 @@ const BATCH: usize = 256;
 /// Fewest paths before the standard error is trusted.
 const MIN_PATHS: usize = 256;
 /// Most paths per ray and wavelength.
-const MAX_PATHS: usize = 1 << 16;
+const MAX_PATHS: usize = 1 << 17;
 /// Radiance below this fraction of the solar irradiance (sr^-1) counts as darkness: its
 /// error is not refined further.
 const DARKNESS: f64 = 1e-10;
