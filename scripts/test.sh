@@ -21,4 +21,19 @@ if [ -f "$lavapipe" ] && ! ls /usr/share/vulkan/icd.d/ | grep -qv lvp_icd; then
   export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
   export VK_ICD_FILENAMES="${VK_ICD_FILENAMES:-$lavapipe}"
 fi
-exec cargo test --workspace "$@"
+# lavapipe asks for a runtime directory; give it a private one rather than print errors.
+if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
+  export XDG_RUNTIME_DIR="${TMPDIR:-/tmp}/atmos-runtime-$(id -u)"
+  mkdir -p -m 700 "$XDG_RUNTIME_DIR"
+fi
+
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+set +e
+cargo test --workspace "$@" 2>&1 | tee "$log"
+status=${PIPESTATUS[0]}
+set -e
+# One closing line for the whole suite.
+awk '/^test result:/ { for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i } }
+     END { printf "tests: %d passed, %d failed\n", p, f }' "$log"
+exit "$status"
