@@ -19,6 +19,16 @@ pub struct Cli {
 pub enum Command {
     /// Radiance and transmittance of given view rays for a given model, CSV in and out.
     Probe(ProbeArgs),
+    /// Stiff and extreme cases through every model: a table of pass/fail and worst values.
+    Stability(StabilityArgs),
+}
+
+/// The flags of `atmos stability`.
+#[derive(Debug, Args)]
+pub struct StabilityArgs {
+    /// Models to check (repeat the flag); all models when absent.
+    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
+    pub model: Vec<String>,
 }
 
 /// The flags of `atmos probe`.

@@ -3,6 +3,7 @@
 
 pub mod cli;
 pub mod probe;
+pub mod stability;
 
 use std::ffi::OsString;
 
@@ -15,6 +16,7 @@ use crate::cli::{Cli, Command};
 pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
     match Cli::try_parse_from(args)?.command {
         Some(Command::Probe(args)) => probe::run(&args),
+        Some(Command::Stability(args)) => stability::run(&args),
         None => {
             Cli::command().print_help()?;
             println!(

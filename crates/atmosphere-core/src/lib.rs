@@ -22,4 +22,5 @@ pub mod riley;
 pub mod sampling;
 pub mod solar;
 pub mod spectral;
+pub mod stability;
 pub mod transmittance_table;

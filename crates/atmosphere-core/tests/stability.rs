@@ -2,31 +2,10 @@
 //! (DESIGN.md, "Numerical stability").
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::density::DensityProfile;
 use atmosphere_core::geometry::horizon_mu;
-use atmosphere_core::model::{ModelSettings, SkyModel, ViewRay, prepare};
-use atmosphere_core::spectral::Spectral;
+use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
 
-/// A Venus-thick atmosphere: dense CO2 (Rayleigh 100 times Earth's at 1 um... the
-/// column, scale height 15.9 km) under a thick haze, so that grazing optical depths pass
-/// 10^3.
-fn venus_like() -> Atmosphere {
-    let mut a = Atmosphere::preset("earth").unwrap();
-    a.name = "venus-like".into();
-    a.bottom_radius_m = 6_051_800.0;
-    a.top_radius_m = 6_051_800.0 + 150_000.0;
-    a.rayleigh.scattering_per_m = Spectral::PowerLaw {
-        value_at_1um: 1.2e-4,
-        exponent: 4.0,
-    };
-    a.rayleigh.density = DensityProfile::exponential(15_900.0);
-    a.mie.scattering_per_m = Spectral::Constant { value: 1.9e-3 };
-    a.mie.extinction_per_m = Spectral::Constant { value: 2.0e-3 };
-    a.mie.density = DensityProfile::exponential(5_000.0);
-    a.ozone.absorption_per_m = Spectral::Constant { value: 0.0 };
-    a.validate().unwrap();
-    a
-}
+use atmosphere_core::stability::venus_like;
 
 fn atmospheres() -> Vec<Atmosphere> {
     let earth = Atmosphere::preset("earth").unwrap();
@@ -237,5 +216,15 @@ fn radiance_converges_as_rays_graze_the_horizon() {
                 "side {side}: {fine:?} {finest:?}"
             );
         }
+    }
+}
+
+/// The sweep of `atmos stability` passes for every model.
+#[test]
+fn every_model_passes_the_stability_sweep() {
+    for id in MODEL_IDS {
+        let results = atmosphere_core::stability::run(id).unwrap();
+        let failed: Vec<_> = results.iter().filter(|r| !r.passed).collect();
+        assert!(failed.is_empty(), "{id}: {failed:#?}");
     }
 }

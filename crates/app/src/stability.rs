@@ -1,0 +1,40 @@
+//! `atmos stability`: the stiff and extreme cases of DESIGN.md through every model (or
+//! the chosen ones), as a table of pass or fail and the worst value seen.
+
+use anyhow::{Context, bail};
+use atmosphere_core::model::MODEL_IDS;
+use atmosphere_core::stability;
+
+use crate::cli::StabilityArgs;
+
+/// Runs the sweep and prints a Markdown table; fails if any case fails.
+pub fn run(args: &StabilityArgs) -> anyhow::Result<()> {
+    let models: Vec<&str> = if args.model.is_empty() {
+        MODEL_IDS.to_vec()
+    } else {
+        args.model.iter().map(String::as_str).collect()
+    };
+    println!("| model | case | result | worst | failure |");
+    println!("|---|---|---|---|---|");
+    let mut failures = 0;
+    for id in models {
+        eprintln!("stability: running {id}...");
+        let results = stability::run(id).with_context(|| format!("model {id}"))?;
+        for r in results {
+            if !r.passed {
+                failures += 1;
+            }
+            println!(
+                "| {id} | {} | {} | {:.3e} | {} |",
+                r.case,
+                if r.passed { "pass" } else { "FAIL" },
+                r.worst,
+                r.failure.as_deref().unwrap_or("")
+            );
+        }
+    }
+    if failures > 0 {
+        bail!("{failures} stability case(s) failed");
+    }
+    Ok(())
+}
