@@ -21,7 +21,7 @@ pub enum ModelError {
 }
 
 /// The ids of the models that can be prepared (DESIGN.md, "Models").
-pub const MODEL_IDS: &[&str] = &["reference"];
+pub const MODEL_IDS: &[&str] = &["reference", "riley"];
 
 /// Settings shared by the models.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,6 +168,7 @@ pub fn prepare(
         "reference" => Ok(Box::new(crate::reference::Reference::prepare(
             atmosphere, settings,
         ))),
+        "riley" => Ok(Box::new(crate::riley::Riley::prepare(atmosphere, settings))),
         other => Err(ModelError::UnknownModel(other.to_string())),
     }
 }
