@@ -21,7 +21,7 @@ pub enum ModelError {
 }
 
 /// The ids of the models that can be prepared (DESIGN.md, "Models").
-pub const MODEL_IDS: &[&str] = &["reference", "riley"];
+pub const MODEL_IDS: &[&str] = &["reference", "nishita", "riley"];
 
 /// Settings shared by the models.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,6 +168,11 @@ pub fn prepare(
         "reference" => Ok(Box::new(crate::reference::Reference::prepare(
             atmosphere, settings,
         ))),
+        "nishita" => Ok(Box::new(crate::nishita::Nishita::prepare(
+            atmosphere,
+            settings,
+            crate::nishita::NishitaSettings::default(),
+        )?)),
         "riley" => Ok(Box::new(crate::riley::Riley::prepare(atmosphere, settings))),
         other => Err(ModelError::UnknownModel(other.to_string())),
     }
