@@ -12,6 +12,7 @@ pub mod column;
 pub mod density;
 pub mod geometry;
 pub mod model;
+pub mod oneil;
 pub mod ozone;
 pub mod phase;
 pub mod phase_sampling;
