@@ -13,6 +13,7 @@ pub mod density;
 pub mod geometry;
 pub mod model;
 pub mod nishita;
+pub mod oneil;
 pub mod ozone;
 pub mod phase;
 pub mod phase_sampling;

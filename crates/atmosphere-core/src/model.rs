@@ -21,7 +21,7 @@ pub enum ModelError {
 }
 
 /// The ids of the models that can be prepared (DESIGN.md, "Models").
-pub const MODEL_IDS: &[&str] = &["reference", "nishita", "riley"];
+pub const MODEL_IDS: &[&str] = &["reference", "nishita", "oneil", "riley"];
 
 /// Settings shared by the models.
 #[derive(Clone, Debug, PartialEq)]
@@ -172,6 +172,11 @@ pub fn prepare(
             atmosphere,
             settings,
             crate::nishita::NishitaSettings::default(),
+        )?)),
+        "oneil" => Ok(Box::new(crate::oneil::Oneil::prepare(
+            atmosphere,
+            settings,
+            crate::oneil::OneilSettings::default(),
         )?)),
         "riley" => Ok(Box::new(crate::riley::Riley::prepare(atmosphere, settings))),
         other => Err(ModelError::UnknownModel(other.to_string())),
