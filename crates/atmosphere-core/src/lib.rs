@@ -6,6 +6,7 @@
 //! every shader matches.
 
 pub mod atmosphere;
+pub mod bruneton;
 pub mod cie1931;
 pub mod color;
 pub mod column;

@@ -21,7 +21,7 @@ pub enum ModelError {
 }
 
 /// The ids of the models that can be prepared (DESIGN.md, "Models").
-pub const MODEL_IDS: &[&str] = &["reference", "nishita", "oneil", "riley"];
+pub const MODEL_IDS: &[&str] = &["reference", "bruneton", "nishita", "oneil", "riley"];
 
 /// Settings shared by the models.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,6 +168,9 @@ pub fn prepare(
         "reference" => Ok(Box::new(crate::reference::Reference::prepare(
             atmosphere, settings,
         ))),
+        "bruneton" => Ok(Box::new(crate::bruneton::Bruneton::prepare(
+            atmosphere, settings,
+        )?)),
         "nishita" => Ok(Box::new(crate::nishita::Nishita::prepare(
             atmosphere,
             settings,

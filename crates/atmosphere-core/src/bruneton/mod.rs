@@ -1,0 +1,357 @@
+//! Bruneton and Neyret 2008, "Precomputed atmospheric scattering" (seed 004): a
+//! transmittance table T(r, mu), a 4D scattering table S(u_r, u_mu, u_mu_s, u_nu) holding
+//! every scattering order, and an irradiance table E(r, mu_s); a view ray then costs a
+//! few look-ups.
+//!
+//! Radiance of a view ray from x (the camera, moved to where the ray enters the
+//! atmosphere if it is in space) along v with the sun towards s:
+//! L = S(x, v, s) - T(x, x_s) S(x_s, v, s) + T(x, x_o) alpha / pi (E_sun + E_sky)(x_o),
+//! the second term for rays ending on an object at x_s, the third for rays ending on the
+//! ground at x_o (paper Eq. 13-16, with the ground a sphere: no occlusion by terrain).
+//! Single Mie scattering is stored separately (the paper's C_M with all three channels,
+//! not its proportionality approximation), so that the Mie phase function is applied
+//! exactly per ray; single Rayleigh is stored without its phase function, and orders two
+//! and up as radiance. The sun disk itself is excluded. See docs/models/bruneton.md.
+
+pub mod parameterization;
+pub mod precompute;
+pub mod tables;
+
+use std::f64::consts::PI;
+
+use crate::atmosphere::Atmosphere;
+use crate::bruneton::parameterization::{Radii, ScatteringSize, table_position};
+use crate::bruneton::precompute::{Builder, Channels, DeltaM, OrderStats, Tables};
+use crate::bruneton::tables::DensityTable;
+use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
+use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::phase::rayleigh;
+use crate::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
+
+/// The model's settings. `Default` gives the paper's sizes (section 6) and the sample
+/// counts of its published implementation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BrunetonSettings {
+    /// S over (r, mu, mu_s, nu): 32 x 128 x 32 x 8 in the paper. mu must be even (half
+    /// for rays that meet the ground); every size at least 2.
+    pub scattering_size: ScatteringSize,
+    /// E over (mu_s, r): 64 x 16 in the paper.
+    pub irradiance_size: (usize, usize),
+    /// T over (mu, r): 256 x 64 (the paper has 256 x 64 too, in another mapping; this is
+    /// the shared table of Bruneton 2017's mapping).
+    pub transmittance_size: (usize, usize),
+    /// Trapezoid intervals along each texel's ray for single scattering and each
+    /// Delta S: 50 (INSCATTER_INTEGRAL_SAMPLES of the paper's code). Unlike that code,
+    /// nodes are spaced quadratically towards the dense end of climbing and descending
+    /// rays: evenly spaced, vertical rays overestimate Mie scattering by 8 %.
+    pub view_samples: usize,
+    /// Directions (zenith angle, azimuth) of the sphere integrals for Delta J and
+    /// Delta E: 16 x 32 (INSCATTER_SPHERICAL_INTEGRAL_SAMPLES). The zenith angle is
+    /// integrated by 8-point Gauss-Legendre panels on each side of the horizon, one pair
+    /// of panels per 16 directions.
+    pub sphere_samples: (usize, usize),
+    /// Stop after an order whose share of all the table's radiance (sum over texels, worst
+    /// channel) is below this: 0.02. On Earth order 5 adds 1.1 % and stops the loop; the
+    /// orders left out would add about 0.6 %.
+    pub order_threshold: f64,
+    /// The most orders when `ModelSettings::max_orders` is `None` (a guard for thick
+    /// atmospheres whose orders fade slowly): 32.
+    pub order_limit: u32,
+}
+
+impl Default for BrunetonSettings {
+    fn default() -> Self {
+        BrunetonSettings {
+            scattering_size: ScatteringSize {
+                r: 32,
+                mu: 128,
+                mu_s: 32,
+                nu: 8,
+            },
+            irradiance_size: (64, 16),
+            transmittance_size: BRUNETON_TABLE_SIZE,
+            view_samples: 50,
+            sphere_samples: (16, 32),
+            order_threshold: 0.02,
+            order_limit: 32,
+        }
+    }
+}
+
+impl BrunetonSettings {
+    /// Why these settings cannot be used, if they cannot.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let s = self.scattering_size;
+        if s.r < 2 || s.mu < 4 || !s.mu.is_multiple_of(2) || s.mu_s < 2 || s.nu < 2 {
+            return Err(ModelError::Settings(format!(
+                "scattering table size {s:?}: each axis needs 2 texels, mu an even count of 4 or more"
+            )));
+        }
+        if self.irradiance_size.0 < 2 || self.irradiance_size.1 < 2 {
+            return Err(ModelError::Settings(
+                "irradiance table needs 2 x 2 texels".into(),
+            ));
+        }
+        if self.transmittance_size.0 < 2 || self.transmittance_size.1 < 2 {
+            return Err(ModelError::Settings(
+                "transmittance table needs 2 x 2 texels".into(),
+            ));
+        }
+        if self.view_samples == 0 || self.sphere_samples.0 == 0 || self.sphere_samples.1 < 2 {
+            return Err(ModelError::Settings(
+                "sample counts must be positive".into(),
+            ));
+        }
+        if !(self.order_threshold.is_finite() && self.order_threshold >= 0.0) {
+            return Err(ModelError::Settings("order threshold must be >= 0".into()));
+        }
+        if self.order_limit == 0 {
+            return Err(ModelError::Settings(
+                "order limit must be at least 1".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The Bruneton 2008 model, prepared for one atmosphere.
+#[derive(Debug)]
+pub struct Bruneton {
+    atmosphere: Atmosphere,
+    radii: Radii,
+    wavelengths_nm: Vec<f64>,
+    solar_irradiance: Vec<f64>,
+    transmittance: TransmittanceTable,
+    /// One set of tables per three wavelengths (the last set padded by repeating the last
+    /// wavelength).
+    groups: Vec<Tables>,
+    build_seconds: f64,
+}
+
+impl Bruneton {
+    /// Builds the tables with the paper's settings.
+    pub fn prepare(
+        atmosphere: &Atmosphere,
+        settings: &ModelSettings,
+    ) -> Result<Bruneton, ModelError> {
+        Bruneton::prepare_with(atmosphere, settings, &BrunetonSettings::default())
+    }
+
+    /// Builds the tables with chosen settings.
+    pub fn prepare_with(
+        atmosphere: &Atmosphere,
+        settings: &ModelSettings,
+        bruneton: &BrunetonSettings,
+    ) -> Result<Bruneton, ModelError> {
+        atmosphere.validate()?;
+        settings.validate()?;
+        bruneton.validate()?;
+        let start = std::time::Instant::now();
+        let radii = Radii {
+            bottom_m: atmosphere.bottom_radius_m,
+            top_m: atmosphere.top_radius_m,
+        };
+        let transmittance = TransmittanceTable::build(
+            atmosphere,
+            bruneton.transmittance_size.0,
+            bruneton.transmittance_size.1,
+        );
+        let densities = DensityTable::new(atmosphere);
+        let delta_m = DeltaM::new(&atmosphere.mie.phase);
+        let max_orders = settings.max_orders.unwrap_or(bruneton.order_limit);
+        let groups = settings
+            .wavelengths_nm
+            .chunks(3)
+            .map(|chunk| {
+                let last = chunk[chunk.len() - 1];
+                let lambdas = [0, 1, 2].map(|k| *chunk.get(k).unwrap_or(&last));
+                Builder {
+                    atmosphere,
+                    settings: bruneton,
+                    radii,
+                    transmittance: &transmittance,
+                    densities: &densities,
+                    channels: Channels::new(atmosphere, lambdas),
+                    delta_m,
+                    max_orders,
+                }
+                .build()
+            })
+            .collect();
+        Ok(Bruneton {
+            atmosphere: atmosphere.clone(),
+            radii,
+            wavelengths_nm: settings.wavelengths_nm.clone(),
+            solar_irradiance: settings
+                .wavelengths_nm
+                .iter()
+                .map(|l| atmosphere.sun.irradiance_w_m2_nm.at(*l))
+                .collect(),
+            transmittance,
+            groups,
+            build_seconds: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The orders computed for the first three wavelengths, with their share and time.
+    pub fn orders(&self) -> &[OrderStats] {
+        &self.groups[0].orders
+    }
+
+    /// Wall time of the whole build, seconds.
+    pub fn build_seconds(&self) -> f64 {
+        self.build_seconds
+    }
+
+    /// The tables of each group of three wavelengths.
+    pub fn tables(&self) -> &[Tables] {
+        &self.groups
+    }
+
+    /// Columns of matter from (r, mu) over distance d, from the transmittance table.
+    fn segment_column(&self, r: f64, mu: f64, d: f64, ground: bool) -> [f64; 3] {
+        let r_d = crate::geometry::radius_at(r, mu, d).clamp(self.radii.bottom_m, self.radii.top_m);
+        let mu_d = ((r * mu + d) / r_d).clamp(-1.0, 1.0);
+        let (a, b) = if ground {
+            (
+                self.transmittance.column(r_d, -mu_d),
+                self.transmittance.column(r, -mu),
+            )
+        } else {
+            (
+                self.transmittance.column(r, mu),
+                self.transmittance.column(r_d, mu_d),
+            )
+        };
+        [0, 1, 2].map(|k| (a[k] - b[k]).max(0.0))
+    }
+
+    /// S(x, v, s) of one group: all orders, phase functions applied.
+    fn scattered(tables: &Tables, p: &[(usize, f64); 4], nu: f64, mie_phase: f64) -> [f64; 3] {
+        let a = tables.single_rayleigh.at_position(p);
+        let b = tables.single_mie.at_position(p);
+        let c = tables.multiple.at_position(p);
+        let pr = rayleigh(nu);
+        [0, 1, 2].map(|k| pr * a[k] + mie_phase * b[k] + c[k])
+    }
+}
+
+impl SkyModel for Bruneton {
+    fn id(&self) -> &'static str {
+        "bruneton"
+    }
+
+    fn wavelengths_nm(&self) -> &[f64] {
+        &self.wavelengths_nm
+    }
+
+    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
+        &self.solar_irradiance
+    }
+
+    fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
+        let n = self.wavelengths_nm.len();
+        let direction = ray.direction.normalize();
+        let sun = ray.sun_direction.normalize();
+        if !(direction.is_finite() && ray.origin_m.is_finite() && sun.is_finite()) {
+            return Err(ModelError::Ray("non-finite position or direction".into()));
+        }
+        if let Some(d) = ray.max_distance_m
+            && (d.is_nan() || d <= 0.0)
+        {
+            return Err(ModelError::Ray(format!("distance {d} must be > 0")));
+        }
+        let (bottom, top) = (self.radii.bottom_m, self.radii.top_m);
+        let r_camera = ray.origin_m.length();
+        if r_camera < bottom * (1.0 - 1e-12) {
+            return Err(ModelError::Ray(format!(
+                "camera {} m below the ground",
+                bottom - r_camera
+            )));
+        }
+        let nothing = Ok(RayRadiance {
+            radiance: vec![0.0; n],
+            transmittance: vec![1.0; n],
+            radiance_std_error: vec![0.0; n],
+        });
+        // Move the camera to where the ray enters the atmosphere.
+        let mu_camera = (ray.origin_m.dot(direction) / r_camera).clamp(-1.0, 1.0);
+        let t_enter = if r_camera > top {
+            match distance_to_entry(r_camera, mu_camera, top) {
+                Some(t) => t,
+                None => return nothing,
+            }
+        } else {
+            0.0
+        };
+        let x = ray.origin_m + direction * t_enter;
+        let r = x.length().clamp(bottom, top);
+        let mu = (x.dot(direction) / x.length()).clamp(-1.0, 1.0);
+        let mu_s = (x.dot(sun) / x.length()).clamp(-1.0, 1.0);
+        let nu = direction.dot(sun).clamp(-1.0, 1.0);
+        let ground = ray_hits_ground(r, mu, bottom);
+        let full = if ground {
+            distance_to_entry(r, mu, bottom).unwrap_or(0.0)
+        } else {
+            distance_to_exit(r, mu, top)
+        };
+        let object = match ray.max_distance_m {
+            Some(d) if d - t_enter <= 0.0 => return nothing,
+            Some(d) if d - t_enter < full => Some(d - t_enter),
+            _ => None,
+        };
+        let length = object.unwrap_or(full);
+        let column = self.segment_column(r, mu, length, ground);
+        let mie_phase = self.atmosphere.mie.phase.eval(nu);
+        let size = self.groups[0].single_rayleigh.size;
+        let p = table_position(&self.radii, &size, r, mu, mu_s, nu, ground);
+        let end = object.map(|d| {
+            let r_d = crate::geometry::radius_at(r, mu, d).clamp(bottom, top);
+            let mu_d = ((r * mu + d) / r_d).clamp(-1.0, 1.0);
+            let mu_s_d = ((r * mu_s + d * nu) / r_d).clamp(-1.0, 1.0);
+            table_position(&self.radii, &size, r_d, mu_d, mu_s_d, nu, ground)
+        });
+        // The ground point and its light, for rays ending on the ground.
+        let ground_light = (ground && object.is_none()).then(|| {
+            let point = x + direction * length;
+            let mu_s_g = (point.normalize().dot(sun)).clamp(-1.0, 1.0);
+            let column_sun = if ray_hits_ground(bottom, mu_s_g, bottom) {
+                None
+            } else {
+                Some(self.transmittance.column(bottom, mu_s_g))
+            };
+            (mu_s_g, column_sun)
+        });
+        let mut radiance = Vec::with_capacity(n);
+        let mut transmittance = Vec::with_capacity(n);
+        for (g, tables) in self.groups.iter().enumerate() {
+            let mut l = Self::scattered(tables, &p, nu, mie_phase);
+            let t = tables.channels.transmittance(column);
+            if let Some(q) = &end {
+                let l_end = Self::scattered(tables, q, nu, mie_phase);
+                for k in 0..3 {
+                    l[k] -= t[k] * l_end[k];
+                }
+            }
+            if let Some((mu_s_g, column_sun)) = ground_light {
+                let sky = tables.irradiance.lookup(bottom, mu_s_g);
+                let sun_t = column_sun.map_or([0.0; 3], |c| tables.channels.transmittance(c));
+                for k in 0..3 {
+                    let direct = tables.channels.solar_irradiance[k] * sun_t[k] * mu_s_g.max(0.0);
+                    l[k] += t[k] * self.atmosphere.ground_albedo / PI * (direct + sky[k]);
+                }
+            }
+            for k in 0..3 {
+                if 3 * g + k < n {
+                    radiance.push(l[k].max(0.0));
+                    transmittance.push(t[k].clamp(0.0, 1.0));
+                }
+            }
+        }
+        Ok(RayRadiance {
+            radiance,
+            transmittance,
+            radiance_std_error: vec![0.0; n],
+        })
+    }
+}

@@ -1,0 +1,266 @@
+//! The Bruneton 2008 model: its parameterization, its error against the reference (single
+//! scattering and all orders), the order loop's stopping rule, and stability on extreme
+//! rays. Tolerances are the measured errors with a margin (docs/models/bruneton.md).
+
+use std::sync::OnceLock;
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::bruneton::parameterization::{
+    Radii, ScatteringSize, mu_s_from_u, nu_from_u, table_position, texel_parameters, u_mu_s, u_nu,
+};
+use atmosphere_core::bruneton::{Bruneton, BrunetonSettings};
+use atmosphere_core::color::SpectrumToColor;
+use atmosphere_core::geometry::{horizon_mu, ray_hits_ground};
+use atmosphere_core::model::{ModelSettings, SkyModel, ViewRay, prepare};
+
+fn earth() -> Atmosphere {
+    Atmosphere::preset("earth").unwrap()
+}
+
+fn radii(a: &Atmosphere) -> Radii {
+    Radii {
+        bottom_m: a.bottom_radius_m,
+        top_m: a.top_radius_m,
+    }
+}
+
+/// Small tables for tests of the order loop and stability.
+fn small() -> BrunetonSettings {
+    BrunetonSettings {
+        scattering_size: ScatteringSize {
+            r: 8,
+            mu: 32,
+            mu_s: 8,
+            nu: 4,
+        },
+        irradiance_size: (16, 4),
+        view_samples: 20,
+        ..BrunetonSettings::default()
+    }
+}
+
+#[test]
+fn parameterization_round_trips() {
+    let a = earth();
+    let m = radii(&a);
+    for &h in &[0.0, 1.0, 1_000.0, 10_000.0, 59_999.0, 60_000.0] {
+        let r = a.bottom_radius_m + h;
+        assert!((m.r_from_u(m.u_r(r)) - r).abs() < 1e-6 * r, "r {r}");
+        let horizon = horizon_mu(r, a.bottom_radius_m);
+        for &mu in &[-1.0, -0.5, horizon - 1e-3, horizon + 1e-3, 0.0, 0.3, 1.0] {
+            let (u, ground) = m.u_mu(r, mu);
+            assert_eq!(ground, ray_hits_ground(r, mu, a.bottom_radius_m));
+            assert!(
+                if ground { u <= 0.5 } else { u >= 0.5 },
+                "r {r} mu {mu}: u {u}"
+            );
+            // At the ground and, for rays leaving, at the top the mapping is degenerate.
+            if h > 0.0 && !(r >= a.top_radius_m && mu >= 0.0) {
+                let back = m.mu_from_u(r, u);
+                assert!((back - mu).abs() < 1e-6, "r {r} mu {mu}: {back}");
+            }
+        }
+    }
+    for &mu_s in &[-0.2, -0.1, 0.0, 0.5, 1.0] {
+        assert!((mu_s_from_u(u_mu_s(mu_s)) - mu_s).abs() < 1e-12, "{mu_s}");
+    }
+    assert!(u_mu_s(-0.2).abs() < 1e-12 && (u_mu_s(1.0) - 1.0).abs() < 1e-12);
+    for &nu in &[-1.0, 0.0, 0.7, 1.0] {
+        assert!((nu_from_u(u_nu(nu)) - nu).abs() < 1e-15);
+    }
+    // Texels of reachable (r, mu) fall back on themselves with weight 0 (nu is left out:
+    // it is clamped to what mu and mu_s allow).
+    let size = BrunetonSettings::default().scattering_size;
+    for &(ir, imu, imus, inu) in &[
+        (0, 70, 3, 2),
+        (5, 10, 31, 7),
+        (31, 127, 0, 0),
+        (17, 40, 12, 4),
+    ] {
+        let (r, mu, mu_s, nu, ground) = texel_parameters(&m, &size, ir, imu, imus, inu);
+        let p = table_position(&m, &size, r, mu, mu_s, nu, ground);
+        let got = [ir, imu, imus, inu];
+        for (k, (i, w)) in p.iter().enumerate().take(3) {
+            let at = if *w > 0.5 { i + 1 } else { *i };
+            let off = w.min(1.0 - w);
+            assert!(at == got[k] && off < 1e-6, "axis {k}: {p:?} for {got:?}");
+        }
+    }
+}
+
+/// Daytime rays: camera on the ground, at 1 km and at 10 km; sky, horizon-near, down
+/// views and an object at 20 km.
+fn daytime_rays(a: &Atmosphere) -> Vec<ViewRay> {
+    let mut rays = Vec::new();
+    for &(alt, vz, sz, az, d) in &[
+        (0.0, 0.0, 30.0, 0.0, None),
+        (0.0, 45.0, 30.0, 0.0, None),
+        (0.0, 60.0, 45.0, 90.0, None),
+        (0.0, 80.0, 60.0, 180.0, None),
+        (0.0, 85.0, 30.0, 30.0, Some(20_000.0)),
+        (1_000.0, 30.0, 20.0, 120.0, None),
+        (1_000.0, 95.0, 40.0, 0.0, None),
+        (10_000.0, 70.0, 50.0, 45.0, None),
+        (10_000.0, 120.0, 30.0, 90.0, None),
+    ] {
+        rays.push(ViewRay::from_angles(a.bottom_radius_m, alt, vz, sz, az, d).unwrap());
+    }
+    rays
+}
+
+fn relative_rms(model: &dyn SkyModel, reference: &dyn SkyModel, rays: &[ViewRay]) -> (f64, f64) {
+    let color = SpectrumToColor::new(model.wavelengths_nm()).unwrap();
+    let mut sum = 0.0;
+    let mut worst: f64 = 0.0;
+    for ray in rays {
+        let m = color.luminance_cd_m2(&model.radiance(ray).unwrap().radiance);
+        let r = color.luminance_cd_m2(&reference.radiance(ray).unwrap().radiance);
+        let e = (m - r) / r;
+        eprintln!("{ray:?}: model {m:.4} reference {r:.4} error {e:+.4}");
+        sum += e * e;
+        worst = worst.max(e.abs());
+    }
+    ((sum / rays.len() as f64).sqrt(), worst)
+}
+
+fn single_model() -> &'static Bruneton {
+    static MODEL: OnceLock<Bruneton> = OnceLock::new();
+    MODEL.get_or_init(|| {
+        Bruneton::prepare(
+            &earth(),
+            &ModelSettings {
+                max_orders: Some(1),
+                ..ModelSettings::default()
+            },
+        )
+        .unwrap()
+    })
+}
+
+fn full_model() -> &'static Bruneton {
+    static MODEL: OnceLock<Bruneton> = OnceLock::new();
+    MODEL.get_or_init(|| Bruneton::prepare(&earth(), &ModelSettings::default()).unwrap())
+}
+
+#[test]
+fn single_scattering_matches_the_reference() {
+    let a = earth();
+    let reference = prepare(
+        "reference",
+        &a,
+        &ModelSettings {
+            max_orders: Some(1),
+            ..ModelSettings::default()
+        },
+    )
+    .unwrap();
+    let (rms, worst) = relative_rms(single_model(), reference.as_ref(), &daytime_rays(&a));
+    eprintln!("single scattering: relative RMS {rms:.4}, worst {worst:.4}");
+    // Measured: RMS 0.0164, worst 0.049 (the zenith seen from the ground, where the
+    // paper's u_mu gives mu in [0.86, 1] about one texel).
+    assert!(rms < 0.02 && worst < 0.06, "rms {rms}, worst {worst}");
+}
+
+#[test]
+fn all_orders_match_the_reference() {
+    let a = earth();
+    let reference = prepare(
+        "reference",
+        &a,
+        &ModelSettings {
+            target_relative_error: 0.01,
+            ..ModelSettings::default()
+        },
+    )
+    .unwrap();
+    let (rms, worst) = relative_rms(full_model(), reference.as_ref(), &daytime_rays(&a));
+    eprintln!("all orders: relative RMS {rms:.4}, worst {worst:.4}");
+    // Measured: RMS 0.038, worst 0.076 (object at 20 km); over the 2 % target, see
+    // docs/models/bruneton.md.
+    assert!(rms < 0.045 && worst < 0.09, "rms {rms}, worst {worst}");
+}
+
+#[test]
+fn orders_stop_when_an_order_adds_less_than_the_threshold() {
+    let a = earth();
+    let settings = BrunetonSettings {
+        order_threshold: 0.05,
+        ..small()
+    };
+    let model = Bruneton::prepare_with(&a, &ModelSettings::default(), &settings).unwrap();
+    let orders = model.orders();
+    let (last, before) = orders.split_last().unwrap();
+    assert!(orders.len() >= 3, "{orders:?}");
+    assert!(last.share < 0.05, "{orders:?}");
+    assert!(before.iter().all(|o| o.share >= 0.05), "{orders:?}");
+    // Shares fall order after order.
+    assert!(
+        orders.windows(2).all(|w| w[1].share < w[0].share),
+        "{orders:?}"
+    );
+    // A lower threshold computes more orders; max_orders caps them.
+    let finer = Bruneton::prepare_with(
+        &a,
+        &ModelSettings::default(),
+        &BrunetonSettings {
+            order_threshold: 0.005,
+            ..small()
+        },
+    )
+    .unwrap();
+    assert!(finer.orders().len() > orders.len(), "{:?}", finer.orders());
+    let capped = Bruneton::prepare_with(
+        &a,
+        &ModelSettings {
+            max_orders: Some(2),
+            ..ModelSettings::default()
+        },
+        &BrunetonSettings {
+            order_threshold: 0.0,
+            ..small()
+        },
+    )
+    .unwrap();
+    assert_eq!(capped.orders().len(), 2);
+}
+
+#[test]
+fn extreme_rays_are_finite_and_bounded() {
+    let a = earth();
+    let model = Bruneton::prepare_with(&a, &ModelSettings::default(), &small()).unwrap();
+    let mut rays = Vec::new();
+    for &alt in &[0.0, 1e-6, 1.0, 60_000.0, 1e5, 1e8] {
+        let horizon = horizon_mu(a.bottom_radius_m + alt, a.bottom_radius_m)
+            .acos()
+            .to_degrees();
+        for &vz in &[
+            0.0,
+            89.999,
+            90.0,
+            90.001,
+            horizon - 1e-6,
+            horizon + 1e-6,
+            180.0,
+        ] {
+            for &sz in &[0.0, 89.9, 90.0, 95.0, 110.0, 180.0] {
+                for d in [None, Some(1e-3), Some(1.0), Some(5e4), Some(1e9)] {
+                    rays.push(
+                        ViewRay::from_angles(a.bottom_radius_m, alt, vz, sz, 30.0, d).unwrap(),
+                    );
+                }
+            }
+        }
+    }
+    for ray in &rays {
+        let out = model.radiance(ray).unwrap();
+        for (l, t) in out.radiance.iter().zip(&out.transmittance) {
+            assert!(l.is_finite() && *l >= 0.0 && *l < 10.0, "{ray:?}: {out:?}");
+            assert!((0.0..=1.0).contains(t), "{ray:?}: {out:?}");
+        }
+    }
+    // Looking away from the planet from space: nothing, fully transparent.
+    let away = ViewRay::from_angles(a.bottom_radius_m, 1e8, 0.0, 30.0, 0.0, None).unwrap();
+    let out = model.radiance(&away).unwrap();
+    assert!(out.radiance.iter().all(|l| *l == 0.0));
+    assert!(out.transmittance.iter().all(|t| *t == 1.0));
+}
