@@ -136,7 +136,8 @@ pub struct OrderStats {
     /// 1 = single scattering.
     pub order: u32,
     /// max over channels of (sum over texels of the order's radiance) / (sum of all
-    /// orders so far, this one included).
+    /// orders so far, this one included); NaN for an order left out because it held more
+    /// light than the one before (the iteration would diverge).
     pub share: f64,
     pub seconds: f64,
 }
@@ -603,6 +604,7 @@ impl Builder<'_> {
         let mut irradiance = IrradianceTable::zeros(mapping);
         let mut previous_table: Option<Table4> = None;
         let mut previous_e: Option<IrradianceTable> = None;
+        let mut previous_added: Option<[f64; 3]> = None;
         for order in 2..=self.max_orders {
             let start = Instant::now();
             let previous = match &previous_table {
@@ -620,9 +622,23 @@ impl Builder<'_> {
             let delta_e = self.irradiance_of(previous);
             let density = self.scattering_density(previous, previous_irradiance);
             let delta_s = self.scattering_of(&density);
+            let added = self.sums(Previous::Multiple(&delta_s));
+            // No order can hold more light than the one before it: growth means the
+            // approximations of the order step amplify (optically thick atmospheres), so
+            // stop without it rather than diverge.
+            if let Some(before) = previous_added
+                && (0..3).any(|k| added[k] > before[k])
+            {
+                orders.push(OrderStats {
+                    order,
+                    share: f64::NAN,
+                    seconds: start.elapsed().as_secs_f64(),
+                });
+                break;
+            }
+            previous_added = Some(added);
             irradiance.add(&delta_e);
             multiple.add(&delta_s);
-            let added = self.sums(Previous::Multiple(&delta_s));
             let mut share: f64 = 0.0;
             for k in 0..3 {
                 totals[k] += added[k];
