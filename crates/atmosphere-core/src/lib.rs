@@ -27,3 +27,4 @@ pub mod solar;
 pub mod spectral;
 pub mod stability;
 pub mod transmittance_table;
+pub mod view_segment;

@@ -11,10 +11,11 @@ use std::f64::consts::PI;
 
 use crate::atmosphere::Atmosphere;
 use crate::column::{densities, optical_depth};
-use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
+use crate::geometry::ray_hits_ground;
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::reference::Spectra;
 use crate::transmittance_table::TransmittanceTable;
+use crate::view_segment::{SegmentEnd, ViewSegment};
 
 /// The settings that trade accuracy for time.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -141,54 +142,15 @@ impl SkyModel for Nishita {
         let s = &self.spectra;
         let n_w = s.wavelengths_nm.len();
         let bottom = a.bottom_radius_m;
-        let top = a.top_radius_m;
-        let direction = ray.direction.normalize();
-        let sun = ray.sun_direction.normalize();
-        if !(direction.is_finite() && sun.is_finite() && ray.origin_m.is_finite()) {
-            return Err(ModelError::Ray(
-                "non-finite or zero position or direction".into(),
-            ));
-        }
-        let r_camera = ray.origin_m.length();
-        if r_camera < bottom * (1.0 - 1e-12) {
-            return Err(ModelError::Ray(format!(
-                "camera {} m below the ground",
-                bottom - r_camera
-            )));
-        }
-        let empty = || RayRadiance {
-            radiance: vec![0.0; n_w],
-            transmittance: vec![1.0; n_w],
-            radiance_std_error: vec![0.0; n_w],
+        let Some(segment) = ViewSegment::new(a, ray)? else {
+            return Ok(RayRadiance {
+                radiance: vec![0.0; n_w],
+                transmittance: vec![1.0; n_w],
+                radiance_std_error: vec![0.0; n_w],
+            });
         };
-        // The part of the ray inside the atmosphere: [t_enter, t_enter + length].
-        let mu_camera = (ray.origin_m.dot(direction) / r_camera).clamp(-1.0, 1.0);
-        let t_enter = if r_camera > top {
-            match distance_to_entry(r_camera, mu_camera, top) {
-                Some(t) => t,
-                None => return Ok(empty()),
-            }
-        } else {
-            0.0
-        };
-        let start = ray.origin_m + direction * t_enter;
-        let r = start.length().clamp(bottom, top);
-        let mu = (start.dot(direction) / start.length()).clamp(-1.0, 1.0);
-        let (mut length, mut on_ground) = if ray_hits_ground(r, mu, bottom) {
-            (distance_to_entry(r, mu, bottom).unwrap_or(0.0), true)
-        } else {
-            (distance_to_exit(r, mu, top), false)
-        };
-        if let Some(d) = ray.max_distance_m {
-            let remaining = d - t_enter;
-            if remaining <= 0.0 {
-                return Ok(empty());
-            }
-            if remaining < length {
-                length = remaining;
-                on_ground = false;
-            }
-        }
+        let (start, direction, sun) = (segment.start, segment.direction, segment.sun_direction);
+        let (length, on_ground) = (segment.length, segment.end == SegmentEnd::Ground);
 
         // Seed 000 Eq. 12 with n equal sub-segments of length dt, each represented by its
         // midpoint (seed 002: "for each sample ray, calculate the center point").
@@ -257,7 +219,7 @@ impl SkyModel for Nishita {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::horizon_mu;
+    use crate::geometry::{distance_to_exit, horizon_mu};
 
     #[test]
     fn sun_behind_the_planet_gives_no_column() {

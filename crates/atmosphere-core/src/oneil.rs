@@ -23,9 +23,10 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
-use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
+use crate::geometry::{distance_to_exit, ray_hits_ground};
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::reference::Spectra;
+use crate::view_segment::{SegmentEnd, ViewSegment};
 
 /// What trades accuracy for time in O'Neil's model. `Default` is the paper's choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -209,15 +210,6 @@ pub struct Oneil {
     table: OpticalDepthTable,
 }
 
-/// A view ray cut to the atmosphere: where the model's camera stands, the direction, the
-/// length inside, and how it ends.
-struct Segment {
-    start: DVec3,
-    direction: DVec3,
-    length: f64,
-    ground: bool,
-}
-
 impl Oneil {
     /// Prepares the table. `settings.max_orders` is ignored: the model has single
     /// scattering only, as in the paper.
@@ -249,56 +241,6 @@ impl Oneil {
     pub fn settings(&self) -> &OneilSettings {
         &self.settings
     }
-
-    /// The part of `ray` inside the atmosphere, `None` if it has none.
-    fn segment(&self, ray: &ViewRay) -> Result<Option<Segment>, ModelError> {
-        let bottom = self.atmosphere.bottom_radius_m;
-        let top = self.atmosphere.top_radius_m;
-        let direction = ray.direction.normalize();
-        if !(direction.is_finite() && ray.origin_m.is_finite() && ray.sun_direction.is_finite()) {
-            return Err(ModelError::Ray("non-finite position or direction".into()));
-        }
-        let r_camera = ray.origin_m.length();
-        if r_camera < bottom * (1.0 - 1e-12) {
-            return Err(ModelError::Ray(format!(
-                "camera {} m below the ground",
-                bottom - r_camera
-            )));
-        }
-        let mu_camera = (ray.origin_m.dot(direction) / r_camera).clamp(-1.0, 1.0);
-        let t_enter = if r_camera > top {
-            match distance_to_entry(r_camera, mu_camera, top) {
-                Some(t) => t,
-                None => return Ok(None),
-            }
-        } else {
-            0.0
-        };
-        let start = ray.origin_m + direction * t_enter;
-        let r = start.length().clamp(bottom, top);
-        let mu = (start.dot(direction) / start.length()).clamp(-1.0, 1.0);
-        let (mut length, mut ground) = if ray_hits_ground(r, mu, bottom) {
-            (distance_to_entry(r, mu, bottom).unwrap_or(0.0), true)
-        } else {
-            (distance_to_exit(r, mu, top), false)
-        };
-        if let Some(d) = ray.max_distance_m {
-            let remaining = d - t_enter;
-            if remaining <= 0.0 {
-                return Ok(None);
-            }
-            if remaining < length {
-                length = remaining;
-                ground = false;
-            }
-        }
-        Ok(Some(Segment {
-            start,
-            direction,
-            length,
-            ground,
-        }))
-    }
 }
 
 impl SkyModel for Oneil {
@@ -316,7 +258,7 @@ impl SkyModel for Oneil {
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.spectra.wavelengths_nm.len();
-        let Some(seg) = self.segment(ray)? else {
+        let Some(seg) = ViewSegment::new(&self.atmosphere, ray)? else {
             return Ok(RayRadiance {
                 radiance: vec![0.0; n],
                 transmittance: vec![1.0; n],
@@ -381,7 +323,7 @@ impl SkyModel for Oneil {
         }
         let total = to_camera(end);
         let transmittance: Vec<f64> = (0..n).map(|w| (-depth(w, total)).exp()).collect();
-        if seg.ground {
+        if seg.end == SegmentEnd::Ground {
             let up = end.normalize();
             let cos_sun = up.dot(sun);
             if cos_sun > 0.0 {

@@ -6,9 +6,9 @@ use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
 use crate::column::{Fineness, densities, panels};
-use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
 use crate::model::{ModelError, ViewRay};
 use crate::quadrature::{GAUSS_LEGENDRE_8, mapped};
+use crate::view_segment::{SegmentEnd, ViewSegment};
 
 /// How a view ray ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,54 +52,21 @@ impl ViewPath {
         fineness: Fineness,
     ) -> Result<ViewPath, ModelError> {
         let bottom = atmosphere.bottom_radius_m;
-        let top = atmosphere.top_radius_m;
-        let direction = ray.direction.normalize();
-        let empty = |end| ViewPath {
-            direction,
-            nodes: Vec::new(),
-            total_column: [0.0; 3],
-            end,
+        let Some(segment) = ViewSegment::new(atmosphere, ray)? else {
+            return Ok(ViewPath {
+                direction: ray.direction.normalize(),
+                nodes: Vec::new(),
+                total_column: [0.0; 3],
+                end: RayEnd::Space,
+            });
         };
-        let r_camera = ray.origin_m.length();
-        if !(direction.is_finite() && ray.origin_m.is_finite() && ray.sun_direction.is_finite()) {
-            return Err(ModelError::Ray("non-finite position or direction".into()));
-        }
-        if r_camera < bottom * (1.0 - 1e-12) {
-            return Err(ModelError::Ray(format!(
-                "camera {} m below the ground",
-                bottom - r_camera
-            )));
-        }
-        // Move the origin to where the ray enters the atmosphere.
-        let mu_camera = (ray.origin_m.dot(direction) / r_camera).clamp(-1.0, 1.0);
-        let t_enter = if r_camera > top {
-            match distance_to_entry(r_camera, mu_camera, top) {
-                Some(t) => t,
-                None => return Ok(empty(RayEnd::Space)),
-            }
-        } else {
-            0.0
-        };
-        let start = ray.origin_m + direction * t_enter;
-        let r = start.length().clamp(bottom, top);
-        let mu = (start.dot(direction) / start.length()).clamp(-1.0, 1.0);
-        let (mut length, mut end_on_ground) = if ray_hits_ground(r, mu, bottom) {
-            (distance_to_entry(r, mu, bottom).unwrap_or(0.0), true)
-        } else {
-            (distance_to_exit(r, mu, top), false)
-        };
-        let mut object = false;
-        if let Some(d) = ray.max_distance_m {
-            let remaining = d - t_enter;
-            if remaining <= 0.0 {
-                return Ok(empty(RayEnd::Object));
-            }
-            if remaining < length {
-                length = remaining;
-                end_on_ground = false;
-                object = true;
-            }
-        }
+        let (start, direction, r, mu, length) = (
+            segment.start,
+            segment.direction,
+            segment.r,
+            segment.mu,
+            segment.length,
+        );
         let mut nodes = Vec::new();
         let mut column = [0.0; 3];
         let penumbra = penumbra_crossings(
@@ -136,13 +103,13 @@ impl ViewPath {
                 }
             }
         }
-        let end = if end_on_ground {
-            let p = start + direction * length;
-            RayEnd::Ground(p * (bottom / p.length()))
-        } else if object {
-            RayEnd::Object
-        } else {
-            RayEnd::Space
+        let end = match segment.end {
+            SegmentEnd::Ground => {
+                let p = segment.end_point();
+                RayEnd::Ground(p * (bottom / p.length()))
+            }
+            SegmentEnd::Object => RayEnd::Object,
+            SegmentEnd::Space => RayEnd::Space,
         };
         Ok(ViewPath {
             direction,
