@@ -57,6 +57,10 @@ pub struct ProbeArgs {
     /// Seed of the random sequence of stochastic models.
     #[arg(long, default_value_t = ModelSettings::default().seed)]
     pub seed: u64,
+    /// A model setting as key=value (repeat the flag), e.g. `--set samples=16` for
+    /// nishita; docs/models/<model>.md lists each model's keys and defaults.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
     /// CSV of view rays: altitude_m, view_zenith_deg, sun_zenith_deg,
     /// view_sun_azimuth_deg and optionally distance_m, with a header.
     #[arg(long, value_name = "FILE.csv")]

@@ -16,6 +16,7 @@ use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay, prepare};
+use atmosphere_core::model_options::ModelOptions;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use thiserror::Error;
@@ -241,6 +242,8 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
         max_orders: args.orders,
         target_relative_error: args.target_error,
         seed: args.seed,
+        options: ModelOptions::parse(&args.set)?,
+        prune: true,
     };
     settings.validate()?;
     // The model answers at the settings' wavelengths, in their order.

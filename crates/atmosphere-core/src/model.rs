@@ -6,6 +6,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use crate::atmosphere::{Atmosphere, AtmosphereError};
+use crate::model_options::ModelOptions;
 
 /// What goes wrong when a model is chosen, prepared or asked about a ray.
 #[derive(Debug, Error)]
@@ -34,6 +35,13 @@ pub struct ModelSettings {
     pub target_relative_error: f64,
     /// For stochastic models: the seed of the random sequence (results are reproducible).
     pub seed: u64,
+    /// The model's own settings (samples, table sizes, ...) as `key=value`; the paper's
+    /// values where a key is absent. Each model's page in docs/models lists its keys.
+    pub options: ModelOptions,
+    /// Leave out work that adds nothing: at zero aerosol no Mie table or Mie term is
+    /// computed. Answers equal those with `prune = false` (the full path), which tests
+    /// compare against.
+    pub prune: bool,
 }
 
 impl Default for ModelSettings {
@@ -43,6 +51,8 @@ impl Default for ModelSettings {
             max_orders: None,
             target_relative_error: 0.0025,
             seed: 1,
+            options: ModelOptions::default(),
+            prune: true,
         }
     }
 }
@@ -154,6 +164,12 @@ pub trait SkyModel: Send + Sync {
     fn solar_irradiance_w_m2_nm(&self) -> &[f64];
     /// Radiance and transmittance of one ray.
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError>;
+    /// Bytes held by the model's precomputed tables.
+    fn table_bytes(&self) -> usize;
+    /// Adopts a changed atmosphere, rebuilding only the tables that depend on an input
+    /// that changed ([`crate::table_inputs::Inputs`]); returns the names of the tables
+    /// rebuilt. Answers afterwards equal those of a model prepared from scratch.
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError>;
 }
 
 /// Prepares the model `id` for an atmosphere.
@@ -165,23 +181,29 @@ pub fn prepare(
     atmosphere.validate()?;
     settings.validate()?;
     match id {
-        "reference" => Ok(Box::new(crate::reference::Reference::prepare(
-            atmosphere, settings,
-        ))),
+        "reference" => {
+            settings.options.reader("reference").finish()?;
+            Ok(Box::new(crate::reference::Reference::prepare(
+                atmosphere, settings,
+            )))
+        }
         "bruneton" => Ok(Box::new(crate::bruneton::Bruneton::prepare(
             atmosphere, settings,
         )?)),
         "nishita" => Ok(Box::new(crate::nishita::Nishita::prepare(
             atmosphere,
             settings,
-            crate::nishita::NishitaSettings::default(),
+            crate::nishita::NishitaSettings::from_options(&settings.options)?,
         )?)),
         "oneil" => Ok(Box::new(crate::oneil::Oneil::prepare(
             atmosphere,
             settings,
-            crate::oneil::OneilSettings::default(),
+            crate::oneil::OneilSettings::from_options(&settings.options)?,
         )?)),
-        "riley" => Ok(Box::new(crate::riley::Riley::prepare(atmosphere, settings))),
+        "riley" => {
+            settings.options.reader("riley").finish()?;
+            Ok(Box::new(crate::riley::Riley::prepare(atmosphere, settings)))
+        }
         other => Err(ModelError::UnknownModel(other.to_string())),
     }
 }

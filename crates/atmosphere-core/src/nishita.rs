@@ -13,7 +13,9 @@ use crate::atmosphere::Atmosphere;
 use crate::column::{densities, optical_depth};
 use crate::geometry::ray_hits_ground;
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::model_options::ModelOptions;
 use crate::reference::Spectra;
+use crate::table_inputs::Inputs;
 use crate::transmittance_table::TransmittanceTable;
 use crate::view_segment::{SegmentEnd, ViewSegment};
 
@@ -46,6 +48,21 @@ impl Default for NishitaSettings {
 }
 
 impl NishitaSettings {
+    /// The settings from `key=value` options: `samples`, `table_heights`,
+    /// `table_angles`; the defaults where absent.
+    pub fn from_options(options: &ModelOptions) -> Result<NishitaSettings, ModelError> {
+        let d = NishitaSettings::default();
+        let mut o = options.reader("nishita");
+        let settings = NishitaSettings {
+            view_samples: o.count("samples", d.view_samples)?,
+            table_heights: o.count("table_heights", d.table_heights)?,
+            table_angles: o.count("table_angles", d.table_angles)?,
+        };
+        o.finish()?;
+        settings.validate()?;
+        Ok(settings)
+    }
+
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
         if self.view_samples == 0 {
@@ -131,6 +148,27 @@ impl SkyModel for Nishita {
 
     fn wavelengths_nm(&self) -> &[f64] {
         &self.spectra.wavelengths_nm
+    }
+
+    fn table_bytes(&self) -> usize {
+        std::mem::size_of_val(self.table.columns.as_slice())
+    }
+
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut rebuilt = Vec::new();
+        if changed.intersects(Inputs::COLUMNS) {
+            self.table = TransmittanceTable::build(
+                atmosphere,
+                self.settings.table_angles,
+                self.settings.table_heights,
+            );
+            rebuilt.push("g_l");
+        }
+        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        self.atmosphere = atmosphere.clone();
+        Ok(rebuilt)
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {

@@ -25,7 +25,9 @@ use glam::DVec3;
 use crate::atmosphere::Atmosphere;
 use crate::geometry::{distance_to_exit, ray_hits_ground};
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::model_options::ModelOptions;
 use crate::reference::Spectra;
+use crate::table_inputs::Inputs;
 use crate::view_segment::{SegmentEnd, ViewSegment};
 
 /// What trades accuracy for time in O'Neil's model. `Default` is the paper's choice.
@@ -55,6 +57,22 @@ impl Default for OneilSettings {
 }
 
 impl OneilSettings {
+    /// The settings from `key=value` options: `samples`, `table_heights`,
+    /// `table_angles`, `table_ray_samples`; the paper's where absent.
+    pub fn from_options(options: &ModelOptions) -> Result<OneilSettings, ModelError> {
+        let d = OneilSettings::default();
+        let mut o = options.reader("oneil");
+        let settings = OneilSettings {
+            samples: o.count("samples", d.samples)?,
+            table_heights: o.count("table_heights", d.table_heights)?,
+            table_angles: o.count("table_angles", d.table_angles)?,
+            table_ray_samples: o.count("table_ray_samples", d.table_ray_samples)?,
+        };
+        o.finish()?;
+        settings.validate()?;
+        Ok(settings)
+    }
+
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
         let bad = |m: String| Err(ModelError::Settings(m));
@@ -93,6 +111,17 @@ pub struct OpticalDepthTable {
 }
 
 impl OpticalDepthTable {
+    /// What the table depends on: densities only, so the aerosol amount and every
+    /// coefficient can change without a rebuild.
+    pub const INPUTS: Inputs = Inputs::GEOMETRY
+        .union(Inputs::RAYLEIGH_PROFILE)
+        .union(Inputs::MIE_PROFILE);
+
+    /// Bytes of the table.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of_val(self.data.as_slice())
+    }
+
     /// Builds the table: node i is at height `thickness * i / (heights - 1)`, node j at
     /// angle `180 deg * j / (angles - 1)` from the vertical; each node's optical lengths
     /// are the midpoint rule with `ray_samples` samples along the ray to the top sphere.
@@ -250,6 +279,28 @@ impl SkyModel for Oneil {
 
     fn wavelengths_nm(&self) -> &[f64] {
         &self.spectra.wavelengths_nm
+    }
+
+    fn table_bytes(&self) -> usize {
+        self.table.bytes()
+    }
+
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut rebuilt = Vec::new();
+        if changed.intersects(OpticalDepthTable::INPUTS) {
+            self.table = OpticalDepthTable::build(
+                atmosphere,
+                self.settings.table_heights,
+                self.settings.table_angles,
+                self.settings.table_ray_samples,
+            );
+            rebuilt.push("optical depth");
+        }
+        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        self.atmosphere = atmosphere.clone();
+        Ok(rebuilt)
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {

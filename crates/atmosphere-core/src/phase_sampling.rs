@@ -27,6 +27,14 @@ pub enum PhaseSampler {
 const TABULATED_BINS: usize = 4096;
 
 impl PhaseSampler {
+    /// Bytes of its table (tabulated phase functions only).
+    pub fn bytes(&self) -> usize {
+        match self {
+            PhaseSampler::Tabulated { cdf, .. } => std::mem::size_of_val(cdf.as_slice()),
+            _ => 0,
+        }
+    }
+
     pub fn new(phase: &PhaseFunction) -> PhaseSampler {
         match phase {
             PhaseFunction::Rayleigh => PhaseSampler::Rayleigh,

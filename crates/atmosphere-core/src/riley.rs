@@ -340,6 +340,21 @@ impl SkyModel for Riley {
         &self.wavelengths_nm
     }
 
+    fn table_bytes(&self) -> usize {
+        0
+    }
+
+    /// No tables: the fitted coefficients are recomputed, which costs microseconds.
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        let settings = ModelSettings {
+            wavelengths_nm: self.wavelengths_nm.clone(),
+            ..ModelSettings::default()
+        };
+        *self = Riley::prepare(atmosphere, &settings);
+        Ok(Vec::new())
+    }
+
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
         &self.solar_irradiance
     }

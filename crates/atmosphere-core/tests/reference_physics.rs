@@ -39,6 +39,8 @@ fn model(atmosphere: &Atmosphere, orders: Option<u32>, target: f64) -> Box<dyn S
         max_orders: orders,
         target_relative_error: target,
         seed: 7,
+        options: Default::default(),
+        prune: true,
     };
     prepare("reference", atmosphere, &settings).unwrap()
 }

@@ -22,10 +22,12 @@ use std::f64::consts::PI;
 use crate::atmosphere::Atmosphere;
 use crate::bruneton::parameterization::{Radii, ScatteringSize, table_position};
 use crate::bruneton::precompute::{Builder, Channels, DeltaM, OrderStats, Tables};
-use crate::bruneton::tables::DensityTable;
+use crate::bruneton::tables::{DensityTable, Table4};
 use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::model_options::ModelOptions;
 use crate::phase::rayleigh;
+use crate::table_inputs::Inputs;
 use crate::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 
 /// The model's settings. `Default` gives the paper's sizes (section 6) and the sample
@@ -79,6 +81,33 @@ impl Default for BrunetonSettings {
 }
 
 impl BrunetonSettings {
+    /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
+    /// `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
+    /// `order_limit`; the paper's values where absent.
+    pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
+        let d = BrunetonSettings::default();
+        let mut o = options.reader("bruneton");
+        let settings = BrunetonSettings {
+            scattering_size: ScatteringSize {
+                r: o.count("r", d.scattering_size.r)?,
+                mu: o.count("mu", d.scattering_size.mu)?,
+                mu_s: o.count("mu_s", d.scattering_size.mu_s)?,
+                nu: o.count("nu", d.scattering_size.nu)?,
+            },
+            view_samples: o.count("view_samples", d.view_samples)?,
+            sphere_samples: (
+                o.count("sphere_zenith", d.sphere_samples.0)?,
+                o.count("sphere_azimuth", d.sphere_samples.1)?,
+            ),
+            order_threshold: o.number("order_threshold", d.order_threshold)?,
+            order_limit: o.count("order_limit", d.order_limit as usize)? as u32,
+            ..d
+        };
+        o.finish()?;
+        settings.validate()?;
+        Ok(settings)
+    }
+
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
         let s = self.scattering_size;
@@ -118,6 +147,8 @@ impl BrunetonSettings {
 #[derive(Debug)]
 pub struct Bruneton {
     atmosphere: Atmosphere,
+    model_settings: ModelSettings,
+    settings: BrunetonSettings,
     radii: Radii,
     wavelengths_nm: Vec<f64>,
     solar_irradiance: Vec<f64>,
@@ -134,7 +165,11 @@ impl Bruneton {
         atmosphere: &Atmosphere,
         settings: &ModelSettings,
     ) -> Result<Bruneton, ModelError> {
-        Bruneton::prepare_with(atmosphere, settings, &BrunetonSettings::default())
+        Bruneton::prepare_with(
+            atmosphere,
+            settings,
+            &BrunetonSettings::from_options(&settings.options)?,
+        )
     }
 
     /// Builds the tables with chosen settings.
@@ -180,6 +215,8 @@ impl Bruneton {
             .collect();
         Ok(Bruneton {
             atmosphere: atmosphere.clone(),
+            model_settings: settings.clone(),
+            settings: bruneton.clone(),
             radii,
             wavelengths_nm: settings.wavelengths_nm.clone(),
             solar_irradiance: settings
@@ -243,6 +280,32 @@ impl SkyModel for Bruneton {
 
     fn wavelengths_nm(&self) -> &[f64] {
         &self.wavelengths_nm
+    }
+
+    fn table_bytes(&self) -> usize {
+        let table4 = |t: &Table4| std::mem::size_of_val(t.data.as_slice());
+        std::mem::size_of_val(self.transmittance.columns.as_slice())
+            + self
+                .groups
+                .iter()
+                .map(|g| {
+                    table4(&g.single_rayleigh)
+                        + table4(&g.single_mie)
+                        + table4(&g.multiple)
+                        + std::mem::size_of_val(g.irradiance.data.as_slice())
+                })
+                .sum::<usize>()
+    }
+
+    /// Every table is rebuilt when anything changed (finer tracking: see
+    /// docs/models/bruneton.md).
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        if Inputs::changed(&self.atmosphere, atmosphere).is_empty() {
+            return Ok(Vec::new());
+        }
+        *self = Bruneton::prepare_with(atmosphere, &self.model_settings, &self.settings)?;
+        Ok(vec!["transmittance", "scattering", "irradiance"])
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {

@@ -28,6 +28,7 @@ use crate::column::{Fineness, optical_depth};
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::phase_sampling::PhaseSampler;
 use crate::sampling::{Sampler, cosine_weighted, direction_around, mix_seed};
+use crate::table_inputs::Inputs;
 use crate::transmittance_table::TransmittanceTable;
 
 /// Size of the columns table for the sun's transmittance in Monte Carlo events.
@@ -228,6 +229,29 @@ impl SkyModel for Reference {
 
     fn wavelengths_nm(&self) -> &[f64] {
         &self.spectra.wavelengths_nm
+    }
+
+    fn table_bytes(&self) -> usize {
+        std::mem::size_of_val(self.table.columns.as_slice()) + self.mie_sampler.bytes()
+    }
+
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut rebuilt = Vec::new();
+        if changed.intersects(Inputs::COLUMNS) {
+            let (w, h) = MC_TABLE_SIZE;
+            self.table = TransmittanceTable::build(atmosphere, w, h);
+            rebuilt.push("transmittance");
+        }
+        if changed.intersects(Inputs::MIE_PHASE) {
+            self.mie_sampler = PhaseSampler::new(&atmosphere.mie.phase);
+            rebuilt.push("mie phase sampler");
+        }
+        self.bounds = DensityBounds::new(atmosphere);
+        self.spectra = Spectra::new(atmosphere, &self.settings.wavelengths_nm);
+        self.atmosphere = atmosphere.clone();
+        Ok(rebuilt)
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
