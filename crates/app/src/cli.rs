@@ -21,6 +21,41 @@ pub enum Command {
     Probe(ProbeArgs),
     /// Stiff and extreme cases through every model: a table of pass/fail and worst values.
     Stability(StabilityArgs),
+    /// Error against run time of every model on a fixed set of views: README.md and
+    /// error_vs_time.png.
+    Report(ReportArgs),
+}
+
+/// The flags of `atmos report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// Directory of README.md, error_vs_time.png and the reference cache reference.csv.
+    #[arg(long, value_name = "DIR", default_value = crate::report::DEFAULT_OUT)]
+    pub out: PathBuf,
+    /// Rays per view as COLUMNSxROWS.
+    #[arg(long, value_name = "COLUMNSxROWS", default_value = "16x9", value_parser = parse_grid)]
+    pub rays: (usize, usize),
+    /// Only these models (repeat the flag); all when absent.
+    #[arg(long, value_parser = PossibleValuesParser::new(crate::report::report_models()))]
+    pub model: Vec<String>,
+    /// Relative standard error the reference aims for per ray and wavelength.
+    #[arg(long, value_name = "REL", default_value_t = ModelSettings::default().target_relative_error)]
+    pub reference_error: f64,
+    /// Compute the reference again even if reference.csv matches the views.
+    #[arg(long)]
+    pub recompute_reference: bool,
+}
+
+/// "16x9" -> (16, 9), each at least 1.
+fn parse_grid(text: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("'{text}' is not COLUMNSxROWS, e.g. 16x9");
+    let (c, r) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let c: usize = c.trim().parse().map_err(|_| bad())?;
+    let r: usize = r.trim().parse().map_err(|_| bad())?;
+    if c == 0 || r == 0 {
+        return Err(format!("'{text}': at least one column and one row"));
+    }
+    Ok((c, r))
 }
 
 /// The flags of `atmos stability`.

@@ -2,7 +2,10 @@
 //! and other tools can run them in-process.
 
 pub mod cli;
+pub mod files;
 pub mod probe;
+pub mod progress;
+pub mod report;
 pub mod stability;
 
 use std::ffi::OsString;
@@ -17,6 +20,7 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
     match Cli::try_parse_from(args)?.command {
         Some(Command::Probe(args)) => probe::run(&args),
         Some(Command::Stability(args)) => stability::run(&args),
+        Some(Command::Report(args)) => report::run(&args),
         None => {
             Cli::command().print_help()?;
             println!(

@@ -8,20 +8,19 @@
 //! `T_<nm>`, then `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
 
 use std::fs;
-use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::io::Write;
 
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay, prepare};
 use atmosphere_core::model_options::ModelOptions;
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::cli::ProbeArgs;
+use crate::files::write_atomically;
+use crate::progress::Progress;
 
 /// The columns every input needs, in the order of [`ViewRay::from_angles`].
 pub const REQUIRED_COLUMNS: [&str; 4] = [
@@ -281,7 +280,7 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
 
 /// The radiance of every row, in parallel, in the order of the rows.
 fn evaluate(model: &dyn SkyModel, rows: &[ProbeRow]) -> Vec<Result<RayRadiance, ModelError>> {
-    let progress = Progress::new(rows.len() as u64);
+    let progress = Progress::new("probe", "rays", rows.len() as u64);
     let results = rows
         .par_iter()
         .map(|row| {
@@ -337,70 +336,6 @@ fn number(x: f64) -> String {
         format!("{x}")
     } else {
         format!("{x:e}")
-    }
-}
-
-/// Writes `path.partial` next to `path`, then renames it; on error leaves neither.
-fn write_atomically(path: &Path, contents: &[u8]) -> anyhow::Result<()> {
-    let mut partial = path.as_os_str().to_owned();
-    partial.push(".partial");
-    let partial = PathBuf::from(partial);
-    let result = fs::File::create(&partial)
-        .and_then(|mut f| f.write_all(contents).and_then(|()| f.sync_all()))
-        .and_then(|()| fs::rename(&partial, path));
-    if result.is_err() {
-        // Best effort: the file may never have been created.
-        let _ = fs::remove_file(&partial);
-    }
-    result.with_context(|| format!("cannot write {}", path.display()))
-}
-
-/// More rays than this get progress lines on stderr when it is not a terminal.
-const FEW_RAYS: u64 = 16;
-
-/// Progress of the rays on stderr: a bar on a terminal, else a line per tenth of the rays
-/// when there are more than a few.
-enum Progress {
-    Bar(ProgressBar),
-    Lines { done: AtomicU64, total: u64 },
-    Quiet,
-}
-
-impl Progress {
-    fn new(total: u64) -> Progress {
-        if std::io::stderr().is_terminal() {
-            let style = ProgressStyle::with_template(
-                "{elapsed_precise} [{wide_bar}] {pos}/{len} rays, {eta} left",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar());
-            Progress::Bar(ProgressBar::new(total).with_style(style))
-        } else if total > FEW_RAYS {
-            Progress::Lines {
-                done: AtomicU64::new(0),
-                total,
-            }
-        } else {
-            Progress::Quiet
-        }
-    }
-
-    fn inc(&self) {
-        match self {
-            Progress::Bar(bar) => bar.inc(1),
-            Progress::Lines { done, total } => {
-                let done = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if done * 10 / total != (done - 1) * 10 / total {
-                    eprintln!("probe: {done}/{total} rays");
-                }
-            }
-            Progress::Quiet => {}
-        }
-    }
-
-    fn finish(&self) {
-        if let Progress::Bar(bar) = self {
-            bar.finish();
-        }
     }
 }
 

@@ -1,0 +1,116 @@
+//! `atmos report`: every model setting against the reference on a fixed set of views:
+//! error, build time, time per ray and memory, as `README.md` and `error_vs_time.png`.
+
+pub mod markdown;
+pub mod measure;
+pub mod plot;
+pub mod reference_cache;
+pub mod views;
+
+use std::fs;
+
+use anyhow::{Context, bail};
+use atmosphere_core::color::SpectrumToColor;
+use atmosphere_core::model::{MODEL_IDS, ModelSettings};
+
+use crate::cli::ReportArgs;
+use crate::files::write_atomically;
+use crate::report::markdown::{Provenance, write_report};
+use crate::report::measure::{Variant, measure};
+use crate::report::plot::Point;
+
+/// The settings the report compares: each model at its paper's values, and the settings
+/// that trade accuracy for time around them.
+pub fn report_variants() -> Vec<Variant> {
+    vec![
+        Variant::new("riley", None, &[]),
+        Variant::new("nishita", None, &["samples=4"]),
+        Variant::new("nishita", None, &["samples=16"]),
+        Variant::new("nishita", None, &["samples=64"]),
+        Variant::new("nishita", None, &[]),
+        Variant::new("oneil", None, &["samples=2"]),
+        Variant::new("oneil", None, &[]),
+        Variant::new("oneil", None, &["samples=16"]),
+        Variant::new("bruneton", Some(1), &[]),
+        Variant::new("bruneton", Some(2), &[]),
+        Variant::new("bruneton", None, &[]),
+        Variant::new("bruneton", None, &["r=16", "mu=64", "mu_s=16", "nu=4"]),
+    ]
+}
+
+/// Runs the report.
+pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
+    let (columns, rows) = args.rays;
+    let views = views::report_views(columns, rows);
+    let base = ModelSettings {
+        target_relative_error: args.reference_error,
+        ..ModelSettings::default()
+    };
+    base.validate()?;
+    let mut variants = report_variants();
+    if !args.model.is_empty() {
+        variants.retain(|v| args.model.iter().any(|m| m == v.model));
+    }
+    if variants.is_empty() {
+        bail!("no report settings for the models {:?}", args.model);
+    }
+    fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    let reference = reference_cache::load_or_compute(
+        &args.out.join("reference.csv"),
+        &views,
+        &base,
+        args.recompute_reference,
+    )?;
+    let color = SpectrumToColor::new(&base.wavelengths_nm)?;
+    let mut results = Vec::with_capacity(variants.len());
+    for (i, variant) in variants.iter().enumerate() {
+        eprintln!("report: {}/{} {}", i + 1, variants.len(), variant.label());
+        results.push(measure(variant, &views, &reference, &base, &color)?);
+    }
+    let provenance = Provenance {
+        command: command_line(args),
+        threads_note: format!(
+            "Times are wall-clock on one thread of a machine with {} logical CPUs; table \
+             builds use all of them.",
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        ),
+        reference_target_error: base.target_relative_error,
+    };
+    let text = write_report(&provenance, &views, &reference, &results);
+    write_atomically(&args.out.join("README.md"), text.as_bytes())?;
+    let points: Vec<Point> = results.iter().map(Point::of).collect();
+    plot::draw(&args.out.join("error_vs_time.png"), &points)?;
+    eprintln!("report: wrote {}", args.out.join("README.md").display());
+    Ok(())
+}
+
+/// The command that regenerates this report.
+fn command_line(args: &ReportArgs) -> String {
+    let mut command = "cargo run --release -p atmos -- report".to_string();
+    if args.out != std::path::Path::new(DEFAULT_OUT) {
+        command.push_str(&format!(" --out {}", args.out.display()));
+    }
+    if args.rays != (16, 9) {
+        command.push_str(&format!(" --rays {}x{}", args.rays.0, args.rays.1));
+    }
+    for m in &args.model {
+        command.push_str(&format!(" --model {m}"));
+    }
+    if args.reference_error != ModelSettings::default().target_relative_error {
+        command.push_str(&format!(" --reference-error {}", args.reference_error));
+    }
+    command
+}
+
+/// Where the committed report lives.
+pub const DEFAULT_OUT: &str = "docs/report";
+
+/// Models the report knows; `--model` accepts these.
+pub fn report_models() -> Vec<&'static str> {
+    MODEL_IDS
+        .iter()
+        .copied()
+        .filter(|m| report_variants().iter().any(|v| v.model == *m))
+        .collect()
+}

@@ -1,0 +1,179 @@
+//! The report's plot: daytime error against the time of a 1280 x 720 frame, one point per
+//! model setting, log axes, with the Pareto front (no faster setting is more accurate).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, anyhow};
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+
+use crate::report::measure::VariantResult;
+
+const FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
+
+/// One point of the plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Point {
+    pub label: String,
+    pub model: String,
+    pub frame_seconds: f64,
+    pub error_percent: f64,
+}
+
+impl Point {
+    pub fn of(result: &VariantResult) -> Point {
+        Point {
+            label: result.variant.label(),
+            model: result.variant.model.to_string(),
+            frame_seconds: result.frame_seconds(),
+            error_percent: 100.0 * result.daytime.rms,
+        }
+    }
+}
+
+/// The points on the Pareto front, fastest first: each more accurate than every faster
+/// point.
+pub fn pareto_front(points: &[Point]) -> Vec<Point> {
+    let mut sorted: Vec<&Point> = points.iter().collect();
+    sorted.sort_by(|a, b| {
+        a.frame_seconds
+            .total_cmp(&b.frame_seconds)
+            .then(a.error_percent.total_cmp(&b.error_percent))
+    });
+    let mut front: Vec<Point> = Vec::new();
+    for p in sorted {
+        if front
+            .last()
+            .is_none_or(|best| p.error_percent < best.error_percent)
+        {
+            front.push(p.clone());
+        }
+    }
+    front
+}
+
+fn model_color(model: &str) -> RGBColor {
+    match model {
+        "nishita" => RGBColor(31, 119, 180),
+        "oneil" => RGBColor(255, 127, 14),
+        "dobashi" => RGBColor(44, 160, 44),
+        "riley" => RGBColor(214, 39, 40),
+        "bruneton" => RGBColor(148, 103, 189),
+        "hillaire" => RGBColor(140, 86, 75),
+        _ => RGBColor(90, 90, 90),
+    }
+}
+
+/// Log-axis range around positive values, padded by a factor of 2.
+fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| *v > 0.0 && v.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo > hi {
+        return 0.1..10.0;
+    }
+    lo / 2.0..hi * 2.0
+}
+
+/// Draws the plot to `path` (PNG), through a partial file renamed into place.
+pub fn draw(path: &Path, points: &[Point]) -> anyhow::Result<()> {
+    // Registering the same font again is harmless.
+    register_font("sans-serif", FontStyle::Normal, FONT)
+        .map_err(|_| anyhow!("the plot font assets/fonts/DejaVuSans.ttf is not a font"))?;
+    let mut partial = path.as_os_str().to_owned();
+    partial.push(".partial.png");
+    let partial = PathBuf::from(partial);
+    draw_to(&partial, points)
+        .map_err(|e| anyhow!("{e}"))
+        .and_then(|()| std::fs::rename(&partial, path).map_err(Into::into))
+        .with_context(|| format!("cannot draw {}", path.display()))
+        .inspect_err(|_| {
+            let _ = std::fs::remove_file(&partial);
+        })
+}
+
+fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Error>> {
+    let root = BitMapBackend::new(path, (1200, 800)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let x_range = log_range(points.iter().map(|p| p.frame_seconds));
+    let y_range = log_range(points.iter().map(|p| p.error_percent));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "Daytime luminance error against frame time (CPU, one thread)",
+            ("sans-serif", 26),
+        )
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("time of a 1280 x 720 frame, s")
+        .y_desc("relative RMS luminance error, %")
+        .axis_desc_style(("sans-serif", 20))
+        .label_style(("sans-serif", 16))
+        .draw()?;
+    let front = pareto_front(points);
+    chart
+        .draw_series(LineSeries::new(
+            front.iter().map(|p| (p.frame_seconds, p.error_percent)),
+            BLACK.stroke_width(2),
+        ))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    for p in points {
+        let color = model_color(&p.model);
+        chart.draw_series(std::iter::once(
+            EmptyElement::at((p.frame_seconds, p.error_percent))
+                + Circle::new((0, 0), 6, color.filled())
+                + Text::new(p.label.clone(), (9, -8), ("sans-serif", 15)),
+        ))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 16))
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(label: &str, t: f64, e: f64) -> Point {
+        Point {
+            label: label.into(),
+            model: "nishita".into(),
+            frame_seconds: t,
+            error_percent: e,
+        }
+    }
+
+    #[test]
+    fn the_front_keeps_only_settings_no_faster_one_beats() {
+        let points = [
+            point("a", 1.0, 10.0),
+            point("b", 2.0, 12.0),
+            point("c", 3.0, 5.0),
+            point("d", 0.5, 20.0),
+            point("e", 4.0, 5.0),
+        ];
+        let front: Vec<String> = pareto_front(&points).into_iter().map(|p| p.label).collect();
+        assert_eq!(front, ["d", "a", "c"]);
+    }
+
+    #[test]
+    fn draws_a_png() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("plot.png");
+        draw(&path, &[point("a", 1.0, 10.0), point("b", 3.0, 2.0)]).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG");
+        assert!(!dir.path().join("plot.png.partial.png").exists());
+    }
+}
