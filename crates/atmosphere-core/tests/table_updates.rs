@@ -41,12 +41,14 @@ fn answers(model: &dyn SkyModel, rays: &[ViewRay]) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The changes, each with the tables each model must rebuild.
-fn changes() -> Vec<(
-    &'static str,
-    Atmosphere,
-    [(&'static str, Vec<&'static str>); 4],
-)> {
+/// A change of the atmosphere, and the tables each model must rebuild for it.
+struct Change {
+    name: &'static str,
+    atmosphere: Atmosphere,
+    rebuilt: [(&'static str, Vec<&'static str>); 4],
+}
+
+fn changes() -> Vec<Change> {
     let earth = Atmosphere::preset("earth").unwrap();
     let mut albedo = earth.clone();
     albedo.ground_albedo = 0.3;
@@ -57,53 +59,58 @@ fn changes() -> Vec<(
     sun.sun.irradiance_w_m2_nm = sun.sun.irradiance_w_m2_nm.scaled(0.9);
     let columns = vec!["g_l"];
     vec![
-        (
-            "ground albedo",
-            albedo,
-            [
+        Change {
+            name: "ground albedo",
+            atmosphere: albedo,
+            rebuilt: [
                 ("nishita", vec![]),
                 ("oneil", vec![]),
                 ("riley", vec![]),
                 ("reference", vec![]),
             ],
-        ),
-        (
-            "aerosol amount",
-            aerosol,
-            [
+        },
+        Change {
+            name: "aerosol amount",
+            atmosphere: aerosol,
+            rebuilt: [
                 ("nishita", vec![]),
                 ("oneil", vec![]),
                 ("riley", vec![]),
                 ("reference", vec![]),
             ],
-        ),
-        (
-            "aerosol profile",
-            profile,
-            [
+        },
+        Change {
+            name: "aerosol profile",
+            atmosphere: profile,
+            rebuilt: [
                 ("nishita", columns),
                 ("oneil", vec!["optical depth"]),
                 ("riley", vec![]),
                 ("reference", vec!["transmittance"]),
             ],
-        ),
-        (
-            "solar spectrum",
-            sun,
-            [
+        },
+        Change {
+            name: "solar spectrum",
+            atmosphere: sun,
+            rebuilt: [
                 ("nishita", vec![]),
                 ("oneil", vec![]),
                 ("riley", vec![]),
                 ("reference", vec![]),
             ],
-        ),
+        },
     ]
 }
 
 #[test]
 fn each_change_rebuilds_only_what_depends_on_it_and_answers_as_a_fresh_model() {
     let earth = Atmosphere::preset("earth").unwrap();
-    for (change, changed, expected) in changes() {
+    for Change {
+        name: change,
+        atmosphere: changed,
+        rebuilt: expected,
+    } in changes()
+    {
         for (id, tables) in expected {
             let mut model = prepare(id, &earth, &settings()).unwrap();
             let rebuilt = model.update(&changed).unwrap();
