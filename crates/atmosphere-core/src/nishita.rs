@@ -107,6 +107,9 @@ pub struct Nishita {
     settings: NishitaSettings,
     spectra: Spectra,
     table: TransmittanceTable,
+    prune: bool,
+    /// False when pruning at zero aerosol: no Mie density or phase is evaluated.
+    with_mie: bool,
 }
 
 impl Nishita {
@@ -120,10 +123,13 @@ impl Nishita {
         atmosphere.validate()?;
         model_settings.validate()?;
         settings.validate()?;
+        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
         Ok(Nishita {
             atmosphere: atmosphere.clone(),
             settings,
-            spectra: Spectra::new(atmosphere, &model_settings.wavelengths_nm),
+            prune: model_settings.prune,
+            with_mie: !model_settings.prune || spectra.has_aerosol(),
+            spectra,
             table: TransmittanceTable::build(
                 atmosphere,
                 settings.table_angles,
@@ -167,6 +173,7 @@ impl SkyModel for Nishita {
             rebuilt.push("g_l");
         }
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        self.with_mie = !self.prune || self.spectra.has_aerosol();
         self.atmosphere = atmosphere.clone();
         Ok(rebuilt)
     }
@@ -196,13 +203,26 @@ impl SkyModel for Nishita {
         let dt = length / n as f64;
         let nu = direction.dot(sun);
         let phase_r = crate::phase::rayleigh(nu);
-        let phase_m = a.mie.phase.eval(nu);
+        let phase_m = if self.with_mie {
+            a.mie.phase.eval(nu)
+        } else {
+            0.0
+        };
         let mut radiance = vec![0.0; n_w];
         let mut view_column = [0.0; 3];
         for k in 0..n {
             let position = start + direction * ((k as f64 + 0.5) * dt);
             let radius = position.length();
-            let rho = densities(a, (radius - bottom).max(0.0));
+            let altitude = (radius - bottom).max(0.0);
+            let rho = if self.with_mie {
+                densities(a, altitude)
+            } else {
+                [
+                    a.rayleigh.density.density(altitude),
+                    0.0,
+                    a.ozone.density.density(altitude),
+                ]
+            };
             // Column from the camera to the midpoint: the previous segments plus half of
             // this one.
             let mut to_sample = view_column;

@@ -237,6 +237,10 @@ pub struct Oneil {
     settings: OneilSettings,
     spectra: Spectra,
     table: OpticalDepthTable,
+    prune: bool,
+    /// False when pruning at zero aerosol: the Mie terms are skipped (the table's Mie
+    /// channels are density integrals, built in the same pass as the Rayleigh ones).
+    with_mie: bool,
 }
 
 impl Oneil {
@@ -250,10 +254,13 @@ impl Oneil {
         atmosphere.validate()?;
         settings.validate()?;
         oneil.validate()?;
+        let spectra = Spectra::new(atmosphere, &settings.wavelengths_nm);
         Ok(Oneil {
             atmosphere: atmosphere.clone(),
             settings: oneil,
-            spectra: Spectra::new(atmosphere, &settings.wavelengths_nm),
+            prune: settings.prune,
+            with_mie: !settings.prune || spectra.has_aerosol(),
+            spectra,
             table: OpticalDepthTable::build(
                 atmosphere,
                 oneil.table_heights,
@@ -299,6 +306,7 @@ impl SkyModel for Oneil {
             rebuilt.push("optical depth");
         }
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        self.with_mie = !self.prune || self.spectra.has_aerosol();
         self.atmosphere = atmosphere.clone();
         Ok(rebuilt)
     }
@@ -349,7 +357,11 @@ impl SkyModel for Oneil {
 
         let nu = dir.dot(sun);
         let phase_r = crate::phase::rayleigh(nu);
-        let phase_m = self.atmosphere.mie.phase.eval(nu);
+        let phase_m = if self.with_mie {
+            self.atmosphere.mie.phase.eval(nu)
+        } else {
+            0.0
+        };
         let mut radiance = vec![0.0; n];
         let ds = seg.length / self.settings.samples as f64;
         for k in 0..self.settings.samples {
@@ -366,8 +378,10 @@ impl SkyModel for Oneil {
                 light[MIE_LENGTH] + view[1],
             ];
             for w in 0..n {
-                let j = self.spectra.rayleigh_scattering[w] * rho_r * phase_r
-                    + self.spectra.mie_scattering[w] * rho_m * phase_m;
+                let mut j = self.spectra.rayleigh_scattering[w] * rho_r * phase_r;
+                if self.with_mie {
+                    j += self.spectra.mie_scattering[w] * rho_m * phase_m;
+                }
                 radiance[w] +=
                     ds * j * self.spectra.solar_irradiance[w] * (-depth(w, column)).exp();
             }

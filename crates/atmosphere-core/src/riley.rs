@@ -231,6 +231,9 @@ pub struct Riley {
     rayleigh: Species,
     mie: Species,
     mie_phase: PhaseFunction,
+    prune: bool,
+    /// False when pruning at zero aerosol: the Mie terms are skipped.
+    with_mie: bool,
 }
 
 impl Riley {
@@ -261,6 +264,8 @@ impl Riley {
             ),
             mie: Species::new(&atmosphere.mie.density, thickness, &mie_s, &mie_e),
             mie_phase: atmosphere.mie.phase.clone(),
+            prune: settings.prune,
+            with_mie: !settings.prune || mie_s.iter().chain(&mie_e).any(|c| *c != 0.0),
         }
     }
 
@@ -349,6 +354,7 @@ impl SkyModel for Riley {
         atmosphere.validate()?;
         let settings = ModelSettings {
             wavelengths_nm: self.wavelengths_nm.clone(),
+            prune: self.prune,
             ..ModelSettings::default()
         };
         *self = Riley::prepare(atmosphere, &settings);
@@ -417,18 +423,24 @@ impl SkyModel for Riley {
             legs = kept;
         }
         let nu = direction.dot(sun);
-        let (phase_r, phase_m) = (rayleigh(nu), self.mie_phase.eval(nu));
+        let phase_r = rayleigh(nu);
+        let phase_m = if self.with_mie {
+            self.mie_phase.eval(nu)
+        } else {
+            0.0
+        };
         let mut radiance = vec![0.0; n];
         let mut transmittance = vec![1.0; n];
         for w in 0..n {
             let e = self.solar_irradiance[w];
-            let species = [
+            let both = [
                 (self.rayleigh.flat(w, e), self.rayleigh.albedo[w] * phase_r),
                 (self.mie.flat(w, e), self.mie.albedo[w] * phase_m),
             ];
+            let species = &both[..if self.with_mie { 2 } else { 1 }];
             for leg in &legs {
                 let mut tau = 0.0;
-                for (flat, weighted_phase) in &species {
+                for (flat, weighted_phase) in species {
                     radiance[w] += transmittance[w]
                         * flat.single_scattering(
                             leg.height_m,

@@ -55,6 +55,12 @@ pub struct Spectra {
 }
 
 impl Spectra {
+    /// True when aerosols scatter or absorb at some wavelength: without them a model
+    /// that prunes ([`crate::model::ModelSettings::prune`]) does no Mie work.
+    pub fn has_aerosol(&self) -> bool {
+        self.mie_scattering.iter().any(|s| *s != 0.0) || self.extinction.iter().any(|e| e[1] != 0.0)
+    }
+
     pub fn new(atmosphere: &Atmosphere, wavelengths_nm: &[f64]) -> Spectra {
         let c: Vec<_> = wavelengths_nm
             .iter()
