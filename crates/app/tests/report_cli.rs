@@ -53,6 +53,7 @@ fn writes_the_report_and_reuses_the_reference() {
     assert_eq!(&png[1..4], b"PNG");
     let reference = std::fs::read_to_string(dir.path().join("reference.csv")).unwrap();
     assert_eq!(reference.lines().count(), 2 + 7 * 2);
+    assert!(dir.path().join("reference_single.csv").exists());
 
     let second = atmos(&args);
     assert!(second.status.success(), "{}", stderr(&second));

@@ -95,25 +95,28 @@ fn write_models(md: &mut String, results: &[VariantResult]) {
         md,
         "## Models\n\n\
          Relative luminance error |L - L_ref| / L_ref over the rays: RMS on daytime views \
-         and on all views, the 95th percentile and maximum over all views, and the signed \
-         mean (bias) on daytime views. CIEDE2000: mean colour difference after one \
+         and on all views, the 95th percentile and maximum over all views, the signed \
+         mean (bias) on daytime views, and the daytime RMS against the reference's single \
+         scattering (`reference_single.csv`): for the single-scattering models, their error \
+         apart from the light of the orders they leave out. CIEDE2000: mean colour difference after one \
          exposure per view (the reference's median luminance at 18 % grey). Build: table \
          preparation for the Earth atmosphere. Per ray: warm evaluation on one thread. \
          Frame: a {FRAME_PIXELS} ray frame (1280 x 720) on one thread, plus the tables a \
          model builds per view (camera and sun).\n\n\
-         | model and setting | daytime RMS % | all RMS % | p95 % | max % | daytime bias % | CIEDE2000 | build s | per ray µs | frame s | tables MiB |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|"
+         | model and setting | daytime RMS % | all RMS % | p95 % | max % | daytime bias % | daytime RMS vs order 1 % | CIEDE2000 | build s | per ray µs | frame s | tables MiB |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for r in results {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {:+.2} | {:.2} | {:.3} | {:.2} | {:.2} | {:.2} |",
+            "| {} | {} | {} | {} | {} | {:+.2} | {} | {:.2} | {:.3} | {:.2} | {:.2} | {:.2} |",
             r.variant.label(),
             percent(r.daytime.rms),
             percent(r.all.rms),
             percent(r.all.p95),
             percent(r.all.max),
             100.0 * r.daytime.bias,
+            percent(r.daytime_vs_single.rms),
             r.mean_ciede2000,
             r.build_seconds,
             1e6 * r.seconds_per_ray(),

@@ -94,6 +94,9 @@ pub struct VariantResult {
     pub views: Vec<ViewResult>,
     pub all: RelativeErrorStats,
     pub daytime: RelativeErrorStats,
+    /// Daytime error against the reference's single scattering: the numerical error of
+    /// single-scattering models, apart from the light of higher orders they leave out.
+    pub daytime_vs_single: RelativeErrorStats,
     pub mean_ciede2000: f64,
 }
 
@@ -117,6 +120,7 @@ pub fn measure(
     variant: &Variant,
     views: &[ReportView],
     reference: &ReferenceRadiance,
+    single: &ReferenceRadiance,
     base: &ModelSettings,
     color: &SpectrumToColor,
 ) -> anyhow::Result<VariantResult> {
@@ -128,7 +132,8 @@ pub fn measure(
     let mut results = Vec::with_capacity(views.len());
     let mut all_pairs = Vec::new();
     let mut day_pairs = Vec::new();
-    for (view, reference) in views.iter().zip(reference) {
+    let mut single_pairs = Vec::new();
+    for ((view, reference), single) in views.iter().zip(reference).zip(single) {
         let atmosphere = Atmosphere::preset(view.atmosphere)?;
         if !prepared.iter().any(|(name, _)| *name == view.atmosphere) {
             let (model, seconds) = timed_prepare(variant.model, &atmosphere, &settings)
@@ -159,6 +164,12 @@ pub fn measure(
         all_pairs.extend(&pairs);
         if view.is_daytime() {
             day_pairs.extend(&pairs);
+            single_pairs.extend(answers.iter().zip(single).map(|(m, r)| {
+                (
+                    color.luminance_cd_m2(&m.radiance),
+                    color.luminance_cd_m2(&r.radiance),
+                )
+            }));
         }
         results.push(ViewResult {
             luminance: RelativeErrorStats::new(pairs.iter().copied()),
@@ -173,6 +184,7 @@ pub fn measure(
         table_bytes,
         all: RelativeErrorStats::new(all_pairs),
         daytime: RelativeErrorStats::new(day_pairs),
+        daytime_vs_single: RelativeErrorStats::new(single_pairs),
         mean_ciede2000: mean(results.iter().map(|v| v.mean_ciede2000)),
         views: results,
     })

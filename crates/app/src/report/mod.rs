@@ -62,11 +62,22 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         &base,
         args.recompute_reference,
     )?;
+    let single = reference_cache::load_or_compute(
+        &args.out.join("reference_single.csv"),
+        &views,
+        &ModelSettings {
+            max_orders: Some(1),
+            ..base.clone()
+        },
+        args.recompute_reference,
+    )?;
     let color = SpectrumToColor::new(&base.wavelengths_nm)?;
     let mut results = Vec::with_capacity(variants.len());
     for (i, variant) in variants.iter().enumerate() {
         eprintln!("report: {}/{} {}", i + 1, variants.len(), variant.label());
-        results.push(measure(variant, &views, &reference, &base, &color)?);
+        results.push(measure(
+            variant, &views, &reference, &single, &base, &color,
+        )?);
     }
     let provenance = Provenance {
         command: command_line(args),

@@ -64,7 +64,8 @@ fn model_color(model: &str) -> RGBColor {
     }
 }
 
-/// Log-axis range around positive values, padded by a factor of 2.
+/// Log-axis range from the power of ten below the smallest positive value to the one
+/// above the largest.
 fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     let (lo, hi) = values
         .filter(|v| *v > 0.0 && v.is_finite())
@@ -74,7 +75,42 @@ fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     if lo > hi {
         return 0.1..10.0;
     }
-    lo / 2.0..hi * 2.0
+    10f64.powf(lo.log10().floor())..10f64.powf((hi.log10() + 1e-9).ceil())
+}
+
+/// Tick labels without trailing zeros: 0.1, 1, 20.
+fn tick(v: &f64) -> String {
+    let text = format!("{v:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// Pixel boxes of the labels drawn so far; a new label moves down until it overlaps none.
+#[derive(Debug, Default)]
+struct LabelPlacer {
+    boxes: Vec<(i32, i32, i32, i32)>,
+}
+
+impl LabelPlacer {
+    const LINE: i32 = 17;
+
+    /// The offset from the point (x, y) at which a label of `chars` characters fits.
+    fn place(&mut self, (x, y): (i32, i32), chars: usize) -> (i32, i32) {
+        let width = 8 * chars as i32;
+        let mut dy = -8;
+        for _ in 0..8 {
+            let b = (x + 9, y + dy, x + 9 + width, y + dy + Self::LINE);
+            let overlaps = self
+                .boxes
+                .iter()
+                .any(|o| b.0 < o.2 && o.0 < b.2 && b.1 < o.3 && o.1 < b.3);
+            if !overlaps {
+                self.boxes.push(b);
+                break;
+            }
+            dy += Self::LINE;
+        }
+        (9, dy)
+    }
 }
 
 /// Draws the plot to `path` (PNG), through a partial file renamed into place.
@@ -111,6 +147,8 @@ fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Erro
     chart
         .configure_mesh()
         .x_desc("time of a 1280 x 720 frame, s")
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .y_desc("relative RMS luminance error, %")
         .axis_desc_style(("sans-serif", 20))
         .label_style(("sans-serif", 16))
@@ -123,12 +161,15 @@ fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Erro
         ))?
         .label("Pareto front")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    let mut placer = LabelPlacer::default();
     for p in points {
         let color = model_color(&p.model);
+        let at = (p.frame_seconds, p.error_percent);
+        let offset = placer.place(chart.backend_coord(&at), p.label.chars().count());
         chart.draw_series(std::iter::once(
-            EmptyElement::at((p.frame_seconds, p.error_percent))
+            EmptyElement::at(at)
                 + Circle::new((0, 0), 6, color.filled())
-                + Text::new(p.label.clone(), (9, -8), ("sans-serif", 15)),
+                + Text::new(p.label.clone(), offset, ("sans-serif", 15)),
         ))?;
     }
     chart
