@@ -1,23 +1,16 @@
 //! `atmos probe` end to end: the real binary, real files.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use std::process::Output;
+
+use common::{atmos, stderr};
 
 const HEADER: &str = "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,distance_m";
 
 /// Ground at noon looking up; 10 km looking at the horizon; an object 5 km away.
 const RAYS: &str = "0,0,30,0,\n10000,90,45,90,\n0,90,60,90,5000\n";
-
-fn atmos(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_atmos"))
-        .args(args)
-        .output()
-        .expect("the atmos binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
 
 /// A temporary directory holding `rays.csv` with this text.
 fn input(text: &str) -> (tempfile::TempDir, PathBuf) {

@@ -2,18 +2,9 @@
 //! plot and the reference cache, reuses the cache on a second run, and rejects bad flags
 //! by name.
 
-use std::process::{Command, Output};
+mod common;
 
-fn atmos(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_atmos"))
-        .args(args)
-        .output()
-        .expect("the atmos binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
+use common::{atmos, stderr};
 
 #[test]
 fn writes_the_report_and_reuses_the_reference() {
