@@ -30,13 +30,12 @@
 
 use std::f64::consts::PI;
 
-use glam::DVec3;
-
 use crate::atmosphere::Atmosphere;
 use crate::density::DensityProfile;
-use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
+use crate::geometry::{distance_to_exit, ray_hits_ground};
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::phase::{PhaseFunction, rayleigh};
+use crate::view_segment::{SegmentEnd, ViewSegment};
 
 /// `(1 - exp(-x)) / x`, 1 at x = 0, accurate for every x (0 at +infinity).
 pub fn phi(x: f64) -> f64 {
@@ -368,59 +367,24 @@ impl SkyModel for Riley {
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.wavelengths_nm.len();
         let (bottom, top) = (self.bottom_radius_m, self.top_radius_m);
-        if !(ray.direction.is_finite() && ray.origin_m.is_finite() && ray.sun_direction.is_finite())
-            || ray.direction == DVec3::ZERO
-            || ray.sun_direction == DVec3::ZERO
-        {
-            return Err(ModelError::Ray("non-finite position or direction".into()));
-        }
-        let direction = ray.direction.normalize();
-        let sun = ray.sun_direction.normalize();
-        let r_camera = ray.origin_m.length();
-        if r_camera < bottom * (1.0 - 1e-12) {
-            return Err(ModelError::Ray(format!(
-                "camera {} m below the ground",
-                bottom - r_camera
-            )));
-        }
-        let empty = || self.answer(vec![0.0; n], vec![1.0; n]);
-        // Move the camera to where the ray enters the atmosphere.
-        let mu_camera = (ray.origin_m.dot(direction) / r_camera).clamp(-1.0, 1.0);
-        let t_enter = if r_camera > top {
-            match distance_to_entry(r_camera, mu_camera, top) {
-                Some(t) => t,
-                None => return Ok(empty()),
-            }
-        } else {
-            0.0
+        let Some(segment) = ViewSegment::new_within(bottom, top, ray)? else {
+            return Ok(self.answer(vec![0.0; n], vec![1.0; n]));
         };
-        let start = ray.origin_m + direction * t_enter;
-        let r = start.length().clamp(bottom, top);
-        let zenith = start / start.length();
-        let y0 = r - bottom;
-        let p = direction.dot(zenith).clamp(-1.0, 1.0);
+        let (direction, sun) = (segment.direction, segment.sun_direction);
+        let zenith = segment.start / segment.start.length();
+        let (y0, p) = (segment.r - bottom, segment.mu);
         let l = sun.dot(zenith).clamp(-1.0, 1.0);
-        let (mut legs, mut ground) = flat_legs(y0, r, p, bottom, top);
-        if let Some(d) = ray.max_distance_m {
-            let mut remaining = d - t_enter;
-            if remaining <= 0.0 {
-                return Ok(empty());
-            }
-            let mut kept = Vec::with_capacity(legs.len());
-            for leg in legs {
-                if remaining <= 0.0 {
-                    break;
-                }
-                if remaining < leg.length_m {
-                    ground = false;
-                }
-                kept.push(Leg {
-                    length_m: leg.length_m.min(remaining),
-                    ..leg
-                });
+        let (mut legs, mut ground) = flat_legs(y0, segment.r, p, bottom, top);
+        if segment.end == SegmentEnd::Object {
+            // Keep the legs up to the object.
+            ground = false;
+            let mut remaining = segment.length;
+            legs.retain_mut(|leg| {
+                let keep = remaining > 0.0;
+                leg.length_m = leg.length_m.min(remaining);
                 remaining -= leg.length_m;
-            }
-            legs = kept;
+                keep
+            });
         }
         let nu = direction.dot(sun);
         let phase_r = rayleigh(nu);

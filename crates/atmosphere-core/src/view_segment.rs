@@ -40,8 +40,15 @@ impl ViewSegment {
     /// atmosphere or its object lies before it. Errors for non-finite input or a camera
     /// below the ground.
     pub fn new(atmosphere: &Atmosphere, ray: &ViewRay) -> Result<Option<ViewSegment>, ModelError> {
-        let bottom = atmosphere.bottom_radius_m;
-        let top = atmosphere.top_radius_m;
+        ViewSegment::new_within(atmosphere.bottom_radius_m, atmosphere.top_radius_m, ray)
+    }
+
+    /// As [`ViewSegment::new`], for the shell between radii `bottom` and `top`.
+    pub fn new_within(
+        bottom: f64,
+        top: f64,
+        ray: &ViewRay,
+    ) -> Result<Option<ViewSegment>, ModelError> {
         let direction = ray.direction.normalize();
         let sun_direction = ray.sun_direction.normalize();
         if !(direction.is_finite() && sun_direction.is_finite() && ray.origin_m.is_finite()) {
