@@ -11,6 +11,7 @@ pub mod cie1931;
 pub mod color;
 pub mod column;
 pub mod density;
+pub mod dobashi;
 pub mod geometry;
 pub mod model;
 pub mod model_options;
