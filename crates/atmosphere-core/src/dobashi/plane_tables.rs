@@ -3,13 +3,15 @@
 //! start and the angle theta_v of its direction from the local vertical, and the interval
 //! rule of section 4.2.1 that chooses Delta_t.
 //!
-//! The paper gives the axes (h, theta_v) but no spacing. The tables use the (r, mu)
-//! mapping of Bruneton and Neyret 2008 ([`Radii`]): rows at equal steps of
-//! rho = sqrt(r^2 - R^2) (dense near the ground, where the Mie layer is), and the angle axis
-//! split at the horizon, its first half for rays that meet the ground (equal steps of the
-//! distance to the ground), its second half for the others (equal steps of the distance to
-//! the top). A segment stops where its ray leaves the atmosphere, so the two halves differ
-//! at the horizon and are never interpolated across it.
+//! The paper gives the axes (h, theta_v) but no spacing. Rows are at equal steps of
+//! rho = sqrt(r^2 - R^2) (dense near the ground, where the Mie layer is; Bruneton 2017),
+//! and the angle axis is split at the horizon: its first half holds rays that meet the
+//! ground, at equal steps of the distance to the ground between its least (straight down)
+//! and greatest (the horizon), its second half the others, at equal steps of the distance
+//! to the top (Bruneton 2017's transmittance mapping, `transmittance_table`). A segment
+//! stops where its ray leaves the atmosphere, so the two halves differ at the horizon and
+//! are never interpolated across it; straight up, straight down and the horizon fall on
+//! nodes at every height.
 
 use rayon::prelude::*;
 
@@ -119,11 +121,27 @@ impl PlaneTables {
     /// The table coordinates (x, y) of a segment from (r, mu).
     fn coordinates(&self, r: f64, mu: f64) -> (f64, f64) {
         let half = self.scatter_r.width / 2;
-        let r = r.clamp(self.radii.bottom_m, self.radii.top_m);
-        let ground = ray_hits_ground(r, mu, self.radii.bottom_m);
-        let x = self.radii.x_mu(r, mu, ground) * (half - 1) as f64;
-        let y = self.radii.u_r(r) * (self.scatter_r.height - 1) as f64;
-        (if ground { x } else { x + half as f64 }, y)
+        let (bottom, top) = (self.radii.bottom_m, self.radii.top_m);
+        let r = r.clamp(bottom, top);
+        let rho = self.radii.rho(r);
+        let ground = ray_hits_ground(r, mu, bottom);
+        let (d, d_min, d_max) = if ground {
+            (
+                distance_to_entry(r, mu, bottom).unwrap_or(0.0),
+                r - bottom,
+                rho,
+            )
+        } else {
+            let h = self.radii.horizon_length();
+            (distance_to_exit(r, mu, top), top - r, rho + h)
+        };
+        let unit = if d_max > d_min {
+            ((d - d_min) / (d_max - d_min)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let x = unit * (half - 1) as f64 + if ground { 0.0 } else { half as f64 };
+        (x, self.radii.u_r(r) * (self.scatter_r.height - 1) as f64)
     }
 
     /// dI_r, dI_m (zero when pruned) and dg_v of the segment of length Delta_t from
@@ -158,34 +176,25 @@ fn texel_ray(radii: &Radii, width: usize, height: usize, i: usize, j: usize) -> 
     let half = width / 2;
     let r = radii.r_from_u(j as f64 / (height - 1) as f64);
     let rho = radii.rho(r);
-    if i < half {
-        let x = i as f64 / (half - 1) as f64;
-        let d = rho * (1.0 - x);
-        let d_min = r - radii.bottom_m;
-        if d <= d_min || d <= 0.0 {
-            return (r, -1.0, d_min);
-        }
-        // R^2 = r^2 + d^2 + 2 r mu d.
-        (
-            r,
-            (-(rho * rho + d * d) / (2.0 * r * d)).clamp(-1.0, 1.0),
-            d,
-        )
+    let h = radii.horizon_length();
+    let ground = i < half;
+    let x = (i % half) as f64 / (half - 1) as f64;
+    let (d_min, d_max) = if ground {
+        (r - radii.bottom_m, rho)
     } else {
-        let x = (i - half) as f64 / (half - 1) as f64;
-        let h = radii.horizon_length();
-        let d = (rho + h) * x;
-        let d_min = radii.top_m - r;
-        if d <= d_min || d <= 0.0 {
-            return (r, 1.0, d_min);
-        }
-        // R_top^2 = r^2 + d^2 + 2 r mu d.
-        (
-            r,
-            ((h * h - rho * rho - d * d) / (2.0 * r * d)).clamp(-1.0, 1.0),
-            d,
-        )
+        (radii.top_m - r, rho + h)
+    };
+    let d = d_min + x * (d_max - d_min).max(0.0);
+    if d <= 0.0 {
+        return (r, if ground { -1.0 } else { 1.0 }, 0.0);
     }
+    // R^2 = r^2 + d^2 + 2 r mu d towards the ground; R_top^2 likewise towards the top.
+    let mu = if ground {
+        -(rho * rho + d * d) / (2.0 * r * d)
+    } else {
+        (h * h - rho * rho - d * d) / (2.0 * r * d)
+    };
+    (r, mu.clamp(-1.0, 1.0), d)
 }
 
 /// The largest dI_r or dI_m over the wavelengths.
@@ -247,7 +256,7 @@ mod tests {
         let spectra = Spectra::new(&a, &[440.0]);
         let s = small(100, 1.0);
         let t = PlaneTables::build(&a, &spectra, &s, true);
-        for (i, j) in [(3, 2), (5, 6), (9, 4), (12, 7), (14, 3)] {
+        for (i, j) in [(0, 3), (3, 2), (7, 5), (8, 1), (9, 4), (12, 7), (15, 3)] {
             let (r, mu, clip) = texel_ray(&t.radii, 16, 8, i, j);
             let v = &integrate(&a, &spectra, r, mu, clip, &[t.interval_m], true)[0];
             let mut got = SegmentValues {

@@ -104,7 +104,7 @@ impl DobashiSettings {
         if self.spheres < 2 {
             return bad(format!("spheres must be at least 2, got {}", self.spheres));
         }
-        if self.table_heights < 2 || self.table_angles < 4 || self.table_angles % 2 != 0 {
+        if self.table_heights < 2 || self.table_angles < 4 || !self.table_angles.is_multiple_of(2) {
             return bad(format!(
                 "plane tables need at least 2 heights and an even number (>= 4) of angles, \
                  got {} x {}",
