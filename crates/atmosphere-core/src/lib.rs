@@ -12,6 +12,7 @@ pub mod color;
 pub mod color_difference;
 pub mod column;
 pub mod density;
+pub mod dobashi;
 pub mod error_statistics;
 pub mod geometry;
 pub mod model;

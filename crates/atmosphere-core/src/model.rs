@@ -22,7 +22,14 @@ pub enum ModelError {
 }
 
 /// The ids of the models that can be prepared (DESIGN.md, "Models").
-pub const MODEL_IDS: &[&str] = &["reference", "bruneton", "nishita", "oneil", "riley"];
+pub const MODEL_IDS: &[&str] = &[
+    "reference",
+    "bruneton",
+    "nishita",
+    "oneil",
+    "riley",
+    "dobashi",
+];
 
 /// Settings shared by the models.
 #[derive(Clone, Debug, PartialEq)]
@@ -204,6 +211,11 @@ pub fn prepare(
             settings.options.reader("riley").finish()?;
             Ok(Box::new(crate::riley::Riley::prepare(atmosphere, settings)))
         }
+        "dobashi" => Ok(Box::new(crate::dobashi::Dobashi::prepare(
+            atmosphere,
+            settings,
+            crate::dobashi::DobashiSettings::from_options(&settings.options)?,
+        )?)),
         other => Err(ModelError::UnknownModel(other.to_string())),
     }
 }
