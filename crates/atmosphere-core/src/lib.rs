@@ -12,6 +12,7 @@ pub mod color;
 pub mod column;
 pub mod density;
 pub mod geometry;
+pub mod hillaire;
 pub mod model;
 pub mod model_options;
 pub mod nishita;

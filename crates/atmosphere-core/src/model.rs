@@ -22,7 +22,14 @@ pub enum ModelError {
 }
 
 /// The ids of the models that can be prepared (DESIGN.md, "Models").
-pub const MODEL_IDS: &[&str] = &["reference", "bruneton", "nishita", "oneil", "riley"];
+pub const MODEL_IDS: &[&str] = &[
+    "reference",
+    "bruneton",
+    "hillaire",
+    "nishita",
+    "oneil",
+    "riley",
+];
 
 /// Settings shared by the models.
 #[derive(Clone, Debug, PartialEq)]
@@ -189,6 +196,11 @@ pub fn prepare(
         }
         "bruneton" => Ok(Box::new(crate::bruneton::Bruneton::prepare(
             atmosphere, settings,
+        )?)),
+        "hillaire" => Ok(Box::new(crate::hillaire::Hillaire::prepare(
+            atmosphere,
+            settings,
+            crate::hillaire::HillaireSettings::from_options(&settings.options)?,
         )?)),
         "nishita" => Ok(Box::new(crate::nishita::Nishita::prepare(
             atmosphere,

@@ -1,0 +1,77 @@
+//! The per-view tables of Hillaire 2020 (sky-view LUT, aerial-perspective volume) depend
+//! on the camera's altitude and the sun's elevation above the camera's horizon; the GPU
+//! builds them once per frame. On the CPU they are built on first use for a
+//! (camera radius, sun zenith cosine) pair and kept in a small least-recently-used cache,
+//! so that the rays of one view share them as the pixels of a frame do.
+//!
+//! Each table is built on the calling thread inside a once-cell: a rayon-parallel build
+//! there could steal another ray of the same view from the caller's pool and re-enter the
+//! cell. Threads asking for a table being built wait for it.
+
+use std::collections::VecDeque;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use crate::hillaire::aerial_perspective::AerialPerspective;
+use crate::hillaire::sky_view::SkyView;
+
+/// The tables of one view, each built when first needed.
+#[derive(Debug, Default)]
+pub struct ViewTables {
+    pub sky_view: OnceLock<SkyView>,
+    pub aerial_perspective: OnceLock<AerialPerspective>,
+}
+
+/// Up to `capacity` views' tables, keyed by the exact camera radius and sun cosine.
+#[derive(Debug)]
+pub struct ViewCache {
+    capacity: usize,
+    entries: Mutex<VecDeque<((u64, u64), Arc<ViewTables>)>>,
+}
+
+impl ViewCache {
+    pub fn new(capacity: usize) -> ViewCache {
+        ViewCache {
+            capacity: capacity.max(1),
+            entries: Mutex::new(VecDeque::new()),
+        }
+    }
+
+    /// The tables of the view (r, mu_s), an empty entry if the view is new (the oldest
+    /// entry is dropped when the cache is full).
+    pub fn get(&self, r: f64, mu_s: f64) -> Arc<ViewTables> {
+        let key = (r.to_bits(), mu_s.to_bits());
+        let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(entry) = entries
+            .iter()
+            .position(|(k, _)| *k == key)
+            .and_then(|index| entries.remove(index))
+        {
+            let tables = Arc::clone(&entry.1);
+            entries.push_back(entry);
+            return tables;
+        }
+        if entries.len() >= self.capacity {
+            entries.pop_front();
+        }
+        let tables = Arc::new(ViewTables::default());
+        entries.push_back((key, Arc::clone(&tables)));
+        tables
+    }
+
+    /// Drops every view (the atmosphere changed).
+    pub fn clear(&self) {
+        self.entries
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clear();
+    }
+
+    /// Views held.
+    pub fn len(&self) -> usize {
+        self.entries.lock().unwrap_or_else(|e| e.into_inner()).len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
