@@ -19,8 +19,8 @@ use crate::transmittance_table::TransmittanceTable;
 /// extinction.
 pub fn segment_weight(extinction: f64, dt: f64) -> (f64, f64) {
     if extinction > 0.0 {
-        let x = extinction * dt;
-        ((-x).exp(), -(-x).exp_m1() / extinction)
+        let lost = -(-extinction * dt).exp_m1();
+        (1.0 - lost, lost / extinction)
     } else {
         (1.0, dt)
     }
