@@ -17,6 +17,7 @@ use crate::hillaire::directions::{LatLong, view_sun_cosine};
 use crate::hillaire::march::ViewMarch;
 use crate::hillaire::medium::Medium;
 use crate::hillaire::multiple_scattering::MultipleScattering;
+use crate::hillaire::view_cache::rows_in_parallel;
 
 /// The volume's shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,14 +36,13 @@ pub struct AerialPerspective {
     pub mu_s: f64,
     wavelengths: usize,
     bottom_m: f64,
-    /// Per slice, a [`LatLong`] image of radiance per unit solar irradiance, and one of
-    /// transmittance, `wavelengths` channels each.
-    radiance: Vec<f32>,
-    transmittance: Vec<f32>,
+    /// Per direction of the [`LatLong`] grid (row, column), per slice: radiance per unit
+    /// solar irradiance then transmittance, `wavelengths` values each.
+    values: Vec<f32>,
 }
 
 impl AerialPerspective {
-    /// Marches every direction through the slices (on the calling thread: see
+    /// Marches every direction through the slices (rows on scoped threads: see
     /// `view_cache`).
     pub fn build(
         medium: &Medium,
@@ -54,38 +54,31 @@ impl AerialPerspective {
         let n = medium.wavelengths();
         let bottom = medium.atmosphere.bottom_radius_m;
         let grid = shape.grid;
-        let image = grid.width * grid.height * n;
-        let mut radiance = vec![0.0f32; image * shape.slices];
-        let mut transmittance = vec![0.0f32; image * shape.slices];
         let slice_m = shape.range_m / shape.slices as f64;
         let dt = slice_m / shape.samples_per_slice as f64;
-        for j in 0..grid.height {
+        let values = rows_in_parallel(grid.height, |j| {
+            let mut row = Vec::with_capacity(grid.width * shape.slices * 2 * n);
             for i in 0..grid.width {
                 let (mu, phi, _) = grid.texel_direction(r, bottom, i, j);
                 let nu = view_sun_cosine(mu, phi, mu_s);
                 let mut march = ViewMarch::new(*medium, multiple, r, mu, mu_s, nu);
-                let texel = (j * grid.width + i) * n;
                 for k in 0..shape.slices {
                     for s in 0..shape.samples_per_slice {
-                        let t_mid = k as f64 * slice_m + (s as f64 + 0.5) * dt;
-                        march.segment(t_mid, dt);
+                        march.segment(k as f64 * slice_m + (s as f64 + 0.5) * dt, dt);
                     }
-                    let at = k * image + texel;
-                    for w in 0..n {
-                        radiance[at + w] = march.radiance[w] as f32;
-                        transmittance[at + w] = march.throughput[w] as f32;
-                    }
+                    row.extend(march.radiance.iter().map(|v| *v as f32));
+                    row.extend(march.throughput.iter().map(|v| *v as f32));
                 }
             }
-        }
+            row
+        });
         AerialPerspective {
             shape,
             r,
             mu_s,
             wavelengths: n,
             bottom_m: bottom,
-            radiance,
-            transmittance,
+            values,
         }
     }
 
@@ -103,16 +96,17 @@ impl AerialPerspective {
     ) {
         let grid = self.shape.grid;
         let n = self.wavelengths;
+        let stride = self.shape.slices * 2 * n;
         let p = grid.position(self.r, self.bottom_m, mu, phi, ground);
-        let image = grid.width * grid.height * n;
-        let slice = |k: usize, values: &[f32], out: &mut [f64]| {
-            grid.interpolate(&values[k * image..(k + 1) * image], n, &p, ground, out);
+        let read = |k: usize, out: &mut [f64], second: bool| {
+            let offset = (2 * k + usize::from(second)) * n;
+            grid.interpolate(&self.values, stride, offset, &p, ground, out);
         };
         let f = (depth_m / self.shape.range_m).clamp(0.0, 1.0) * self.shape.slices as f64;
         if f <= 1.0 {
-            // Between the camera (0, 1) and the first slice.
-            slice(0, &self.radiance, radiance);
-            slice(0, &self.transmittance, transmittance);
+            // Between the camera (radiance 0, transmittance 1) and the first slice.
+            read(0, radiance, false);
+            read(0, transmittance, true);
             for w in 0..n {
                 radiance[w] *= f;
                 transmittance[w] = 1.0 + f * (transmittance[w] - 1.0);
@@ -122,12 +116,9 @@ impl AerialPerspective {
         let k = ((f - 1.0) as usize).min(self.shape.slices - 2);
         let a = f - 1.0 - k as f64;
         let mut next = vec![0.0; n];
-        for (values, out) in [
-            (&self.radiance, &mut *radiance),
-            (&self.transmittance, &mut *transmittance),
-        ] {
-            slice(k, values, out);
-            slice(k + 1, values, &mut next);
+        for (out, second) in [(radiance, false), (transmittance, true)] {
+            read(k, out, second);
+            read(k + 1, &mut next, second);
             for w in 0..n {
                 out[w] += a * (next[w] - out[w]);
             }

@@ -106,30 +106,32 @@ impl LatLong {
         }
     }
 
-    /// Bilinear interpolation of `values` (storage order: row, column, `n` channels) at a
-    /// grid position in the `ground` or sky half, into `out`.
+    /// Bilinear interpolation at a grid position in the `ground` or sky half, into `out`,
+    /// of `values` stored by row, column, then `stride` values of which `out.len()` from
+    /// `offset` are read.
     pub fn interpolate(
         &self,
         values: &[f32],
-        n: usize,
+        stride: usize,
+        offset: usize,
         p: &GridPosition,
         ground: bool,
         out: &mut [f64],
     ) {
         let j0 = self.storage_row(ground, p.row);
         let j1 = self.storage_row(ground, p.row + 1);
-        let at = |i: usize, j: usize| (j * self.width + i) * n;
+        let at = |i: usize, j: usize| (j * self.width + i) * stride + offset;
         let (a, b, c, d) = (
             at(p.column, j0),
             at(p.column + 1, j0),
             at(p.column, j1),
             at(p.column + 1, j1),
         );
-        for w in 0..n {
+        for (w, o) in out.iter_mut().enumerate() {
             let v = |k: usize| values[k + w] as f64;
             let low = v(a) + p.column_weight * (v(b) - v(a));
             let high = v(c) + p.column_weight * (v(d) - v(c));
-            out[w] = low + p.row_weight * (high - low);
+            *o = low + p.row_weight * (high - low);
         }
     }
 }

@@ -403,17 +403,29 @@ impl Hillaire {
         (march.radiance, march.throughput)
     }
 
+    /// The view a camera at radius `r` with the sun at zenith cosine `mu_s` belongs to:
+    /// r to the millimetre and mu_s to 2^-30, so that rounding in the caller's vectors
+    /// (a sun direction normalised twice) does not make a new view.
+    pub fn view_key(&self, r: f64, mu_s: f64) -> (f64, f64) {
+        const MU_S_STEP: f64 = 1.0 / (1u64 << 30) as f64;
+        let a = &self.atmosphere;
+        (
+            ((r * 1e3).round() * 1e-3).clamp(a.bottom_radius_m, a.top_radius_m),
+            ((mu_s / MU_S_STEP).round() * MU_S_STEP).clamp(-1.0, 1.0),
+        )
+    }
+
     /// Radiance per unit solar irradiance and transmittance of a segment whose camera is
     /// inside the atmosphere.
     fn from_tables(&self, segment: &ViewSegment) -> (Vec<f64>, Vec<f64>) {
         let n = self.spectra.wavelengths_nm.len();
         let up = segment.start / segment.start.length();
-        let mu_s = segment.sun_direction.dot(up).clamp(-1.0, 1.0);
+        let (r, mu_s) = self.view_key(segment.r, segment.sun_direction.dot(up));
         let (_, phi) = view_angles(up, segment.direction, segment.sun_direction);
         let ground = ray_hits_ground(segment.r, segment.mu, self.atmosphere.bottom_radius_m);
         let mut radiance = vec![0.0; n];
         if segment.end == SegmentEnd::Space {
-            self.with_sky_view(segment.r, mu_s, |sky| {
+            self.with_sky_view(r, mu_s, |sky| {
                 sky.lookup(segment.mu, phi, false, &mut radiance);
             });
             let column = self.transmittance.column(segment.r, segment.mu);
@@ -426,7 +438,7 @@ impl Hillaire {
             return (radiance, transmittance);
         }
         let mut transmittance = vec![1.0; n];
-        self.with_aerial_perspective(segment.r, mu_s, |volume| {
+        self.with_aerial_perspective(r, mu_s, |volume| {
             volume.lookup(
                 segment.mu,
                 phi,

@@ -9,6 +9,7 @@ use crate::hillaire::directions::{LatLong, view_angles, view_sun_cosine};
 use crate::hillaire::march::ViewMarch;
 use crate::hillaire::medium::{Medium, ground_distance};
 use crate::hillaire::multiple_scattering::MultipleScattering;
+use crate::hillaire::view_cache::rows_in_parallel;
 
 /// The sky-view LUT of one view.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,7 +24,7 @@ pub struct SkyView {
 }
 
 impl SkyView {
-    /// Marches every texel's ray with `samples` segments (on the calling thread: see
+    /// Marches every texel's ray with `samples` segments (rows on scoped threads: see
     /// `view_cache`).
     pub fn build(
         medium: &Medium,
@@ -36,8 +37,8 @@ impl SkyView {
         let n = medium.wavelengths();
         let a = medium.atmosphere;
         let bottom = a.bottom_radius_m;
-        let mut values = Vec::with_capacity(grid.width * grid.height * n);
-        for j in 0..grid.height {
+        let values = rows_in_parallel(grid.height, |j| {
+            let mut row = Vec::with_capacity(grid.width * n);
             for i in 0..grid.width {
                 let (mu, phi, ground) = grid.texel_direction(r, bottom, i, j);
                 let length = if ground {
@@ -48,9 +49,10 @@ impl SkyView {
                 let nu = view_sun_cosine(mu, phi, mu_s);
                 let mut march = ViewMarch::new(*medium, multiple, r, mu, mu_s, nu);
                 march.run(length, samples);
-                values.extend(march.radiance.iter().map(|v| *v as f32));
+                row.extend(march.radiance.iter().map(|v| *v as f32));
             }
-        }
+            row
+        });
         SkyView {
             grid,
             r,
@@ -66,7 +68,7 @@ impl SkyView {
     pub fn lookup(&self, mu: f64, phi: f64, ground: bool, out: &mut [f64]) {
         let p = self.grid.position(self.r, self.bottom_m, mu, phi, ground);
         self.grid
-            .interpolate(&self.values, self.wavelengths, &p, ground, out);
+            .interpolate(&self.values, self.wavelengths, 0, &p, ground, out);
     }
 
     /// [`SkyView::lookup`] for world-space vectors: the camera's zenith `up`, the view
