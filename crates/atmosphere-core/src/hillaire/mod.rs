@@ -76,7 +76,8 @@ pub struct HillaireSettings {
     /// and azimuths over half the circle (8).
     pub ground_zenith_panels: usize,
     pub ground_azimuths: usize,
-    /// Views whose per-view tables are kept: 4.
+    /// Views whose per-view tables are kept: 8 (about 7.4 MB each at three wavelengths;
+    /// a frame needs one, the stability sweep cycles through five sun elevations).
     pub view_cache: usize,
 }
 
@@ -96,7 +97,7 @@ impl Default for HillaireSettings {
             ground_size: 32,
             ground_zenith_panels: 1,
             ground_azimuths: 8,
-            view_cache: 4,
+            view_cache: 8,
         }
     }
 }
@@ -417,7 +418,7 @@ impl Hillaire {
 
     /// Radiance per unit solar irradiance and transmittance of a segment whose camera is
     /// inside the atmosphere.
-    fn from_tables(&self, segment: &ViewSegment) -> (Vec<f64>, Vec<f64>) {
+    fn read_tables(&self, segment: &ViewSegment) -> (Vec<f64>, Vec<f64>) {
         let n = self.spectra.wavelengths_nm.len();
         let up = segment.start / segment.start.length();
         let (r, mu_s) = self.view_key(segment.r, segment.sun_direction.dot(up));
@@ -516,7 +517,7 @@ impl SkyModel for Hillaire {
         let (mut radiance, transmittance) = if inside
             && (segment.end == SegmentEnd::Space || segment.length <= self.settings.aerial_range_m)
         {
-            self.from_tables(&segment)
+            self.read_tables(&segment)
         } else {
             self.march(&segment)
         };

@@ -22,11 +22,15 @@ pub struct ViewTables {
     pub aerial_perspective: OnceLock<AerialPerspective>,
 }
 
-/// Up to `capacity` views' tables, keyed by the exact camera radius and sun cosine.
+/// A view's key: the bits of its camera radius and sun cosine.
+type ViewKey = (u64, u64);
+
+/// Up to `capacity` views' tables, keyed by the exact camera radius and sun cosine, the
+/// most recently used last.
 #[derive(Debug)]
 pub struct ViewCache {
     capacity: usize,
-    entries: Mutex<VecDeque<((u64, u64), Arc<ViewTables>)>>,
+    entries: Mutex<VecDeque<(ViewKey, Arc<ViewTables>)>>,
 }
 
 impl ViewCache {
