@@ -4,8 +4,9 @@
 //!
 //! The paper lights surfaces with the sky through a sky-light capture rendered from its
 //! LUTs, which is the engine's work, not the paper's tables. On the CPU the sky's
-//! irradiance at the ground is a small table E_sky(mu_s), 32 values over mu_s in [-1, 1],
-//! each the cosine-weighted integral of the sky's radiance over the upper hemisphere,
+//! irradiance at the ground is a small table E_sky(mu_s), 32 values over mu_s in [-1, 1]
+//! at equal steps of x = sign(mu_s) sqrt(|mu_s|) (values crowd around the horizon, where
+//! the sky's light falls fastest as the sun sets), each the cosine-weighted integral of the sky's radiance over the upper hemisphere,
 //! with that radiance from the same view march as the sky-view LUT (single scattering
 //! plus Psi_ms): 8 Gauss-Legendre nodes in the zenith cosine times 8 azimuths over half
 //! the circle (the sky is symmetric about the sun's vertical plane).
@@ -85,7 +86,8 @@ impl GroundIrradiance {
         let values = (0..size)
             .into_par_iter()
             .flat_map_iter(|i| {
-                let mu_s = -1.0 + 2.0 * unit_from_coord((i as f64 + 0.5) / size as f64, size);
+                let x = -1.0 + 2.0 * unit_from_coord((i as f64 + 0.5) / size as f64, size);
+                let mu_s = x * x.abs();
                 sky_irradiance(medium, multiple, mu_s, quadrature)
                     .into_iter()
                     .map(|v| v as f32)
@@ -100,7 +102,9 @@ impl GroundIrradiance {
 
     /// E_sky / E_sun at sun cosine `mu_s`, per wavelength (linear between values).
     pub fn lookup(&self, mu_s: f64, out: &mut [f64]) {
-        let (i, a) = cell((mu_s.clamp(-1.0, 1.0) + 1.0) * 0.5, self.size);
+        let mu_s = mu_s.clamp(-1.0, 1.0);
+        let x = mu_s.signum() * mu_s.abs().sqrt();
+        let (i, a) = cell((x + 1.0) * 0.5, self.size);
         let n = self.wavelengths;
         for w in 0..n {
             let lo = self.values[i * n + w] as f64;
