@@ -20,6 +20,7 @@ use atmosphere_core::hillaire::multiple_scattering::transfer;
 use atmosphere_core::hillaire::{Hillaire, HillaireSettings};
 use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
 use atmosphere_core::model_options::ModelOptions;
+use atmosphere_core::phase::PhaseFunction;
 use atmosphere_core::quadrature::{GAUSS_LEGENDRE_8, mapped};
 use atmosphere_core::reference::Spectra;
 use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
@@ -588,6 +589,24 @@ fn update_rebuilds_what_changed() {
             "{name}"
         );
     }
+    // Psi_ms takes every scattering as isotropic: the Mie phase function is not its input.
+    let mut rounder = taller.clone();
+    rounder.mie.phase = PhaseFunction::CornetteShanks { g: 0.7 };
+    let rebuilt = model.update(&rounder).unwrap();
+    assert_eq!(
+        rebuilt,
+        ["ground irradiance", "sky view and aerial perspective"],
+        "{rebuilt:?}"
+    );
+    let fresh = Hillaire::prepare(&rounder, &ModelSettings::default(), settings).unwrap();
+    for (name, ray) in &rays {
+        assert_eq!(
+            model.radiance(ray).unwrap(),
+            fresh.radiance(ray).unwrap(),
+            "{name}"
+        );
+    }
+    let taller = rounder;
     // The solar spectrum scales the answers without a rebuild.
     let mut dimmer = taller.clone();
     dimmer.sun.irradiance_w_m2_nm = dimmer.sun.irradiance_w_m2_nm.scaled(0.5);

@@ -278,6 +278,7 @@ impl Hillaire {
             views: ViewCache::new(settings.view_cache),
         };
         model.build_multiple_scattering();
+        model.build_ground_irradiance();
         Ok(model)
     }
 
@@ -346,24 +347,29 @@ impl Hillaire {
         self.views.len()
     }
 
+    /// Builds Psi_ms (orders two and up on).
     fn build_multiple_scattering(&mut self) {
-        if !self.multiple_on {
-            return;
-        }
         let s = self.settings;
-        let multiple = MultipleScattering::build(
-            &self.medium(),
-            s.multiple_scattering_size,
-            s.multiple_scattering_directions.isqrt(),
-            s.multiple_scattering_samples,
-        );
-        self.ground = Some(GroundIrradiance::build(
-            &self.medium(),
-            Some(&multiple),
-            s.ground_size,
-            s.hemisphere(),
-        ));
-        self.multiple = Some(multiple);
+        self.multiple = self.multiple_on.then(|| {
+            MultipleScattering::build(
+                &self.medium(),
+                s.multiple_scattering_size,
+                s.multiple_scattering_directions.isqrt(),
+                s.multiple_scattering_samples,
+            )
+        });
+    }
+
+    /// Builds the ground's sky irradiance from Psi_ms (orders two and up on).
+    fn build_ground_irradiance(&mut self) {
+        self.ground = self.multiple.as_ref().map(|multiple| {
+            GroundIrradiance::build(
+                &self.medium(),
+                Some(multiple),
+                self.settings.ground_size,
+                self.settings.hemisphere(),
+            )
+        });
     }
 
     /// Light leaving the ground at `point` per unit solar irradiance:
@@ -488,14 +494,13 @@ impl SkyModel for Hillaire {
             self.transmittance = TransmittanceTable::build(atmosphere, w, h);
             rebuilt.push("transmittance");
         }
-        if self.multiple_on && changed.intersects(VIEW_INPUTS) {
-            if changed.intersects(MULTIPLE_SCATTERING_INPUTS) {
-                rebuilt.push("multiple scattering");
-            }
-            rebuilt.push("ground irradiance");
-            // Psi_ms is rebuilt with the ground table when only the phase changed too:
-            // building it costs less than tracking it apart.
+        if self.multiple_on && changed.intersects(MULTIPLE_SCATTERING_INPUTS) {
             self.build_multiple_scattering();
+            rebuilt.push("multiple scattering");
+        }
+        if self.multiple_on && changed.intersects(VIEW_INPUTS) {
+            self.build_ground_irradiance();
+            rebuilt.push("ground irradiance");
         }
         if changed.intersects(VIEW_INPUTS) {
             self.views.clear();

@@ -5,7 +5,7 @@
 //! model adds it where a ray ends on the ground). Per unit solar irradiance, f32.
 
 use crate::geometry::distance_to_exit;
-use crate::hillaire::directions::{LatLong, view_angles, view_sun_cosine};
+use crate::hillaire::directions::{LatLong, view_sun_cosine};
 use crate::hillaire::march::ViewMarch;
 use crate::hillaire::medium::{Medium, ground_distance};
 use crate::hillaire::multiple_scattering::MultipleScattering;
@@ -69,20 +69,6 @@ impl SkyView {
         let p = self.grid.position(self.r, self.bottom_m, mu, phi, ground);
         self.grid
             .interpolate(&self.values, self.wavelengths, 0, &p, ground, out);
-    }
-
-    /// [`SkyView::lookup`] for world-space vectors: the camera's zenith `up`, the view
-    /// `direction` and the `sun`.
-    pub fn lookup_direction(
-        &self,
-        up: glam::DVec3,
-        direction: glam::DVec3,
-        sun: glam::DVec3,
-        ground: bool,
-        out: &mut [f64],
-    ) {
-        let (mu, phi) = view_angles(up, direction, sun);
-        self.lookup(mu, phi, ground, out);
     }
 
     /// Bytes held by a table of `grid` at `wavelengths` wavelengths.
