@@ -15,6 +15,7 @@ pub mod density;
 pub mod dobashi;
 pub mod error_statistics;
 pub mod geometry;
+pub mod hillaire;
 pub mod model;
 pub mod model_options;
 pub mod nishita;

@@ -25,10 +25,11 @@ pub enum ModelError {
 pub const MODEL_IDS: &[&str] = &[
     "reference",
     "bruneton",
+    "dobashi",
+    "hillaire",
     "nishita",
     "oneil",
     "riley",
-    "dobashi",
 ];
 
 /// Settings shared by the models.
@@ -196,6 +197,11 @@ pub fn prepare(
         }
         "bruneton" => Ok(Box::new(crate::bruneton::Bruneton::prepare(
             atmosphere, settings,
+        )?)),
+        "hillaire" => Ok(Box::new(crate::hillaire::Hillaire::prepare(
+            atmosphere,
+            settings,
+            crate::hillaire::HillaireSettings::from_options(&settings.options)?,
         )?)),
         "nishita" => Ok(Box::new(crate::nishita::Nishita::prepare(
             atmosphere,
