@@ -100,7 +100,10 @@ impl GroundIrradiance {
         }
     }
 
-    /// E_sky / E_sun at sun cosine `mu_s`, per wavelength (linear between values).
+    /// E_sky / E_sun at sun cosine `mu_s`, per wavelength: geometric interpolation
+    /// between positive values (the sky's light falls nearly exponentially as the sun
+    /// sinks; linear interpolation made the ground 2.6 times too bright with the sun 6°
+    /// below the horizon), linear where a value is zero.
     pub fn lookup(&self, mu_s: f64, out: &mut [f64]) {
         let mu_s = mu_s.clamp(-1.0, 1.0);
         let x = mu_s.signum() * mu_s.abs().sqrt();
@@ -109,7 +112,11 @@ impl GroundIrradiance {
         for w in 0..n {
             let lo = self.values[i * n + w] as f64;
             let hi = self.values[(i + 1) * n + w] as f64;
-            out[w] = lo + a * (hi - lo);
+            out[w] = if lo > 0.0 && hi > 0.0 {
+                lo * (hi / lo).powf(a)
+            } else {
+                lo + a * (hi - lo)
+            };
         }
     }
 
