@@ -1,7 +1,7 @@
 //! The Hillaire 2020 model: its multiple-scattering LUT against a brute-force computation
 //! of the same quantity, each per-view table against a direct march of its rays, the
 //! whole model against the reference (single scattering and all orders), pruning,
-//! settings, updates and the stability sweep. Tolerances are the measured errors with a
+//! settings and updates (the stability sweep is in stability.rs). Tolerances are the measured errors with a
 //! margin (docs/models/hillaire.md).
 
 use std::f64::consts::PI;
@@ -650,17 +650,6 @@ fn views_share_their_tables_in_a_bounded_cache() {
         .radiance(&ray(&a, 400_000.0, 180.0, 30.0, 0.0, None))
         .unwrap();
     assert_eq!(fresh.cached_views(), 0);
-}
-
-/// The stability sweep: extreme rays and atmospheres, continuity across the top and at
-/// the horizon.
-#[test]
-fn stability_sweep_passes() {
-    let results = atmosphere_core::stability::run("hillaire").unwrap();
-    for r in &results {
-        eprintln!("{}: passed {}, worst {:e}", r.case, r.passed, r.worst);
-    }
-    assert!(results.iter().all(|r| r.passed), "{results:#?}");
 }
 
 /// The ground's sky irradiance: the table against a finer quadrature of the same sky

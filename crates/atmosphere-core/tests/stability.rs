@@ -220,11 +220,64 @@ fn radiance_converges_as_rays_graze_the_horizon() {
 }
 
 /// The sweep of `atmos stability` passes for every model.
+/// The sweep for one model (one test per model, so that they run in parallel).
+fn sweep_passes(id: &str) {
+    let results = atmosphere_core::stability::run(id).unwrap();
+    let failed: Vec<_> = results.iter().filter(|r| !r.passed).collect();
+    assert!(failed.is_empty(), "{id}: {failed:#?}");
+}
+
+/// The models the sweep tests below cover.
+const SWEPT: [&str; 7] = [
+    "reference",
+    "bruneton",
+    "dobashi",
+    "hillaire",
+    "nishita",
+    "oneil",
+    "riley",
+];
+
 #[test]
-fn every_model_passes_the_stability_sweep() {
-    for id in MODEL_IDS {
-        let results = atmosphere_core::stability::run(id).unwrap();
-        let failed: Vec<_> = results.iter().filter(|r| !r.passed).collect();
-        assert!(failed.is_empty(), "{id}: {failed:#?}");
-    }
+fn the_sweep_covers_every_model() {
+    let mut known: Vec<&str> = MODEL_IDS.to_vec();
+    known.sort_unstable();
+    let mut swept = SWEPT.to_vec();
+    swept.sort_unstable();
+    assert_eq!(known, swept);
+}
+
+#[test]
+fn stability_sweep_reference() {
+    sweep_passes("reference");
+}
+
+#[test]
+fn stability_sweep_bruneton() {
+    sweep_passes("bruneton");
+}
+
+#[test]
+fn stability_sweep_dobashi() {
+    sweep_passes("dobashi");
+}
+
+#[test]
+fn stability_sweep_hillaire() {
+    sweep_passes("hillaire");
+}
+
+#[test]
+fn stability_sweep_nishita() {
+    sweep_passes("nishita");
+}
+
+#[test]
+fn stability_sweep_oneil() {
+    sweep_passes("oneil");
+}
+
+#[test]
+fn stability_sweep_riley() {
+    sweep_passes("riley");
 }
