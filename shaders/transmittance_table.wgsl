@@ -1,8 +1,10 @@
 // The transmittance table T(r, mu) to the top of the atmosphere in Bruneton 2017's
 // parameterization: the GPU twin of atmosphere-core's `transmittance_table.rs`, with the
 // same texel centres, unit mapping and quadrature (64 equal panels of 5-point
-// Gauss-Legendre), in f32. rgb = transmittance in the three channels of the uniform,
-// a = 1.
+// Gauss-Legendre), in f32. Entry point `main`: rgb = transmittance in the three channels
+// of the uniform, a = 1. Entry point `columns`: rgb = the columns of matter (Rayleigh,
+// Mie, ozone) in metres, a = 1, as the CPU table stores them: the g_l table of the
+// nishita model (read by `transmittance_lookup.wgsl`).
 
 #import atmosphere_params.wgsl
 
@@ -59,13 +61,25 @@ fn table_column(x_mu: f32, x_r: f32) -> vec3<f32> {
     return column * (0.5 * d / f32(PANELS));
 }
 
+// The columns (m) along the ray of texel `id`'s centre.
+fn texel_column(id: vec2<u32>) -> vec3<f32> {
+    let size = textureDimensions(table);
+    let uv = (vec2<f32>(id) + 0.5) / vec2<f32>(size);
+    return table_column(unit_from_coord(uv.x, f32(size.x)), unit_from_coord(uv.y, f32(size.y)));
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(table);
-    if any(id.xy >= size) {
+    if any(id.xy >= textureDimensions(table)) {
         return;
     }
-    let uv = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(size);
-    let column = table_column(unit_from_coord(uv.x, f32(size.x)), unit_from_coord(uv.y, f32(size.y)));
-    textureStore(table, id.xy, vec4<f32>(exp(-optical_depth(column)), 1.0));
+    textureStore(table, id.xy, vec4<f32>(exp(-optical_depth(texel_column(id.xy))), 1.0));
+}
+
+@compute @workgroup_size(8, 8)
+fn columns(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= textureDimensions(table)) {
+        return;
+    }
+    textureStore(table, id.xy, vec4<f32>(texel_column(id.xy), 1.0));
 }

@@ -31,6 +31,7 @@ pub mod sampling;
 pub mod solar;
 pub mod spectral;
 pub mod stability;
+pub mod sun_disk;
 pub mod table_inputs;
 pub mod transmittance_table;
 pub mod view_segment;

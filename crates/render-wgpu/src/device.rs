@@ -28,8 +28,10 @@ impl GpuContext {
         let instance = wgpu::Instance::new(descriptor);
         let adapter = choose_adapter(instance.enumerate_adapters(backends).await, backends)?;
         // Only what the passes need: storage textures of Rgba32Float are core WebGPU;
-        // filtering them is optional (samplers fall back to nearest or manual lerp).
-        let required_features = adapter.features() & wgpu::Features::FLOAT32_FILTERABLE;
+        // filtering them is optional (samplers fall back to nearest or manual lerp), and
+        // so are the timestamps of pass timings.
+        let required_features = adapter.features()
+            & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TIMESTAMP_QUERY);
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("atmos"),

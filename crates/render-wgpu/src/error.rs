@@ -42,3 +42,20 @@ pub enum GpuError {
     #[error("reading a mapped buffer failed: {0}")]
     MapRange(#[from] wgpu::MapRangeError),
 }
+
+/// Errors of rendering a frame: the frame or model cannot be rendered, or the GPU failed.
+#[derive(Debug, Error)]
+pub enum RenderError {
+    #[error("invalid frame: {0}")]
+    Frame(String),
+    #[error("model '{0}' is not yet on the GPU (models on the GPU: nishita)")]
+    NotOnGpu(String),
+    #[error("not supported on the GPU: {0}")]
+    Unsupported(String),
+    #[error(transparent)]
+    Model(#[from] atmosphere_core::model::ModelError),
+    #[error(transparent)]
+    Color(#[from] atmosphere_core::color::ColorError),
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+}

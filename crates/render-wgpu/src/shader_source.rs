@@ -13,6 +13,26 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/atmosphere_params.wgsl"),
     ),
     (
+        "frame_params.wgsl",
+        include_str!("../../../shaders/frame_params.wgsl"),
+    ),
+    (
+        "nishita.wgsl",
+        include_str!("../../../shaders/nishita.wgsl"),
+    ),
+    (
+        "sun_disk.wgsl",
+        include_str!("../../../shaders/sun_disk.wgsl"),
+    ),
+    (
+        "tone_map.wgsl",
+        include_str!("../../../shaders/tone_map.wgsl"),
+    ),
+    (
+        "transmittance_lookup.wgsl",
+        include_str!("../../../shaders/transmittance_lookup.wgsl"),
+    ),
+    (
         "transmittance_table.wgsl",
         include_str!("../../../shaders/transmittance_table.wgsl"),
     ),

@@ -1,13 +1,14 @@
 //! The compute pass that builds the transmittance table T(r, mu) of
 //! `shaders/transmittance_table.wgsl` into an `Rgba32Float` texture: rgb = transmittance
-//! at the uniform's three wavelengths, a = 1. Its CPU twin is atmosphere-core's
-//! `transmittance_table.rs`.
+//! at the uniform's three wavelengths, or the columns of matter per species (the
+//! nishita model's g_l), a = 1. Its CPU twin is atmosphere-core's `transmittance_table.rs`.
 
 use atmosphere_core::transmittance_table::BRUNETON_TABLE_SIZE;
 
 use crate::atmosphere_uniform::AtmosphereUniform;
 use crate::device::GpuContext;
 use crate::error::GpuError;
+use crate::readback::read_texture;
 use crate::shader_source;
 
 /// Texture format of the table.
@@ -15,6 +16,15 @@ pub const TABLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// Side of the shader's square workgroup (`@workgroup_size(8, 8)`).
 const WORKGROUP_SIDE: u32 = 8;
+
+/// What the table's texels hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableOutput {
+    /// Transmittance at the three wavelengths of the uniform (entry point `main`).
+    Transmittance,
+    /// Columns of matter (Rayleigh, Mie, ozone), m (entry point `columns`).
+    Columns,
+}
 
 /// Pipeline, uniform buffer and table texture, made once; [`TransmittancePass::run`]
 /// rebuilds the table for an atmosphere.
@@ -27,8 +37,20 @@ pub struct TransmittancePass {
 }
 
 impl TransmittancePass {
-    /// The pipeline and a table of `BRUNETON_TABLE_SIZE` (256 x 64).
+    /// The pipeline and a transmittance table of `BRUNETON_TABLE_SIZE` (256 x 64).
     pub fn new(gpu: &GpuContext) -> Result<TransmittancePass, GpuError> {
+        let (width, height) = BRUNETON_TABLE_SIZE;
+        Self::with(gpu, TableOutput::Transmittance, width as u32, height as u32)
+    }
+
+    /// The pipeline and a table of `output` with `width` sun angles (mu) and `height`
+    /// radii, each at least 2.
+    pub fn with(
+        gpu: &GpuContext,
+        output: TableOutput,
+        width: u32,
+        height: u32,
+    ) -> Result<TransmittancePass, GpuError> {
         let device = &gpu.device;
         let source = shader_source::composed("transmittance_table.wgsl")?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
@@ -72,7 +94,10 @@ impl TransmittancePass {
             label: Some("transmittance table"),
             layout: Some(&pipeline_layout),
             module: &module,
-            entry_point: Some("main"),
+            entry_point: Some(match output {
+                TableOutput::Transmittance => "main",
+                TableOutput::Columns => "columns",
+            }),
             compilation_options: Default::default(),
             cache: None,
         });
@@ -82,12 +107,11 @@ impl TransmittancePass {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let (width, height) = BRUNETON_TABLE_SIZE;
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("transmittance table"),
             size: wgpu::Extent3d {
-                width: width as u32,
-                height: height as u32,
+                width,
+                height,
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
@@ -135,67 +159,38 @@ impl TransmittancePass {
 
     /// Uploads `atmosphere` and submits the dispatch that fills the table.
     pub fn run(&self, gpu: &GpuContext, atmosphere: &AtmosphereUniform) {
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        self.encode(gpu, atmosphere, &mut encoder, None);
+        gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// Uploads `atmosphere` and records the dispatch into `encoder`, with `timestamps`
+    /// written around it when given.
+    pub fn encode(
+        &self,
+        gpu: &GpuContext,
+        atmosphere: &AtmosphereUniform,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
         gpu.queue
             .write_buffer(&self.uniform, 0, bytemuck::bytes_of(atmosphere));
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("transmittance table"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.dispatch_workgroups(
-                self.texture.width().div_ceil(WORKGROUP_SIDE),
-                self.texture.height().div_ceil(WORKGROUP_SIDE),
-                1,
-            );
-        }
-        gpu.queue.submit([encoder.finish()]);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("transmittance table"),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.dispatch_workgroups(
+            self.texture.width().div_ceil(WORKGROUP_SIDE),
+            self.texture.height().div_ceil(WORKGROUP_SIDE),
+            1,
+        );
     }
 
     /// The table's texels, row-major (row = r, column = mu), waiting for the GPU.
     pub fn read_back(&self, gpu: &GpuContext) -> Result<Vec<[f32; 4]>, GpuError> {
-        let (width, height) = (self.texture.width(), self.texture.height());
-        let texel_bytes = size_of::<[f32; 4]>() as u32;
-        let row_bytes = width * texel_bytes;
-        let padded_row_bytes = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("transmittance read-back"),
-            size: u64::from(padded_row_bytes * height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded_row_bytes),
-                    rows_per_image: Some(height),
-                },
-            },
-            self.texture.size(),
-        );
-        gpu.queue.submit([encoder.finish()]);
-
-        let (sender, receiver) = std::sync::mpsc::channel();
-        buffer.map_async(wgpu::MapMode::Read, .., move |result| {
-            // The receiver lives until the poll below has returned.
-            let _ = sender.send(result);
-        });
-        gpu.device.poll(wgpu::PollType::wait_indefinitely())?;
-        receiver
-            .recv()
-            .expect("map_async calls back during a waiting poll")?;
-        let bytes = buffer.get_mapped_range(..)?;
-        let texels = bytes
-            .chunks_exact(padded_row_bytes as usize)
-            .flat_map(|row| bytemuck::cast_slice::<u8, [f32; 4]>(&row[..row_bytes as usize]))
-            .copied()
-            .collect();
-        Ok(texels)
+        let bytes = read_texture(gpu, &self.texture, size_of::<[f32; 4]>() as u32)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 }

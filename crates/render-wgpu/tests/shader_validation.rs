@@ -134,3 +134,79 @@ fn atmosphere_uniform_matches_its_wgsl_layout() {
         )
     );
 }
+
+/// Size and member offsets (by name) of WGSL struct `name` in composed shader `shader`.
+fn wgsl_layout(shader: &str, name: &str) -> (usize, Vec<(String, usize)>) {
+    let source = shader_source::composed(shader).unwrap();
+    let module = validate(shader, &source).unwrap();
+    module
+        .types
+        .iter()
+        .find_map(|(_, ty)| match (&ty.name, &ty.inner) {
+            (Some(n), naga::TypeInner::Struct { members, span }) if n == name => Some((
+                *span as usize,
+                members
+                    .iter()
+                    .map(|m| (m.name.clone().unwrap(), m.offset as usize))
+                    .collect(),
+            )),
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no struct {name} in {shader}"))
+}
+
+/// Asserts that a Rust uniform has the WGSL struct's size and these member offsets.
+macro_rules! assert_layout {
+    ($shader:literal, $wgsl:literal, $rust:ty, [$($field:ident),+ $(,)?]) => {{
+        let (span, members) = wgsl_layout($shader, $wgsl);
+        assert_eq!(span, size_of::<$rust>(), "size of {}", $wgsl);
+        let rust = [$((stringify!($field).to_string(), std::mem::offset_of!($rust, $field))),+];
+        assert_eq!(members.len(), rust.len(), "{}: WGSL has {members:?}", $wgsl);
+        for field in rust {
+            assert!(members.contains(&field), "{field:?}: WGSL has {members:?}");
+        }
+    }};
+}
+
+#[test]
+fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
+    use render_wgpu::frame_uniform::FrameUniform;
+    use render_wgpu::nishita_pass::NishitaUniform;
+    use render_wgpu::tone_map::ToneMapUniform;
+    assert_layout!(
+        "nishita.wgsl",
+        "FrameParams",
+        FrameUniform,
+        [
+            camera_m,
+            camera_height,
+            right,
+            up,
+            forward,
+            sun_direction,
+            size_px
+        ]
+    );
+    assert_layout!(
+        "nishita.wgsl",
+        "NishitaParams",
+        NishitaUniform,
+        [
+            rayleigh_scattering_per_m,
+            mie_scattering_per_m,
+            solar_irradiance,
+            sun_centre_radiance,
+            sun_limb_exponent,
+            view_samples,
+            mie_phase_kind,
+            mie_g,
+            ground_albedo,
+        ]
+    );
+    assert_layout!(
+        "tone_map.wgsl",
+        "ToneMapParams",
+        ToneMapUniform,
+        [red, green, blue]
+    );
+}

@@ -1,0 +1,176 @@
+//! What one frame shows: the camera (f64 position relative to the planet's centre,
+//! orientation, vertical field of view), the sun, the atmosphere, the model with its
+//! settings, the exposure and the image size. A frame is a plain description; the
+//! [`crate::renderer::Renderer`] turns it into pixels.
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::model::{ModelSettings, ViewRay};
+use glam::{DMat3, DQuat, DVec3};
+
+use crate::error::RenderError;
+
+/// Largest image side, px (WebGPU's default texture limit).
+pub const MAX_SIDE_PX: u32 = 8192;
+
+/// One frame to render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Camera position relative to the planet's centre, m.
+    pub camera_position_m: DVec3,
+    /// Rotation from camera axes (x right, y up, -z forward) to planet axes.
+    pub orientation: DQuat,
+    /// Vertical field of view, degrees, in (0, 180).
+    pub vertical_fov_deg: f64,
+    /// Unit vector towards the sun's centre.
+    pub sun_direction: DVec3,
+    pub atmosphere: Atmosphere,
+    /// A model id of [`atmosphere_core::model::MODEL_IDS`].
+    pub model: String,
+    pub settings: ModelSettings,
+    /// Exposure value at ISO 100: the tone map scales luminance by 1 / (1.2 * 2^EV100).
+    pub exposure_ev100: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// The orientation of a camera looking along `forward` with `up` as near its up axis as
+/// possible; `None` when the two are parallel or either is zero.
+pub fn look_orientation(forward: DVec3, up: DVec3) -> Option<DQuat> {
+    let back = -forward.try_normalize()?;
+    let right = up.cross(back).try_normalize()?;
+    let up = back.cross(right);
+    Some(DQuat::from_mat3(&DMat3::from_cols(right, up, back)))
+}
+
+impl Frame {
+    /// Why this frame cannot be rendered, if it cannot: non-finite or zero vectors, a
+    /// camera below the ground, a field of view outside (0, 180) degrees, an empty or too
+    /// large image.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        let bad = |message: String| Err(RenderError::Frame(message));
+        if !self.camera_position_m.is_finite() {
+            return bad("camera position must be finite".into());
+        }
+        let altitude_m = self.camera_position_m.length() - self.atmosphere.bottom_radius_m;
+        if altitude_m < 0.0 {
+            return bad(format!("camera is {:.3} m below the ground", -altitude_m));
+        }
+        if !(self.orientation.is_finite() && self.orientation.length() > 0.5) {
+            return bad("camera orientation must be a finite rotation".into());
+        }
+        if self.sun_direction.try_normalize().is_none() {
+            return bad("sun direction must be a finite non-zero vector".into());
+        }
+        if !(self.vertical_fov_deg > 0.0 && self.vertical_fov_deg < 180.0) {
+            return bad(format!(
+                "vertical field of view {} deg must lie strictly between 0 and 180",
+                self.vertical_fov_deg
+            ));
+        }
+        if !self.exposure_ev100.is_finite() {
+            return bad("exposure must be finite".into());
+        }
+        if !(1..=MAX_SIDE_PX).contains(&self.width) || !(1..=MAX_SIDE_PX).contains(&self.height) {
+            return bad(format!(
+                "image {}x{} px: each side must be 1 to {MAX_SIDE_PX}",
+                self.width, self.height
+            ));
+        }
+        Ok(())
+    }
+
+    /// The camera's right, up and forward unit vectors in planet axes.
+    pub fn axes(&self) -> [DVec3; 3] {
+        let q = self.orientation.normalize();
+        [q * DVec3::X, q * DVec3::Y, q * -DVec3::Z]
+    }
+
+    /// Half the image's width and height on the plane at unit distance in front of the
+    /// camera.
+    pub fn half_extent(&self) -> (f64, f64) {
+        let half_height = (0.5 * self.vertical_fov_deg.to_radians()).tan();
+        let aspect = f64::from(self.width) / f64::from(self.height);
+        (half_height * aspect, half_height)
+    }
+
+    /// The unnormalised direction through image point (x, y) in pixels from the top-left
+    /// corner (a pixel's centre is at +0.5): the ray the shaders trace.
+    pub fn direction_through(&self, x: f64, y: f64) -> DVec3 {
+        let [right, up, forward] = self.axes();
+        let (half_w, half_h) = self.half_extent();
+        let ndc_x = 2.0 * x / f64::from(self.width) - 1.0;
+        let ndc_y = 1.0 - 2.0 * y / f64::from(self.height);
+        forward + right * (ndc_x * half_w) + up * (ndc_y * half_h)
+    }
+
+    /// The view ray through the centre of pixel (column, row), for the CPU models.
+    pub fn pixel_ray(&self, column: u32, row: u32) -> ViewRay {
+        ViewRay {
+            origin_m: self.camera_position_m,
+            direction: self
+                .direction_through(f64::from(column) + 0.5, f64::from(row) + 0.5)
+                .normalize(),
+            sun_direction: self.sun_direction.normalize(),
+            max_distance_m: None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame() -> Frame {
+        let up = DVec3::Z;
+        Frame {
+            camera_position_m: DVec3::new(0.0, 0.0, 6_361_000.0),
+            orientation: look_orientation(DVec3::X, up).unwrap(),
+            vertical_fov_deg: 90.0,
+            sun_direction: up,
+            atmosphere: Atmosphere::preset("earth").unwrap(),
+            model: "nishita".into(),
+            settings: ModelSettings::default(),
+            exposure_ev100: 14.0,
+            width: 4,
+            height: 2,
+        }
+    }
+
+    #[test]
+    fn pixel_rays_span_the_field_of_view() {
+        let f = frame();
+        let [right, up, forward] = f.axes();
+        assert!((forward - DVec3::X).length() < 1e-12);
+        assert!((up - DVec3::Z).length() < 1e-12);
+        assert!((right - DVec3::NEG_Y).length() < 1e-12, "{right}");
+        // The image's top edge is 45 degrees above the view direction.
+        let top = f.direction_through(2.0, 0.0).normalize();
+        assert!((top.dot(DVec3::X) - std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-12);
+        assert!(f.pixel_ray(0, 0).direction.z > 0.0);
+        assert!(f.validate().is_ok());
+    }
+
+    #[test]
+    fn bad_frames_are_refused() {
+        let mut f = frame();
+        f.vertical_fov_deg = 180.0;
+        assert!(
+            f.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("field of view")
+        );
+        let mut f = frame();
+        f.camera_position_m.z = 6_359_000.0;
+        assert!(
+            f.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("below the ground")
+        );
+        let mut f = frame();
+        f.width = 0;
+        assert!(f.validate().is_err());
+        assert!(look_orientation(DVec3::Z, DVec3::Z).is_none());
+    }
+}

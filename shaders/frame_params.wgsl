@@ -1,0 +1,97 @@
+// The camera and sun of a frame, and the view ray of a pixel clipped to the atmosphere,
+// relative to the camera (docs/rendering.md, "Camera-relative rendering"). The Rust twin
+// of the uniform is `render-wgpu/src/frame_uniform.rs`; the CPU twin of the clipping is
+// atmosphere-core's `view_segment.rs`.
+
+#import atmosphere_params.wgsl
+
+struct FrameParams {
+    // xyz: camera position relative to the planet's centre (f32), m; w: its radius.
+    camera_m: vec4<f32>,
+    // x: r^2 - bottom^2 of the camera, computed in f64; y: 1 above the atmosphere.
+    camera_height: vec4<f32>,
+    // The camera's axes; right and up scaled by half the image extent at unit distance.
+    right: vec4<f32>,
+    up: vec4<f32>,
+    forward: vec4<f32>,
+    // xyz: unit vector towards the sun; w: its angular radius, rad.
+    sun_direction: vec4<f32>,
+    size_px: vec4<u32>,
+}
+
+@group(0) @binding(1) var<uniform> frame: FrameParams;
+
+// The unit direction through the centre of pixel `px` (`Frame::pixel_ray`).
+fn pixel_direction(px: vec2<u32>) -> vec3<f32> {
+    let size = vec2<f32>(frame.size_px.xy);
+    let ndc = vec2<f32>(2.0, -2.0) * (vec2<f32>(px) + 0.5) / size + vec2<f32>(-1.0, 1.0);
+    return normalize(frame.forward.xyz + ndc.x * frame.right.xyz + ndc.y * frame.up.xyz);
+}
+
+// The part of a view ray inside the atmosphere, in the variables that stay accurate in
+// f32: `q` = r^2 - bottom^2 and `r_mu` = r mu at its start, so that at distance t along
+// it r^2 - bottom^2 = q + t (t + 2 r_mu) (see `altitude_along`).
+struct Segment {
+    // False when the ray misses the atmosphere.
+    hit: bool,
+    on_ground: bool,
+    q: f32,
+    r_mu: f32,
+    // Planet-centred start . sun direction, m.
+    start_dot_sun: f32,
+    length: f32,
+}
+
+// The segment of the ray with unit `direction` from the camera (`ViewSegment::new`): a
+// camera above the atmosphere is moved to where the ray enters it, found from the ray's
+// closest approach to the centre, `p`, whose length `h` carries no cancellation even at
+// 1e8 m; the segment ends on the ground or at the top.
+fn view_segment(direction: vec3<f32>) -> Segment {
+    let bottom = atmosphere.bottom_radius_m;
+    let top = atmosphere.top_radius_m;
+    let horizon_sq = (top - bottom) * (top + bottom);
+    let camera = frame.camera_m.xyz;
+    let sun = frame.sun_direction.xyz;
+    var s: Segment;
+    s.hit = true;
+    s.q = frame.camera_height.x;
+    s.r_mu = dot(camera, direction);
+    s.start_dot_sun = dot(camera, sun);
+    if frame.camera_height.y > 0.5 {
+        let p = camera - s.r_mu * direction;
+        let h = length(p);
+        if s.r_mu >= 0.0 || h > top {
+            s.hit = false;
+            return s;
+        }
+        let half_chord = safe_sqrt((top - h) * (top + h));
+        s.q = horizon_sq;
+        s.r_mu = -half_chord;
+        s.start_dot_sun = dot(p - half_chord * direction, sun);
+    }
+    let ground_disc = s.r_mu * s.r_mu - s.q;
+    s.on_ground = s.r_mu < 0.0 && ground_disc >= 0.0;
+    if s.on_ground {
+        let denom = -s.r_mu + safe_sqrt(ground_disc);
+        s.length = select(0.0, max(s.q / denom, 0.0), denom > 0.0);
+    } else {
+        let root = safe_sqrt(ground_disc + horizon_sq);
+        if s.r_mu > 0.0 {
+            s.length = max((horizon_sq - s.q) / (s.r_mu + root), 0.0);
+        } else {
+            s.length = max(-s.r_mu + root, 0.0);
+        }
+    }
+    return s;
+}
+
+// r^2 - bottom^2 at distance t along a segment, clamped at the ground.
+fn q_along(s: Segment, t: f32) -> f32 {
+    return max(s.q + t * (t + 2.0 * s.r_mu), 0.0);
+}
+
+// The altitude for r^2 - bottom^2 = q, as q / (r + bottom): no cancellation.
+fn altitude_from_q(q: f32) -> f32 {
+    let bottom = atmosphere.bottom_radius_m;
+    return q / (sqrt(bottom * bottom + q) + bottom);
+}

@@ -1,0 +1,132 @@
+// Nishita 1993 per pixel: the GPU twin of atmosphere-core's `nishita.rs`. Single
+// scattering integrated along each view ray with N equal sub-segments, one sample at
+// each midpoint (seed 000 Eq. 12); the sun's optical depth from the table g_l (the
+// `columns` of `transmittance_table.wgsl`); the ground's Lambertian reflection of the
+// transmitted sun (seed 000 Eq. 11); the sun disk with limb darkening where the ray
+// reaches space. Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three wavelengths
+// of the uniform to the HDR target, clamped to the largest finite f16.
+
+#import atmosphere_params.wgsl
+#import frame_params.wgsl
+#import transmittance_lookup.wgsl
+#import sun_disk.wgsl
+
+struct NishitaParams {
+    // xyz per channel: Rayleigh and Mie scattering at density 1, m^-1.
+    rayleigh_scattering_per_m: vec4<f32>,
+    mie_scattering_per_m: vec4<f32>,
+    // xyz per channel: solar irradiance at the top of the atmosphere, W m^-2 nm^-1.
+    solar_irradiance: vec4<f32>,
+    // xyz per channel: the sun disk's radiance at its centre and limb-darkening exponent.
+    sun_centre_radiance: vec4<f32>,
+    sun_limb_exponent: vec4<f32>,
+    view_samples: u32,
+    // 0 Cornette-Shanks, 1 Henyey-Greenstein, 2 Nishita hazy (`PhaseFunction`).
+    mie_phase_kind: u32,
+    mie_g: f32,
+    ground_albedo: f32,
+}
+
+@group(0) @binding(2) var<uniform> nishita: NishitaParams;
+@group(0) @binding(3) var g_l: texture_2d<f32>;
+@group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
+
+const PI: f32 = 3.14159265358979;
+// The largest finite f16.
+const F16_MAX: f32 = 65504.0;
+
+fn rayleigh_phase(nu: f32) -> f32 {
+    return 3.0 / (16.0 * PI) * (1.0 + nu * nu);
+}
+
+// The Mie phase function of the uniform (`PhaseFunction::eval`).
+fn mie_phase(nu: f32) -> f32 {
+    let g = nishita.mie_g;
+    let g2 = g * g;
+    let denom = max(1.0 + g2 - 2.0 * g * nu, 1e-30);
+    switch nishita.mie_phase_kind {
+        case 0u: {
+            return 3.0 / (8.0 * PI) * (1.0 - g2) * (1.0 + nu * nu) / ((2.0 + g2) * denom * sqrt(denom));
+        }
+        case 1u: {
+            return (1.0 - g2) / (4.0 * PI * denom * sqrt(denom));
+        }
+        default: {
+            let c = 0.5 * (1.0 + nu);
+            let c2 = c * c;
+            let c4 = c2 * c2;
+            return (1.0 + 9.0 * c4 * c4) / (8.0 * PI);
+        }
+    }
+}
+
+struct Radiance {
+    radiance: vec3<f32>,
+    transmittance: vec3<f32>,
+    // False when the ray ends on the ground.
+    reaches_space: bool,
+}
+
+// `Nishita::radiance` for the view ray with unit `direction` from the camera.
+fn nishita_radiance(direction: vec3<f32>) -> Radiance {
+    var out: Radiance;
+    out.radiance = vec3<f32>(0.0);
+    out.transmittance = vec3<f32>(1.0);
+    out.reaches_space = true;
+    let s = view_segment(direction);
+    if !s.hit {
+        return out;
+    }
+    let sun = frame.sun_direction.xyz;
+    let bottom = atmosphere.bottom_radius_m;
+    let n = nishita.view_samples;
+    let dt = s.length / f32(n);
+    let nu = dot(direction, sun);
+    let phase_r = rayleigh_phase(nu);
+    let phase_m = mie_phase(nu);
+    var view_column = vec3<f32>(0.0);
+    for (var k = 0u; k < n; k++) {
+        let t = (f32(k) + 0.5) * dt;
+        let q = q_along(s, t);
+        let rho = densities(altitude_from_q(q));
+        let to_sample = view_column + 0.5 * dt * rho;
+        view_column += dt * rho;
+        let radius = sqrt(bottom * bottom + q);
+        let mu_sun = clamp((s.start_dot_sun + t * nu) / radius, -1.0, 1.0);
+        // The sun's centre behind the planet: g_l = 0 (`sun_column`).
+        if mu_sun < 0.0 && (radius * mu_sun) * (radius * mu_sun) - q >= 0.0 {
+            continue;
+        }
+        let sun_column = table_columns(g_l, q, mu_sun);
+        let tau = optical_depth(to_sample) + optical_depth(sun_column);
+        let j = nishita.rayleigh_scattering_per_m.xyz * (rho.x * phase_r)
+            + nishita.mie_scattering_per_m.xyz * (rho.y * phase_m);
+        out.radiance += dt * exp(-tau) * j * nishita.solar_irradiance.xyz;
+    }
+    out.transmittance = exp(-optical_depth(view_column));
+    out.reaches_space = !s.on_ground;
+    if s.on_ground {
+        let cos_g = (s.start_dot_sun + s.length * nu) / bottom;
+        if cos_g > 0.0 {
+            let sun_column = table_columns(g_l, 0.0, min(cos_g, 1.0));
+            out.radiance += out.transmittance * nishita.ground_albedo / PI
+                * nishita.solar_irradiance.xyz * cos_g * exp(-optical_depth(sun_column));
+        }
+    }
+    return out;
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size_px.xy) {
+        return;
+    }
+    let direction = pixel_direction(id.xy);
+    let r = nishita_radiance(direction);
+    var radiance = r.radiance;
+    if r.reaches_space {
+        radiance += r.transmittance * sun_disk_radiance(direction, frame.sun_direction.xyz,
+            frame.sun_direction.w, nishita.sun_centre_radiance.xyz, nishita.sun_limb_exponent.xyz);
+    }
+    textureStore(hdr, id.xy, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
+}
