@@ -42,6 +42,45 @@ pub fn look_orientation(forward: DVec3, up: DVec3) -> Option<DQuat> {
     Some(DQuat::from_mat3(&DMat3::from_cols(right, up, back)))
 }
 
+/// A camera placed by angles, in the convention of `ViewRay::from_angles` (the probe's
+/// columns): the camera `altitude_m` above the ground on the planet's z axis, azimuths
+/// from the x axis towards y, zenith angles from the local vertical.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalView {
+    pub altitude_m: f64,
+    pub view_zenith_deg: f64,
+    pub view_azimuth_deg: f64,
+    pub sun_zenith_deg: f64,
+    pub sun_azimuth_deg: f64,
+}
+
+/// The unit vector at `zenith_deg` from z and `azimuth_deg` from x towards y.
+fn from_zenith_azimuth(zenith_deg: f64, azimuth_deg: f64) -> DVec3 {
+    let (z, a) = (zenith_deg.to_radians(), azimuth_deg.to_radians());
+    DVec3::new(z.sin() * a.cos(), z.sin() * a.sin(), z.cos())
+}
+
+impl LocalView {
+    /// Camera position relative to the planet's centre, m.
+    pub fn position_m(&self, bottom_radius_m: f64) -> DVec3 {
+        DVec3::new(0.0, 0.0, bottom_radius_m + self.altitude_m)
+    }
+
+    /// Looking along the view angles with the local zenith up; looking straight up or
+    /// down, the image's top points along the view azimuth.
+    pub fn orientation(&self) -> DQuat {
+        let forward = from_zenith_azimuth(self.view_zenith_deg, self.view_azimuth_deg);
+        look_orientation(forward, DVec3::Z)
+            .or_else(|| look_orientation(forward, from_zenith_azimuth(90.0, self.view_azimuth_deg)))
+            .unwrap_or(DQuat::IDENTITY)
+    }
+
+    /// Unit vector towards the sun.
+    pub fn sun_direction(&self) -> DVec3 {
+        from_zenith_azimuth(self.sun_zenith_deg, self.sun_azimuth_deg)
+    }
+}
+
 impl Frame {
     /// Why this frame cannot be rendered, if it cannot: non-finite or zero vectors, a
     /// camera below the ground, a field of view outside (0, 180) degrees, an empty or too
@@ -148,6 +187,24 @@ mod tests {
         assert!((top.dot(DVec3::X) - std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-12);
         assert!(f.pixel_ray(0, 0).direction.z > 0.0);
         assert!(f.validate().is_ok());
+    }
+
+    #[test]
+    fn local_views_look_where_asked() {
+        let view = LocalView {
+            altitude_m: 10.0,
+            view_zenith_deg: 0.0,
+            view_azimuth_deg: 90.0,
+            sun_zenith_deg: 90.0,
+            sun_azimuth_deg: 0.0,
+        };
+        let mut f = frame();
+        f.orientation = view.orientation();
+        let [_, up, forward] = f.axes();
+        assert!((forward - DVec3::Z).length() < 1e-12);
+        assert!((up - DVec3::Y).length() < 1e-12, "{up}");
+        assert!((view.sun_direction() - DVec3::X).length() < 1e-12);
+        assert_eq!(view.position_m(100.0), DVec3::new(0.0, 0.0, 110.0));
     }
 
     #[test]
