@@ -41,17 +41,19 @@ struct AtmosphereParams {
 
 @group(0) @binding(0) var<uniform> atmosphere: AtmosphereParams;
 
-fn layer_density(layer: DensityLayer, altitude_m: f32) -> f32 {
-    let d = layer.exp_term * exp(layer.exp_scale_per_m * altitude_m)
-        + layer.linear_term_per_m * altitude_m + layer.constant_term;
-    return clamp(d, 0.0, 1.0);
-}
-
+// The density of the layer that holds `altitude_m`: the layer is chosen field by field
+// with `select`, so that one `exp` is evaluated whichever layer it is (branches by
+// altitude diverge between neighbouring pixels and cost both layers on SIMD hardware).
 fn profile_density(profile: DensityProfile, altitude_m: f32) -> f32 {
-    if altitude_m < profile.layers[0].width_m {
-        return layer_density(profile.layers[0], altitude_m);
-    }
-    return layer_density(profile.layers[1], altitude_m);
+    let lower = profile.layers[0];
+    let upper = profile.layers[1];
+    let up = altitude_m >= lower.width_m;
+    let exp_term = select(lower.exp_term, upper.exp_term, up);
+    let exp_scale = select(lower.exp_scale_per_m, upper.exp_scale_per_m, up);
+    let linear = select(lower.linear_term_per_m, upper.linear_term_per_m, up);
+    let constant = select(lower.constant_term, upper.constant_term, up);
+    let d = exp_term * exp(exp_scale * altitude_m) + linear * altitude_m + constant;
+    return clamp(d, 0.0, 1.0);
 }
 
 // Relative densities (Rayleigh, Mie, ozone) at `altitude_m` above the ground.

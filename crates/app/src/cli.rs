@@ -24,6 +24,23 @@ pub enum Command {
     /// Error against run time of every model on a fixed set of views: README.md and
     /// error_vs_time.png.
     Report(ReportArgs),
+    /// One frame of a scene, headless: EXR (linear HDR radiance) or PNG (tone-mapped).
+    Render(RenderArgs),
+}
+
+/// The flags of `atmos render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// A scene file (TOML) with the fields of the flags below (model, altitude_m,
+    /// sun_zenith_deg, ..., set); flags given as well override its fields.
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
+    #[command(flatten)]
+    pub fields: crate::render::scene::Scene,
+    /// Output image: FILE.exr (linear HDR radiance) or FILE.png (tone-mapped), written
+    /// atomically.
+    #[arg(long, value_name = "FILE.exr|FILE.png")]
+    pub out: PathBuf,
 }
 
 /// The flags of `atmos report`.

@@ -5,6 +5,7 @@ pub mod cli;
 pub mod files;
 pub mod probe;
 pub mod progress;
+pub mod render;
 pub mod report;
 pub mod stability;
 
@@ -21,6 +22,7 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
         Some(Command::Probe(args)) => probe::run(&args),
         Some(Command::Stability(args)) => stability::run(&args),
         Some(Command::Report(args)) => report::run(&args),
+        Some(Command::Render(args)) => render::run(&args),
         None => {
             Cli::command().print_help()?;
             println!(

@@ -20,6 +20,9 @@ use crate::tone_map::ToneMap;
 use crate::tone_map_pass::{LDR_FORMAT, ToneMapPass};
 use crate::transmittance_pass::{TableOutput, TransmittancePass};
 
+/// The models the GPU renders.
+pub const GPU_MODELS: &[&str] = &["nishita"];
+
 /// Most steps a frame runs (table builds and passes), for the timer.
 const MAX_STEPS: u32 = 8;
 
@@ -107,6 +110,18 @@ impl Renderer {
         })
     }
 
+    /// Whether model `id` can be rendered: an error naming it when it is unknown or not
+    /// yet on the GPU (no model silently stands in for another).
+    pub fn check_model(id: &str) -> Result<(), RenderError> {
+        if GPU_MODELS.contains(&id) {
+            Ok(())
+        } else if MODEL_IDS.contains(&id) {
+            Err(RenderError::NotOnGpu(id.to_string()))
+        } else {
+            Err(atmosphere_core::model::ModelError::UnknownModel(id.to_string()).into())
+        }
+    }
+
     /// The GPU context.
     pub fn gpu(&self) -> &GpuContext {
         &self.gpu
@@ -116,13 +131,7 @@ impl Renderer {
     /// The images stay on the GPU until [`Renderer::read_hdr`] or [`Renderer::read_ldr`].
     pub fn render(&mut self, frame: &Frame) -> Result<FramePlan, RenderError> {
         frame.validate()?;
-        if frame.model != "nishita" {
-            return Err(if MODEL_IDS.contains(&frame.model.as_str()) {
-                RenderError::NotOnGpu(frame.model.clone())
-            } else {
-                atmosphere_core::model::ModelError::UnknownModel(frame.model.clone()).into()
-            });
-        }
+        Renderer::check_model(&frame.model)?;
         frame
             .atmosphere
             .validate()

@@ -1,0 +1,108 @@
+//! The image files of `atmos render`, written atomically: PNG (the tone-mapped 8-bit
+//! sRGB image) and OpenEXR (linear HDR: linear sRGB in cd/m^2, f32, with the scene, the
+//! model, the atmosphere and the camera in header attributes).
+
+use std::io::Cursor;
+use std::path::Path;
+
+use anyhow::Context;
+use atmosphere_core::color::SpectrumToColor;
+use exr::meta::attribute::{AttributeValue, Text};
+use exr::prelude::{
+    Encoding, Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
+};
+use render_wgpu::Frame;
+use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+
+use crate::files::write_atomically;
+
+/// Writes the 8-bit sRGB pixels (row-major, RGBA) as an RGB PNG.
+pub fn write_png(path: &Path, frame: &Frame, pixels: &[[u8; 4]]) -> anyhow::Result<()> {
+    let rgb: Vec<u8> = pixels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
+    let image = image::RgbImage::from_raw(frame.width, frame.height, rgb)
+        .context("pixel count does not match the image size")?;
+    let mut bytes = Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .context("cannot encode the PNG")?;
+    write_atomically(path, bytes.get_ref())
+}
+
+/// The header attributes (name, text) of an EXR of `frame` rendered from `scene_toml`.
+pub fn header_attributes(frame: &Frame, scene_toml: &str) -> Vec<(&'static str, String)> {
+    let [right, up, forward] = frame.axes();
+    let model_settings: Vec<String> = frame
+        .settings
+        .options
+        .items()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect();
+    vec![
+        (
+            "atmos:units",
+            "linear sRGB (IEC 61966-2-1, D65) in cd/m^2, from spectral radiance at 680, 550, 440 nm (CIE 1931)".into(),
+        ),
+        ("atmos:model", frame.model.clone()),
+        ("atmos:model_settings", model_settings.join(", ")),
+        ("atmos:atmosphere_name", frame.atmosphere.name.clone()),
+        ("atmos:atmosphere", frame.atmosphere.to_toml()),
+        (
+            "atmos:camera",
+            format!(
+                "position_m = {:?}\nright = {:?}\nup = {:?}\nforward = {:?}\nvertical_fov_deg = {}\n",
+                frame.camera_position_m.to_array(),
+                right.to_array(),
+                up.to_array(),
+                forward.to_array(),
+                frame.vertical_fov_deg
+            ),
+        ),
+        ("atmos:sun_direction", format!("{:?}", frame.sun_direction.to_array())),
+        ("atmos:exposure_ev100", frame.exposure_ev100.to_string()),
+        ("atmos:scene", scene_toml.to_string()),
+    ]
+}
+
+/// Writes the HDR pixels (spectral radiance at 680, 550, 440 nm, row-major) as linear
+/// sRGB in cd/m^2, with [`header_attributes`].
+pub fn write_exr(
+    path: &Path,
+    frame: &Frame,
+    scene_toml: &str,
+    radiance: &[[f32; 4]],
+) -> anyhow::Result<()> {
+    let to_srgb = SpectrumToColor::new(&RGB_WAVELENGTHS_NM)?;
+    let width = frame.width as usize;
+    let srgb: Vec<[f32; 3]> = radiance
+        .iter()
+        .map(|p| {
+            to_srgb
+                .linear_srgb_cd_m2(&[p[0], p[1], p[2]].map(f64::from))
+                .map(|v| v as f32)
+        })
+        .collect();
+    let mut attributes = LayerAttributes::named("atmos");
+    attributes.software_name = Some(Text::from("atmos"));
+    for (name, value) in header_attributes(frame, scene_toml) {
+        let text = Text::new_or_none(&value)
+            .with_context(|| format!("header attribute {name} has characters EXR cannot hold"))?;
+        attributes
+            .other
+            .insert(Text::from(name), AttributeValue::Text(text));
+    }
+    let layer = Layer::new(
+        (width, frame.height as usize),
+        attributes,
+        Encoding::FAST_LOSSLESS,
+        SpecificChannels::rgb(|p: Vec2<usize>| {
+            let [r, g, b] = srgb[p.y() * width + p.x()];
+            (r, g, b)
+        }),
+    );
+    let mut bytes = Cursor::new(Vec::new());
+    Image::from_layer(layer)
+        .write()
+        .to_buffered(&mut bytes)
+        .context("cannot encode the EXR")?;
+    write_atomically(path, bytes.get_ref())
+}

@@ -1,0 +1,46 @@
+//! `atmos render`: one frame of a scene, headless, to an EXR (linear HDR) or a PNG
+//! (tone-mapped) file.
+
+pub mod image_files;
+pub mod scene;
+
+use std::time::Instant;
+
+use anyhow::Context;
+use render_wgpu::Renderer;
+
+use crate::cli::RenderArgs;
+use scene::{Output, Scene};
+
+/// Renders the scene of `args` and writes it; prints the adapter, the plan and the
+/// times on stderr.
+pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    let output = Output::from_path(&args.out)?;
+    let scene = match &args.scene {
+        Some(path) => Scene::load(path)?.overridden_by(args.fields.clone()),
+        None => args.fields.clone(),
+    }
+    .resolved()?;
+    let frame = scene.frame()?;
+    Renderer::check_model(&frame.model)?;
+    let mut renderer = Renderer::headless()?;
+    let start = Instant::now();
+    let plan = renderer.render(&frame)?;
+    let elapsed = start.elapsed();
+    match &output {
+        Output::Exr(path) => {
+            let scene_toml = toml::to_string(&scene).context("cannot write the scene as TOML")?;
+            image_files::write_exr(path, &frame, &scene_toml, &renderer.read_hdr()?)?;
+        }
+        Output::Png(path) => image_files::write_png(path, &frame, &renderer.read_ldr()?)?,
+    }
+    eprintln!(
+        "{}x{} {} frame on {} in {elapsed:.1?} (GPU: {plan}); wrote {}",
+        frame.width,
+        frame.height,
+        frame.model,
+        renderer.gpu().adapter_summary(),
+        args.out.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,291 @@
+//! A scene: everything one frame of `atmos render` needs, from the command line's flags
+//! or a TOML file with the same fields (`--scene FILE.toml`; flags given as well override
+//! the file's fields). Checked field by field, with errors naming the flag.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::model::{MODEL_IDS, ModelSettings};
+use atmosphere_core::model_options::ModelOptions;
+use clap::Args;
+use clap::builder::PossibleValuesParser;
+use render_wgpu::Frame;
+use render_wgpu::frame::{LocalView, MAX_SIDE_PX};
+use serde::{Deserialize, Serialize};
+
+/// The fields of a scene; every one optional here, the required ones checked by
+/// [`Scene::frame`].
+#[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Scattering model (only nishita is on the GPU so far).
+    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
+    pub model: Option<String>,
+    /// Camera altitude above the ground, m (up to 1e8 and beyond).
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    pub altitude_m: Option<f64>,
+    /// Sun zenith angle, degrees (90 = on the horizon).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub sun_zenith_deg: Option<f64>,
+    /// Sun azimuth, degrees [default: 0].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub sun_azimuth_deg: Option<f64>,
+    /// View zenith angle of the image's centre, degrees [default: 90, the horizon].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub view_zenith_deg: Option<f64>,
+    /// View azimuth of the image's centre, degrees [default: 0].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub view_azimuth_deg: Option<f64>,
+    /// Vertical field of view, degrees, in (0, 180) [default: 60].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub fov_deg: Option<f64>,
+    /// Image width, px [default: 1280].
+    #[arg(long, value_name = "PX")]
+    pub width: Option<u32>,
+    /// Image height, px [default: 720].
+    #[arg(long, value_name = "PX")]
+    pub height: Option<u32>,
+    /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file [default: earth].
+    #[arg(long, value_name = "PRESET|FILE.toml")]
+    pub atmosphere: Option<String>,
+    /// Exposure value at ISO 100: luminance is scaled by 1 / (1.2 * 2^EV) before the
+    /// filmic curve [default: 14].
+    #[arg(long, value_name = "EV100", allow_negative_numbers = true)]
+    pub exposure: Option<f64>,
+    /// A model setting as key=value (repeat the flag), e.g. `--set samples=32`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub set: Vec<String>,
+}
+
+impl Scene {
+    /// The scene of a TOML file; a relative atmosphere file is looked up next to it.
+    pub fn load(path: &Path) -> anyhow::Result<Scene> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read scene {}", path.display()))?;
+        let mut scene: Scene =
+            toml::from_str(&text).with_context(|| format!("scene {}", path.display()))?;
+        if let (Some(a), Some(dir)) = (&scene.atmosphere, path.parent())
+            && Atmosphere::preset(a).is_err()
+            && Path::new(a).is_relative()
+        {
+            scene.atmosphere = Some(dir.join(a).display().to_string());
+        }
+        if let Some(model) = &scene.model
+            && !MODEL_IDS.contains(&model.as_str())
+        {
+            bail!(
+                "scene {}: unknown model '{model}' (known: {})",
+                path.display(),
+                MODEL_IDS.join(", ")
+            );
+        }
+        Ok(scene)
+    }
+
+    /// This scene with every field that `flags` sets replaced; settings are appended.
+    pub fn overridden_by(self, flags: Scene) -> Scene {
+        let mut set = self.set;
+        set.extend(flags.set);
+        Scene {
+            model: flags.model.or(self.model),
+            altitude_m: flags.altitude_m.or(self.altitude_m),
+            sun_zenith_deg: flags.sun_zenith_deg.or(self.sun_zenith_deg),
+            sun_azimuth_deg: flags.sun_azimuth_deg.or(self.sun_azimuth_deg),
+            view_zenith_deg: flags.view_zenith_deg.or(self.view_zenith_deg),
+            view_azimuth_deg: flags.view_azimuth_deg.or(self.view_azimuth_deg),
+            fov_deg: flags.fov_deg.or(self.fov_deg),
+            width: flags.width.or(self.width),
+            height: flags.height.or(self.height),
+            atmosphere: flags.atmosphere.or(self.atmosphere),
+            exposure: flags.exposure.or(self.exposure),
+            set,
+        }
+    }
+
+    /// The scene with every default filled in, as written into EXR headers.
+    pub fn resolved(&self) -> anyhow::Result<Scene> {
+        let required = |value: Option<f64>, flag: &str| {
+            value.with_context(|| format!("--{flag} is required (or give --scene FILE.toml)"))
+        };
+        Ok(Scene {
+            model: Some(
+                self.model
+                    .clone()
+                    .context("--model is required (or give --scene FILE.toml)")?,
+            ),
+            altitude_m: Some(required(self.altitude_m, "altitude-m")?),
+            sun_zenith_deg: Some(required(self.sun_zenith_deg, "sun-zenith-deg")?),
+            sun_azimuth_deg: Some(self.sun_azimuth_deg.unwrap_or(0.0)),
+            view_zenith_deg: Some(self.view_zenith_deg.unwrap_or(90.0)),
+            view_azimuth_deg: Some(self.view_azimuth_deg.unwrap_or(0.0)),
+            fov_deg: Some(self.fov_deg.unwrap_or(60.0)),
+            width: Some(self.width.unwrap_or(1280)),
+            height: Some(self.height.unwrap_or(720)),
+            atmosphere: Some(self.atmosphere.clone().unwrap_or_else(|| "earth".into())),
+            exposure: Some(self.exposure.unwrap_or(14.0)),
+            set: self.set.clone(),
+        })
+    }
+
+    /// The frame of a [resolved](Scene::resolved) scene; errors name the flag at fault.
+    pub fn frame(&self) -> anyhow::Result<Frame> {
+        let s = self.resolved()?;
+        let value = |v: Option<f64>| v.unwrap_or(f64::NAN);
+        let finite = |v: f64, flag: &str| {
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                bail!("--{flag} must be a finite number, got {v}")
+            }
+        };
+        let altitude_m = finite(value(s.altitude_m), "altitude-m")?;
+        if altitude_m < 0.0 {
+            bail!("--altitude-m {altitude_m} is below the ground (must be >= 0)");
+        }
+        let fov_deg = finite(value(s.fov_deg), "fov-deg")?;
+        if !(fov_deg > 0.0 && fov_deg < 180.0) {
+            bail!("--fov-deg {fov_deg} must lie strictly between 0 and 180");
+        }
+        let view = LocalView {
+            altitude_m,
+            view_zenith_deg: finite(value(s.view_zenith_deg), "view-zenith-deg")?,
+            view_azimuth_deg: finite(value(s.view_azimuth_deg), "view-azimuth-deg")?,
+            sun_zenith_deg: finite(value(s.sun_zenith_deg), "sun-zenith-deg")?,
+            sun_azimuth_deg: finite(value(s.sun_azimuth_deg), "sun-azimuth-deg")?,
+        };
+        let (width, height) = (s.width.unwrap_or(0), s.height.unwrap_or(0));
+        for (side, flag) in [(width, "width"), (height, "height")] {
+            if !(1..=MAX_SIDE_PX).contains(&side) {
+                bail!("--{flag} {side} must be 1 to {MAX_SIDE_PX} px");
+            }
+        }
+        let name = s.atmosphere.unwrap_or_default();
+        let atmosphere = Atmosphere::from_preset_or_file(&name)
+            .with_context(|| format!("--atmosphere {name}"))?;
+        Ok(Frame {
+            camera_position_m: view.position_m(atmosphere.bottom_radius_m),
+            orientation: view.orientation(),
+            vertical_fov_deg: fov_deg,
+            sun_direction: view.sun_direction(),
+            atmosphere,
+            model: s.model.unwrap_or_default(),
+            settings: ModelSettings {
+                options: ModelOptions::parse(&s.set)?,
+                ..ModelSettings::default()
+            },
+            exposure_ev100: finite(value(s.exposure), "exposure")?,
+            width,
+            height,
+        })
+    }
+}
+
+/// Where a frame goes: the output file and its kind, from the extension.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Output {
+    /// Linear HDR radiance (linear sRGB in cd/m^2, f32) with the scene in the header.
+    Exr(PathBuf),
+    /// The tone-mapped 8-bit sRGB image.
+    Png(PathBuf),
+}
+
+impl Output {
+    /// The output of `path`, by its extension (`.exr` or `.png`, any case).
+    pub fn from_path(path: &Path) -> anyhow::Result<Output> {
+        let extension = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match extension.as_deref() {
+            Some("exr") => Ok(Output::Exr(path.to_path_buf())),
+            Some("png") => Ok(Output::Png(path.to_path_buf())),
+            _ => bail!(
+                "--out {}: unknown image type; the file name must end in .exr (linear HDR) or .png (tone-mapped)",
+                path.display()
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> Scene {
+        Scene {
+            model: Some("nishita".into()),
+            altitude_m: Some(10.0),
+            sun_zenith_deg: Some(45.0),
+            ..Scene::default()
+        }
+    }
+
+    #[test]
+    fn flags_override_the_file_and_defaults_fill_the_rest() {
+        let file: Scene = toml::from_str(
+            "model = \"riley\"\naltitude_m = 5.0\nsun_zenith_deg = 30.0\nset = [\"a=1\"]\n",
+        )
+        .unwrap();
+        let merged = file.overridden_by(Scene {
+            model: Some("nishita".into()),
+            set: vec!["b=2".into()],
+            ..Scene::default()
+        });
+        assert_eq!(merged.model.as_deref(), Some("nishita"));
+        assert_eq!(merged.altitude_m, Some(5.0));
+        assert_eq!(merged.set, ["a=1", "b=2"]);
+        let resolved = merged.resolved().unwrap();
+        assert_eq!((resolved.width, resolved.height), (Some(1280), Some(720)));
+        // The resolved scene reads back as the same scene.
+        let text = toml::to_string(&resolved).unwrap();
+        assert_eq!(toml::from_str::<Scene>(&text).unwrap(), resolved);
+        assert!(toml::from_str::<Scene>("colour = 1").is_err());
+    }
+
+    #[test]
+    fn bad_fields_are_named() {
+        let err = |s: Scene| s.frame().unwrap_err().to_string();
+        assert!(err(Scene::default()).contains("--model is required"));
+        assert!(
+            err(Scene {
+                fov_deg: Some(180.0),
+                ..scene()
+            })
+            .contains("--fov-deg")
+        );
+        assert!(
+            err(Scene {
+                altitude_m: Some(-1.0),
+                ..scene()
+            })
+            .contains("below the ground")
+        );
+        assert!(
+            err(Scene {
+                width: Some(0),
+                ..scene()
+            })
+            .contains("--width")
+        );
+        assert!(
+            err(Scene {
+                atmosphere: Some("venus".into()),
+                ..scene()
+            })
+            .contains("venus")
+        );
+        assert!(scene().frame().is_ok());
+        assert!(
+            Output::from_path(Path::new("a.jpg"))
+                .unwrap_err()
+                .to_string()
+                .contains(".png")
+        );
+        assert_eq!(
+            Output::from_path(Path::new("a.EXR")).unwrap(),
+            Output::Exr("a.EXR".into())
+        );
+    }
+}
