@@ -1,0 +1,158 @@
+//! `atmos render` end to end: the real binary renders tiny PNG and EXR files on the GPU
+//! (lavapipe will do) and they are read back; bad flags fail with clear errors and write
+//! nothing. Without an adapter the GPU cases fail with the message saying what to
+//! install, unless `ATMOS_SKIP_GPU_TESTS=1`, when they print that they skipped.
+
+mod common;
+
+use std::path::Path;
+
+use common::{atmos, stderr};
+use exr::meta::attribute::{AttributeValue, Text};
+use exr::prelude::{FlatSamples, Levels};
+
+const SCENE: &[&str] = &[
+    "--model",
+    "nishita",
+    "--altitude-m",
+    "10",
+    "--sun-zenith-deg",
+    "45",
+    "--view-zenith-deg",
+    "80",
+    "--fov-deg",
+    "60",
+    "--width",
+    "32",
+    "--height",
+    "18",
+    "--set",
+    "samples=16",
+];
+
+/// Runs `atmos render` with `SCENE`, `extra` and `--out out`; `false` when it skipped
+/// for want of an adapter.
+fn render(extra: &[&str], out: &Path) -> bool {
+    let mut args = vec!["render"];
+    args.extend(SCENE);
+    args.extend(extra);
+    args.extend(["--out", out.to_str().unwrap()]);
+    let output = atmos(&args);
+    let err = stderr(&output);
+    if !output.status.success()
+        && err.contains("no GPU adapter")
+        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
+    {
+        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+        return false;
+    }
+    assert!(output.status.success(), "{err}");
+    assert!(err.contains("32x18 nishita frame"), "{err}");
+    true
+}
+
+#[test]
+fn renders_a_png_with_sky_above_ground() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("frame.png");
+    if !render(&[], &out) {
+        return;
+    }
+    let image = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(image.dimensions(), (32, 18));
+    let sky = image.get_pixel(16, 1);
+    let ground = image.get_pixel(16, 16);
+    assert!(sky[2] > sky[0] && sky[2] > 60, "sky {sky:?}");
+    assert!(ground[2] < sky[2], "ground {ground:?} sky {sky:?}");
+    assert!(!dir.path().join("frame.png.partial").exists());
+}
+
+#[test]
+fn renders_an_exr_of_linear_radiance_from_a_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    // The scene file sets everything; the flags of SCENE override some of it.
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(
+        &scene,
+        "model = \"nishita\"\naltitude_m = 2000.0\nsun_zenith_deg = 30.0\natmosphere = \"clear\"\nexposure = 13.0\n",
+    )
+    .unwrap();
+    let out = dir.path().join("frame.exr");
+    if !render(&["--scene", scene.to_str().unwrap()], &out) {
+        return;
+    }
+    let image = exr::prelude::read_all_data_from_file(&out).unwrap();
+    let layer = &image.layer_data[0];
+    assert_eq!((layer.size.x(), layer.size.y()), (32, 18));
+    let text = |name: &str| match layer.attributes.other.get(&Text::from(name)) {
+        Some(AttributeValue::Text(t)) => t.to_string(),
+        other => panic!("{name}: {other:?}"),
+    };
+    assert_eq!(text("atmos:model"), "nishita");
+    assert_eq!(text("atmos:atmosphere_name"), "clear");
+    assert!(text("atmos:camera").contains("vertical_fov_deg = 60"));
+    // The flags won over the file; the file's other fields stayed.
+    let scene_toml = text("atmos:scene");
+    assert!(scene_toml.contains("altitude_m = 10.0"), "{scene_toml}");
+    assert!(scene_toml.contains("exposure = 13.0"), "{scene_toml}");
+    // Linear HDR: a daylight sky is thousands of cd/m^2.
+    let green = layer
+        .channel_data
+        .list
+        .iter()
+        .find(|c| c.name == Text::from("G"))
+        .unwrap();
+    let Levels::Singular(FlatSamples::F32(samples)) = &green.sample_data else {
+        panic!("G is not f32");
+    };
+    let sky = samples[32 + 16];
+    assert!(sky > 1e3 && sky < 3e4, "sky {sky} cd/m^2");
+}
+
+/// `SCENE` as `--flag=value` arguments, with `overrides` replacing values by flag.
+fn scene_with(overrides: &[(&str, &str)]) -> Vec<String> {
+    SCENE
+        .chunks_exact(2)
+        .map(|pair| {
+            let value = overrides
+                .iter()
+                .find(|(flag, _)| *flag == pair[0])
+                .map_or(pair[1], |(_, v)| *v);
+            format!("{}={value}", pair[0])
+        })
+        .collect()
+}
+
+#[test]
+fn bad_flags_fail_clearly_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: &[(&[(&str, &str)], &str, &str)] = &[
+        (&[], "frame.jpg", "must end in .exr"),
+        (&[("--fov-deg", "200")], "frame.png", "--fov-deg 200"),
+        (&[("--altitude-m", "-5")], "frame.png", "below the ground"),
+        (
+            &[("--model", "bruneton")],
+            "frame.png",
+            "not yet on the GPU",
+        ),
+        (&[("--set", "colour=1")], "frame.png", "colour"),
+    ];
+    for (overrides, name, message) in cases {
+        let out = dir.path().join(name);
+        let mut args = vec!["render".to_string()];
+        args.extend(scene_with(overrides));
+        args.extend(["--out".to_string(), out.display().to_string()]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let output = atmos(&args);
+        let err = stderr(&output);
+        assert!(!output.status.success(), "{overrides:?}");
+        assert!(err.contains(message), "{overrides:?}: {err}");
+        assert!(!out.exists(), "{overrides:?}");
+    }
+    let output = atmos(&["render", "--altitude-m", "1", "--out", "x.png"]);
+    assert!(
+        stderr(&output).contains("--model is required"),
+        "{}",
+        stderr(&output)
+    );
+}
