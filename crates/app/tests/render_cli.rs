@@ -100,7 +100,7 @@ fn renders_an_exr_of_linear_radiance_from_a_scene_file() {
         .channel_data
         .list
         .iter()
-        .find(|c| c.name == Text::from("G"))
+        .find(|c| c.name.to_string() == "G")
         .unwrap();
     let Levels::Singular(FlatSamples::F32(samples)) = &green.sample_data else {
         panic!("G is not f32");
@@ -126,7 +126,9 @@ fn scene_with(overrides: &[(&str, &str)]) -> Vec<String> {
 #[test]
 fn bad_flags_fail_clearly_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: &[(&[(&str, &str)], &str, &str)] = &[
+    // (flags replaced, output file, expected message)
+    type Case<'a> = (&'a [(&'a str, &'a str)], &'a str, &'a str);
+    let cases: &[Case] = &[
         (&[], "frame.jpg", "must end in .exr"),
         (&[("--fov-deg", "200")], "frame.png", "--fov-deg 200"),
         (&[("--altitude-m", "-5")], "frame.png", "below the ground"),

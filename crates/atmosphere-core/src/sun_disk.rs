@@ -28,7 +28,7 @@ pub fn centre_radiance(irradiance_w_m2_nm: f64, angular_radius_rad: f64, lambda_
 /// disk's centre; zero outside the disk.
 pub fn limb_darkening(angle_rad: f64, angular_radius_rad: f64, lambda_nm: f64) -> f64 {
     let x = angle_rad / angular_radius_rad;
-    if !(x < 1.0) {
+    if x.is_nan() || x >= 1.0 {
         return 0.0;
     }
     (1.0 - x * x)
