@@ -88,6 +88,19 @@ impl NishitaUniform {
     }
 }
 
+/// What one nishita frame reads and writes.
+#[derive(Debug)]
+pub struct NishitaInputs<'a> {
+    /// The uniform buffer of `AtmosphereUniform`.
+    pub atmosphere: &'a wgpu::Buffer,
+    pub frame: &'a FrameUniform,
+    pub params: &'a NishitaUniform,
+    /// The g_l table (columns of the transmittance pass).
+    pub table: &'a wgpu::Texture,
+    /// The target, of [`HDR_FORMAT`].
+    pub hdr: &'a wgpu::Texture,
+}
+
 /// Pipeline and uniform buffers, made once.
 #[derive(Debug)]
 pub struct NishitaPass {
@@ -185,20 +198,22 @@ impl NishitaPass {
         })
     }
 
-    /// Uploads the uniforms and records the pass that fills `hdr` (of [`HDR_FORMAT`])
-    /// from the g_l `table`, with `timestamps` around it when given.
-    #[allow(clippy::too_many_arguments)]
+    /// Uploads the uniforms and records the pass that fills the HDR target from the g_l
+    /// table, with `timestamps` around it when given.
     pub fn encode(
         &self,
         gpu: &GpuContext,
-        atmosphere: &wgpu::Buffer,
-        frame: &FrameUniform,
-        params: &NishitaUniform,
-        table: &wgpu::Texture,
-        hdr: &wgpu::Texture,
+        inputs: &NishitaInputs<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
+        let NishitaInputs {
+            atmosphere,
+            frame,
+            params,
+            table,
+            hdr,
+        } = *inputs;
         gpu.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(frame));
         gpu.queue

@@ -14,7 +14,7 @@ use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
 use crate::frame_uniform::FrameUniform;
 use crate::gpu_timer::GpuTimer;
-use crate::nishita_pass::{HDR_FORMAT, NishitaPass, NishitaUniform};
+use crate::nishita_pass::{HDR_FORMAT, NishitaInputs, NishitaPass, NishitaUniform};
 use crate::readback::read_texture;
 use crate::tone_map::ToneMap;
 use crate::tone_map_pass::{LDR_FORMAT, ToneMapPass};
@@ -183,11 +183,13 @@ impl Renderer {
                 }
                 "nishita" => self.nishita.encode(
                     gpu,
-                    &self.atmosphere,
-                    &FrameUniform::new(frame),
-                    &nishita,
-                    g_l.pass.texture(),
-                    &targets.hdr,
+                    &NishitaInputs {
+                        atmosphere: &self.atmosphere,
+                        frame: &FrameUniform::new(frame),
+                        params: &nishita,
+                        table: g_l.pass.texture(),
+                        hdr: &targets.hdr,
+                    },
                     &mut encoder,
                     timer.map(|t| t.compute_writes(index)),
                 ),
