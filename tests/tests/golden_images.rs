@@ -1,0 +1,157 @@
+//! Golden images: small tone-mapped renders (160x90) compared with the PNGs committed in
+//! `tests/golden/`. Regenerate them after an intended change with
+//!
+//! ```sh
+//! ATMOS_UPDATE_GOLDEN=1 ./scripts/test.sh -p atmos-tests --test golden_images
+//! ```
+//!
+//! and look at the new images before committing them. A render matches when no channel
+//! of any pixel differs by more than `MAX_LEVELS` 8-bit levels and at most
+//! `MAX_DIFFERING_SHARE` of the pixels differ by more than one level: GPUs round f16
+//! stores, `exp` and the sRGB encoding differently, by a level here and there, while a
+//! wrong shader moves whole regions.
+//!
+//! Needs a GPU adapter (lavapipe will do), with the skip policy of the other GPU tests.
+
+use std::path::{Path, PathBuf};
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::model::ModelSettings;
+use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::{GpuError, RenderError, Renderer};
+
+/// Largest allowed difference of one channel, 8-bit levels.
+const MAX_LEVELS: i32 = 6;
+/// Largest share of pixels allowed to differ by more than one level.
+const MAX_DIFFERING_SHARE: f64 = 0.005;
+
+const WIDTH: u32 = 160;
+const HEIGHT: u32 = 90;
+
+fn golden_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("golden")
+        .join(format!("{name}.png"))
+}
+
+/// The golden scenes: name, camera and sun, field of view, atmosphere, exposure.
+fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
+    let view = |altitude_m, view_zenith_deg, sun_zenith_deg, sun_azimuth_deg| LocalView {
+        altitude_m,
+        view_zenith_deg,
+        view_azimuth_deg: 0.0,
+        sun_zenith_deg,
+        sun_azimuth_deg,
+    };
+    vec![
+        (
+            "nishita_ground_afternoon",
+            view(2.0, 80.0, 60.0, 20.0),
+            70.0,
+            "earth",
+            14.0,
+        ),
+        (
+            "nishita_sunset_hazy",
+            view(500.0, 87.0, 89.0, 10.0),
+            60.0,
+            "hazy",
+            11.0,
+        ),
+        (
+            "nishita_limb_100km",
+            view(100_000.0, 100.0, 70.0, 90.0),
+            60.0,
+            "earth",
+            13.0,
+        ),
+        (
+            "nishita_planet_1e8m",
+            view(1e8, 180.0, 60.0, 0.0),
+            9.0,
+            "earth",
+            13.0,
+        ),
+    ]
+}
+
+fn render(renderer: &mut Renderer, view: LocalView, fov: f64, preset: &str, ev: f64) -> Vec<u8> {
+    let atmosphere = Atmosphere::preset(preset).unwrap();
+    let frame = Frame {
+        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
+        orientation: view.orientation(),
+        vertical_fov_deg: fov,
+        sun_direction: view.sun_direction(),
+        atmosphere,
+        model: "nishita".into(),
+        settings: ModelSettings::default(),
+        exposure_ev100: ev,
+        width: WIDTH,
+        height: HEIGHT,
+    };
+    renderer.render(&frame).unwrap();
+    renderer
+        .read_ldr()
+        .unwrap()
+        .iter()
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect()
+}
+
+#[test]
+fn nishita_renders_match_the_golden_images() {
+    let mut renderer = match Renderer::headless() {
+        Ok(r) => r,
+        Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
+            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
+        {
+            println!("golden images: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
+            return;
+        }
+        Err(e) => panic!("{e}"),
+    };
+    let update = std::env::var("ATMOS_UPDATE_GOLDEN").as_deref() == Ok("1");
+    let mut failures = Vec::new();
+    for (name, view, fov, preset, ev) in scenes() {
+        let pixels = render(&mut renderer, view, fov, preset, ev);
+        let path = golden_path(name);
+        if update {
+            image::RgbImage::from_raw(WIDTH, HEIGHT, pixels)
+                .unwrap()
+                .save(&path)
+                .unwrap();
+            println!("wrote {}", path.display());
+            continue;
+        }
+        let golden = image::open(&path)
+            .unwrap_or_else(|e| {
+                panic!(
+                    "{}: {e} (regenerate: see this file's header)",
+                    path.display()
+                )
+            })
+            .to_rgb8();
+        assert_eq!(golden.dimensions(), (WIDTH, HEIGHT), "{name}");
+        let (mut worst, mut differing) = (0, 0usize);
+        for (got, want) in pixels.chunks_exact(3).zip(golden.as_raw().chunks_exact(3)) {
+            let d = (0..3)
+                .map(|c| (i32::from(got[c]) - i32::from(want[c])).abs())
+                .max()
+                .unwrap();
+            worst = worst.max(d);
+            differing += usize::from(d > 1);
+        }
+        let share = differing as f64 / f64::from(WIDTH * HEIGHT);
+        println!(
+            "{name}: worst {worst} levels, {:.2} % of pixels off by more than 1",
+            100.0 * share
+        );
+        if worst > MAX_LEVELS || share > MAX_DIFFERING_SHARE {
+            failures.push(format!(
+                "{name}: worst {worst} levels, {:.2} % differing",
+                100.0 * share
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
