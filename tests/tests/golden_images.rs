@@ -2,7 +2,7 @@
 //! `tests/golden/`. Regenerate them after an intended change with
 //!
 //! ```sh
-//! ATMOS_UPDATE_GOLDEN=1 ./scripts/test.sh -p atmos-tests --test golden_images
+//! ATMOS_UPDATE_GOLDEN=1 ./scripts/test.sh --test golden_images
 //! ```
 //!
 //! and look at the new images before committing them. A render matches when no channel
