@@ -99,19 +99,31 @@ impl Radii {
     }
 
     /// Inverse of [`Radii::u_mu`] at radius r: mu, clamped to [-1, 1] where the unit
-    /// coordinate lies outside the range the radius can reach.
+    /// coordinate lies outside the range the radius can reach. u_mu = 1/2 is the sky's
+    /// side; [`Radii::mu_from_x`] names the side.
     pub fn mu_from_u(&self, r: f64, u_mu: f64) -> f64 {
+        if u_mu < 0.5 {
+            self.mu_from_x(r, 2.0 * u_mu, true)
+        } else {
+            self.mu_from_x(r, 2.0 * u_mu - 1.0, false)
+        }
+    }
+
+    /// Inverse of [`Radii::x_mu`]: mu at unit coordinate x within the half of the mu
+    /// axis chosen by `ground`, clamped to [-1, 1] where x lies outside the range the
+    /// radius can reach (x = 1 on the ground's side is straight down).
+    pub fn mu_from_x(&self, r: f64, x: f64, ground: bool) -> f64 {
         let rho = self.rho(r);
         let h = self.horizon_length();
-        if u_mu < 0.5 {
-            let d = rho * (1.0 - 2.0 * u_mu);
+        if ground {
+            let d = rho * (1.0 - x);
             if d <= 0.0 {
                 return -1.0;
             }
             // Rg^2 = r^2 + d^2 + 2 r mu d.
             (-(rho * rho + d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
         } else {
-            let d = (rho + h) * (2.0 * u_mu - 1.0);
+            let d = (rho + h) * x;
             if d <= 0.0 {
                 return 1.0;
             }
@@ -222,8 +234,7 @@ pub fn texel_parameters(
     let half = size.half_mu();
     let ground = imu < half;
     let x = texel_unit(if ground { imu } else { imu - half }, half);
-    let u_mu = if ground { 0.5 * x } else { 0.5 + 0.5 * x };
-    let mut mu = radii.mu_from_u(r, u_mu);
+    let mut mu = radii.mu_from_x(r, x, ground);
     // Keep the texel on its side of the horizon (rounding at the horizon itself).
     let hits = ray_hits_ground(r, mu, radii.bottom_m);
     if ground && !hits {
