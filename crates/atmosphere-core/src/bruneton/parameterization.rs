@@ -56,45 +56,48 @@ impl Radii {
         (rho * rho + self.bottom_m * self.bottom_m).sqrt()
     }
 
-    /// u_mu of the paper (in [0, 1/2] for ground rays, [1/2, 1] otherwise) and whether
-    /// the ray meets the ground.
-    pub fn u_mu(&self, r: f64, mu: f64) -> (f64, bool) {
+    /// The range [d_min, d_max] of the distance to the ray's end (the ground, or the top
+    /// boundary) from radius r over one half of the mu axis: [r - Rg, rho] for rays that
+    /// meet the ground, [Rt - r, rho + H] for the others.
+    fn distance_range(&self, r: f64, ground: bool) -> (f64, f64) {
         let rho = self.rho(r);
-        let h = self.horizon_length();
-        if ray_hits_ground(r, mu, self.bottom_m) {
-            // r mu + sqrt(Delta) = -(distance to the ground).
-            let d = distance_to_entry(r, mu, self.bottom_m).unwrap_or(0.0);
-            let u = if rho > 0.0 {
-                0.5 - 0.5 * (d / rho).min(1.0)
-            } else {
-                0.5
-            };
-            (u, true)
+        if ground {
+            (r - self.bottom_m, rho)
         } else {
-            // -(r mu - sqrt(Delta + H^2)) = distance to the top boundary.
-            let d = distance_to_exit(r, mu, self.top_m);
-            (0.5 + 0.5 * (d / (rho + h)).min(1.0), false)
+            (self.top_m - r, rho + self.horizon_length())
         }
     }
 
-    /// The unit coordinate within the half of the mu axis chosen by `ground`: 2 u_mu for
-    /// ground rays, 2 u_mu - 1 for the others. A ray whose geometry disagrees with
+    /// u_mu (in [0, 1/2] for ground rays, [1/2, 1] otherwise) and whether the ray meets
+    /// the ground: u_mu = x_mu / 2 on the ground's side, (1 + x_mu) / 2 on the sky's.
+    pub fn u_mu(&self, r: f64, mu: f64) -> (f64, bool) {
+        let ground = ray_hits_ground(r, mu, self.bottom_m);
+        let x = self.x_mu(r, mu, ground);
+        (if ground { 0.5 * x } else { 0.5 + 0.5 * x }, ground)
+    }
+
+    /// The unit coordinate within the half of the mu axis chosen by `ground`: the
+    /// distance d to the ray's end mapped linearly from its range at r (Bruneton 2017's
+    /// refinement of the paper's d / rho and d / (rho + H), which spend a few texels on
+    /// distances no ray from r has: at the ground mu in [0.86, 1] fell within one
+    /// texel). x = 0 at the horizon and 1 straight down on the ground's side, 0 at the
+    /// zenith and 1 at the horizon on the sky's. A ray whose geometry disagrees with
     /// `ground` by rounding falls on the horizon's texel.
     pub fn x_mu(&self, r: f64, mu: f64, ground: bool) -> f64 {
-        let rho = self.rho(r);
+        let (d_min, d_max) = self.distance_range(r, ground);
+        if d_max <= d_min {
+            return if ground { 1.0 } else { 0.0 };
+        }
         if ground {
-            if rho <= 0.0 {
-                return 1.0;
-            }
             let d = if ray_hits_ground(r, mu, self.bottom_m) {
                 distance_to_entry(r, mu, self.bottom_m).unwrap_or(0.0)
             } else {
-                rho
+                d_max
             };
-            (1.0 - d / rho).clamp(0.0, 1.0)
+            ((d_max - d) / (d_max - d_min)).clamp(0.0, 1.0)
         } else {
             let d = distance_to_exit(r, mu, self.top_m);
-            (d / (rho + self.horizon_length())).clamp(0.0, 1.0)
+            ((d - d_min) / (d_max - d_min)).clamp(0.0, 1.0)
         }
     }
 
@@ -115,15 +118,16 @@ impl Radii {
     pub fn mu_from_x(&self, r: f64, x: f64, ground: bool) -> f64 {
         let rho = self.rho(r);
         let h = self.horizon_length();
+        let (d_min, d_max) = self.distance_range(r, ground);
         if ground {
-            let d = rho * (1.0 - x);
+            let d = d_max - x * (d_max - d_min);
             if d <= 0.0 {
                 return -1.0;
             }
             // Rg^2 = r^2 + d^2 + 2 r mu d.
             (-(rho * rho + d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
         } else {
-            let d = (rho + h) * x;
+            let d = d_min + x * (d_max - d_min);
             if d <= 0.0 {
                 return 1.0;
             }
