@@ -48,15 +48,12 @@ fn parameterization_round_trips() {
         assert!((m.r_from_u(m.u_r(r)) - r).abs() < 1e-6 * r, "r {r}");
         let horizon = horizon_mu(r, a.bottom_radius_m);
         for &mu in &[-1.0, -0.5, horizon - 1e-3, horizon + 1e-3, 0.0, 0.3, 1.0] {
-            let (u, ground) = m.u_mu(r, mu);
-            assert_eq!(ground, ray_hits_ground(r, mu, a.bottom_radius_m));
-            assert!(
-                if ground { u <= 0.5 } else { u >= 0.5 },
-                "r {r} mu {mu}: u {u}"
-            );
+            let ground = ray_hits_ground(r, mu, a.bottom_radius_m);
+            let x = m.x_mu(r, mu, ground);
+            assert!((0.0..=1.0).contains(&x), "r {r} mu {mu}: x {x}");
             // At the ground and, for rays leaving, at the top the mapping is degenerate.
             if h > 0.0 && !(r >= a.top_radius_m && mu >= 0.0) {
-                let back = m.mu_from_u(r, u);
+                let back = m.mu_from_x(r, x, ground);
                 assert!((back - mu).abs() < 1e-6, "r {r} mu {mu}: {back}");
             }
         }

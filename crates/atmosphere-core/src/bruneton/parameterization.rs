@@ -5,7 +5,10 @@
 //!   (2 rho) for rays that meet the ground (r mu < 0, Delta > 0), else
 //!   1/2 - (r mu - sqrt(Delta + H^2)) / (2 rho + 2 H); u_mu_s = (1 - exp(-3 mu_s - 0.6)) /
 //!   (1 - exp(-3.6)); u_nu = (1 + nu) / 2, with H = sqrt(Rt^2 - Rg^2),
-//!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2;
+//!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2. u_mu is refined as in
+//!   Bruneton 2017: the distance d to the ray's end is mapped from its range at r
+//!   ([r - Rg, rho] to the ground, [Rt - r, rho + H] to the top) rather than from
+//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]);
 //! - irradiance E(r, mu_s): linear in r over [Rg, Rt] and in mu_s over [-0.2, 1] (the
 //!   paper's implementation).
 //!
@@ -68,14 +71,6 @@ impl Radii {
         }
     }
 
-    /// u_mu (in [0, 1/2] for ground rays, [1/2, 1] otherwise) and whether the ray meets
-    /// the ground: u_mu = x_mu / 2 on the ground's side, (1 + x_mu) / 2 on the sky's.
-    pub fn u_mu(&self, r: f64, mu: f64) -> (f64, bool) {
-        let ground = ray_hits_ground(r, mu, self.bottom_m);
-        let x = self.x_mu(r, mu, ground);
-        (if ground { 0.5 * x } else { 0.5 + 0.5 * x }, ground)
-    }
-
     /// The unit coordinate within the half of the mu axis chosen by `ground`: the
     /// distance d to the ray's end mapped linearly from its range at r (Bruneton 2017's
     /// refinement of the paper's d / rho and d / (rho + H), which spend a few texels on
@@ -98,17 +93,6 @@ impl Radii {
         } else {
             let d = distance_to_exit(r, mu, self.top_m);
             ((d - d_min) / (d_max - d_min)).clamp(0.0, 1.0)
-        }
-    }
-
-    /// Inverse of [`Radii::u_mu`] at radius r: mu, clamped to [-1, 1] where the unit
-    /// coordinate lies outside the range the radius can reach. u_mu = 1/2 is the sky's
-    /// side; [`Radii::mu_from_x`] names the side.
-    pub fn mu_from_u(&self, r: f64, u_mu: f64) -> f64 {
-        if u_mu < 0.5 {
-            self.mu_from_x(r, 2.0 * u_mu, true)
-        } else {
-            self.mu_from_x(r, 2.0 * u_mu - 1.0, false)
         }
     }
 
