@@ -153,13 +153,19 @@ pub fn axis(x: f64, n: usize) -> (usize, f64) {
     if n < 2 {
         return (0, 0.0);
     }
-    let mut f = (x.clamp(0.0, 1.0) * (n - 1) as f64).max(0.0);
-    // Texel centres hit by rounding count as exact (one texel, weight 0).
-    if (f - f.round()).abs() < 1e-9 {
-        f = f.round();
-    }
+    let f = (x.clamp(0.0, 1.0) * (n - 1) as f64).max(0.0);
     let i = (f as usize).min(n - 2);
-    (i, (f - i as f64).clamp(0.0, 1.0))
+    let w = (f - i as f64).clamp(0.0, 1.0);
+    // Texel centres hit by rounding count as exact (one texel, weight 0).
+    if w < 1e-9 {
+        (i, 0.0)
+    } else if w > 1.0 - 1e-9 && i + 2 < n {
+        (i + 1, 0.0)
+    } else if w > 1.0 - 1e-9 {
+        (i, 1.0)
+    } else {
+        (i, w)
+    }
 }
 
 /// Unit coordinate of texel `k` of `n`.
