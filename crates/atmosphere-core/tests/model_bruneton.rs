@@ -153,8 +153,8 @@ fn single_scattering_matches_the_reference() {
     .unwrap();
     let (rms, worst) = relative_rms(single_model(), reference.as_ref(), &daytime_rays(&a));
     eprintln!("single scattering: relative RMS {rms:.4}, worst {worst:.4}");
-    // Measured: RMS 0.0022, worst 0.0048 (object at 20 km).
-    assert!(rms < 0.005 && worst < 0.01, "rms {rms}, worst {worst}");
+    // Measured: RMS 0.0043, worst 0.0080 (ground, 45 degrees).
+    assert!(rms < 0.008 && worst < 0.015, "rms {rms}, worst {worst}");
 }
 
 #[test]
@@ -164,16 +164,16 @@ fn all_orders_match_the_reference() {
         "reference",
         &a,
         &ModelSettings {
-            target_relative_error: 0.01,
+            target_relative_error: 0.003,
             ..ModelSettings::default()
         },
     )
     .unwrap();
     let (rms, worst) = relative_rms(full_model(), reference.as_ref(), &daytime_rays(&a));
     eprintln!("all orders: relative RMS {rms:.4}, worst {worst:.4}");
-    // Measured: RMS 0.0049, worst 0.0094 (object at 20 km); the reference's own error is
-    // 1 % here (docs/models/bruneton.md).
-    assert!(rms < 0.015 && worst < 0.025, "rms {rms}, worst {worst}");
+    // Measured: RMS 0.0067, worst 0.0129 (object at 20 km); the reference's Monte Carlo
+    // error is 0.3 % (at 1 % its noise alone reached 2 % on one ray).
+    assert!(rms < 0.012 && worst < 0.02, "rms {rms}, worst {worst}");
 }
 
 #[test]
@@ -336,4 +336,53 @@ fn pruning_mie_at_zero_aerosol_changes_no_answer() {
     let rebuilt = model.update(&earth()).unwrap();
     assert!(rebuilt.contains(&"single scattering"), "{rebuilt:?}");
     assert!(!model.mie_pruned() && model.tables()[0].single_mie.is_some());
+}
+
+/// Each order's part against the reference's, per ray (docs/models/bruneton.md, "The cause
+/// of the multiple-scattering bias"). Slow: run with
+/// `cargo test -p atmosphere-core --test model_bruneton -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn orders_against_the_reference() {
+    let a = earth();
+    let rays = daytime_rays(&a);
+    let color = SpectrumToColor::new(&ModelSettings::default().wavelengths_nm).unwrap();
+    let luminances = |model: &dyn SkyModel| -> Vec<f64> {
+        radiances(model, &rays)
+            .iter()
+            .map(|l| color.luminance_cd_m2(l))
+            .collect()
+    };
+    let settings = |max_orders| ModelSettings {
+        max_orders,
+        target_relative_error: 0.003,
+        ..ModelSettings::default()
+    };
+    let reference = |orders| {
+        luminances(
+            prepare("reference", &a, &settings(orders))
+                .unwrap()
+                .as_ref(),
+        )
+    };
+    let model = |orders| luminances(&Bruneton::prepare(&a, &settings(orders)).unwrap());
+    let (r1, r2, ra) = (reference(Some(1)), reference(Some(2)), reference(None));
+    let (b1, b2, ba) = (model(Some(1)), model(Some(2)), model(None));
+    let mut squares = [0.0; 2];
+    eprintln!("| ray | single | order 2 part | orders 3+ part | all orders |");
+    for i in 0..rays.len() {
+        let single = b1[i] / r1[i] - 1.0;
+        let second = ((b2[i] - b1[i]) - (r2[i] - r1[i])) / r2[i];
+        let higher = ((ba[i] - b2[i]) - (ra[i] - r2[i])) / ra[i];
+        let all = ba[i] / ra[i] - 1.0;
+        squares[0] += single * single;
+        squares[1] += all * all;
+        eprintln!("| {i} | {single:+.4} | {second:+.4} | {higher:+.4} | {all:+.4} |");
+    }
+    let n = rays.len() as f64;
+    eprintln!(
+        "RMS: single {:.4}, all orders {:.4}",
+        (squares[0] / n).sqrt(),
+        (squares[1] / n).sqrt()
+    );
 }

@@ -129,12 +129,53 @@ enum PreviousIrradiance<'a> {
 /// One trapezoid node of a texel row's ray (see `Builder::ray_nodes`).
 #[derive(Clone, Copy, Debug)]
 struct RayNode {
-    t: f64,
     r: f64,
+    /// r / r_t and t / r_t, with r the ray's start and t the node's distance: the sun
+    /// cosine there is mu_s r / r_t + nu t / r_t.
+    start_ratio: f64,
+    distance_ratio: f64,
     densities: [f64; 3],
     weighted_transmittance: [f64; 3],
     r_axis: (usize, f64),
     mu_axis: (usize, f64),
+}
+
+impl RayNode {
+    /// The sun's zenith cosine at the node for a sun at mu_s seen at nu from the start.
+    fn sun_cosine(&self, mu_s: f64, nu: f64) -> f64 {
+        (mu_s * self.start_ratio + nu * self.distance_ratio).clamp(-1.0, 1.0)
+    }
+}
+
+/// [`axis`] of [`u_mu_s`] tabulated over mu_s in [-1, 1] (4097 points, linearly
+/// interpolated: within 1e-5 of a texel of the exact position where mu_s >= -0.2, the
+/// table's range), to spare an exponential per node and texel of Delta S.
+struct MuSAxis {
+    size: usize,
+    positions: Vec<f64>,
+}
+
+impl MuSAxis {
+    const POINTS: usize = 4097;
+
+    fn new(size: usize) -> MuSAxis {
+        let step = 2.0 / (Self::POINTS - 1) as f64;
+        MuSAxis {
+            size,
+            positions: (0..Self::POINTS)
+                .map(|i| u_mu_s(-1.0 + step * i as f64) * (size - 1) as f64)
+                .collect(),
+        }
+    }
+
+    /// The lower texel and the weight of the next at mu_s.
+    fn at(&self, mu_s: f64) -> (usize, f64) {
+        let f = (mu_s + 1.0) * 0.5 * (Self::POINTS - 1) as f64;
+        let i = (f as usize).min(Self::POINTS - 2);
+        let w = f - i as f64;
+        let x = self.positions[i] + w * (self.positions[i + 1] - self.positions[i]);
+        axis(x / (self.size - 1) as f64, self.size)
+    }
 }
 
 /// The values of one texel row (ir, imu): two tables, over (nu, mu_s).
@@ -274,8 +315,9 @@ impl Builder<'_> {
             let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
             let p = table_position(&self.radii, &size, r_t, mu_t, 0.0, 0.0, ground);
             nodes.push(RayNode {
-                t,
                 r: r_t,
+                start_ratio: r / r_t,
+                distance_ratio: t / r_t,
                 densities: rho,
                 weighted_transmittance: [0, 1, 2].map(|k| w * transmittance[k]),
                 r_axis: p[0],
@@ -285,13 +327,13 @@ impl Builder<'_> {
         nodes
     }
 
-    /// Applies `f(nodes, r, texels, out)` to every row of the scattering table, the
+    /// Applies `f(nodes, texels, out)` to every row of the scattering table, the
     /// texels of equal (r, mu), in parallel: `texels` holds the (mu_s, nu) of the row's
     /// texels (nu slice by nu slice, mu_s fastest), and `f` pushes one pair of values per
     /// texel to `out`. Returns the first values' table, and the second's if `second`.
     fn map_rays<F>(&self, second: bool, f: F) -> (Table4, Option<Table4>)
     where
-        F: Fn(&[RayNode], f64, &[(f64, f64)], &mut Vec<[[f64; 3]; 2]>) + Sync,
+        F: Fn(&[RayNode], &[(f64, f64)], &mut Vec<[[f64; 3]; 2]>) + Sync,
     {
         let size = self.settings.scattering_size;
         let rows: Vec<RowValues> = (0..size.r * size.mu)
@@ -309,7 +351,7 @@ impl Builder<'_> {
                     })
                     .collect();
                 let mut values = Vec::with_capacity(texels.len());
-                f(&nodes, r, &texels, &mut values);
+                f(&nodes, &texels, &mut values);
                 let out = values
                     .iter()
                     .map(|v| [to_f32(v[0]), to_f32(v[1])])
@@ -339,7 +381,7 @@ impl Builder<'_> {
     /// functions, per unit solar irradiance (paper Eq. 5 with a point sun).
     pub fn single_scattering(&self) -> (Table4, Option<Table4>) {
         let ch = self.channels;
-        self.map_rays(self.delta_m.is_some(), |nodes, r, texels, out| {
+        self.map_rays(self.delta_m.is_some(), |nodes, texels, out| {
             for &(mu_s, nu) in texels {
                 let mut sums = [[0.0; 3]; 2];
                 for node in nodes {
@@ -347,7 +389,7 @@ impl Builder<'_> {
                     if rho[0] == 0.0 && rho[1] == 0.0 {
                         continue;
                     }
-                    let mu_s_t = ((r * mu_s + node.t * nu) / node.r).clamp(-1.0, 1.0);
+                    let mu_s_t = node.sun_cosine(mu_s, nu);
                     let sun = self.sun_transmittance(node.r, mu_s_t);
                     for k in 0..3 {
                         let c = node.weighted_transmittance[k] * sun[k];
@@ -579,7 +621,8 @@ impl Builder<'_> {
     fn scattering_of(&self, density: &Table4) -> Table4 {
         let size = self.settings.scattering_size;
         let per_node = size.nu * size.mu_s;
-        self.map_rays(false, |nodes, r, texels, out| {
+        let mu_s_axis = MuSAxis::new(size.mu_s);
+        self.map_rays(false, |nodes, texels, out| {
             // Delta J at each node over (nu, mu_s), f32.
             let mut planes = Vec::with_capacity(nodes.len() * per_node);
             for node in nodes {
@@ -607,8 +650,7 @@ impl Builder<'_> {
                 let (inu, wnu) = axis(u_nu(nu), size.nu);
                 let mut sum = [0.0; 3];
                 for (node, plane) in nodes.iter().zip(planes.chunks_exact(per_node)) {
-                    let mu_s_t = ((r * mu_s + node.t * nu) / node.r).clamp(-1.0, 1.0);
-                    let (imus, wmus) = axis(u_mu_s(mu_s_t), size.mu_s);
+                    let (imus, wmus) = mu_s_axis.at(node.sun_cosine(mu_s, nu));
                     let at = |i: usize, j: usize| plane[i * size.mu_s + j];
                     let (a, b) = (at(inu, imus), at(inu, imus + 1));
                     let (c, d) = (at(inu + 1, imus), at(inu + 1, imus + 1));
