@@ -11,7 +11,9 @@
 //! Single Mie scattering is stored separately (the paper's C_M with all three channels,
 //! not its proportionality approximation), so that the Mie phase function is applied
 //! exactly per ray; single Rayleigh is stored without its phase function, and orders two
-//! and up as radiance. The sun disk itself is excluded. See docs/models/bruneton.md.
+//! and up as radiance. The sun disk itself is excluded. Tables hold radiance per unit
+//! solar irradiance, so that `update` rebuilds nothing for a new solar spectrum. See
+//! docs/models/bruneton.md.
 
 pub mod parameterization;
 pub mod precompute;
