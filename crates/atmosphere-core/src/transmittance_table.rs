@@ -157,6 +157,12 @@ impl TransmittanceTable {
     /// Bilinearly interpolated columns from (r, mu) to the top boundary; the ray must not
     /// meet the ground.
     pub fn column(&self, r: f64, mu: f64) -> [f64; 3] {
+        self.interpolate(&self.columns, r, mu)
+    }
+
+    /// Bilinear interpolation at (r, mu) of `values`, one per texel of this table (the
+    /// columns, or a quantity derived from them such as transmittances).
+    pub fn interpolate(&self, values: &[[f64; 3]], r: f64, mu: f64) -> [f64; 3] {
         let (x_mu, x_r) = self.mapping.unit_from_r_mu(r, mu);
         let fx = (coord_from_unit(x_mu, self.width) * self.width as f64 - 0.5)
             .clamp(0.0, (self.width - 1) as f64);
@@ -165,7 +171,7 @@ impl TransmittanceTable {
         let i0 = (fx as usize).min(self.width.saturating_sub(2));
         let j0 = (fy as usize).min(self.height.saturating_sub(2));
         let (ax, ay) = (fx - i0 as f64, fy - j0 as f64);
-        let at = |i: usize, j: usize| self.columns[j * self.width + i];
+        let at = |i: usize, j: usize| values[j * self.width + i];
         let (c00, c10, c01, c11) = (
             at(i0, j0),
             at(i0 + 1, j0),

@@ -5,7 +5,10 @@
 //!   (2 rho) for rays that meet the ground (r mu < 0, Delta > 0), else
 //!   1/2 - (r mu - sqrt(Delta + H^2)) / (2 rho + 2 H); u_mu_s = (1 - exp(-3 mu_s - 0.6)) /
 //!   (1 - exp(-3.6)); u_nu = (1 + nu) / 2, with H = sqrt(Rt^2 - Rg^2),
-//!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2;
+//!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2. u_mu is refined as in
+//!   Bruneton 2017: the distance d to the ray's end is mapped from its range at r
+//!   ([r - Rg, rho] to the ground, [Rt - r, rho + H] to the top) rather than from
+//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]);
 //! - irradiance E(r, mu_s): linear in r over [Rg, Rt] and in mu_s over [-0.2, 1] (the
 //!   paper's implementation).
 //!
@@ -56,62 +59,59 @@ impl Radii {
         (rho * rho + self.bottom_m * self.bottom_m).sqrt()
     }
 
-    /// u_mu of the paper (in [0, 1/2] for ground rays, [1/2, 1] otherwise) and whether
-    /// the ray meets the ground.
-    pub fn u_mu(&self, r: f64, mu: f64) -> (f64, bool) {
+    /// The range [d_min, d_max] of the distance to the ray's end (the ground, or the top
+    /// boundary) from radius r over one half of the mu axis: [r - Rg, rho] for rays that
+    /// meet the ground, [Rt - r, rho + H] for the others.
+    fn distance_range(&self, r: f64, ground: bool) -> (f64, f64) {
         let rho = self.rho(r);
-        let h = self.horizon_length();
-        if ray_hits_ground(r, mu, self.bottom_m) {
-            // r mu + sqrt(Delta) = -(distance to the ground).
-            let d = distance_to_entry(r, mu, self.bottom_m).unwrap_or(0.0);
-            let u = if rho > 0.0 {
-                0.5 - 0.5 * (d / rho).min(1.0)
-            } else {
-                0.5
-            };
-            (u, true)
+        if ground {
+            (r - self.bottom_m, rho)
         } else {
-            // -(r mu - sqrt(Delta + H^2)) = distance to the top boundary.
-            let d = distance_to_exit(r, mu, self.top_m);
-            (0.5 + 0.5 * (d / (rho + h)).min(1.0), false)
+            (self.top_m - r, rho + self.horizon_length())
         }
     }
 
-    /// The unit coordinate within the half of the mu axis chosen by `ground`: 2 u_mu for
-    /// ground rays, 2 u_mu - 1 for the others. A ray whose geometry disagrees with
+    /// The unit coordinate within the half of the mu axis chosen by `ground`: the
+    /// distance d to the ray's end mapped linearly from its range at r (Bruneton 2017's
+    /// refinement of the paper's d / rho and d / (rho + H), which spend a few texels on
+    /// distances no ray from r has: at the ground mu in [0.86, 1] fell within one
+    /// texel). x = 0 at the horizon and 1 straight down on the ground's side, 0 at the
+    /// zenith and 1 at the horizon on the sky's. A ray whose geometry disagrees with
     /// `ground` by rounding falls on the horizon's texel.
     pub fn x_mu(&self, r: f64, mu: f64, ground: bool) -> f64 {
-        let rho = self.rho(r);
+        let (d_min, d_max) = self.distance_range(r, ground);
+        if d_max <= d_min {
+            return if ground { 1.0 } else { 0.0 };
+        }
         if ground {
-            if rho <= 0.0 {
-                return 1.0;
-            }
             let d = if ray_hits_ground(r, mu, self.bottom_m) {
                 distance_to_entry(r, mu, self.bottom_m).unwrap_or(0.0)
             } else {
-                rho
+                d_max
             };
-            (1.0 - d / rho).clamp(0.0, 1.0)
+            ((d_max - d) / (d_max - d_min)).clamp(0.0, 1.0)
         } else {
             let d = distance_to_exit(r, mu, self.top_m);
-            (d / (rho + self.horizon_length())).clamp(0.0, 1.0)
+            ((d - d_min) / (d_max - d_min)).clamp(0.0, 1.0)
         }
     }
 
-    /// Inverse of [`Radii::u_mu`] at radius r: mu, clamped to [-1, 1] where the unit
-    /// coordinate lies outside the range the radius can reach.
-    pub fn mu_from_u(&self, r: f64, u_mu: f64) -> f64 {
+    /// Inverse of [`Radii::x_mu`]: mu at unit coordinate x within the half of the mu
+    /// axis chosen by `ground`, clamped to [-1, 1] where x lies outside the range the
+    /// radius can reach (x = 1 on the ground's side is straight down).
+    pub fn mu_from_x(&self, r: f64, x: f64, ground: bool) -> f64 {
         let rho = self.rho(r);
         let h = self.horizon_length();
-        if u_mu < 0.5 {
-            let d = rho * (1.0 - 2.0 * u_mu);
+        let (d_min, d_max) = self.distance_range(r, ground);
+        if ground {
+            let d = d_max - x * (d_max - d_min);
             if d <= 0.0 {
                 return -1.0;
             }
             // Rg^2 = r^2 + d^2 + 2 r mu d.
             (-(rho * rho + d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
         } else {
-            let d = (rho + h) * (2.0 * u_mu - 1.0);
+            let d = d_min + x * (d_max - d_min);
             if d <= 0.0 {
                 return 1.0;
             }
@@ -153,13 +153,19 @@ pub fn axis(x: f64, n: usize) -> (usize, f64) {
     if n < 2 {
         return (0, 0.0);
     }
-    let mut f = (x.clamp(0.0, 1.0) * (n - 1) as f64).max(0.0);
-    // Texel centres hit by rounding count as exact (one texel, weight 0).
-    if (f - f.round()).abs() < 1e-9 {
-        f = f.round();
-    }
+    let f = (x.clamp(0.0, 1.0) * (n - 1) as f64).max(0.0);
     let i = (f as usize).min(n - 2);
-    (i, (f - i as f64).clamp(0.0, 1.0))
+    let w = (f - i as f64).clamp(0.0, 1.0);
+    // Texel centres hit by rounding count as exact (one texel, weight 0).
+    if w < 1e-9 {
+        (i, 0.0)
+    } else if w > 1.0 - 1e-9 && i + 2 < n {
+        (i + 1, 0.0)
+    } else if w > 1.0 - 1e-9 {
+        (i, 1.0)
+    } else {
+        (i, w)
+    }
 }
 
 /// Unit coordinate of texel `k` of `n`.
@@ -222,8 +228,7 @@ pub fn texel_parameters(
     let half = size.half_mu();
     let ground = imu < half;
     let x = texel_unit(if ground { imu } else { imu - half }, half);
-    let u_mu = if ground { 0.5 * x } else { 0.5 + 0.5 * x };
-    let mut mu = radii.mu_from_u(r, u_mu);
+    let mut mu = radii.mu_from_x(r, x, ground);
     // Keep the texel on its side of the horizon (rounding at the horizon itself).
     let hits = ray_hits_ground(r, mu, radii.bottom_m);
     if ground && !hits {

@@ -32,14 +32,15 @@ use crate::phase::{PhaseFunction, rayleigh};
 use crate::quadrature::{GAUSS_LEGENDRE_8, mapped};
 use crate::transmittance_table::TransmittanceTable;
 
-/// The coefficients of three wavelengths (one table channel each).
+/// The coefficients of three wavelengths (one table channel each). The tables hold
+/// radiance and irradiance per unit solar irradiance (W m^-2 nm^-1 at the top of the
+/// atmosphere), so the solar spectrum is not among them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Channels {
     /// Extinction per species (Rayleigh, Mie, ozone) at density 1, m^-1.
     pub extinction: [[f64; 3]; 3],
     pub rayleigh_scattering: [f64; 3],
     pub mie_scattering: [f64; 3],
-    pub solar_irradiance: [f64; 3],
 }
 
 impl Channels {
@@ -49,8 +50,16 @@ impl Channels {
             extinction: c.map(|c| c.extinction_per_species()),
             rayleigh_scattering: c.map(|c| c.rayleigh_scattering_per_m),
             mie_scattering: c.map(|c| c.mie_scattering_per_m),
-            solar_irradiance: c.map(|c| c.solar_irradiance_w_m2_nm),
         }
+    }
+
+    /// [`Channels::transmittance`] of every texel of a column table.
+    pub fn transmittances(&self, table: &TransmittanceTable) -> Vec<[f64; 3]> {
+        table
+            .columns
+            .iter()
+            .map(|c| self.transmittance(*c))
+            .collect()
     }
 
     /// exp(-optical depth) of a column at each channel.
@@ -99,10 +108,11 @@ impl DeltaM {
 /// The radiance field of the previous order, as the tables hold it.
 #[derive(Clone, Copy)]
 enum Previous<'a> {
-    /// Single scattering: Rayleigh and Mie without phase functions.
+    /// Single scattering: Rayleigh and Mie without phase functions (no Mie table when
+    /// pruned).
     Single {
         rayleigh: &'a Table4,
-        mie: &'a Table4,
+        mie: Option<&'a Table4>,
     },
     /// An order of two or more: full radiance.
     Multiple(&'a Table4),
@@ -119,12 +129,53 @@ enum PreviousIrradiance<'a> {
 /// One trapezoid node of a texel row's ray (see `Builder::ray_nodes`).
 #[derive(Clone, Copy, Debug)]
 struct RayNode {
-    t: f64,
     r: f64,
+    /// r / r_t and t / r_t, with r the ray's start and t the node's distance: the sun
+    /// cosine there is mu_s r / r_t + nu t / r_t.
+    start_ratio: f64,
+    distance_ratio: f64,
     densities: [f64; 3],
     weighted_transmittance: [f64; 3],
     r_axis: (usize, f64),
     mu_axis: (usize, f64),
+}
+
+impl RayNode {
+    /// The sun's zenith cosine at the node for a sun at mu_s seen at nu from the start.
+    fn sun_cosine(&self, mu_s: f64, nu: f64) -> f64 {
+        (mu_s * self.start_ratio + nu * self.distance_ratio).clamp(-1.0, 1.0)
+    }
+}
+
+/// [`axis`] of [`u_mu_s`] tabulated over mu_s in [-1, 1] (4097 points, linearly
+/// interpolated: within 1e-5 of a texel of the exact position where mu_s >= -0.2, the
+/// table's range), to spare an exponential per node and texel of Delta S.
+struct MuSAxis {
+    size: usize,
+    positions: Vec<f64>,
+}
+
+impl MuSAxis {
+    const POINTS: usize = 4097;
+
+    fn new(size: usize) -> MuSAxis {
+        let step = 2.0 / (Self::POINTS - 1) as f64;
+        MuSAxis {
+            size,
+            positions: (0..Self::POINTS)
+                .map(|i| u_mu_s(-1.0 + step * i as f64) * (size - 1) as f64)
+                .collect(),
+        }
+    }
+
+    /// The lower texel and the weight of the next at mu_s.
+    fn at(&self, mu_s: f64) -> (usize, f64) {
+        let f = (mu_s + 1.0) * 0.5 * (Self::POINTS - 1) as f64;
+        let i = (f as usize).min(Self::POINTS - 2);
+        let w = f - i as f64;
+        let x = self.positions[i] + w * (self.positions[i + 1] - self.positions[i]);
+        axis(x / (self.size - 1) as f64, self.size)
+    }
 }
 
 /// The values of one texel row (ir, imu): two tables, over (nu, mu_s).
@@ -149,8 +200,9 @@ pub struct Tables {
     /// Single Rayleigh scattering without its phase function (C* of the paper minus the
     /// multiple part).
     pub single_rayleigh: Table4,
-    /// Single Mie scattering without its phase function (C_M of the paper).
-    pub single_mie: Table4,
+    /// Single Mie scattering without its phase function (C_M of the paper); `None` when
+    /// pruned (no aerosol).
+    pub single_mie: Option<Table4>,
     /// All orders from two up, full radiance.
     pub multiple: Table4,
     /// Ground irradiance from the sky, orders one up to the last but one (direct
@@ -168,7 +220,11 @@ pub struct Builder<'a> {
     pub transmittance: &'a TransmittanceTable,
     pub densities: &'a DensityTable,
     pub channels: Channels,
-    pub delta_m: DeltaM,
+    /// The channels' transmittance at each texel of `transmittance`: interpolated
+    /// directly, it spares three exponentials per look-up.
+    pub sun_transmittances: Vec<[f64; 3]>,
+    /// The Mie phase function's delta-M form; `None` prunes all Mie work (no aerosol).
+    pub delta_m: Option<DeltaM>,
     pub max_orders: u32,
 }
 
@@ -182,15 +238,15 @@ impl Builder<'_> {
         if ray_hits_ground(r, mu_s, self.radii.bottom_m) {
             return [0.0; 3];
         }
-        self.channels
-            .transmittance(self.transmittance.column(r, mu_s))
+        self.transmittance
+            .interpolate(&self.sun_transmittances, r, mu_s)
     }
 
-    /// Direct sunlight on a horizontal surface at (r, mu_s).
+    /// Direct sunlight on a horizontal surface at (r, mu_s), per unit solar irradiance.
     fn direct_irradiance(&self, r: f64, mu_s: f64) -> [f64; 3] {
         let t = self.sun_transmittance(r, mu_s);
         let c = mu_s.max(0.0);
-        [0, 1, 2].map(|k| self.channels.solar_irradiance[k] * t[k] * c)
+        t.map(|t| t * c)
     }
 
     /// Transmittance of the segment of length d from (r, mu), from the column table.
@@ -259,8 +315,9 @@ impl Builder<'_> {
             let mu_t = ((r * mu + t) / r_t).clamp(-1.0, 1.0);
             let p = table_position(&self.radii, &size, r_t, mu_t, 0.0, 0.0, ground);
             nodes.push(RayNode {
-                t,
                 r: r_t,
+                start_ratio: r / r_t,
+                distance_ratio: t / r_t,
                 densities: rho,
                 weighted_transmittance: [0, 1, 2].map(|k| w * transmittance[k]),
                 r_axis: p[0],
@@ -270,11 +327,13 @@ impl Builder<'_> {
         nodes
     }
 
-    /// Applies `f(nodes, r, mu, mu_s, nu)` to every texel of the scattering table, rows of
-    /// equal (r, mu) in parallel, and returns two tables.
-    fn map_rays<F>(&self, f: F) -> (Table4, Table4)
+    /// Applies `f(nodes, texels, out)` to every row of the scattering table, the
+    /// texels of equal (r, mu), in parallel: `texels` holds the (mu_s, nu) of the row's
+    /// texels (nu slice by nu slice, mu_s fastest), and `f` pushes one pair of values per
+    /// texel to `out`. Returns the first values' table, and the second's if `second`.
+    fn map_rays<F>(&self, second: bool, f: F) -> (Table4, Option<Table4>)
     where
-        F: Fn(&[RayNode], f64, f64, f64, f64) -> [[f64; 3]; 2] + Sync,
+        F: Fn(&[RayNode], &[(f64, f64)], &mut Vec<[[f64; 3]; 2]>) + Sync,
     {
         let size = self.settings.scattering_size;
         let rows: Vec<RowValues> = (0..size.r * size.mu)
@@ -283,20 +342,25 @@ impl Builder<'_> {
                 let (ir, imu) = (row % size.r, row / size.r);
                 let (r, mu, _, _, ground) = texel_parameters(&self.radii, &size, ir, imu, 0, 0);
                 let nodes = self.ray_nodes(r, mu, ground);
-                let mut out = Vec::with_capacity(size.mu_s * size.nu);
-                for inu in 0..size.nu {
-                    for imus in 0..size.mu_s {
+                let texels: Vec<(f64, f64)> = (0..size.nu * size.mu_s)
+                    .map(|i| {
+                        let (inu, imus) = (i / size.mu_s, i % size.mu_s);
                         let (_, _, mu_s, nu, _) =
                             texel_parameters(&self.radii, &size, ir, imu, imus, inu);
-                        let v = f(&nodes, r, mu, mu_s, nu);
-                        out.push([to_f32(v[0]), to_f32(v[1])]);
-                    }
-                }
+                        (mu_s, nu)
+                    })
+                    .collect();
+                let mut values = Vec::with_capacity(texels.len());
+                f(&nodes, &texels, &mut values);
+                let out = values
+                    .iter()
+                    .map(|v| [to_f32(v[0]), to_f32(v[1])])
+                    .collect();
                 (ir, imu, out)
             })
             .collect();
         let mut a = Table4::zeros(size);
-        let mut b = Table4::zeros(size);
+        let mut b = second.then(|| Table4::zeros(size));
         for (ir, imu, values) in rows {
             let mut it = values.into_iter();
             for inu in 0..size.nu {
@@ -304,35 +368,40 @@ impl Builder<'_> {
                     let v = it.next().unwrap_or([[0.0; 3]; 2]);
                     let index = size.index(ir, imu, imus, inu);
                     a.data[index] = v[0];
-                    b.data[index] = v[1];
+                    if let Some(b) = &mut b {
+                        b.data[index] = v[1];
+                    }
                 }
             }
         }
         (a, b)
     }
 
-    /// The single-scattering tables (Rayleigh, Mie), without phase functions.
-    fn single_scattering(&self) -> (Table4, Table4) {
+    /// The single-scattering tables (Rayleigh, Mie unless pruned), without phase
+    /// functions, per unit solar irradiance (paper Eq. 5 with a point sun).
+    pub fn single_scattering(&self) -> (Table4, Option<Table4>) {
         let ch = self.channels;
-        self.map_rays(|nodes, r, _mu, mu_s, nu| {
-            let mut sums = [[0.0; 3]; 2];
-            for node in nodes {
-                let rho = node.densities;
-                if rho[0] == 0.0 && rho[1] == 0.0 {
-                    continue;
+        self.map_rays(self.delta_m.is_some(), |nodes, texels, out| {
+            for &(mu_s, nu) in texels {
+                let mut sums = [[0.0; 3]; 2];
+                for node in nodes {
+                    let rho = node.densities;
+                    if rho[0] == 0.0 && rho[1] == 0.0 {
+                        continue;
+                    }
+                    let mu_s_t = node.sun_cosine(mu_s, nu);
+                    let sun = self.sun_transmittance(node.r, mu_s_t);
+                    for k in 0..3 {
+                        let c = node.weighted_transmittance[k] * sun[k];
+                        sums[0][k] += c * rho[0];
+                        sums[1][k] += c * rho[1];
+                    }
                 }
-                let mu_s_t = ((r * mu_s + node.t * nu) / node.r).clamp(-1.0, 1.0);
-                let sun = self.sun_transmittance(node.r, mu_s_t);
-                for k in 0..3 {
-                    let c = node.weighted_transmittance[k] * sun[k];
-                    sums[0][k] += c * rho[0];
-                    sums[1][k] += c * rho[1];
-                }
+                out.push([
+                    [0, 1, 2].map(|k| sums[0][k] * ch.rayleigh_scattering[k]),
+                    [0, 1, 2].map(|k| sums[1][k] * ch.mie_scattering[k]),
+                ]);
             }
-            [
-                [0, 1, 2].map(|k| sums[0][k] * ch.rayleigh_scattering[k] * ch.solar_irradiance[k]),
-                [0, 1, 2].map(|k| sums[1][k] * ch.mie_scattering[k] * ch.solar_irradiance[k]),
-            ]
         })
     }
 
@@ -348,10 +417,18 @@ impl Builder<'_> {
     ) -> [f64; 3] {
         match previous {
             Previous::Single { rayleigh: ray, mie } => {
-                let a = ray.lookup(&self.radii, r, mu, mu_s, nu, ground);
-                let b = mie.lookup(&self.radii, r, mu, mu_s, nu, ground);
-                let (pr, pm) = (rayleigh(nu), self.atmosphere.mie.phase.eval(nu));
-                [0, 1, 2].map(|k| pr * a[k] + pm * b[k])
+                let pr = rayleigh(nu);
+                let mut l = ray
+                    .lookup(&self.radii, r, mu, mu_s, nu, ground)
+                    .map(|a| pr * a);
+                if let Some(mie) = mie {
+                    let b = mie.lookup(&self.radii, r, mu, mu_s, nu, ground);
+                    let pm = self.atmosphere.mie.phase.eval(nu);
+                    for k in 0..3 {
+                        l[k] += pm * b[k];
+                    }
+                }
+                l
             }
             Previous::Multiple(table) => table.lookup(&self.radii, r, mu, mu_s, nu, ground),
         }
@@ -500,21 +577,24 @@ impl Builder<'_> {
                         };
                         let vy = (1.0 - mu * mu - vx * vx).max(0.0).sqrt();
                         let vz = mu;
-                        let l_v = self.incoming(previous, previous_irradiance, r, mu, mu_s, nu);
+                        let l_v = dm
+                            .map(|_| self.incoming(previous, previous_irradiance, r, mu, mu_s, nu));
                         let mut j = [0.0; 3];
                         for k in 0..3 {
                             let [l0, fx, fz, mxx, myy, mzz, mxz] = m[k];
                             let q =
                                 mxx * vx * vx + myy * vy * vy + mzz * vz * vz + 2.0 * mxz * vx * vz;
-                            let j_r = 3.0 / (16.0 * PI) * (l0 + q);
-                            let p1 = vx * fx + vz * fz;
-                            let p2 = 0.5 * (3.0 * q - l0);
-                            let j_m = dm.forward_fraction * l_v[k]
-                                + (1.0 - dm.forward_fraction) / (4.0 * PI)
-                                    * (l0 + 3.0 * dm.chi1 * p1 + 5.0 * dm.chi2 * p2);
-                            j[k] = (ch.rayleigh_scattering[k] * rho[0] * j_r
-                                + ch.mie_scattering[k] * rho[1] * j_m.max(0.0))
-                            .max(0.0);
+                            j[k] =
+                                ch.rayleigh_scattering[k] * rho[0] * 3.0 / (16.0 * PI) * (l0 + q);
+                            if let (Some(dm), Some(l_v)) = (dm, l_v) {
+                                let p1 = vx * fx + vz * fz;
+                                let p2 = 0.5 * (3.0 * q - l0);
+                                let j_m = dm.forward_fraction * l_v[k]
+                                    + (1.0 - dm.forward_fraction) / (4.0 * PI)
+                                        * (l0 + 3.0 * dm.chi1 * p1 + 5.0 * dm.chi2 * p2);
+                                j[k] += ch.mie_scattering[k] * rho[1] * j_m.max(0.0);
+                            }
+                            j[k] = j[k].max(0.0);
                         }
                         out.push(to_f32(j));
                     }
@@ -534,26 +614,55 @@ impl Builder<'_> {
         table
     }
 
-    /// Delta S of an order: T times Delta J integrated along every texel's ray.
+    /// Delta S of an order: T times Delta J integrated along every texel's ray. Along a
+    /// row's ray r and mu are fixed at each node, so Delta J there is first interpolated
+    /// in (r, mu) for every (mu_s, nu) texel once per row, then in mu_s and nu for each
+    /// texel of the row.
     fn scattering_of(&self, density: &Table4) -> Table4 {
         let size = self.settings.scattering_size;
-        self.map_rays(|nodes, r, _mu, mu_s, nu| {
-            let nu_axis = axis(u_nu(nu), size.nu);
-            let mut sum = [0.0; 3];
+        let per_node = size.nu * size.mu_s;
+        let mu_s_axis = MuSAxis::new(size.mu_s);
+        self.map_rays(false, |nodes, texels, out| {
+            // Delta J at each node over (nu, mu_s), f32.
+            let mut planes = Vec::with_capacity(nodes.len() * per_node);
             for node in nodes {
-                let mu_s_t = ((r * mu_s + node.t * nu) / node.r).clamp(-1.0, 1.0);
-                let p = [
-                    node.r_axis,
-                    node.mu_axis,
-                    axis(u_mu_s(mu_s_t), size.mu_s),
-                    nu_axis,
+                let ((ir, wr), (imu, wmu)) = (node.r_axis, node.mu_axis);
+                let corners = [
+                    (ir, imu, (1.0 - wr) * (1.0 - wmu)),
+                    (ir + 1, imu, wr * (1.0 - wmu)),
+                    (ir, imu + 1, (1.0 - wr) * wmu),
+                    (ir + 1, imu + 1, wr * wmu),
                 ];
-                let j = density.at_position(&p);
-                for k in 0..3 {
-                    sum[k] += node.weighted_transmittance[k] * j[k];
+                for inu in 0..size.nu {
+                    for imus in 0..size.mu_s {
+                        let mut j = [0.0f32; 3];
+                        for &(i_r, i_mu, w) in &corners {
+                            let v = density.data[size.index(i_r, i_mu, imus, inu)];
+                            for k in 0..3 {
+                                j[k] += w as f32 * v[k];
+                            }
+                        }
+                        planes.push(j);
+                    }
                 }
             }
-            [sum, [0.0; 3]]
+            for &(mu_s, nu) in texels {
+                let (inu, wnu) = axis(u_nu(nu), size.nu);
+                let mut sum = [0.0; 3];
+                for (node, plane) in nodes.iter().zip(planes.chunks_exact(per_node)) {
+                    let (imus, wmus) = mu_s_axis.at(node.sun_cosine(mu_s, nu));
+                    let at = |i: usize, j: usize| plane[i * size.mu_s + j];
+                    let (a, b) = (at(inu, imus), at(inu, imus + 1));
+                    let (c, d) = (at(inu + 1, imus), at(inu + 1, imus + 1));
+                    let (wmus, wnu) = (wmus as f32, wnu as f32);
+                    for k in 0..3 {
+                        let lo = a[k] + wmus * (b[k] - a[k]);
+                        let hi = c[k] + wmus * (d[k] - c[k]);
+                        sum[k] += node.weighted_transmittance[k] * (lo + wnu * (hi - lo)) as f64;
+                    }
+                }
+                out.push([sum, [0.0; 3]]);
+            }
         })
         .0
     }
@@ -568,9 +677,15 @@ impl Builder<'_> {
                 Previous::Single { rayleigh: ray, mie } => {
                     let (ir, imu, imus, inu) = size.coords(index);
                     let (_, _, _, nu, _) = texel_parameters(&self.radii, &size, ir, imu, imus, inu);
-                    let (pr, pm) = (rayleigh(nu), self.atmosphere.mie.phase.eval(nu));
-                    let (a, b) = (ray.data[index], mie.data[index]);
-                    [0, 1, 2].map(|k| pr * a[k] as f64 + pm * b[k] as f64)
+                    let pr = rayleigh(nu);
+                    let mut v = ray.data[index].map(|a| pr * a as f64);
+                    if let Some(mie) = mie {
+                        let pm = self.atmosphere.mie.phase.eval(nu);
+                        for k in 0..3 {
+                            v[k] += pm * mie.data[index][k] as f64;
+                        }
+                    }
+                    v
                 }
                 Previous::Multiple(t) => t.data[index].map(f64::from),
             };
@@ -583,17 +698,30 @@ impl Builder<'_> {
 
     /// Algorithm 4.1.
     pub fn build(&self) -> Tables {
-        let size = self.settings.scattering_size;
         let start = Instant::now();
         let (single_rayleigh, single_mie) = self.single_scattering();
-        let mut orders = vec![OrderStats {
+        let first = OrderStats {
             order: 1,
             share: 1.0,
             seconds: start.elapsed().as_secs_f64(),
-        }];
+        };
+        self.multiple_orders(single_rayleigh, single_mie, first)
+    }
+
+    /// Algorithm 4.1 from its loop on, given the single-scattering tables (built by
+    /// [`Builder::single_scattering`] and timed in `first`): orders two and up and the
+    /// irradiance table.
+    pub fn multiple_orders(
+        &self,
+        single_rayleigh: Table4,
+        single_mie: Option<Table4>,
+        first: OrderStats,
+    ) -> Tables {
+        let size = self.settings.scattering_size;
+        let mut orders = vec![first];
         let mut totals = self.sums(Previous::Single {
             rayleigh: &single_rayleigh,
-            mie: &single_mie,
+            mie: single_mie.as_ref(),
         });
         let mapping = IrradianceMapping {
             radii: self.radii,
@@ -610,7 +738,7 @@ impl Builder<'_> {
             let previous = match &previous_table {
                 None => Previous::Single {
                     rayleigh: &single_rayleigh,
-                    mie: &single_mie,
+                    mie: single_mie.as_ref(),
                 },
                 Some(t) => Previous::Multiple(t),
             };

@@ -24,26 +24,21 @@ impl Table4 {
         }
     }
 
-    /// Trilinear interpolation over (r, mu, mu_s) in nu slice `inu`.
+    /// Trilinear interpolation over (r, mu, mu_s) in nu slice `inu`: eight texels (the
+    /// next texel of each axis exists, see [`axis`]).
     fn slice(&self, p: &[(usize, f64); 4], inu: usize) -> [f64; 3] {
         let s = &self.size;
-        let mut out = [0.0; 3];
         let (ir, wr) = p[0];
         let (imu, wmu) = p[1];
         let (imus, wmus) = p[2];
-        for (ds, ws) in [(0, 1.0 - wmus), (1, wmus)] {
-            if ws == 0.0 {
-                continue;
-            }
-            for (dm, wm) in [(0, 1.0 - wmu), (1, wmu)] {
-                if wm == 0.0 {
-                    continue;
-                }
-                let a = self.data[s.index(ir, imu + dm, imus + ds, inu)];
-                let b = self.data[s.index(ir + 1, imu + dm, imus + ds, inu)];
-                let w = ws * wm;
+        let mut out = [0.0; 3];
+        for (dm, wm) in [(0, 1.0 - wmu), (1, wmu)] {
+            for (dr, w_r) in [(0, 1.0 - wr), (1, wr)] {
+                let i = s.index(ir + dr, imu + dm, imus, inu);
+                let (a, b) = (self.data[i], self.data[i + 1]);
+                let w = wm * w_r;
                 for k in 0..3 {
-                    out[k] += w * ((1.0 - wr) * a[k] as f64 + wr * b[k] as f64);
+                    out[k] += w * ((1.0 - wmus) * a[k] as f64 + wmus * b[k] as f64);
                 }
             }
         }
