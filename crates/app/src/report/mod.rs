@@ -42,6 +42,8 @@ pub fn report_variants() -> Vec<Variant> {
         Variant::new("bruneton", Some(1), &[]),
         Variant::new("bruneton", Some(2), &[]),
         Variant::new("bruneton", None, &[]),
+        Variant::new("bruneton", None, &["view_samples=30"]),
+        Variant::new("bruneton", None, &["view_samples=100"]),
         Variant::new("bruneton", None, &["r=16", "mu=64", "mu_s=16", "nu=4"]),
     ]
 }
