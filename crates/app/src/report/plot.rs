@@ -52,6 +52,22 @@ pub fn pareto_front(points: &[Point]) -> Vec<Point> {
     front
 }
 
+/// The front as a staircase: the best error so far holds until a faster-to-slower step
+/// improves it, and the last holds to `x_end` (a one-point front is a line too).
+fn staircase(front: &[Point], x_end: f64) -> Vec<(f64, f64)> {
+    let mut line = Vec::with_capacity(2 * front.len() + 1);
+    for (i, p) in front.iter().enumerate() {
+        if i > 0 {
+            line.push((p.frame_seconds, front[i - 1].error_percent));
+        }
+        line.push((p.frame_seconds, p.error_percent));
+    }
+    if let Some(last) = front.last() {
+        line.push((x_end, last.error_percent));
+    }
+    line
+}
+
 fn model_color(model: &str) -> RGBColor {
     match model {
         "nishita" => RGBColor(31, 119, 180),
@@ -93,23 +109,38 @@ struct LabelPlacer {
 impl LabelPlacer {
     const LINE: i32 = 17;
 
-    /// The offset from the point (x, y) at which a label of `chars` characters fits.
+    /// The offset from the point (x, y) at which a label of `chars` characters fits:
+    /// right of the point, then above or below it, then left of it; the first place that
+    /// overlaps no label drawn so far (the last one tried if none is free).
     fn place(&mut self, (x, y): (i32, i32), chars: usize) -> (i32, i32) {
         let width = 8 * chars as i32;
-        let mut dy = -8;
-        for _ in 0..8 {
-            let b = (x + 9, y + dy, x + 9 + width, y + dy + Self::LINE);
+        let line = Self::LINE;
+        let candidates = [
+            (9, -8),
+            (9, -8 - line),
+            (9, -8 + line),
+            (-9 - width, -8),
+            (-9 - width, -8 - line),
+            (-9 - width, -8 + line),
+            (9, -8 - 2 * line),
+            (9, -8 + 2 * line),
+        ];
+        let mut chosen = candidates[0];
+        for (dx, dy) in candidates {
+            chosen = (dx, dy);
+            let b = (x + dx, y + dy, x + dx + width, y + dy + line);
             let overlaps = self
                 .boxes
                 .iter()
                 .any(|o| b.0 < o.2 && o.0 < b.2 && b.1 < o.3 && o.1 < b.3);
             if !overlaps {
-                self.boxes.push(b);
                 break;
             }
-            dy += Self::LINE;
         }
-        (9, dy)
+        let (dx, dy) = chosen;
+        self.boxes
+            .push((x + dx, y + dy, x + dx + width, y + dy + line));
+        chosen
     }
 }
 
@@ -134,6 +165,7 @@ fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Erro
     let root = BitMapBackend::new(path, (1200, 800)).into_drawing_area();
     root.fill(&WHITE)?;
     let x_range = log_range(points.iter().map(|p| p.frame_seconds));
+    let x_end = x_range.end;
     let y_range = log_range(points.iter().map(|p| p.error_percent));
     let mut chart = ChartBuilder::on(&root)
         .caption(
@@ -153,12 +185,9 @@ fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Erro
         .axis_desc_style(("sans-serif", 20))
         .label_style(("sans-serif", 16))
         .draw()?;
-    let front = pareto_front(points);
+    let front = staircase(&pareto_front(points), x_end);
     chart
-        .draw_series(LineSeries::new(
-            front.iter().map(|p| (p.frame_seconds, p.error_percent)),
-            BLACK.stroke_width(2),
-        ))?
+        .draw_series(LineSeries::new(front, BLACK.stroke_width(2)))?
         .label("Pareto front")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
     let mut placer = LabelPlacer::default();
@@ -206,6 +235,18 @@ mod tests {
         ];
         let front: Vec<String> = pareto_front(&points).into_iter().map(|p| p.label).collect();
         assert_eq!(front, ["d", "a", "c"]);
+        let steps = staircase(&pareto_front(&points), 10.0);
+        assert_eq!(
+            steps,
+            [
+                (0.5, 20.0),
+                (1.0, 20.0),
+                (1.0, 10.0),
+                (3.0, 10.0),
+                (3.0, 5.0),
+                (10.0, 5.0)
+            ]
+        );
     }
 
     #[test]
