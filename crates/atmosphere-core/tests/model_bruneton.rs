@@ -2,6 +2,9 @@
 //! scattering and all orders), the order loop's stopping rule, and stability on extreme
 //! rays. Tolerances are the measured errors with a margin (docs/models/bruneton.md).
 
+mod common;
+
+use common::luminance_errors;
 use std::sync::OnceLock;
 
 use atmosphere_core::atmosphere::Atmosphere;
@@ -105,19 +108,10 @@ fn daytime_rays(a: &Atmosphere) -> Vec<ViewRay> {
     rays
 }
 
+/// RMS and largest relative luminance error on the rays.
 fn relative_rms(model: &dyn SkyModel, reference: &dyn SkyModel, rays: &[ViewRay]) -> (f64, f64) {
-    let color = SpectrumToColor::new(model.wavelengths_nm()).unwrap();
-    let mut sum = 0.0;
-    let mut worst: f64 = 0.0;
-    for ray in rays {
-        let m = color.luminance_cd_m2(&model.radiance(ray).unwrap().radiance);
-        let r = color.luminance_cd_m2(&reference.radiance(ray).unwrap().radiance);
-        let e = (m - r) / r;
-        eprintln!("{ray:?}: model {m:.4} reference {r:.4} error {e:+.4}");
-        sum += e * e;
-        worst = worst.max(e.abs());
-    }
-    ((sum / rays.len() as f64).sqrt(), worst)
+    let (_, stats) = luminance_errors(model, reference, rays.iter().map(|r| (format!("{r:?}"), r)));
+    (stats.rms, stats.max)
 }
 
 fn single_model() -> &'static Bruneton {

@@ -4,6 +4,9 @@
 //! settings and updates (the stability sweep is in stability.rs). Tolerances are the measured errors with a
 //! margin (docs/models/hillaire.md).
 
+mod common;
+
+use common::luminance_errors;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -64,22 +67,18 @@ fn sunset_rays(a: &Atmosphere) -> Vec<(&'static str, ViewRay)> {
 }
 
 /// Relative luminance errors of `model` against `reference`, and their RMS.
+/// Signed relative luminance errors per named ray, and their RMS.
 fn errors(
     model: &dyn SkyModel,
     reference: &dyn SkyModel,
     rays: &[(&str, ViewRay)],
 ) -> (Vec<f64>, f64) {
-    let color = SpectrumToColor::new(model.wavelengths_nm()).unwrap();
-    let mut out = Vec::new();
-    for (name, ray) in rays {
-        let m = color.luminance_cd_m2(&model.radiance(ray).unwrap().radiance);
-        let r = color.luminance_cd_m2(&reference.radiance(ray).unwrap().radiance);
-        let e = (m - r) / r;
-        eprintln!("{name}: model {m:.5} reference {r:.5} error {e:+.4}");
-        out.push(e);
-    }
-    let rms = (out.iter().map(|e| e * e).sum::<f64>() / out.len() as f64).sqrt();
-    (out, rms)
+    let (e, stats) = luminance_errors(
+        model,
+        reference,
+        rays.iter().map(|(n, r)| (n.to_string(), r)),
+    );
+    (e, stats.rms)
 }
 
 fn single() -> ModelSettings {
