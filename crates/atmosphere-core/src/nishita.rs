@@ -128,7 +128,7 @@ impl Nishita {
             atmosphere: atmosphere.clone(),
             settings,
             prune: model_settings.prune,
-            with_mie: !model_settings.prune || spectra.has_aerosol(),
+            with_mie: spectra.needs_mie(model_settings.prune),
             spectra,
             table: TransmittanceTable::build(
                 atmosphere,
@@ -173,7 +173,7 @@ impl SkyModel for Nishita {
             rebuilt.push("g_l");
         }
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        self.with_mie = !self.prune || self.spectra.has_aerosol();
+        self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
         Ok(rebuilt)
     }

@@ -259,7 +259,7 @@ impl Oneil {
             atmosphere: atmosphere.clone(),
             settings: oneil,
             prune: settings.prune,
-            with_mie: !settings.prune || spectra.has_aerosol(),
+            with_mie: spectra.needs_mie(settings.prune),
             spectra,
             table: OpticalDepthTable::build(
                 atmosphere,
@@ -306,7 +306,7 @@ impl SkyModel for Oneil {
             rebuilt.push("optical depth");
         }
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        self.with_mie = !self.prune || self.spectra.has_aerosol();
+        self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
         Ok(rebuilt)
     }

@@ -264,7 +264,8 @@ impl Riley {
             mie: Species::new(&atmosphere.mie.density, thickness, &mie_s, &mie_e),
             mie_phase: atmosphere.mie.phase.clone(),
             prune: settings.prune,
-            with_mie: !settings.prune || mie_s.iter().chain(&mie_e).any(|c| *c != 0.0),
+            with_mie: crate::reference::Spectra::new(atmosphere, &settings.wavelengths_nm)
+                .needs_mie(settings.prune),
         }
     }
 

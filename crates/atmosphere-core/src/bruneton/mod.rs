@@ -29,6 +29,7 @@ use crate::geometry::ray_hits_ground;
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::model_options::ModelOptions;
 use crate::phase::rayleigh;
+use crate::reference::Spectra;
 use crate::table_inputs::Inputs;
 use crate::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 use crate::view_segment::{SegmentEnd, ViewSegment};
@@ -228,11 +229,7 @@ impl Bruneton {
     /// True when Mie work is left out: pruning is on and the aerosol neither scatters
     /// nor absorbs at any of the model's wavelengths.
     pub fn mie_pruned(&self) -> bool {
-        self.model_settings.prune
-            && self.wavelengths_nm.iter().all(|l| {
-                let c = self.atmosphere.coefficients(*l);
-                c.mie_scattering_per_m == 0.0 && c.mie_extinction_per_m == 0.0
-            })
+        !Spectra::new(&self.atmosphere, &self.wavelengths_nm).needs_mie(self.model_settings.prune)
     }
 
     /// The delta-M form of the Mie phase function for the order step; `None` when Mie

@@ -49,12 +49,6 @@ pub struct Dobashi {
     ambient: Option<AmbientTable>,
 }
 
-/// Whether the Mie tables are needed: not when pruning and no wavelength has Mie
-/// scattering (then dI_m is zero, and leaving it out changes nothing).
-fn needs_mie(spectra: &Spectra, prune: bool) -> bool {
-    !prune || spectra.mie_scattering.iter().any(|m| *m != 0.0)
-}
-
 impl Dobashi {
     /// Prepares every table. Orders two and up (`max_orders` other than `Some(1)`) are the
     /// ambient term.
@@ -67,7 +61,7 @@ impl Dobashi {
         model_settings.validate()?;
         settings.validate()?;
         let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
-        let with_mie = needs_mie(&spectra, model_settings.prune);
+        let with_mie = spectra.needs_mie(model_settings.prune);
         let mut model = Dobashi {
             atmosphere: atmosphere.clone(),
             settings,
@@ -159,7 +153,7 @@ impl SkyModel for Dobashi {
         atmosphere.validate()?;
         let changed = Inputs::changed(&self.atmosphere, atmosphere);
         let spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        let with_mie = needs_mie(&spectra, self.prune);
+        let with_mie = spectra.needs_mie(self.prune);
         let mie_switched = with_mie != self.planes.scatter_m.is_some();
         let mut rebuilt = Vec::new();
         if changed.intersects(Inputs::COLUMNS) {

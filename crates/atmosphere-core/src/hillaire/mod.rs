@@ -243,13 +243,6 @@ pub struct Hillaire {
     views: ViewCache,
 }
 
-/// Whether the Mie terms are needed: not when pruning at zero aerosol.
-fn mie_needed(spectra: &Spectra, prune: bool) -> bool {
-    !(prune
-        && spectra.mie_scattering.iter().all(|s| *s == 0.0)
-        && spectra.extinction.iter().all(|e| e[1] == 0.0))
-}
-
 impl Hillaire {
     /// Builds the global tables (transmittance, Psi_ms, the ground's sky irradiance);
     /// the per-view tables are built when a view first needs them. Orders two and up
@@ -268,7 +261,7 @@ impl Hillaire {
         let mut model = Hillaire {
             atmosphere: atmosphere.clone(),
             settings,
-            mie: mie_needed(&spectra, model_settings.prune),
+            mie: spectra.needs_mie(model_settings.prune),
             spectra,
             multiple_on: model_settings.max_orders != Some(1),
             prune: model_settings.prune,
@@ -487,7 +480,7 @@ impl SkyModel for Hillaire {
         let changed = Inputs::changed(&self.atmosphere, atmosphere);
         self.atmosphere = atmosphere.clone();
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        self.mie = mie_needed(&self.spectra, self.prune);
+        self.mie = self.spectra.needs_mie(self.prune);
         let mut rebuilt = Vec::new();
         if changed.intersects(Inputs::COLUMNS) {
             let (w, h) = self.settings.transmittance_size;

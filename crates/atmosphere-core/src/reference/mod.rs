@@ -55,10 +55,13 @@ pub struct Spectra {
 }
 
 impl Spectra {
-    /// True when aerosols scatter or absorb at some wavelength: without them a model
-    /// that prunes ([`crate::model::ModelSettings::prune`]) does no Mie work.
-    pub fn has_aerosol(&self) -> bool {
-        self.mie_scattering.iter().any(|s| *s != 0.0) || self.extinction.iter().any(|e| e[1] != 0.0)
+    /// Whether a model must do Mie work: always without pruning
+    /// ([`crate::model::ModelSettings::prune`]), else only when aerosols scatter or
+    /// absorb at some wavelength.
+    pub fn needs_mie(&self, prune: bool) -> bool {
+        !prune
+            || self.mie_scattering.iter().any(|s| *s != 0.0)
+            || self.extinction.iter().any(|e| e[1] != 0.0)
     }
 
     pub fn new(atmosphere: &Atmosphere, wavelengths_nm: &[f64]) -> Spectra {
