@@ -168,13 +168,15 @@ impl MuSAxis {
         }
     }
 
-    /// The lower texel and the weight of the next at mu_s.
-    fn at(&self, mu_s: f64) -> (usize, f64) {
+    /// The lower texel (at most size - 2) and the weight of the next at mu_s.
+    fn at(&self, mu_s: f64) -> (usize, f32) {
         let f = (mu_s + 1.0) * 0.5 * (Self::POINTS - 1) as f64;
         let i = (f as usize).min(Self::POINTS - 2);
         let w = f - i as f64;
-        let x = self.positions[i] + w * (self.positions[i + 1] - self.positions[i]);
-        axis(x / (self.size - 1) as f64, self.size)
+        let x = (self.positions[i] + w * (self.positions[i + 1] - self.positions[i]))
+            .clamp(0.0, (self.size - 1) as f64);
+        let lower = (x as usize).min(self.size - 2);
+        (lower, (x - lower as f64) as f32)
     }
 }
 
@@ -617,51 +619,61 @@ impl Builder<'_> {
     /// Delta S of an order: T times Delta J integrated along every texel's ray. Along a
     /// row's ray r and mu are fixed at each node, so Delta J there is first interpolated
     /// in (r, mu) for every (mu_s, nu) texel once per row, then in mu_s and nu for each
-    /// texel of the row.
+    /// texel of the row. Single precision: the sums have at most a few hundred terms.
     fn scattering_of(&self, density: &Table4) -> Table4 {
         let size = self.settings.scattering_size;
         let per_node = size.nu * size.mu_s;
         let mu_s_axis = MuSAxis::new(size.mu_s);
         self.map_rays(false, |nodes, texels, out| {
-            // Delta J at each node over (nu, mu_s), f32.
-            let mut planes = Vec::with_capacity(nodes.len() * per_node);
-            for node in nodes {
+            // Delta J at each node over (nu, mu_s). The table holds mu_s fastest, then r,
+            // so the two r corners of a nu slice are neighbouring runs of mu_s texels.
+            let mut planes = vec![[0.0f32; 3]; nodes.len() * per_node];
+            for (node, plane) in nodes.iter().zip(planes.chunks_exact_mut(per_node)) {
                 let ((ir, wr), (imu, wmu)) = (node.r_axis, node.mu_axis);
-                let corners = [
-                    (ir, imu, (1.0 - wr) * (1.0 - wmu)),
-                    (ir + 1, imu, wr * (1.0 - wmu)),
-                    (ir, imu + 1, (1.0 - wr) * wmu),
-                    (ir + 1, imu + 1, wr * wmu),
+                let (wr, wmu) = (wr as f32, wmu as f32);
+                let w = [
+                    (1.0 - wr) * (1.0 - wmu),
+                    wr * (1.0 - wmu),
+                    (1.0 - wr) * wmu,
+                    wr * wmu,
                 ];
-                for inu in 0..size.nu {
-                    for imus in 0..size.mu_s {
-                        let mut j = [0.0f32; 3];
-                        for &(i_r, i_mu, w) in &corners {
-                            let v = density.data[size.index(i_r, i_mu, imus, inu)];
-                            for k in 0..3 {
-                                j[k] += w as f32 * v[k];
-                            }
+                for (inu, slice) in plane.chunks_exact_mut(size.mu_s).enumerate() {
+                    let lower = size.index(ir, imu, 0, inu);
+                    let upper = size.index(ir, imu + 1, 0, inu);
+                    let run = |start: usize| &density.data[start..start + 2 * size.mu_s];
+                    let (a, b) = (run(lower), run(upper));
+                    for (j, v) in slice.iter_mut().enumerate() {
+                        let (a0, a1) = (a[j], a[j + size.mu_s]);
+                        let (b0, b1) = (b[j], b[j + size.mu_s]);
+                        for k in 0..3 {
+                            v[k] = w[0] * a0[k] + w[1] * a1[k] + w[2] * b0[k] + w[3] * b1[k];
                         }
-                        planes.push(j);
                     }
                 }
             }
+            let weights: Vec<[f32; 3]> = nodes
+                .iter()
+                .map(|n| n.weighted_transmittance.map(|t| t as f32))
+                .collect();
             for &(mu_s, nu) in texels {
                 let (inu, wnu) = axis(u_nu(nu), size.nu);
-                let mut sum = [0.0; 3];
-                for (node, plane) in nodes.iter().zip(planes.chunks_exact(per_node)) {
+                let wnu = wnu as f32;
+                let mut sum = [0.0f32; 3];
+                for ((node, plane), t) in nodes
+                    .iter()
+                    .zip(planes.chunks_exact(per_node))
+                    .zip(&weights)
+                {
                     let (imus, wmus) = mu_s_axis.at(node.sun_cosine(mu_s, nu));
-                    let at = |i: usize, j: usize| plane[i * size.mu_s + j];
-                    let (a, b) = (at(inu, imus), at(inu, imus + 1));
-                    let (c, d) = (at(inu + 1, imus), at(inu + 1, imus + 1));
-                    let (wmus, wnu) = (wmus as f32, wnu as f32);
+                    let lo = &plane[inu * size.mu_s + imus..];
+                    let hi = &plane[(inu + 1) * size.mu_s + imus..];
                     for k in 0..3 {
-                        let lo = a[k] + wmus * (b[k] - a[k]);
-                        let hi = c[k] + wmus * (d[k] - c[k]);
-                        sum[k] += node.weighted_transmittance[k] * (lo + wnu * (hi - lo)) as f64;
+                        let a = lo[0][k] + wmus * (lo[1][k] - lo[0][k]);
+                        let b = hi[0][k] + wmus * (hi[1][k] - hi[0][k]);
+                        sum[k] += t[k] * (a + wnu * (b - a));
                     }
                 }
-                out.push([sum, [0.0; 3]]);
+                out.push([sum.map(f64::from), [0.0; 3]]);
             }
         })
         .0
