@@ -37,6 +37,17 @@ struct AtmosphereParams {
     rayleigh_extinction_per_m: vec4<f32>,
     mie_extinction_per_m: vec4<f32>,
     ozone_extinction_per_m: vec4<f32>,
+    // Scattering per unit column of Rayleigh and Mie, xyz per channel.
+    rayleigh_scattering_per_m: vec4<f32>,
+    mie_scattering_per_m: vec4<f32>,
+    // Solar irradiance at the top of the atmosphere, W m^-2 nm^-1, xyz per channel.
+    solar_irradiance: vec4<f32>,
+    // 0 Cornette-Shanks, 1 Henyey-Greenstein, 2 Nishita hazy (`PhaseFunction`); see
+    // `phase.wgsl`.
+    mie_phase_kind: u32,
+    mie_g: f32,
+    ground_albedo: f32,
+    pad2: f32,
 }
 
 @group(0) @binding(0) var<uniform> atmosphere: AtmosphereParams;

@@ -4,6 +4,7 @@
 // atmosphere-core's `view_segment.rs`.
 
 #import atmosphere_params.wgsl
+#import sun_disk.wgsl
 
 struct FrameParams {
     // xyz: camera position relative to the planet's centre (f32), m; w: its radius.
@@ -16,10 +17,21 @@ struct FrameParams {
     forward: vec4<f32>,
     // xyz: unit vector towards the sun; w: its angular radius, rad.
     sun_direction: vec4<f32>,
+    // xyz per channel: the sun disk's radiance at its centre and its limb-darkening
+    // exponent (`sun_disk.wgsl`).
+    sun_centre_radiance: vec4<f32>,
+    sun_limb_exponent: vec4<f32>,
     size_px: vec4<u32>,
 }
 
 @group(0) @binding(1) var<uniform> frame: FrameParams;
+
+// The transmitted sun disk seen along `direction` by a ray that reaches space with
+// `transmittance`.
+fn frame_sun_disk(direction: vec3<f32>, transmittance: vec3<f32>) -> vec3<f32> {
+    return transmittance * sun_disk_radiance(direction, frame.sun_direction.xyz,
+        frame.sun_direction.w, frame.sun_centre_radiance.xyz, frame.sun_limb_exponent.xyz);
+}
 
 // The unit direction through the centre of pixel `px` (`Frame::pixel_ray`).
 fn pixel_direction(px: vec2<u32>) -> vec3<f32> {

@@ -9,56 +9,21 @@
 #import atmosphere_params.wgsl
 #import frame_params.wgsl
 #import transmittance_lookup.wgsl
-#import sun_disk.wgsl
+#import phase.wgsl
 
 struct NishitaParams {
-    // xyz per channel: Rayleigh and Mie scattering at density 1, m^-1.
-    rayleigh_scattering_per_m: vec4<f32>,
-    mie_scattering_per_m: vec4<f32>,
-    // xyz per channel: solar irradiance at the top of the atmosphere, W m^-2 nm^-1.
-    solar_irradiance: vec4<f32>,
-    // xyz per channel: the sun disk's radiance at its centre and limb-darkening exponent.
-    sun_centre_radiance: vec4<f32>,
-    sun_limb_exponent: vec4<f32>,
     view_samples: u32,
-    // 0 Cornette-Shanks, 1 Henyey-Greenstein, 2 Nishita hazy (`PhaseFunction`).
-    mie_phase_kind: u32,
-    mie_g: f32,
-    ground_albedo: f32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
 }
 
 @group(0) @binding(2) var<uniform> nishita: NishitaParams;
 @group(0) @binding(3) var g_l: texture_2d<f32>;
 @group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
 
-const PI: f32 = 3.14159265358979;
 // The largest finite f16.
 const F16_MAX: f32 = 65504.0;
-
-fn rayleigh_phase(nu: f32) -> f32 {
-    return 3.0 / (16.0 * PI) * (1.0 + nu * nu);
-}
-
-// The Mie phase function of the uniform (`PhaseFunction::eval`).
-fn mie_phase(nu: f32) -> f32 {
-    let g = nishita.mie_g;
-    let g2 = g * g;
-    let denom = max(1.0 + g2 - 2.0 * g * nu, 1e-30);
-    switch nishita.mie_phase_kind {
-        case 0u: {
-            return 3.0 / (8.0 * PI) * (1.0 - g2) * (1.0 + nu * nu) / ((2.0 + g2) * denom * sqrt(denom));
-        }
-        case 1u: {
-            return (1.0 - g2) / (4.0 * PI * denom * sqrt(denom));
-        }
-        default: {
-            let c = 0.5 * (1.0 + nu);
-            let c2 = c * c;
-            let c4 = c2 * c2;
-            return (1.0 + 9.0 * c4 * c4) / (8.0 * PI);
-        }
-    }
-}
 
 struct Radiance {
     radiance: vec3<f32>,
@@ -99,9 +64,9 @@ fn nishita_radiance(direction: vec3<f32>) -> Radiance {
         }
         let sun_column = table_columns(g_l, q, mu_sun);
         let tau = optical_depth(to_sample) + optical_depth(sun_column);
-        let j = nishita.rayleigh_scattering_per_m.xyz * (rho.x * phase_r)
-            + nishita.mie_scattering_per_m.xyz * (rho.y * phase_m);
-        out.radiance += dt * exp(-tau) * j * nishita.solar_irradiance.xyz;
+        let j = atmosphere.rayleigh_scattering_per_m.xyz * (rho.x * phase_r)
+            + atmosphere.mie_scattering_per_m.xyz * (rho.y * phase_m);
+        out.radiance += dt * exp(-tau) * j * atmosphere.solar_irradiance.xyz;
     }
     out.transmittance = exp(-optical_depth(view_column));
     out.reaches_space = !s.on_ground;
@@ -109,8 +74,8 @@ fn nishita_radiance(direction: vec3<f32>) -> Radiance {
         let cos_g = (s.start_dot_sun + s.length * nu) / bottom;
         if cos_g > 0.0 {
             let sun_column = table_columns(g_l, 0.0, min(cos_g, 1.0));
-            out.radiance += out.transmittance * nishita.ground_albedo / PI
-                * nishita.solar_irradiance.xyz * cos_g * exp(-optical_depth(sun_column));
+            out.radiance += out.transmittance * atmosphere.ground_albedo / PI
+                * atmosphere.solar_irradiance.xyz * cos_g * exp(-optical_depth(sun_column));
         }
     }
     return out;
@@ -125,8 +90,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = nishita_radiance(direction);
     var radiance = r.radiance;
     if r.reaches_space {
-        radiance += r.transmittance * sun_disk_radiance(direction, frame.sun_direction.xyz,
-            frame.sun_direction.w, nishita.sun_centre_radiance.xyz, nishita.sun_limb_exponent.xyz);
+        radiance += frame_sun_disk(direction, r.transmittance);
     }
     textureStore(hdr, id.xy, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
 }

@@ -4,6 +4,7 @@
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::density::{DensityLayer, DensityProfile};
+use atmosphere_core::phase::PhaseFunction;
 use bytemuck::{Pod, Zeroable};
 
 use crate::error::GpuError;
@@ -62,7 +63,7 @@ impl DensityProfileUniform {
     }
 }
 
-/// WGSL `AtmosphereParams`, 256 bytes.
+/// WGSL `AtmosphereParams`, 320 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct AtmosphereUniform {
@@ -76,17 +77,42 @@ pub struct AtmosphereUniform {
     pub rayleigh_extinction_per_m: [f32; 4],
     pub mie_extinction_per_m: [f32; 4],
     pub ozone_extinction_per_m: [f32; 4],
+    /// Scattering per unit column at the three wavelengths (xyz), w = 0.
+    pub rayleigh_scattering_per_m: [f32; 4],
+    pub mie_scattering_per_m: [f32; 4],
+    /// Solar irradiance at the top of the atmosphere, W m^-2 nm^-1 (xyz), w = 0.
+    pub solar_irradiance: [f32; 4],
+    /// The Mie phase function: 0 Cornette-Shanks, 1 Henyey-Greenstein, 2 Nishita's hazy
+    /// form (`PhaseFunction`), with its asymmetry `mie_g`.
+    pub mie_phase_kind: u32,
+    pub mie_g: f32,
+    /// Lambertian albedo of the ground.
+    pub ground_albedo: f32,
+    pub pad1: f32,
 }
 
 impl AtmosphereUniform {
     /// `atmosphere` at `wavelengths_nm` (one per channel); fails when a density profile
-    /// has more layers than the shader holds.
+    /// has more layers than the shader holds or the Mie phase function is one the
+    /// shaders do not evaluate (tabulated).
     pub fn new(atmosphere: &Atmosphere, wavelengths_nm: [f64; 3]) -> Result<Self, GpuError> {
-        let extinctions =
-            wavelengths_nm.map(|l| atmosphere.coefficients(l).extinction_per_species());
+        let coefficients = wavelengths_nm.map(|l| atmosphere.coefficients(l));
+        let extinctions = coefficients.map(|c| c.extinction_per_species());
         let row = |species: usize| {
             let [a, b, c] = extinctions.map(|e| e[species] as f32);
             [a, b, c, 0.0]
+        };
+        let per_channel = |f: &dyn Fn(usize) -> f64| [f(0) as f32, f(1) as f32, f(2) as f32, 0.0];
+        let (mie_phase_kind, mie_g) = match atmosphere.mie.phase {
+            PhaseFunction::CornetteShanks { g } => (0, g),
+            PhaseFunction::HenyeyGreenstein { g } => (1, g),
+            PhaseFunction::NishitaHazy => (2, 0.0),
+            PhaseFunction::Rayleigh | PhaseFunction::Tabulated { .. } => {
+                return Err(GpuError::UnsupportedPhase(format!(
+                    "{:?}",
+                    atmosphere.mie.phase
+                )));
+            }
         };
         Ok(AtmosphereUniform {
             bottom_radius_m: atmosphere.bottom_radius_m as f32,
@@ -98,6 +124,13 @@ impl AtmosphereUniform {
             rayleigh_extinction_per_m: row(0),
             mie_extinction_per_m: row(1),
             ozone_extinction_per_m: row(2),
+            rayleigh_scattering_per_m: per_channel(&|w| coefficients[w].rayleigh_scattering_per_m),
+            mie_scattering_per_m: per_channel(&|w| coefficients[w].mie_scattering_per_m),
+            solar_irradiance: per_channel(&|w| coefficients[w].solar_irradiance_w_m2_nm),
+            mie_phase_kind,
+            mie_g: mie_g as f32,
+            ground_albedo: atmosphere.ground_albedo as f32,
+            pad1: 0.0,
         })
     }
 }
@@ -110,7 +143,7 @@ mod tests {
     fn earth_fills_the_uniform_and_three_layers_are_refused() {
         let earth = Atmosphere::preset("earth").unwrap();
         let u = AtmosphereUniform::new(&earth, RGB_WAVELENGTHS_NM).unwrap();
-        assert_eq!(size_of::<AtmosphereUniform>(), 256);
+        assert_eq!(size_of::<AtmosphereUniform>(), 320);
         assert_eq!(u.mie_extinction_per_m, [4.44e-6, 4.44e-6, 4.44e-6, 0.0]);
         assert_eq!(u.rayleigh_density.layers[0], u.rayleigh_density.layers[1]);
         assert_eq!(u.ozone_density.layers[0].width_m, 25_000.0);

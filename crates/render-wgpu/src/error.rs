@@ -35,6 +35,8 @@ pub enum GpuError {
         species: &'static str,
         layers: usize,
     },
+    #[error("Mie phase function {0} is not yet on the GPU (use cornette_shanks, henyey_greenstein or nishita_hazy)")]
+    UnsupportedPhase(String),
     #[error("waiting for the GPU failed: {0}")]
     Poll(#[from] wgpu::PollError),
     #[error("mapping a read-back buffer failed: {0}")]
@@ -48,8 +50,8 @@ pub enum GpuError {
 pub enum RenderError {
     #[error("invalid frame: {0}")]
     Frame(String),
-    #[error("model '{0}' is not yet on the GPU (models on the GPU: nishita)")]
-    NotOnGpu(String),
+    #[error("model '{model}' is not yet on the GPU (models on the GPU: {on_gpu})")]
+    NotOnGpu { model: String, on_gpu: String },
     #[error("not supported on the GPU: {0}")]
     Unsupported(String),
     #[error(transparent)]

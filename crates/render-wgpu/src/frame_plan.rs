@@ -1,6 +1,7 @@
-//! The frame planner: the one place that decides which table builds and passes a frame
-//! runs, and which it skips. Each step comes back with the frame, with its GPU time when
-//! the adapter can measure it.
+//! The frame planner's record: which table builds and passes a frame runs, in order, and
+//! which it skips and why. Each model decides its own steps ([`crate::model_pass`]); the
+//! renderer adds the tone map. Each step comes back with the frame, with its GPU time
+//! when the adapter can measure it.
 
 /// Whether a step builds a table or renders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -12,7 +13,7 @@ pub enum StepKind {
 /// One step of a frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlanStep {
-    /// The table or pass, named like its shader (`g_l`, `nishita`, `tone_map`).
+    /// The table or pass, named like its shader or CPU twin (`g_l`, `nishita`, `tone_map`).
     pub name: &'static str,
     pub kind: StepKind,
     /// GPU time, ms; `None` where the adapter has no timestamp queries.
@@ -27,29 +28,38 @@ pub struct FramePlan {
 }
 
 impl FramePlan {
-    /// The plan of a nishita frame: the g_l table only when its inputs (atmosphere
-    /// columns, table size) changed since it was last built, then the per-pixel pass and
-    /// the tone map.
-    pub fn nishita(table_stale: bool) -> FramePlan {
-        let step = |name, kind| PlanStep {
+    /// Adds a step that runs.
+    pub fn run(&mut self, name: &'static str, kind: StepKind) {
+        self.steps.push(PlanStep {
             name,
             kind,
             gpu_ms: None,
-        };
-        let mut plan = FramePlan::default();
-        if table_stale {
-            plan.steps.push(step("g_l", StepKind::TableBuild));
+        });
+    }
+
+    /// Adds a table build when `stale`, else records it as skipped because its inputs did
+    /// not change.
+    pub fn build_if(&mut self, name: &'static str, stale: bool) {
+        if stale {
+            self.run(name, StepKind::TableBuild);
         } else {
-            plan.skipped.push(("g_l", "inputs unchanged"));
+            self.skip(name, "inputs unchanged");
         }
-        plan.steps.push(step("nishita", StepKind::Pass));
-        plan.steps.push(step("tone_map", StepKind::Pass));
-        plan
+    }
+
+    /// Records a step left out and why.
+    pub fn skip(&mut self, name: &'static str, why: &'static str) {
+        self.skipped.push((name, why));
     }
 
     /// Whether the step `name` runs.
     pub fn runs(&self, name: &str) -> bool {
         self.steps.iter().any(|s| s.name == name)
+    }
+
+    /// Sum of the steps' GPU times, ms, when every step was timed.
+    pub fn total_gpu_ms(&self) -> Option<f64> {
+        self.steps.iter().map(|s| s.gpu_ms).sum()
     }
 }
 
@@ -76,14 +86,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn unchanged_tables_are_skipped() {
-        let first = FramePlan::nishita(true);
-        assert!(first.runs("g_l") && first.runs("nishita") && first.runs("tone_map"));
-        let next = FramePlan::nishita(false);
-        assert!(!next.runs("g_l"));
+    fn stale_tables_run_and_fresh_ones_are_skipped_with_why() {
+        let mut plan = FramePlan::default();
+        plan.build_if("g_l", false);
+        plan.run("nishita", StepKind::Pass);
+        plan.run("tone_map", StepKind::Pass);
+        assert!(!plan.runs("g_l") && plan.runs("nishita"));
         assert_eq!(
-            next.to_string(),
+            plan.to_string(),
             "nishita, tone_map; skipped: g_l (inputs unchanged)"
         );
+        assert_eq!(plan.total_gpu_ms(), None);
+        plan.steps.iter_mut().for_each(|s| s.gpu_ms = Some(1.5));
+        assert_eq!(plan.total_gpu_ms(), Some(3.0));
     }
 }

@@ -11,11 +11,12 @@
 //! below a pixel's angle, and the shaders find where a ray enters the atmosphere from
 //! its closest approach to the centre, which does not cancel.
 
+use atmosphere_core::sun_disk;
 use bytemuck::{Pod, Zeroable};
 
 use crate::frame::Frame;
 
-/// WGSL `FrameParams`, 112 bytes.
+/// WGSL `FrameParams`, 144 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct FrameUniform {
@@ -32,13 +33,19 @@ pub struct FrameUniform {
     pub forward: [f32; 4],
     /// xyz: unit vector towards the sun; w: the sun's angular radius, rad.
     pub sun_direction: [f32; 4],
+    /// xyz: the sun disk's radiance at its centre at the three wavelengths,
+    /// W m^-2 sr^-1 nm^-1; w: 0.
+    pub sun_centre_radiance: [f32; 4],
+    /// xyz: the limb-darkening exponent at the three wavelengths; w: 0.
+    pub sun_limb_exponent: [f32; 4],
     /// Image width and height, px; zw: 0.
     pub size_px: [u32; 4],
 }
 
 impl FrameUniform {
-    /// The frame's camera and sun; the frame must be valid ([`Frame::validate`]).
-    pub fn new(frame: &Frame) -> FrameUniform {
+    /// The frame's camera and sun, with the sun disk at `wavelengths_nm`; the frame must
+    /// be valid ([`Frame::validate`]).
+    pub fn new(frame: &Frame, wavelengths_nm: [f64; 3]) -> FrameUniform {
         let a = &frame.atmosphere;
         let c = frame.camera_position_m;
         let r = c.length();
@@ -46,6 +53,10 @@ impl FrameUniform {
         let [right, up, forward] = frame.axes();
         let (half_w, half_h) = frame.half_extent();
         let v4 = |v: glam::DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
+        let per_channel = |f: &dyn Fn(f64) -> f64| {
+            let [x, y, z] = wavelengths_nm.map(|l| f(l) as f32);
+            [x, y, z, 0.0]
+        };
         FrameUniform {
             camera_m: v4(c, r),
             camera_height: [
@@ -58,6 +69,11 @@ impl FrameUniform {
             up: v4(up * half_h, 0.0),
             forward: v4(forward, 0.0),
             sun_direction: v4(frame.sun_direction.normalize(), a.sun.angular_radius_rad),
+            sun_centre_radiance: per_channel(&|l| {
+                let e = a.coefficients(l).solar_irradiance_w_m2_nm;
+                sun_disk::centre_radiance(e, a.sun.angular_radius_rad, l)
+            }),
+            sun_limb_exponent: per_channel(&sun_disk::limb_darkening_exponent),
             size_px: [frame.width, frame.height, 0, 0],
         }
     }

@@ -4,40 +4,22 @@
 //! tone map writes into the renderer's own texture; a window's surface view can take its
 //! place (`ToneMapPass::encode` takes any view).
 
-use atmosphere_core::model::MODEL_IDS;
-use atmosphere_core::nishita::NishitaSettings;
-
 use crate::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::device::GpuContext;
 use crate::error::{GpuError, RenderError};
 use crate::frame::Frame;
-use crate::frame_plan::FramePlan;
+use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::gpu_timer::GpuTimer;
-use crate::nishita_pass::{HDR_FORMAT, NishitaInputs, NishitaPass, NishitaUniform};
+use crate::model_pass::{self, ModelPass, PassIo};
+use crate::nishita_pass::HDR_FORMAT;
+use crate::pipeline::uniform_buffer;
 use crate::readback::read_texture;
 use crate::tone_map::ToneMap;
 use crate::tone_map_pass::{LDR_FORMAT, ToneMapPass};
-use crate::transmittance_pass::{TableOutput, TransmittancePass};
-
-/// The models the GPU renders.
-pub const GPU_MODELS: &[&str] = &["nishita"];
 
 /// Most steps a frame runs (table builds and passes), for the timer.
-const MAX_STEPS: u32 = 8;
-
-/// The g_l table and the atmosphere it was last built from (`None`: not yet built).
-#[derive(Debug)]
-struct BuiltTable {
-    pass: TransmittancePass,
-    built_from: Option<AtmosphereUniform>,
-}
-
-impl BuiltTable {
-    fn size(&self) -> (u32, u32) {
-        (self.pass.texture().width(), self.pass.texture().height())
-    }
-}
+const MAX_STEPS: u32 = 24;
 
 /// The HDR and display targets of one image size.
 #[derive(Debug)]
@@ -51,8 +33,9 @@ struct Targets {
 pub struct Renderer {
     gpu: GpuContext,
     atmosphere: wgpu::Buffer,
-    g_l: Option<BuiltTable>,
-    nishita: NishitaPass,
+    frame: wgpu::Buffer,
+    /// Every model used so far, with its tables.
+    models: Vec<(String, Box<dyn ModelPass>)>,
     tone_map: ToneMapPass,
     targets: Option<Targets>,
     timer: Option<GpuTimer>,
@@ -91,20 +74,15 @@ impl Renderer {
         Renderer::new(GpuContext::headless()?)
     }
 
-    /// A renderer on `gpu`: compiles every pass.
+    /// A renderer on `gpu`: compiles the tone map; each model's passes are compiled
+    /// when a frame first uses it.
     pub fn new(gpu: GpuContext) -> Result<Renderer, RenderError> {
-        let atmosphere = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("atmosphere"),
-            size: size_of::<AtmosphereUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         Ok(Renderer {
-            nishita: NishitaPass::new(&gpu)?,
+            atmosphere: uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>()),
+            frame: uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>()),
+            models: Vec::new(),
             tone_map: ToneMapPass::new(&gpu)?,
             timer: GpuTimer::new(&gpu, MAX_STEPS),
-            atmosphere,
-            g_l: None,
             targets: None,
             gpu,
         })
@@ -113,18 +91,17 @@ impl Renderer {
     /// Whether model `id` can be rendered: an error naming it when it is unknown or not
     /// yet on the GPU (no model silently stands in for another).
     pub fn check_model(id: &str) -> Result<(), RenderError> {
-        if GPU_MODELS.contains(&id) {
-            Ok(())
-        } else if MODEL_IDS.contains(&id) {
-            Err(RenderError::NotOnGpu(id.to_string()))
-        } else {
-            Err(atmosphere_core::model::ModelError::UnknownModel(id.to_string()).into())
-        }
+        model_pass::check_model(id)
     }
 
     /// The GPU context.
     pub fn gpu(&self) -> &GpuContext {
         &self.gpu
+    }
+
+    /// Bytes of GPU memory held by the tables of the models used so far.
+    pub fn table_bytes(&self) -> u64 {
+        self.models.iter().map(|(_, m)| m.table_bytes()).sum()
     }
 
     /// Renders `frame` and waits for the GPU; returns the plan with each step's GPU time.
@@ -137,25 +114,9 @@ impl Renderer {
             .validate()
             .map_err(atmosphere_core::model::ModelError::from)?;
         frame.settings.validate()?;
-        let settings = NishitaSettings::from_options(&frame.settings.options)?;
-        let nishita = NishitaUniform::new(&frame.atmosphere, &frame.settings, &settings)?;
         let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
-        let table_size = (settings.table_angles as u32, settings.table_heights as u32);
-
-        let mut g_l = match self.g_l.take() {
-            Some(built) if built.size() == table_size => built,
-            _ => BuiltTable {
-                pass: TransmittancePass::with(
-                    &self.gpu,
-                    TableOutput::Columns,
-                    table_size.0,
-                    table_size.1,
-                )?,
-                built_from: None,
-            },
-        };
-        let mut plan = FramePlan::nishita(g_l.built_from != Some(atmosphere));
         let targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,
             _ => Targets {
@@ -163,54 +124,66 @@ impl Renderer {
                 ldr: target(&self.gpu, "ldr", LDR_FORMAT, frame),
             },
         };
-
         let gpu = &self.gpu;
-        let timer = self.timer.as_ref();
         gpu.queue
             .write_buffer(&self.atmosphere, 0, bytemuck::bytes_of(&atmosphere));
-        let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        let mut index = 0;
-        for step in &plan.steps {
-            match step.name {
-                "g_l" => {
-                    g_l.pass.encode(
-                        gpu,
-                        &atmosphere,
-                        &mut encoder,
-                        timer.map(|t| t.compute_writes(index)),
-                    );
-                    g_l.built_from = Some(atmosphere);
+        gpu.queue
+            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame_uniform));
+
+        let mut plan = FramePlan::default();
+        // The model's passes, made on first use.
+        let model = {
+            let index = match self.models.iter().position(|(m, _)| *m == frame.model) {
+                Some(i) => i,
+                None => {
+                    let pass = model_pass::create(&frame.model, gpu)?;
+                    self.models.push((frame.model.clone(), pass));
+                    self.models.len() - 1
                 }
-                "nishita" => self.nishita.encode(
-                    gpu,
-                    &NishitaInputs {
-                        atmosphere: &self.atmosphere,
-                        frame: &FrameUniform::new(frame),
-                        params: &nishita,
-                        table: g_l.pass.texture(),
-                        hdr: &targets.hdr,
-                    },
-                    &mut encoder,
-                    timer.map(|t| t.compute_writes(index)),
-                ),
-                "tone_map" => self.tone_map.encode(
+            };
+            &mut self.models[index].1
+        };
+        let planned = model.plan(gpu, frame, &mut plan);
+        if let Err(e) = planned {
+            self.targets = Some(targets);
+            return Err(e);
+        }
+        plan.run("tone_map", StepKind::Pass);
+
+        let timer = self.timer.as_ref();
+        let io = PassIo {
+            atmosphere: &self.atmosphere,
+            frame: &self.frame,
+            hdr: &targets.hdr,
+        };
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        for (index, step) in plan.steps.iter().enumerate() {
+            let index = index as u32;
+            if step.name == "tone_map" {
+                self.tone_map.encode(
                     gpu,
                     &tone_map,
                     &targets.hdr,
                     &targets.ldr.create_view(&Default::default()),
                     &mut encoder,
                     timer.map(|t| t.render_writes(index)),
-                ),
-                other => unreachable!("the nishita plan has no step {other}"),
+                );
+            } else {
+                model.encode(
+                    step.name,
+                    gpu,
+                    &io,
+                    &mut encoder,
+                    timer.map(|t| t.compute_writes(index)),
+                );
             }
-            index += 1;
         }
+        let steps = plan.steps.len() as u32;
         if let Some(timer) = timer {
-            timer.resolve(&mut encoder, index);
+            timer.resolve(&mut encoder, steps);
         }
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         gpu.queue.submit([encoder.finish()]);
-        self.g_l = Some(g_l);
         self.targets = Some(targets);
         if let Some(source) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Validation {
@@ -220,7 +193,7 @@ impl Renderer {
             .into());
         }
         if let Some(timer) = timer {
-            let times = timer.read(gpu, index)?;
+            let times = timer.read(gpu, steps)?;
             for (step, ms) in plan.steps.iter_mut().zip(times) {
                 step.gpu_ms = Some(ms);
             }

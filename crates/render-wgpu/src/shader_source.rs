@@ -21,6 +21,10 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/nishita.wgsl"),
     ),
     (
+        "phase.wgsl",
+        include_str!("../../../shaders/phase.wgsl"),
+    ),
+    (
         "sun_disk.wgsl",
         include_str!("../../../shaders/sun_disk.wgsl"),
     ),

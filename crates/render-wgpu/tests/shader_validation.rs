@@ -113,6 +113,27 @@ fn atmosphere_uniform_matches_its_wgsl_layout() {
             "ozone_extinction_per_m",
             std::mem::offset_of!(AtmosphereUniform, ozone_extinction_per_m),
         ),
+        (
+            "rayleigh_scattering_per_m",
+            std::mem::offset_of!(AtmosphereUniform, rayleigh_scattering_per_m),
+        ),
+        (
+            "mie_scattering_per_m",
+            std::mem::offset_of!(AtmosphereUniform, mie_scattering_per_m),
+        ),
+        (
+            "solar_irradiance",
+            std::mem::offset_of!(AtmosphereUniform, solar_irradiance),
+        ),
+        (
+            "mie_phase_kind",
+            std::mem::offset_of!(AtmosphereUniform, mie_phase_kind),
+        ),
+        ("mie_g", std::mem::offset_of!(AtmosphereUniform, mie_g)),
+        (
+            "ground_albedo",
+            std::mem::offset_of!(AtmosphereUniform, ground_albedo),
+        ),
     ];
     for (name, offset) in rust {
         assert!(
@@ -184,6 +205,8 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
             up,
             forward,
             sun_direction,
+            sun_centre_radiance,
+            sun_limb_exponent,
             size_px
         ]
     );
@@ -191,17 +214,7 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
         "nishita.wgsl",
         "NishitaParams",
         NishitaUniform,
-        [
-            rayleigh_scattering_per_m,
-            mie_scattering_per_m,
-            solar_irradiance,
-            sun_centre_radiance,
-            sun_limb_exponent,
-            view_samples,
-            mie_phase_kind,
-            mie_g,
-            ground_albedo,
-        ]
+        [view_samples, pad0, pad1, pad2]
     );
     assert_layout!(
         "tone_map.wgsl",

@@ -1,0 +1,79 @@
+//! One sky model on the GPU: its tables (kept between frames, rebuilt only when an input
+//! they depend on changed) and its per-pixel pass into the HDR target. The
+//! [`crate::Renderer`] keeps one per model used, so switching models and back rebuilds
+//! nothing. Every model's shader binds the atmosphere at binding 0 and the frame at
+//! binding 1 (`atmosphere_params.wgsl`, `frame_params.wgsl`); its own resources follow.
+
+use atmosphere_core::model::MODEL_IDS;
+
+use crate::device::GpuContext;
+use crate::error::RenderError;
+use crate::frame::Frame;
+use crate::frame_plan::FramePlan;
+use crate::nishita_pass::NishitaPass;
+
+/// The models the GPU renders, by id.
+pub const GPU_MODELS: &[&str] = &["nishita"];
+
+/// What a model's steps read and write besides their own tables.
+#[derive(Debug)]
+pub struct PassIo<'a> {
+    /// `AtmosphereUniform` (binding 0 of every model shader).
+    pub atmosphere: &'a wgpu::Buffer,
+    /// `FrameUniform` (binding 1).
+    pub frame: &'a wgpu::Buffer,
+    /// The HDR target, of [`crate::nishita_pass::HDR_FORMAT`].
+    pub hdr: &'a wgpu::Texture,
+}
+
+/// A sky model's tables and passes on the GPU; see the module documentation.
+pub trait ModelPass: std::fmt::Debug {
+    /// Takes the frame's atmosphere and model settings: checks them (an error names what
+    /// the GPU cannot follow), remakes tables whose size changed, uploads the model's
+    /// uniforms, and adds to `plan` the table builds this frame needs (those never built
+    /// or whose inputs changed), those it skips with why, and the per-pixel pass.
+    fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        plan: &mut FramePlan,
+    ) -> Result<(), RenderError>;
+
+    /// Records `step`, one that the last [`ModelPass::plan`] listed, timed by `timestamps`
+    /// when given.
+    fn encode(
+        &mut self,
+        step: &'static str,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    );
+
+    /// Bytes of GPU memory held by the model's tables.
+    fn table_bytes(&self) -> u64;
+}
+
+/// Whether model `id` can be rendered: an error naming it when it is unknown or not yet
+/// on the GPU (no model silently stands in for another).
+pub fn check_model(id: &str) -> Result<(), RenderError> {
+    if GPU_MODELS.contains(&id) {
+        Ok(())
+    } else if MODEL_IDS.contains(&id) {
+        Err(RenderError::NotOnGpu {
+            model: id.to_string(),
+            on_gpu: GPU_MODELS.join(", "),
+        })
+    } else {
+        Err(atmosphere_core::model::ModelError::UnknownModel(id.to_string()).into())
+    }
+}
+
+/// The GPU twin of model `id`, its pipelines compiled, no table built yet.
+pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderError> {
+    check_model(id)?;
+    match id {
+        "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
+        other => unreachable!("GPU_MODELS lists {other} without a pass"),
+    }
+}
