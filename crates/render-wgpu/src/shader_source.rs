@@ -20,10 +20,7 @@ const SHADERS: &[(&str, &str)] = &[
         "nishita.wgsl",
         include_str!("../../../shaders/nishita.wgsl"),
     ),
-    (
-        "phase.wgsl",
-        include_str!("../../../shaders/phase.wgsl"),
-    ),
+    ("phase.wgsl", include_str!("../../../shaders/phase.wgsl")),
     (
         "sun_disk.wgsl",
         include_str!("../../../shaders/sun_disk.wgsl"),
