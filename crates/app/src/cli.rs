@@ -26,6 +26,31 @@ pub enum Command {
     Report(ReportArgs),
     /// One frame of a scene, headless: EXR (linear HDR radiance) or PNG (tone-mapped).
     Render(RenderArgs),
+    /// GPU table build and frame times of every model on this adapter (ground, sunset and
+    /// orbit views), per pass, as Markdown tables.
+    Bench(BenchArgs),
+}
+
+/// The flags of `atmos bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Only these models (repeat the flag); every model on the GPU when absent. The
+    /// baseline, nishita with 16 samples, is always measured.
+    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
+    pub model: Vec<String>,
+    /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
+    #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
+    pub atmosphere: String,
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+    /// Frames measured per view (after one warm-up frame); the median is reported.
+    #[arg(long, default_value_t = 5)]
+    pub frames: usize,
+    /// Also write the tables to this Markdown file (atomically).
+    #[arg(long, value_name = "FILE.md")]
+    pub out: Option<PathBuf>,
 }
 
 /// The flags of `atmos render`.

@@ -1,6 +1,7 @@
 //! The `atmos` binary as a library: the command line and its subcommands, so that tests
 //! and other tools can run them in-process.
 
+pub mod bench;
 pub mod cli;
 pub mod files;
 pub mod probe;
@@ -23,6 +24,7 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
         Some(Command::Stability(args)) => stability::run(&args),
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Bench(args)) => bench::run(&args),
         None => {
             Cli::command().print_help()?;
             println!(

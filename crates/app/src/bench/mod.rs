@@ -1,0 +1,349 @@
+//! `atmos bench`: for each model on the GPU, on the current adapter, the time to build
+//! its tables and to render a ground, a sunset and an orbit view, per step of the frame
+//! plan, as a Markdown table; each model's frame time is also given as a ratio to the
+//! 16-sample nishita frame, the cost baseline of the issue. Times are medians of several
+//! frames after a warm-up frame (which compiles shaders and builds tables).
+
+mod views;
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::model::ModelSettings;
+use atmosphere_core::model_options::ModelOptions;
+use render_wgpu::Renderer;
+use render_wgpu::frame::Frame;
+use render_wgpu::frame_plan::{FramePlan, StepKind};
+use render_wgpu::model_pass::GPU_MODELS;
+
+use crate::cli::BenchArgs;
+use crate::files::write_atomically;
+use crate::progress::Progress;
+pub use views::{BENCH_VIEWS, BenchView};
+
+/// The baseline's label: nishita with 16 view samples.
+pub const BASELINE: &str = "nishita samples=16";
+
+/// A model with its settings, as benchmarked.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variant {
+    /// `model` or `model key=value ...`.
+    pub label: String,
+    pub model: String,
+    pub options: Vec<String>,
+}
+
+impl Variant {
+    fn new(model: &str, options: &[&str]) -> Variant {
+        let mut label = model.to_string();
+        for o in options {
+            label.push(' ');
+            label.push_str(o);
+        }
+        Variant {
+            label,
+            model: model.to_string(),
+            options: options.iter().map(|o| o.to_string()).collect(),
+        }
+    }
+}
+
+/// The baseline, then each requested model (all on the GPU when none) with its defaults.
+pub fn variants(models: &[String]) -> Vec<Variant> {
+    let mut out = vec![Variant::new("nishita", &["samples=16"])];
+    let chosen: Vec<&str> = if models.is_empty() {
+        GPU_MODELS.to_vec()
+    } else {
+        models.iter().map(String::as_str).collect()
+    };
+    out.extend(chosen.into_iter().map(|m| Variant::new(m, &[])));
+    out
+}
+
+/// The median of `values` (the lower middle one for an even count); `None` when empty.
+pub fn median(values: &[f64]) -> Option<f64> {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted.get((sorted.len().max(1) - 1) / 2).copied()
+}
+
+/// The measured times of one model in one view, ms.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ViewTimes {
+    /// Median GPU time of each pass (table builds excluded), in plan order.
+    pub passes: Vec<(&'static str, Option<f64>)>,
+    /// Median of the frame's wall-clock time, from `render` to the GPU's end.
+    pub frame_wall_ms: f64,
+    /// Median of the sum of the passes' GPU times, where the adapter times them.
+    pub frame_gpu_ms: Option<f64>,
+}
+
+/// What one variant measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VariantTimes {
+    pub variant: Variant,
+    /// Median GPU time of each table build when every table is rebuilt, ms.
+    pub tables: Vec<(&'static str, Option<f64>)>,
+    /// Median wall-clock time of a ground frame that rebuilds every table, ms; less the
+    /// ground view's plain frame, the tables' own time (timestamps on a CPU adapter such
+    /// as lavapipe are indicative only).
+    pub rebuild_wall_ms: f64,
+    pub views: Vec<ViewTimes>,
+}
+
+fn frame(
+    variant: &Variant,
+    view: &BenchView,
+    atmosphere: &Atmosphere,
+    args: &BenchArgs,
+) -> anyhow::Result<Frame> {
+    Ok(Frame {
+        camera_position_m: view.view.position_m(atmosphere.bottom_radius_m),
+        orientation: view.view.orientation(),
+        vertical_fov_deg: view.fov_deg,
+        sun_direction: view.view.sun_direction(),
+        atmosphere: atmosphere.clone(),
+        model: variant.model.clone(),
+        settings: ModelSettings {
+            options: ModelOptions::parse(&variant.options)?,
+            ..ModelSettings::default()
+        },
+        exposure_ev100: 14.0,
+        width: args.width,
+        height: args.height,
+    })
+}
+
+/// Renders `frame`; returns the plan and the wall-clock time, ms.
+fn timed(renderer: &mut Renderer, frame: &Frame) -> anyhow::Result<(FramePlan, f64)> {
+    let start = Instant::now();
+    let plan = renderer
+        .render(frame)
+        .with_context(|| format!("rendering {}", frame.model))?;
+    Ok((plan, start.elapsed().as_secs_f64() * 1e3))
+}
+
+/// Median GPU time per step of `kind` over `plans`, in the first plan's order.
+fn step_medians(plans: &[FramePlan], kind: StepKind) -> Vec<(&'static str, Option<f64>)> {
+    let mut times: BTreeMap<&'static str, Vec<f64>> = BTreeMap::new();
+    let mut order = Vec::new();
+    let mut untimed = Vec::new();
+    for plan in plans {
+        for step in plan.steps.iter().filter(|s| s.kind == kind) {
+            if !order.contains(&step.name) {
+                order.push(step.name);
+            }
+            match step.gpu_ms {
+                Some(ms) => times.entry(step.name).or_default().push(ms),
+                None => untimed.push(step.name),
+            }
+        }
+    }
+    order
+        .into_iter()
+        .map(|name| {
+            let ms = times.get(name).and_then(|t| median(t));
+            (name, if untimed.contains(&name) { None } else { ms })
+        })
+        .collect()
+}
+
+/// A copy of `atmosphere` that differs in the last bit of the Rayleigh scale height,
+/// so every table that depends on the atmosphere is rebuilt, while the image stays the
+/// same to rounding.
+fn nudged(atmosphere: &Atmosphere, k: usize) -> Atmosphere {
+    let mut a = atmosphere.clone();
+    if let Some(layer) = a.rayleigh.density.layers.first_mut() {
+        let s = layer.exp_scale_per_m;
+        layer.exp_scale_per_m = if k.is_multiple_of(2) {
+            s
+        } else {
+            s * (1.0 + f64::EPSILON)
+        };
+    }
+    a
+}
+
+/// Measures one variant: every table rebuilt `frames` times, then each view.
+fn measure(
+    renderer: &mut Renderer,
+    variant: &Variant,
+    atmosphere: &Atmosphere,
+    args: &BenchArgs,
+    progress: &Progress,
+) -> anyhow::Result<VariantTimes> {
+    let first = frame(variant, &BENCH_VIEWS[0], atmosphere, args)?;
+    timed(renderer, &first)?;
+    progress.inc();
+    let mut rebuilds = Vec::new();
+    let mut rebuild_wall = Vec::new();
+    for k in 1..=args.frames {
+        let mut f = first.clone();
+        f.atmosphere = nudged(atmosphere, k);
+        let (plan, wall) = timed(renderer, &f)?;
+        rebuilds.push(plan);
+        rebuild_wall.push(wall);
+        progress.inc();
+    }
+    let mut views = Vec::new();
+    for view in BENCH_VIEWS {
+        let f = frame(variant, view, atmosphere, args)?;
+        timed(renderer, &f)?;
+        progress.inc();
+        let mut plans = Vec::new();
+        let mut walls = Vec::new();
+        for _ in 0..args.frames {
+            let (plan, wall) = timed(renderer, &f)?;
+            plans.push(plan);
+            walls.push(wall);
+            progress.inc();
+        }
+        let totals: Option<Vec<f64>> = plans.iter().map(FramePlan::total_gpu_ms).collect();
+        views.push(ViewTimes {
+            passes: step_medians(&plans, StepKind::Pass),
+            frame_wall_ms: median(&walls).unwrap_or(f64::NAN),
+            frame_gpu_ms: totals.and_then(|t| median(&t)),
+        });
+    }
+    Ok(VariantTimes {
+        variant: variant.clone(),
+        tables: step_medians(&rebuilds, StepKind::TableBuild),
+        rebuild_wall_ms: median(&rebuild_wall).unwrap_or(f64::NAN),
+        views,
+    })
+}
+
+fn ms(value: Option<f64>) -> String {
+    value.map_or_else(|| "-".to_string(), |v| format!("{v:.1}"))
+}
+
+fn steps(list: &[(&'static str, Option<f64>)]) -> String {
+    if list.is_empty() {
+        return "none".into();
+    }
+    list.iter()
+        .map(|(name, t)| format!("{name} {}", ms(*t)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The Markdown tables of `results` measured on `adapter`.
+pub fn markdown(adapter: &str, args: &BenchArgs, results: &[VariantTimes]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "atmos bench on {adapter}: {}x{} px, medians of {} frames after one warm-up frame; \
+         GPU times from timestamp queries (`-` where the adapter has none), wall-clock from \
+         `render` until the GPU has finished.\n",
+        args.width, args.height, args.frames
+    );
+    let _ = writeln!(
+        out,
+        "| model | table builds, GPU ms | all tables rebuilt, wall ms |"
+    );
+    let _ = writeln!(out, "|---|---|---|");
+    for r in results {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.1} |",
+            r.variant.label,
+            steps(&r.tables),
+            r.rebuild_wall_ms
+        );
+    }
+    let baseline = results.iter().find(|r| r.variant.label == BASELINE);
+    let _ = writeln!(
+        out,
+        "\n| model | view | passes, GPU ms | frame GPU ms | frame wall ms | wall / {BASELINE} |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    for r in results {
+        for (view, t) in BENCH_VIEWS.iter().zip(&r.views) {
+            let ratio = baseline
+                .and_then(|b| {
+                    b.views
+                        .iter()
+                        .zip(BENCH_VIEWS)
+                        .find(|(_, v)| v.name == view.name)
+                })
+                .map(|(b, _)| t.frame_wall_ms / b.frame_wall_ms);
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} | {:.1} | {} |",
+                r.variant.label,
+                view.name,
+                steps(&t.passes),
+                ms(t.frame_gpu_ms),
+                t.frame_wall_ms,
+                ratio.map_or_else(|| "-".to_string(), |x| format!("{x:.2}"))
+            );
+        }
+    }
+    out
+}
+
+/// Runs `atmos bench`: measures, prints the tables, and writes them to `--out` if given.
+pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    if args.frames == 0 {
+        bail!("--frames must be at least 1");
+    }
+    for m in &args.model {
+        Renderer::check_model(m)?;
+    }
+    let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)
+        .with_context(|| format!("--atmosphere {}", args.atmosphere))?;
+    let variants = variants(&args.model);
+    let mut renderer = Renderer::headless()?;
+    let adapter = renderer.gpu().adapter_summary();
+    let per_variant = 1 + args.frames + BENCH_VIEWS.len() * (1 + args.frames);
+    let progress = Progress::new("bench", "frames", (variants.len() * per_variant) as u64);
+    let mut results = Vec::new();
+    for variant in &variants {
+        results.push(measure(
+            &mut renderer,
+            variant,
+            &atmosphere,
+            args,
+            &progress,
+        )?);
+    }
+    progress.finish();
+    let text = markdown(&adapter, args, &results);
+    print!("{text}");
+    if let Some(path) = &args.out {
+        write_atomically(path, text.as_bytes())?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn medians_and_variants() {
+        assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), Some(2.0));
+        assert_eq!(median(&[]), None);
+        let v = variants(&["nishita".to_string()]);
+        assert_eq!(v[0].label, BASELINE);
+        assert_eq!(v[1].label, "nishita");
+        assert_eq!(v[1].options, Vec::<String>::new());
+    }
+
+    #[test]
+    fn nudging_changes_the_atmosphere_by_one_rounding() {
+        let earth = Atmosphere::preset("earth").unwrap();
+        assert_eq!(nudged(&earth, 0), earth);
+        let n = nudged(&earth, 1);
+        assert_ne!(n, earth);
+        let (a, b) = (
+            earth.rayleigh.density.layers[0].exp_scale_per_m,
+            n.rayleigh.density.layers[0].exp_scale_per_m,
+        );
+        assert!(((a - b) / a).abs() <= 2.0 * f64::EPSILON);
+    }
+}

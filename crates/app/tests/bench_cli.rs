@@ -1,0 +1,75 @@
+//! `atmos bench` end to end on tiny frames: the tables name every view of every variant,
+//! the baseline's ratio to itself is 1, the file written equals what was printed; bad
+//! flags are named. Without an adapter the GPU case fails with the message saying what
+//! to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when it prints that it skipped.
+
+mod common;
+
+use common::{atmos, stderr};
+
+#[test]
+fn bench_tables_cover_every_view_with_the_baseline_as_unit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bench.md");
+    let args = [
+        "bench", "--model", "nishita", "--width", "16", "--height", "9", "--frames", "1", "--out",
+    ];
+    let mut args = args.to_vec();
+    args.push(out.to_str().unwrap());
+    let output = atmos(&args);
+    let err = stderr(&output);
+    if !output.status.success()
+        && err.contains("no GPU adapter")
+        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
+    {
+        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+        return;
+    }
+    assert!(output.status.success(), "{err}");
+    let printed = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), printed);
+    for variant in ["nishita samples=16", "nishita"] {
+        for view in ["ground", "sunset", "orbit"] {
+            let row = printed
+                .lines()
+                .find(|l| l.starts_with(&format!("| {variant} | {view} |")))
+                .unwrap_or_else(|| panic!("no row for {variant} {view}:\n{printed}"));
+            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+            let wall: f64 = cells[5].parse().unwrap();
+            assert!(wall > 0.0 && wall.is_finite(), "{row}");
+            assert!(
+                cells[3].contains("nishita") && cells[3].contains("tone_map"),
+                "{row}"
+            );
+            if variant == "nishita samples=16" {
+                assert_eq!(cells[6], "1.00", "{row}");
+            } else {
+                assert!(cells[6].parse::<f64>().unwrap() > 0.0, "{row}");
+            }
+        }
+    }
+    assert!(printed.contains("| nishita | g_l "), "{printed}");
+}
+
+#[test]
+fn bad_bench_flags_are_named() {
+    let output = atmos(&["bench", "--frames", "0"]);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("--frames"), "{}", stderr(&output));
+    let output = atmos(&["bench", "--model", "nonesuch"]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(stderr(&output).contains("nonesuch"), "{}", stderr(&output));
+    let output = atmos(&[
+        "bench",
+        "--atmosphere",
+        "nowhere.toml",
+        "--model",
+        "nishita",
+    ]);
+    assert!(!output.status.success());
+    assert!(
+        stderr(&output).contains("nowhere.toml"),
+        "{}",
+        stderr(&output)
+    );
+}
