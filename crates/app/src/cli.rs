@@ -29,6 +29,31 @@ pub enum Command {
     /// GPU table build and frame times of every model on this adapter (ground, sunset and
     /// orbit views), per pass, as Markdown tables.
     Bench(BenchArgs),
+    /// Every GPU model in six views (noon, sunset, twilight, 10 km, 100 km, orbit) in one
+    /// labelled PNG.
+    ContactSheet(ContactSheetArgs),
+}
+
+/// The flags of `atmos contact-sheet`.
+#[derive(Debug, Args)]
+pub struct ContactSheetArgs {
+    /// Only these models, one row each (repeat the flag); every model on the GPU when
+    /// absent.
+    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
+    pub model: Vec<String>,
+    /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
+    #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
+    pub atmosphere: String,
+    /// Size of each image as WIDTHxHEIGHT.
+    #[arg(long, value_name = "WIDTHxHEIGHT", default_value = "320x180", value_parser = parse_tile)]
+    pub tile: (u32, u32),
+    /// The PNG to write (atomically).
+    #[arg(
+        long,
+        value_name = "FILE.png",
+        default_value = "docs/images/contact_sheet.png"
+    )]
+    pub out: PathBuf,
 }
 
 /// The flags of `atmos bench`.
@@ -98,6 +123,16 @@ fn parse_grid(text: &str) -> Result<(usize, usize), String> {
         return Err(format!("'{text}': at least one column and one row"));
     }
     Ok((c, r))
+}
+
+/// "320x180" -> (320, 180), each side 1 to the GPU's largest texture side.
+fn parse_tile(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = parse_grid(text)?;
+    let max = render_wgpu::frame::MAX_SIDE_PX as usize;
+    if w > max || h > max {
+        return Err(format!("'{text}': each side at most {max} px"));
+    }
+    Ok((w as u32, h as u32))
 }
 
 /// The flags of `atmos stability`.

@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod contact_sheet;
 pub mod files;
 pub mod probe;
 pub mod progress;
@@ -25,6 +26,7 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
+        Some(Command::ContactSheet(args)) => contact_sheet::run(&args),
         None => {
             Cli::command().print_help()?;
             println!(

@@ -144,11 +144,16 @@ impl LabelPlacer {
     }
 }
 
+/// Makes the shipped DejaVu Sans plotters' "sans-serif" font; registering it again is
+/// harmless.
+pub fn register_sans_serif() -> anyhow::Result<()> {
+    register_font("sans-serif", FontStyle::Normal, FONT)
+        .map_err(|_| anyhow!("the plot font assets/fonts/DejaVuSans.ttf is not a font"))
+}
+
 /// Draws the plot to `path` (PNG), through a partial file renamed into place.
 pub fn draw(path: &Path, points: &[Point]) -> anyhow::Result<()> {
-    // Registering the same font again is harmless.
-    register_font("sans-serif", FontStyle::Normal, FONT)
-        .map_err(|_| anyhow!("the plot font assets/fonts/DejaVuSans.ttf is not a font"))?;
+    register_sans_serif()?;
     let mut partial = path.as_os_str().to_owned();
     partial.push(".partial.png");
     let partial = PathBuf::from(partial);

@@ -1,0 +1,56 @@
+//! `atmos contact-sheet` end to end on tiny tiles: the sheet has one labelled row per
+//! model and one column per view, the noon sky is blue over a reddish-grey ground, space in the
+//! 100 km view is black; a bad tile size is named. Without an adapter the GPU case fails
+//! with the message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`.
+
+mod common;
+
+use common::{atmos, stderr};
+
+#[test]
+fn the_sheet_lays_out_labelled_views() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sheet.png");
+    let output = atmos(&[
+        "contact-sheet",
+        "--model",
+        "nishita",
+        "--tile",
+        "32x18",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = stderr(&output);
+    if !output.status.success()
+        && err.contains("no GPU adapter")
+        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
+    {
+        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+        return;
+    }
+    assert!(output.status.success(), "{err}");
+    let sheet = image::open(&out).unwrap().to_rgb8();
+    // 110 px of model names, six 32 px columns; 26 px of view names, one 18 px row.
+    assert_eq!(sheet.dimensions(), (110 + 6 * 32, 26 + 18));
+    let lit = |x0: u32, x1: u32, y0: u32, y1: u32| {
+        (x0..x1).any(|x| (y0..y1).any(|y| sheet.get_pixel(x, y).0.iter().any(|&c| c > 128)))
+    };
+    assert!(lit(0, 110, 26, 44), "no model name");
+    assert!(lit(110, 142, 0, 26), "no view name");
+    let noon_sky = sheet.get_pixel(110 + 16, 26 + 1);
+    let noon_ground = sheet.get_pixel(110 + 16, 26 + 16);
+    assert!(noon_sky[2] > noon_sky[0], "noon sky {noon_sky:?}");
+    assert!(noon_ground[0] > noon_ground[2], "ground {noon_ground:?}");
+    assert_eq!(
+        sheet.get_pixel(110 + 4 * 32 + 16, 26).0,
+        [0, 0, 0],
+        "space at 100 km"
+    );
+}
+
+#[test]
+fn a_bad_tile_is_named() {
+    let output = atmos(&["contact-sheet", "--tile", "0x9"]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(stderr(&output).contains("0x9"), "{}", stderr(&output));
+}
