@@ -159,3 +159,199 @@ fn tables_match_the_cpu() {
     let errors = compare_tables(&gpu, "earth", &REDUCED);
     assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
 }
+
+/// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
+/// HDR store (4.9e-4), the tables' f32 build differences (above: up to 3e-3 relative
+/// where Mie dominates) and f32 texel positions in the look-ups. Measured on lavapipe:
+/// see the test output and docs/rendering.md.
+const MAX_RELATIVE_ERROR: f64 = 5e-3;
+
+/// Radiance below which errors count as absolute, W m^-2 sr^-1 nm^-1 (as for nishita).
+const FLOOR: f64 = 1e-4;
+
+/// Pixels within this angle of the planet's limb are left out (as for nishita).
+const LIMB_ANGLE_RAD: f64 = 2e-6;
+
+fn on_limb(frame: &Frame, column: u32, row: u32) -> bool {
+    let ray = frame.pixel_ray(column, row);
+    let end = |direction| {
+        let mut r = ray;
+        r.direction = direction;
+        ViewSegment::new(&frame.atmosphere, &r)
+            .unwrap()
+            .map(|s| s.end == SegmentEnd::Ground)
+    };
+    let [right, up, _] = frame.axes();
+    let here = end(ray.direction);
+    [right, -right, up, -up]
+        .iter()
+        .any(|&d| end((ray.direction + d * LIMB_ANGLE_RAD).normalize()) != here)
+}
+
+/// The CPU's radiance of a pixel plus the transmitted sun disk where the ray reaches
+/// space.
+fn cpu_pixel(model: &dyn SkyModel, frame: &Frame, column: u32, row: u32) -> [f64; 3] {
+    let ray = frame.pixel_ray(column, row);
+    let answer = model.radiance(&ray).unwrap();
+    let to_space = ViewSegment::new(&frame.atmosphere, &ray)
+        .unwrap()
+        .is_none_or(|s| s.end != SegmentEnd::Ground);
+    let angle = ray
+        .direction
+        .cross(ray.sun_direction)
+        .length()
+        .atan2(ray.direction.dot(ray.sun_direction));
+    std::array::from_fn(|w| {
+        let disk = if to_space {
+            answer.transmittance[w]
+                * sun_disk::radiance(
+                    model.solar_irradiance_w_m2_nm()[w],
+                    frame.atmosphere.sun.angular_radius_rad,
+                    RGB_WAVELENGTHS_NM[w],
+                    angle,
+                )
+        } else {
+            0.0
+        };
+        answer.radiance[w] + disk
+    })
+}
+
+/// Renders `frame` and compares every pixel with the CPU model; returns the worst
+/// relative error.
+fn check(renderer: &mut Renderer, cpu: &Bruneton, name: &str, frame: &Frame) -> f64 {
+    let plan = renderer.render(frame).unwrap();
+    let hdr = renderer.read_hdr().unwrap();
+    let (mut worst, mut at, mut limb, mut lit) = (0.0f64, (0, 0, 0), 0, 0);
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            if on_limb(frame, column, row) {
+                limb += 1;
+                continue;
+            }
+            let gpu = hdr[(row * frame.width + column) as usize];
+            let want = cpu_pixel(cpu, frame, column, row);
+            lit += usize::from(want[1] > FLOOR);
+            for c in 0..3 {
+                let error = (f64::from(gpu[c]) - want[c]).abs() / want[c].max(FLOOR);
+                if error > worst || error.is_nan() {
+                    worst = error;
+                    at = (column, row, c);
+                }
+            }
+        }
+    }
+    println!(
+        "{name}: worst relative error {worst:.2e} at pixel {at:?}; {lit} lit pixels, \
+         {limb} on the limb left out; plan: {plan}"
+    );
+    assert!(
+        worst <= MAX_RELATIVE_ERROR,
+        "{name}: worst relative error {worst:e}"
+    );
+    worst
+}
+
+#[test]
+fn frames_match_the_cpu_from_the_ground_to_far_orbit() {
+    let Some(gpu) = gpu_or_skip("bruneton frames") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let s = settings(&REDUCED);
+    let earth = Atmosphere::preset("earth").unwrap();
+    let cpu = Bruneton::prepare(&earth, &s).unwrap();
+    let mut sunset = view(2_000.0, 88.0, 89.0);
+    sunset.sun_azimuth_deg = 5.0;
+    let frames = [
+        ("ground, noon", view(1.0, 80.0, 10.0), 70.0),
+        ("sunset", sunset, 60.0),
+        ("10 km", view(10_000.0, 95.0, 60.0), 60.0),
+        ("100 km limb", view(100_000.0, 100.0, 60.0), 40.0),
+        ("1e8 m", view(1e8, 180.0, 80.0), 9.0),
+        ("sun disk", view(500.0, 60.0, 60.0), 1.0),
+    ];
+    for (name, v, fov) in frames {
+        let mut v = v;
+        if name == "sun disk" {
+            v.sun_azimuth_deg = 0.0;
+        }
+        check(
+            &mut renderer,
+            &cpu,
+            name,
+            &frame("earth", s.clone(), v, fov, 48, 27),
+        );
+    }
+}
+
+#[test]
+fn unchanged_tables_and_sun_changes_rebuild_nothing() {
+    let Some(gpu) = gpu_or_skip("bruneton plan") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let tables = [
+        "transmittance",
+        "density",
+        "sun_transmittance",
+        "single_scattering",
+        "scattering_orders",
+        "scattering_texture",
+    ];
+    let mut f = frame(
+        "earth",
+        settings(&REDUCED),
+        view(100.0, 85.0, 40.0),
+        60.0,
+        32,
+        18,
+    );
+    let first = renderer.render(&f).unwrap();
+    assert!(tables.iter().all(|t| first.runs(t)), "{first}");
+    let again = renderer.render(&f).unwrap();
+    assert!(tables.iter().all(|t| !again.runs(t)), "{again}");
+    // A new sun rebuilds nothing and renders what a full build renders.
+    f.sun_direction = view(100.0, 85.0, 70.0).sun_direction();
+    let moved = renderer.render(&f).unwrap();
+    assert!(tables.iter().all(|t| !moved.runs(t)), "{moved}");
+    let image = renderer.read_hdr().unwrap();
+    let mut fresh = Renderer::headless().unwrap();
+    fresh.render(&f).unwrap();
+    assert_eq!(image, fresh.read_hdr().unwrap());
+    // The ground albedo rebuilds the orders, not single scattering.
+    f.atmosphere.ground_albedo = 0.3;
+    let albedo = renderer.render(&f).unwrap();
+    assert!(
+        albedo.runs("scattering_orders") && !albedo.runs("single_scattering"),
+        "{albedo}"
+    );
+    // Aerosol 0 prunes Mie: no Mie table and the image of the CPU's pruned model.
+    f.atmosphere = f.atmosphere.with_aerosol_scale(0.0);
+    let pruned = renderer.render(&f).unwrap();
+    assert!(pruned.runs("single_scattering"), "{pruned}");
+    let cpu = Bruneton::prepare(&f.atmosphere, &f.settings).unwrap();
+    assert!(cpu.mie_pruned());
+    check(&mut renderer, &cpu, "aerosol 0", &f);
+}
+
+#[test]
+fn unsupported_sizes_are_errors_naming_them() {
+    let Some(gpu) = gpu_or_skip("bruneton sizes") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let f = frame(
+        "earth",
+        settings(&["mu_s=64", "nu=8"]),
+        view(10.0, 80.0, 50.0),
+        60.0,
+        8,
+        8,
+    );
+    let err = renderer.render(&f).unwrap_err();
+    assert!(
+        matches!(err, RenderError::Unsupported(_)) && err.to_string().contains("mu_s x nu"),
+        "{err}"
+    );
+}
