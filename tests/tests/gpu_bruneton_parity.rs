@@ -355,3 +355,25 @@ fn unsupported_sizes_are_errors_naming_them() {
         "{err}"
     );
 }
+
+/// The cost target, measured rather than asserted (lavapipe's times depend on
+/// the machine's load): a bruneton ground view at 1280x720 with the paper's tables
+/// against the 16-sample nishita frame, GPU times from the plan. Run with
+/// `./scripts/test.sh -p atmos-tests --test gpu_bruneton_parity -- --ignored --nocapture`.
+#[test]
+#[ignore = "a benchmark: minutes on lavapipe"]
+fn cost_at_1280x720_against_nishita_16() {
+    let Some(gpu) = gpu_or_skip("bruneton cost") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let v = view(1.0, 80.0, 40.0);
+    let mut nishita = frame("earth", settings(&["samples=16"]), v, 70.0, 1280, 720);
+    nishita.model = "nishita".into();
+    let bruneton = frame("earth", ModelSettings::default(), v, 70.0, 1280, 720);
+    for run in 0..3 {
+        let n = renderer.render(&nishita).unwrap();
+        let b = renderer.render(&bruneton).unwrap();
+        println!("run {run}: nishita 16: {n}\nrun {run}: bruneton: {b}");
+    }
+}

@@ -340,7 +340,7 @@ impl BrunetonPass {
         let layout = StoreLayout::new(s, e_mu_s * e_r);
         let limits = gpu.device.limits();
         let groups = (s.texels() as u64).div_ceil(u64::from(FLAT));
-        if layout.bytes() > u64::from(limits.max_storage_buffer_binding_size)
+        if layout.bytes() > limits.max_storage_buffer_binding_size
             || groups > u64::from(limits.max_compute_workgroups_per_dimension)
             || (s.r * s.mu) as u64 > u64::from(limits.max_compute_workgroups_per_dimension)
         {
