@@ -236,7 +236,7 @@ fn unchanged_tables_are_not_rebuilt_and_other_models_are_refused() {
     assert!(!renderer.render(&f).unwrap().runs("g_l"));
     f.atmosphere = f.atmosphere.with_aerosol_scale(2.0);
     assert!(renderer.render(&f).unwrap().runs("g_l"));
-    f.model = "bruneton".into();
+    f.model = "reference".into();
     let err = renderer.render(&f).unwrap_err();
     assert!(err.to_string().contains("not yet on the GPU"), "{err}");
 }
