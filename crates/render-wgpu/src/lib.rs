@@ -8,6 +8,7 @@
 //! a tolerance checked by a parity test in `tests/`.
 
 pub mod atmosphere_uniform;
+pub mod bruneton_pass;
 pub mod device;
 pub mod error;
 pub mod frame;

@@ -13,7 +13,7 @@ use crate::frame_plan::FramePlan;
 use crate::nishita_pass::NishitaPass;
 
 /// The models the GPU renders, by id.
-pub const GPU_MODELS: &[&str] = &["nishita"];
+pub const GPU_MODELS: &[&str] = &["nishita", "bruneton"];
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -74,6 +74,7 @@ pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderEr
     check_model(id)?;
     match id {
         "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
+        "bruneton" => Ok(Box::new(crate::bruneton_pass::BrunetonPass::new(gpu)?)),
         other => unreachable!("GPU_MODELS lists {other} without a pass"),
     }
 }

@@ -155,3 +155,17 @@ impl ComputePipeline {
         pass.dispatch_workgroups(groups[0], groups[1], groups[2]);
     }
 }
+
+/// A read-write storage buffer of at least `min_size` bytes.
+pub fn storage_buffer_entry(binding: u32, min_size: usize) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(min_size as u64),
+        },
+        count: None,
+    }
+}

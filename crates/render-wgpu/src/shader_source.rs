@@ -9,6 +9,54 @@ use crate::error::GpuError;
 /// the folder agree.
 const SHADERS: &[(&str, &str)] = &[
     (
+        "bruneton.wgsl",
+        include_str!("../../../shaders/bruneton.wgsl"),
+    ),
+    (
+        "bruneton_density.wgsl",
+        include_str!("../../../shaders/bruneton_density.wgsl"),
+    ),
+    (
+        "bruneton_irradiance.wgsl",
+        include_str!("../../../shaders/bruneton_irradiance.wgsl"),
+    ),
+    (
+        "bruneton_orders.wgsl",
+        include_str!("../../../shaders/bruneton_orders.wgsl"),
+    ),
+    (
+        "bruneton_parameterization.wgsl",
+        include_str!("../../../shaders/bruneton_parameterization.wgsl"),
+    ),
+    (
+        "bruneton_previous_order.wgsl",
+        include_str!("../../../shaders/bruneton_previous_order.wgsl"),
+    ),
+    (
+        "bruneton_ray_nodes.wgsl",
+        include_str!("../../../shaders/bruneton_ray_nodes.wgsl"),
+    ),
+    (
+        "bruneton_scattering.wgsl",
+        include_str!("../../../shaders/bruneton_scattering.wgsl"),
+    ),
+    (
+        "bruneton_scattering_density.wgsl",
+        include_str!("../../../shaders/bruneton_scattering_density.wgsl"),
+    ),
+    (
+        "bruneton_scattering_texture.wgsl",
+        include_str!("../../../shaders/bruneton_scattering_texture.wgsl"),
+    ),
+    (
+        "bruneton_single_scattering.wgsl",
+        include_str!("../../../shaders/bruneton_single_scattering.wgsl"),
+    ),
+    (
+        "bruneton_tables.wgsl",
+        include_str!("../../../shaders/bruneton_tables.wgsl"),
+    ),
+    (
         "atmosphere_params.wgsl",
         include_str!("../../../shaders/atmosphere_params.wgsl"),
     ),

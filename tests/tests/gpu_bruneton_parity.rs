@@ -1,0 +1,379 @@
+//! The bruneton model on the GPU against its CPU twin (atmosphere-core `bruneton`): every
+//! table read back texel by texel, the number of scattering orders, rendered pixels
+//! against `Bruneton::radiance` on the same pixel rays (plus the sun disk), and the
+//! frame plan's table skipping.
+//!
+//! Needs a GPU adapter (lavapipe will do), with the skip policy of the other GPU tests.
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::bruneton::Bruneton;
+use atmosphere_core::model::{ModelSettings, SkyModel};
+use atmosphere_core::sun_disk;
+use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
+use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use render_wgpu::bruneton_pass::{BrunetonPass, StoreTable};
+use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
+
+/// Reduced table sizes for the parity tests (S 8 x 32 x 16 x 8, the paper's sample
+/// counts), so that the CPU and lavapipe build them in seconds.
+const REDUCED: [&str; 4] = ["r=8", "mu=32", "mu_s=16", "nu=8"];
+
+fn settings(options: &[&str]) -> ModelSettings {
+    let mut s = ModelSettings::default();
+    for item in options {
+        let (k, v) = item.split_once('=').unwrap();
+        s.options.set(k, v);
+    }
+    s
+}
+
+fn gpu_or_skip(test: &str) -> Option<GpuContext> {
+    match GpuContext::headless() {
+        Ok(g) => Some(g),
+        Err(e @ GpuError::NoAdapter { .. })
+            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
+        {
+            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
+            None
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
+fn view(altitude_m: f64, view_zenith_deg: f64, sun_zenith_deg: f64) -> LocalView {
+    LocalView {
+        altitude_m,
+        view_zenith_deg,
+        view_azimuth_deg: 0.0,
+        sun_zenith_deg,
+        sun_azimuth_deg: 30.0,
+    }
+}
+
+fn frame(preset: &str, settings: ModelSettings, v: LocalView, fov: f64, w: u32, h: u32) -> Frame {
+    let atmosphere = Atmosphere::preset(preset).unwrap();
+    Frame {
+        camera_position_m: v.position_m(atmosphere.bottom_radius_m),
+        orientation: v.orientation(),
+        vertical_fov_deg: fov,
+        sun_direction: v.sun_direction(),
+        atmosphere,
+        model: "bruneton".into(),
+        settings,
+        exposure_ev100: 14.0,
+        width: w,
+        height: h,
+    }
+}
+
+/// Worst |gpu - cpu| / max(|cpu|, floor) over a table's channels, with the floor a
+/// fraction `floor_share` of the table's largest value; and where.
+fn worst(gpu: &[[f32; 4]], cpu: &[[f32; 3]], floor_share: f64) -> (f64, usize) {
+    assert_eq!(gpu.len(), cpu.len());
+    let peak = cpu
+        .iter()
+        .flat_map(|v| v.iter())
+        .fold(0.0f64, |m, &x| m.max(f64::from(x).abs()));
+    let floor = (peak * floor_share).max(1e-30);
+    let mut out = (0.0, 0);
+    for (i, (g, c)) in gpu.iter().zip(cpu).enumerate() {
+        for k in 0..3 {
+            let e = (f64::from(g[k]) - f64::from(c[k])).abs() / f64::from(c[k]).abs().max(floor);
+            if e > out.0 || e.is_nan() {
+                out = (e, i);
+            }
+        }
+    }
+    out
+}
+
+/// Builds the tables of `preset` on both sides and compares them; returns the worst
+/// relative errors (single Rayleigh, single Mie, multiple, irradiance).
+fn compare_tables(gpu: &GpuContext, preset: &str, options: &[&str]) -> [f64; 4] {
+    let f = frame(
+        preset,
+        settings(options),
+        view(10.0, 80.0, 50.0),
+        60.0,
+        8,
+        8,
+    );
+    let cpu = Bruneton::prepare(&f.atmosphere, &f.settings).unwrap();
+    let mut pass = BrunetonPass::new(gpu).unwrap();
+    let plan = pass.build_tables(gpu, &f).unwrap();
+    let t = &cpu.tables()[0];
+    let size = t.single_rayleigh.size;
+    // The 3D textures in the CPU's order: texel (x = nu * mu_s + mu_s, y = mu, z = r).
+    let from_texture = |k: usize| {
+        let tex = pass.read_scattering_texture(gpu, k).unwrap();
+        (0..size.texels())
+            .map(|i| {
+                let (ir, imu, imus, inu) = size.coords(i);
+                tex[((ir * size.mu + imu) * size.nu + inu) * size.mu_s + imus]
+            })
+            .collect::<Vec<_>>()
+    };
+    let floor = 1e-3;
+    let rayleigh = worst(&from_texture(0), &t.single_rayleigh.data, floor);
+    let mie = t
+        .single_mie
+        .as_ref()
+        .map_or((0.0, 0), |m| worst(&from_texture(1), &m.data, floor));
+    let multiple = worst(&from_texture(2), &t.multiple.data, floor);
+    let e = pass.read_table(gpu, StoreTable::Irradiance).unwrap();
+    let irradiance = worst(&e, &t.irradiance.data, floor);
+    let state = pass.read_orders(gpu).unwrap();
+    let cpu_orders: Vec<_> = cpu.orders().iter().map(|o| (o.order, o.share)).collect();
+    let cpu_last = cpu
+        .orders()
+        .iter()
+        .filter(|o| o.share.is_finite())
+        .map(|o| o.order)
+        .max()
+        .unwrap();
+    println!(
+        "{preset} {options:?}: worst relative error (floor 1e-3 of the peak): single Rayleigh {:.2e} at {}, \
+         single Mie {:.2e} at {}, multiple {:.2e} at {}, irradiance {:.2e} at {}; orders GPU {} {:?}, CPU {:?}; plan {plan}",
+        rayleigh.0,
+        rayleigh.1,
+        mie.0,
+        mie.1,
+        multiple.0,
+        multiple.1,
+        irradiance.0,
+        irradiance.1,
+        state.last_order,
+        &state.shares[1..=(state.last_order as usize + 1).min(63)],
+        cpu_orders,
+    );
+    assert_eq!(state.last_order, cpu_last, "orders differ");
+    [rayleigh.0, mie.0, multiple.0, irradiance.0]
+}
+
+#[test]
+fn tables_match_the_cpu() {
+    let Some(gpu) = gpu_or_skip("bruneton tables") else {
+        return;
+    };
+    let errors = compare_tables(&gpu, "earth", &REDUCED);
+    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+}
+
+/// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
+/// HDR store (4.9e-4), the tables' f32 build differences (above: up to 3e-3 relative
+/// where Mie dominates) and f32 texel positions in the look-ups. Measured on lavapipe:
+/// see the test output and docs/rendering.md.
+const MAX_RELATIVE_ERROR: f64 = 5e-3;
+
+/// Radiance below which errors count as absolute, W m^-2 sr^-1 nm^-1 (as for nishita).
+const FLOOR: f64 = 1e-4;
+
+/// Pixels within this angle of the planet's limb are left out (as for nishita).
+const LIMB_ANGLE_RAD: f64 = 2e-6;
+
+fn on_limb(frame: &Frame, column: u32, row: u32) -> bool {
+    let ray = frame.pixel_ray(column, row);
+    let end = |direction| {
+        let mut r = ray;
+        r.direction = direction;
+        ViewSegment::new(&frame.atmosphere, &r)
+            .unwrap()
+            .map(|s| s.end == SegmentEnd::Ground)
+    };
+    let [right, up, _] = frame.axes();
+    let here = end(ray.direction);
+    [right, -right, up, -up]
+        .iter()
+        .any(|&d| end((ray.direction + d * LIMB_ANGLE_RAD).normalize()) != here)
+}
+
+/// The CPU's radiance of a pixel plus the transmitted sun disk where the ray reaches
+/// space.
+fn cpu_pixel(model: &dyn SkyModel, frame: &Frame, column: u32, row: u32) -> [f64; 3] {
+    let ray = frame.pixel_ray(column, row);
+    let answer = model.radiance(&ray).unwrap();
+    let to_space = ViewSegment::new(&frame.atmosphere, &ray)
+        .unwrap()
+        .is_none_or(|s| s.end != SegmentEnd::Ground);
+    let angle = ray
+        .direction
+        .cross(ray.sun_direction)
+        .length()
+        .atan2(ray.direction.dot(ray.sun_direction));
+    std::array::from_fn(|w| {
+        let disk = if to_space {
+            answer.transmittance[w]
+                * sun_disk::radiance(
+                    model.solar_irradiance_w_m2_nm()[w],
+                    frame.atmosphere.sun.angular_radius_rad,
+                    RGB_WAVELENGTHS_NM[w],
+                    angle,
+                )
+        } else {
+            0.0
+        };
+        answer.radiance[w] + disk
+    })
+}
+
+/// Renders `frame` and compares every pixel with the CPU model; returns the worst
+/// relative error.
+fn check(renderer: &mut Renderer, cpu: &Bruneton, name: &str, frame: &Frame) -> f64 {
+    let plan = renderer.render(frame).unwrap();
+    let hdr = renderer.read_hdr().unwrap();
+    let (mut worst, mut at, mut limb, mut lit) = (0.0f64, (0, 0, 0), 0, 0);
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            if on_limb(frame, column, row) {
+                limb += 1;
+                continue;
+            }
+            let gpu = hdr[(row * frame.width + column) as usize];
+            let want = cpu_pixel(cpu, frame, column, row);
+            lit += usize::from(want[1] > FLOOR);
+            for c in 0..3 {
+                let error = (f64::from(gpu[c]) - want[c]).abs() / want[c].max(FLOOR);
+                if error > worst || error.is_nan() {
+                    worst = error;
+                    at = (column, row, c);
+                }
+            }
+        }
+    }
+    println!(
+        "{name}: worst relative error {worst:.2e} at pixel {at:?}; {lit} lit pixels, \
+         {limb} on the limb left out; plan: {plan}"
+    );
+    assert!(
+        worst <= MAX_RELATIVE_ERROR,
+        "{name}: worst relative error {worst:e}"
+    );
+    worst
+}
+
+#[test]
+fn frames_match_the_cpu_from_the_ground_to_far_orbit() {
+    let Some(gpu) = gpu_or_skip("bruneton frames") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let s = settings(&REDUCED);
+    let earth = Atmosphere::preset("earth").unwrap();
+    let cpu = Bruneton::prepare(&earth, &s).unwrap();
+    let mut sunset = view(2_000.0, 88.0, 89.0);
+    sunset.sun_azimuth_deg = 5.0;
+    let frames = [
+        ("ground, noon", view(1.0, 80.0, 10.0), 70.0),
+        ("sunset", sunset, 60.0),
+        ("10 km", view(10_000.0, 95.0, 60.0), 60.0),
+        ("100 km limb", view(100_000.0, 100.0, 60.0), 40.0),
+        ("1e8 m", view(1e8, 180.0, 80.0), 9.0),
+        ("sun disk", view(500.0, 60.0, 60.0), 1.0),
+    ];
+    for (name, v, fov) in frames {
+        let mut v = v;
+        if name == "sun disk" {
+            v.sun_azimuth_deg = 0.0;
+        }
+        check(
+            &mut renderer,
+            &cpu,
+            name,
+            &frame("earth", s.clone(), v, fov, 48, 27),
+        );
+    }
+}
+
+#[test]
+fn unchanged_tables_and_sun_changes_rebuild_nothing() {
+    let Some(gpu) = gpu_or_skip("bruneton plan") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let tables = [
+        "transmittance",
+        "density",
+        "sun_transmittance",
+        "single_scattering",
+        "scattering_orders",
+        "scattering_texture",
+    ];
+    let mut f = frame(
+        "earth",
+        settings(&REDUCED),
+        view(100.0, 85.0, 40.0),
+        60.0,
+        32,
+        18,
+    );
+    let first = renderer.render(&f).unwrap();
+    assert!(tables.iter().all(|t| first.runs(t)), "{first}");
+    let again = renderer.render(&f).unwrap();
+    assert!(tables.iter().all(|t| !again.runs(t)), "{again}");
+    // A new sun rebuilds nothing and renders what a full build renders.
+    f.sun_direction = view(100.0, 85.0, 70.0).sun_direction();
+    let moved = renderer.render(&f).unwrap();
+    assert!(tables.iter().all(|t| !moved.runs(t)), "{moved}");
+    let image = renderer.read_hdr().unwrap();
+    let mut fresh = Renderer::headless().unwrap();
+    fresh.render(&f).unwrap();
+    assert_eq!(image, fresh.read_hdr().unwrap());
+    // The ground albedo rebuilds the orders, not single scattering.
+    f.atmosphere.ground_albedo = 0.3;
+    let albedo = renderer.render(&f).unwrap();
+    assert!(
+        albedo.runs("scattering_orders") && !albedo.runs("single_scattering"),
+        "{albedo}"
+    );
+    // Aerosol 0 prunes Mie: no Mie table and the image of the CPU's pruned model.
+    f.atmosphere = f.atmosphere.with_aerosol_scale(0.0);
+    let pruned = renderer.render(&f).unwrap();
+    assert!(pruned.runs("single_scattering"), "{pruned}");
+    let cpu = Bruneton::prepare(&f.atmosphere, &f.settings).unwrap();
+    assert!(cpu.mie_pruned());
+    check(&mut renderer, &cpu, "aerosol 0", &f);
+}
+
+#[test]
+fn unsupported_sizes_are_errors_naming_them() {
+    let Some(gpu) = gpu_or_skip("bruneton sizes") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let f = frame(
+        "earth",
+        settings(&["mu_s=64", "nu=8"]),
+        view(10.0, 80.0, 50.0),
+        60.0,
+        8,
+        8,
+    );
+    let err = renderer.render(&f).unwrap_err();
+    assert!(
+        matches!(err, RenderError::Unsupported(_)) && err.to_string().contains("mu_s x nu"),
+        "{err}"
+    );
+}
+
+/// The issue's cost target, measured rather than asserted (lavapipe's times depend on
+/// the machine's load): a bruneton ground view at 1280x720 with the paper's tables
+/// against the 16-sample nishita frame, GPU times from the plan. Run with
+/// `./scripts/test.sh -p atmos-tests --test gpu_bruneton_parity -- --ignored --nocapture`.
+#[test]
+#[ignore = "a benchmark: minutes on lavapipe"]
+fn cost_at_1280x720_against_nishita_16() {
+    let Some(gpu) = gpu_or_skip("bruneton cost") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let v = view(1.0, 80.0, 40.0);
+    let mut nishita = frame("earth", settings(&["samples=16"]), v, 70.0, 1280, 720);
+    nishita.model = "nishita".into();
+    let bruneton = frame("earth", ModelSettings::default(), v, 70.0, 1280, 720);
+    for run in 0..3 {
+        let n = renderer.render(&nishita).unwrap();
+        let b = renderer.render(&bruneton).unwrap();
+        println!("run {run}: nishita 16: {n}\nrun {run}: bruneton: {b}");
+    }
+}
