@@ -10,10 +10,11 @@ use crate::device::GpuContext;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
+use crate::hillaire_pass::HillairePass;
 use crate::nishita_pass::NishitaPass;
 
 /// The models the GPU renders, by id.
-pub const GPU_MODELS: &[&str] = &["nishita"];
+pub const GPU_MODELS: &[&str] = &["nishita", "hillaire"];
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -74,6 +75,7 @@ pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderEr
     check_model(id)?;
     match id {
         "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
+        "hillaire" => Ok(Box::new(HillairePass::new(gpu)?)),
         other => unreachable!("GPU_MODELS lists {other} without a pass"),
     }
 }

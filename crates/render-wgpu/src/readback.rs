@@ -4,19 +4,23 @@
 use crate::device::GpuContext;
 use crate::error::GpuError;
 
-/// The raw bytes of `texture`'s texels, row-major without row padding; `texel_bytes` is
-/// the size of one texel of its format.
+/// The raw bytes of `texture`'s texels, row-major without row padding (a 3D texture's
+/// slices one after another); `texel_bytes` is the size of one texel of its format.
 pub fn read_texture(
     gpu: &GpuContext,
     texture: &wgpu::Texture,
     texel_bytes: u32,
 ) -> Result<Vec<u8>, GpuError> {
-    let (width, height) = (texture.width(), texture.height());
+    let (width, height, layers) = (
+        texture.width(),
+        texture.height(),
+        texture.depth_or_array_layers(),
+    );
     let row_bytes = width * texel_bytes;
     let padded_row_bytes = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("read-back"),
-        size: u64::from(padded_row_bytes * height),
+        size: u64::from(padded_row_bytes) * u64::from(height) * u64::from(layers),
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
