@@ -322,6 +322,40 @@ impl HillairePass {
         })
     }
 
+    /// Builds the tables `frame` needs, as its plan says, without rendering it (to have
+    /// them ready before a first frame, or to read them back); returns that plan, less
+    /// the pass.
+    pub fn build_tables(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+    ) -> Result<FramePlan, RenderError> {
+        frame.validate()?;
+        let atmosphere = uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>());
+        let frame_buffer = uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>());
+        let mut plan = FramePlan::default();
+        self.plan(gpu, frame, &mut plan)?;
+        plan.steps.retain(|s| s.kind == StepKind::TableBuild);
+        gpu.queue
+            .write_buffer(&atmosphere, 0, bytemuck::bytes_of(&self.atmosphere));
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        gpu.queue
+            .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
+        // No step here writes the HDR target; `PassIo` wants one.
+        let hdr = table_texture(gpu, "unused", wgpu::TextureDimension::D2, (1, 1, 1))?;
+        let io = PassIo {
+            atmosphere: &atmosphere,
+            frame: &frame_buffer,
+            hdr: &hdr,
+        };
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        for step in &plan.steps {
+            self.encode(step.name, gpu, &io, &mut encoder, None);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        Ok(plan)
+    }
+
     /// A table's texels as last built, row-major (a volume's slices one after another;
     /// the volume's radiance: [`HillairePass::read_aerial_transmittance`] has the rest).
     pub fn read_table(&self, gpu: &GpuContext, table: Table) -> Result<Vec<[f32; 4]>, RenderError> {
