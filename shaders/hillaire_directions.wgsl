@@ -83,18 +83,3 @@ fn grid_position(size: vec2<u32>, theta_h: f32, theta: f32, phi: f32, ground: bo
     p.row1 = select(h + row + 1u, h - 2u - row, ground);
     return p;
 }
-
-// Zenith angle and azimuth from the sun's vertical plane of `direction` at a camera
-// whose zenith is `up` (`view_angles`), each from atan2 of a sine and a cosine, which
-// keeps f32 accuracy where the cosine is near +-1; azimuth 0 where undefined.
-fn view_angles(up: vec3<f32>, direction: vec3<f32>, sun: vec3<f32>) -> vec2<f32> {
-    let mu = dot(direction, up);
-    let theta = atan2(length(cross(up, direction)), mu);
-    let view_h = direction - up * mu;
-    let sun_h = sun - up * dot(sun, up);
-    var phi = 0.0;
-    if length(view_h) * length(sun_h) > 1e-12 {
-        phi = atan2(length(cross(view_h, sun_h)), dot(view_h, sun_h));
-    }
-    return vec2<f32>(theta, phi);
-}

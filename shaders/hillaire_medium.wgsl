@@ -29,6 +29,17 @@ struct HillaireParams {
     // 1: orders two and up (Psi_ms and the sky's light on the ground); 0: single
     // scattering (`max_orders = 1`).
     multiple_on: u32,
+    // Zenith angle of the geometric horizon at the view's radius (`horizon_zenith`, f64).
+    view_theta_h: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+    // The camera's zenith, and two horizontal unit vectors there: towards the sun's
+    // azimuth and 90 degrees from it (any horizontal pair when the sun is at the zenith
+    // or nadir); xyz, w = 0. The pass measures view angles in this frame.
+    view_up: vec4<f32>,
+    view_sun_side: vec4<f32>,
+    view_across: vec4<f32>,
 }
 
 @group(0) @binding(2) var<uniform> hillaire: HillaireParams;

@@ -16,10 +16,12 @@
 //! - `hillaire`: the pass, every frame.
 
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::hillaire::directions::horizon_zenith;
 use atmosphere_core::hillaire::view_cache::view_key;
 use atmosphere_core::hillaire::{HillaireSettings, MULTIPLE_SCATTERING_INPUTS, VIEW_INPUTS};
 use atmosphere_core::table_inputs::Inputs;
 use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
 
 use crate::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::device::GpuContext;
@@ -39,8 +41,8 @@ use crate::transmittance_pass::{TABLE_FORMAT, TableOutput, TransmittancePass};
 /// Side of the square workgroups of the sky view, the volume and the pass.
 const WORKGROUP_SIDE: u32 = 8;
 
-/// WGSL `HillaireParams`, 48 bytes: the view of the per-view tables and the settings'
-/// sample counts.
+/// WGSL `HillaireParams`, 112 bytes: the view of the per-view tables, the settings'
+/// sample counts, and the camera's frame for the pass's view angles.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct HillaireUniform {
@@ -56,6 +58,13 @@ pub struct HillaireUniform {
     pub ground_zenith_panels: u32,
     pub ground_azimuths: u32,
     pub multiple_on: u32,
+    pub view_theta_h: f32,
+    pub pad0: f32,
+    pub pad1: f32,
+    pub pad2: f32,
+    pub view_up: [f32; 4],
+    pub view_sun_side: [f32; 4],
+    pub view_across: [f32; 4],
 }
 
 /// A count as the shaders' u32, or an error naming it.
@@ -64,15 +73,21 @@ fn count(name: &str, n: usize) -> Result<u32, RenderError> {
 }
 
 impl HillaireUniform {
-    /// The settings for a view (camera radius, sun zenith cosine) of `atmosphere`.
+    /// The settings for a view (camera radius, sun zenith cosine: `view_key`) of
+    /// `atmosphere`, with the camera's zenith `up` and the sun's direction.
     pub fn new(
         settings: &HillaireSettings,
         atmosphere: &Atmosphere,
         view: (f64, f64),
+        (up, sun): (DVec3, DVec3),
         multiple_on: bool,
     ) -> Result<HillaireUniform, RenderError> {
         let bottom = atmosphere.bottom_radius_m;
         let (r, mu_s) = view;
+        let sun_side = (sun - up * sun.dot(up))
+            .try_normalize()
+            .unwrap_or_else(|| up.any_orthonormal_vector());
+        let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
         Ok(HillaireUniform {
             view_r: r as f32,
             view_q: ((r - bottom) * (r + bottom)) as f32,
@@ -87,6 +102,13 @@ impl HillaireUniform {
             ground_zenith_panels: count("ground_zenith_panels", settings.ground_zenith_panels)?,
             ground_azimuths: count("ground_azimuths", settings.ground_azimuths)?,
             multiple_on: u32::from(multiple_on),
+            view_theta_h: horizon_zenith(r, bottom) as f32,
+            pad0: 0.0,
+            pad1: 0.0,
+            pad2: 0.0,
+            view_up: v4(up),
+            view_sun_side: v4(sun_side),
+            view_across: v4(up.cross(sun_side)),
         })
     }
 }
@@ -248,13 +270,17 @@ pub struct HillairePass {
     ground_irradiance: ComputePipeline,
     sky_view: ComputePipeline,
     aerial_perspective: ComputePipeline,
-    pass: ComputePipeline,
+    /// The pass's entry points by the rays a frame may have: `main` (read from the
+    /// tables or marched), `tables_only`, `from_space` (all marched).
+    pass: [ComputePipeline; 3],
     params: wgpu::Buffer,
     tables: Option<Tables>,
     /// The atmosphere of the frame being planned, in the GPU's layout, and what the
     /// tables it builds are built from.
     atmosphere: AtmosphereUniform,
     pending: Option<Source>,
+    /// The entry point of `pass` the frame being planned uses.
+    variant: usize,
 }
 
 impl HillairePass {
@@ -304,21 +330,28 @@ impl HillairePass {
                     storage_texture_entry(6, TABLE_FORMAT, D3),
                 ]),
             )?,
-            pass: pipeline(
-                "hillaire.wgsl",
-                "the hillaire pass",
-                &with(&[
+            pass: {
+                let entries = with(&[
                     texture_entry(5, D2),
                     texture_entry(6, D2),
                     texture_entry(7, D3),
                     texture_entry(8, D3),
                     storage_texture_entry(9, HDR_FORMAT, D2),
-                ]),
-            )?,
+                ]);
+                let variant = |entry| {
+                    ComputePipeline::new(gpu, "hillaire.wgsl", entry, "the hillaire pass", &entries)
+                };
+                [
+                    variant("main")?,
+                    variant("tables_only")?,
+                    variant("from_space")?,
+                ]
+            },
             params: uniform_buffer(&gpu.device, "hillaire", size_of::<HillaireUniform>()),
             tables: None,
             atmosphere: AtmosphereUniform::default(),
             pending: None,
+            variant: 0,
         })
     }
 
@@ -398,8 +431,9 @@ impl ModelPass for HillairePass {
         let multiple_on = frame.settings.max_orders != Some(1);
         let camera = frame.camera_position_m;
         let r = camera.length();
-        let view = view_key(a, r, frame.sun_direction.normalize().dot(camera / r));
-        let params = HillaireUniform::new(&settings, a, view, multiple_on)?;
+        let (up, sun) = (camera / r, frame.sun_direction.normalize());
+        let view = view_key(a, r, sun.dot(up));
+        let params = HillaireUniform::new(&settings, a, view, (up, sun), multiple_on)?;
         if self.tables.as_ref().is_none_or(|t| t.settings != settings) {
             self.tables = Some(Tables::new(gpu, settings)?);
         }
@@ -437,6 +471,16 @@ impl ModelPass for HillairePass {
         } else {
             plan.skip("aerial_perspective", "no ground in view");
         }
+        // Rays to the ground beyond the volume are marched; none when the horizon is
+        // nearer than the volume's range or no ground is in view.
+        let horizon_m = ((r - a.bottom_radius_m) * (r + a.bottom_radius_m)).sqrt();
+        let far_ground = horizon_m > settings.aerial_range_m * (1.0 - 1e-3)
+            && ground_within(frame, f64::INFINITY);
+        self.variant = match (inside, far_ground) {
+            (true, true) => 0,
+            (true, false) => 1,
+            (false, _) => 2,
+        };
         plan.run("hillaire", StepKind::Pass);
         self.pending = Some(source);
         gpu.queue
@@ -552,7 +596,13 @@ impl ModelPass for HillairePass {
                 let mut extra = vec![psi_view];
                 extra.extend(views.iter().map(wgpu::BindingResource::TextureView));
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
-                run(&self.pass, encoder, &extra, tiles(io.hdr), timestamps);
+                run(
+                    &self.pass[self.variant],
+                    encoder,
+                    &extra,
+                    tiles(io.hdr),
+                    timestamps,
+                );
                 None
             }
             other => unreachable!("the hillaire plan has no step {other}"),

@@ -243,7 +243,14 @@ fn hillaire_uniform_matches_its_wgsl_layout() {
             march_samples,
             ground_zenith_panels,
             ground_azimuths,
-            multiple_on
+            multiple_on,
+            view_theta_h,
+            pad0,
+            pad1,
+            pad2,
+            view_up,
+            view_sun_side,
+            view_across
         ]
     );
 }
