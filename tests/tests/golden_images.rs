@@ -34,7 +34,8 @@ fn golden_path(name: &str) -> PathBuf {
         .join(format!("{name}.png"))
 }
 
-/// The golden scenes: name, camera and sun, field of view, atmosphere, exposure.
+/// The golden scenes: name (the model's id, then the view), camera and sun, field of
+/// view, atmosphere, exposure.
 fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
     let view = |altitude_m, view_zenith_deg, sun_zenith_deg, sun_azimuth_deg| LocalView {
         altitude_m,
@@ -72,10 +73,45 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
             "earth",
             13.0,
         ),
+        (
+            "hillaire_ground_afternoon",
+            view(2.0, 80.0, 60.0, 20.0),
+            70.0,
+            "earth",
+            14.0,
+        ),
+        (
+            "hillaire_sunset_hazy",
+            view(500.0, 87.0, 89.0, 10.0),
+            60.0,
+            "hazy",
+            11.0,
+        ),
+        (
+            "hillaire_limb_100km",
+            view(100_000.0, 100.0, 70.0, 90.0),
+            60.0,
+            "earth",
+            13.0,
+        ),
+        (
+            "hillaire_planet_1e8m",
+            view(1e8, 180.0, 60.0, 0.0),
+            9.0,
+            "earth",
+            13.0,
+        ),
     ]
 }
 
-fn render(renderer: &mut Renderer, view: LocalView, fov: f64, preset: &str, ev: f64) -> Vec<u8> {
+fn render(
+    renderer: &mut Renderer,
+    name: &str,
+    view: LocalView,
+    fov: f64,
+    preset: &str,
+    ev: f64,
+) -> Vec<u8> {
     let atmosphere = Atmosphere::preset(preset).unwrap();
     let frame = Frame {
         camera_position_m: view.position_m(atmosphere.bottom_radius_m),
@@ -83,7 +119,7 @@ fn render(renderer: &mut Renderer, view: LocalView, fov: f64, preset: &str, ev: 
         vertical_fov_deg: fov,
         sun_direction: view.sun_direction(),
         atmosphere,
-        model: "nishita".into(),
+        model: name.split('_').next().unwrap().into(),
         settings: ModelSettings::default(),
         exposure_ev100: ev,
         width: WIDTH,
@@ -99,7 +135,7 @@ fn render(renderer: &mut Renderer, view: LocalView, fov: f64, preset: &str, ev: 
 }
 
 #[test]
-fn nishita_renders_match_the_golden_images() {
+fn renders_match_the_golden_images() {
     let mut renderer = match Renderer::headless() {
         Ok(r) => r,
         Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
@@ -113,7 +149,7 @@ fn nishita_renders_match_the_golden_images() {
     let update = std::env::var("ATMOS_UPDATE_GOLDEN").as_deref() == Ok("1");
     let mut failures = Vec::new();
     for (name, view, fov, preset, ev) in scenes() {
-        let pixels = render(&mut renderer, view, fov, preset, ev);
+        let pixels = render(&mut renderer, name, view, fov, preset, ev);
         let path = golden_path(name);
         if update {
             image::RgbImage::from_raw(WIDTH, HEIGHT, pixels)
