@@ -349,6 +349,15 @@ fn render(renderer: &mut Renderer, frame: &Frame) -> (FramePlan, Vec<[f32; 4]>) 
     (plan, renderer.read_hdr().unwrap())
 }
 
+/// A frame of the planner test: its name, the frame, the tables it must build and steps
+/// it must skip (with why).
+type Step = (
+    &'static str,
+    Frame,
+    &'static [&'static str],
+    &'static [(&'static str, &'static str)],
+);
+
 /// A sequence of frames rendered by one renderer, which skips what did not change,
 /// against each frame rendered by a fresh renderer, which builds everything it needs:
 /// the images must be identical, bit for bit, and each frame must run and skip the
@@ -360,7 +369,7 @@ fn skipped_steps_change_nothing_and_only_changed_inputs_rebuild() {
     };
     let (w, h) = (32, 18);
     let down = frame(view(1_000.0, 120.0, 40.0), 60.0, w, h);
-    let mut steps: Vec<(&str, Frame, &[&str], &[(&str, &str)])> = Vec::new();
+    let mut steps: Vec<Step> = Vec::new();
     let all: &[&str] = &[
         "transmittance",
         "multiple_scattering",
