@@ -1,4 +1,5 @@
-//! Golden images: small tone-mapped renders (160x90) compared with the PNGs committed in
+//! Golden images: small tone-mapped renders (160x90) of every model on the GPU, the same
+//! four scenes each (`tests/golden/MODEL_SCENE.png`), compared with the PNGs committed in
 //! `tests/golden/`. Regenerate them after an intended change with
 //!
 //! ```sh
@@ -25,9 +26,6 @@ const MAX_LEVELS: i32 = 6;
 /// Largest share of pixels allowed to differ by more than one level.
 const MAX_DIFFERING_SHARE: f64 = 0.005;
 
-/// The bruneton scenes' table sizes (`--set` options).
-const BRUNETON_SIZES: [(&str, &str); 4] = [("r", "16"), ("mu", "64"), ("mu_s", "16"), ("nu", "8")];
-
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;
 
@@ -48,56 +46,28 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
     };
     vec![
         (
-            "nishita_ground_afternoon",
+            "ground_afternoon",
             view(2.0, 80.0, 60.0, 20.0),
             70.0,
             "earth",
             14.0,
         ),
         (
-            "nishita_sunset_hazy",
+            "sunset_hazy",
             view(500.0, 87.0, 89.0, 10.0),
             60.0,
             "hazy",
             11.0,
         ),
         (
-            "nishita_limb_100km",
+            "limb_100km",
             view(100_000.0, 100.0, 70.0, 90.0),
             60.0,
             "earth",
             13.0,
         ),
         (
-            "nishita_planet_1e8m",
-            view(1e8, 180.0, 60.0, 0.0),
-            9.0,
-            "earth",
-            13.0,
-        ),
-        (
-            "bruneton_ground_afternoon",
-            view(2.0, 80.0, 60.0, 20.0),
-            70.0,
-            "earth",
-            14.0,
-        ),
-        (
-            "bruneton_sunset_hazy",
-            view(500.0, 87.0, 89.0, 10.0),
-            60.0,
-            "hazy",
-            11.0,
-        ),
-        (
-            "bruneton_limb_100km",
-            view(100_000.0, 100.0, 70.0, 90.0),
-            60.0,
-            "earth",
-            13.0,
-        ),
-        (
-            "bruneton_planet_1e8m",
+            "planet_1e8m",
             view(1e8, 180.0, 60.0, 0.0),
             9.0,
             "earth",
@@ -106,21 +76,22 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
     ]
 }
 
-/// The model of a scene: the first word of its name.
+/// The models whose renders are kept: every model on the GPU.
+const MODELS: [&str; 5] = ["nishita", "bruneton", "hillaire", "oneil", "riley"];
+
+/// The bruneton scenes' table sizes (`--set` options): S at 16 x 64 x 16 x 8, an eighth
+/// of the paper's texels, since the paper's sizes take minutes to build on lavapipe
+/// (docs/rendering.md, "Cost").
+const BRUNETON_SIZES: [(&str, &str); 4] = [("r", "16"), ("mu", "64"), ("mu_s", "16"), ("nu", "8")];
+
 fn render(
     renderer: &mut Renderer,
-    name: &str,
-    view: LocalView,
-    fov: f64,
-    preset: &str,
-    ev: f64,
+    model: &str,
+    (view, fov, preset, ev): (LocalView, f64, &str, f64),
 ) -> Vec<u8> {
     let atmosphere = Atmosphere::preset(preset).unwrap();
-    let model = name.split('_').next().unwrap();
     let mut settings = ModelSettings::default();
     if model == "bruneton" {
-        // S at 16 x 64 x 16 x 8, an eighth of the paper's texels: the paper's sizes take
-        // minutes to build on lavapipe (docs/rendering.md, "Cost").
         for (key, value) in BRUNETON_SIZES {
             settings.options.set(key, value);
         }
@@ -160,9 +131,13 @@ fn renders_match_the_golden_images() {
     };
     let update = std::env::var("ATMOS_UPDATE_GOLDEN").as_deref() == Ok("1");
     let mut failures = Vec::new();
-    for (name, view, fov, preset, ev) in scenes() {
-        let pixels = render(&mut renderer, name, view, fov, preset, ev);
-        let path = golden_path(name);
+    for (model, (scene, view, fov, preset, ev)) in MODELS
+        .iter()
+        .flat_map(|m| scenes().into_iter().map(move |s| (*m, s)))
+    {
+        let name = format!("{model}_{scene}");
+        let pixels = render(&mut renderer, model, (view, fov, preset, ev));
+        let path = golden_path(&name);
         if update {
             image::RgbImage::from_raw(WIDTH, HEIGHT, pixels)
                 .unwrap()

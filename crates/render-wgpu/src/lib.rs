@@ -15,6 +15,8 @@ pub mod frame;
 pub mod frame_plan;
 pub mod frame_uniform;
 pub mod gpu_timer;
+pub mod ground_in_view;
+pub mod hillaire_pass;
 pub mod model_pass;
 pub mod nishita_pass;
 pub mod pipeline;

@@ -6,14 +6,16 @@
 
 use atmosphere_core::model::MODEL_IDS;
 
+use crate::bruneton_pass::BrunetonPass;
 use crate::device::GpuContext;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
+use crate::hillaire_pass::HillairePass;
 use crate::nishita_pass::NishitaPass;
 
 /// The models the GPU renders, by id.
-pub const GPU_MODELS: &[&str] = &["nishita", "bruneton"];
+pub const GPU_MODELS: &[&str] = &["nishita", "bruneton", "hillaire"];
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -74,7 +76,8 @@ pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderEr
     check_model(id)?;
     match id {
         "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
-        "bruneton" => Ok(Box::new(crate::bruneton_pass::BrunetonPass::new(gpu)?)),
+        "bruneton" => Ok(Box::new(BrunetonPass::new(gpu)?)),
+        "hillaire" => Ok(Box::new(HillairePass::new(gpu)?)),
         other => unreachable!("GPU_MODELS lists {other} without a pass"),
     }
 }

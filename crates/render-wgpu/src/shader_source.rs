@@ -65,6 +65,38 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/frame_params.wgsl"),
     ),
     (
+        "hillaire.wgsl",
+        include_str!("../../../shaders/hillaire.wgsl"),
+    ),
+    (
+        "hillaire_aerial_perspective.wgsl",
+        include_str!("../../../shaders/hillaire_aerial_perspective.wgsl"),
+    ),
+    (
+        "hillaire_directions.wgsl",
+        include_str!("../../../shaders/hillaire_directions.wgsl"),
+    ),
+    (
+        "hillaire_ground.wgsl",
+        include_str!("../../../shaders/hillaire_ground.wgsl"),
+    ),
+    (
+        "hillaire_march.wgsl",
+        include_str!("../../../shaders/hillaire_march.wgsl"),
+    ),
+    (
+        "hillaire_medium.wgsl",
+        include_str!("../../../shaders/hillaire_medium.wgsl"),
+    ),
+    (
+        "hillaire_multiple_scattering.wgsl",
+        include_str!("../../../shaders/hillaire_multiple_scattering.wgsl"),
+    ),
+    (
+        "hillaire_sky_view.wgsl",
+        include_str!("../../../shaders/hillaire_sky_view.wgsl"),
+    ),
+    (
         "nishita.wgsl",
         include_str!("../../../shaders/nishita.wgsl"),
     ),

@@ -223,3 +223,34 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
         [red, green, blue]
     );
 }
+
+#[test]
+fn hillaire_uniform_matches_its_wgsl_layout() {
+    use render_wgpu::hillaire_pass::HillaireUniform;
+    assert_layout!(
+        "hillaire.wgsl",
+        "HillaireParams",
+        HillaireUniform,
+        [
+            view_r,
+            view_q,
+            view_mu_s,
+            aerial_range_m,
+            ms_sqrt_directions,
+            ms_samples,
+            sky_view_samples,
+            ap_samples_per_slice,
+            march_samples,
+            ground_zenith_panels,
+            ground_azimuths,
+            multiple_on,
+            view_theta_h,
+            pad0,
+            pad1,
+            pad2,
+            view_up,
+            view_sun_side,
+            view_across
+        ]
+    );
+}

@@ -38,7 +38,7 @@ pub struct AerialPerspective {
     bottom_m: f64,
     /// Per direction of the [`LatLong`] grid (row, column), per slice: radiance per unit
     /// solar irradiance then transmittance, `wavelengths` values each.
-    values: Vec<f32>,
+    pub values: Vec<f32>,
 }
 
 impl AerialPerspective {

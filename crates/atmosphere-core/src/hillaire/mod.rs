@@ -222,9 +222,9 @@ impl HillaireSettings {
 /// The inputs of Psi_ms: extinction, scattering (part of the extinction inputs) and the
 /// ground's albedo; not the Mie phase function (isotropic there) nor the sun (the table
 /// is per unit irradiance).
-const MULTIPLE_SCATTERING_INPUTS: Inputs = Inputs::EXTINCTION.union(Inputs::GROUND_ALBEDO);
+pub const MULTIPLE_SCATTERING_INPUTS: Inputs = Inputs::EXTINCTION.union(Inputs::GROUND_ALBEDO);
 /// The inputs of the ground's sky irradiance and of the per-view tables.
-const VIEW_INPUTS: Inputs = MULTIPLE_SCATTERING_INPUTS.union(Inputs::MIE_PHASE);
+pub const VIEW_INPUTS: Inputs = MULTIPLE_SCATTERING_INPUTS.union(Inputs::MIE_PHASE);
 
 /// The Hillaire 2020 model, prepared for one atmosphere.
 #[derive(Debug)]
@@ -403,16 +403,10 @@ impl Hillaire {
         (march.radiance, march.throughput)
     }
 
-    /// The view a camera at radius `r` with the sun at zenith cosine `mu_s` belongs to:
-    /// r to the millimetre and mu_s to 2^-30, so that rounding in the caller's vectors
-    /// (a sun direction normalised twice) does not make a new view.
+    /// The view a camera at radius `r` with the sun at zenith cosine `mu_s` belongs to
+    /// ([`view_cache::view_key`]).
     pub fn view_key(&self, r: f64, mu_s: f64) -> (f64, f64) {
-        const MU_S_STEP: f64 = 1.0 / (1u64 << 30) as f64;
-        let a = &self.atmosphere;
-        (
-            ((r * 1e3).round() * 1e-3).clamp(a.bottom_radius_m, a.top_radius_m),
-            ((mu_s / MU_S_STEP).round() * MU_S_STEP).clamp(-1.0, 1.0),
-        )
+        view_cache::view_key(&self.atmosphere, r, mu_s)
     }
 
     /// Radiance per unit solar irradiance and transmittance of a segment whose camera is

@@ -12,6 +12,7 @@
 use std::collections::VecDeque;
 use std::sync::{Arc, Mutex, OnceLock};
 
+use crate::atmosphere::Atmosphere;
 use crate::hillaire::aerial_perspective::AerialPerspective;
 use crate::hillaire::sky_view::SkyView;
 
@@ -20,6 +21,18 @@ use crate::hillaire::sky_view::SkyView;
 pub struct ViewTables {
     pub sky_view: OnceLock<SkyView>,
     pub aerial_perspective: OnceLock<AerialPerspective>,
+}
+
+/// The view a camera at radius `r` with the sun at zenith cosine `mu_s` belongs to: r to
+/// the millimetre (clamped to the atmosphere) and mu_s to 2^-30, so that rounding in the
+/// caller's vectors (a sun direction normalised twice) does not make a new view. The
+/// per-view tables are built for these values, on the CPU and on the GPU.
+pub fn view_key(atmosphere: &Atmosphere, r: f64, mu_s: f64) -> (f64, f64) {
+    const MU_S_STEP: f64 = 1.0 / (1u64 << 30) as f64;
+    (
+        ((r * 1e3).round() * 1e-3).clamp(atmosphere.bottom_radius_m, atmosphere.top_radius_m),
+        ((mu_s / MU_S_STEP).round() * MU_S_STEP).clamp(-1.0, 1.0),
+    )
 }
 
 /// A view's key: the bits of its camera radius and sun cosine.

@@ -1,0 +1,110 @@
+//! The issue's cost target for the hillaire model: at 1280x720 a ground view renders in
+//! at most a quarter of the time of the 16-sample nishita frame. Slow on a software
+//! rasteriser (seconds), so ignored by default; run it with
+//!
+//! ```sh
+//! ./scripts/test.sh -p atmos-tests --test gpu_hillaire_cost -- --ignored --nocapture
+//! ```
+//!
+//! Each model renders once first (shader compilation, first table builds), then the
+//! frames measured: nishita; hillaire with only the pass (the view unchanged: the
+//! target, asserted) and with the per-view tables rebuilt (the sun moved, as in an
+//! animation: printed only). Compared: the sum of the plan's GPU times and the
+//! wall-clock time of `Renderer::render`, which waits for the GPU (lavapipe's timestamps
+//! read too little for table builds, docs/rendering.md). Measured on lavapipe, 2 shared
+//! cores: same view 0.24 of nishita (GPU and wall), sun moved 0.45 (wall).
+
+use std::time::Instant;
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::model::ModelSettings;
+use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::{GpuError, RenderError, Renderer};
+
+/// The issue's target: hillaire at most this share of the nishita frame.
+const TARGET_SHARE: f64 = 0.25;
+
+fn ground_view(model: &str, sun_zenith_deg: f64) -> Frame {
+    let atmosphere = Atmosphere::preset("earth").unwrap();
+    let view = LocalView {
+        altitude_m: 2.0,
+        view_zenith_deg: 80.0,
+        view_azimuth_deg: 0.0,
+        sun_zenith_deg,
+        sun_azimuth_deg: 20.0,
+    };
+    let mut settings = ModelSettings::default();
+    if model == "nishita" {
+        settings.options.set("samples", 16);
+    }
+    Frame {
+        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
+        orientation: view.orientation(),
+        vertical_fov_deg: 70.0,
+        sun_direction: view.sun_direction(),
+        atmosphere,
+        model: model.into(),
+        settings,
+        exposure_ev100: 14.0,
+        width: 1280,
+        height: 720,
+    }
+}
+
+/// Renders `frame`; prints and returns (sum of GPU times, wall-clock), ms.
+fn timed(renderer: &mut Renderer, name: &str, frame: &Frame) -> (f64, f64) {
+    let start = Instant::now();
+    let plan = renderer.render(frame).unwrap();
+    let wall = start.elapsed().as_secs_f64() * 1e3;
+    let gpu = plan.total_gpu_ms().unwrap_or(f64::NAN);
+    println!("{name}: GPU {gpu:.1} ms, wall {wall:.1} ms; plan: {plan}");
+    (gpu, wall)
+}
+
+#[test]
+#[ignore = "seconds of software rendering at 1280x720; run with --ignored"]
+fn a_hillaire_ground_view_costs_at_most_a_quarter_of_nishita_16() {
+    let mut renderer = match Renderer::headless() {
+        Ok(r) => r,
+        Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
+            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
+        {
+            println!("hillaire cost: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
+            return;
+        }
+        Err(e) => panic!("{e}"),
+    };
+    println!("on {}", renderer.gpu().adapter_summary());
+    timed(
+        &mut renderer,
+        "nishita, first",
+        &ground_view("nishita", 50.0),
+    );
+    let nishita = timed(&mut renderer, "nishita 16", &ground_view("nishita", 50.0));
+    timed(
+        &mut renderer,
+        "hillaire, first",
+        &ground_view("hillaire", 60.0),
+    );
+    let pass_only = timed(
+        &mut renderer,
+        "hillaire, same view",
+        &ground_view("hillaire", 60.0),
+    );
+    let per_view = timed(
+        &mut renderer,
+        "hillaire, sun moved",
+        &ground_view("hillaire", 50.0),
+    );
+    for (name, (gpu, wall)) in [("same view", pass_only), ("sun moved", per_view)] {
+        println!(
+            "hillaire ({name}) / nishita 16: GPU {:.3}, wall {:.3}",
+            gpu / nishita.0,
+            wall / nishita.1
+        );
+    }
+    assert!(
+        pass_only.0 <= TARGET_SHARE * nishita.0 && pass_only.1 <= TARGET_SHARE * nishita.1,
+        "hillaire {pass_only:?} ms against nishita {nishita:?} ms"
+    );
+}
