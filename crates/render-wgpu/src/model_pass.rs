@@ -11,9 +11,11 @@ use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
 use crate::nishita_pass::NishitaPass;
+use crate::oneil_pass::OneilPass;
+use crate::riley_pass::RileyPass;
 
 /// The models the GPU renders, by id.
-pub const GPU_MODELS: &[&str] = &["nishita"];
+pub const GPU_MODELS: &[&str] = &["nishita", "oneil", "riley"];
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -74,6 +76,8 @@ pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderEr
     check_model(id)?;
     match id {
         "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
+        "oneil" => Ok(Box::new(OneilPass::new(gpu)?)),
+        "riley" => Ok(Box::new(RileyPass::new(gpu)?)),
         other => unreachable!("GPU_MODELS lists {other} without a pass"),
     }
 }

@@ -20,10 +20,13 @@ const SHADERS: &[(&str, &str)] = &[
         "nishita.wgsl",
         include_str!("../../../shaders/nishita.wgsl"),
     ),
+    ("oneil.wgsl", include_str!("../../../shaders/oneil.wgsl")),
     (
-        "phase.wgsl",
-        include_str!("../../../shaders/phase.wgsl"),
+        "oneil_table.wgsl",
+        include_str!("../../../shaders/oneil_table.wgsl"),
     ),
+    ("phase.wgsl", include_str!("../../../shaders/phase.wgsl")),
+    ("riley.wgsl", include_str!("../../../shaders/riley.wgsl")),
     (
         "sun_disk.wgsl",
         include_str!("../../../shaders/sun_disk.wgsl"),
