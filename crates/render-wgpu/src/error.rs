@@ -35,7 +35,9 @@ pub enum GpuError {
         species: &'static str,
         layers: usize,
     },
-    #[error("Mie phase function {0} is not yet on the GPU (use cornette_shanks, henyey_greenstein or nishita_hazy)")]
+    #[error(
+        "Mie phase function {0} is not yet on the GPU (use cornette_shanks, henyey_greenstein or nishita_hazy)"
+    )]
     UnsupportedPhase(String),
     #[error("waiting for the GPU failed: {0}")]
     Poll(#[from] wgpu::PollError),
