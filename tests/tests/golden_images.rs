@@ -1,4 +1,5 @@
-//! Golden images: small tone-mapped renders (160x90) compared with the PNGs committed in
+//! Golden images: small tone-mapped renders (160x90) of every model on the GPU, the same
+//! four scenes each (`tests/golden/MODEL_SCENE.png`), compared with the PNGs committed in
 //! `tests/golden/`. Regenerate them after an intended change with
 //!
 //! ```sh
@@ -45,28 +46,28 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
     };
     vec![
         (
-            "nishita_ground_afternoon",
+            "ground_afternoon",
             view(2.0, 80.0, 60.0, 20.0),
             70.0,
             "earth",
             14.0,
         ),
         (
-            "nishita_sunset_hazy",
+            "sunset_hazy",
             view(500.0, 87.0, 89.0, 10.0),
             60.0,
             "hazy",
             11.0,
         ),
         (
-            "nishita_limb_100km",
+            "limb_100km",
             view(100_000.0, 100.0, 70.0, 90.0),
             60.0,
             "earth",
             13.0,
         ),
         (
-            "nishita_planet_1e8m",
+            "planet_1e8m",
             view(1e8, 180.0, 60.0, 0.0),
             9.0,
             "earth",
@@ -75,7 +76,14 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
     ]
 }
 
-fn render(renderer: &mut Renderer, view: LocalView, fov: f64, preset: &str, ev: f64) -> Vec<u8> {
+/// The models whose renders are kept: every model on the GPU.
+const MODELS: [&str; 3] = ["nishita", "oneil", "riley"];
+
+fn render(
+    renderer: &mut Renderer,
+    model: &str,
+    (view, fov, preset, ev): (LocalView, f64, &str, f64),
+) -> Vec<u8> {
     let atmosphere = Atmosphere::preset(preset).unwrap();
     let frame = Frame {
         camera_position_m: view.position_m(atmosphere.bottom_radius_m),
@@ -83,7 +91,7 @@ fn render(renderer: &mut Renderer, view: LocalView, fov: f64, preset: &str, ev: 
         vertical_fov_deg: fov,
         sun_direction: view.sun_direction(),
         atmosphere,
-        model: "nishita".into(),
+        model: model.into(),
         settings: ModelSettings::default(),
         exposure_ev100: ev,
         width: WIDTH,
@@ -99,7 +107,7 @@ fn render(renderer: &mut Renderer, view: LocalView, fov: f64, preset: &str, ev: 
 }
 
 #[test]
-fn nishita_renders_match_the_golden_images() {
+fn renders_match_the_golden_images() {
     let mut renderer = match Renderer::headless() {
         Ok(r) => r,
         Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
@@ -112,9 +120,13 @@ fn nishita_renders_match_the_golden_images() {
     };
     let update = std::env::var("ATMOS_UPDATE_GOLDEN").as_deref() == Ok("1");
     let mut failures = Vec::new();
-    for (name, view, fov, preset, ev) in scenes() {
-        let pixels = render(&mut renderer, view, fov, preset, ev);
-        let path = golden_path(name);
+    for (model, (scene, view, fov, preset, ev)) in MODELS
+        .iter()
+        .flat_map(|m| scenes().into_iter().map(move |s| (*m, s)))
+    {
+        let name = format!("{model}_{scene}");
+        let pixels = render(&mut renderer, model, (view, fov, preset, ev));
+        let path = golden_path(&name);
         if update {
             image::RgbImage::from_raw(WIDTH, HEIGHT, pixels)
                 .unwrap()
