@@ -7,7 +7,7 @@ use atmosphere_core::model::ModelSettings;
 use atmosphere_core::riley::Riley;
 use bytemuck::{Pod, Zeroable};
 
-use crate::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use crate::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::device::GpuContext;
 use crate::error::{GpuError, RenderError};
 use crate::frame::Frame;
@@ -71,7 +71,7 @@ impl RileyPass {
             "main",
             "the riley pass",
             &[
-                uniform_entry(0, size_of::<crate::atmosphere_uniform::AtmosphereUniform>()),
+                uniform_entry(0, size_of::<AtmosphereUniform>()),
                 uniform_entry(1, size_of::<FrameUniform>()),
                 uniform_entry(2, size_of::<RileyUniform>()),
                 storage_texture_entry(3, HDR_FORMAT, D2),
