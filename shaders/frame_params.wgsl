@@ -49,7 +49,9 @@ struct Segment {
     on_ground: bool,
     q: f32,
     r_mu: f32,
-    // Planet-centred start . sun direction, m.
+    // Planet-centred start (f32, rounded to about 0.5 m near the ground) and its dot
+    // product with the sun direction, m.
+    start: vec3<f32>,
     start_dot_sun: f32,
     length: f32,
 }
@@ -68,6 +70,7 @@ fn view_segment(direction: vec3<f32>) -> Segment {
     s.hit = true;
     s.q = frame.camera_height.x;
     s.r_mu = dot(camera, direction);
+    s.start = camera;
     s.start_dot_sun = dot(camera, sun);
     if frame.camera_height.y > 0.5 {
         let p = camera - s.r_mu * direction;
@@ -79,7 +82,8 @@ fn view_segment(direction: vec3<f32>) -> Segment {
         let half_chord = safe_sqrt((top - h) * (top + h));
         s.q = horizon_sq;
         s.r_mu = -half_chord;
-        s.start_dot_sun = dot(p - half_chord * direction, sun);
+        s.start = p - half_chord * direction;
+        s.start_dot_sun = dot(s.start, sun);
     }
     let ground_disc = s.r_mu * s.r_mu - s.q;
     s.on_ground = s.r_mu < 0.0 && ground_disc >= 0.0;

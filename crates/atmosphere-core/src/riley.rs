@@ -173,14 +173,14 @@ pub fn effective_exponential(profile: &DensityProfile, thickness_m: f64) -> (f64
 /// Midpoint steps of the fit of a non-exponential profile (done once when preparing).
 const FIT_STEPS: usize = 100_000;
 
-/// One species as Riley's model sees it.
+/// One species as Riley's model sees it: a single exponential over a flat ground.
 #[derive(Clone, Debug, PartialEq)]
-struct Species {
-    scale_height_m: f64,
+pub struct Species {
+    pub scale_height_m: f64,
     /// Extinction at the ground (density rho0 included), per wavelength, m^-1.
-    extinction: Vec<f64>,
+    pub extinction: Vec<f64>,
     /// Scattering / extinction per wavelength.
-    albedo: Vec<f64>,
+    pub albedo: Vec<f64>,
 }
 
 impl Species {
@@ -272,6 +272,13 @@ impl Riley {
     /// The scale heights (Rayleigh, Mie) the model uses, m.
     pub fn scale_heights_m(&self) -> (f64, f64) {
         (self.rayleigh.scale_height_m, self.mie.scale_height_m)
+    }
+
+    /// The fitted species (Rayleigh, Mie) the closed form is evaluated with; the Mie one
+    /// is `None` when its terms are skipped (pruned at zero aerosol). What the GPU twin,
+    /// `shaders/riley.wgsl`, is given.
+    pub fn species(&self) -> (&Species, Option<&Species>) {
+        (&self.rayleigh, self.with_mie.then_some(&self.mie))
     }
 
     fn answer(&self, radiance: Vec<f64>, transmittance: Vec<f64>) -> RayRadiance {

@@ -13,9 +13,11 @@ use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
 use crate::hillaire_pass::HillairePass;
 use crate::nishita_pass::NishitaPass;
+use crate::oneil_pass::OneilPass;
+use crate::riley_pass::RileyPass;
 
 /// The models the GPU renders, by id.
-pub const GPU_MODELS: &[&str] = &["nishita", "bruneton", "hillaire"];
+pub const GPU_MODELS: &[&str] = &["nishita", "bruneton", "hillaire", "oneil", "riley"];
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -78,6 +80,8 @@ pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderEr
         "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
         "bruneton" => Ok(Box::new(BrunetonPass::new(gpu)?)),
         "hillaire" => Ok(Box::new(HillairePass::new(gpu)?)),
+        "oneil" => Ok(Box::new(OneilPass::new(gpu)?)),
+        "riley" => Ok(Box::new(RileyPass::new(gpu)?)),
         other => unreachable!("GPU_MODELS lists {other} without a pass"),
     }
 }

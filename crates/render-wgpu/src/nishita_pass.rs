@@ -24,8 +24,8 @@ use crate::transmittance_pass::{TableOutput, TransmittancePass};
 /// 440 nm in rgb, a = 1.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// Side of the shader's square workgroup.
-const WORKGROUP_SIDE: u32 = 8;
+/// Side of the per-pixel shaders' square workgroup (`@workgroup_size(8, 8)`).
+pub(crate) const WORKGROUP_SIDE: u32 = 8;
 
 /// WGSL `NishitaParams`, 16 bytes.
 #[repr(C)]

@@ -101,6 +101,12 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/nishita.wgsl"),
     ),
     ("phase.wgsl", include_str!("../../../shaders/phase.wgsl")),
+    ("oneil.wgsl", include_str!("../../../shaders/oneil.wgsl")),
+    (
+        "oneil_table.wgsl",
+        include_str!("../../../shaders/oneil_table.wgsl"),
+    ),
+    ("riley.wgsl", include_str!("../../../shaders/riley.wgsl")),
     (
         "sun_disk.wgsl",
         include_str!("../../../shaders/sun_disk.wgsl"),

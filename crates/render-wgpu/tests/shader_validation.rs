@@ -254,3 +254,33 @@ fn hillaire_uniform_matches_its_wgsl_layout() {
         ]
     );
 }
+
+#[test]
+fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
+    use render_wgpu::oneil_pass::{OneilTableUniform, OneilUniform};
+    use render_wgpu::riley_pass::RileyUniform;
+    assert_layout!(
+        "riley.wgsl",
+        "RileyParams",
+        RileyUniform,
+        [
+            scale_heights_m,
+            rayleigh_extinction_per_m,
+            mie_extinction_per_m,
+            rayleigh_albedo,
+            mie_albedo
+        ]
+    );
+    assert_layout!(
+        "oneil.wgsl",
+        "OneilParams",
+        OneilUniform,
+        [samples, pad0, pad1, pad2]
+    );
+    assert_layout!(
+        "oneil_table.wgsl",
+        "OneilTableParams",
+        OneilTableUniform,
+        [ray_samples, pad0, pad1, pad2]
+    );
+}

@@ -1,0 +1,218 @@
+//! What the GPU parity tests share: a renderer (or a skip without an adapter), frames on
+//! the earth preset, and the comparison of a rendered frame with the CPU model of the
+//! same id on the same pixel rays (`Frame::pixel_ray`), the sun disk added from
+//! `atmosphere_core::sun_disk`, the tone map against its CPU twin.
+//!
+//! Needs a GPU adapter (lavapipe will do). Without one the tests fail with the
+//! `NoAdapter` message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when
+//! they print that they skipped.
+//!
+//! Each test file that declares `mod support;` uses only part of it.
+#![allow(dead_code)]
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::model::{ModelSettings, SkyModel, prepare};
+use atmosphere_core::sun_disk;
+use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
+use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::tone_map::ToneMap;
+use render_wgpu::{GpuError, RenderError, Renderer};
+
+/// Radiance below which errors count as absolute, W m^-2 sr^-1 nm^-1: 1e-3 of a bright
+/// daytime sky (about 0.1), far below what an 8-bit display shows.
+pub const FLOOR: f64 = 1e-4;
+
+/// Pixels whose ray the CPU sees ending on the ground while a ray 2e-6 rad away ends in
+/// space (or the reverse) lie on the planet's limb, where f32 and f64 may decide
+/// differently; they are left out (and counted).
+const LIMB_ANGLE_RAD: f64 = 2e-6;
+
+/// The renderer, or `None` after printing why when there is no adapter and
+/// `ATMOS_SKIP_GPU_TESTS=1`.
+pub fn renderer_or_skip(test: &str) -> Option<Renderer> {
+    match Renderer::headless() {
+        Ok(r) => Some(r),
+        Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
+            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
+        {
+            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
+            None
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// A frame of `model` on the earth preset, default settings, exposure EV100 14.
+pub fn frame(model: &str, view: LocalView, fov_deg: f64, width: u32, height: u32) -> Frame {
+    let earth = Atmosphere::preset("earth").unwrap();
+    frame_in(earth, model, view, fov_deg, width, height)
+}
+
+/// A frame of `model` in `atmosphere`, default settings, exposure EV100 14.
+pub fn frame_in(
+    atmosphere: Atmosphere,
+    model: &str,
+    view: LocalView,
+    fov_deg: f64,
+    width: u32,
+    height: u32,
+) -> Frame {
+    Frame {
+        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
+        orientation: view.orientation(),
+        vertical_fov_deg: fov_deg,
+        sun_direction: view.sun_direction(),
+        atmosphere,
+        model: model.into(),
+        settings: ModelSettings::default(),
+        exposure_ev100: 14.0,
+        width,
+        height,
+    }
+}
+
+/// A view at `altitude_m`, looking `view_zenith_deg` from the zenith at azimuth 0, the
+/// sun `sun_zenith_deg` from the zenith at azimuth 30 deg.
+pub fn view(altitude_m: f64, view_zenith_deg: f64, sun_zenith_deg: f64) -> LocalView {
+    LocalView {
+        altitude_m,
+        view_zenith_deg,
+        view_azimuth_deg: 0.0,
+        sun_zenith_deg,
+        sun_azimuth_deg: 30.0,
+    }
+}
+
+/// Whether the CPU's segment end changes within `LIMB_ANGLE_RAD` of the pixel's ray.
+fn on_limb(frame: &Frame, column: u32, row: u32) -> bool {
+    let ray = frame.pixel_ray(column, row);
+    let end = |direction| {
+        let mut r = ray;
+        r.direction = direction;
+        ViewSegment::new(&frame.atmosphere, &r)
+            .unwrap()
+            .map(|s| s.end == SegmentEnd::Ground)
+    };
+    let [right, up, _] = frame.axes();
+    let here = end(ray.direction);
+    [right, -right, up, -up]
+        .iter()
+        .any(|&d| end((ray.direction + d * LIMB_ANGLE_RAD).normalize()) != here)
+}
+
+/// The CPU's radiance of a pixel: the model plus the transmitted sun disk where the ray
+/// reaches space.
+fn cpu_pixel(model: &dyn SkyModel, frame: &Frame, column: u32, row: u32) -> [f64; 3] {
+    let ray = frame.pixel_ray(column, row);
+    let answer = model.radiance(&ray).unwrap();
+    let to_space = ViewSegment::new(&frame.atmosphere, &ray)
+        .unwrap()
+        .is_none_or(|s| s.end != SegmentEnd::Ground);
+    let angle = ray
+        .direction
+        .cross(ray.sun_direction)
+        .length()
+        .atan2(ray.direction.dot(ray.sun_direction));
+    std::array::from_fn(|w| {
+        let disk = if to_space {
+            answer.transmittance[w]
+                * sun_disk::radiance(
+                    model.solar_irradiance_w_m2_nm()[w],
+                    frame.atmosphere.sun.angular_radius_rad,
+                    RGB_WAVELENGTHS_NM[w],
+                    angle,
+                )
+        } else {
+            0.0
+        };
+        answer.radiance[w] + disk
+    })
+}
+
+/// Renders `frame` with its model, compares every pixel off the limb with the CPU model
+/// of the same id (|L_gpu - L_cpu| / max(L_cpu, FLOOR) per channel, every value finite)
+/// and the tone map with its twin (within one 8-bit level); prints the worst error and
+/// fails above `max_relative_error`. Returns the worst relative error.
+pub fn check(renderer: &mut Renderer, name: &str, frame: &Frame, max_relative_error: f64) -> f64 {
+    let plan = renderer.render(frame).unwrap();
+    let hdr = renderer.read_hdr().unwrap();
+    let ldr = renderer.read_ldr().unwrap();
+    let model = prepare(&frame.model, &frame.atmosphere, &frame.settings).unwrap();
+    let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100).unwrap();
+    let (mut worst, mut at, mut limb, mut lit) = (0.0f64, (0, 0, 0), 0, 0);
+    let mut worst_ldr = 0i32;
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            let index = (row * frame.width + column) as usize;
+            let gpu = hdr[index];
+            assert_eq!(gpu[3], 1.0);
+            assert!(
+                gpu.iter().all(|v| v.is_finite()),
+                "{name}: pixel ({column}, {row}) is {gpu:?}"
+            );
+            let expected = tone_map.pixel(std::array::from_fn(|c| f64::from(gpu[c])));
+            for c in 0..3 {
+                worst_ldr =
+                    worst_ldr.max((i32::from(ldr[index][c]) - i32::from(expected[c])).abs());
+            }
+            if on_limb(frame, column, row) {
+                limb += 1;
+                continue;
+            }
+            let cpu = cpu_pixel(model.as_ref(), frame, column, row);
+            if cpu[1] > FLOOR {
+                lit += 1;
+            }
+            for c in 0..3 {
+                let error = (f64::from(gpu[c]) - cpu[c]).abs() / cpu[c].max(FLOOR);
+                if error > worst || error.is_nan() {
+                    worst = error;
+                    at = (column, row, c);
+                }
+            }
+        }
+    }
+    println!(
+        "{} {name} on {}: worst relative error {worst:.2e} at pixel ({}, {}) channel {}; \
+         {lit} lit pixels, {limb} on the limb left out; tone map within {worst_ldr} of the CPU; plan: {plan}",
+        frame.model,
+        renderer.gpu().adapter_summary(),
+        at.0,
+        at.1,
+        at.2,
+    );
+    assert!(
+        worst <= max_relative_error,
+        "{} {name}: worst relative error {worst:e}",
+        frame.model
+    );
+    assert!(worst_ldr <= 1, "{name}: tone map off by {worst_ldr} levels");
+    worst
+}
+
+/// The five frames every model's parity test renders: 1 m above the ground at the
+/// horizon in the afternoon, sunset from 2 km towards the sun, the limb from 100 km,
+/// the whole planet from 1e8 m with the terminator in view (64 x 36), and a 33 x 19
+/// frame of 1 deg on a sun 60 deg from the zenith, whose disk spans about 10 pixels.
+pub fn standard_frames(model: &str) -> Vec<(&'static str, Frame)> {
+    let mut sunset = view(2_000.0, 88.0, 89.0);
+    sunset.sun_azimuth_deg = 5.0;
+    let sun = LocalView {
+        altitude_m: 500.0,
+        view_zenith_deg: 60.0,
+        view_azimuth_deg: 0.0,
+        sun_zenith_deg: 60.0,
+        sun_azimuth_deg: 0.0,
+    };
+    vec![
+        ("ground", frame(model, view(1.0, 85.0, 50.0), 70.0, 64, 36)),
+        ("sunset", frame(model, sunset, 60.0, 64, 36)),
+        (
+            "100 km",
+            frame(model, view(100_000.0, 100.0, 60.0), 40.0, 64, 36),
+        ),
+        ("1e8 m", frame(model, view(1e8, 180.0, 80.0), 9.0, 64, 36)),
+        ("sun disk", frame(model, sun, 1.0, 33, 19)),
+    ]
+}
