@@ -133,7 +133,7 @@ fn bad_flags_fail_clearly_and_write_nothing() {
         (&[("--fov-deg", "200")], "frame.png", "--fov-deg 200"),
         (&[("--altitude-m", "-5")], "frame.png", "below the ground"),
         (
-            &[("--model", "bruneton")],
+            &[("--model", "reference")],
             "frame.png",
             "not yet on the GPU",
         ),
