@@ -245,6 +245,23 @@ mod tests {
     }
 
     #[test]
+    fn shipped_scenes_are_frames_of_models_on_the_gpu() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes");
+        let mut count = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let frame = Scene::load(&path).unwrap().frame().unwrap();
+            assert!(
+                render_wgpu::Renderer::check_model(&frame.model).is_ok(),
+                "{}",
+                path.display()
+            );
+            count += 1;
+        }
+        assert!(count >= 2);
+    }
+
+    #[test]
     fn bad_fields_are_named() {
         let err = |s: Scene| s.frame().unwrap_err().to_string();
         assert!(err(Scene::default()).contains("--model is required"));
