@@ -77,7 +77,7 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
 }
 
 /// The models whose renders are kept: every model on the GPU.
-const MODELS: [&str; 3] = ["nishita", "oneil", "riley"];
+const MODELS: [&str; 4] = ["dobashi", "nishita", "oneil", "riley"];
 
 fn render(
     renderer: &mut Renderer,

@@ -9,6 +9,7 @@
 
 pub mod atmosphere_uniform;
 pub mod device;
+pub mod dobashi_pass;
 pub mod error;
 pub mod frame;
 pub mod frame_plan;

@@ -7,6 +7,7 @@
 use atmosphere_core::model::MODEL_IDS;
 
 use crate::device::GpuContext;
+use crate::dobashi_pass::DobashiPass;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
@@ -15,7 +16,7 @@ use crate::oneil_pass::OneilPass;
 use crate::riley_pass::RileyPass;
 
 /// The models the GPU renders, by id.
-pub const GPU_MODELS: &[&str] = &["nishita", "oneil", "riley"];
+pub const GPU_MODELS: &[&str] = &["dobashi", "nishita", "oneil", "riley"];
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -75,6 +76,7 @@ pub fn check_model(id: &str) -> Result<(), RenderError> {
 pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderError> {
     check_model(id)?;
     match id {
+        "dobashi" => Ok(Box::new(DobashiPass::new(gpu)?)),
         "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
         "oneil" => Ok(Box::new(OneilPass::new(gpu)?)),
         "riley" => Ok(Box::new(RileyPass::new(gpu)?)),
