@@ -19,6 +19,7 @@ use std::path::{Path, PathBuf};
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::model::ModelSettings;
 use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::model_pass::GPU_MODELS;
 use render_wgpu::{GpuError, RenderError, Renderer};
 
 /// Largest allowed difference of one channel, 8-bit levels.
@@ -76,9 +77,6 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
     ]
 }
 
-/// The models whose renders are kept: every model on the GPU.
-const MODELS: [&str; 5] = ["nishita", "bruneton", "hillaire", "oneil", "riley"];
-
 /// The bruneton scenes' table sizes (`--set` options): S at 16 x 64 x 16 x 8, an eighth
 /// of the paper's texels, since the paper's sizes take minutes to build on lavapipe
 /// (docs/rendering.md, "Cost").
@@ -131,7 +129,7 @@ fn renders_match_the_golden_images() {
     };
     let update = std::env::var("ATMOS_UPDATE_GOLDEN").as_deref() == Ok("1");
     let mut failures = Vec::new();
-    for (model, (scene, view, fov, preset, ev)) in MODELS
+    for (model, (scene, view, fov, preset, ev)) in GPU_MODELS
         .iter()
         .flat_map(|m| scenes().into_iter().map(move |s| (*m, s)))
     {

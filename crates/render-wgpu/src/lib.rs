@@ -10,6 +10,7 @@
 pub mod atmosphere_uniform;
 pub mod bruneton_pass;
 pub mod device;
+pub mod dobashi_pass;
 pub mod error;
 pub mod frame;
 pub mod frame_plan;

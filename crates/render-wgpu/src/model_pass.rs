@@ -8,6 +8,7 @@ use atmosphere_core::model::MODEL_IDS;
 
 use crate::bruneton_pass::BrunetonPass;
 use crate::device::GpuContext;
+use crate::dobashi_pass::DobashiPass;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
@@ -17,7 +18,9 @@ use crate::oneil_pass::OneilPass;
 use crate::riley_pass::RileyPass;
 
 /// The models the GPU renders, by id.
-pub const GPU_MODELS: &[&str] = &["nishita", "bruneton", "hillaire", "oneil", "riley"];
+pub const GPU_MODELS: &[&str] = &[
+    "bruneton", "dobashi", "hillaire", "nishita", "oneil", "riley",
+];
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -77,6 +80,7 @@ pub fn check_model(id: &str) -> Result<(), RenderError> {
 pub fn create(id: &str, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderError> {
     check_model(id)?;
     match id {
+        "dobashi" => Ok(Box::new(DobashiPass::new(gpu)?)),
         "nishita" => Ok(Box::new(NishitaPass::new(gpu)?)),
         "bruneton" => Ok(Box::new(BrunetonPass::new(gpu)?)),
         "hillaire" => Ok(Box::new(HillairePass::new(gpu)?)),

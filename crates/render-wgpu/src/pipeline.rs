@@ -37,6 +37,20 @@ pub fn texture_entry(
     }
 }
 
+/// A read-only storage buffer of at least `min_size` bytes.
+pub fn read_only_storage_buffer_entry(binding: u32, min_size: usize) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(min_size as u64),
+        },
+        count: None,
+    }
+}
+
 /// A write-only storage texture of `format`.
 pub fn storage_texture_entry(
     binding: u32,

@@ -61,6 +61,22 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/atmosphere_params.wgsl"),
     ),
     (
+        "dobashi.wgsl",
+        include_str!("../../../shaders/dobashi.wgsl"),
+    ),
+    (
+        "dobashi_ambient.wgsl",
+        include_str!("../../../shaders/dobashi_ambient.wgsl"),
+    ),
+    (
+        "dobashi_tables.wgsl",
+        include_str!("../../../shaders/dobashi_tables.wgsl"),
+    ),
+    (
+        "dobashi_trace.wgsl",
+        include_str!("../../../shaders/dobashi_trace.wgsl"),
+    ),
+    (
         "frame_params.wgsl",
         include_str!("../../../shaders/frame_params.wgsl"),
     ),

@@ -284,3 +284,47 @@ fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
         [ray_samples, pad0, pad1, pad2]
     );
 }
+
+#[test]
+fn dobashi_uniforms_match_their_wgsl_layouts() {
+    use render_wgpu::dobashi_pass::{DobashiTableUniform, DobashiUniform};
+    assert_layout!(
+        "dobashi_tables.wgsl",
+        "DobashiTableParams",
+        DobashiTableUniform,
+        [interval_m, plane_panels, sphere_panels, pad0]
+    );
+    for shader in ["dobashi.wgsl", "dobashi_ambient.wgsl"] {
+        let (span, members) = wgsl_layout(shader, "DobashiParams");
+        assert_eq!(span, size_of::<DobashiUniform>(), "{shader}");
+        let rust = [
+            (
+                "interval_m",
+                std::mem::offset_of!(DobashiUniform, interval_m),
+            ),
+            (
+                "use_spheres",
+                std::mem::offset_of!(DobashiUniform, use_spheres),
+            ),
+            (
+                "ambient_on",
+                std::mem::offset_of!(DobashiUniform, ambient_on),
+            ),
+            (
+                "max_orders",
+                std::mem::offset_of!(DobashiUniform, max_orders),
+            ),
+            (
+                "ambient_directions",
+                std::mem::offset_of!(DobashiUniform, ambient_directions),
+            ),
+            ("spheres", std::mem::offset_of!(DobashiUniform, spheres)),
+        ];
+        for (name, offset) in rust {
+            assert!(
+                members.contains(&(name.to_string(), offset)),
+                "{shader}: {name} at {offset}: WGSL has {members:?}"
+            );
+        }
+    }
+}
