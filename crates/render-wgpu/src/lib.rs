@@ -20,6 +20,7 @@ pub mod pipeline;
 pub mod readback;
 pub mod renderer;
 pub mod shader_source;
+pub mod terrain;
 pub mod tone_map;
 pub mod tone_map_pass;
 pub mod transmittance_pass;
