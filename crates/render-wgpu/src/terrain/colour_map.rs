@@ -53,3 +53,44 @@ impl ColourMap {
         rgb
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{MapError, earth_assets_dir};
+    use super::*;
+
+    /// The shipped Blue Marble: the Sahara sandy (red over blue), the open Pacific dark
+    /// blue, Antarctica and Greenland's ice bright.
+    #[test]
+    fn shipped_colours_at_known_places() {
+        let map = ColourMap::load(&earth_assets_dir().join("colour.jpg")).unwrap();
+        assert_eq!((map.width, map.height), (4096, 2048));
+        let at = |lat: f64, lon: f64| map.sample_linear(lat.to_radians(), lon.to_radians());
+        let sahara = at(23.0, 10.0);
+        assert!(sahara[0] > 1.5 * sahara[2], "Sahara {sahara:?}");
+        let pacific = at(0.0, -150.0);
+        assert!(
+            pacific[2] > 2.0 * pacific[0] && pacific[2] < 0.2,
+            "Pacific {pacific:?}"
+        );
+        for (lat, lon) in [(-85.0, 0.0), (75.0, -40.0)] {
+            let ice = at(lat, lon);
+            assert!(ice.iter().all(|&c| c > 0.5), "ice at {lat}, {lon}: {ice:?}");
+        }
+    }
+
+    #[test]
+    fn missing_and_grey_files_are_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let e = ColourMap::load(&dir.path().join("colour.jpg")).unwrap_err();
+        assert!(matches!(e, MapError::Missing { .. }));
+        assert!(e.to_string().contains("colour.jpg"), "{e}");
+        let grey = dir.path().join("grey.png");
+        image::GrayImage::new(4, 2).save(&grey).unwrap();
+        let e = ColourMap::load(&grey).unwrap_err();
+        assert!(
+            matches!(e, MapError::Format { .. }) && e.to_string().contains("grey.png"),
+            "{e}"
+        );
+    }
+}
