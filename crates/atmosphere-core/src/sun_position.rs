@@ -245,8 +245,8 @@ impl SolarCoordinates {
         // Eq. 25.1.
         let t = (jd - 2_451_545.0) / 36_525.0;
         // Eqs. 25.2-25.4.
-        let l0 = (280.46646 + t * (36_000.76983 + t * 0.000_303_2)).rem_euclid(360.0);
-        let m = (357.52911 + t * (35_999.05029 - t * 0.000_153_7)).rem_euclid(360.0);
+        let l0 = (280.46646 + t * (36000.76983 + t * 0.000_303_2)).rem_euclid(360.0);
+        let m = (357.52911 + t * (35999.05029 - t * 0.000_153_7)).rem_euclid(360.0);
         let e = 0.016_708_634 - t * (0.000_042_037 + t * 0.000_000_126_7);
         let m_rad = m.to_radians();
         // The equation of the centre (chapter 25, after eq. 25.4).
@@ -269,8 +269,9 @@ impl SolarCoordinates {
             .to_degrees()
             .rem_euclid(360.0);
         let delta = (epsilon_rad.sin() * lambda_rad.sin()).asin().to_degrees();
-        // Eq. 28.3 (Smart): E in radians, with y = tan^2(epsilon / 2); Meeus uses the mean
-        // obliquity's apparent value here too. 1 rad of hour angle is 720 / pi minutes.
+        // Eq. 28.3 (Smart): E in radians, with y = tan^2(epsilon / 2) of the apparent
+        // obliquity as NOAA's calculator takes it (the mean one changes E by under 0.02 s
+        // in Example 28.b). 1 rad of hour angle is 720 / pi minutes.
         let y = (epsilon_rad / 2.0).tan().powi(2);
         let l0_rad = l0.to_radians();
         let eot_rad = y * (2.0 * l0_rad).sin() - 2.0 * e * m_rad.sin()

@@ -100,7 +100,7 @@ mod tests {
         for t in bilinear_taps(w, h, 1.55, 0.3) {
             assert!(t.0 < w || t.1 == 0.0);
         }
-        for lat in [-1.5707963, -0.7, 0.0, 0.9] {
+        for lat in [-FRAC_PI_2, -0.7, 0.0, 0.9] {
             let sum: f64 = bilinear_taps(w, h, lat, 1.0).iter().map(|t| t.1).sum();
             assert!((sum - 1.0).abs() < 1e-12);
         }

@@ -74,7 +74,7 @@ impl LodSettings {
         if !(self.radius_m > 0.0 && self.radius_m.is_finite()) {
             return Err(format!("radius_m: {} (expected > 0)", self.radius_m));
         }
-        if self.cells < 2 || self.cells % 2 != 0 || self.cells > 256 {
+        if self.cells < 2 || !self.cells.is_multiple_of(2) || self.cells > 256 {
             return Err(format!("cells: {} (expected even, 2 to 256)", self.cells));
         }
         if !(self.max_error_px > 0.0 && self.max_error_px.is_finite()) {

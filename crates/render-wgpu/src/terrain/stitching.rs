@@ -25,7 +25,7 @@ pub fn vertex_index(cells: u32, i: u32, j: u32) -> u32 {
 /// flagged in `coarser` (indexed by [`Edge`]) border a coarser chunk.
 pub fn stitched_indices(cells: u32, coarser: [bool; 4]) -> Vec<u32> {
     assert!(
-        cells >= 2 && cells % 2 == 0,
+        cells >= 2 && cells.is_multiple_of(2),
         "a chunk's cells must be even, got {cells}"
     );
     let n = cells;
