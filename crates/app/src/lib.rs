@@ -10,6 +10,7 @@ pub mod progress;
 pub mod render;
 pub mod report;
 pub mod stability;
+pub mod viewer;
 
 use std::ffi::OsString;
 

@@ -32,6 +32,7 @@ pub mod solar;
 pub mod spectral;
 pub mod stability;
 pub mod sun_disk;
+pub mod sun_position;
 pub mod table_inputs;
 pub mod transmittance_table;
 pub mod view_segment;

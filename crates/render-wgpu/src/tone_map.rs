@@ -32,6 +32,15 @@ pub fn srgb_encode(linear: f64) -> f64 {
     }
 }
 
+/// The inverse of [`srgb_encode`]: the linear value of an sRGB-encoded one in [0, 1].
+pub fn srgb_decode(encoded: f64) -> f64 {
+    if encoded <= 0.04045 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 /// The tone map of one exposure for radiance at given wavelengths.
 #[derive(Clone, Debug)]
 pub struct ToneMap {

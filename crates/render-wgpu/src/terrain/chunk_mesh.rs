@@ -1,0 +1,190 @@
+//! A chunk's mesh: vertex positions relative to a per-chunk origin, normals from the
+//! height field, and the stitched triangles.
+//!
+//! Camera-relative rendering: positions are computed in f64, planet-centred, then stored
+//! as f32 offsets from the chunk's origin (its centre's point on the reference sphere).
+//! Each frame the renderer uploads `origin - camera` (computed in f64, then rounded to
+//! f32) per chunk, so a vertex reaches the GPU as a sum of two values that are small near
+//! the camera: no jitter a metre above the ground, where planet-centred f32 coordinates
+//! (spacing 0.5 m at 6,360 km) would shake. A chunk's f32 offsets are within `6e-8` of its
+//! size of the f64 positions; shared edge vertices are equal in f64 (see `stitching.rs`,
+//! `chunk_key.rs` and the test below) and may differ in their last f32 bits between two
+//! chunks, which is far below a pixel.
+
+use glam::DVec3;
+
+use super::chunk_key::ChunkKey;
+use super::cube_sphere::direction;
+use super::height_field::HeightField;
+use super::lod::SelectedChunk;
+use super::stitching::stitched_indices;
+use super::surface::TerrainSurface;
+
+/// The CPU-side mesh of one chunk, ready for upload.
+#[derive(Clone, Debug)]
+pub struct ChunkMesh {
+    pub key: ChunkKey,
+    /// Cells along a side; the mesh has `(cells + 1)^2` vertices, vertex (i, j) at index
+    /// `j (cells + 1) + i`.
+    pub cells: u32,
+    /// The chunk's origin, planet-centred, metres.
+    pub origin_m: DVec3,
+    /// Vertex positions relative to `origin_m`, metres.
+    pub positions: Vec<[f32; 3]>,
+    /// Outward unit normals.
+    pub normals: Vec<[f32; 3]>,
+    /// Counter-clockwise triangles (seen from outside), stitched to coarser neighbours.
+    pub indices: Vec<u32>,
+}
+
+/// The unit direction of vertex (i, j) of a chunk with `cells` cells along a side.
+pub fn vertex_direction(key: ChunkKey, cells: u32, i: u32, j: u32) -> DVec3 {
+    let (u, v) = key.vertex_uv(cells, i as i64, j as i64);
+    direction(key.face, u, v)
+}
+
+impl ChunkMesh {
+    /// Builds the mesh of a selected chunk on `surface`.
+    pub fn build<H: HeightField>(
+        surface: &TerrainSurface<H>,
+        chunk: &SelectedChunk,
+        cells: u32,
+    ) -> ChunkMesh {
+        let key = chunk.key;
+        let origin_m = vertex_direction(key, cells, cells / 2, cells / 2) * surface.radius_m;
+        let count = ((cells + 1) * (cells + 1)) as usize;
+        let mut positions = Vec::with_capacity(count);
+        let mut normals = Vec::with_capacity(count);
+        for j in 0..=cells {
+            for i in 0..=cells {
+                let d = vertex_direction(key, cells, i, j);
+                positions.push((surface.position_m(d) - origin_m).as_vec3().to_array());
+                normals.push(surface.normal(d).as_vec3().to_array());
+            }
+        }
+        ChunkMesh {
+            key,
+            cells,
+            origin_m,
+            positions,
+            normals,
+            indices: stitched_indices(cells, chunk.coarser),
+        }
+    }
+
+    /// A vertex's planet-centred position as the GPU sees it (origin plus f32 offset).
+    pub fn world_position_m(&self, index: u32) -> DVec3 {
+        self.origin_m + glam::Vec3::from_array(self.positions[index as usize]).as_dvec3()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::{HashMap, HashSet};
+
+    use super::super::lod::{LodSettings, LodView, select_chunks};
+    use super::*;
+
+    const R: f64 = 6.36e6;
+
+    /// Smooth relief of a few kilometres, different on every face.
+    struct Waves;
+
+    impl HeightField for Waves {
+        fn height_m(&self, d: DVec3) -> f64 {
+            3000.0 * (7.0 * d.x).sin() * (5.0 * d.y).cos() + 1500.0 * (11.0 * d.z + 1.0).sin()
+        }
+        fn max_abs_height_m(&self) -> f64 {
+            4500.0
+        }
+        fn sample_spacing_rad(&self) -> f64 {
+            1e-3
+        }
+    }
+
+    fn bits(p: DVec3) -> [u64; 3] {
+        p.to_array().map(f64::to_bits)
+    }
+
+    /// All chunks chosen for a camera low over a cube corner (three faces and many levels
+    /// meet there) form one closed surface: every triangle edge, in f64 positions bit for
+    /// bit, is matched by exactly one reversed edge of another or the same chunk, and the
+    /// Euler characteristic is that of a sphere. No crack, no T-junction.
+    #[test]
+    fn chunks_close_up_without_cracks() {
+        let cells = 8;
+        let surface = TerrainSurface {
+            exaggeration: 2.0,
+            sea_surface: false,
+            ..TerrainSurface::new(Waves, R)
+        };
+        let settings = LodSettings {
+            cells,
+            max_error_px: 40.0,
+            max_level: 9,
+            ..LodSettings::new(R)
+        };
+        let up = DVec3::new(1.0, 1.0, 1.02).normalize();
+        let camera = up * (R + surface.elevation_m(up) + 500.0);
+        let elevation = |d: DVec3| surface.elevation_m(d);
+        let chunks =
+            select_chunks(&settings, &LodView::new(camera, 1080.0, 1.0), elevation).unwrap();
+        let levels: HashSet<u8> = chunks.iter().map(|c| c.key.level).collect();
+        assert!(levels.len() >= 6, "levels {levels:?}");
+        assert!(chunks.iter().any(|c| c.coarser.iter().any(|&b| b)));
+
+        let mut edges: HashMap<([u64; 3], [u64; 3]), u32> = HashMap::new();
+        let mut vertices = HashSet::new();
+        let mut triangles = 0;
+        for chunk in &chunks {
+            let mesh = ChunkMesh::build(&surface, chunk, cells);
+            let world = |k: u32| {
+                let (i, j) = (k % (cells + 1), k / (cells + 1));
+                surface.position_m(vertex_direction(chunk.key, cells, i, j))
+            };
+            let size = settings.bounding_sphere(chunk.key, &elevation).1;
+            for t in mesh.indices.chunks(3) {
+                let p = [world(t[0]), world(t[1]), world(t[2])];
+                // Outward winding.
+                assert!((p[1] - p[0]).cross(p[2] - p[0]).dot(p[0]) > 0.0);
+                for (k, q) in t.iter().zip(p) {
+                    assert!((mesh.world_position_m(*k) - q).length() < 1.2e-7 * size + 1e-9);
+                    vertices.insert(bits(q));
+                }
+                for (a, b) in [(p[0], p[1]), (p[1], p[2]), (p[2], p[0])] {
+                    *edges.entry((bits(a), bits(b))).or_default() += 1;
+                }
+                triangles += 1;
+            }
+        }
+        for (&(a, b), &count) in &edges {
+            assert_eq!(count, 1, "edge used twice in one direction");
+            assert_eq!(
+                edges.get(&(b, a)),
+                Some(&1),
+                "open edge: a crack or a T-junction"
+            );
+        }
+        let euler = vertices.len() as i64 - (edges.len() / 2) as i64 + triangles;
+        assert_eq!(euler, 2);
+    }
+
+    /// Normals are the surface's, unit length, and point outwards.
+    #[test]
+    fn normals_follow_the_height_field() {
+        let surface = TerrainSurface::new(Waves, R);
+        let chunk = SelectedChunk {
+            key: super::super::chunk_key::ChunkKey::root(super::super::cube_sphere::Face(2))
+                .children()[1],
+            coarser: [false; 4],
+        };
+        let mesh = ChunkMesh::build(&surface, &chunk, 4);
+        for (k, n) in mesh.normals.iter().enumerate() {
+            let n = glam::Vec3::from_array(*n).as_dvec3();
+            let d = vertex_direction(chunk.key, 4, k as u32 % 5, k as u32 / 5);
+            assert!((n.length() - 1.0).abs() < 1e-6);
+            assert!((n - surface.normal(d)).length() < 1e-6);
+            assert!(n.dot(d) > 0.5);
+        }
+    }
+}
