@@ -550,16 +550,7 @@ impl BrunetonPass {
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
         gpu.queue
             .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
-        let hdr = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("unused"),
-            size: wgpu::Extent3d::default(),
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: HDR_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING,
-            view_formats: &[],
-        });
+        let hdr = unused_hdr(gpu);
         let io = PassIo {
             atmosphere: &atmosphere,
             frame: &frame_buffer,
@@ -603,14 +594,15 @@ impl BrunetonPass {
         pipeline.bind_group(gpu, &resources)
     }
 
-    /// Records the loop over orders (Algorithm 4.1) into one compute pass.
-    fn encode_orders(
+    /// The dispatches of the loop over orders (Algorithm 4.1), in order, after clearing
+    /// S's multiple part and E: each with its step's name and the order it belongs to (1
+    /// for the sums of single scattering).
+    fn order_dispatches(
         &self,
         gpu: &GpuContext,
         io: &PassIo<'_>,
         encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    ) -> Vec<OrderDispatch<'_>> {
         let tables = self.tables.as_ref().expect("plan makes the tables");
         let p = &self.pipelines;
         for table in [StoreTable::Multiple, StoreTable::Irradiance] {
@@ -621,49 +613,206 @@ impl BrunetonPass {
         let first = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params_first, &[]);
         let later = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &[]);
         let ordered = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &state);
-        let groups = [
-            (&p.moments, first(&p.moments), later(&p.moments)),
-            (
-                &p.scattering_density,
-                first(&p.scattering_density),
-                later(&p.scattering_density),
-            ),
-            (&p.irradiance, first(&p.irradiance), later(&p.irradiance)),
-            (&p.scattering, first(&p.scattering), later(&p.scattering)),
+        let steps = [
+            ("moments", &p.moments),
+            ("scattering_density", &p.scattering_density),
+            ("irradiance", &p.irradiance),
+            ("scattering", &p.scattering),
         ];
+        let groups: Vec<_> = steps
+            .iter()
+            .map(|(name, pipeline)| (*name, *pipeline, first(pipeline), later(pipeline)))
+            .collect();
         // The state is bound to `decide` only: the other steps are dispatched from it.
         let sum_single = later(&p.sum_single);
         let sum_order = later(&p.sum_order);
         let decide = ordered(&p.decide);
         let accumulate = later(&p.accumulate);
         let args = |k: u64| 48 + 16 * k;
+        let mut out = vec![
+            OrderDispatch {
+                name: "sum_single",
+                order: 1,
+                pipeline: &p.sum_single.pipeline,
+                bind_group: sum_single,
+                size: DispatchSize::Direct(SUM_GROUPS),
+            },
+            OrderDispatch {
+                name: "decide",
+                order: 1,
+                pipeline: &p.decide.pipeline,
+                bind_group: decide.clone(),
+                size: DispatchSize::Direct(1),
+            },
+        ];
+        for order in 2..=tables.max_orders {
+            for (k, (name, pipeline, first_group, later_group)) in groups.iter().enumerate() {
+                out.push(OrderDispatch {
+                    name,
+                    order,
+                    pipeline: &pipeline.pipeline,
+                    bind_group: if order == 2 { first_group } else { later_group }.clone(),
+                    size: DispatchSize::Indirect(&tables.state, args(k as u64)),
+                });
+            }
+            out.push(OrderDispatch {
+                name: "sum_order",
+                order,
+                pipeline: &p.sum_order.pipeline,
+                bind_group: sum_order.clone(),
+                size: DispatchSize::Indirect(&tables.state, args(4)),
+            });
+            out.push(OrderDispatch {
+                name: "decide",
+                order,
+                pipeline: &p.decide.pipeline,
+                bind_group: decide.clone(),
+                size: DispatchSize::Direct(1),
+            });
+            out.push(OrderDispatch {
+                name: "accumulate",
+                order,
+                pipeline: &p.accumulate.pipeline,
+                bind_group: accumulate.clone(),
+                size: DispatchSize::Indirect(&tables.state, args(5)),
+            });
+        }
+        out
+    }
+
+    /// Records the loop over orders (Algorithm 4.1) into one compute pass.
+    fn encode_orders(
+        &self,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let dispatches = self.order_dispatches(gpu, io, encoder);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("bruneton scattering orders"),
             timestamp_writes: timestamps,
         });
-        let direct =
-            |pass: &mut wgpu::ComputePass<'_>, pipeline: &ComputePipeline, bind_group, x| {
-                pass.set_pipeline(&pipeline.pipeline);
-                pass.set_bind_group(0, bind_group, &[]);
-                pass.dispatch_workgroups(x, 1, 1);
-            };
-        direct(&mut pass, &p.sum_single, &sum_single, SUM_GROUPS);
-        direct(&mut pass, &p.decide, &decide, 1);
-        for order in 2..=tables.max_orders {
-            for (k, (pipeline, first_group, later_group)) in groups.iter().enumerate() {
-                pass.set_pipeline(&pipeline.pipeline);
-                pass.set_bind_group(0, if order == 2 { first_group } else { later_group }, &[]);
-                pass.dispatch_workgroups_indirect(&tables.state, args(k as u64));
-            }
-            pass.set_pipeline(&p.sum_order.pipeline);
-            pass.set_bind_group(0, &sum_order, &[]);
-            pass.dispatch_workgroups_indirect(&tables.state, args(4));
-            direct(&mut pass, &p.decide, &decide, 1);
-            pass.set_pipeline(&p.accumulate.pipeline);
-            pass.set_bind_group(0, &accumulate, &[]);
-            pass.dispatch_workgroups_indirect(&tables.state, args(5));
+        for d in &dispatches {
+            d.record(&mut pass);
         }
     }
+
+    /// Builds every table of `frame` (as if never built) one dispatch at a time, waiting
+    /// for the GPU after each, and returns each step's wall-clock time in ms: the table
+    /// steps by name, and the loop over orders per dispatch (`scattering_orders
+    /// order 3 scattering`). For profiling the build: a CPU adapter such as lavapipe
+    /// times its dispatches unreliably with timestamp queries.
+    pub fn profile_build(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+    ) -> Result<Vec<(String, f64)>, RenderError> {
+        if let Some(t) = self.tables.as_mut() {
+            t.built = Built::default();
+        }
+        let atmosphere = uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>());
+        let frame_buffer = uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>());
+        let mut plan = FramePlan::default();
+        self.plan(gpu, frame, &mut plan)?;
+        gpu.queue
+            .write_buffer(&atmosphere, 0, bytemuck::bytes_of(&self.atmosphere));
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        gpu.queue
+            .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
+        let hdr = unused_hdr(gpu);
+        let io = PassIo {
+            atmosphere: &atmosphere,
+            frame: &frame_buffer,
+            hdr: &hdr,
+        };
+        let wait = || -> Result<(), RenderError> {
+            gpu.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .map_err(GpuError::from)?;
+            Ok(())
+        };
+        let mut times = Vec::new();
+        wait()?;
+        for step in plan.steps.iter().filter(|s| s.kind == StepKind::TableBuild) {
+            if step.name != "scattering_orders" {
+                let start = std::time::Instant::now();
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                self.encode(step.name, gpu, &io, &mut encoder, None);
+                gpu.queue.submit([encoder.finish()]);
+                wait()?;
+                times.push((step.name.to_string(), start.elapsed().as_secs_f64() * 1e3));
+                continue;
+            }
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            let dispatches = self.order_dispatches(gpu, &io, &mut encoder);
+            gpu.queue.submit([encoder.finish()]);
+            wait()?;
+            for d in &dispatches {
+                let start = std::time::Instant::now();
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                {
+                    let mut pass = encoder.begin_compute_pass(&Default::default());
+                    d.record(&mut pass);
+                }
+                gpu.queue.submit([encoder.finish()]);
+                wait()?;
+                times.push((
+                    format!("scattering_orders order {} {}", d.order, d.name),
+                    start.elapsed().as_secs_f64() * 1e3,
+                ));
+            }
+            drop(dispatches);
+            let (atmosphere, mie) = self.pending.clone().expect("planned above");
+            self.tables.as_mut().expect("planned above").built.orders = Some((atmosphere, mie));
+        }
+        Ok(times)
+    }
+}
+
+/// A dispatch's size: workgroups along x, or the indirect arguments at an offset of a
+/// buffer.
+#[derive(Debug)]
+enum DispatchSize<'a> {
+    Direct(u32),
+    Indirect(&'a wgpu::Buffer, u64),
+}
+
+/// One dispatch of the loop over orders.
+#[derive(Debug)]
+struct OrderDispatch<'a> {
+    name: &'static str,
+    order: u32,
+    pipeline: &'a wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    size: DispatchSize<'a>,
+}
+
+impl OrderDispatch<'_> {
+    fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
+        pass.set_pipeline(self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        match self.size {
+            DispatchSize::Direct(x) => pass.dispatch_workgroups(x, 1, 1),
+            DispatchSize::Indirect(buffer, offset) => {
+                pass.dispatch_workgroups_indirect(buffer, offset)
+            }
+        }
+    }
+}
+
+/// A 1x1 HDR target for steps that render nothing.
+fn unused_hdr(gpu: &GpuContext) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("unused"),
+        size: wgpu::Extent3d::default(),
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: HDR_FORMAT,
+        usage: wgpu::TextureUsages::STORAGE_BINDING,
+        view_formats: &[],
+    })
 }
 
 impl ModelPass for BrunetonPass {
