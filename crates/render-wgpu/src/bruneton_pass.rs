@@ -56,6 +56,8 @@ pub const MAX_ORDERS: u32 = 63;
 const DENSITY_SAMPLES: u32 = 8192;
 /// Workgroups of the partial sums (`SUM_GROUPS` of `bruneton_orders.wgsl`).
 const SUM_GROUPS: u32 = 256;
+/// The binding of the density table's texture (`bruneton_tables.wgsl`).
+const DENSITY_BINDING: u32 = 12;
 /// Invocations of the flat shaders' workgroups.
 const FLAT: u32 = 64;
 
@@ -171,6 +173,8 @@ struct Tables {
     params: wgpu::Buffer,
     /// Single Rayleigh, single Mie, multiple.
     textures: [wgpu::Texture; 3],
+    /// The density table, copied from the store for the shaders' reads.
+    density: wgpu::Texture,
     built: Built,
 }
 
@@ -202,11 +206,12 @@ pub struct BrunetonPass {
     pending: Option<(Atmosphere, bool)>,
 }
 
-/// Bindings 0-5 of every bruneton shader: atmosphere, frame, parameters, the columns
-/// table, the store, the transmittance table.
+/// Bindings 0-5 and 12 of every bruneton shader: atmosphere, frame, parameters, the
+/// columns table, the store, the transmittance table; the density table's texture.
 fn common_entries(store_bytes: usize) -> Vec<wgpu::BindGroupLayoutEntry> {
-    use wgpu::TextureViewDimension::D2;
+    use wgpu::TextureViewDimension::{D1, D2};
     vec![
+        texture_entry(DENSITY_BINDING, D1),
         uniform_entry(0, size_of::<AtmosphereUniform>()),
         uniform_entry(1, size_of::<FrameUniform>()),
         uniform_entry(2, size_of::<BrunetonUniform>()),
@@ -403,6 +408,20 @@ impl BrunetonPass {
             }),
             params_first: uniform_buffer(device, "bruneton order 2", size_of::<BrunetonUniform>()),
             params: uniform_buffer(device, "bruneton", size_of::<BrunetonUniform>()),
+            density: device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("bruneton densities"),
+                size: wgpu::Extent3d {
+                    width: DENSITY_SAMPLES,
+                    height: 1,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D1,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            }),
             textures: [
                 texture("bruneton single Rayleigh"),
                 texture("bruneton single Mie"),
@@ -567,7 +586,8 @@ impl BrunetonPass {
         Ok(plan)
     }
 
-    /// The bind group of `pipeline`: bindings 0-5 with `params`, then `extra`.
+    /// The bind group of `pipeline`: bindings 0-5 with `params`, 12, then `extra` from
+    /// binding 6 on.
     fn bind_group(
         &self,
         gpu: &GpuContext,
@@ -582,16 +602,21 @@ impl BrunetonPass {
             .transmittance
             .texture()
             .create_view(&Default::default());
+        let density = tables.density.create_view(&Default::default());
         let mut resources = vec![
-            io.atmosphere.as_entire_binding(),
-            io.frame.as_entire_binding(),
-            params.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&columns),
-            tables.store.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&transmittance),
+            (0, io.atmosphere.as_entire_binding()),
+            (1, io.frame.as_entire_binding()),
+            (2, params.as_entire_binding()),
+            (3, wgpu::BindingResource::TextureView(&columns)),
+            (4, tables.store.as_entire_binding()),
+            (5, wgpu::BindingResource::TextureView(&transmittance)),
+            (
+                DENSITY_BINDING,
+                wgpu::BindingResource::TextureView(&density),
+            ),
         ];
-        resources.extend_from_slice(extra);
-        pipeline.bind_group(gpu, &resources)
+        resources.extend((6..).zip(extra.iter().cloned()));
+        pipeline.bind_group_numbered(gpu, &resources)
     }
 
     /// The dispatches of the loop over orders (Algorithm 4.1), in order, after clearing
@@ -908,13 +933,32 @@ impl ModelPass for BrunetonPass {
                     .transmittance
                     .encode(gpu, &self.atmosphere, encoder, timestamps);
             }
-            "density" => simple(
-                &p.density,
-                "density",
-                DENSITY_SAMPLES.div_ceil(FLAT),
-                encoder,
-                timestamps,
-            ),
+            "density" => {
+                simple(
+                    &p.density,
+                    "density",
+                    DENSITY_SAMPLES.div_ceil(FLAT),
+                    encoder,
+                    timestamps,
+                );
+                let (offset, _) = tables.layout.range(StoreTable::Density);
+                encoder.copy_buffer_to_texture(
+                    wgpu::TexelCopyBufferInfo {
+                        buffer: &tables.store,
+                        layout: wgpu::TexelCopyBufferLayout {
+                            offset,
+                            bytes_per_row: Some(DENSITY_SAMPLES * 16),
+                            rows_per_image: None,
+                        },
+                    },
+                    tables.density.as_image_copy(),
+                    wgpu::Extent3d {
+                        width: DENSITY_SAMPLES,
+                        height: 1,
+                        depth_or_array_layers: 1,
+                    },
+                );
+            }
             "single_scattering" => simple(
                 &p.single,
                 "single scattering",

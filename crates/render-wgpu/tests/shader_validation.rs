@@ -223,3 +223,39 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
         [red, green, blue]
     );
 }
+
+#[test]
+fn bruneton_uniforms_match_their_wgsl_layouts() {
+    use render_wgpu::bruneton_pass::{BrunetonUniform, OrderState};
+    assert_layout!(
+        "bruneton.wgsl",
+        "BrunetonParams",
+        BrunetonUniform,
+        [
+            size,
+            irradiance_size,
+            flags,
+            offsets_a,
+            offsets_b,
+            offsets_c,
+            delta_m,
+            density
+        ]
+    );
+    assert_layout!(
+        "bruneton_orders.wgsl",
+        "OrderState",
+        OrderState,
+        [
+            totals,
+            previous_added,
+            order,
+            running,
+            last_order,
+            has_previous,
+            args,
+            full,
+            shares
+        ]
+    );
+}
