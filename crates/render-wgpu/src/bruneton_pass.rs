@@ -175,6 +175,8 @@ struct Tables {
     textures: [wgpu::Texture; 3],
     /// The density table, copied from the store for the shaders' reads.
     density: wgpu::Texture,
+    /// Delta J as a 3D texture like S's, written with the store's copy, read by Delta S.
+    delta_j: wgpu::Texture,
     built: Built,
 }
 
@@ -234,6 +236,12 @@ impl BrunetonPass {
             ComputePipeline::new(gpu, shader, entry, label, entries)
         };
         let order_entries = with(&[storage_buffer_entry(6, size_of::<OrderState>())]);
+        let delta_j_out = with(&[storage_texture_entry(
+            6,
+            wgpu::TextureFormat::Rgba32Float,
+            D3,
+        )]);
+        let delta_j_in = with(&[texture_entry(6, D3)]);
         let texture_entries = with(&[
             storage_texture_entry(6, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(7, wgpu::TextureFormat::Rgba32Float, D3),
@@ -263,7 +271,7 @@ impl BrunetonPass {
                 "bruneton_scattering_density.wgsl",
                 "main",
                 "bruneton Delta J",
-                &common,
+                &delta_j_out,
             )?,
             irradiance: make(
                 "bruneton_irradiance.wgsl",
@@ -275,7 +283,7 @@ impl BrunetonPass {
                 "bruneton_scattering.wgsl",
                 "main",
                 "bruneton Delta S",
-                &common,
+                &delta_j_in,
             )?,
             sum_single: make(
                 "bruneton_orders.wgsl",
@@ -422,6 +430,7 @@ impl BrunetonPass {
                 usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
                 view_formats: &[],
             }),
+            delta_j: texture("bruneton Delta J"),
             textures: [
                 texture("bruneton single Rayleigh"),
                 texture("bruneton single Mie"),
@@ -481,7 +490,7 @@ impl BrunetonPass {
             groups(((s.r * s.mu_s) as u32).div_ceil(FLAT)),
             groups(n.div_ceil(FLAT)),
             groups(e.div_ceil(FLAT)),
-            groups((s.r * s.mu) as u32),
+            groups(n.div_ceil(FLAT)),
             groups(SUM_GROUPS),
             groups(n.max(e).div_ceil(FLAT)),
         ];
@@ -635,8 +644,19 @@ impl BrunetonPass {
             encoder.clear_buffer(&tables.store, offset, Some(size));
         }
         let state = [tables.state.as_entire_binding()];
-        let first = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params_first, &[]);
-        let later = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &[]);
+        let delta_j = tables.delta_j.create_view(&Default::default());
+        let extra = |pipeline: &ComputePipeline| -> Vec<wgpu::BindingResource<'_>> {
+            if std::ptr::eq(pipeline, &p.scattering_density)
+                || std::ptr::eq(pipeline, &p.scattering)
+            {
+                vec![wgpu::BindingResource::TextureView(&delta_j)]
+            } else {
+                Vec::new()
+            }
+        };
+        let first =
+            |pipeline| self.bind_group(gpu, io, pipeline, &tables.params_first, &extra(pipeline));
+        let later = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &extra(pipeline));
         let ordered = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &state);
         let steps = [
             ("moments", &p.moments),
