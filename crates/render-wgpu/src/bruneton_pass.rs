@@ -6,7 +6,8 @@
 //! - `transmittance`: the columns of matter T(r, mu) (`transmittance_table.wgsl`,
 //!   `columns`), the CPU's `TransmittanceTable`; and `sun_transmittance`, the same table
 //!   as transmittances (entry point `main`), the CPU's `Builder::sun_transmittances`.
-//! - `density`: the 8192-sample density table (`DensityTable`).
+//! - `density`: the 8192-sample density table (`DensityTable`), copied into a 1D texture
+//!   for the shaders' reads (lavapipe reads storage buffers lane by lane).
 //! - `single_scattering`: Rayleigh and Mie without phase functions (paper Eq. 5).
 //! - `scattering_orders`: Algorithm 4.1's loop: per order Delta J (moments per (r, mu_s),
 //!   then every texel), Delta E, Delta S, their sums, the GPU's decision whether the order
