@@ -1,31 +1,39 @@
 // Delta S of an order: T Delta J integrated along every texel's ray (Bruneton and Neyret
 // 2008, Eq. 7 and Algorithm 4.1 line 8) by the trapezoid rule on the nodes of
 // `bruneton_ray_nodes.wgsl`: the GPU twin of `Builder::scattering_of` (atmosphere-core
-// `bruneton/precompute.rs`). One workgroup per row (r, mu) of S, one invocation per
-// texel (mu_s, nu) of the row, as the CPU shares work: at each node Delta J is first
-// interpolated in (r, mu) for every (mu_s, nu) texel of the row (the plane, in workgroup
-// memory), then in mu_s and nu for each texel.
+// `bruneton/precompute.rs`). One invocation per texel. At each node Delta J is
+// interpolated in (r, mu), then in mu_s and nu, as the CPU does. The CPU computes the
+// (r, mu) interpolation once per row for all (mu_s, nu) texels (its plane); here each
+// texel computes the four plane entries it reads, from Delta J's 3D texture: sharing
+// them in workgroup memory took a storage buffer read, a workgroup store, four
+// workgroup reads and two barriers per node, and lavapipe does each of those memory
+// accesses lane by lane (docs/rendering.md, "Cost").
 
 #import bruneton_ray_nodes.wgsl
 
-// The most texels per row (mu_s x nu): the workgroup's size.
-const ROW_TEXELS: u32 = 256u;
+@group(0) @binding(6) var delta_j: texture_3d<f32>;
 
-var<workgroup> plane: array<vec3<f32>, ROW_TEXELS>;
+// Delta J of nu slice `inu` at mu_s texel `imus` interpolated in (r, mu) at `p`: the
+// CPU's plane entry (`scattering_of`), corner weights and order as there.
+fn plane_entry(p: Position, imus: u32, inu: u32) -> vec3<f32> {
+    let at = vec3<u32>(inu * bruneton.size.z + imus, p.mu.i, p.r.i);
+    let wr = p.r.w;
+    let wm = p.mu.w;
+    return (1.0 - wr) * (1.0 - wm) * textureLoad(delta_j, at, 0).xyz
+        + wr * (1.0 - wm) * textureLoad(delta_j, at + vec3<u32>(0u, 0u, 1u), 0).xyz
+        + (1.0 - wr) * wm * textureLoad(delta_j, at + vec3<u32>(0u, 1u, 0u), 0).xyz
+        + wr * wm * textureLoad(delta_j, at + vec3<u32>(0u, 1u, 1u), 0).xyz;
+}
 
-@compute @workgroup_size(256)
-fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= bruneton.offsets_c.z {
+        return;
+    }
     let size = bruneton.size;
-    let in_row = lid < size.z * size.w;
-    let ir = group.x % size.x;
-    let imu = group.x / size.x;
-    // This invocation's texel (mu_s, nu), and the plane entry it fills.
-    let imus = lid % size.z;
-    let inu = min(lid / size.z, size.w - 1u);
-    let tx = texel(ir, imu, imus, inu);
+    let tx = texel_of_index(id.x);
     let ray = row_ray(tx);
     let nu_axis = axis(u_nu(tx.nu), size.w);
-    let delta_j = bruneton.offsets_b.y;
     let n = bruneton.flags.x;
     var column = vec3<f32>(0.0);
     var previous = vec3<f32>(0.0);
@@ -33,26 +41,10 @@ fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index
     for (var i = 0u; i <= n; i++) {
         let node = ray_node(ray, i, n, &column, &previous);
         let p = table_position(node.q, node.r, ray.r_mu + node.t, 0.0, 0.0, ray.ground);
-        workgroupBarrier();
-        if in_row {
-            let a = delta_j + table_index(p.r.i, p.mu.i, imus, inu);
-            let b = delta_j + table_index(p.r.i, p.mu.i + 1u, imus, inu);
-            let wr = p.r.w;
-            let wm = p.mu.w;
-            plane[lid] = (1.0 - wr) * (1.0 - wm) * store[a].xyz + wr * (1.0 - wm) * store[a + size.z].xyz
-                + (1.0 - wr) * wm * store[b].xyz + wr * wm * store[b + size.z].xyz;
-        }
-        workgroupBarrier();
-        if in_row {
-            let s = axis(u_mu_s(node_sun_cosine(ray, node, tx.mu_s, tx.nu)), size.z);
-            let lo = nu_axis.i * size.z + s.i;
-            let hi = lo + size.z;
-            let a = mix(plane[lo], plane[lo + 1u], s.w);
-            let b = mix(plane[hi], plane[hi + 1u], s.w);
-            sum += node.weighted_transmittance * mix(a, b, nu_axis.w);
-        }
+        let s = axis(u_mu_s(node_sun_cosine(ray, node, tx.mu_s, tx.nu)), size.z);
+        let a = mix(plane_entry(p, s.i, nu_axis.i), plane_entry(p, s.i + 1u, nu_axis.i), s.w);
+        let b = mix(plane_entry(p, s.i, nu_axis.i + 1u), plane_entry(p, s.i + 1u, nu_axis.i + 1u), s.w);
+        sum += node.weighted_transmittance * mix(a, b, nu_axis.w);
     }
-    if in_row {
-        store[bruneton.offsets_b.x + table_index(ir, imu, imus, inu)] = vec4<f32>(sum, 0.0);
-    }
+    store[bruneton.offsets_b.x + id.x] = vec4<f32>(sum, 0.0);
 }

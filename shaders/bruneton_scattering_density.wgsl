@@ -14,6 +14,10 @@
 
 #import bruneton_previous_order.wgsl
 
+// Delta J also as a 3D texture, texel (x = nu * mu_s_size + mu_s, y = mu, z = r), for
+// Delta S to read (`bruneton_scattering.wgsl`).
+@group(0) @binding(6) var delta_j_out: texture_storage_3d<rgba32float, write>;
+
 // The moments of pair (ir, imus) start at this store index.
 fn moments_base(ir: u32, imus: u32) -> u32 {
     return bruneton.offsets_c.x + 7u * (ir + bruneton.size.x * imus);
@@ -97,5 +101,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let j_m = dm.x * l_v + (1.0 - dm.x) / (4.0 * PI) * (l0 + 3.0 * dm.y * p1 + 5.0 * dm.z * p2);
         j += atmosphere.mie_scattering_per_m.xyz * rho.y * max(j_m, vec3<f32>(0.0));
     }
-    store[bruneton.offsets_b.y + id.x] = vec4<f32>(max(j, vec3<f32>(0.0)), 0.0);
+    let value = vec4<f32>(max(j, vec3<f32>(0.0)), 0.0);
+    store[bruneton.offsets_b.y + id.x] = value;
+    let imu = (id.x / (size.z * size.x)) % size.y;
+    let inu = id.x / (size.z * size.x * size.y);
+    textureStore(delta_j_out, vec3<u32>(inu * size.z + imus, imu, ir), value);
 }

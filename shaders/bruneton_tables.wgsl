@@ -54,14 +54,18 @@ fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
 }
 
 // Relative densities at `altitude_m` from the density table (`DensityTable::at`, 8192
-// samples over the atmosphere's thickness).
+// samples over the atmosphere's thickness), read from its copy in a 1D texture
+// (binding 12): lavapipe reads a storage buffer at a computed index lane by lane, with
+// a bounds check per component, several times slower than a texel read, and the
+// trapezoid nodes read it twice per node and texel.
 const DENSITY_SAMPLES: u32 = 8192u;
+
+@group(0) @binding(12) var density_table: texture_1d<f32>;
 
 fn density_at(altitude_m: f32) -> vec3<f32> {
     let f = clamp(altitude_m / bruneton.density.x, 0.0, f32(DENSITY_SAMPLES - 1u));
     let i = min(u32(f), DENSITY_SAMPLES - 2u);
-    let base = bruneton.offsets_a.x + i;
-    return mix(store[base].xyz, store[base + 1u].xyz, f - f32(i));
+    return mix(textureLoad(density_table, i, 0).xyz, textureLoad(density_table, i + 1u, 0).xyz, f - f32(i));
 }
 
 // Columns of matter of the segment of length d from (q, r mu): differences of the

@@ -356,10 +356,25 @@ fn unsupported_sizes_are_errors_naming_them() {
     );
 }
 
+/// Options from environment variable `name`: `key=value` items separated by spaces or
+/// commas (none when unset).
+fn env_options(name: &str) -> Vec<String> {
+    std::env::var(name)
+        .unwrap_or_default()
+        .split([' ', ','])
+        .filter(|s| !s.is_empty())
+        .map(str::to_string)
+        .collect()
+}
+
 /// The cost target, measured rather than asserted (lavapipe's times depend on
-/// the machine's load): a bruneton ground view at 1280x720 with the paper's tables
-/// against the 16-sample nishita frame, GPU times from the plan. Run with
-/// `./scripts/test.sh -p atmos-tests --test gpu_bruneton_parity -- --ignored --nocapture`.
+/// the machine's load): `atmos bench`'s ground view at 1280x720 with the paper's tables
+/// against the 16-sample nishita frame, frames interleaved (load varies), wall-clock
+/// from `render` to the GPU's end (tone map included in both) and the pass's GPU time
+/// from the plan. `ATMOS_BRUNETON_COST_SET="view_samples=2 sphere_azimuth=2"` builds the
+/// tables with other options (the pass's cost depends on the table sizes only);
+/// `ATMOS_COST_RUNS` frames (5). Run with `./scripts/test.sh -p atmos-tests --test
+/// gpu_bruneton_parity cost -- --ignored --nocapture`.
 #[test]
 #[ignore = "a benchmark: minutes on lavapipe"]
 fn cost_at_1280x720_against_nishita_16() {
@@ -367,13 +382,100 @@ fn cost_at_1280x720_against_nishita_16() {
         return;
     };
     let mut renderer = Renderer::new(gpu).unwrap();
-    let v = view(1.0, 80.0, 40.0);
-    let mut nishita = frame("earth", settings(&["samples=16"]), v, 70.0, 1280, 720);
+    let ground = atmos::bench::BENCH_VIEWS[0];
+    let mut nishita = frame(
+        "earth",
+        settings(&["samples=16"]),
+        ground.view,
+        ground.fov_deg,
+        1280,
+        720,
+    );
     nishita.model = "nishita".into();
-    let bruneton = frame("earth", ModelSettings::default(), v, 70.0, 1280, 720);
-    for run in 0..3 {
-        let n = renderer.render(&nishita).unwrap();
-        let b = renderer.render(&bruneton).unwrap();
-        println!("run {run}: nishita 16: {n}\nrun {run}: bruneton: {b}");
+    let options = env_options("ATMOS_BRUNETON_COST_SET");
+    let options: Vec<&str> = options.iter().map(String::as_str).collect();
+    let mut bruneton = nishita.clone();
+    bruneton.model = "bruneton".into();
+    bruneton.settings = settings(&options);
+    let runs: usize = std::env::var("ATMOS_COST_RUNS").map_or(5, |v| v.parse().unwrap());
+    let timed = |renderer: &mut Renderer, f: &Frame| {
+        let start = std::time::Instant::now();
+        let plan = renderer.render(f).unwrap();
+        (start.elapsed().as_secs_f64() * 1e3, plan)
+    };
+    let (build, plan) = timed(&mut renderer, &bruneton);
+    println!("bruneton {options:?}: first frame (tables built) {build:.0} ms: {plan}");
+    timed(&mut renderer, &nishita);
+    let (mut n_ms, mut b_ms, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
+    for run in 0..runs {
+        let (n, n_plan) = timed(&mut renderer, &nishita);
+        let (b, b_plan) = timed(&mut renderer, &bruneton);
+        println!(
+            "run {run}: wall nishita 16 {n:.0} ms, bruneton {b:.0} ms, ratio {:.3}\n  nishita: {n_plan}\n  bruneton: {b_plan}",
+            b / n
+        );
+        n_ms.push(n);
+        b_ms.push(b);
+        ratios.push(b / n);
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[(v.len() - 1) / 2]
+    };
+    println!(
+        "medians of {runs}: frame wall nishita 16 {:.0} ms, bruneton {:.0} ms; ratio {:.3}",
+        median(&mut n_ms),
+        median(&mut b_ms),
+        median(&mut ratios)
+    );
+}
+
+/// The table build one dispatch at a time, wall-clock, at the paper's sizes (or with
+/// `ATMOS_BRUNETON_PROFILE_SET` options): per step and per step of the loop over orders,
+/// summed over orders. Run with `./scripts/test.sh -p atmos-tests --test
+/// gpu_bruneton_parity profile -- --ignored --nocapture`.
+#[test]
+#[ignore = "a profile: minutes on lavapipe"]
+fn profile_the_table_build() {
+    let Some(gpu) = gpu_or_skip("bruneton build profile") else {
+        return;
+    };
+    let options = env_options("ATMOS_BRUNETON_PROFILE_SET");
+    let options: Vec<&str> = options.iter().map(String::as_str).collect();
+    let f = frame(
+        "earth",
+        settings(&options),
+        view(10.0, 80.0, 50.0),
+        60.0,
+        8,
+        8,
+    );
+    let mut pass = BrunetonPass::new(&gpu).unwrap();
+    // A first build compiles lavapipe's shaders; the second is measured.
+    let start = std::time::Instant::now();
+    pass.build_tables(&gpu, &f).unwrap();
+    println!("first build {:.1} s", start.elapsed().as_secs_f64());
+    let times = pass.profile_build(&gpu, &f).unwrap();
+    let mut by_step: Vec<(String, f64, usize)> = Vec::new();
+    for (name, ms) in &times {
+        if *ms > 1.0 {
+            println!("{name}: {ms:.1} ms");
+        }
+        let key = match name.strip_prefix("scattering_orders order ") {
+            Some(rest) => format!("orders: {}", rest.split_once(' ').unwrap().1),
+            None => name.clone(),
+        };
+        match by_step.iter_mut().find(|(k, _, _)| *k == key) {
+            Some(e) => {
+                e.1 += ms;
+                e.2 += 1;
+            }
+            None => by_step.push((key, *ms, 1)),
+        }
+    }
+    let total: f64 = times.iter().map(|(_, ms)| ms).sum();
+    println!("bruneton {options:?}: build {:.2} s in all", total / 1e3);
+    for (k, ms, n) in by_step {
+        println!("  {k}: {:.2} s ({n} dispatches)", ms / 1e3);
     }
 }

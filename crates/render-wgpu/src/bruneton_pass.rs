@@ -6,7 +6,8 @@
 //! - `transmittance`: the columns of matter T(r, mu) (`transmittance_table.wgsl`,
 //!   `columns`), the CPU's `TransmittanceTable`; and `sun_transmittance`, the same table
 //!   as transmittances (entry point `main`), the CPU's `Builder::sun_transmittances`.
-//! - `density`: the 8192-sample density table (`DensityTable`).
+//! - `density`: the 8192-sample density table (`DensityTable`), copied into a 1D texture
+//!   for the shaders' reads (lavapipe reads storage buffers lane by lane).
 //! - `single_scattering`: Rayleigh and Mie without phase functions (paper Eq. 5).
 //! - `scattering_orders`: Algorithm 4.1's loop: per order Delta J (moments per (r, mu_s),
 //!   then every texel), Delta E, Delta S, their sums, the GPU's decision whether the order
@@ -56,6 +57,8 @@ pub const MAX_ORDERS: u32 = 63;
 const DENSITY_SAMPLES: u32 = 8192;
 /// Workgroups of the partial sums (`SUM_GROUPS` of `bruneton_orders.wgsl`).
 const SUM_GROUPS: u32 = 256;
+/// The binding of the density table's texture (`bruneton_tables.wgsl`).
+const DENSITY_BINDING: u32 = 12;
 /// Invocations of the flat shaders' workgroups.
 const FLAT: u32 = 64;
 
@@ -171,6 +174,10 @@ struct Tables {
     params: wgpu::Buffer,
     /// Single Rayleigh, single Mie, multiple.
     textures: [wgpu::Texture; 3],
+    /// The density table, copied from the store for the shaders' reads.
+    density: wgpu::Texture,
+    /// Delta J as a 3D texture like S's, written with the store's copy, read by Delta S.
+    delta_j: wgpu::Texture,
     built: Built,
 }
 
@@ -202,11 +209,12 @@ pub struct BrunetonPass {
     pending: Option<(Atmosphere, bool)>,
 }
 
-/// Bindings 0-5 of every bruneton shader: atmosphere, frame, parameters, the columns
-/// table, the store, the transmittance table.
+/// Bindings 0-5 and 12 of every bruneton shader: atmosphere, frame, parameters, the
+/// columns table, the store, the transmittance table; the density table's texture.
 fn common_entries(store_bytes: usize) -> Vec<wgpu::BindGroupLayoutEntry> {
-    use wgpu::TextureViewDimension::D2;
+    use wgpu::TextureViewDimension::{D1, D2};
     vec![
+        texture_entry(DENSITY_BINDING, D1),
         uniform_entry(0, size_of::<AtmosphereUniform>()),
         uniform_entry(1, size_of::<FrameUniform>()),
         uniform_entry(2, size_of::<BrunetonUniform>()),
@@ -229,6 +237,12 @@ impl BrunetonPass {
             ComputePipeline::new(gpu, shader, entry, label, entries)
         };
         let order_entries = with(&[storage_buffer_entry(6, size_of::<OrderState>())]);
+        let delta_j_out = with(&[storage_texture_entry(
+            6,
+            wgpu::TextureFormat::Rgba32Float,
+            D3,
+        )]);
+        let delta_j_in = with(&[texture_entry(6, D3)]);
         let texture_entries = with(&[
             storage_texture_entry(6, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(7, wgpu::TextureFormat::Rgba32Float, D3),
@@ -258,7 +272,7 @@ impl BrunetonPass {
                 "bruneton_scattering_density.wgsl",
                 "main",
                 "bruneton Delta J",
-                &common,
+                &delta_j_out,
             )?,
             irradiance: make(
                 "bruneton_irradiance.wgsl",
@@ -270,7 +284,7 @@ impl BrunetonPass {
                 "bruneton_scattering.wgsl",
                 "main",
                 "bruneton Delta S",
-                &common,
+                &delta_j_in,
             )?,
             sum_single: make(
                 "bruneton_orders.wgsl",
@@ -403,6 +417,21 @@ impl BrunetonPass {
             }),
             params_first: uniform_buffer(device, "bruneton order 2", size_of::<BrunetonUniform>()),
             params: uniform_buffer(device, "bruneton", size_of::<BrunetonUniform>()),
+            density: device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("bruneton densities"),
+                size: wgpu::Extent3d {
+                    width: DENSITY_SAMPLES,
+                    height: 1,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D1,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            }),
+            delta_j: texture("bruneton Delta J"),
             textures: [
                 texture("bruneton single Rayleigh"),
                 texture("bruneton single Mie"),
@@ -462,7 +491,7 @@ impl BrunetonPass {
             groups(((s.r * s.mu_s) as u32).div_ceil(FLAT)),
             groups(n.div_ceil(FLAT)),
             groups(e.div_ceil(FLAT)),
-            groups((s.r * s.mu) as u32),
+            groups(n.div_ceil(FLAT)),
             groups(SUM_GROUPS),
             groups(n.max(e).div_ceil(FLAT)),
         ];
@@ -550,16 +579,7 @@ impl BrunetonPass {
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
         gpu.queue
             .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
-        let hdr = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("unused"),
-            size: wgpu::Extent3d::default(),
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: HDR_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING,
-            view_formats: &[],
-        });
+        let hdr = unused_hdr(gpu);
         let io = PassIo {
             atmosphere: &atmosphere,
             frame: &frame_buffer,
@@ -576,7 +596,8 @@ impl BrunetonPass {
         Ok(plan)
     }
 
-    /// The bind group of `pipeline`: bindings 0-5 with `params`, then `extra`.
+    /// The bind group of `pipeline`: bindings 0-5 with `params`, 12, then `extra` from
+    /// binding 6 on.
     fn bind_group(
         &self,
         gpu: &GpuContext,
@@ -591,16 +612,118 @@ impl BrunetonPass {
             .transmittance
             .texture()
             .create_view(&Default::default());
+        let density = tables.density.create_view(&Default::default());
         let mut resources = vec![
-            io.atmosphere.as_entire_binding(),
-            io.frame.as_entire_binding(),
-            params.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&columns),
-            tables.store.as_entire_binding(),
-            wgpu::BindingResource::TextureView(&transmittance),
+            (0, io.atmosphere.as_entire_binding()),
+            (1, io.frame.as_entire_binding()),
+            (2, params.as_entire_binding()),
+            (3, wgpu::BindingResource::TextureView(&columns)),
+            (4, tables.store.as_entire_binding()),
+            (5, wgpu::BindingResource::TextureView(&transmittance)),
+            (
+                DENSITY_BINDING,
+                wgpu::BindingResource::TextureView(&density),
+            ),
         ];
-        resources.extend_from_slice(extra);
-        pipeline.bind_group(gpu, &resources)
+        resources.extend((6..).zip(extra.iter().cloned()));
+        pipeline.bind_group_numbered(gpu, &resources)
+    }
+
+    /// The dispatches of the loop over orders (Algorithm 4.1), in order, after clearing
+    /// S's multiple part and E: each with its step's name and the order it belongs to (1
+    /// for the sums of single scattering).
+    fn order_dispatches(
+        &self,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Vec<OrderDispatch<'_>> {
+        let tables = self.tables.as_ref().expect("plan makes the tables");
+        let p = &self.pipelines;
+        for table in [StoreTable::Multiple, StoreTable::Irradiance] {
+            let (offset, size) = tables.layout.range(table);
+            encoder.clear_buffer(&tables.store, offset, Some(size));
+        }
+        let state = [tables.state.as_entire_binding()];
+        let delta_j = tables.delta_j.create_view(&Default::default());
+        let extra = |pipeline: &ComputePipeline| -> Vec<wgpu::BindingResource<'_>> {
+            if std::ptr::eq(pipeline, &p.scattering_density)
+                || std::ptr::eq(pipeline, &p.scattering)
+            {
+                vec![wgpu::BindingResource::TextureView(&delta_j)]
+            } else {
+                Vec::new()
+            }
+        };
+        let first =
+            |pipeline| self.bind_group(gpu, io, pipeline, &tables.params_first, &extra(pipeline));
+        let later = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &extra(pipeline));
+        let ordered = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &state);
+        let steps = [
+            ("moments", &p.moments),
+            ("scattering_density", &p.scattering_density),
+            ("irradiance", &p.irradiance),
+            ("scattering", &p.scattering),
+        ];
+        let groups: Vec<_> = steps
+            .iter()
+            .map(|(name, pipeline)| (*name, *pipeline, first(pipeline), later(pipeline)))
+            .collect();
+        // The state is bound to `decide` only: the other steps are dispatched from it.
+        let sum_single = later(&p.sum_single);
+        let sum_order = later(&p.sum_order);
+        let decide = ordered(&p.decide);
+        let accumulate = later(&p.accumulate);
+        let args = |k: u64| 48 + 16 * k;
+        let mut out = vec![
+            OrderDispatch {
+                name: "sum_single",
+                order: 1,
+                pipeline: &p.sum_single.pipeline,
+                bind_group: sum_single,
+                size: DispatchSize::Direct(SUM_GROUPS),
+            },
+            OrderDispatch {
+                name: "decide",
+                order: 1,
+                pipeline: &p.decide.pipeline,
+                bind_group: decide.clone(),
+                size: DispatchSize::Direct(1),
+            },
+        ];
+        for order in 2..=tables.max_orders {
+            for (k, (name, pipeline, first_group, later_group)) in groups.iter().enumerate() {
+                out.push(OrderDispatch {
+                    name,
+                    order,
+                    pipeline: &pipeline.pipeline,
+                    bind_group: if order == 2 { first_group } else { later_group }.clone(),
+                    size: DispatchSize::Indirect(&tables.state, args(k as u64)),
+                });
+            }
+            out.push(OrderDispatch {
+                name: "sum_order",
+                order,
+                pipeline: &p.sum_order.pipeline,
+                bind_group: sum_order.clone(),
+                size: DispatchSize::Indirect(&tables.state, args(4)),
+            });
+            out.push(OrderDispatch {
+                name: "decide",
+                order,
+                pipeline: &p.decide.pipeline,
+                bind_group: decide.clone(),
+                size: DispatchSize::Direct(1),
+            });
+            out.push(OrderDispatch {
+                name: "accumulate",
+                order,
+                pipeline: &p.accumulate.pipeline,
+                bind_group: accumulate.clone(),
+                size: DispatchSize::Indirect(&tables.state, args(5)),
+            });
+        }
+        out
     }
 
     /// Records the loop over orders (Algorithm 4.1) into one compute pass.
@@ -611,59 +734,131 @@ impl BrunetonPass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let tables = self.tables.as_ref().expect("plan makes the tables");
-        let p = &self.pipelines;
-        for table in [StoreTable::Multiple, StoreTable::Irradiance] {
-            let (offset, size) = tables.layout.range(table);
-            encoder.clear_buffer(&tables.store, offset, Some(size));
-        }
-        let state = [tables.state.as_entire_binding()];
-        let first = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params_first, &[]);
-        let later = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &[]);
-        let ordered = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &state);
-        let groups = [
-            (&p.moments, first(&p.moments), later(&p.moments)),
-            (
-                &p.scattering_density,
-                first(&p.scattering_density),
-                later(&p.scattering_density),
-            ),
-            (&p.irradiance, first(&p.irradiance), later(&p.irradiance)),
-            (&p.scattering, first(&p.scattering), later(&p.scattering)),
-        ];
-        // The state is bound to `decide` only: the other steps are dispatched from it.
-        let sum_single = later(&p.sum_single);
-        let sum_order = later(&p.sum_order);
-        let decide = ordered(&p.decide);
-        let accumulate = later(&p.accumulate);
-        let args = |k: u64| 48 + 16 * k;
+        let dispatches = self.order_dispatches(gpu, io, encoder);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("bruneton scattering orders"),
             timestamp_writes: timestamps,
         });
-        let direct =
-            |pass: &mut wgpu::ComputePass<'_>, pipeline: &ComputePipeline, bind_group, x| {
-                pass.set_pipeline(&pipeline.pipeline);
-                pass.set_bind_group(0, bind_group, &[]);
-                pass.dispatch_workgroups(x, 1, 1);
-            };
-        direct(&mut pass, &p.sum_single, &sum_single, SUM_GROUPS);
-        direct(&mut pass, &p.decide, &decide, 1);
-        for order in 2..=tables.max_orders {
-            for (k, (pipeline, first_group, later_group)) in groups.iter().enumerate() {
-                pass.set_pipeline(&pipeline.pipeline);
-                pass.set_bind_group(0, if order == 2 { first_group } else { later_group }, &[]);
-                pass.dispatch_workgroups_indirect(&tables.state, args(k as u64));
-            }
-            pass.set_pipeline(&p.sum_order.pipeline);
-            pass.set_bind_group(0, &sum_order, &[]);
-            pass.dispatch_workgroups_indirect(&tables.state, args(4));
-            direct(&mut pass, &p.decide, &decide, 1);
-            pass.set_pipeline(&p.accumulate.pipeline);
-            pass.set_bind_group(0, &accumulate, &[]);
-            pass.dispatch_workgroups_indirect(&tables.state, args(5));
+        for d in &dispatches {
+            d.record(&mut pass);
         }
     }
+
+    /// Builds every table of `frame` (as if never built) one dispatch at a time, waiting
+    /// for the GPU after each, and returns each step's wall-clock time in ms: the table
+    /// steps by name, and the loop over orders per dispatch (`scattering_orders
+    /// order 3 scattering`). For profiling the build: a CPU adapter such as lavapipe
+    /// times its dispatches unreliably with timestamp queries.
+    pub fn profile_build(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+    ) -> Result<Vec<(String, f64)>, RenderError> {
+        if let Some(t) = self.tables.as_mut() {
+            t.built = Built::default();
+        }
+        let atmosphere = uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>());
+        let frame_buffer = uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>());
+        let mut plan = FramePlan::default();
+        self.plan(gpu, frame, &mut plan)?;
+        gpu.queue
+            .write_buffer(&atmosphere, 0, bytemuck::bytes_of(&self.atmosphere));
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        gpu.queue
+            .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
+        let hdr = unused_hdr(gpu);
+        let io = PassIo {
+            atmosphere: &atmosphere,
+            frame: &frame_buffer,
+            hdr: &hdr,
+        };
+        let wait = || -> Result<(), RenderError> {
+            gpu.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .map_err(GpuError::from)?;
+            Ok(())
+        };
+        let mut times = Vec::new();
+        wait()?;
+        for step in plan.steps.iter().filter(|s| s.kind == StepKind::TableBuild) {
+            if step.name != "scattering_orders" {
+                let start = std::time::Instant::now();
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                self.encode(step.name, gpu, &io, &mut encoder, None);
+                gpu.queue.submit([encoder.finish()]);
+                wait()?;
+                times.push((step.name.to_string(), start.elapsed().as_secs_f64() * 1e3));
+                continue;
+            }
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            let dispatches = self.order_dispatches(gpu, &io, &mut encoder);
+            gpu.queue.submit([encoder.finish()]);
+            wait()?;
+            for d in &dispatches {
+                let start = std::time::Instant::now();
+                let mut encoder = gpu.device.create_command_encoder(&Default::default());
+                {
+                    let mut pass = encoder.begin_compute_pass(&Default::default());
+                    d.record(&mut pass);
+                }
+                gpu.queue.submit([encoder.finish()]);
+                wait()?;
+                times.push((
+                    format!("scattering_orders order {} {}", d.order, d.name),
+                    start.elapsed().as_secs_f64() * 1e3,
+                ));
+            }
+            drop(dispatches);
+            let (atmosphere, mie) = self.pending.clone().expect("planned above");
+            self.tables.as_mut().expect("planned above").built.orders = Some((atmosphere, mie));
+        }
+        Ok(times)
+    }
+}
+
+/// A dispatch's size: workgroups along x, or the indirect arguments at an offset of a
+/// buffer.
+#[derive(Debug)]
+enum DispatchSize<'a> {
+    Direct(u32),
+    Indirect(&'a wgpu::Buffer, u64),
+}
+
+/// One dispatch of the loop over orders.
+#[derive(Debug)]
+struct OrderDispatch<'a> {
+    name: &'static str,
+    order: u32,
+    pipeline: &'a wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    size: DispatchSize<'a>,
+}
+
+impl OrderDispatch<'_> {
+    fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
+        pass.set_pipeline(self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        match self.size {
+            DispatchSize::Direct(x) => pass.dispatch_workgroups(x, 1, 1),
+            DispatchSize::Indirect(buffer, offset) => {
+                pass.dispatch_workgroups_indirect(buffer, offset)
+            }
+        }
+    }
+}
+
+/// A 1x1 HDR target for steps that render nothing.
+fn unused_hdr(gpu: &GpuContext) -> wgpu::Texture {
+    gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("unused"),
+        size: wgpu::Extent3d::default(),
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: HDR_FORMAT,
+        usage: wgpu::TextureUsages::STORAGE_BINDING,
+        view_formats: &[],
+    })
 }
 
 impl ModelPass for BrunetonPass {
@@ -759,13 +954,32 @@ impl ModelPass for BrunetonPass {
                     .transmittance
                     .encode(gpu, &self.atmosphere, encoder, timestamps);
             }
-            "density" => simple(
-                &p.density,
-                "density",
-                DENSITY_SAMPLES.div_ceil(FLAT),
-                encoder,
-                timestamps,
-            ),
+            "density" => {
+                simple(
+                    &p.density,
+                    "density",
+                    DENSITY_SAMPLES.div_ceil(FLAT),
+                    encoder,
+                    timestamps,
+                );
+                let (offset, _) = tables.layout.range(StoreTable::Density);
+                encoder.copy_buffer_to_texture(
+                    wgpu::TexelCopyBufferInfo {
+                        buffer: &tables.store,
+                        layout: wgpu::TexelCopyBufferLayout {
+                            offset,
+                            bytes_per_row: Some(DENSITY_SAMPLES * 16),
+                            rows_per_image: None,
+                        },
+                    },
+                    tables.density.as_image_copy(),
+                    wgpu::Extent3d {
+                        width: DENSITY_SAMPLES,
+                        height: 1,
+                        depth_or_array_layers: 1,
+                    },
+                );
+            }
             "single_scattering" => simple(
                 &p.single,
                 "single scattering",

@@ -135,11 +135,24 @@ impl ComputePipeline {
         gpu: &GpuContext,
         resources: &[wgpu::BindingResource<'_>],
     ) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        let numbered: Vec<_> = resources
             .iter()
             .enumerate()
+            .map(|(binding, resource)| (binding as u32, resource.clone()))
+            .collect();
+        self.bind_group_numbered(gpu, &numbered)
+    }
+
+    /// A bind group of (binding, resource) pairs.
+    pub fn bind_group_numbered(
+        &self,
+        gpu: &GpuContext,
+        resources: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+            .iter()
             .map(|(binding, resource)| wgpu::BindGroupEntry {
-                binding: binding as u32,
+                binding: *binding,
                 resource: resource.clone(),
             })
             .collect();

@@ -328,3 +328,39 @@ fn dobashi_uniforms_match_their_wgsl_layouts() {
         }
     }
 }
+
+#[test]
+fn bruneton_uniforms_match_their_wgsl_layouts() {
+    use render_wgpu::bruneton_pass::{BrunetonUniform, OrderState};
+    assert_layout!(
+        "bruneton.wgsl",
+        "BrunetonParams",
+        BrunetonUniform,
+        [
+            size,
+            irradiance_size,
+            flags,
+            offsets_a,
+            offsets_b,
+            offsets_c,
+            delta_m,
+            density
+        ]
+    );
+    assert_layout!(
+        "bruneton_orders.wgsl",
+        "OrderState",
+        OrderState,
+        [
+            totals,
+            previous_added,
+            order,
+            running,
+            last_order,
+            has_previous,
+            args,
+            full,
+            shares
+        ]
+    );
+}
