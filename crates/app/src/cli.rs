@@ -17,6 +17,8 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// The interactive viewer window (also `atmos` with no arguments).
+    View(ViewArgs),
     /// Radiance and transmittance of given view rays for a given model, CSV in and out.
     Probe(ProbeArgs),
     /// Stiff and extreme cases through every model: a table of pass/fail and worst values.
@@ -32,6 +34,18 @@ pub enum Command {
     /// Every GPU model in six views (noon, sunset, twilight, 10 km, 100 km, orbit) in one
     /// labelled PNG.
     ContactSheet(ContactSheetArgs),
+}
+
+/// The flags of `atmos view`.
+#[derive(Clone, Debug, Default, Args)]
+pub struct ViewArgs {
+    /// Render this many frames, then close (for tests and docs); the settings of earlier
+    /// runs are neither read nor saved.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: Option<u32>,
+    /// With --frames: save the last displayed image to this PNG.
+    #[arg(long, value_name = "FILE.png", requires = "frames")]
+    pub screenshot: Option<PathBuf>,
 }
 
 /// The flags of `atmos contact-sheet`.

@@ -14,7 +14,7 @@ pub mod viewer;
 
 use std::ffi::OsString;
 
-use clap::{CommandFactory, Parser};
+use clap::Parser;
 
 use crate::cli::{Cli, Command};
 
@@ -28,13 +28,7 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::ContactSheet(args)) => contact_sheet::run(&args),
-        None => {
-            Cli::command().print_help()?;
-            println!(
-                "\nThe viewer is not built yet. Try:\n  \
-                 atmos probe --model reference --input assets/probe/example_rays.csv"
-            );
-            Ok(())
-        }
+        Some(Command::View(args)) => viewer::run(&args),
+        None => viewer::run(&cli::ViewArgs::default()),
     }
 }

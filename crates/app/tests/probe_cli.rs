@@ -187,10 +187,3 @@ fn usage_errors_exit_with_2() {
     assert_eq!(output.status.code(), Some(2));
     assert!(stderr(&output).contains("--input"));
 }
-
-#[test]
-fn no_subcommand_points_at_probe() {
-    let output = atmos(&[]);
-    assert!(output.status.success());
-    assert!(String::from_utf8_lossy(&output.stdout).contains("atmos probe"));
-}

@@ -27,18 +27,8 @@ impl GpuContext {
         let backends = descriptor.backends;
         let instance = wgpu::Instance::new(descriptor);
         let adapter = choose_adapter(instance.enumerate_adapters(backends).await, backends)?;
-        // Only what the passes need: storage textures of Rgba32Float are core WebGPU;
-        // filtering them is optional (samplers fall back to nearest or manual lerp), and
-        // so are the timestamps of pass timings.
-        let required_features = adapter.features()
-            & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TIMESTAMP_QUERY);
         let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("atmos"),
-                required_features,
-                required_limits: wgpu::Limits::default(),
-                ..Default::default()
-            })
+            .request_device(&device_descriptor(&adapter))
             .await
             .map_err(|source| GpuError::RequestDevice {
                 adapter: summary(&adapter.get_info()),
@@ -52,9 +42,40 @@ impl GpuContext {
         })
     }
 
+    /// A context on a device made elsewhere, e.g. by a window's renderer (eframe's
+    /// `RenderState`), so that frames render with the window's device. The device should
+    /// have been requested with [`device_descriptor`]; without its optional features the
+    /// passes still work, only the pass timings are missing.
+    pub fn from_existing(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+    ) -> GpuContext {
+        GpuContext {
+            instance,
+            adapter,
+            device,
+            queue,
+        }
+    }
+
     /// Name, backend and device type of the adapter, for logs.
     pub fn adapter_summary(&self) -> String {
         summary(&self.adapter.get_info())
+    }
+}
+
+/// The device the passes want on `adapter`. Only what they need: storage textures of
+/// Rgba32Float are core WebGPU; filtering them is optional (samplers fall back to nearest
+/// or manual lerp), and so are the timestamps of pass timings.
+pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
+    wgpu::DeviceDescriptor {
+        label: Some("atmos"),
+        required_features: adapter.features()
+            & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TIMESTAMP_QUERY),
+        required_limits: wgpu::Limits::default(),
+        ..Default::default()
     }
 }
 

@@ -1,8 +1,8 @@
 //! The `Renderer`: owns the GPU context, the tables and the passes for the life of the
 //! program, and renders [`Frame`]s into an HDR target (spectral radiance at 680, 550 and
-//! 440 nm, `Rgba16Float`) tone-mapped to an `Rgba8UnormSrgb` image. Headless for now: the
-//! tone map writes into the renderer's own texture; a window's surface view can take its
-//! place (`ToneMapPass::encode` takes any view).
+//! 440 nm, `Rgba16Float`) tone-mapped to an `Rgba8UnormSrgb` image, the renderer's own
+//! texture: read back ([`Renderer::read_ldr`]) or sampled by a window
+//! ([`Renderer::ldr_texture`], e.g. as an egui image).
 
 use crate::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::device::GpuContext;
@@ -50,7 +50,7 @@ fn target(
     let usage = if format == HDR_FORMAT {
         wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING
     } else {
-        wgpu::TextureUsages::RENDER_ATTACHMENT
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING
     };
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
@@ -222,6 +222,12 @@ impl Renderer {
         let targets = self.last_targets()?;
         let bytes = read_texture(&self.gpu, &targets.ldr, 4)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+
+    /// The last frame's display image on the GPU (`Rgba8UnormSrgb`, sampleable), if a
+    /// frame has been rendered. A frame of another size replaces the texture.
+    pub fn ldr_texture(&self) -> Option<&wgpu::Texture> {
+        self.targets.as_ref().map(|t| &t.ldr)
     }
 
     fn last_targets(&self) -> Result<&Targets, RenderError> {

@@ -1,4 +1,71 @@
-//! The interactive viewer (issue 5). Only its window-free logic is here so far: the
-//! flight controller. The window, the egui panel and the terrain pass come later.
+//! The interactive viewer (issue 5): a window (eframe, on the window's wgpu device) with
+//! the rendered sky in the middle and a side panel of settings. `atmos` with no arguments
+//! and `atmos view` open it.
+//!
+//! One idea per file: [`settings`] (the panel's state and its [`Frame`](render_wgpu::Frame),
+//! no window), [`panel`] (the side panel's widgets), [`app`] (the eframe app: input,
+//! rendering, the image), [`screenshot`] (PNG and EXR files of the view) and [`flight`]
+//! (the flight controller).
 
+pub mod app;
 pub mod flight;
+pub mod panel;
+pub mod screenshot;
+pub mod settings;
+
+use std::sync::{Arc, Mutex};
+
+use anyhow::bail;
+
+use crate::cli::ViewArgs;
+
+/// What to run instead when there is no display.
+const HEADLESS_HINT: &str = "without a display, render images with:\n  \
+     atmos render --scene assets/scenes/default.toml --out sky.png";
+
+/// Opens the viewer window and runs it until it is closed (or, with `--frames`, until
+/// that many frames are shown). Without a display, an error saying so.
+pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));
+    if cfg!(target_os = "linux") && !has_display {
+        bail!(
+            "the viewer needs a display, and neither DISPLAY nor WAYLAND_DISPLAY is set; \
+             {HEADLESS_HINT}"
+        );
+    }
+    let batch = args.frames.is_some();
+    let wgpu_setup = egui_wgpu::WgpuSetupCreateNew {
+        device_descriptor: Arc::new(render_wgpu::device::device_descriptor),
+        ..egui_wgpu::WgpuSetupCreateNew::without_display_handle()
+    };
+    let options = eframe::NativeOptions {
+        viewport: eframe::egui::ViewportBuilder::default()
+            .with_title("atmos")
+            .with_inner_size([1280.0, 760.0]),
+        renderer: eframe::Renderer::Wgpu,
+        wgpu_options: egui_wgpu::WgpuConfiguration {
+            wgpu_setup: wgpu_setup.into(),
+            ..Default::default()
+        },
+        persist_window: !batch,
+        ..Default::default()
+    };
+    // The app's own failure (a screenshot it could not write), kept for after the loop.
+    let failure = Arc::new(Mutex::new(None));
+    let app_failure = Arc::clone(&failure);
+    let args = args.clone();
+    let result = eframe::run_native(
+        "atmos",
+        options,
+        Box::new(move |cc| Ok(Box::new(app::ViewerApp::new(cc, args, app_failure)?))),
+    );
+    if let Err(e) = result {
+        bail!("cannot open the viewer window ({e}); {HEADLESS_HINT}");
+    }
+    match failure.lock().map(|mut f| f.take()) {
+        Ok(Some(e)) => Err(e),
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,308 @@
+//! The eframe app: keyboard and mouse into the flight controller, the side panel, and the
+//! sky rendered by the [`Renderer`] on the window's own wgpu device, shown as an egui
+//! image the size of the central panel. A frame is rendered only when the size or an
+//! input changed; while the camera moves it renders at half resolution.
+
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use anyhow::Context;
+use eframe::egui;
+use render_wgpu::frame_plan::FramePlan;
+use render_wgpu::{Frame, GpuContext, Renderer};
+
+use crate::cli::ViewArgs;
+use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
+use crate::viewer::panel::{self, Stats};
+use crate::viewer::screenshot;
+use crate::viewer::settings::ViewerSettings;
+
+/// The largest image rendered, pixels (about 1280x720): more only costs time.
+const MAX_PIXELS: f64 = 1280.0 * 720.0;
+
+/// Radians of look per point of mouse drag.
+const LOOK_RAD_PER_POINT: f64 = 0.003;
+
+/// The keyboard shortcuts, for the help window.
+const SHORTCUTS: &[(&str, &str)] = &[
+    ("W / S", "fly forward / back"),
+    ("A / D", "fly left / right"),
+    ("Q / E", "fly down / up"),
+    ("shift", "five times faster"),
+    ("drag the image", "look around"),
+    ("H", "this help"),
+];
+
+/// The viewer; see the module documentation.
+pub struct ViewerApp {
+    settings: ViewerSettings,
+    /// The live camera (with its velocity); `settings` holds its position and view.
+    flight: FlightState,
+    renderer: Renderer,
+    render_state: egui_wgpu::RenderState,
+    texture: Option<egui::TextureId>,
+    /// The last frame rendered, to render again only on change.
+    last_frame: Option<Frame>,
+    last_plan: Option<FramePlan>,
+    frame_ms: f64,
+    adapter: String,
+    /// The last report: a screenshot's paths or an error.
+    message: String,
+    show_help: bool,
+    args: ViewArgs,
+    frames_shown: u32,
+    failure: Arc<Mutex<Option<anyhow::Error>>>,
+}
+
+impl std::fmt::Debug for ViewerApp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ViewerApp")
+            .field("settings", &self.settings)
+            .finish_non_exhaustive()
+    }
+}
+
+impl ViewerApp {
+    /// The app on eframe's wgpu device, with the settings of the last run (not with
+    /// `--frames`). `failure` receives an error the app cannot show (batch screenshots).
+    pub fn new(
+        cc: &eframe::CreationContext<'_>,
+        args: ViewArgs,
+        failure: Arc<Mutex<Option<anyhow::Error>>>,
+    ) -> anyhow::Result<ViewerApp> {
+        let render_state = cc
+            .wgpu_render_state
+            .clone()
+            .context("eframe made no wgpu device")?;
+        let gpu = GpuContext::from_existing(
+            render_state.instance.clone(),
+            render_state.adapter.clone(),
+            render_state.device.clone(),
+            render_state.queue.clone(),
+        );
+        let adapter = gpu.adapter_summary();
+        let stored = match (args.frames, cc.storage) {
+            (None, Some(storage)) => eframe::get_value::<ViewerSettings>(storage, eframe::APP_KEY),
+            _ => None,
+        };
+        // Settings of another version that no longer make a frame are dropped.
+        let settings = stored
+            .filter(|s| s.frame(1, 1).is_ok() && Renderer::check_model(&s.model).is_ok())
+            .unwrap_or_default();
+        Ok(ViewerApp {
+            flight: settings.flight(),
+            settings,
+            renderer: Renderer::new(gpu)?,
+            render_state,
+            texture: None,
+            last_frame: None,
+            last_plan: None,
+            frame_ms: 0.0,
+            adapter,
+            message: String::new(),
+            show_help: false,
+            args,
+            frames_shown: 0,
+            failure,
+        })
+    }
+
+    /// WASD/QE/shift as a flight input (none while a text field has the keyboard).
+    fn keys(ctx: &egui::Context) -> FlightInput {
+        if ctx.egui_wants_keyboard_input() {
+            return FlightInput::default();
+        }
+        ctx.input(|i| {
+            let axis = |plus, minus| {
+                f64::from(u8::from(i.key_down(plus))) - f64::from(u8::from(i.key_down(minus)))
+            };
+            FlightInput {
+                forward: axis(egui::Key::W, egui::Key::S),
+                right: axis(egui::Key::D, egui::Key::A),
+                up: axis(egui::Key::E, egui::Key::Q),
+                boost: i.modifiers.shift,
+                ..FlightInput::default()
+            }
+        })
+    }
+
+    /// Renders `frame` if it differs from the last one and points the egui texture at it.
+    fn render(&mut self, frame: Frame) -> anyhow::Result<()> {
+        if self.last_frame.as_ref() == Some(&frame) {
+            return Ok(());
+        }
+        let start = Instant::now();
+        let plan = self.renderer.render(&frame)?;
+        self.frame_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.last_plan = Some(plan);
+        self.last_frame = Some(frame);
+        let view = self
+            .renderer
+            .ldr_texture()
+            .context("the renderer kept no image")?
+            .create_view(&Default::default());
+        let device = &self.render_state.device;
+        let mut egui_renderer = self.render_state.renderer.write();
+        match self.texture {
+            Some(id) => egui_renderer.update_egui_texture_from_wgpu_texture(
+                device,
+                &view,
+                wgpu::FilterMode::Linear,
+                id,
+            ),
+            None => {
+                self.texture = Some(egui_renderer.register_native_texture(
+                    device,
+                    &view,
+                    wgpu::FilterMode::Linear,
+                ))
+            }
+        }
+        Ok(())
+    }
+
+    /// With `--frames N`: after the N-th displayed frame, the screenshot and close.
+    fn count_frame(&mut self, ctx: &egui::Context) {
+        let Some(frames) = self.args.frames else {
+            return;
+        };
+        self.frames_shown += 1;
+        if self.frames_shown < frames {
+            ctx.request_repaint();
+            return;
+        }
+        if self.frames_shown > frames {
+            return; // closing
+        }
+        if let (Some(path), Some(frame)) = (&self.args.screenshot, &self.last_frame) {
+            let saved = screenshot::save_png(&self.renderer, frame, path)
+                .with_context(|| format!("cannot save the screenshot {}", path.display()));
+            match saved {
+                Ok(()) => eprintln!("atmos view: saved {}", path.display()),
+                Err(e) => {
+                    if let Ok(mut failure) = self.failure.lock() {
+                        *failure = Some(e);
+                    }
+                }
+            }
+        }
+        ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+    }
+
+    fn help(&mut self, ctx: &egui::Context) {
+        egui::Window::new("Keyboard shortcuts")
+            .open(&mut self.show_help)
+            .show(ctx, |ui| {
+                egui::Grid::new("shortcuts").show(ui, |ui| {
+                    for (key, what) in SHORTCUTS {
+                        ui.strong(*key);
+                        ui.label(*what);
+                        ui.end_row();
+                    }
+                });
+            });
+    }
+}
+
+/// The render size for a panel of `points` at `pixels_per_point`: the panel's pixels,
+/// at most [`MAX_PIXELS`], halved on each side while moving.
+fn render_size(points: egui::Vec2, pixels_per_point: f32, moving: bool) -> (u32, u32) {
+    let (w, h) = (
+        f64::from(points.x * pixels_per_point).max(1.0),
+        f64::from(points.y * pixels_per_point).max(1.0),
+    );
+    let mut scale = (MAX_PIXELS / (w * h)).sqrt().min(1.0);
+    if moving {
+        scale *= 0.5;
+    }
+    let side = |v: f64| ((v * scale).round() as u32).clamp(1, render_wgpu::frame::MAX_SIDE_PX);
+    (side(w), side(h))
+}
+
+impl eframe::App for ViewerApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        if !ctx.egui_wants_keyboard_input() && ctx.input(|i| i.key_pressed(egui::Key::H)) {
+            self.show_help = !self.show_help;
+        }
+        let mut input = Self::keys(&ctx);
+        let dt = f64::from(ctx.input(|i| i.stable_dt)).min(0.1);
+
+        self.settings.set_flight(&self.flight);
+        let before = self.settings.clone();
+        let stats = Stats {
+            frame_ms: self.frame_ms,
+            render_size: self
+                .last_frame
+                .as_ref()
+                .map_or((0, 0), |f| (f.width, f.height)),
+            plan: self.last_plan.as_ref(),
+            table_bytes: self.renderer.table_bytes(),
+            adapter: &self.adapter,
+        };
+        let actions = egui::Panel::left("settings")
+            .default_size(320.0)
+            .show(ui, |ui| {
+                panel::show(ui, &mut self.settings, &stats, &self.message)
+            })
+            .inner;
+        if self.settings.camera_position_m != before.camera_position_m
+            || self.settings.camera_forward != before.camera_forward
+        {
+            self.flight = self.settings.flight();
+        }
+
+        egui::CentralPanel::default().show(ui, |ui| {
+            let size = ui.available_size();
+            let (rect, response) = ui.allocate_exact_size(size, egui::Sense::drag());
+            let drag = response.drag_delta();
+            input.yaw_rad = f64::from(drag.x) * LOOK_RAD_PER_POINT;
+            input.pitch_rad = -f64::from(drag.y) * LOOK_RAD_PER_POINT;
+            let radius = self
+                .settings
+                .atmosphere()
+                .map_or(6_360_000.0, |a| a.bottom_radius_m);
+            self.flight
+                .step(&FlightSettings::new(radius), &input, dt, |_| 0.0);
+            self.settings.set_flight(&self.flight);
+            let moving = self.flight.velocity_m_s.length() > 1e-3 || response.dragged();
+            let (width, height) = render_size(size, ctx.pixels_per_point(), moving);
+            let rendered = self
+                .settings
+                .frame(width, height)
+                .and_then(|frame| self.render(frame));
+            if let Err(e) = rendered {
+                self.message = format!("cannot render: {e:#}");
+            }
+            if let Some(id) = self.texture {
+                let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+                ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+            }
+            if moving {
+                ctx.request_repaint();
+            }
+        });
+        if actions.screenshot {
+            self.message = match &self.last_frame {
+                Some(frame) => match screenshot::save_pair(&self.renderer, frame, &self.settings) {
+                    Ok((png, exr)) => format!("saved {} and {}", png.display(), exr.display()),
+                    Err(e) => format!("cannot save the screenshot: {e:#}"),
+                },
+                None => "nothing rendered yet".into(),
+            };
+        }
+        self.help(&ctx);
+        self.count_frame(&ctx);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        if self.args.frames.is_none() {
+            self.settings.set_flight(&self.flight);
+            eframe::set_value(storage, eframe::APP_KEY, &self.settings);
+        }
+    }
+
+    fn persist_egui_memory(&self) -> bool {
+        self.args.frames.is_none()
+    }
+}

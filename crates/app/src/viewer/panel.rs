@@ -1,0 +1,212 @@
+//! The side panel: Sun, Camera, Atmosphere, Model, Image and Stats, every control with a
+//! tooltip. It edits [`ViewerSettings`] (whose ranges keep every value valid) and asks
+//! the app for what it cannot do itself (a screenshot).
+
+use eframe::egui;
+use render_wgpu::frame_plan::FramePlan;
+use render_wgpu::model_pass::GPU_MODELS;
+
+use crate::viewer::settings::{
+    ALTITUDE_RANGE_M, GO_TO, PRESETS, ViewerSettings, altitude_to_slider, slider_to_altitude,
+};
+
+/// What the Stats section shows.
+#[derive(Debug)]
+pub struct Stats<'a> {
+    /// Wall time of the last render, ms.
+    pub frame_ms: f64,
+    /// Size of the last rendered image, pixels.
+    pub render_size: (u32, u32),
+    pub plan: Option<&'a FramePlan>,
+    pub table_bytes: u64,
+    pub adapter: &'a str,
+}
+
+/// What the user asked of the app this frame.
+#[derive(Debug, Default)]
+pub struct Actions {
+    pub screenshot: bool,
+}
+
+/// Shows the panel's sections; `message` is the last report (screenshot path or error).
+pub fn show(
+    ui: &mut egui::Ui,
+    settings: &mut ViewerSettings,
+    stats: &Stats,
+    message: &str,
+) -> Actions {
+    let mut actions = Actions::default();
+    egui::ScrollArea::vertical().show(ui, |ui| {
+        sun(ui, settings);
+        camera(ui, settings);
+        atmosphere(ui, settings);
+        model(ui, settings);
+        actions.screenshot = image(ui, settings);
+        stats_section(ui, stats);
+        if !message.is_empty() {
+            ui.separator();
+            ui.label(message);
+        }
+        ui.label("Press H for the keyboard shortcuts.");
+    });
+    actions
+}
+
+fn sun(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
+    ui.collapsing("Sun", |ui| {
+        ui.add(
+            egui::Slider::new(&mut settings.sun_elevation_deg, -20.0..=90.0).text("elevation °"),
+        )
+        .on_hover_text("Sun elevation above the horizon at the camera, degrees");
+        ui.add(egui::Slider::new(&mut settings.sun_azimuth_deg, -180.0..=180.0).text("azimuth °"))
+            .on_hover_text("Sun azimuth from north towards east at the camera, degrees");
+    });
+}
+
+fn camera(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
+    ui.collapsing("Camera", |ui| {
+        let radius = bottom_radius_m(settings);
+        let altitude = settings.altitude_m(radius);
+        ui.label(format!("altitude {}", format_distance(altitude)))
+            .on_hover_text("Height of the camera above the ground");
+        let mut slider = altitude_to_slider(altitude);
+        let (low, high) = (
+            altitude_to_slider(ALTITUDE_RANGE_M.0),
+            altitude_to_slider(ALTITUDE_RANGE_M.1),
+        );
+        let response = ui
+            .add(
+                egui::Slider::new(&mut slider, low..=high)
+                    .text("altitude")
+                    .custom_formatter(|v, _| format_distance(slider_to_altitude(v))),
+            )
+            .on_hover_text("Altitude on a logarithmic scale, 1 m to 100,000 km");
+        if response.changed() {
+            settings.set_altitude(slider_to_altitude(slider), radius);
+        }
+        let flight = settings.flight();
+        let mut heading = flight.heading_rad().to_degrees();
+        let mut pitch = flight.pitch_rad().to_degrees();
+        let turned = ui
+            .add(egui::Slider::new(&mut heading, -180.0..=180.0).text("heading °"))
+            .on_hover_text("View direction from north towards east, degrees")
+            .changed()
+            | ui.add(egui::Slider::new(&mut pitch, -89.0..=89.0).text("pitch °"))
+                .on_hover_text("View direction above the horizon, degrees")
+                .changed();
+        if turned {
+            settings.set_heading_pitch(heading, pitch);
+        }
+        ui.add(egui::Slider::new(&mut settings.vertical_fov_deg, 5.0..=120.0).text("fov °"))
+            .on_hover_text("Vertical field of view, degrees");
+        ui.horizontal_wrapped(|ui| {
+            for target in GO_TO {
+                let tip = format!(
+                    "Go to {} above the ground, looking {:+}° from the horizon",
+                    format_distance(target.altitude_m),
+                    target.pitch_deg
+                );
+                if ui.button(target.label).on_hover_text(tip).clicked() {
+                    settings.go_to(target, radius);
+                }
+            }
+        });
+    });
+}
+
+fn atmosphere(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
+    ui.collapsing("Atmosphere", |ui| {
+        let mut preset = settings.preset.clone();
+        egui::ComboBox::from_label("preset")
+            .selected_text(&preset)
+            .show_ui(ui, |ui| {
+                for name in PRESETS {
+                    ui.selectable_value(&mut preset, name.to_string(), *name);
+                }
+            })
+            .response
+            .on_hover_text("Atmosphere preset; resets the values below to the preset's");
+        if preset != settings.preset {
+            // Presets are known names: this cannot fail, but say so if it does.
+            if let Err(e) = settings.set_preset(&preset) {
+                ui.colored_label(egui::Color32::RED, e.to_string());
+            }
+        }
+        ui.add(egui::Slider::new(&mut settings.aerosol_scale, 0.0..=10.0).text("aerosol ×"))
+            .on_hover_text("Factor on the preset's aerosol (Mie) scattering and extinction");
+        ui.add(egui::Slider::new(&mut settings.mie_g, -0.95..=0.95).text("Mie g"))
+            .on_hover_text("Asymmetry of the aerosol phase function: 0 isotropic, near 1 forward");
+        ui.checkbox(&mut settings.ozone, "ozone")
+            .on_hover_text("Ozone absorption on or off");
+        ui.add(egui::Slider::new(&mut settings.ground_albedo, 0.0..=1.0).text("ground albedo"))
+            .on_hover_text("Lambertian reflectance of the ground");
+        if let Err(e) = settings.atmosphere() {
+            ui.colored_label(egui::Color32::RED, format!("{e:#}"));
+        }
+    });
+}
+
+fn model(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
+    ui.collapsing("Model", |ui| {
+        egui::ComboBox::from_label("model")
+            .selected_text(&settings.model)
+            .show_ui(ui, |ui| {
+                for id in GPU_MODELS {
+                    ui.selectable_value(&mut settings.model, id.to_string(), *id);
+                }
+            })
+            .response
+            .on_hover_text("Scattering model on the GPU (docs/models/); the camera stays");
+    });
+}
+
+/// The Image section; true when a screenshot was asked for.
+fn image(ui: &mut egui::Ui, settings: &mut ViewerSettings) -> bool {
+    let mut screenshot = false;
+    ui.collapsing("Image", |ui| {
+        ui.add(egui::Slider::new(&mut settings.exposure_ev100, 0.0..=20.0).text("EV100"))
+            .on_hover_text("Exposure value at ISO 100: higher is darker (14 for daylight)");
+        screenshot = ui
+            .button("screenshot")
+            .on_hover_text("Save the view as PNG and EXR (HDR) in the current directory")
+            .clicked();
+    });
+    screenshot
+}
+
+fn stats_section(ui: &mut egui::Ui, stats: &Stats) {
+    ui.collapsing("Stats", |ui| {
+        ui.label(format!(
+            "frame {:.1} ms at {}x{}",
+            stats.frame_ms, stats.render_size.0, stats.render_size.1
+        ))
+        .on_hover_text("Wall time of the last render and its size in pixels");
+        if let Some(plan) = stats.plan {
+            ui.label(format!("plan: {plan}")).on_hover_text(
+                "The last frame's steps, with GPU times where the adapter has timestamps",
+            );
+        }
+        ui.label(format!(
+            "tables {:.1} MiB",
+            stats.table_bytes as f64 / (1024.0 * 1024.0)
+        ))
+        .on_hover_text("GPU memory held by the tables of the models used so far");
+        ui.label(format!("adapter: {}", stats.adapter))
+            .on_hover_text("The GPU the window and the renderer share");
+    });
+}
+
+/// The bottom radius of the preset (the Earth's if the preset is unknown).
+fn bottom_radius_m(settings: &ViewerSettings) -> f64 {
+    atmosphere_core::atmosphere::Atmosphere::preset(&settings.preset)
+        .map_or(6_360_000.0, |a| a.bottom_radius_m)
+}
+
+/// "2 m", "10.0 km", "36000 km".
+fn format_distance(metres: f64) -> String {
+    if metres < 1000.0 {
+        format!("{metres:.0} m")
+    } else {
+        format!("{:.1} km", metres / 1000.0)
+    }
+}

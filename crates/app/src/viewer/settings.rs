@@ -1,0 +1,342 @@
+//! The viewer's settings: everything the side panel sets, kept between runs (eframe
+//! storage, serde), and their conversion into a [`Frame`]. No window here, so the mapping
+//! is unit-tested.
+
+use anyhow::Context;
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::model::ModelSettings;
+use atmosphere_core::phase::PhaseFunction;
+use glam::DVec3;
+use render_wgpu::Frame;
+use render_wgpu::frame::look_orientation;
+use serde::{Deserialize, Serialize};
+
+use crate::viewer::flight::{FlightState, local_frame};
+
+/// The atmosphere presets of the panel's combo box.
+pub const PRESETS: &[&str] = &["earth", "clear", "hazy", "mars"];
+
+/// The altitude slider's range, metres: 1 m to 1e8 m on a logarithmic scale.
+pub const ALTITUDE_RANGE_M: (f64, f64) = (1.0, 1e8);
+
+/// A "go to" button: a label, an altitude and the pitch to look at from there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GoTo {
+    pub label: &'static str,
+    pub altitude_m: f64,
+    /// Degrees above the horizon: level near the ground, down at the planet from orbit.
+    pub pitch_deg: f64,
+}
+
+/// The "go to" buttons: the ground, an airliner, the edge of space, low orbit,
+/// geostationary orbit and the Moon's distance.
+pub const GO_TO: &[GoTo] = &[
+    GoTo {
+        label: "ground 2 m",
+        altitude_m: 2.0,
+        pitch_deg: 10.0,
+    },
+    GoTo {
+        label: "10 km",
+        altitude_m: 1e4,
+        pitch_deg: 0.0,
+    },
+    GoTo {
+        label: "100 km",
+        altitude_m: 1e5,
+        pitch_deg: -10.0,
+    },
+    GoTo {
+        label: "400 km",
+        altitude_m: 4e5,
+        pitch_deg: -30.0,
+    },
+    GoTo {
+        label: "36,000 km",
+        altitude_m: 3.6e7,
+        pitch_deg: -89.0,
+    },
+    GoTo {
+        label: "400,000 km",
+        altitude_m: 4e8,
+        pitch_deg: -89.0,
+    },
+];
+
+/// The panel's state. Angles in degrees; the camera as a planet-centred position and a
+/// unit view direction (those of [`FlightState`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct ViewerSettings {
+    /// Sun elevation above the horizon at the camera's position.
+    pub sun_elevation_deg: f64,
+    /// Sun azimuth from north towards east at the camera's position.
+    pub sun_azimuth_deg: f64,
+    pub camera_position_m: [f64; 3],
+    pub camera_forward: [f64; 3],
+    pub vertical_fov_deg: f64,
+    /// One of [`PRESETS`].
+    pub preset: String,
+    /// Factor on the preset's aerosol (Mie) coefficients.
+    pub aerosol_scale: f64,
+    /// Asymmetry of the aerosol phase function (replaces the preset's g).
+    pub mie_g: f64,
+    pub ozone: bool,
+    pub ground_albedo: f64,
+    /// One of `render_wgpu::model_pass::GPU_MODELS`.
+    pub model: String,
+    pub exposure_ev100: f64,
+}
+
+impl Default for ViewerSettings {
+    fn default() -> ViewerSettings {
+        let earth = Atmosphere::preset("earth").expect("the earth preset exists");
+        let mut settings = ViewerSettings {
+            sun_elevation_deg: 20.0,
+            sun_azimuth_deg: 0.0,
+            camera_position_m: [0.0; 3],
+            camera_forward: [0.0; 3],
+            vertical_fov_deg: 60.0,
+            preset: "earth".into(),
+            aerosol_scale: 1.0,
+            mie_g: mie_g(&earth).unwrap_or(0.8),
+            ozone: true,
+            ground_albedo: earth.ground_albedo,
+            model: "nishita".into(),
+            exposure_ev100: 14.0,
+        };
+        // 2 m above the ground at latitude 0, looking north-east a little up.
+        let position = DVec3::X * (earth.bottom_radius_m + 2.0);
+        settings.set_flight(&FlightState::new(
+            position,
+            45f64.to_radians(),
+            10f64.to_radians(),
+        ));
+        settings
+    }
+}
+
+/// The asymmetry g of an aerosol phase function that has one.
+fn mie_g(atmosphere: &Atmosphere) -> Option<f64> {
+    match atmosphere.mie.phase {
+        PhaseFunction::CornetteShanks { g } | PhaseFunction::HenyeyGreenstein { g } => Some(g),
+        _ => None,
+    }
+}
+
+/// Slider position (log10 of the altitude) of an altitude, clamped to the range.
+pub fn altitude_to_slider(altitude_m: f64) -> f64 {
+    altitude_m
+        .clamp(ALTITUDE_RANGE_M.0, ALTITUDE_RANGE_M.1)
+        .log10()
+}
+
+/// The altitude of a slider position (inverse of [`altitude_to_slider`]).
+pub fn slider_to_altitude(slider: f64) -> f64 {
+    10f64.powf(slider)
+}
+
+impl ViewerSettings {
+    /// The atmosphere: the preset with the panel's changes, validated (the error names
+    /// the field at fault).
+    pub fn atmosphere(&self) -> anyhow::Result<Atmosphere> {
+        let preset = Atmosphere::preset(&self.preset)
+            .with_context(|| format!("atmosphere preset '{}'", self.preset))?;
+        let mut atmosphere = preset.with_aerosol_scale(self.aerosol_scale);
+        match &mut atmosphere.mie.phase {
+            PhaseFunction::CornetteShanks { g } | PhaseFunction::HenyeyGreenstein { g } => {
+                *g = self.mie_g
+            }
+            _ => {}
+        }
+        if !self.ozone {
+            atmosphere.ozone.absorption_per_m = atmosphere.ozone.absorption_per_m.scaled(0.0);
+        }
+        atmosphere.ground_albedo = self.ground_albedo;
+        atmosphere.validate()?;
+        Ok(atmosphere)
+    }
+
+    /// Chooses preset `name`: its aerosol g and ground albedo, the aerosol scale 1 and
+    /// ozone on; the camera keeps its altitude over the new planet's radius.
+    pub fn set_preset(&mut self, name: &str) -> anyhow::Result<()> {
+        let old_radius = self.atmosphere()?.bottom_radius_m;
+        let preset = Atmosphere::preset(name).with_context(|| format!("preset '{name}'"))?;
+        let altitude = self.altitude_m(old_radius);
+        self.preset = name.to_string();
+        self.aerosol_scale = 1.0;
+        self.mie_g = mie_g(&preset).unwrap_or(self.mie_g);
+        self.ozone = true;
+        self.ground_albedo = preset.ground_albedo;
+        self.set_altitude(altitude, preset.bottom_radius_m);
+        Ok(())
+    }
+
+    /// The camera's flight state (at rest).
+    pub fn flight(&self) -> FlightState {
+        FlightState {
+            position_m: DVec3::from_array(self.camera_position_m),
+            velocity_m_s: DVec3::ZERO,
+            forward: DVec3::from_array(self.camera_forward),
+        }
+    }
+
+    /// Takes the camera of a flight state.
+    pub fn set_flight(&mut self, flight: &FlightState) {
+        self.camera_position_m = flight.position_m.to_array();
+        self.camera_forward = flight.forward.to_array();
+    }
+
+    /// Altitude above a planet of radius `radius_m`.
+    pub fn altitude_m(&self, radius_m: f64) -> f64 {
+        DVec3::from_array(self.camera_position_m).length() - radius_m
+    }
+
+    /// Moves the camera to `altitude_m` above the same point, keeping heading and pitch.
+    pub fn set_altitude(&mut self, altitude_m: f64, radius_m: f64) {
+        let flight = self.flight();
+        let (heading, pitch) = (flight.heading_rad(), flight.pitch_rad());
+        let up = flight.position_m.normalize();
+        self.set_flight(&FlightState::new(
+            up * (radius_m + altitude_m.max(0.0)),
+            heading,
+            pitch,
+        ));
+    }
+
+    /// Turns the camera to heading and pitch (degrees), keeping its position.
+    pub fn set_heading_pitch(&mut self, heading_deg: f64, pitch_deg: f64) {
+        let position = self.flight().position_m;
+        self.set_flight(&FlightState::new(
+            position,
+            heading_deg.to_radians(),
+            pitch_deg.to_radians(),
+        ));
+    }
+
+    /// A "go to" button: its altitude and pitch, the same heading.
+    pub fn go_to(&mut self, target: &GoTo, radius_m: f64) {
+        let heading_deg = self.flight().heading_rad().to_degrees();
+        self.set_altitude(target.altitude_m, radius_m);
+        self.set_heading_pitch(heading_deg, target.pitch_deg);
+    }
+
+    /// The frame these settings show at `width` x `height` pixels.
+    pub fn frame(&self, width: u32, height: u32) -> anyhow::Result<Frame> {
+        let atmosphere = self.atmosphere()?;
+        let flight = self.flight();
+        let (east, north, up) = local_frame(flight.position_m);
+        let (elevation, azimuth) = (
+            self.sun_elevation_deg.to_radians(),
+            self.sun_azimuth_deg.to_radians(),
+        );
+        let sun_direction =
+            (north * azimuth.cos() + east * azimuth.sin()) * elevation.cos() + up * elevation.sin();
+        let orientation = look_orientation(flight.forward, up)
+            .or_else(|| look_orientation(flight.forward, north))
+            .context("the camera's view direction is not a direction")?;
+        Ok(Frame {
+            camera_position_m: flight.position_m,
+            orientation,
+            vertical_fov_deg: self.vertical_fov_deg,
+            sun_direction,
+            atmosphere,
+            model: self.model.clone(),
+            settings: ModelSettings::default(),
+            exposure_ev100: self.exposure_ev100,
+            width,
+            height,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_altitude_slider_is_logarithmic_and_round_trips() {
+        assert_eq!(altitude_to_slider(1.0), 0.0);
+        assert_eq!(altitude_to_slider(1e8), 8.0);
+        assert_eq!(altitude_to_slider(0.1), 0.0, "clamped to 1 m");
+        for altitude in [1.0, 2.0, 1e4, 4e5, 3.6e7, 1e8] {
+            let back = slider_to_altitude(altitude_to_slider(altitude));
+            assert!(
+                (back / altitude - 1.0).abs() < 1e-12,
+                "{altitude} -> {back}"
+            );
+        }
+    }
+
+    #[test]
+    fn go_to_buttons_set_altitude_and_pitch_and_keep_heading() {
+        let mut settings = ViewerSettings::default();
+        let radius = settings.atmosphere().unwrap().bottom_radius_m;
+        let heading = settings.flight().heading_rad();
+        for target in GO_TO {
+            settings.go_to(target, radius);
+            let frame = settings.frame(64, 32).unwrap();
+            frame.validate().unwrap();
+            let altitude = frame.camera_position_m.length() - radius;
+            assert!(
+                (altitude / target.altitude_m - 1.0).abs() < 1e-9,
+                "{}",
+                target.label
+            );
+            let flight = settings.flight();
+            assert!((flight.pitch_rad().to_degrees() - target.pitch_deg).abs() < 1e-6);
+            assert!(
+                (flight.heading_rad() - heading).abs() < 1e-6,
+                "{}",
+                target.label
+            );
+            // The frame looks where the flight state looks.
+            assert!((frame.axes()[2] - flight.forward).length() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn presets_set_their_values_and_keep_the_altitude() {
+        let mut settings = ViewerSettings::default();
+        settings.go_to(&GO_TO[1], 6_360_000.0);
+        for name in PRESETS {
+            settings.set_preset(name).unwrap();
+            let preset = Atmosphere::preset(name).unwrap();
+            let atmosphere = settings.atmosphere().unwrap();
+            assert_eq!(
+                atmosphere, preset,
+                "{name}: untouched settings give the preset"
+            );
+            let altitude = settings.altitude_m(preset.bottom_radius_m);
+            assert!((altitude - 1e4).abs() < 1e-6, "{name}: {altitude}");
+        }
+    }
+
+    #[test]
+    fn panel_changes_reach_the_frame_and_bad_values_are_reported() {
+        let mut settings = ViewerSettings {
+            aerosol_scale: 2.0,
+            mie_g: 0.5,
+            ozone: false,
+            ground_albedo: 0.3,
+            sun_elevation_deg: 90.0,
+            ..ViewerSettings::default()
+        };
+        let frame = settings.frame(8, 4).unwrap();
+        let earth = Atmosphere::preset("earth").unwrap();
+        assert_eq!(
+            frame.atmosphere.mie.phase,
+            PhaseFunction::CornetteShanks { g: 0.5 }
+        );
+        assert_eq!(frame.atmosphere.ground_albedo, 0.3);
+        assert_eq!(frame.atmosphere.ozone.absorption_per_m.at(600.0), 0.0);
+        let ratio =
+            frame.atmosphere.mie.scattering_per_m.at(550.0) / earth.mie.scattering_per_m.at(550.0);
+        assert!((ratio - 2.0).abs() < 1e-12);
+        let up = frame.camera_position_m.normalize();
+        assert!((frame.sun_direction - up).length() < 1e-12, "sun overhead");
+        settings.ground_albedo = 1.5;
+        let err = settings.frame(8, 4).unwrap_err().to_string();
+        assert!(err.contains("ground_albedo"), "{err}");
+    }
+}
