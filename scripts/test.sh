@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the whole test suite, GPU tests included, on any machine: a real GPU where there
-# is one, Mesa's software Vulkan (lavapipe) elsewhere. On Debian it installs lavapipe when
-# it is missing (as root, or through sudo).
+# is one, Mesa's software Vulkan (lavapipe) elsewhere. On Debian it installs lavapipe and
+# Xvfb (for the viewer's test) when they are missing (as root, or through sudo).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -13,6 +13,17 @@ if [ ! -f "$lavapipe" ] && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
     exit 1
   fi
   echo "Installing software Vulkan for the GPU tests: $packages" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $packages >/dev/null
+fi
+# The viewer's test opens its window on a virtual X server (xvfb-run).
+if ! command -v xvfb-run >/dev/null && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
+  packages="xvfb xauth"
+  if [ "$(id -u)" = 0 ]; then sudo=""; elif command -v sudo >/dev/null; then sudo="sudo"; else
+    echo "Xvfb is missing: install $packages (Debian), or set ATMOS_SKIP_GPU_TESTS=1" >&2
+    exit 1
+  fi
+  echo "Installing a virtual X server for the viewer test: $packages" >&2
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $packages >/dev/null
 fi
