@@ -19,9 +19,6 @@
 @group(0) @binding(8) var multiple: texture_3d<f32>;
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
 
-// The largest finite f16.
-const F16_MAX: f32 = 65504.0;
-
 // Trilinear interpolation over (r, mu, mu_s) in nu slice `inu` of a scattering texture.
 fn texture_slice(table: texture_3d<f32>, p: Position, inu: u32) -> vec3<f32> {
     let x = inu * bruneton.size.z + p.mu_s.i;
@@ -46,12 +43,6 @@ fn texture_lookup(table: texture_3d<f32>, p: Position) -> vec3<f32> {
         return lo;
     }
     return mix(lo, texture_slice(table, p, p.nu.i + 1u), p.nu.w);
-}
-
-struct Radiance {
-    radiance: vec3<f32>,
-    transmittance: vec3<f32>,
-    reaches_space: bool,
 }
 
 fn bruneton_radiance(direction: vec3<f32>) -> Radiance {
@@ -96,9 +87,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let direction = pixel_direction(id.xy);
     let r = bruneton_radiance(direction);
-    var radiance = r.radiance;
-    if r.reaches_space {
-        radiance += frame_sun_disk(direction, r.transmittance);
-    }
-    textureStore(hdr, id.xy, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
+    textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }

@@ -8,9 +8,6 @@
 
 @group(0) @binding(12) var hdr: texture_storage_2d<rgba16float, write>;
 
-// The largest finite f16.
-const F16_MAX: f32 = 65504.0;
-
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= frame.size_px.xy) {
@@ -18,16 +15,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let direction = pixel_direction(id.xy);
     let s = view_segment(direction);
-    var radiance = vec3<f32>(0.0);
-    var transmittance = vec3<f32>(1.0);
+    var r = Radiance(vec3<f32>(0.0), vec3<f32>(1.0), !s.hit || !s.on_ground);
     if s.hit {
         let terms = trace(make_ray(s, direction, frame.sun_direction.xyz, false),
             dobashi.use_spheres != 0u);
-        radiance = atmosphere.solar_irradiance.xyz * (terms.single + terms.ambient);
-        transmittance = terms.transmittance;
+        r.radiance = atmosphere.solar_irradiance.xyz * (terms.single + terms.ambient);
+        r.transmittance = terms.transmittance;
     }
-    if !s.hit || !s.on_ground {
-        radiance += frame_sun_disk(direction, transmittance);
-    }
-    textureStore(hdr, id.xy, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
+    textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }

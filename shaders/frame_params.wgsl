@@ -26,6 +26,29 @@ struct FrameParams {
 
 @group(0) @binding(1) var<uniform> frame: FrameParams;
 
+// The largest finite f16, the HDR target's ceiling.
+const F16_MAX: f32 = 65504.0;
+
+// What a model answers for a view ray: the radiance scattered and reflected towards the
+// camera (sun disk excluded) and the ray's transmittance, per channel.
+struct Radiance {
+    radiance: vec3<f32>,
+    transmittance: vec3<f32>,
+    // False when the ray ends on the ground.
+    reaches_space: bool,
+}
+
+// The HDR target's value for a pixel looking along `direction` with the model's answer
+// `r`: the radiance, plus the transmitted sun disk where the ray reaches space, clamped
+// to the largest finite f16; alpha 1.
+fn hdr_pixel(direction: vec3<f32>, r: Radiance) -> vec4<f32> {
+    var radiance = r.radiance;
+    if r.reaches_space {
+        radiance += frame_sun_disk(direction, r.transmittance);
+    }
+    return vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0);
+}
+
 // The transmitted sun disk seen along `direction` by a ray that reaches space with
 // `transmittance`.
 fn frame_sun_disk(direction: vec3<f32>, transmittance: vec3<f32>) -> vec3<f32> {

@@ -23,9 +23,6 @@
 @group(0) @binding(8) var aerial_transmittance: texture_3d<f32>;
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
 
-// The largest finite f16.
-const F16_MAX: f32 = 65504.0;
-
 // `SkyView::lookup` at a grid position.
 fn sky_view_lookup(p: GridPosition) -> vec3<f32> {
     let a = p.column_weight;
@@ -121,13 +118,6 @@ fn view_angles(direction: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(theta, atan2(abs(across), along));
 }
 
-struct Radiance {
-    radiance: vec3<f32>,
-    transmittance: vec3<f32>,
-    // False when the ray ends on the ground.
-    reaches_space: bool,
-}
-
 // `Hillaire::radiance` for the view ray with unit `direction` from the camera. `tables`
 // and `march` say which of the two ways of finding the light along a ray the frame may
 // need (the planner knows; each entry point fixes them, so that a software rasteriser,
@@ -196,9 +186,5 @@ fn shade(px: vec2<u32>, tables: bool, march: bool) {
     }
     let direction = pixel_direction(px);
     let r = hillaire_radiance(direction, tables, march);
-    var radiance = r.radiance;
-    if r.reaches_space {
-        radiance += frame_sun_disk(direction, r.transmittance);
-    }
-    textureStore(hdr, px, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
+    textureStore(hdr, px, hdr_pixel(direction, r));
 }

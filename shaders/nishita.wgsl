@@ -22,16 +22,6 @@ struct NishitaParams {
 @group(0) @binding(3) var g_l: texture_2d<f32>;
 @group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
 
-// The largest finite f16.
-const F16_MAX: f32 = 65504.0;
-
-struct Radiance {
-    radiance: vec3<f32>,
-    transmittance: vec3<f32>,
-    // False when the ray ends on the ground.
-    reaches_space: bool,
-}
-
 // `Nishita::radiance` for the view ray with unit `direction` from the camera.
 fn nishita_radiance(direction: vec3<f32>) -> Radiance {
     var out: Radiance;
@@ -88,9 +78,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let direction = pixel_direction(id.xy);
     let r = nishita_radiance(direction);
-    var radiance = r.radiance;
-    if r.reaches_space {
-        radiance += frame_sun_disk(direction, r.transmittance);
-    }
-    textureStore(hdr, id.xy, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
+    textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }

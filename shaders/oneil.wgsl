@@ -28,9 +28,6 @@ struct OneilParams {
 @group(0) @binding(3) var optical_depth_table: texture_2d<f32>;
 @group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
 
-// The largest finite f16.
-const F16_MAX: f32 = 65504.0;
-
 // `OpticalDepthTable::lookup`: the four channels (Rayleigh density, Rayleigh column,
 // Mie density, Mie column) at `altitude_m` for a ray `angle` radians from the vertical,
 // interpolated bilinearly between nodes (by hand: Rgba32Float need not be filterable).
@@ -52,13 +49,6 @@ fn table_lookup(altitude_m: f32, angle: f32) -> vec4<f32> {
 fn depth(column: vec2<f32>) -> vec3<f32> {
     return column.x * atmosphere.rayleigh_extinction_per_m.xyz
         + column.y * atmosphere.mie_extinction_per_m.xyz;
-}
-
-struct Radiance {
-    radiance: vec3<f32>,
-    transmittance: vec3<f32>,
-    // False when the ray ends on the ground.
-    reaches_space: bool,
 }
 
 // `Oneil::radiance` for the view ray with unit `direction` from the camera.
@@ -136,9 +126,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let direction = pixel_direction(id.xy);
     let r = oneil_radiance(direction);
-    var radiance = r.radiance;
-    if r.reaches_space {
-        radiance += frame_sun_disk(direction, r.transmittance);
-    }
-    textureStore(hdr, id.xy, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
+    textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }

@@ -37,9 +37,6 @@ struct RileyParams {
 @group(0) @binding(2) var<uniform> riley: RileyParams;
 @group(0) @binding(3) var hdr: texture_storage_2d<rgba16float, write>;
 
-// The largest finite f16.
-const F16_MAX: f32 = 65504.0;
-
 // `riley::phi`: (1 - exp(-x)) / x per component, 1 at 0. For |x| < 1 the series
 // sum_n (-x)^n / (n + 1)! to n = 10 (the first term left out is below 1/12! = 2.1e-9).
 fn phi(x: vec3<f32>) -> vec3<f32> {
@@ -120,13 +117,6 @@ fn add_leg(light: Light, y0: f32, p: f32, k: f32, l: f32, phase_r: vec3<f32>,
     return out;
 }
 
-struct Radiance {
-    radiance: vec3<f32>,
-    transmittance: vec3<f32>,
-    // False when the ray ends on the ground.
-    reaches_space: bool,
-}
-
 // `Riley::radiance` for the view ray with unit `direction` from the camera.
 fn riley_radiance(direction: vec3<f32>) -> Radiance {
     var out: Radiance;
@@ -186,9 +176,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let direction = pixel_direction(id.xy);
     let r = riley_radiance(direction);
-    var radiance = r.radiance;
-    if r.reaches_space {
-        radiance += frame_sun_disk(direction, r.transmittance);
-    }
-    textureStore(hdr, id.xy, vec4<f32>(min(radiance, vec3<f32>(F16_MAX)), 1.0));
+    textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }
