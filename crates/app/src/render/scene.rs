@@ -19,7 +19,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
-    /// Scattering model (dobashi, nishita, oneil and riley are on the GPU so far).
+    /// Scattering model (every model but the reference is on the GPU).
     #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
     pub model: Option<String>,
     /// Camera altitude above the ground, m (up to 1e8 and beyond).
