@@ -42,8 +42,8 @@ use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, storage_buffer_entry, storage_texture_entry, texture_entry, uniform_buffer,
-    uniform_entry,
+    ComputePipeline, storage_buffer_entry, storage_texture_entry, texel_groups, texture_entry,
+    uniform_buffer, uniform_entry,
 };
 use crate::readback::{map_and_read, read_texture};
 use crate::transmittance_pass::{TableOutput, TransmittancePass};
@@ -570,21 +570,10 @@ impl BrunetonPass {
         gpu: &GpuContext,
         frame: &Frame,
     ) -> Result<FramePlan, RenderError> {
-        let atmosphere = uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>());
-        let frame_buffer = uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>());
         let mut plan = FramePlan::default();
         self.plan(gpu, frame, &mut plan)?;
-        gpu.queue
-            .write_buffer(&atmosphere, 0, bytemuck::bytes_of(&self.atmosphere));
-        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        gpu.queue
-            .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
-        let hdr = unused_hdr(gpu);
-        let io = PassIo {
-            atmosphere: &atmosphere,
-            frame: &frame_buffer,
-            hdr: &hdr,
-        };
+        let inputs = StandaloneInputs::new(gpu, &self.atmosphere, frame);
+        let io = inputs.io();
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         for step in plan.steps.iter().filter(|s| s.kind == StepKind::TableBuild) {
             self.encode(step.name, gpu, &io, &mut encoder, None);
@@ -757,21 +746,10 @@ impl BrunetonPass {
         if let Some(t) = self.tables.as_mut() {
             t.built = Built::default();
         }
-        let atmosphere = uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>());
-        let frame_buffer = uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>());
         let mut plan = FramePlan::default();
         self.plan(gpu, frame, &mut plan)?;
-        gpu.queue
-            .write_buffer(&atmosphere, 0, bytemuck::bytes_of(&self.atmosphere));
-        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        gpu.queue
-            .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
-        let hdr = unused_hdr(gpu);
-        let io = PassIo {
-            atmosphere: &atmosphere,
-            frame: &frame_buffer,
-            hdr: &hdr,
-        };
+        let inputs = StandaloneInputs::new(gpu, &self.atmosphere, frame);
+        let io = inputs.io();
         let wait = || -> Result<(), RenderError> {
             gpu.device
                 .poll(wgpu::PollType::wait_indefinitely())
@@ -847,18 +825,45 @@ impl OrderDispatch<'_> {
     }
 }
 
-/// A 1x1 HDR target for steps that render nothing.
-fn unused_hdr(gpu: &GpuContext) -> wgpu::Texture {
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("unused"),
-        size: wgpu::Extent3d::default(),
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: HDR_FORMAT,
-        usage: wgpu::TextureUsages::STORAGE_BINDING,
-        view_formats: &[],
-    })
+/// What the table steps read when they run outside a `Renderer` frame (tests and
+/// profiling): the uniforms of `frame` and a 1x1 HDR target, which they do not touch.
+struct StandaloneInputs {
+    atmosphere: wgpu::Buffer,
+    frame: wgpu::Buffer,
+    hdr: wgpu::Texture,
+}
+
+impl StandaloneInputs {
+    fn new(gpu: &GpuContext, atmosphere: &AtmosphereUniform, frame: &Frame) -> Self {
+        let inputs = StandaloneInputs {
+            atmosphere: uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>()),
+            frame: uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>()),
+            hdr: gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("unused"),
+                size: wgpu::Extent3d::default(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: HDR_FORMAT,
+                usage: wgpu::TextureUsages::STORAGE_BINDING,
+                view_formats: &[],
+            }),
+        };
+        gpu.queue
+            .write_buffer(&inputs.atmosphere, 0, bytemuck::bytes_of(atmosphere));
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        gpu.queue
+            .write_buffer(&inputs.frame, 0, bytemuck::bytes_of(&frame_uniform));
+        inputs
+    }
+
+    fn io(&self) -> PassIo<'_> {
+        PassIo {
+            atmosphere: &self.atmosphere,
+            frame: &self.frame,
+            hdr: &self.hdr,
+        }
+    }
 }
 
 impl ModelPass for BrunetonPass {
@@ -1020,7 +1025,7 @@ impl ModelPass for BrunetonPass {
                     .collect();
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
                 let bind_group = self.bind_group(gpu, io, &p.render, &tables.params, &extra);
-                let groups = [io.hdr.width().div_ceil(8), io.hdr.height().div_ceil(8), 1];
+                let groups = texel_groups(io.hdr);
                 p.render
                     .dispatch(encoder, "bruneton", &bind_group, groups, timestamps);
             }

@@ -19,10 +19,10 @@ use crate::frame::Frame;
 use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
-use crate::nishita_pass::{HDR_FORMAT, WORKGROUP_SIDE, check_wavelengths};
+use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texture_entry,
-    uniform_buffer, uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
+    texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::transmittance_pass::{TABLE_FORMAT, TableOutput, TransmittancePass};
@@ -280,11 +280,7 @@ impl DobashiTables {
             ],
         );
         let t = &textures.scatter_r;
-        let groups = [
-            t.width().div_ceil(WORKGROUP_SIDE),
-            t.height().div_ceil(WORKGROUP_SIDE),
-            1,
-        ];
+        let groups = texel_groups(t);
         pipeline.dispatch(encoder, label, &bind_group, groups, timestamps);
     }
 
@@ -621,11 +617,7 @@ impl ModelPass for DobashiPass {
             "dobashi" => {
                 let hdr = io.hdr.create_view(&Default::default());
                 let bind_group = self.bind_group(gpu, &self.pass_pipeline, io, Some(&hdr));
-                let groups = [
-                    io.hdr.width().div_ceil(WORKGROUP_SIDE),
-                    io.hdr.height().div_ceil(WORKGROUP_SIDE),
-                    1,
-                ];
+                let groups = texel_groups(io.hdr);
                 self.pass_pipeline
                     .dispatch(encoder, "dobashi", &bind_group, groups, timestamps);
             }

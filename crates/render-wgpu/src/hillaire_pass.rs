@@ -33,13 +33,11 @@ use crate::ground_in_view::ground_within;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, storage_texture_entry, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
+    uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::transmittance_pass::{TABLE_FORMAT, TableOutput, TransmittancePass};
-
-/// Side of the square workgroups of the sky view, the volume and the pass.
-const WORKGROUP_SIDE: u32 = 8;
 
 /// WGSL `HillaireParams`, 112 bytes: the view of the per-view tables, the settings'
 /// sample counts, and the camera's frame for the pass's view angles.
@@ -517,13 +515,7 @@ impl ModelPass for HillairePass {
             let bind_group = pipeline.bind_group(gpu, &resources);
             pipeline.dispatch(encoder, step, &bind_group, groups, timestamps);
         };
-        let tiles = |t: &wgpu::Texture| {
-            [
-                t.width().div_ceil(WORKGROUP_SIDE),
-                t.height().div_ceil(WORKGROUP_SIDE),
-                1,
-            ]
-        };
+        let tiles = |t: &wgpu::Texture| texel_groups(t);
         let psi_view = wgpu::BindingResource::TextureView(&psi);
         let built = match step {
             "transmittance" => {

@@ -16,16 +16,14 @@ use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::pipeline::{
-    ComputePipeline, storage_texture_entry, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
+    uniform_entry,
 };
 use crate::transmittance_pass::{TableOutput, TransmittancePass};
 
 /// Format of the HDR target: spectral radiance (W m^-2 sr^-1 nm^-1) at 680, 550 and
 /// 440 nm in rgb, a = 1.
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-
-/// Side of the per-pixel shaders' square workgroup (`@workgroup_size(8, 8)`).
-pub(crate) const WORKGROUP_SIDE: u32 = 8;
 
 /// WGSL `NishitaParams`, 16 bytes.
 #[repr(C)]
@@ -168,11 +166,7 @@ impl ModelPass for NishitaPass {
                         wgpu::BindingResource::TextureView(&hdr),
                     ],
                 );
-                let groups = [
-                    io.hdr.width().div_ceil(WORKGROUP_SIDE),
-                    io.hdr.height().div_ceil(WORKGROUP_SIDE),
-                    1,
-                ];
+                let groups = texel_groups(io.hdr);
                 self.pipeline
                     .dispatch(encoder, "nishita", &bind_group, groups, timestamps);
             }

@@ -15,9 +15,10 @@ use crate::frame::Frame;
 use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
-use crate::nishita_pass::{HDR_FORMAT, WORKGROUP_SIDE, check_wavelengths};
+use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, storage_texture_entry, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
+    uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::transmittance_pass::TABLE_FORMAT;
@@ -128,11 +129,7 @@ impl OneilTablePass {
                 wgpu::BindingResource::TextureView(&view),
             ],
         );
-        let groups = [
-            self.texture.width().div_ceil(WORKGROUP_SIDE),
-            self.texture.height().div_ceil(WORKGROUP_SIDE),
-            1,
-        ];
+        let groups = texel_groups(&self.texture);
         self.pipeline
             .dispatch(encoder, "oneil table", &bind_group, groups, timestamps);
     }
@@ -261,11 +258,7 @@ impl ModelPass for OneilPass {
                         wgpu::BindingResource::TextureView(&hdr),
                     ],
                 );
-                let groups = [
-                    io.hdr.width().div_ceil(WORKGROUP_SIDE),
-                    io.hdr.height().div_ceil(WORKGROUP_SIDE),
-                    1,
-                ];
+                let groups = texel_groups(io.hdr);
                 self.pipeline
                     .dispatch(encoder, "oneil", &bind_group, groups, timestamps);
             }

@@ -6,6 +6,19 @@ use crate::device::GpuContext;
 use crate::error::GpuError;
 use crate::shader_source;
 
+/// Side of the square workgroup of every shader that runs one invocation per texel
+/// (`@workgroup_size(8, 8)`).
+pub const WORKGROUP_SIDE: u32 = 8;
+
+/// The workgroups that cover every texel of the 2D `texture`, one invocation each.
+pub fn texel_groups(texture: &wgpu::Texture) -> [u32; 3] {
+    [
+        texture.width().div_ceil(WORKGROUP_SIDE),
+        texture.height().div_ceil(WORKGROUP_SIDE),
+        1,
+    ]
+}
+
 /// A uniform buffer of `size` bytes visible to compute shaders.
 pub fn uniform_entry(binding: u32, size: usize) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {

@@ -14,8 +14,10 @@ use crate::frame::Frame;
 use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
-use crate::nishita_pass::{HDR_FORMAT, WORKGROUP_SIDE, check_wavelengths};
-use crate::pipeline::{ComputePipeline, storage_texture_entry, uniform_buffer, uniform_entry};
+use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
+use crate::pipeline::{
+    ComputePipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
+};
 
 /// WGSL `RileyParams`, 80 bytes: the fitted species.
 #[repr(C)]
@@ -129,11 +131,7 @@ impl ModelPass for RileyPass {
                 wgpu::BindingResource::TextureView(&hdr),
             ],
         );
-        let groups = [
-            io.hdr.width().div_ceil(WORKGROUP_SIDE),
-            io.hdr.height().div_ceil(WORKGROUP_SIDE),
-            1,
-        ];
+        let groups = texel_groups(io.hdr);
         self.pipeline
             .dispatch(encoder, "riley", &bind_group, groups, timestamps);
     }

@@ -8,14 +8,12 @@ use atmosphere_core::transmittance_table::BRUNETON_TABLE_SIZE;
 use crate::atmosphere_uniform::AtmosphereUniform;
 use crate::device::GpuContext;
 use crate::error::GpuError;
+use crate::pipeline::texel_groups;
 use crate::readback::read_texture;
 use crate::shader_source;
 
 /// Texture format of the table.
 pub const TABLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-
-/// Side of the shader's square workgroup (`@workgroup_size(8, 8)`).
-const WORKGROUP_SIDE: u32 = 8;
 
 /// What the table's texels hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -181,11 +179,8 @@ impl TransmittancePass {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.dispatch_workgroups(
-            self.texture.width().div_ceil(WORKGROUP_SIDE),
-            self.texture.height().div_ceil(WORKGROUP_SIDE),
-            1,
-        );
+        let [x, y, z] = texel_groups(&self.texture);
+        pass.dispatch_workgroups(x, y, z);
     }
 
     /// The table's texels, row-major (row = r, column = mu), waiting for the GPU.
