@@ -50,7 +50,7 @@ fn bruneton_radiance(direction: vec3<f32>) -> Radiance {
     out.radiance = vec3<f32>(0.0);
     out.transmittance = vec3<f32>(1.0);
     out.reaches_space = true;
-    let s = view_segment(direction);
+    let s = view_segment(direction, 0.0);
     if !s.hit {
         return out;
     }

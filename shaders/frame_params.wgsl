@@ -34,8 +34,16 @@ const F16_MAX: f32 = 65504.0;
 struct Radiance {
     radiance: vec3<f32>,
     transmittance: vec3<f32>,
-    // False when the ray ends on the ground.
+    // False when the ray ends on the ground or on a surface.
     reaches_space: bool,
+    // Distance from the camera to where the ray ends, m (`Segment::end_distance`).
+    end_distance: f32,
+}
+
+// The answer for a ray before any light is added: no radiance, transmittance 1, ending
+// where `s` ends.
+fn radiance_of_empty(s: Segment) -> Radiance {
+    return Radiance(vec3<f32>(0.0), vec3<f32>(1.0), s.end == END_SPACE, end_distance(s));
 }
 
 // The HDR target's value for a pixel looking along `direction` with the model's answer
@@ -67,9 +75,15 @@ fn pixel_direction(px: vec2<u32>) -> vec3<f32> {
 // f32: `q` = r^2 - bottom^2 and `r_mu` = r mu at its start, so that at distance t along
 // it r^2 - bottom^2 = q + t (t + 2 r_mu) (see `altitude_along`).
 struct Segment {
-    // False when the ray misses the atmosphere.
+    // False when the ray misses the atmosphere or meets its object before it.
     hit: bool,
+    // Whether the ray, continued, meets the ground sphere (which half of the sky's
+    // tables it looks up), even where an object ends it first.
     on_ground: bool,
+    // How the segment ends: END_GROUND, END_OBJECT or END_SPACE (`SegmentEnd`).
+    end: u32,
+    // Distance from the camera to the start, m.
+    t_enter: f32,
     q: f32,
     r_mu: f32,
     // Planet-centred start (f32, rounded to about 0.5 m near the ground) and its dot
@@ -79,11 +93,18 @@ struct Segment {
     length: f32,
 }
 
-// The segment of the ray with unit `direction` from the camera (`ViewSegment::new`): a
-// camera above the atmosphere is moved to where the ray enters it, found from the ray's
-// closest approach to the centre, `p`, whose length `h` carries no cancellation even at
-// 1e8 m; the segment ends on the ground or at the top.
-fn view_segment(direction: vec3<f32>) -> Segment {
+const END_GROUND: u32 = 0u;
+const END_OBJECT: u32 = 1u;
+const END_SPACE: u32 = 2u;
+
+// The segment of the ray with unit `direction` from the camera that ends on an object at
+// `object_m` from the camera (0: none), as `ViewSegment::new`: a camera above the
+// atmosphere is moved to where the ray enters it, found from the ray's closest approach
+// to the centre, `p`, whose length `h` carries no cancellation even at 1e8 m; the segment
+// ends on the object, or on the ground, or at the top. An object beyond the ground ends
+// the ray on the ground as an object (terrain drawn over the sphere); one before the
+// atmosphere leaves no segment (`hit` false, END_OBJECT at `t_enter` = `object_m`).
+fn view_segment(direction: vec3<f32>, object_m: f32) -> Segment {
     let bottom = atmosphere.bottom_radius_m;
     let top = atmosphere.top_radius_m;
     let horizon_sq = (top - bottom) * (top + bottom);
@@ -91,6 +112,8 @@ fn view_segment(direction: vec3<f32>) -> Segment {
     let sun = frame.sun_direction.xyz;
     var s: Segment;
     s.hit = true;
+    s.end = END_SPACE;
+    s.t_enter = 0.0;
     s.q = frame.camera_height.x;
     s.r_mu = dot(camera, direction);
     s.start = camera;
@@ -99,10 +122,13 @@ fn view_segment(direction: vec3<f32>) -> Segment {
         let p = camera - s.r_mu * direction;
         let h = length(p);
         if s.r_mu >= 0.0 || h > top {
-            s.hit = false;
-            return s;
+            return missed_segment(s, object_m);
         }
         let half_chord = safe_sqrt((top - h) * (top + h));
+        s.t_enter = -s.r_mu - half_chord;
+        if object_m > 0.0 && object_m <= s.t_enter {
+            return missed_segment(s, object_m);
+        }
         s.q = horizon_sq;
         s.r_mu = -half_chord;
         s.start = p - half_chord * direction;
@@ -111,6 +137,7 @@ fn view_segment(direction: vec3<f32>) -> Segment {
     let ground_disc = s.r_mu * s.r_mu - s.q;
     s.on_ground = s.r_mu < 0.0 && ground_disc >= 0.0;
     if s.on_ground {
+        s.end = END_GROUND;
         let denom = -s.r_mu + safe_sqrt(ground_disc);
         s.length = select(0.0, max(s.q / denom, 0.0), denom > 0.0);
     } else {
@@ -121,7 +148,31 @@ fn view_segment(direction: vec3<f32>) -> Segment {
             s.length = max(-s.r_mu + root, 0.0);
         }
     }
+    if object_m > 0.0 {
+        let remaining = object_m - s.t_enter;
+        if remaining < s.length || s.end == END_GROUND {
+            s.length = min(remaining, s.length);
+            s.end = END_OBJECT;
+        }
+    }
     return s;
+}
+
+// A ray that leaves no segment: into space, or onto its object before the atmosphere.
+fn missed_segment(s_in: Segment, object_m: f32) -> Segment {
+    var s = s_in;
+    s.hit = false;
+    s.length = 0.0;
+    if object_m > 0.0 {
+        s.end = END_OBJECT;
+        s.t_enter = object_m;
+    }
+    return s;
+}
+
+// Distance from the camera to where the segment ends, m.
+fn end_distance(s: Segment) -> f32 {
+    return s.t_enter + s.length;
 }
 
 // r^2 - bottom^2 at distance t along a segment, clamped at the ground.

@@ -10,6 +10,7 @@
 #import frame_params.wgsl
 #import transmittance_lookup.wgsl
 #import phase.wgsl
+#import surface.wgsl
 
 struct NishitaParams {
     view_samples: u32,
@@ -22,13 +23,11 @@ struct NishitaParams {
 @group(0) @binding(3) var g_l: texture_2d<f32>;
 @group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
 
-// `Nishita::radiance` for the view ray with unit `direction` from the camera.
-fn nishita_radiance(direction: vec3<f32>) -> Radiance {
-    var out: Radiance;
-    out.radiance = vec3<f32>(0.0);
-    out.transmittance = vec3<f32>(1.0);
-    out.reaches_space = true;
-    let s = view_segment(direction);
+// `Nishita::radiance` for the view ray with unit `direction` from the camera, ending on
+// an object at `object_m` (0: none).
+fn nishita_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+    let s = view_segment(direction, object_m);
+    var out = radiance_of_empty(s);
     if !s.hit {
         return out;
     }
@@ -59,8 +58,7 @@ fn nishita_radiance(direction: vec3<f32>) -> Radiance {
         out.radiance += dt * exp(-tau) * j * atmosphere.solar_irradiance.xyz;
     }
     out.transmittance = exp(-optical_depth(view_column));
-    out.reaches_space = !s.on_ground;
-    if s.on_ground {
+    if s.end == END_GROUND {
         let cos_g = (s.start_dot_sun + s.length * nu) / bottom;
         if cos_g > 0.0 {
             let sun_column = table_columns(g_l, 0.0, min(cos_g, 1.0));
@@ -71,12 +69,30 @@ fn nishita_radiance(direction: vec3<f32>) -> Radiance {
     return out;
 }
 
+// `Nishita::surface_irradiance`: the transmitted sun only.
+fn nishita_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let e = surface_element(point, normal);
+    let bottom = atmosphere.bottom_radius_m;
+    let q = (e.r - bottom) * (e.r + bottom);
+    var t = vec3<f32>(0.0);
+    let behind_planet = e.mu_s < 0.0 && (e.r * e.mu_s) * (e.r * e.mu_s) - q >= 0.0;
+    if e.sun_cosine > 0.0 && !behind_planet {
+        t = exp(-optical_depth(table_columns(g_l, q, e.mu_s)));
+    }
+    return element_irradiance(e, t, vec3<f32>(0.0));
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= frame.size_px.xy) {
         return;
     }
     let direction = pixel_direction(id.xy);
-    let r = nishita_radiance(direction);
+    let surface = frame_surface(id.xy);
+    var r = nishita_radiance(direction, surface.distance);
+    if surface.present {
+        let e = nishita_surface_irradiance(end_point(direction, r), surface.normal);
+        r = add_surface(r, surface, e);
+    }
     textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }

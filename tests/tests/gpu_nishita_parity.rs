@@ -6,7 +6,7 @@
 mod support;
 
 use render_wgpu::frame::LocalView;
-use support::{check, frame, renderer_or_skip, standard_frames};
+use support::{check, check_surface, frame, renderer_or_skip, standard_frames};
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel. The HDR
 /// target stores f16 (relative rounding 4.9e-4); the rest is f32 arithmetic along 100
@@ -20,6 +20,16 @@ fn nishita_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     };
     for (name, f) in standard_frames("nishita").iter().take(4) {
         check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
+    }
+}
+
+#[test]
+fn nishita_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
+    let Some(mut renderer) = renderer_or_skip("nishita surfaces") else {
+        return;
+    };
+    for (name, f) in standard_frames("nishita").iter().take(4) {
+        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
 

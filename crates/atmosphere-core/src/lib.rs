@@ -33,6 +33,7 @@ pub mod spectral;
 pub mod stability;
 pub mod sun_disk;
 pub mod sun_position;
+pub mod surface_lighting;
 pub mod table_inputs;
 pub mod transmittance_table;
 pub mod view_segment;

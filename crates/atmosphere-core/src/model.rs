@@ -19,6 +19,11 @@ pub enum ModelError {
     Settings(String),
     #[error("invalid view ray: {0}")]
     Ray(String),
+    #[error("the {model} model does not {what}")]
+    Unsupported {
+        model: &'static str,
+        what: &'static str,
+    },
 }
 
 /// The ids of the models that can be prepared (DESIGN.md, "Models").
@@ -104,7 +109,9 @@ pub struct ViewRay {
     pub direction: DVec3,
     /// Unit vector towards the sun's centre.
     pub sun_direction: DVec3,
-    /// The ray ends on an object at this distance; `None`: on the ground or in space.
+    /// The ray ends on an object at this distance (or on the ground if that comes first,
+    /// which then counts as the object's end: the model adds no ground term); `None`: on
+    /// the ground or in space.
     pub max_distance_m: Option<f64>,
 }
 
@@ -172,6 +179,24 @@ pub trait SkyModel: Send + Sync {
     fn solar_irradiance_w_m2_nm(&self) -> &[f64];
     /// Radiance and transmittance of one ray.
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError>;
+    /// Irradiance (W m^-2 nm^-1, per wavelength) on a surface element at `point_m`
+    /// (planet-centred, on or above the ground) with outward unit `normal`, the sun along
+    /// `sun_direction`: the model's own sun transmittance and sky irradiance combined as
+    /// in [`crate::surface_lighting`]. A Lambertian element of albedo `a` ending a view
+    /// ray adds `transmittance a / pi` times this to the ray's radiance: the models'
+    /// ground on the sphere, and terrain on the GPU.
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let _ = (point_m, normal, sun_direction);
+        Err(ModelError::Unsupported {
+            model: self.id(),
+            what: "light surface elements (it answers view rays only)",
+        })
+    }
     /// Bytes held by the model's precomputed tables.
     fn table_bytes(&self) -> usize;
     /// Adopts a changed atmosphere, rebuilding only the tables that depend on an input

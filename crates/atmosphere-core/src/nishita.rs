@@ -9,12 +9,15 @@
 
 use std::f64::consts::PI;
 
+use glam::DVec3;
+
 use crate::atmosphere::Atmosphere;
 use crate::column::{densities, optical_depth};
 use crate::geometry::ray_hits_ground;
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::model_options::ModelOptions;
 use crate::reference::Spectra;
+use crate::surface_lighting::SurfaceElement;
 use crate::table_inputs::Inputs;
 use crate::transmittance_table::TransmittanceTable;
 use crate::view_segment::{SegmentEnd, ViewSegment};
@@ -182,6 +185,26 @@ impl SkyModel for Nishita {
         &self.spectra.solar_irradiance
     }
 
+    /// The transmitted sun only (seed 000 Eq. 11): single scattering has no sky light.
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let s = &self.spectra;
+        let column = (e.sun_cosine > 0.0)
+            .then(|| sun_column(&self.table, e.r, e.mu_s))
+            .flatten();
+        Ok((0..s.wavelengths_nm.len())
+            .map(|w| {
+                let t = column.map_or(0.0, |c| (-optical_depth(c, s.extinction[w])).exp());
+                e.irradiance(s.solar_irradiance[w], t, 0.0)
+            })
+            .collect())
+    }
+
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let a = &self.atmosphere;
         let s = &self.spectra;
@@ -253,17 +276,9 @@ impl SkyModel for Nishita {
         // (seed 000 Eq. 11-12), with r / pi for a Lambertian albedo in radiance units.
         if on_ground {
             let end = start + direction * length;
-            let normal = end / end.length();
-            let cos_g = normal.dot(sun);
-            if cos_g > 0.0
-                && let Some(sun_column) = sun_column(&self.table, bottom, cos_g)
-            {
-                for w in 0..n_w {
-                    radiance[w] += transmittance[w] * a.ground_albedo / PI
-                        * s.solar_irradiance[w]
-                        * cos_g
-                        * (-optical_depth(sun_column, s.extinction[w])).exp();
-                }
+            let irradiance = self.surface_irradiance(end, end, sun)?;
+            for w in 0..n_w {
+                radiance[w] += transmittance[w] * a.ground_albedo / PI * irradiance[w];
             }
         }
         Ok(RayRadiance {

@@ -88,13 +88,15 @@ impl ViewSegment {
         } else {
             (distance_to_exit(r, mu, top), SegmentEnd::Space)
         };
+        // An object beyond the ground ends the ray on the ground, as an object: terrain
+        // is drawn over the sphere, and a caller lights the end with its own surface.
         if let Some(d) = ray.max_distance_m {
             let remaining = d - t_enter;
             if remaining <= 0.0 {
                 return Ok(None);
             }
-            if remaining < length {
-                length = remaining;
+            if remaining < length || end == SegmentEnd::Ground {
+                length = remaining.min(length);
                 end = SegmentEnd::Object;
             }
         }

@@ -39,7 +39,7 @@ use crate::error::{GpuError, RenderError};
 use crate::frame::Frame;
 use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
-use crate::model_pass::{ModelPass, PassIo};
+use crate::model_pass::{ModelPass, PassIo, StandaloneInputs};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
     ComputePipeline, storage_buffer_entry, storage_texture_entry, texel_groups, texture_entry,
@@ -821,47 +821,6 @@ impl OrderDispatch<'_> {
             DispatchSize::Indirect(buffer, offset) => {
                 pass.dispatch_workgroups_indirect(buffer, offset)
             }
-        }
-    }
-}
-
-/// What the table steps read when they run outside a `Renderer` frame (tests and
-/// profiling): the uniforms of `frame` and a 1x1 HDR target, which they do not touch.
-struct StandaloneInputs {
-    atmosphere: wgpu::Buffer,
-    frame: wgpu::Buffer,
-    hdr: wgpu::Texture,
-}
-
-impl StandaloneInputs {
-    fn new(gpu: &GpuContext, atmosphere: &AtmosphereUniform, frame: &Frame) -> Self {
-        let inputs = StandaloneInputs {
-            atmosphere: uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>()),
-            frame: uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>()),
-            hdr: gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("unused"),
-                size: wgpu::Extent3d::default(),
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: HDR_FORMAT,
-                usage: wgpu::TextureUsages::STORAGE_BINDING,
-                view_formats: &[],
-            }),
-        };
-        gpu.queue
-            .write_buffer(&inputs.atmosphere, 0, bytemuck::bytes_of(atmosphere));
-        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        gpu.queue
-            .write_buffer(&inputs.frame, 0, bytemuck::bytes_of(&frame_uniform));
-        inputs
-    }
-
-    fn io(&self) -> PassIo<'_> {
-        PassIo {
-            atmosphere: &self.atmosphere,
-            frame: &self.frame,
-            hdr: &self.hdr,
         }
     }
 }

@@ -30,7 +30,7 @@ use crate::frame::Frame;
 use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::ground_in_view::ground_within;
-use crate::model_pass::{ModelPass, PassIo};
+use crate::model_pass::{ModelPass, PassIo, StandaloneInputs};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
     ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
@@ -362,23 +362,11 @@ impl HillairePass {
         frame: &Frame,
     ) -> Result<FramePlan, RenderError> {
         frame.validate()?;
-        let atmosphere = uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>());
-        let frame_buffer = uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>());
         let mut plan = FramePlan::default();
         self.plan(gpu, frame, &mut plan)?;
         plan.steps.retain(|s| s.kind == StepKind::TableBuild);
-        gpu.queue
-            .write_buffer(&atmosphere, 0, bytemuck::bytes_of(&self.atmosphere));
-        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        gpu.queue
-            .write_buffer(&frame_buffer, 0, bytemuck::bytes_of(&frame_uniform));
-        // No step here writes the HDR target; `PassIo` wants one.
-        let hdr = table_texture(gpu, "unused", wgpu::TextureDimension::D2, (1, 1, 1))?;
-        let io = PassIo {
-            atmosphere: &atmosphere,
-            frame: &frame_buffer,
-            hdr: &hdr,
-        };
+        let inputs = StandaloneInputs::new(gpu, &self.atmosphere, frame);
+        let io = inputs.io();
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         for step in &plan.steps {
             self.encode(step.name, gpu, &io, &mut encoder, None);

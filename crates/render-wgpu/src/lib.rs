@@ -26,6 +26,7 @@ pub mod readback;
 pub mod renderer;
 pub mod riley_pass;
 pub mod shader_source;
+pub mod surface_buffer;
 pub mod terrain;
 pub mod tone_map;
 pub mod tone_map_pass;

@@ -2,20 +2,26 @@
 //! they depend on changed) and its per-pixel pass into the HDR target. The
 //! [`crate::Renderer`] keeps one per model used, so switching models and back rebuilds
 //! nothing. Every model's shader binds the atmosphere at binding 0 and the frame at
-//! binding 1 (`atmosphere_params.wgsl`, `frame_params.wgsl`); its own resources follow.
+//! binding 1 (`atmosphere_params.wgsl`, `frame_params.wgsl`); its own resources follow,
+//! and its pixel pass reads the frame's surface at bindings 30 and 31 (`surface.wgsl`).
 
 use atmosphere_core::model::MODEL_IDS;
 
+use crate::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::bruneton_pass::BrunetonPass;
 use crate::device::GpuContext;
 use crate::dobashi_pass::DobashiPass;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::frame_plan::FramePlan;
+use crate::frame_uniform::FrameUniform;
 use crate::hillaire_pass::HillairePass;
+use crate::nishita_pass::HDR_FORMAT;
 use crate::nishita_pass::NishitaPass;
 use crate::oneil_pass::OneilPass;
+use crate::pipeline::uniform_buffer;
 use crate::riley_pass::RileyPass;
+use crate::surface_buffer::SurfaceBuffer;
 
 /// The models the GPU renders, by id.
 pub const GPU_MODELS: &[&str] = &[
@@ -31,6 +37,55 @@ pub struct PassIo<'a> {
     pub frame: &'a wgpu::Buffer,
     /// The HDR target, of [`crate::nishita_pass::HDR_FORMAT`].
     pub hdr: &'a wgpu::Texture,
+    /// Views of the frame's surface buffer (`surface_buffer.rs`), bound by every pixel
+    /// pass at bindings 30 and 31.
+    pub surface: &'a [wgpu::TextureView; 2],
+}
+
+/// What a model's table steps read when they run outside a `Renderer` frame (tests and
+/// profiling): the uniforms of a frame, and a 1x1 HDR target and surface, which they do
+/// not touch.
+#[derive(Debug)]
+pub struct StandaloneInputs {
+    atmosphere: wgpu::Buffer,
+    frame: wgpu::Buffer,
+    hdr: wgpu::Texture,
+    surface: [wgpu::TextureView; 2],
+}
+
+impl StandaloneInputs {
+    pub fn new(gpu: &GpuContext, atmosphere: &AtmosphereUniform, frame: &Frame) -> Self {
+        let inputs = StandaloneInputs {
+            atmosphere: uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>()),
+            frame: uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>()),
+            hdr: gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("unused"),
+                size: wgpu::Extent3d::default(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: HDR_FORMAT,
+                usage: wgpu::TextureUsages::STORAGE_BINDING,
+                view_formats: &[],
+            }),
+            surface: SurfaceBuffer::new(gpu, 1, 1).views(),
+        };
+        gpu.queue
+            .write_buffer(&inputs.atmosphere, 0, bytemuck::bytes_of(atmosphere));
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        gpu.queue
+            .write_buffer(&inputs.frame, 0, bytemuck::bytes_of(&frame_uniform));
+        inputs
+    }
+
+    pub fn io(&self) -> PassIo<'_> {
+        PassIo {
+            atmosphere: &self.atmosphere,
+            frame: &self.frame,
+            hdr: &self.hdr,
+            surface: &self.surface,
+        }
+    }
 }
 
 /// A sky model's tables and passes on the GPU; see the module documentation.

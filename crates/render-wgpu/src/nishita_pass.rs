@@ -19,6 +19,7 @@ use crate::pipeline::{
     ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
     uniform_entry,
 };
+use crate::surface_buffer::SurfaceBuffer;
 use crate::transmittance_pass::{TableOutput, TransmittancePass};
 
 /// Format of the HDR target: spectral radiance (W m^-2 sr^-1 nm^-1) at 680, 550 and
@@ -79,6 +80,7 @@ pub struct NishitaPass {
 impl NishitaPass {
     pub fn new(gpu: &GpuContext) -> Result<NishitaPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
+        let surface_entries = SurfaceBuffer::layout_entries();
         let pipeline = ComputePipeline::new(
             gpu,
             "nishita.wgsl",
@@ -90,6 +92,8 @@ impl NishitaPass {
                 uniform_entry(2, size_of::<NishitaUniform>()),
                 texture_entry(3, D2),
                 storage_texture_entry(4, HDR_FORMAT, D2),
+                surface_entries[0],
+                surface_entries[1],
             ],
         )?;
         Ok(NishitaPass {
@@ -156,7 +160,7 @@ impl ModelPass for NishitaPass {
             "nishita" => {
                 let table = g_l.pass.texture().create_view(&Default::default());
                 let hdr = io.hdr.create_view(&Default::default());
-                let bind_group = self.pipeline.bind_group(
+                let bind_group = self.pipeline.pixel_bind_group(
                     gpu,
                     &[
                         io.atmosphere.as_entire_binding(),
@@ -165,6 +169,7 @@ impl ModelPass for NishitaPass {
                         wgpu::BindingResource::TextureView(&table),
                         wgpu::BindingResource::TextureView(&hdr),
                     ],
+                    io.surface,
                 );
                 let groups = texel_groups(io.hdr);
                 self.pipeline

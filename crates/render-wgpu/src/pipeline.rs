@@ -156,6 +156,30 @@ impl ComputePipeline {
         self.bind_group_numbered(gpu, &numbered)
     }
 
+    /// The bind group of a model's pixel pass: `resources` bound in order from binding
+    /// 0, and the frame's surface buffer at bindings 30 and 31 (`shaders/surface.wgsl`).
+    pub fn pixel_bind_group(
+        &self,
+        gpu: &GpuContext,
+        resources: &[wgpu::BindingResource<'_>],
+        surface: &[wgpu::TextureView; 2],
+    ) -> wgpu::BindGroup {
+        let mut numbered: Vec<_> = resources
+            .iter()
+            .enumerate()
+            .map(|(binding, resource)| (binding as u32, resource.clone()))
+            .collect();
+        numbered.push((
+            crate::surface_buffer::GEOMETRY_BINDING,
+            wgpu::BindingResource::TextureView(&surface[0]),
+        ));
+        numbered.push((
+            crate::surface_buffer::ALBEDO_BINDING,
+            wgpu::BindingResource::TextureView(&surface[1]),
+        ));
+        self.bind_group_numbered(gpu, &numbered)
+    }
+
     /// A bind group of (binding, resource) pairs.
     pub fn bind_group_numbered(
         &self,

@@ -15,17 +15,19 @@ use crate::model_pass::{self, ModelPass, PassIo};
 use crate::nishita_pass::HDR_FORMAT;
 use crate::pipeline::uniform_buffer;
 use crate::readback::read_texture;
+use crate::surface_buffer::{SurfaceBuffer, SurfaceTexel};
 use crate::tone_map::ToneMap;
 use crate::tone_map_pass::{LDR_FORMAT, ToneMapPass};
 
 /// Most steps a frame runs (table builds and passes), for the timer.
 const MAX_STEPS: u32 = 24;
 
-/// The HDR and display targets of one image size.
+/// The HDR and display targets of one image size, and the surface the rays end on.
 #[derive(Debug)]
 struct Targets {
     hdr: wgpu::Texture,
     ldr: wgpu::Texture,
+    surface: SurfaceBuffer,
 }
 
 /// Renders frames; see the module documentation.
@@ -107,6 +109,40 @@ impl Renderer {
     /// Renders `frame` and waits for the GPU; returns the plan with each step's GPU time.
     /// The images stay on the GPU until [`Renderer::read_hdr`] or [`Renderer::read_ldr`].
     pub fn render(&mut self, frame: &Frame) -> Result<FramePlan, RenderError> {
+        self.render_over(frame, None)
+    }
+
+    /// Renders `frame` with its rays ending on `surface` (one texel per pixel,
+    /// row-major): geometry drawn elsewhere, lit and seen through the atmosphere by the
+    /// frame's model (`surface_buffer.rs`).
+    pub fn render_with_surface(
+        &mut self,
+        frame: &Frame,
+        surface: &[SurfaceTexel],
+    ) -> Result<FramePlan, RenderError> {
+        let pixels = frame.width as usize * frame.height as usize;
+        if surface.len() != pixels {
+            return Err(RenderError::Frame(format!(
+                "the surface has {} texels for {pixels} pixels",
+                surface.len()
+            )));
+        }
+        if let Some(bad) = surface.iter().position(|t| {
+            !(t.distance_m.is_finite() && t.distance_m >= 0.0)
+                || t.distance_m > 0.0 && glam::Vec3::from_array(t.normal).try_normalize().is_none()
+        }) {
+            return Err(RenderError::Frame(format!(
+                "surface texel {bad}: the distance must be finite and >= 0 and the normal non-zero"
+            )));
+        }
+        self.render_over(frame, Some(surface))
+    }
+
+    fn render_over(
+        &mut self,
+        frame: &Frame,
+        surface: Option<&[SurfaceTexel]>,
+    ) -> Result<FramePlan, RenderError> {
         frame.validate()?;
         Renderer::check_model(&frame.model)?;
         frame
@@ -115,15 +151,20 @@ impl Renderer {
             .map_err(atmosphere_core::model::ModelError::from)?;
         frame.settings.validate()?;
         let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
-        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        let mut frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        frame_uniform.size_px[2] = u32::from(surface.is_some());
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
         let targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,
             _ => Targets {
                 hdr: target(&self.gpu, "hdr", HDR_FORMAT, frame),
                 ldr: target(&self.gpu, "ldr", LDR_FORMAT, frame),
+                surface: SurfaceBuffer::new(&self.gpu, frame.width, frame.height),
             },
         };
+        if let Some(texels) = surface {
+            targets.surface.upload(&self.gpu, texels);
+        }
         let gpu = &self.gpu;
         gpu.queue
             .write_buffer(&self.atmosphere, 0, bytemuck::bytes_of(&atmosphere));
@@ -151,10 +192,12 @@ impl Renderer {
         plan.run("tone_map", StepKind::Pass);
 
         let timer = self.timer.as_ref();
+        let surface_views = targets.surface.views();
         let io = PassIo {
             atmosphere: &self.atmosphere,
             frame: &self.frame,
             hdr: &targets.hdr,
+            surface: &surface_views,
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         for (index, step) in plan.steps.iter().enumerate() {

@@ -128,6 +128,10 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/sun_disk.wgsl"),
     ),
     (
+        "surface.wgsl",
+        include_str!("../../../shaders/surface.wgsl"),
+    ),
+    (
         "tone_map.wgsl",
         include_str!("../../../shaders/tone_map.wgsl"),
     ),

@@ -13,9 +13,11 @@
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::model::{ModelSettings, SkyModel, prepare};
 use atmosphere_core::sun_disk;
+use atmosphere_core::surface_lighting::{SurfaceHit, radiance_with_surface};
 use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
 use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::surface_buffer::SurfaceTexel;
 use render_wgpu::tone_map::ToneMap;
 use render_wgpu::{GpuError, RenderError, Renderer};
 
@@ -101,10 +103,26 @@ fn on_limb(frame: &Frame, column: u32, row: u32) -> bool {
         .any(|&d| end((ray.direction + d * LIMB_ANGLE_RAD).normalize()) != here)
 }
 
-/// The CPU's radiance of a pixel: the model plus the transmitted sun disk where the ray
-/// reaches space.
-fn cpu_pixel(model: &dyn SkyModel, frame: &Frame, column: u32, row: u32) -> [f64; 3] {
+/// The CPU's radiance of a pixel: the model, ending on the pixel's surface where it has
+/// one (`radiance_with_surface`), plus the transmitted sun disk where the ray reaches
+/// space.
+fn cpu_pixel(
+    model: &dyn SkyModel,
+    frame: &Frame,
+    column: u32,
+    row: u32,
+    surface: Option<&SurfaceTexel>,
+) -> [f64; 3] {
     let ray = frame.pixel_ray(column, row);
+    if let Some(texel) = surface.filter(|t| t.distance_m > 0.0) {
+        let hit = SurfaceHit {
+            distance_m: f64::from(texel.distance_m),
+            normal: glam::Vec3::from_array(texel.normal).as_dvec3(),
+            albedo: texel.stored_albedo().map(f64::from).to_vec(),
+        };
+        let answer = radiance_with_surface(model, &frame.atmosphere, &ray, &hit).unwrap();
+        return std::array::from_fn(|w| answer.radiance[w]);
+    }
     let answer = model.radiance(&ray).unwrap();
     let to_space = ViewSegment::new(&frame.atmosphere, &ray)
         .unwrap()
@@ -135,12 +153,37 @@ fn cpu_pixel(model: &dyn SkyModel, frame: &Frame, column: u32, row: u32) -> [f64
 /// and the tone map with its twin (within one 8-bit level); prints the worst error and
 /// fails above `max_relative_error`. Returns the worst relative error.
 pub fn check(renderer: &mut Renderer, name: &str, frame: &Frame, max_relative_error: f64) -> f64 {
-    let plan = renderer.render(frame).unwrap();
+    check_over(renderer, name, frame, None, max_relative_error)
+}
+
+/// As [`check`], the frame's rays ending on [`synthetic_surface`].
+pub fn check_surface(
+    renderer: &mut Renderer,
+    name: &str,
+    frame: &Frame,
+    max_relative_error: f64,
+) -> f64 {
+    let surface = synthetic_surface(frame);
+    check_over(renderer, name, frame, Some(&surface), max_relative_error)
+}
+
+fn check_over(
+    renderer: &mut Renderer,
+    name: &str,
+    frame: &Frame,
+    surface: Option<&[SurfaceTexel]>,
+    max_relative_error: f64,
+) -> f64 {
+    let plan = match surface {
+        Some(texels) => renderer.render_with_surface(frame, texels).unwrap(),
+        None => renderer.render(frame).unwrap(),
+    };
     let hdr = renderer.read_hdr().unwrap();
     let ldr = renderer.read_ldr().unwrap();
     let model = prepare(&frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100).unwrap();
     let (mut worst, mut at, mut limb, mut lit) = (0.0f64, (0, 0, 0), 0, 0);
+    let mut values = (0.0, 0.0);
     let mut worst_ldr = 0i32;
     for row in 0..frame.height {
         for column in 0..frame.width {
@@ -160,7 +203,8 @@ pub fn check(renderer: &mut Renderer, name: &str, frame: &Frame, max_relative_er
                 limb += 1;
                 continue;
             }
-            let cpu = cpu_pixel(model.as_ref(), frame, column, row);
+            let texel = surface.map(|t| &t[index]);
+            let cpu = cpu_pixel(model.as_ref(), frame, column, row, texel);
             if cpu[1] > FLOOR {
                 lit += 1;
             }
@@ -169,18 +213,22 @@ pub fn check(renderer: &mut Renderer, name: &str, frame: &Frame, max_relative_er
                 if error > worst || error.is_nan() {
                     worst = error;
                     at = (column, row, c);
+                    values = (f64::from(gpu[c]), cpu[c]);
                 }
             }
         }
     }
     println!(
-        "{} {name} on {}: worst relative error {worst:.2e} at pixel ({}, {}) channel {}; \
+        "{} {name} on {}: worst relative error {worst:.2e} at pixel ({}, {}) channel {} \
+         (GPU {:.5e}, CPU {:.5e}); \
          {lit} lit pixels, {limb} on the limb left out; tone map within {worst_ldr} of the CPU; plan: {plan}",
         frame.model,
         renderer.gpu().adapter_summary(),
         at.0,
         at.1,
         at.2,
+        values.0,
+        values.1,
     );
     assert!(
         worst <= max_relative_error,
@@ -215,4 +263,51 @@ pub fn standard_frames(model: &str) -> Vec<(&'static str, Frame)> {
         ("1e8 m", frame(model, view(1e8, 180.0, 80.0), 9.0, 64, 36)),
         ("sun disk", frame(model, sun, 1.0, 33, 19)),
     ]
+}
+
+/// A surface over every other pixel of `frame`, made to reach each way a ray can end on
+/// one: at 30 % and 70 % of the pixel's segment through the atmosphere, beyond its end
+/// (on the ground it ends there; towards space, beyond the top), before the atmosphere
+/// for a camera in space, and in space for rays that miss it. Normals lean up to 60 deg
+/// from the local vertical, towards and away from the sun; albedos vary per pixel.
+pub fn synthetic_surface(frame: &Frame) -> Vec<SurfaceTexel> {
+    let mut texels = Vec::with_capacity((frame.width * frame.height) as usize);
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            let k = row * 7 + column * 3;
+            if (row + column) % 2 == 0 {
+                texels.push(SurfaceTexel::default());
+                continue;
+            }
+            let ray = frame.pixel_ray(column, row);
+            let segment = ViewSegment::new(&frame.atmosphere, &ray).unwrap();
+            let distance = match segment {
+                Some(s) => match k % 4 {
+                    0 => s.t_enter + 0.3 * s.length,
+                    1 => s.t_enter + 0.7 * s.length,
+                    2 => s.t_enter + 1.2 * s.length + 10.0,
+                    _ if s.t_enter > 0.0 => 0.9 * s.t_enter,
+                    _ => s.t_enter + 0.5 * s.length,
+                },
+                None => 0.5 * ray.origin_m.length(),
+            };
+            let point = ray.origin_m + ray.direction * distance;
+            let up = point.normalize();
+            let lean = (f64::from(k % 5) - 2.0) * 0.5;
+            let normal = (up
+                + ray.sun_direction.cross(up).normalize_or_zero() * lean
+                + ray.sun_direction * 0.3 * (f64::from(k % 3) - 1.0))
+                .normalize();
+            texels.push(SurfaceTexel {
+                normal: normal.as_vec3().to_array(),
+                distance_m: distance as f32,
+                albedo: [
+                    0.1 + 0.8 * column as f32 / frame.width as f32,
+                    0.1 + 0.8 * row as f32 / frame.height as f32,
+                    0.05 * (k % 7) as f32,
+                ],
+            });
+        }
+    }
+    texels
 }
