@@ -105,6 +105,7 @@ fn render(
         exposure_ev100: ev,
         width: WIDTH,
         height: HEIGHT,
+        terrain: None,
     };
     renderer.render(&frame).unwrap();
     renderer

@@ -54,6 +54,7 @@ fn frame(preset: &str, settings: ModelSettings, v: LocalView, fov: f64, w: u32, 
         exposure_ev100: 14.0,
         width: w,
         height: h,
+        terrain: None,
     }
 }
 

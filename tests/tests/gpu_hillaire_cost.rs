@@ -48,6 +48,7 @@ fn ground_view(model: &str, sun_zenith_deg: f64) -> Frame {
         exposure_ev100: 14.0,
         width: 1280,
         height: 720,
+        terrain: None,
     }
 }
 

@@ -64,6 +64,7 @@ fn frame(view: LocalView, fov_deg: f64, width: u32, height: u32) -> Frame {
         exposure_ev100: 14.0,
         width,
         height,
+        terrain: None,
     }
 }
 

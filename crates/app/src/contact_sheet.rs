@@ -124,6 +124,7 @@ pub fn run(args: &ContactSheetArgs) -> anyhow::Result<()> {
                 exposure_ev100: v.exposure_ev100,
                 width: tile_w,
                 height: tile_h,
+                terrain: None,
             };
             renderer
                 .render(&frame)

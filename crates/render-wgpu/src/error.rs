@@ -62,4 +62,6 @@ pub enum RenderError {
     Color(#[from] atmosphere_core::color::ColorError),
     #[error(transparent)]
     Gpu(#[from] GpuError),
+    #[error("terrain: {0}")]
+    Terrain(#[from] crate::terrain::MapError),
 }

@@ -31,6 +31,27 @@ pub struct Frame {
     pub exposure_ev100: f64,
     pub width: u32,
     pub height: u32,
+    /// Terrain over the planet from the shipped Earth maps; `None`: the smooth sphere.
+    pub terrain: Option<TerrainOptions>,
+}
+
+/// Terrain drawn over the planet (`terrain_pass.rs`): the Earth's height and colour maps
+/// of `assets/earth` on the atmosphere's bottom sphere.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TerrainOptions {
+    /// Vertical exaggeration of the heights (1 = true scale; docs/terrain.md), in
+    /// (0, MAX_EXAGGERATION].
+    pub exaggeration: f64,
+}
+
+/// The largest vertical exaggeration: the Earth's relief times 100 reaches 880 km, far
+/// above any atmosphere.
+pub const MAX_EXAGGERATION: f64 = 100.0;
+
+impl Default for TerrainOptions {
+    fn default() -> Self {
+        TerrainOptions { exaggeration: 1.0 }
+    }
 }
 
 /// The orientation of a camera looking along `forward` with `up` as near its up axis as
@@ -109,6 +130,14 @@ impl Frame {
         if !self.exposure_ev100.is_finite() {
             return bad("exposure must be finite".into());
         }
+        if let Some(t) = self.terrain
+            && !(t.exaggeration > 0.0 && t.exaggeration <= MAX_EXAGGERATION)
+        {
+            return bad(format!(
+                "terrain exaggeration {} must lie in (0, {MAX_EXAGGERATION}]",
+                t.exaggeration
+            ));
+        }
         if !(1..=MAX_SIDE_PX).contains(&self.width) || !(1..=MAX_SIDE_PX).contains(&self.height) {
             return bad(format!(
                 "image {}x{} px: each side must be 1 to {MAX_SIDE_PX}",
@@ -172,6 +201,7 @@ mod tests {
             exposure_ev100: 14.0,
             width: 4,
             height: 2,
+            terrain: None,
         }
     }
 
@@ -228,6 +258,14 @@ mod tests {
         let mut f = frame();
         f.width = 0;
         assert!(f.validate().is_err());
+        let mut f = frame();
+        f.terrain = Some(TerrainOptions { exaggeration: 0.0 });
+        assert!(
+            f.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("exaggeration")
+        );
         assert!(look_orientation(DVec3::Z, DVec3::Z).is_none());
     }
 }

@@ -84,6 +84,7 @@ mod tests {
             exposure_ev100: 14.0,
             width: 40,
             height: 24,
+            terrain: None,
         }
     }
 

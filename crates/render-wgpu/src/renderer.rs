@@ -16,6 +16,7 @@ use crate::nishita_pass::HDR_FORMAT;
 use crate::pipeline::uniform_buffer;
 use crate::readback::read_texture;
 use crate::surface_buffer::{SurfaceBuffer, SurfaceTexel};
+use crate::terrain_pass::TerrainPass;
 use crate::tone_map::ToneMap;
 use crate::tone_map_pass::{LDR_FORMAT, ToneMapPass};
 
@@ -39,6 +40,8 @@ pub struct Renderer {
     /// Every model used so far, with its tables.
     models: Vec<(String, Box<dyn ModelPass>)>,
     tone_map: ToneMapPass,
+    /// The terrain's maps and chunks, loaded when a frame first asks for terrain.
+    terrain: Option<TerrainPass>,
     targets: Option<Targets>,
     timer: Option<GpuTimer>,
 }
@@ -84,6 +87,7 @@ impl Renderer {
             frame: uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>()),
             models: Vec::new(),
             tone_map: ToneMapPass::new(&gpu)?,
+            terrain: None,
             timer: GpuTimer::new(&gpu, MAX_STEPS),
             targets: None,
             gpu,
@@ -151,8 +155,26 @@ impl Renderer {
             .map_err(atmosphere_core::model::ModelError::from)?;
         frame.settings.validate()?;
         let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
+        let mut plan = FramePlan::default();
+        // Terrain draws the surface first, unless the caller gives one.
+        let draws_terrain = match (frame.terrain, surface) {
+            (Some(options), None) => {
+                if self.terrain.is_none() {
+                    self.terrain = Some(TerrainPass::new(&self.gpu)?);
+                }
+                let terrain = self.terrain.as_mut().expect("made above");
+                let chunks = terrain.prepare(&self.gpu, frame, &options)?;
+                if chunks == 0 {
+                    plan.skip("terrain", "no terrain in view");
+                } else {
+                    plan.run("terrain", StepKind::Pass);
+                }
+                chunks > 0
+            }
+            _ => false,
+        };
         let mut frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        frame_uniform.size_px[2] = u32::from(surface.is_some());
+        frame_uniform.size_px[2] = u32::from(surface.is_some() || draws_terrain);
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
         let targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,
@@ -171,7 +193,6 @@ impl Renderer {
         gpu.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame_uniform));
 
-        let mut plan = FramePlan::default();
         // The model's passes, made on first use.
         let model = {
             let index = match self.models.iter().position(|(m, _)| *m == frame.model) {
@@ -202,7 +223,15 @@ impl Renderer {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         for (index, step) in plan.steps.iter().enumerate() {
             let index = index as u32;
-            if step.name == "tone_map" {
+            if step.name == "terrain" {
+                let terrain = self.terrain.as_ref().expect("planned with terrain");
+                terrain.encode(
+                    gpu,
+                    &targets.surface,
+                    &mut encoder,
+                    timer.map(|t| t.render_writes(index)),
+                );
+            } else if step.name == "tone_map" {
                 self.tone_map.encode(
                     gpu,
                     &tone_map,

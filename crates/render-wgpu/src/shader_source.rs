@@ -132,6 +132,10 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/surface.wgsl"),
     ),
     (
+        "terrain.wgsl",
+        include_str!("../../../shaders/terrain.wgsl"),
+    ),
+    (
         "tone_map.wgsl",
         include_str!("../../../shaders/tone_map.wgsl"),
     ),

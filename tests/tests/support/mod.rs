@@ -71,6 +71,7 @@ pub fn frame_in(
         exposure_ev100: 14.0,
         width,
         height,
+        terrain: None,
     }
 }
 

@@ -114,6 +114,7 @@ fn frame(
         exposure_ev100: 14.0,
         width: args.width,
         height: args.height,
+        terrain: None,
     })
 }
 

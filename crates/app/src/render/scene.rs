@@ -178,6 +178,7 @@ impl Scene {
             exposure_ev100: finite(value(s.exposure), "exposure")?,
             width,
             height,
+            terrain: None,
         })
     }
 }

@@ -246,6 +246,7 @@ impl ViewerSettings {
             exposure_ev100: self.exposure_ev100,
             width,
             height,
+            terrain: None,
         })
     }
 }

@@ -8,7 +8,9 @@
 pub mod chunk_key;
 pub mod chunk_mesh;
 pub mod colour_map;
+pub mod colour_mips;
 pub mod cube_sphere;
+pub mod frustum;
 pub mod geo_grid;
 pub mod height_field;
 pub mod height_map;
