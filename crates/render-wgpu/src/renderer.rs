@@ -11,6 +11,7 @@ use crate::frame::Frame;
 use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::gpu_timer::GpuTimer;
+use crate::luminance_pass::LuminancePass;
 use crate::model_pass::{self, ModelPass, PassIo};
 use crate::nishita_pass::HDR_FORMAT;
 use crate::pipeline::uniform_buffer;
@@ -37,6 +38,7 @@ pub struct Renderer {
     /// Every model used so far, with its tables.
     models: Vec<(String, Box<dyn ModelPass>)>,
     tone_map: ToneMapPass,
+    luminance: LuminancePass,
     targets: Option<Targets>,
     timer: Option<GpuTimer>,
 }
@@ -82,6 +84,7 @@ impl Renderer {
             frame: uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>()),
             models: Vec::new(),
             tone_map: ToneMapPass::new(&gpu)?,
+            luminance: LuminancePass::new(&gpu, RGB_WAVELENGTHS_NM)?,
             timer: GpuTimer::new(&gpu, MAX_STEPS),
             targets: None,
             gpu,
@@ -215,6 +218,13 @@ impl Renderer {
             .chunks_exact(4)
             .map(|h| std::array::from_fn(|c| half::f16::from_bits(h[c]).to_f32()))
             .collect())
+    }
+
+    /// The last frame's log-average luminance in cd/m^2 over its lit pixels, for
+    /// automatic exposure (a small compute pass; see [`crate::luminance_pass`]).
+    pub fn average_luminance(&self) -> Result<f64, RenderError> {
+        let targets = self.last_targets()?;
+        self.luminance.measure(&self.gpu, &targets.hdr)
     }
 
     /// The last frame's display image, row-major, 8-bit sRGB with alpha 255.

@@ -266,8 +266,10 @@ impl ViewerSettings {
                     self.sun_elevation_deg.to_radians(),
                     self.sun_azimuth_deg.to_radians(),
                 );
-                Ok((north * azimuth.cos() + east * azimuth.sin()) * elevation.cos()
-                    + up * elevation.sin())
+                Ok(
+                    (north * azimuth.cos() + east * azimuth.sin()) * elevation.cos()
+                        + up * elevation.sin(),
+                )
             }
             SunMode::Date => {
                 let (lat, lon) = self.camera_lat_lon_deg();
@@ -434,7 +436,10 @@ mod tests {
         let up = DVec3::from_array(settings.camera_position_m).normalize();
         assert!((up - DVec3::Y).length() < 1e-12);
         settings.set_lat_lon_deg(95.0, 0.0);
-        assert!((settings.camera_lat_lon_deg().0 - 90.0).abs() < 1e-9, "clamped");
+        assert!(
+            (settings.camera_lat_lon_deg().0 - 90.0).abs() < 1e-9,
+            "clamped"
+        );
     }
 
     /// The default view: date mode, the sun 3 to 7 deg up near the Alps, in the frame; a

@@ -47,7 +47,10 @@ fn time_range_s() -> (f64, f64) {
         day: 31,
         ..first
     };
-    (seconds_of(&first), seconds_of(&after_last) + SECONDS_PER_DAY - 1.0)
+    (
+        seconds_of(&first),
+        seconds_of(&after_last) + SECONDS_PER_DAY - 1.0,
+    )
 }
 
 /// Where the sun comes from.
@@ -154,7 +157,11 @@ impl SunClock {
 
     /// The sun seen from latitude and longitude (degrees) at the clock's time, without
     /// refraction (the renderer bends no rays).
-    pub fn sun(&self, latitude_deg: f64, longitude_deg: f64) -> Result<SunPosition, SunPositionError> {
+    pub fn sun(
+        &self,
+        latitude_deg: f64,
+        longitude_deg: f64,
+    ) -> Result<SunPosition, SunPositionError> {
         let place = GeoLocation::new(latitude_deg, longitude_deg)?;
         SunPosition::compute(&self.date_time(), &place, Refraction::None)
     }
@@ -245,7 +252,11 @@ mod tests {
             let direction = clock.sun(0.0, 0.0).unwrap().direction_planet();
             let (lat, lon) = geo_grid::lat_lon(direction);
             let below = clock.sun(lat.to_degrees(), lon.to_degrees()).unwrap();
-            assert!(below.elevation_deg() > 89.99, "{t:?}: {}", below.elevation_deg());
+            assert!(
+                below.elevation_deg() > 89.99,
+                "{t:?}: {}",
+                below.elevation_deg()
+            );
             assert!((direction.length() - 1.0).abs() < 1e-12);
         }
     }
@@ -266,7 +277,11 @@ mod tests {
                 at_noon.utc_s -= hour_angle / 15.0 * 3600.0;
             }
             let sun = at_noon.sun(lat, lon).unwrap();
-            assert!(sun.hour_angle_deg.abs() < 0.01, "{lat} {lon}: {}", sun.hour_angle_deg);
+            assert!(
+                sun.hour_angle_deg.abs() < 0.01,
+                "{lat} {lon}: {}",
+                sun.hour_angle_deg
+            );
             assert!((solar_time_h(&sun) - 12.0).abs() < 1e-3);
             assert!(
                 (sun.elevation_deg() - (90.0 - f64::abs(lat))).abs() < 0.5,
@@ -286,7 +301,10 @@ mod tests {
         let noon_dir = clock.sun(0.0, 0.0).unwrap().direction_planet();
         let night_dir = midnight.sun(0.0, 0.0).unwrap().direction_planet();
         assert!(noon_dir.dot(night_dir) < -0.99);
-        assert!(noon_dir.dot(DVec3::Z).abs() < 0.01, "equinox: in the equator's plane");
+        assert!(
+            noon_dir.dot(DVec3::Z).abs() < 0.01,
+            "equinox: in the equator's plane"
+        );
     }
 
     #[test]
