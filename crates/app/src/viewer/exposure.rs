@@ -80,6 +80,18 @@ impl AutoExposure {
         }
     }
 
+    /// Adapts over `dt_s` and writes the EV100 into `ev100` when it has moved by
+    /// [`SETTLED_EV`] or more since it was last written; true while still adapting (the
+    /// app should draw another frame).
+    pub fn apply(&mut self, dt_s: f64, ev100: &mut f64) -> bool {
+        if let Some(adapted) = self.step(dt_s)
+            && (adapted - *ev100).abs() >= SETTLED_EV
+        {
+            *ev100 = adapted;
+        }
+        !self.settled()
+    }
+
     /// Forgets the adaptation: the next metering applies at once (a jump of the view).
     pub fn reset(&mut self) {
         *self = AutoExposure::default();
@@ -135,5 +147,38 @@ mod tests {
         auto.meter(1.0);
         auto.reset();
         assert_eq!(auto.step(0.1), None);
+    }
+
+    /// The applied EV100 moves in steps of at least SETTLED_EV and ends within it of
+    /// the metered one, and the app is asked for frames only until then.
+    #[test]
+    fn apply_writes_only_visible_changes() {
+        let mut auto = AutoExposure::default();
+        let mut ev100 = 14.0;
+        assert!(!auto.apply(1.0 / 60.0, &mut ev100), "nothing metered yet");
+        assert_eq!(ev100, 14.0);
+        auto.meter(1000.0);
+        let target = metered_ev100(1000.0);
+        assert!(!auto.apply(1.0 / 60.0, &mut ev100));
+        assert_eq!(ev100, target, "the first metering applies at once");
+        auto.meter(10.0);
+        let mut written = vec![ev100];
+        let mut frames = 0;
+        while auto.apply(1.0 / 60.0, &mut ev100) {
+            if ev100 != *written.last().unwrap() {
+                written.push(ev100);
+            }
+            frames += 1;
+            assert!(frames < 600, "never settles");
+        }
+        assert!(
+            written
+                .windows(2)
+                .all(|w| (w[1] - w[0]).abs() >= SETTLED_EV)
+        );
+        assert!(
+            (ev100 - metered_ev100(10.0)).abs() < 2.0 * SETTLED_EV,
+            "{ev100}"
+        );
     }
 }
