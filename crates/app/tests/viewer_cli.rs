@@ -32,7 +32,8 @@ fn shows_frames_under_xvfb_and_saves_a_blue_sky() {
     let err = stderr(&output);
     assert!(output.status.success(), "atmos view failed: {err}");
     let image = image::open(&out).expect("a PNG").to_rgb8();
-    // The default view looks 10 degrees up from 2 m: the top rows are sky.
+    // The default view (3 km above the Alps near sunset, the horizon a little above the
+    // centre): the top rows are blue sky.
     let (width, height) = image.dimensions();
     assert!(width > 100 && height > 100, "{width}x{height}");
     for x in [width / 4, width / 2, 3 * width / 4] {

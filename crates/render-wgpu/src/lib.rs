@@ -18,6 +18,7 @@ pub mod frame_uniform;
 pub mod gpu_timer;
 pub mod ground_in_view;
 pub mod hillaire_pass;
+pub mod luminance_pass;
 pub mod model_pass;
 pub mod nishita_pass;
 pub mod oneil_pass;

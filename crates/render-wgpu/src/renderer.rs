@@ -11,6 +11,7 @@ use crate::frame::Frame;
 use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::gpu_timer::GpuTimer;
+use crate::luminance_pass::LuminancePass;
 use crate::model_pass::{self, ModelPass, PassIo};
 use crate::nishita_pass::HDR_FORMAT;
 use crate::pipeline::uniform_buffer;
@@ -42,6 +43,7 @@ pub struct Renderer {
     tone_map: ToneMapPass,
     /// The terrain's maps and chunks, loaded when a frame first asks for terrain.
     terrain: Option<TerrainPass>,
+    luminance: LuminancePass,
     targets: Option<Targets>,
     timer: Option<GpuTimer>,
 }
@@ -88,6 +90,7 @@ impl Renderer {
             models: Vec::new(),
             tone_map: ToneMapPass::new(&gpu)?,
             terrain: None,
+            luminance: LuminancePass::new(&gpu, RGB_WAVELENGTHS_NM)?,
             timer: GpuTimer::new(&gpu, MAX_STEPS),
             targets: None,
             gpu,
@@ -287,6 +290,13 @@ impl Renderer {
             .chunks_exact(4)
             .map(|h| std::array::from_fn(|c| half::f16::from_bits(h[c]).to_f32()))
             .collect())
+    }
+
+    /// The last frame's log-average luminance in cd/m^2 over its lit pixels, for
+    /// automatic exposure (a small compute pass; see [`crate::luminance_pass`]).
+    pub fn average_luminance(&self) -> Result<f64, RenderError> {
+        let targets = self.last_targets()?;
+        self.luminance.measure(&self.gpu, &targets.hdr)
     }
 
     /// The last frame's display image, row-major, 8-bit sRGB with alpha 255.

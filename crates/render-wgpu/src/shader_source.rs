@@ -113,6 +113,10 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/hillaire_sky_view.wgsl"),
     ),
     (
+        "luminance.wgsl",
+        include_str!("../../../shaders/luminance.wgsl"),
+    ),
+    (
         "nishita.wgsl",
         include_str!("../../../shaders/nishita.wgsl"),
     ),

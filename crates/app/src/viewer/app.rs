@@ -12,6 +12,7 @@ use render_wgpu::frame_plan::FramePlan;
 use render_wgpu::{Frame, GpuContext, Renderer};
 
 use crate::cli::ViewArgs;
+use crate::viewer::exposure::{AutoExposure, ExposureMode};
 use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
 use crate::viewer::panel::{self, Stats};
 use crate::viewer::screenshot;
@@ -44,6 +45,7 @@ pub struct ViewerApp {
     /// The last frame rendered, to render again only on change.
     last_frame: Option<Frame>,
     last_plan: Option<FramePlan>,
+    auto_exposure: AutoExposure,
     frame_ms: f64,
     adapter: String,
     /// The last report: a screenshot's paths or an error.
@@ -97,6 +99,7 @@ impl ViewerApp {
             texture: None,
             last_frame: None,
             last_plan: None,
+            auto_exposure: AutoExposure::default(),
             frame_ms: 0.0,
             adapter,
             message: String::new(),
@@ -136,6 +139,9 @@ impl ViewerApp {
         self.frame_ms = start.elapsed().as_secs_f64() * 1e3;
         self.last_plan = Some(plan);
         self.last_frame = Some(frame);
+        if self.settings.exposure_mode == ExposureMode::Auto {
+            self.auto_exposure.meter(self.renderer.average_luminance()?);
+        }
         let view = self
             .renderer
             .ldr_texture()
@@ -266,6 +272,13 @@ impl eframe::App for ViewerApp {
                 .step(&FlightSettings::new(radius), &input, dt, |_| 0.0);
             self.settings.set_flight(&self.flight);
             let moving = self.flight.velocity_m_s.length() > 1e-3 || response.dragged();
+            // The time-lapse and the exposure's adaptation animate while they change.
+            let mut animating = self.settings.sun_clock.tick(dt);
+            if self.settings.exposure_mode == ExposureMode::Auto {
+                animating |= self
+                    .auto_exposure
+                    .apply(dt, &mut self.settings.exposure_ev100);
+            }
             let (width, height) = render_size(size, ctx.pixels_per_point(), moving);
             let rendered = self
                 .settings
@@ -278,7 +291,7 @@ impl eframe::App for ViewerApp {
                 let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
                 ui.painter().image(id, rect, uv, egui::Color32::WHITE);
             }
-            if moving {
+            if moving || animating {
                 ctx.request_repaint();
             }
         });

@@ -4,14 +4,19 @@
 //!
 //! One idea per file: [`settings`] (the panel's state and its [`Frame`](render_wgpu::Frame),
 //! no window), [`panel`] (the side panel's widgets), [`app`] (the eframe app: input,
-//! rendering, the image), [`screenshot`] (PNG and EXR files of the view) and [`flight`]
-//! (the flight controller).
+//! rendering, the image), [`screenshot`] (PNG and EXR files of the view), [`flight`]
+//! (the flight controller), [`sun_clock`] (the sun by angles or by UTC date and time, and
+//! the time-lapse), [`exposure`] (manual and automatic exposure) and [`default_view`]
+//! (the view a first start and "reset view" show).
 
 pub mod app;
+pub mod default_view;
+pub mod exposure;
 pub mod flight;
 pub mod panel;
 pub mod screenshot;
 pub mod settings;
+pub mod sun_clock;
 
 use std::sync::{Arc, Mutex};
 

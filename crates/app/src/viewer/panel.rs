@@ -6,9 +6,13 @@ use eframe::egui;
 use render_wgpu::frame_plan::FramePlan;
 use render_wgpu::model_pass::GPU_MODELS;
 
+use atmosphere_core::sun_position::days_in_month;
+
+use crate::viewer::exposure::ExposureMode;
 use crate::viewer::settings::{
     ALTITUDE_RANGE_M, GO_TO, PRESETS, ViewerSettings, altitude_to_slider, slider_to_altitude,
 };
+use crate::viewer::sun_clock::{self, SPEED_RANGE, SunMode};
 
 /// What the Stats section shows.
 #[derive(Debug)]
@@ -54,12 +58,126 @@ pub fn show(
 
 fn sun(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
     ui.collapsing("Sun", |ui| {
-        ui.add(
-            egui::Slider::new(&mut settings.sun_elevation_deg, -20.0..=90.0).text("elevation °"),
+        let mut mode = settings.sun_clock.mode;
+        ui.horizontal(|ui| {
+            ui.selectable_value(&mut mode, SunMode::Date, "date and time")
+                .on_hover_text(
+                    "The sun from a UTC date and time and the camera's latitude and longitude \
+                     (NOAA/Meeus): flying round the planet crosses day and night",
+                );
+            ui.selectable_value(&mut mode, SunMode::Angles, "elevation/azimuth")
+                .on_hover_text("The sun at a fixed elevation and azimuth wherever the camera is");
+        });
+        if mode != settings.sun_clock.mode {
+            settings.set_sun_mode(mode);
+        }
+        match mode {
+            SunMode::Angles => {
+                ui.add(
+                    egui::Slider::new(&mut settings.sun_elevation_deg, -20.0..=90.0)
+                        .text("elevation °"),
+                )
+                .on_hover_text("Sun elevation above the horizon at the camera, degrees");
+                ui.add(
+                    egui::Slider::new(&mut settings.sun_azimuth_deg, -180.0..=180.0)
+                        .text("azimuth °"),
+                )
+                .on_hover_text("Sun azimuth from north towards east at the camera, degrees");
+            }
+            SunMode::Date => {
+                date_and_time(ui, settings);
+                match settings.sun_angles_deg() {
+                    Ok((elevation, azimuth)) => {
+                        ui.label(format!(
+                            "elevation {elevation:.2}°, azimuth {:.2}°",
+                            azimuth.rem_euclid(360.0)
+                        ))
+                        .on_hover_text(
+                            "The sun at the camera: degrees above the horizon, and from north \
+                             towards east",
+                        );
+                    }
+                    Err(e) => {
+                        ui.colored_label(egui::Color32::RED, format!("{e:#}"));
+                    }
+                }
+            }
+        }
+    });
+}
+
+/// The date, the time of day (UTC), the solar time at the camera and the time-lapse.
+fn date_and_time(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
+    let clock = &mut settings.sun_clock;
+    let mut time = clock.date_time();
+    let mut changed = false;
+    ui.horizontal(|ui| {
+        changed |= ui
+            .add(egui::DragValue::new(&mut time.year).range(1583..=9999))
+            .on_hover_text("Year (Gregorian)")
+            .changed();
+        changed |= ui
+            .add(egui::DragValue::new(&mut time.month).range(1..=12))
+            .on_hover_text("Month")
+            .changed();
+        let days = days_in_month(time.year, time.month);
+        changed |= ui
+            .add(egui::DragValue::new(&mut time.day).range(1..=days))
+            .on_hover_text("Day of the month")
+            .changed();
+        ui.label("date (UTC)");
+    });
+    let mut hours = time.day_fraction() * 24.0;
+    let moved = ui
+        .add(
+            egui::Slider::new(&mut hours, 0.0..=23.999)
+                .text("time UTC")
+                .custom_formatter(|h, _| sun_clock::format_hms(h)),
         )
-        .on_hover_text("Sun elevation above the horizon at the camera, degrees");
-        ui.add(egui::Slider::new(&mut settings.sun_azimuth_deg, -180.0..=180.0).text("azimuth °"))
-            .on_hover_text("Sun azimuth from north towards east at the camera, degrees");
+        .on_hover_text("Time of day, Coordinated Universal Time (hours)")
+        .changed();
+    if moved {
+        let seconds = (hours * 3600.0).round();
+        time.hour = (seconds / 3600.0) as u32;
+        time.minute = (seconds / 60.0 % 60.0) as u32;
+        time.second = seconds % 60.0;
+    }
+    if changed || moved {
+        time.day = time.day.min(days_in_month(time.year, time.month));
+        if let Err(e) = clock.set_date_time(&time) {
+            ui.colored_label(egui::Color32::RED, e.to_string());
+        }
+    }
+    let (latitude, longitude) = settings.camera_lat_lon_deg();
+    if let Ok(sun) = settings.sun_clock.sun(latitude, longitude) {
+        ui.label(format!(
+            "solar time at the camera {}",
+            sun_clock::format_hms(sun_clock::solar_time_h(&sun))
+        ))
+        .on_hover_text(
+            "Local apparent solar time at the camera's longitude: 12:00 when the sun is \
+             highest (UTC + longitude / 15° per hour + the equation of time)",
+        );
+    }
+    let clock = &mut settings.sun_clock;
+    ui.horizontal(|ui| {
+        let label = if clock.running { "pause" } else { "play" };
+        if ui
+            .button(label)
+            .on_hover_text("Start or stop the time-lapse")
+            .clicked()
+        {
+            clock.running = !clock.running;
+        }
+        ui.add(
+            egui::Slider::new(&mut clock.speed, SPEED_RANGE.0..=SPEED_RANGE.1)
+                .logarithmic(true)
+                .text("× real time"),
+        )
+        .on_hover_text(
+            "Time-lapse speed: simulated seconds per real second (1 = real time, \
+             10,000 = a day in under 9 s)",
+        );
     });
 }
 
@@ -99,6 +217,41 @@ fn camera(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         }
         ui.add(egui::Slider::new(&mut settings.vertical_fov_deg, 5.0..=120.0).text("fov °"))
             .on_hover_text("Vertical field of view, degrees");
+        let (mut latitude, mut longitude) = settings.camera_lat_lon_deg();
+        let jumped = ui
+            .horizontal(|ui| {
+                let lat = ui
+                    .add(
+                        egui::DragValue::new(&mut latitude)
+                            .range(-90.0..=90.0)
+                            .speed(0.01)
+                            .fixed_decimals(4)
+                            .suffix("° N"),
+                    )
+                    .on_hover_text(
+                        "Latitude of the point below the camera, degrees north (south \
+                         negative); edit to jump there at the same altitude",
+                    )
+                    .changed();
+                let lon = ui
+                    .add(
+                        egui::DragValue::new(&mut longitude)
+                            .range(-180.0..=180.0)
+                            .speed(0.01)
+                            .fixed_decimals(4)
+                            .suffix("° E"),
+                    )
+                    .on_hover_text(
+                        "Longitude of the point below the camera, degrees east of Greenwich \
+                         (west negative); edit to jump there at the same altitude",
+                    )
+                    .changed();
+                lat | lon
+            })
+            .inner;
+        if jumped {
+            settings.set_lat_lon_deg(latitude, longitude);
+        }
         ui.horizontal_wrapped(|ui| {
             for target in GO_TO {
                 let tip = format!(
@@ -111,6 +264,16 @@ fn camera(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
                 }
             }
         });
+        if ui
+            .button("reset view")
+            .on_hover_text(
+                "Back to the first view: 3 km above the Alps near the Matterhorn on an \
+                 October evening, the sun 5° high (camera, date and time)",
+            )
+            .clicked()
+        {
+            settings.reset_view();
+        }
     });
 }
 
@@ -164,8 +327,25 @@ fn model(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
 fn image(ui: &mut egui::Ui, settings: &mut ViewerSettings) -> bool {
     let mut screenshot = false;
     ui.collapsing("Image", |ui| {
-        ui.add(egui::Slider::new(&mut settings.exposure_ev100, 0.0..=20.0).text("EV100"))
-            .on_hover_text("Exposure value at ISO 100: higher is darker (14 for daylight)");
+        ui.horizontal(|ui| {
+            ui.selectable_value(&mut settings.exposure_mode, ExposureMode::Auto, "auto")
+                .on_hover_text(
+                    "Exposure metered from the frame: EV100 = log2(L × 100 / 12.5) with L the \
+                     log-average luminance of the lit pixels (cd/m²), adapting over 0.5 s",
+                );
+            ui.selectable_value(&mut settings.exposure_mode, ExposureMode::Manual, "manual")
+                .on_hover_text("Exposure set by the EV100 slider");
+        });
+        match settings.exposure_mode {
+            ExposureMode::Manual => {
+                ui.add(egui::Slider::new(&mut settings.exposure_ev100, 0.0..=20.0).text("EV100"))
+                    .on_hover_text("Exposure value at ISO 100: higher is darker (14 for daylight)");
+            }
+            ExposureMode::Auto => {
+                ui.label(format!("EV100 {:.2}", settings.exposure_ev100))
+                    .on_hover_text("The automatic exposure value at ISO 100 now");
+            }
+        }
         screenshot = ui
             .button("screenshot")
             .on_hover_text("Save the view as PNG and EXR (HDR) in the current directory")

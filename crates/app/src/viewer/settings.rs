@@ -9,9 +9,13 @@ use atmosphere_core::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Frame;
 use render_wgpu::frame::look_orientation;
+use render_wgpu::terrain::geo_grid;
 use serde::{Deserialize, Serialize};
 
+use crate::viewer::default_view;
+use crate::viewer::exposure::ExposureMode;
 use crate::viewer::flight::{FlightState, local_frame};
+use crate::viewer::sun_clock::{SunClock, SunMode};
 
 /// The atmosphere presets of the panel's combo box.
 pub const PRESETS: &[&str] = &["earth", "clear", "hazy", "mars"];
@@ -64,14 +68,18 @@ pub const GO_TO: &[GoTo] = &[
 ];
 
 /// The panel's state. Angles in degrees; the camera as a planet-centred position and a
-/// unit view direction (those of [`FlightState`]).
+/// unit view direction (those of [`FlightState`]) in the planet-fixed axes (x towards
+/// latitude 0 longitude 0, y towards latitude 0 longitude 90 deg east, z towards the north
+/// pole). Fields missing from older stored settings take their default values.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct ViewerSettings {
-    /// Sun elevation above the horizon at the camera's position.
+    /// Sun elevation above the horizon at the camera's position (angles mode).
     pub sun_elevation_deg: f64,
-    /// Sun azimuth from north towards east at the camera's position.
+    /// Sun azimuth from north towards east at the camera's position (angles mode).
     pub sun_azimuth_deg: f64,
+    /// The sun's mode, date and time-lapse.
+    pub sun_clock: SunClock,
     pub camera_position_m: [f64; 3],
     pub camera_forward: [f64; 3],
     pub vertical_fov_deg: f64,
@@ -85,7 +93,9 @@ pub struct ViewerSettings {
     pub ground_albedo: f64,
     /// One of `render_wgpu::model_pass::GPU_MODELS`.
     pub model: String,
+    /// The exposure; in automatic mode the last adapted value.
     pub exposure_ev100: f64,
+    pub exposure_mode: ExposureMode,
 }
 
 impl Default for ViewerSettings {
@@ -94,6 +104,7 @@ impl Default for ViewerSettings {
         let mut settings = ViewerSettings {
             sun_elevation_deg: 20.0,
             sun_azimuth_deg: 0.0,
+            sun_clock: SunClock::default(),
             camera_position_m: [0.0; 3],
             camera_forward: [0.0; 3],
             vertical_fov_deg: 60.0,
@@ -104,14 +115,9 @@ impl Default for ViewerSettings {
             ground_albedo: earth.ground_albedo,
             model: "nishita".into(),
             exposure_ev100: 14.0,
+            exposure_mode: ExposureMode::default(),
         };
-        // 2 m above the ground at latitude 0, looking north-east a little up.
-        let position = DVec3::X * (earth.bottom_radius_m + 2.0);
-        settings.set_flight(&FlightState::new(
-            position,
-            45f64.to_radians(),
-            10f64.to_radians(),
-        ));
+        settings.reset_view();
         settings
     }
 }
@@ -221,17 +227,83 @@ impl ViewerSettings {
         self.set_heading_pitch(heading_deg, target.pitch_deg);
     }
 
+    /// Camera and sun of the default view ([`default_view`]) over this preset's planet.
+    pub fn reset_view(&mut self) {
+        let radius = Atmosphere::preset(&self.preset).map_or(6_360_000.0, |a| a.bottom_radius_m);
+        self.set_flight(&default_view::camera(radius));
+        self.sun_clock = default_view::sun_clock();
+    }
+
+    /// The camera's latitude and longitude (geocentric), degrees.
+    pub fn camera_lat_lon_deg(&self) -> (f64, f64) {
+        let (lat, lon) = geo_grid::lat_lon(DVec3::from_array(self.camera_position_m));
+        (lat.to_degrees(), lon.to_degrees())
+    }
+
+    /// Moves the camera above latitude and longitude (degrees, clamped to their ranges),
+    /// keeping its distance from the centre (its altitude), heading and pitch.
+    pub fn set_lat_lon_deg(&mut self, latitude_deg: f64, longitude_deg: f64) {
+        let flight = self.flight();
+        let (heading, pitch) = (flight.heading_rad(), flight.pitch_rad());
+        let up = geo_grid::direction(
+            latitude_deg.clamp(-90.0, 90.0).to_radians(),
+            longitude_deg.clamp(-180.0, 180.0).to_radians(),
+        );
+        self.set_flight(&FlightState::new(
+            up * flight.position_m.length(),
+            heading,
+            pitch,
+        ));
+    }
+
+    /// The unit direction to the sun in planet axes: from the elevation and azimuth at
+    /// the camera, or from the date, time and the camera's place.
+    pub fn sun_direction(&self) -> anyhow::Result<DVec3> {
+        match self.sun_clock.mode {
+            SunMode::Angles => {
+                let (east, north, up) = local_frame(DVec3::from_array(self.camera_position_m));
+                let (elevation, azimuth) = (
+                    self.sun_elevation_deg.to_radians(),
+                    self.sun_azimuth_deg.to_radians(),
+                );
+                Ok(
+                    (north * azimuth.cos() + east * azimuth.sin()) * elevation.cos()
+                        + up * elevation.sin(),
+                )
+            }
+            SunMode::Date => {
+                let (lat, lon) = self.camera_lat_lon_deg();
+                Ok(self.sun_clock.sun(lat, lon)?.direction_planet())
+            }
+        }
+    }
+
+    /// The sun's elevation and azimuth (from north towards east) at the camera, degrees.
+    pub fn sun_angles_deg(&self) -> anyhow::Result<(f64, f64)> {
+        let sun = self.sun_direction()?;
+        let (east, north, up) = local_frame(DVec3::from_array(self.camera_position_m));
+        let elevation = sun.dot(up).clamp(-1.0, 1.0).asin().to_degrees();
+        let azimuth = sun.dot(east).atan2(sun.dot(north)).to_degrees();
+        Ok((elevation, azimuth))
+    }
+
+    /// Chooses where the sun comes from; into angles mode the sun stays where it was.
+    pub fn set_sun_mode(&mut self, mode: SunMode) {
+        if mode == SunMode::Angles
+            && let Ok((elevation, azimuth)) = self.sun_angles_deg()
+        {
+            self.sun_elevation_deg = elevation;
+            self.sun_azimuth_deg = azimuth;
+        }
+        self.sun_clock.mode = mode;
+    }
+
     /// The frame these settings show at `width` x `height` pixels.
     pub fn frame(&self, width: u32, height: u32) -> anyhow::Result<Frame> {
         let atmosphere = self.atmosphere()?;
         let flight = self.flight();
-        let (east, north, up) = local_frame(flight.position_m);
-        let (elevation, azimuth) = (
-            self.sun_elevation_deg.to_radians(),
-            self.sun_azimuth_deg.to_radians(),
-        );
-        let sun_direction =
-            (north * azimuth.cos() + east * azimuth.sin()) * elevation.cos() + up * elevation.sin();
+        let (_, north, up) = local_frame(flight.position_m);
+        let sun_direction = self.sun_direction()?;
         let orientation = look_orientation(flight.forward, up)
             .or_else(|| look_orientation(flight.forward, north))
             .context("the camera's view direction is not a direction")?;
@@ -321,6 +393,10 @@ mod tests {
             ozone: false,
             ground_albedo: 0.3,
             sun_elevation_deg: 90.0,
+            sun_clock: SunClock {
+                mode: SunMode::Angles,
+                ..SunClock::default()
+            },
             ..ViewerSettings::default()
         };
         let frame = settings.frame(8, 4).unwrap();
@@ -339,5 +415,85 @@ mod tests {
         settings.ground_albedo = 1.5;
         let err = settings.frame(8, 4).unwrap_err().to_string();
         assert!(err.contains("ground_albedo"), "{err}");
+    }
+
+    #[test]
+    fn latitude_and_longitude_round_trip_and_keep_altitude_and_view() {
+        let mut settings = ViewerSettings::default();
+        let radius = 6_360_000.0;
+        settings.go_to(&GO_TO[1], radius);
+        settings.set_heading_pitch(30.0, -5.0);
+        for (lat, lon) in [(0.0, 0.0), (46.0, 7.7), (-33.9, 151.2), (60.0, -179.5)] {
+            settings.set_lat_lon_deg(lat, lon);
+            let (lat2, lon2) = settings.camera_lat_lon_deg();
+            assert!((lat2 - lat).abs() < 1e-9 && (lon2 - lon).abs() < 1e-9);
+            assert!((settings.altitude_m(radius) - 1e4).abs() < 1e-6);
+            let flight = settings.flight();
+            assert!((flight.heading_rad().to_degrees() - 30.0).abs() < 1e-6);
+            assert!((flight.pitch_rad().to_degrees() + 5.0).abs() < 1e-6);
+        }
+        // The axes: latitude 0 longitude 90 E is +y, the north pole +z.
+        settings.set_lat_lon_deg(0.0, 90.0);
+        let up = DVec3::from_array(settings.camera_position_m).normalize();
+        assert!((up - DVec3::Y).length() < 1e-12);
+        settings.set_lat_lon_deg(95.0, 0.0);
+        assert!(
+            (settings.camera_lat_lon_deg().0 - 90.0).abs() < 1e-9,
+            "clamped"
+        );
+    }
+
+    /// The default view: date mode, the sun 3 to 7 deg up near the Alps, in the frame; a
+    /// switch to angles mode keeps the sun where it is.
+    #[test]
+    fn the_default_view_is_near_sunset_and_modes_switch_smoothly() {
+        let mut settings = ViewerSettings::default();
+        assert_eq!(settings.sun_clock.mode, SunMode::Date);
+        let (lat, lon) = settings.camera_lat_lon_deg();
+        assert!((lat - 46.0).abs() < 0.5 && (lon - 7.7).abs() < 0.5);
+        let (elevation, azimuth) = settings.sun_angles_deg().unwrap();
+        assert!((3.0..=7.0).contains(&elevation), "{elevation}");
+        let frame = settings.frame(64, 32).unwrap();
+        frame.validate().unwrap();
+        let before = frame.sun_direction;
+        settings.set_sun_mode(SunMode::Angles);
+        assert_eq!(
+            (settings.sun_elevation_deg, settings.sun_azimuth_deg),
+            (elevation, azimuth)
+        );
+        let after = settings.frame(64, 32).unwrap().sun_direction;
+        assert!((after - before).length() < 1e-12);
+        // Flying a quarter of the way round the planet in date mode changes the sun's
+        // elevation; in angles mode it does not.
+        settings.set_lat_lon_deg(lat, lon + 90.0);
+        assert!((settings.sun_angles_deg().unwrap().0 - elevation).abs() < 1e-9);
+        settings.set_sun_mode(SunMode::Date);
+        let night = settings.sun_angles_deg().unwrap().0;
+        assert!(night < -30.0, "{night}: 90 deg east it is night");
+        // Reset view returns to the default camera and time.
+        settings.reset_view();
+        let default = ViewerSettings::default();
+        assert_eq!(settings.camera_position_m, default.camera_position_m);
+        assert_eq!(settings.camera_forward, default.camera_forward);
+        assert_eq!(settings.sun_clock, default.sun_clock);
+    }
+
+    /// Settings stored before a field existed load, the missing fields at their defaults.
+    #[test]
+    fn older_settings_load_with_defaults() {
+        let mut settings = ViewerSettings {
+            model: "riley".into(),
+            ..ViewerSettings::default()
+        };
+        settings.sun_clock.utc_s = 1e6;
+        let mut table: toml::Table = toml::from_str(&toml::to_string(&settings).unwrap()).unwrap();
+        table.remove("sun_clock").unwrap();
+        table.remove("exposure_mode").unwrap();
+        let loaded: ViewerSettings = table.try_into().unwrap();
+        assert_eq!(loaded.model, "riley");
+        assert_eq!(loaded.sun_clock, ViewerSettings::default().sun_clock);
+        assert_eq!(loaded.exposure_mode, ExposureMode::Auto);
+        let back: ViewerSettings = toml::from_str(&toml::to_string(&settings).unwrap()).unwrap();
+        assert_eq!(back, settings);
     }
 }
