@@ -102,6 +102,19 @@ impl LocalView {
     }
 }
 
+/// The rotation that carries a [`LocalView`] (camera on the z axis) to the point at
+/// latitude `lat_deg` and longitude `lon_deg` (east positive) in the planet-fixed axes
+/// of `terrain::geo_grid`: x to local north, y to local west, z to local up. A local
+/// view's azimuth `a` there points `a` degrees from north towards west, so a geographic
+/// azimuth `b` (from north towards east) is the local view's `-b`.
+pub fn location_rotation(lat_deg: f64, lon_deg: f64) -> DQuat {
+    let (lat, lon) = (lat_deg.to_radians(), lon_deg.to_radians());
+    let up = DVec3::new(lat.cos() * lon.cos(), lat.cos() * lon.sin(), lat.sin());
+    let east = DVec3::new(-lon.sin(), lon.cos(), 0.0);
+    let north = up.cross(east);
+    DQuat::from_mat3(&DMat3::from_cols(north, -east, up))
+}
+
 impl Frame {
     /// Why this frame cannot be rendered, if it cannot: non-finite or zero vectors, a
     /// camera below the ground, a field of view outside (0, 180) degrees, an empty or too
@@ -235,6 +248,27 @@ mod tests {
         assert!((up - DVec3::Y).length() < 1e-12, "{up}");
         assert!((view.sun_direction() - DVec3::X).length() < 1e-12);
         assert_eq!(view.position_m(100.0), DVec3::new(0.0, 0.0, 110.0));
+    }
+
+    #[test]
+    fn locations_rotate_the_pole_onto_their_point() {
+        let r = location_rotation(46.0, 7.8);
+        let up = r * DVec3::Z;
+        let (lat, lon) = (up.z.asin().to_degrees(), up.y.atan2(up.x).to_degrees());
+        assert!((lat - 46.0).abs() < 1e-12 && (lon - 7.8).abs() < 1e-12);
+        // x points north (towards the pole along the surface), -y east.
+        assert!((r * DVec3::X).z > 0.0 && (r * DVec3::X).dot(up).abs() < 1e-12);
+        let east = r * DVec3::NEG_Y;
+        assert!(
+            east.z.abs() < 1e-12
+                && east.dot(DVec3::new(
+                    -7.8f64.to_radians().sin(),
+                    7.8f64.to_radians().cos(),
+                    0.0
+                )) > 0.999_999
+        );
+        // At the equator and longitude 0, north is +z.
+        assert!((location_rotation(0.0, 0.0) * DVec3::X - DVec3::Z).length() < 1e-12);
     }
 
     #[test]

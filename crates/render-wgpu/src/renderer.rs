@@ -299,6 +299,24 @@ impl Renderer {
         self.luminance.measure(&self.gpu, &targets.hdr)
     }
 
+    /// The last frame's surface buffer, row-major: what its rays ended on (drawn terrain,
+    /// or the caller's surface; unspecified for a frame with neither).
+    pub fn read_surface(&self) -> Result<Vec<SurfaceTexel>, RenderError> {
+        let targets = self.last_targets()?;
+        let geometry: Vec<[f32; 4]> =
+            bytemuck::pod_collect_to_vec(&read_texture(&self.gpu, &targets.surface.geometry, 16)?);
+        let albedo = read_texture(&self.gpu, &targets.surface.albedo, 4)?;
+        Ok(geometry
+            .iter()
+            .zip(albedo.chunks_exact(4))
+            .map(|(g, a)| SurfaceTexel {
+                normal: [g[0], g[1], g[2]],
+                distance_m: g[3],
+                albedo: [a[0], a[1], a[2]].map(|v| f32::from(v) / 255.0),
+            })
+            .collect())
+    }
+
     /// The last frame's display image, row-major, 8-bit sRGB with alpha 255.
     pub fn read_ldr(&self) -> Result<Vec<[u8; 4]>, RenderError> {
         let targets = self.last_targets()?;

@@ -10,8 +10,12 @@ use atmosphere_core::model::{MODEL_IDS, ModelSettings};
 use atmosphere_core::model_options::ModelOptions;
 use clap::Args;
 use clap::builder::PossibleValuesParser;
+use glam::{DQuat, DVec3};
 use render_wgpu::Frame;
-use render_wgpu::frame::{LocalView, MAX_SIDE_PX};
+use render_wgpu::frame::{
+    LocalView, MAX_EXAGGERATION, MAX_SIDE_PX, TerrainOptions, location_rotation,
+};
+use render_wgpu::terrain::{HeightMap, TerrainSurface, earth_assets_dir};
 use serde::{Deserialize, Serialize};
 
 /// The fields of a scene; every one optional here, the required ones checked by
@@ -53,6 +57,31 @@ pub struct Scene {
     /// filmic curve [default: 14].
     #[arg(long, value_name = "EV100", allow_negative_numbers = true)]
     pub exposure: Option<f64>,
+    /// Latitude of the camera, degrees north. With a location the azimuths are
+    /// geographic (from north towards east); without one the camera is above the north
+    /// pole and azimuths are measured from longitude 0 towards 90 deg east.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        requires = "longitude_deg"
+    )]
+    pub latitude_deg: Option<f64>,
+    /// Longitude of the camera, degrees east.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        requires = "latitude_deg"
+    )]
+    pub longitude_deg: Option<f64>,
+    /// Draw the Earth's terrain (assets/earth) over the planet; the altitude is then
+    /// above sea level and must clear the terrain [default: false].
+    #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
+    pub terrain: Option<bool>,
+    /// Vertical exaggeration of the terrain, in (0, 100] [default: 1].
+    #[arg(long, value_name = "K")]
+    pub exaggeration: Option<f64>,
     /// A model setting as key=value (repeat the flag), e.g. `--set samples=32`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -100,6 +129,10 @@ impl Scene {
             height: flags.height.or(self.height),
             atmosphere: flags.atmosphere.or(self.atmosphere),
             exposure: flags.exposure.or(self.exposure),
+            latitude_deg: flags.latitude_deg.or(self.latitude_deg),
+            longitude_deg: flags.longitude_deg.or(self.longitude_deg),
+            terrain: flags.terrain.or(self.terrain),
+            exaggeration: flags.exaggeration.or(self.exaggeration),
             set,
         }
     }
@@ -125,6 +158,10 @@ impl Scene {
             height: Some(self.height.unwrap_or(720)),
             atmosphere: Some(self.atmosphere.clone().unwrap_or_else(|| "earth".into())),
             exposure: Some(self.exposure.unwrap_or(14.0)),
+            latitude_deg: self.latitude_deg,
+            longitude_deg: self.longitude_deg,
+            terrain: Some(self.terrain.unwrap_or(false)),
+            exaggeration: Some(self.exaggeration.unwrap_or(1.0)),
             set: self.set.clone(),
         })
     }
@@ -164,11 +201,51 @@ impl Scene {
         let name = s.atmosphere.unwrap_or_default();
         let atmosphere = Atmosphere::from_preset_or_file(&name)
             .with_context(|| format!("--atmosphere {name}"))?;
+        let place = match (s.latitude_deg, s.longitude_deg) {
+            (Some(lat), Some(lon)) => {
+                let lat = finite(lat, "latitude-deg")?;
+                if !(-90.0..=90.0).contains(&lat) {
+                    bail!("--latitude-deg {lat} must lie in [-90, 90]");
+                }
+                location_rotation(lat, finite(lon, "longitude-deg")?)
+            }
+            (None, None) => DQuat::IDENTITY,
+            _ => bail!("--latitude-deg and --longitude-deg go together"),
+        };
+        let geographic = place != DQuat::IDENTITY;
+        let view = LocalView {
+            // Geographic azimuths turn the other way (`location_rotation`).
+            view_azimuth_deg: if geographic {
+                -view.view_azimuth_deg
+            } else {
+                view.view_azimuth_deg
+            },
+            sun_azimuth_deg: if geographic {
+                -view.sun_azimuth_deg
+            } else {
+                view.sun_azimuth_deg
+            },
+            ..view
+        };
+        let terrain = match s.terrain {
+            Some(true) => {
+                let exaggeration = finite(value(s.exaggeration), "exaggeration")?;
+                if !(exaggeration > 0.0 && exaggeration <= MAX_EXAGGERATION) {
+                    bail!("--exaggeration {exaggeration} must lie in (0, {MAX_EXAGGERATION}]");
+                }
+                Some(TerrainOptions { exaggeration })
+            }
+            _ => None,
+        };
+        let camera_position_m = place * view.position_m(atmosphere.bottom_radius_m);
+        if let Some(t) = terrain {
+            check_above_terrain(camera_position_m, &atmosphere, t.exaggeration)?;
+        }
         Ok(Frame {
-            camera_position_m: view.position_m(atmosphere.bottom_radius_m),
-            orientation: view.orientation(),
+            camera_position_m,
+            orientation: place * view.orientation(),
             vertical_fov_deg: fov_deg,
-            sun_direction: view.sun_direction(),
+            sun_direction: place * view.sun_direction(),
             atmosphere,
             model: s.model.unwrap_or_default(),
             settings: ModelSettings {
@@ -178,9 +255,33 @@ impl Scene {
             exposure_ev100: finite(value(s.exposure), "exposure")?,
             width,
             height,
-            terrain: None,
+            terrain,
         })
     }
+}
+
+/// Fails when the camera is not at least 1 m above the terrain below it, naming the
+/// ground's height there.
+fn check_above_terrain(
+    camera_m: DVec3,
+    atmosphere: &Atmosphere,
+    exaggeration: f64,
+) -> anyhow::Result<()> {
+    let heights = HeightMap::load(&earth_assets_dir().join("height.png"))?;
+    let surface = TerrainSurface {
+        exaggeration,
+        ..TerrainSurface::new(heights, atmosphere.bottom_radius_m)
+    };
+    let ground_m = surface.elevation_m(camera_m.normalize());
+    let altitude_m = camera_m.length() - atmosphere.bottom_radius_m;
+    if altitude_m < ground_m + 1.0 {
+        bail!(
+            "--altitude-m {altitude_m:.0} is not above the terrain: the ground there is at \
+             {ground_m:.0} m (with exaggeration {exaggeration}); give at least {:.0}",
+            ground_m + 1.0
+        );
+    }
+    Ok(())
 }
 
 /// Where a frame goes: the output file and its kind, from the extension.
