@@ -1,36 +1,250 @@
-//! The terrain pass on the GPU.
+//! The terrain pass on the GPU (`terrain_pass.rs`, `shaders/terrain.wgsl`) against its
+//! CPU twin: the surface buffer's distance, normal and albedo at each pixel equal the
+//! nearest hit of the pixel's ray (`Frame::pixel_ray`) on the chunk meshes the CPU
+//! selects for the same camera (`select_chunks`, `ChunkMesh`), the normal interpolated
+//! across the triangle and the albedo from `ColourMap::sample_linear`; from a metre-scale
+//! near plane to the whole disc from 20,000 km. And the planner: looking into space
+//! skips the pass and changes no pixel.
+//!
+//! Needs a GPU adapter (lavapipe will do); see `support/mod.rs`.
 
 mod support;
 
+use std::collections::HashMap;
+
+use glam::DVec3;
+use render_wgpu::Frame;
 use render_wgpu::frame::{LocalView, TerrainOptions, location_rotation};
+use render_wgpu::terrain::chunk_key::ChunkKey;
+use render_wgpu::terrain::geo_grid::lat_lon;
+use render_wgpu::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
+use render_wgpu::terrain::{ChunkMesh, ColourMap, HeightMap, TerrainSurface, earth_assets_dir};
 use support::{frame, renderer_or_skip};
 
-#[test]
-fn debug_alps() {
-    let Some(mut renderer) = renderer_or_skip("terrain") else {
-        return;
+/// A frame of nishita at a place, azimuths geographic, with terrain.
+fn terrain_frame(lat: f64, lon: f64, view: LocalView, fov_deg: f64, w: u32, h: u32) -> Frame {
+    let local = LocalView {
+        view_azimuth_deg: -view.view_azimuth_deg,
+        sun_azimuth_deg: -view.sun_azimuth_deg,
+        ..view
     };
-    let view = LocalView {
-        altitude_m: 5600.0,
-        view_zenith_deg: 93.0,
-        view_azimuth_deg: -240.0,
-        sun_zenith_deg: 84.6,
-        sun_azimuth_deg: -251.0,
-    };
-    let mut f = frame("nishita", view, 60.0, 64, 36);
-    let place = location_rotation(46.0, 7.8);
+    let mut f = frame("nishita", local, fov_deg, w, h);
+    let place = location_rotation(lat, lon);
     f.camera_position_m = place * f.camera_position_m;
     f.orientation = place * f.orientation;
     f.sun_direction = place * f.sun_direction;
-    f.terrain = Some(TerrainOptions::default());
-    let plan = renderer.render(&f).unwrap();
-    println!("{plan}");
-    let s = renderer.read_surface().unwrap();
-    for row in (0..36).step_by(4) {
-        let line: Vec<String> = (0..64).step_by(8).map(|c| {
-            let t = s[row * 64 + c];
-            format!("{:.0}/{:.2}", t.distance_m, t.albedo[1])
-        }).collect();
-        println!("{row}: {}", line.join(" "));
+    f.terrain = Some(TerrainOptions { exaggeration: 2.0 });
+    f
+}
+
+fn view(altitude_m: f64, view_zenith_deg: f64, view_azimuth_deg: f64) -> LocalView {
+    LocalView {
+        altitude_m,
+        view_zenith_deg,
+        view_azimuth_deg,
+        sun_zenith_deg: 50.0,
+        sun_azimuth_deg: 200.0,
     }
+}
+
+/// The nearest hit of a ray on a triangle (Moller-Trumbore in f64): distance and
+/// barycentric weights of the second and third vertex.
+fn hit_triangle(origin: DVec3, dir: DVec3, p: [DVec3; 3]) -> Option<(f64, f64, f64)> {
+    let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+    let h = dir.cross(e2);
+    let det = e1.dot(h);
+    if det.abs() < 1e-30 {
+        return None;
+    }
+    let s = origin - p[0];
+    let u = s.dot(h) / det;
+    let q = s.cross(e1);
+    let v = dir.dot(q) / det;
+    let t = e2.dot(q) / det;
+    (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0).then_some((t, u, v))
+}
+
+/// The CPU twin of the surface buffer: chunks and meshes for a frame.
+struct CpuTerrain {
+    surface: TerrainSurface<HeightMap>,
+    settings: LodSettings,
+    /// The chosen chunks with their bounding spheres.
+    chunks: Vec<(SelectedChunk, DVec3, f64)>,
+    meshes: HashMap<ChunkKey, ChunkMesh>,
+}
+
+impl CpuTerrain {
+    fn new(f: &Frame) -> CpuTerrain {
+        let heights = HeightMap::load(&earth_assets_dir().join("height.png")).unwrap();
+        let radius = f.atmosphere.bottom_radius_m;
+        let surface = TerrainSurface {
+            exaggeration: f.terrain.unwrap().exaggeration,
+            ..TerrainSurface::new(heights, radius)
+        };
+        let settings = LodSettings::new(radius);
+        let lod_view = LodView::new(
+            f.camera_position_m,
+            f64::from(f.height),
+            f.vertical_fov_deg.to_radians(),
+        );
+        let chunks = select_chunks(&settings, &lod_view, |d| surface.elevation_m(d))
+            .unwrap()
+            .into_iter()
+            .map(|chunk| {
+                let (centre, radius) =
+                    settings.bounding_sphere(chunk.key, &|d| surface.elevation_m(d));
+                // Generous: the relief between the sampled points may stick out.
+                (chunk, centre, radius * 1.1 + 100.0)
+            })
+            .collect();
+        CpuTerrain {
+            surface,
+            settings,
+            chunks,
+            meshes: HashMap::new(),
+        }
+    }
+
+    /// Nearest hit: distance, interpolated unit normal, hit point.
+    fn cast(&mut self, origin: DVec3, dir: DVec3) -> Option<(f64, DVec3, DVec3)> {
+        let mut best: Option<(f64, DVec3, DVec3)> = None;
+        for (chunk, centre, radius) in &self.chunks {
+            let (centre, radius) = (*centre, *radius);
+            let to_centre = centre - origin;
+            let along = to_centre.dot(dir);
+            if (to_centre - dir * along).length() > radius || along < -radius {
+                continue;
+            }
+            let mesh = self
+                .meshes
+                .entry(chunk.key)
+                .or_insert_with(|| ChunkMesh::build(&self.surface, chunk, self.settings.cells));
+            for t in mesh.indices.chunks(3) {
+                let p = [0, 1, 2].map(|k| mesh.world_position_m(t[k]));
+                if let Some((d, u, v)) = hit_triangle(origin, dir, p)
+                    && best.is_none_or(|b| d < b.0)
+                {
+                    let n =
+                        [0, 1, 2].map(|k| glam::Vec3::from(mesh.normals[t[k] as usize]).as_dvec3());
+                    let normal = (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize();
+                    best = Some((d, normal, origin + dir * d));
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Compares every `step`-th pixel's surface texel with the CPU's hit; pixels where one
+/// side sees terrain and the other not lie on silhouettes (the rasteriser's coverage
+/// against an exact ray), at most `max_edge_fraction` of them.
+fn check_surface(name: &str, f: &Frame, step: u32, max_edge_fraction: f64) {
+    let Some(mut renderer) = renderer_or_skip(name) else {
+        return;
+    };
+    let plan = renderer.render(f).unwrap();
+    assert!(plan.runs("terrain"), "{plan}");
+    let texels = renderer.read_surface().unwrap();
+    let colours = ColourMap::load(&earth_assets_dir().join("colour.jpg")).unwrap();
+    let mut cpu = CpuTerrain::new(f);
+    let (mut compared, mut edges, mut worst_distance, mut worst_normal, mut worst_albedo) =
+        (0, 0, 0.0f64, 0.0f64, 0.0f64);
+    for row in (0..f.height).step_by(step as usize) {
+        for column in (0..f.width).step_by(step as usize) {
+            let texel = texels[(row * f.width + column) as usize];
+            let ray = f.pixel_ray(column, row);
+            let hit = cpu.cast(ray.origin_m, ray.direction);
+            let Some((distance, normal, point)) = hit.filter(|_| texel.distance_m > 0.0) else {
+                if hit.is_some() != (texel.distance_m > 0.0) {
+                    edges += 1;
+                }
+                continue;
+            };
+            compared += 1;
+            let gpu_distance = f64::from(texel.distance_m);
+            worst_distance = worst_distance.max((gpu_distance - distance).abs() / distance);
+            let gpu_normal = glam::Vec3::from(texel.normal).as_dvec3();
+            worst_normal = worst_normal.max((gpu_normal - normal).length());
+            // Near the camera the colour map is read at full resolution (texels of
+            // 10 km are many pixels wide); farther, mip levels average it.
+            if distance < 20_000.0 {
+                let (lat, lon) = lat_lon(point);
+                let expected = colours.sample_linear(lat, lon);
+                for c in 0..3 {
+                    worst_albedo =
+                        worst_albedo.max((f64::from(texel.albedo[c]) - expected[c]).abs());
+                }
+            }
+        }
+    }
+    let total = compared + edges;
+    println!(
+        "{name}: {compared} pixels compared, {edges} on silhouettes; worst relative distance \
+         {worst_distance:.1e}, normal {worst_normal:.1e}, albedo {worst_albedo:.1e}; plan: {plan}"
+    );
+    assert!(compared > total / 3, "{name}: too few terrain pixels");
+    assert!(
+        (edges as f64) <= max_edge_fraction * total as f64,
+        "{name}: {edges} of {total}"
+    );
+    // f32 camera-relative positions: 1e-5 of the distance and far less near the camera.
+    assert!(worst_distance < 2e-5, "{name}: distance {worst_distance:e}");
+    // The rasteriser interpolates the normal linearly; the CPU the same, then normalises.
+    assert!(worst_normal < 2e-3, "{name}: normal {worst_normal:e}");
+    // Bilinear sRGB filtering in 8 bits against the CPU's f64.
+    assert!(worst_albedo < 6e-3, "{name}: albedo {worst_albedo:e}");
+}
+
+#[test]
+fn terrain_over_the_alps_matches_the_cpu_meshes() {
+    // Exaggeration 2 lifts the peaks near 9 km.
+    let f = terrain_frame(46.05, 7.75, view(11_000.0, 95.0, 225.0), 60.0, 96, 54);
+    check_surface("Alps from 11 km", &f, 3, 0.05);
+}
+
+#[test]
+fn terrain_a_metre_above_the_ground_matches_the_cpu_meshes() {
+    // The Sahara at true scale: ground 1.5 m below the camera, the near plane 0.75 m.
+    let mut f = terrain_frame(23.0, 10.0, view(0.0, 100.0, 30.0), 70.0, 64, 36);
+    f.terrain = Some(TerrainOptions::default());
+    let up = f.camera_position_m.normalize();
+    let cpu = CpuTerrain::new(&f);
+    let ground = cpu.surface.elevation_m(up);
+    f.camera_position_m = up * (f.atmosphere.bottom_radius_m + ground + 1.5);
+    check_surface("1.5 m over the Sahara", &f, 2, 0.05);
+}
+
+#[test]
+fn the_whole_disc_from_20000_km_matches_the_cpu_meshes() {
+    let f = terrain_frame(30.0, 10.0, view(2e7, 180.0, 0.0), 40.0, 64, 64);
+    check_surface("disc from 20,000 km", &f, 2, 0.08);
+}
+
+#[test]
+fn looking_into_space_skips_the_terrain_and_changes_nothing() {
+    let Some(mut renderer) = renderer_or_skip("terrain plan") else {
+        return;
+    };
+    // 2 km over the Atlantic, looking up.
+    let mut f = terrain_frame(40.0, -30.0, view(2_000.0, 20.0, 225.0), 40.0, 32, 18);
+    let plan = renderer.render(&f).unwrap();
+    assert!(!plan.runs("terrain"), "{plan}");
+    assert!(plan.to_string().contains("no terrain in view"), "{plan}");
+    let with_terrain = renderer.read_hdr().unwrap();
+    f.terrain = None;
+    renderer.render(&f).unwrap();
+    assert_eq!(with_terrain, renderer.read_hdr().unwrap());
+}
+
+#[test]
+fn a_bad_exaggeration_is_refused() {
+    let Some(mut renderer) = renderer_or_skip("terrain exaggeration") else {
+        return;
+    };
+    let mut f = terrain_frame(46.05, 7.75, view(4_000.0, 20.0, 225.0), 40.0, 8, 8);
+    f.terrain = Some(TerrainOptions {
+        exaggeration: f64::NAN,
+    });
+    let err = renderer.render(&f).unwrap_err().to_string();
+    assert!(err.contains("exaggeration"), "{err}");
 }

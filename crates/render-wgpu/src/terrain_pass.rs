@@ -32,7 +32,7 @@ use crate::terrain::{ChunkMesh, ColourMap, HeightMap, TerrainSurface, earth_asse
 
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// Chunks not drawn for this many frames are dropped from the cache.
+/// Chunks the level of detail has not chosen for this many frames leave the cache.
 const KEEP_FRAMES: u64 = 240;
 
 /// The smallest near plane, m.
@@ -70,7 +70,11 @@ struct GpuChunk {
     origin_m: DVec3,
     /// Bounding sphere (centre, radius), m.
     bounds: (DVec3, f64),
-    last_drawn: u64,
+    /// The largest distance of a vertex from the planet's centre, m: no point of the
+    /// chunk's flat triangles lies farther (the distance is convex).
+    max_radius_m: f64,
+    /// The last frame whose level of detail chose the chunk.
+    last_selected: u64,
 }
 
 /// One chunk of this frame: its key and which edges border a coarser chunk.
@@ -283,13 +287,17 @@ impl TerrainPass {
                 .map(|(&position, &normal)| Vertex { position, normal })
                 .collect();
             let buffer = buffer_with(gpu, "terrain chunk", &vertices, wgpu::BufferUsages::VERTEX);
+            let max_radius_m = (0..mesh.positions.len() as u32)
+                .map(|k| mesh.world_position_m(k).length())
+                .fold(0.0, f64::max);
             self.chunks.insert(
                 mesh.key,
                 GpuChunk {
                     vertices: buffer,
                     origin_m: mesh.origin_m,
                     bounds,
-                    last_drawn: 0,
+                    max_radius_m,
+                    last_selected: 0,
                 },
             );
         }
@@ -297,16 +305,18 @@ impl TerrainPass {
         let [right, up, forward] = frame.axes();
         let (half_w, half_h) = frame.half_extent();
         let frustum = Frustum::new(camera, [right, up, forward], half_w, half_h);
+        let lowest_ray_m = frustum.lowest_radius_m();
         self.draws.clear();
         let mut uniforms = Vec::new();
         for chunk in &selected {
             let gpu_chunk = self.chunks.get_mut(&chunk.key).expect("built above");
-            // The bounds grow by the chord's sag below the sphere and a margin.
+            gpu_chunk.last_selected = self.frame_number;
+            // The sphere grows by a margin for the relief between its sampled points.
             let (centre, radius) = gpu_chunk.bounds;
-            if !frustum.sees_sphere(centre, radius * 1.05 + 1.0) {
+            let below_every_ray = gpu_chunk.max_radius_m + 1.0 < lowest_ray_m;
+            if below_every_ray || !frustum.sees_sphere(centre, radius * 1.05 + 1.0) {
                 continue;
             }
-            gpu_chunk.last_drawn = self.frame_number;
             self.draws.push(Draw {
                 key: chunk.key,
                 coarser: chunk.coarser,
@@ -317,10 +327,8 @@ impl TerrainPass {
             });
         }
         let frame_number = self.frame_number;
-        self.chunks.retain(|_, c| {
-            frame_number - c.last_drawn.max(frame_number.saturating_sub(KEEP_FRAMES)) < KEEP_FRAMES
-                || c.last_drawn == 0
-        });
+        self.chunks
+            .retain(|_, c| frame_number - c.last_selected < KEEP_FRAMES);
         for draw in &self.draws {
             self.indices.entry(draw.coarser).or_insert_with(|| {
                 let indices = stitched_indices(self.lod.cells, draw.coarser);
@@ -452,7 +460,7 @@ impl TerrainPass {
         }
     }
 
-    /// Chunks in the cache (drawn recently), for the stats.
+    /// Chunks in the cache (chosen recently), for the stats.
     pub fn cached_chunks(&self) -> usize {
         self.chunks.len()
     }
