@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::str::FromStr;
 
 use atmosphere_core::model::{MODEL_IDS, ModelSettings};
+use atmosphere_core::sun_position::UtcDateTime;
 use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
 
@@ -46,6 +47,77 @@ pub struct ViewArgs {
     /// With --frames: save the last displayed image to this PNG.
     #[arg(long, value_name = "FILE.png", requires = "frames")]
     pub screenshot: Option<PathBuf>,
+    /// Where and how to start, over the saved (or default) settings.
+    #[command(flatten)]
+    pub start: StartView,
+}
+
+/// The flags of `atmos view` that set the starting view (`viewer/start_view.rs`).
+#[derive(Clone, Debug, Default, Args)]
+pub struct StartView {
+    /// Scattering model.
+    #[arg(long, value_parser = PossibleValuesParser::new(render_wgpu::model_pass::GPU_MODELS))]
+    pub model: Option<String>,
+    /// Camera latitude, degrees north.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        requires = "longitude_deg"
+    )]
+    pub latitude_deg: Option<f64>,
+    /// Camera longitude, degrees east.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        requires = "latitude_deg"
+    )]
+    pub longitude_deg: Option<f64>,
+    /// Camera altitude above sea level, m (kept at least 1 m above the terrain).
+    #[arg(long, value_name = "M")]
+    pub altitude_m: Option<f64>,
+    /// View heading, degrees from north towards east.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub heading_deg: Option<f64>,
+    /// View pitch, degrees above the horizon (negative: down).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub pitch_deg: Option<f64>,
+    /// The sun from this UTC date and time, YYYY-MM-DDTHH:MM[:SS].
+    #[arg(long, value_name = "DATE", value_parser = parse_utc)]
+    pub utc: Option<UtcDateTime>,
+    /// Vertical exaggeration of the terrain (1 to 100).
+    #[arg(long, value_name = "K")]
+    pub exaggeration: Option<f64>,
+    /// Draw the smooth sphere instead of the Earth's terrain.
+    #[arg(long)]
+    pub no_terrain: bool,
+}
+
+/// A UTC date and time `YYYY-MM-DDTHH:MM[:SS]`, each field checked.
+fn parse_utc(text: &str) -> Result<UtcDateTime, String> {
+    let bad = || format!("'{text}' is not YYYY-MM-DDTHH:MM[:SS]");
+    let (date, time) = text.split_once(['T', ' ']).ok_or_else(bad)?;
+    let date: Vec<&str> = date.split('-').collect();
+    let time: Vec<&str> = time.trim_end_matches('Z').split(':').collect();
+    if date.len() != 3 || !(2..=3).contains(&time.len()) {
+        return Err(bad());
+    }
+    let int = |s: &str| s.parse::<u32>().map_err(|_| bad());
+    let second = match time.get(2) {
+        Some(s) => s.parse::<f64>().map_err(|_| bad())?,
+        None => 0.0,
+    };
+    let year = date[0].parse::<i32>().map_err(|_| bad())?;
+    UtcDateTime::new(
+        year,
+        int(date[1])?,
+        int(date[2])?,
+        int(time[0])?,
+        int(time[1])?,
+        second,
+    )
+    .map_err(|e| e.to_string())
 }
 
 /// The flags of `atmos contact-sheet`.

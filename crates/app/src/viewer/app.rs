@@ -9,6 +9,7 @@ use std::time::Instant;
 use anyhow::Context;
 use eframe::egui;
 use render_wgpu::frame_plan::FramePlan;
+use render_wgpu::terrain::{HeightMap, TerrainSurface, earth_assets_dir};
 use render_wgpu::{Frame, GpuContext, Renderer};
 
 use crate::cli::ViewArgs;
@@ -17,6 +18,7 @@ use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
 use crate::viewer::panel::{self, Stats};
 use crate::viewer::screenshot;
 use crate::viewer::settings::ViewerSettings;
+use crate::viewer::start_view;
 
 /// The largest image rendered, pixels (about 1280x720): more only costs time.
 const MAX_PIXELS: f64 = 1280.0 * 720.0;
@@ -39,6 +41,9 @@ pub struct ViewerApp {
     settings: ViewerSettings,
     /// The live camera (with its velocity); `settings` holds its position and view.
     flight: FlightState,
+    /// The terrain's heights, to keep the camera above them (`None`: the maps are
+    /// missing, said in `message`).
+    terrain: Option<TerrainSurface<HeightMap>>,
     renderer: Renderer,
     render_state: egui_wgpu::RenderState,
     texture: Option<egui::TextureId>,
@@ -88,10 +93,19 @@ impl ViewerApp {
             _ => None,
         };
         // Settings of another version that no longer make a frame are dropped.
-        let settings = stored
+        let mut settings = stored
             .filter(|s| s.frame(1, 1).is_ok() && Renderer::check_model(&s.model).is_ok())
             .unwrap_or_default();
+        start_view::apply(&args.start, &mut settings)?;
+        // The heights the flight keeps above; without them terrain cannot be drawn either.
+        let terrain = HeightMap::load(&earth_assets_dir().join("height.png"))
+            .map(|heights| TerrainSurface::new(heights, 6_360_000.0));
+        let message = match &terrain {
+            Ok(_) => String::new(),
+            Err(e) => format!("{e}"),
+        };
         Ok(ViewerApp {
+            terrain: terrain.ok(),
             flight: settings.flight(),
             settings,
             renderer: Renderer::new(gpu)?,
@@ -102,7 +116,7 @@ impl ViewerApp {
             auto_exposure: AutoExposure::default(),
             frame_ms: 0.0,
             adapter,
-            message: String::new(),
+            message,
             show_help: false,
             args,
             frames_shown: 0,
@@ -268,8 +282,20 @@ impl eframe::App for ViewerApp {
                 .settings
                 .atmosphere()
                 .map_or(6_360_000.0, |a| a.bottom_radius_m);
+            // The camera stays above the terrain drawn.
+            let ground = self
+                .terrain
+                .as_mut()
+                .filter(|_| self.settings.terrain)
+                .map(|t| {
+                    t.radius_m = radius;
+                    t.exaggeration = self.settings.exaggeration;
+                    &*t
+                });
             self.flight
-                .step(&FlightSettings::new(radius), &input, dt, |_| 0.0);
+                .step(&FlightSettings::new(radius), &input, dt, |d| {
+                    ground.map_or(0.0, |t| t.elevation_m(d))
+                });
             self.settings.set_flight(&self.flight);
             let moving = self.flight.velocity_m_s.length() > 1e-3 || response.dragged();
             // The time-lapse and the exposure's adaptation animate while they change.

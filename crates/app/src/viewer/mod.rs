@@ -16,6 +16,7 @@ pub mod flight;
 pub mod panel;
 pub mod screenshot;
 pub mod settings;
+pub mod start_view;
 pub mod sun_clock;
 
 use std::sync::{Arc, Mutex};
@@ -31,6 +32,8 @@ const HEADLESS_HINT: &str = "without a display, render images with:\n  \
 /// Opens the viewer window and runs it until it is closed (or, with `--frames`, until
 /// that many frames are shown). Without a display, an error saying so.
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    // Bad flags are named before any window opens.
+    start_view::apply(&args.start, &mut settings::ViewerSettings::default())?;
     let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
         .iter()
         .any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));

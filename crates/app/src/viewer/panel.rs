@@ -3,6 +3,7 @@
 //! the app for what it cannot do itself (a screenshot).
 
 use eframe::egui;
+use render_wgpu::frame::MAX_EXAGGERATION;
 use render_wgpu::frame_plan::FramePlan;
 use render_wgpu::model_pass::GPU_MODELS;
 
@@ -44,6 +45,7 @@ pub fn show(
         sun(ui, settings);
         camera(ui, settings);
         atmosphere(ui, settings);
+        terrain(ui, settings);
         model(ui, settings);
         actions.screenshot = image(ui, settings);
         stats_section(ui, stats);
@@ -274,6 +276,27 @@ fn camera(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         {
             settings.reset_view();
         }
+    });
+}
+
+fn terrain(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
+    ui.collapsing("Terrain", |ui| {
+        ui.checkbox(&mut settings.terrain, "Earth terrain")
+            .on_hover_text(
+                "The Earth's relief (NOAA ETOPO5) and colour (NASA Blue Marble) from assets/earth, \
+             lit by the sun and sky of the current model and seen through its air; off: a \
+             smooth sphere with the atmosphere's ground albedo",
+            );
+        ui.add_enabled(
+            settings.terrain,
+            egui::Slider::new(&mut settings.exaggeration, 1.0..=MAX_EXAGGERATION)
+                .logarithmic(true)
+                .text("exaggeration"),
+        )
+        .on_hover_text(
+            "Vertical exaggeration of the heights: 1 is true scale; the Earth's relief is \
+             0.14 % of its radius, so views from orbit show it better at 10 to 50",
+        );
     });
 }
 

@@ -8,7 +8,7 @@ use atmosphere_core::model::ModelSettings;
 use atmosphere_core::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Frame;
-use render_wgpu::frame::look_orientation;
+use render_wgpu::frame::{TerrainOptions, look_orientation};
 use render_wgpu::terrain::geo_grid;
 use serde::{Deserialize, Serialize};
 
@@ -96,6 +96,10 @@ pub struct ViewerSettings {
     /// The exposure; in automatic mode the last adapted value.
     pub exposure_ev100: f64,
     pub exposure_mode: ExposureMode,
+    /// Draw the Earth's terrain (assets/earth) over the planet.
+    pub terrain: bool,
+    /// Vertical exaggeration of the terrain (1 = true scale).
+    pub exaggeration: f64,
 }
 
 impl Default for ViewerSettings {
@@ -116,6 +120,8 @@ impl Default for ViewerSettings {
             model: "nishita".into(),
             exposure_ev100: 14.0,
             exposure_mode: ExposureMode::default(),
+            terrain: true,
+            exaggeration: 1.0,
         };
         settings.reset_view();
         settings
@@ -318,7 +324,9 @@ impl ViewerSettings {
             exposure_ev100: self.exposure_ev100,
             width,
             height,
-            terrain: None,
+            terrain: self.terrain.then_some(TerrainOptions {
+                exaggeration: self.exaggeration,
+            }),
         })
     }
 }
