@@ -15,7 +15,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let direction = pixel_direction(id.xy);
     let s = view_segment(direction, 0.0);
-    var r = Radiance(vec3<f32>(0.0), vec3<f32>(1.0), !s.hit || !s.on_ground, 0.0);
+    var r = Radiance(vec3<f32>(0.0), vec3<f32>(1.0), !s.hit || !s.on_ground, vec3<f32>(0.0));
     if s.hit {
         let terms = trace(make_ray(s, direction, frame.sun_direction.xyz, false),
             dobashi.use_spheres != 0u);

@@ -123,7 +123,7 @@ fn view_angles(direction: vec3<f32>) -> vec2<f32> {
 // need (the planner knows; each entry point fixes them, so that a software rasteriser,
 // which runs every branch for every pixel under a mask, does not pay for the other).
 fn hillaire_radiance(direction: vec3<f32>, tables: bool, march: bool) -> Radiance {
-    var out = Radiance(vec3<f32>(0.0), vec3<f32>(1.0), true, 0.0);
+    var out = Radiance(vec3<f32>(0.0), vec3<f32>(1.0), true, vec3<f32>(0.0));
     let s = view_segment(direction, 0.0);
     if !s.hit {
         return out;

@@ -171,7 +171,10 @@ impl Renderer {
         gpu.queue
             .write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame_uniform));
 
-        let mut plan = FramePlan::default();
+        let mut plan = FramePlan {
+            surface: surface.is_some(),
+            ..FramePlan::default()
+        };
         // The model's passes, made on first use.
         let model = {
             let index = match self.models.iter().position(|(m, _)| *m == frame.model) {
