@@ -35,6 +35,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         s.start = vec3<f32>(0.0, 0.0, bottom);
         s.start_dot_sun = bottom * mu_sun;
         s.on_ground = mu < 0.0;
+        s.end = select(END_SPACE, END_GROUND, s.on_ground);
         let horizon_sq = (atmosphere.top_radius_m - bottom) * (atmosphere.top_radius_m + bottom);
         let root = sqrt(s.r_mu * s.r_mu + horizon_sq);
         s.length = select(horizon_sq / (max(s.r_mu, 0.0) + root), 0.0, s.on_ground);

@@ -83,6 +83,24 @@ fn sample_planes(x: f32, y: f32) -> Segment3 {
     return out;
 }
 
+// Distance from the point with q = r^2 - bottom^2 and r mu = `r_mu` to where its ray
+// leaves the atmosphere: on the ground, or at the top.
+fn distance_out(q: f32, r_mu: f32) -> f32 {
+    let bottom = atmosphere.bottom_radius_m;
+    let top = atmosphere.top_radius_m;
+    let horizon_sq = (top - bottom) * (top + bottom);
+    let ground_disc = r_mu * r_mu - q;
+    if r_mu < 0.0 && ground_disc >= 0.0 {
+        let denom = -r_mu + sqrt(ground_disc);
+        return select(0.0, q / denom, denom > 0.0);
+    }
+    let root = sqrt(max(ground_disc + horizon_sq, 0.0));
+    if r_mu > 0.0 {
+        return max((horizon_sq - q) / (r_mu + root), 0.0);
+    }
+    return max(-r_mu + root, 0.0);
+}
+
 // The plane tables for the segment from the point with q = r^2 - bottom^2 and r mu =
 // `r_mu` (`PlaneTables::coordinates`): rows by rho / H, the angle axis split at the
 // horizon, each half by the distance to where the ray leaves the atmosphere.
@@ -95,22 +113,14 @@ fn plane_lookup(q: f32, r_mu: f32) -> Segment3 {
     let half = size.x / 2u;
     let r = sqrt(bottom * bottom + q);
     let rho = sqrt(q);
-    let ground_disc = r_mu * r_mu - q;
-    let ground = r_mu < 0.0 && ground_disc >= 0.0;
-    var d: f32;
+    let ground = r_mu < 0.0 && r_mu * r_mu - q >= 0.0;
+    let d = distance_out(q, r_mu);
     var d_min: f32;
     var d_max: f32;
     if ground {
-        let denom = -r_mu + sqrt(ground_disc);
-        d = select(0.0, q / denom, denom > 0.0);
         d_min = q / (r + bottom);
         d_max = rho;
     } else {
-        let root = sqrt(max(ground_disc + horizon_sq, 0.0));
-        d = max(-r_mu + root, 0.0);
-        if r_mu > 0.0 {
-            d = max((horizon_sq - q) / (r_mu + root), 0.0);
-        }
         d_min = (horizon - rho) * (horizon + rho) / (top + r);
         d_max = rho + horizon;
     }
@@ -197,6 +207,28 @@ fn add_segment(terms: Terms, ray: Ray, t: f32, v: Segment3) -> Terms {
     return out;
 }
 
+// (1 - exp(-x)) / x per component, 1 at 0: below 0.1 its series to x^3 (the next term,
+// x^4 / 120, is under 1e-6 there), beyond the exponential form (no cancellation left
+// worth a digit in f32).
+fn one_minus_exp_over(x: vec3<f32>) -> vec3<f32> {
+    let series = 1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0));
+    return select((1.0 - exp(-x)) / x, series, abs(x) < vec3<f32>(0.1));
+}
+
+// The first `fraction` (0 < fraction < 1) of segment `v` where an object cuts it
+// (`Accumulator::add`): the segment taken as uniform, dg_v^fraction and
+// dI (1 - dg_v^fraction) / (1 - dg_v), the ratio written fraction phi(fraction tau) /
+// phi(tau) with phi above, which stays exact as tau goes to 0 or grows large.
+fn cut_segment(v: Segment3, fraction: f32) -> Segment3 {
+    let tau = -log(max(v.transmittance, vec3<f32>(1e-30)));
+    let ratio = fraction * one_minus_exp_over(fraction * tau) / one_minus_exp_over(tau);
+    var out: Segment3;
+    out.scatter_r = v.scatter_r * ratio;
+    out.scatter_m = v.scatter_m * ratio;
+    out.transmittance = exp(-fraction * tau);
+    return out;
+}
+
 // Section 5.2: segments of Delta_t from the start of the ray.
 fn through_planes(ray: Ray) -> Terms {
     var terms: Terms;
@@ -208,7 +240,18 @@ fn through_planes(ray: Ray) -> Terms {
     let n = u32(ceil(s.length / dt));
     for (var k = 0u; k < n; k++) {
         let t = f32(k) * dt;
-        terms = add_segment(terms, ray, t, plane_lookup(q_along(s, t), s.r_mu + t));
+        let q = q_along(s, t);
+        var v = plane_lookup(q, s.r_mu + t);
+        if s.cut && k + 1u == n {
+            // An object cuts the last segment: a fraction of what the table holds for
+            // Delta_t, or less where the ray leaves the atmosphere first.
+            let full = min(distance_out(q, s.r_mu + t), dt);
+            let remaining = s.length - t;
+            if remaining < full {
+                v = cut_segment(v, remaining / full);
+            }
+        }
+        terms = add_segment(terms, ray, t, v);
     }
     return terms;
 }
@@ -257,10 +300,16 @@ fn through_spheres(ray: Ray) -> Terms {
             next = k + 1u;
             next_r_mu = up + length;
         }
-        if s.length - t <= 0.0 {
+        let remaining = s.length - t;
+        if remaining <= 0.0 {
             break;
         }
-        terms = add_segment(terms, ray, t, sphere_lookup(3u * k + kind, length));
+        let v = sphere_lookup(3u * k + kind, length);
+        if s.cut && remaining < length {
+            terms = add_segment(terms, ray, t, cut_segment(v, remaining / length));
+            break;
+        }
+        terms = add_segment(terms, ray, t, v);
         t += length;
         k = next;
         r_mu = next_r_mu;
@@ -280,7 +329,7 @@ fn trace(ray: Ray, spheres: bool) -> Terms {
         terms = through_planes(ray);
     }
     let s = ray.segment;
-    if s.on_ground {
+    if s.end == END_GROUND {
         let bottom = atmosphere.bottom_radius_m;
         let cos_g = clamp((s.start_dot_sun + s.length * ray.nu) / bottom, -1.0, 1.0);
         var psi = vec3<f32>(1.0);

@@ -36,14 +36,15 @@ struct Radiance {
     transmittance: vec3<f32>,
     // False when the ray ends on the ground or on a surface.
     reaches_space: bool,
-    // Distance from the camera to where the ray ends, m (`Segment::end_distance`).
-    end_distance: f32,
+    // The planet-centred point where the ray ends, m (`segment_end`).
+    end: vec3<f32>,
 }
 
-// The answer for a ray before any light is added: no radiance, transmittance 1, ending
-// where `s` ends.
-fn radiance_of_empty(s: Segment) -> Radiance {
-    return Radiance(vec3<f32>(0.0), vec3<f32>(1.0), s.end == END_SPACE, end_distance(s));
+// The answer for the ray along unit `direction` before any light is added: no radiance,
+// transmittance 1, ending where its segment `s` ends.
+fn radiance_of_empty(s: Segment, direction: vec3<f32>) -> Radiance {
+    return Radiance(vec3<f32>(0.0), vec3<f32>(1.0), s.end == END_SPACE,
+        segment_end(s, direction));
 }
 
 // The HDR target's value for a pixel looking along `direction` with the model's answer
@@ -82,6 +83,9 @@ struct Segment {
     on_ground: bool,
     // How the segment ends: END_GROUND, END_OBJECT or END_SPACE (`SegmentEnd`).
     end: u32,
+    // True when the object ends the ray before the ground or the top would
+    // (`ViewSegment::cut`); an object beyond the ground ends it there without cutting.
+    cut: bool,
     // Distance from the camera to the start, m.
     t_enter: f32,
     q: f32,
@@ -113,6 +117,7 @@ fn view_segment(direction: vec3<f32>, object_m: f32) -> Segment {
     var s: Segment;
     s.hit = true;
     s.end = END_SPACE;
+    s.cut = false;
     s.t_enter = 0.0;
     s.q = frame.camera_height.x;
     s.r_mu = dot(camera, direction);
@@ -150,7 +155,8 @@ fn view_segment(direction: vec3<f32>, object_m: f32) -> Segment {
     }
     if object_m > 0.0 {
         let remaining = object_m - s.t_enter;
-        if remaining < s.length || s.end == END_GROUND {
+        s.cut = remaining < s.length;
+        if s.cut || s.end == END_GROUND {
             s.length = min(remaining, s.length);
             s.end = END_OBJECT;
         }
@@ -170,9 +176,12 @@ fn missed_segment(s_in: Segment, object_m: f32) -> Segment {
     return s;
 }
 
-// Distance from the camera to where the segment ends, m.
-fn end_distance(s: Segment) -> f32 {
-    return s.t_enter + s.length;
+// The planet-centred point where the segment `s` of the ray along unit `direction` ends
+// (`ViewSegment::end_point`): from its start, not from the camera, so that a camera far
+// in space (1e8 m, rounded to about 8 m in f32) does not move the point; for a ray that
+// leaves no segment, the camera's point at `t_enter` (its object, if any).
+fn segment_end(s: Segment, direction: vec3<f32>) -> vec3<f32> {
+    return s.start + select(s.length, s.t_enter, !s.hit) * direction;
 }
 
 // r^2 - bottom^2 at distance t along a segment, clamped at the ground.

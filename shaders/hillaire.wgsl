@@ -4,11 +4,13 @@
 // pixel (`view_segment`, camera-relative):
 // - camera inside the atmosphere, ray to space: the sky-view LUT (bilinear), the
 //   transmittance from the table;
-// - camera inside, ray to the ground within the volume's range: the aerial-perspective
-//   volume (bilinear in direction, linear in depth), which gives the transmittance too;
-// - otherwise (ground beyond the range, camera in space from where the ray enters the
-//   atmosphere): the view march per pixel;
-// - ground: albedo / pi (T_sun max(mu_s, 0) + E_sky(mu_s)) times the transmittance;
+// - camera inside, ray to the ground or to the frame's surface within the volume's
+//   range: the aerial-perspective volume (bilinear in direction, linear in depth), which
+//   gives the transmittance too;
+// - otherwise (ground or surface beyond the range, camera in space from where the ray
+//   enters the atmosphere): the view march per pixel;
+// - ground: albedo / pi (T_sun max(mu_s, 0) + E_sky(mu_s)) times the transmittance; a
+//   surface: `add_surface` with `hillaire_surface_irradiance`;
 // - the limb-darkened sun disk times the transmittance where the ray reaches space.
 // Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three channels to the HDR target,
 // clamped to the largest finite f16.
@@ -16,6 +18,7 @@
 #import hillaire_march.wgsl
 #import hillaire_directions.wgsl
 #import frame_params.wgsl
+#import surface.wgsl
 
 @group(0) @binding(5) var ground_irradiance: texture_2d<f32>;
 @group(0) @binding(6) var sky_view: texture_2d<f32>;
@@ -122,9 +125,11 @@ fn view_angles(direction: vec3<f32>) -> vec2<f32> {
 // and `march` say which of the two ways of finding the light along a ray the frame may
 // need (the planner knows; each entry point fixes them, so that a software rasteriser,
 // which runs every branch for every pixel under a mask, does not pay for the other).
-fn hillaire_radiance(direction: vec3<f32>, tables: bool, march: bool) -> Radiance {
-    var out = Radiance(vec3<f32>(0.0), vec3<f32>(1.0), true, 0.0);
-    let s = view_segment(direction, 0.0);
+// The ray ends on an object at `object_m` (0: none): read from the volume, or marched,
+// to the object, as on the CPU.
+fn hillaire_radiance(direction: vec3<f32>, object_m: f32, tables: bool, march: bool) -> Radiance {
+    let s = view_segment(direction, object_m);
+    var out = radiance_of_empty(s, direction);
     if !s.hit {
         return out;
     }
@@ -132,14 +137,16 @@ fn hillaire_radiance(direction: vec3<f32>, tables: bool, march: bool) -> Radianc
     let nu = dot(direction, sun);
     let inside = frame.camera_height.y < 0.5;
     var m: ViewMarch;
-    let use_tables = inside && (!s.on_ground || s.length <= hillaire.aerial_range_m);
+    let to_space = s.end == END_SPACE;
+    let use_tables = inside && (to_space || s.length <= hillaire.aerial_range_m);
     if tables && use_tables {
-        // `Hillaire::read_tables`, on the grid of the view's radius.
+        // `Hillaire::read_tables`, on the grid of the view's radius, on the half of the
+        // whole ray.
         let angles = view_angles(direction);
-        let grid = select(textureDimensions(sky_view), textureDimensions(aerial_radiance).xy,
-            s.on_ground);
+        let grid = select(textureDimensions(aerial_radiance).xy, textureDimensions(sky_view),
+            to_space);
         let p = grid_position(grid, hillaire.view_theta_h, angles.x, angles.y, s.on_ground);
-        if s.on_ground {
+        if !to_space {
             m = aerial_lookup(p, s.length);
         } else {
             m.radiance = sky_view_lookup(p);
@@ -150,18 +157,38 @@ fn hillaire_radiance(direction: vec3<f32>, tables: bool, march: bool) -> Radianc
         m = march_run(view_ray(s.q, s.r_mu, s.start_dot_sun, nu), s.length,
             hillaire.march_samples);
     }
-    if s.on_ground {
+    if s.end == END_GROUND {
         let mu_g = clamp((s.start_dot_sun + s.length * nu) / atmosphere.bottom_radius_m, -1.0, 1.0);
         m.radiance += m.throughput * ground_light(mu_g);
     }
     out.radiance = max(m.radiance * atmosphere.solar_irradiance.xyz, vec3<f32>(0.0));
     out.transmittance = clamp(m.throughput, vec3<f32>(0.0), vec3<f32>(1.0));
-    out.reaches_space = !s.on_ground;
     return out;
 }
 
+// `Hillaire::surface_irradiance`: the transmitted sun from the transmittance LUT and the
+// ground's sky irradiance E_sky at the element's mu_s (tabulated on the ground only)
+// times the share of the ground's vertical optical depth above the element.
+fn hillaire_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let e = surface_element(point, normal);
+    let bottom = atmosphere.bottom_radius_m;
+    let q = (e.r - bottom) * (e.r + bottom);
+    var t = vec3<f32>(0.0);
+    if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
+        t = exp(-optical_depth(table_columns(transmittance_columns, q, e.mu_s)));
+    }
+    var sky = vec3<f32>(0.0);
+    if hillaire.multiple_on != 0u {
+        let whole = optical_depth(table_columns(transmittance_columns, 0.0, 1.0));
+        let above = optical_depth(table_columns(transmittance_columns, q, 1.0));
+        sky = ground_irradiance_lookup(e.mu_s)
+            * select(vec3<f32>(1.0), above / whole, whole > vec3<f32>(0.0));
+    }
+    return element_irradiance(e, t, atmosphere.solar_irradiance.xyz * sky);
+}
+
 // The pass for a frame with rays of both kinds: a camera in the atmosphere seeing ground
-// beyond the aerial-perspective volume.
+// beyond the aerial-perspective volume, or a surface.
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     shade(id.xy, true, true);
@@ -185,6 +212,10 @@ fn shade(px: vec2<u32>, tables: bool, march: bool) {
         return;
     }
     let direction = pixel_direction(px);
-    let r = hillaire_radiance(direction, tables, march);
+    let surface = frame_surface(px);
+    var r = hillaire_radiance(direction, surface.distance, tables, march);
+    if surface.present {
+        r = add_surface(r, surface, hillaire_surface_irradiance(r.end, surface.normal));
+    }
     textureStore(hdr, px, hdr_pixel(direction, r));
 }

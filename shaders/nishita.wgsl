@@ -27,7 +27,7 @@ struct NishitaParams {
 // an object at `object_m` (0: none).
 fn nishita_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
     let s = view_segment(direction, object_m);
-    var out = radiance_of_empty(s);
+    var out = radiance_of_empty(s, direction);
     if !s.hit {
         return out;
     }
@@ -91,7 +91,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let surface = frame_surface(id.xy);
     var r = nishita_radiance(direction, surface.distance);
     if surface.present {
-        let e = nishita_surface_irradiance(end_point(direction, r), surface.normal);
+        let e = nishita_surface_irradiance(r.end, surface.normal);
         r = add_surface(r, surface, e);
     }
     textureStore(hdr, id.xy, hdr_pixel(direction, r));

@@ -16,6 +16,7 @@
 #import atmosphere_params.wgsl
 #import frame_params.wgsl
 #import phase.wgsl
+#import surface.wgsl
 
 struct OneilParams {
     samples: u32,
@@ -51,13 +52,11 @@ fn depth(column: vec2<f32>) -> vec3<f32> {
         + column.y * atmosphere.mie_extinction_per_m.xyz;
 }
 
-// `Oneil::radiance` for the view ray with unit `direction` from the camera.
-fn oneil_radiance(direction: vec3<f32>) -> Radiance {
-    var out: Radiance;
-    out.radiance = vec3<f32>(0.0);
-    out.transmittance = vec3<f32>(1.0);
-    out.reaches_space = true;
-    let s = view_segment(direction, 0.0);
+// `Oneil::radiance` for the view ray with unit `direction` from the camera, ending on
+// an object at `object_m` (0: none).
+fn oneil_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+    let s = view_segment(direction, object_m);
+    var out = radiance_of_empty(s, direction);
     if !s.hit {
         return out;
     }
@@ -106,8 +105,7 @@ fn oneil_radiance(direction: vec3<f32>) -> Radiance {
         out.radiance += ds * j * atmosphere.solar_irradiance.xyz
             * exp(-depth(light.yw + to_camera));
     }
-    out.reaches_space = !s.on_ground;
-    if s.on_ground {
+    if s.end == END_GROUND {
         let end = s.start + s.length * direction;
         let cos_sun = (s.start_dot_sun + s.length * nu) / atmosphere.bottom_radius_m;
         if cos_sun > 0.0 {
@@ -119,12 +117,33 @@ fn oneil_radiance(direction: vec3<f32>) -> Radiance {
     return out;
 }
 
+// `Oneil::surface_irradiance`: the transmitted sun only, its columns from the table at
+// the element's height and sun angle, none where the planet hides the sun's centre.
+fn oneil_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let e = surface_element(point, normal);
+    let bottom = atmosphere.bottom_radius_m;
+    let q = (e.r - bottom) * (e.r + bottom);
+    var t = vec3<f32>(0.0);
+    let behind_planet = e.mu_s < 0.0 && (e.r * e.mu_s) * (e.r * e.mu_s) - q >= 0.0;
+    if e.sun_cosine > 0.0 && !behind_planet {
+        let sun = frame.sun_direction.xyz;
+        let light = table_lookup(e.r - bottom, atan2(length(cross(point, sun)), dot(point, sun)));
+        t = exp(-depth(light.yw));
+    }
+    return element_irradiance(e, t, vec3<f32>(0.0));
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= frame.size_px.xy) {
         return;
     }
     let direction = pixel_direction(id.xy);
-    let r = oneil_radiance(direction);
+    let surface = frame_surface(id.xy);
+    var r = oneil_radiance(direction, surface.distance);
+    if surface.present {
+        let e = oneil_surface_irradiance(r.end, surface.normal);
+        r = add_surface(r, surface, e);
+    }
     textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }

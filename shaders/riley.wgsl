@@ -3,8 +3,10 @@
 // printed Eq. 15 lacks restored) in a flat atmosphere per species, Rayleigh and Mie each
 // one exponential (`RileyParams`, fitted on the CPU), in the tangent frame at the start
 // of the view segment; the flattened ray is one leg (to the ground, or up to space) or
-// two (down past the limb to the real ray's lowest altitude, then up); the Lambertian
-// ground lit through Eq. (12); the transmitted sun disk where the ray reaches space.
+// two (down past the limb to the real ray's lowest altitude, then up), cut where an
+// object (the frame's surface) ends the ray; the Lambertian ground and surfaces lit
+// through Eq. (12) in their own tangent frame; the transmitted sun disk where the ray
+// reaches space.
 // Writes spectral radiance (W m^-2 sr^-1 nm^-1) to the HDR target.
 //
 // Everything stays finite in f32 at the stiff directions (view parallel to the sun's
@@ -21,6 +23,7 @@
 #import atmosphere_params.wgsl
 #import frame_params.wgsl
 #import phase.wgsl
+#import surface.wgsl
 
 struct RileyParams {
     // x: Rayleigh scale height, y: Mie scale height, m; zw: 0.
@@ -117,13 +120,30 @@ fn add_leg(light: Light, y0: f32, p: f32, k: f32, l: f32, phase_r: vec3<f32>,
     return out;
 }
 
-// `Riley::radiance` for the view ray with unit `direction` from the camera.
-fn riley_radiance(direction: vec3<f32>) -> Radiance {
-    var out: Radiance;
-    out.radiance = vec3<f32>(0.0);
-    out.transmittance = vec3<f32>(1.0);
-    out.reaches_space = true;
-    let s = view_segment(direction, 0.0);
+// `Riley::surface_irradiance`: the transmitted sun only, its optical depth by Eq. (12)
+// in the element's tangent frame, none where the sun is below its flat horizon.
+fn riley_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let e = surface_element(point, normal);
+    let y = e.r - atmosphere.bottom_radius_m;
+    var t = vec3<f32>(0.0);
+    if e.sun_cosine > 0.0 && e.mu_s > 0.0 {
+        // The vertical column above height y per unit ground extinction, H exp(-y / H),
+        // per species; none for a pruned species (H = 0).
+        let h = riley.scale_heights_m.xy;
+        let column = select(vec2<f32>(0.0), h * exp(-y / max(h, vec2<f32>(1e-30))),
+            h > vec2<f32>(0.0));
+        let tau = (riley.rayleigh_extinction_per_m.xyz * column.x
+            + riley.mie_extinction_per_m.xyz * column.y) / e.mu_s;
+        t = exp(-tau);
+    }
+    return element_irradiance(e, t, vec3<f32>(0.0));
+}
+
+// `Riley::radiance` for the view ray with unit `direction` from the camera, ending on an
+// object at `object_m` (0: none): the legs are cut at the object, as on the CPU.
+fn riley_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+    let s = view_segment(direction, object_m);
+    var out = radiance_of_empty(s, direction);
     if !s.hit {
         return out;
     }
@@ -140,13 +160,12 @@ fn riley_radiance(direction: vec3<f32>) -> Radiance {
     light.transmittance = vec3<f32>(1.0);
     if s.on_ground {
         // Down to the flat ground (`flat_legs`): on_ground implies r mu < 0.
-        light = add_leg(light, y0, p, y0 / -p, l, phase_r, phase_m);
-        if l > 0.0 {
-            // Sunlight reflected by the Lambertian ground, the sun's path by Eq. (12).
-            let sun_tau = (riley.rayleigh_extinction_per_m.xyz * riley.scale_heights_m.x
-                + riley.mie_extinction_per_m.xyz * riley.scale_heights_m.y) / l;
+        light = add_leg(light, y0, p, min(y0 / -p, s.length), l, phase_r, phase_m);
+        if s.end == END_GROUND {
+            // The Lambertian ground, lit as a surface facing up at the ray's end.
+            let end = s.start + s.length * direction;
             light.radiance += light.transmittance * atmosphere.ground_albedo / PI
-                * atmosphere.solar_irradiance.xyz * exp(-sun_tau) * l;
+                * riley_surface_irradiance(end, normalize(end));
         }
     } else if p >= 0.0 {
         light = add_leg(light, y0, p, s.length, l, phase_r, phase_m);
@@ -165,7 +184,6 @@ fn riley_radiance(direction: vec3<f32>) -> Radiance {
     }
     out.radiance = light.radiance;
     out.transmittance = light.transmittance;
-    out.reaches_space = !s.on_ground;
     return out;
 }
 
@@ -175,6 +193,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let direction = pixel_direction(id.xy);
-    let r = riley_radiance(direction);
+    let surface = frame_surface(id.xy);
+    var r = riley_radiance(direction, surface.distance);
+    if surface.present {
+        let e = riley_surface_irradiance(r.end, surface.normal);
+        r = add_surface(r, surface, e);
+    }
     textureStore(hdr, id.xy, hdr_pixel(direction, r));
 }

@@ -67,10 +67,6 @@ fn element_irradiance(e: SurfaceElement, sun_transmittance: vec3<f32>, sky: vec3
         + sky * e.sky_view_factor;
 }
 
-// The planet-centred point where the answer `r` for the ray along `direction` ends.
-fn end_point(direction: vec3<f32>, r: Radiance) -> vec3<f32> {
-    return frame.camera_m.xyz + r.end_distance * direction;
-}
 
 // `r` with the surface's reflection added for the model's `irradiance` at its end
 // (`radiance_with_surface`); the surface hides the sun disk.

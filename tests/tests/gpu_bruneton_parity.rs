@@ -13,7 +13,7 @@ use atmosphere_core::model::ModelSettings;
 use render_wgpu::bruneton_pass::{BrunetonPass, StoreTable};
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{check, view};
+use support::{check, check_surface, standard_frames, view};
 
 /// Reduced table sizes for the parity tests (S 8 x 32 x 16 x 8, the paper's sample
 /// counts), so that the CPU and lavapipe build them in seconds.
@@ -181,6 +181,23 @@ fn frames_match_the_cpu_from_the_ground_to_far_orbit() {
         }
         let f = frame("earth", s.clone(), v, fov, 48, 27);
         check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
+    }
+}
+
+#[test]
+fn bruneton_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
+    let Some(gpu) = gpu_or_skip("bruneton surfaces") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    // The aerial perspective's second look-up where a surface cuts the ray short, none
+    // where it lies beyond the ground; the tables reduced as above.
+    for (name, f) in standard_frames("bruneton").iter().take(4) {
+        let f = Frame {
+            settings: settings(&REDUCED),
+            ..f.clone()
+        };
+        check_surface(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
     }
 }
 

@@ -14,7 +14,7 @@ use atmosphere_core::reference::Spectra;
 use render_wgpu::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use render_wgpu::dobashi_pass::{DobashiTables, plane_interval_m, sphere_rows};
 use render_wgpu::pipeline::uniform_buffer;
-use support::{check, frame, frame_in, renderer_or_skip, standard_frames, view};
+use support::{check, check_surface, frame, frame_in, renderer_or_skip, standard_frames, view};
 
 /// Largest allowed difference of a table value between GPU and CPU, relative to the
 /// value (dI with a floor of 1e-7, dg_v absolute). Measured on lavapipe: see the test
@@ -148,6 +148,17 @@ fn dobashi_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     check(&mut renderer, "30,000 km, spheres", &f, MAX_RELATIVE_ERROR);
     f.settings.options = ModelOptions::parse(&["max_planes=100000"]).unwrap();
     check(&mut renderer, "30,000 km, planes", &f, MAX_RELATIVE_ERROR);
+}
+
+#[test]
+fn dobashi_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
+    let Some(mut renderer) = renderer_or_skip("dobashi surfaces") else {
+        return;
+    };
+    // Planes up to 100 km, spheres from 1e8 m: both cut where an object ends the ray.
+    for (name, f) in standard_frames("dobashi").iter().take(4) {
+        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
+    }
 }
 
 /// Whether rendering `f` runs step `step`.

@@ -17,7 +17,7 @@ use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::frame_plan::FramePlan;
 use render_wgpu::hillaire_pass::{HillairePass, Table};
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{check, view};
+use support::{check, check_surface, standard_frames, view};
 
 /// Largest relative error of a table's texel, |gpu - cpu| / max(|cpu|, 1e-3 of the
 /// table's largest value). Both sides march in the same order with the same samples;
@@ -234,6 +234,18 @@ fn hillaire_frames_match_the_cpu_from_the_ground_to_far_orbit() {
         &frame(view(1e8, 180.0, 80.0), 9.0, 64, 36),
         MAX_RELATIVE_ERROR,
     );
+}
+
+#[test]
+fn hillaire_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
+    let Some(mut renderer) = renderer_or_skip("hillaire surfaces") else {
+        return;
+    };
+    // Surfaces within the volume's range read it, those beyond are marched (the planner
+    // picks the entry point that does both), and from space every ray is marched.
+    for (name, f) in standard_frames("hillaire").iter().take(4) {
+        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
+    }
 }
 
 #[test]

@@ -12,7 +12,7 @@ use render_wgpu::GpuContext;
 use render_wgpu::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use render_wgpu::oneil_pass::OneilTablePass;
 use render_wgpu::pipeline::uniform_buffer;
-use support::{check, frame, frame_in, renderer_or_skip, standard_frames, view};
+use support::{check, check_surface, frame, frame_in, renderer_or_skip, standard_frames, view};
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
 /// store (4.9e-4), the f32 table and f32 lookups. Measured on lavapipe: see the test
@@ -114,6 +114,16 @@ fn oneil_frames_match_the_cpu_from_the_ground_to_far_orbit() {
         let atmosphere = Atmosphere::preset(name).unwrap();
         let f = frame_in(atmosphere, "oneil", view(1.0, 85.0, 50.0), 70.0, 64, 36);
         check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
+    }
+}
+
+#[test]
+fn oneil_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
+    let Some(mut renderer) = renderer_or_skip("oneil surfaces") else {
+        return;
+    };
+    for (name, f) in standard_frames("oneil").iter().take(4) {
+        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
 

@@ -7,7 +7,9 @@ mod support;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use render_wgpu::frame::{Frame, LocalView};
-use support::{FLOOR, check, frame, frame_in, renderer_or_skip, standard_frames, view};
+use support::{
+    FLOOR, check, check_surface, frame, frame_in, renderer_or_skip, standard_frames, view,
+};
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
 /// store (4.9e-4) and f32 arithmetic in a closed form. Measured on lavapipe: see the
@@ -34,6 +36,16 @@ fn riley_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     ] {
         let f = frame_in(atmosphere, "riley", view(1.0, 85.0, 50.0), 70.0, 64, 36);
         check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
+    }
+}
+
+#[test]
+fn riley_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
+    let Some(mut renderer) = renderer_or_skip("riley surfaces") else {
+        return;
+    };
+    for (name, f) in standard_frames("riley").iter().take(4) {
+        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
 

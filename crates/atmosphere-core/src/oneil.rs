@@ -27,6 +27,7 @@ use crate::geometry::{distance_to_exit, ray_hits_ground};
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::model_options::ModelOptions;
 use crate::reference::Spectra;
+use crate::surface_lighting::SurfaceElement;
 use crate::table_inputs::Inputs;
 use crate::view_segment::{SegmentEnd, ViewSegment};
 
@@ -315,6 +316,34 @@ impl SkyModel for Oneil {
         &self.spectra.solar_irradiance
     }
 
+    /// The transmitted sun only (single scattering has no sky light): the sun's columns
+    /// from the table at the element's height and sun angle (seed 002's ground shader
+    /// reads the same lookup), zero where the planet hides the sun's centre, the table's
+    /// own shadow test (its density channels are 0 where `ray_hits_ground`).
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let s = &self.spectra;
+        let lit =
+            e.sun_cosine > 0.0 && !ray_hits_ground(e.r, e.mu_s, self.atmosphere.bottom_radius_m);
+        let column = lit.then(|| {
+            let light = self.table.lookup(e.r, e.mu_s);
+            [light[RAYLEIGH_LENGTH], light[MIE_LENGTH]]
+        });
+        Ok((0..s.wavelengths_nm.len())
+            .map(|w| {
+                let t = column.map_or(0.0, |c| {
+                    (-(s.extinction[w][0] * c[0] + s.extinction[w][1] * c[1])).exp()
+                });
+                e.irradiance(s.solar_irradiance[w], t, 0.0)
+            })
+            .collect())
+    }
+
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.spectra.wavelengths_nm.len();
         let Some(seg) = ViewSegment::new(&self.atmosphere, ray)? else {
@@ -388,18 +417,13 @@ impl SkyModel for Oneil {
         }
         let total = to_camera(end);
         let transmittance: Vec<f64> = (0..n).map(|w| (-depth(w, total)).exp()).collect();
+        // The ground's Lambertian reflection of the transmitted sun (seed 002's ground
+        // shader), as any surface element facing up.
         if seg.end == SegmentEnd::Ground {
-            let up = end.normalize();
-            let cos_sun = up.dot(sun);
-            if cos_sun > 0.0 {
-                let light = table.lookup(self.atmosphere.bottom_radius_m, cos_sun);
-                let column = [light[RAYLEIGH_LENGTH], light[MIE_LENGTH]];
-                for w in 0..n {
-                    radiance[w] += transmittance[w] * self.atmosphere.ground_albedo / PI
-                        * self.spectra.solar_irradiance[w]
-                        * cos_sun
-                        * (-depth(w, column)).exp();
-                }
+            let irradiance = self.surface_irradiance(end, end, sun)?;
+            for w in 0..n {
+                radiance[w] +=
+                    transmittance[w] * self.atmosphere.ground_albedo / PI * irradiance[w];
             }
         }
         Ok(RayRadiance {

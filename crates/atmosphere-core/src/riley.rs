@@ -30,11 +30,14 @@
 
 use std::f64::consts::PI;
 
+use glam::DVec3;
+
 use crate::atmosphere::Atmosphere;
 use crate::density::DensityProfile;
 use crate::geometry::{distance_to_exit, ray_hits_ground};
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::phase::{PhaseFunction, rayleigh};
+use crate::surface_lighting::SurfaceElement;
 use crate::view_segment::{SegmentEnd, ViewSegment};
 
 /// `(1 - exp(-x)) / x`, 1 at x = 0, accurate for every x (0 at +infinity).
@@ -372,6 +375,45 @@ impl SkyModel for Riley {
         &self.solar_irradiance
     }
 
+    /// The transmitted sun only (single scattering has no sky light), through the flat
+    /// atmosphere in the element's own tangent frame: Eq. (12), the sun's optical depth
+    /// from height y at vertical component l = mu_s being sum over species of
+    /// beta H exp(-y / H) / l; no sun where l <= 0, the flat ground's horizon (the rule
+    /// of the view rays' sun, `FlatExponential::single_scattering`).
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new_within(
+            self.bottom_radius_m,
+            self.top_radius_m,
+            point_m,
+            normal,
+            sun_direction,
+        )?;
+        let y = e.r - self.bottom_radius_m;
+        let (rayleigh, mie) = self.species();
+        Ok((0..self.wavelengths_nm.len())
+            .map(|w| {
+                let t = if e.sun_cosine > 0.0 && e.mu_s > 0.0 {
+                    let tau: f64 = std::iter::once(rayleigh)
+                        .chain(mie)
+                        .map(|s| {
+                            s.extinction[w] * s.scale_height_m * (-y / s.scale_height_m).exp()
+                                / e.mu_s
+                        })
+                        .sum();
+                    (-tau).exp()
+                } else {
+                    0.0
+                };
+                e.irradiance(self.solar_irradiance[w], t, 0.0)
+            })
+            .collect())
+    }
+
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.wavelengths_nm.len();
         let (bottom, top) = (self.bottom_radius_m, self.top_radius_m);
@@ -425,14 +467,14 @@ impl SkyModel for Riley {
                 }
                 transmittance[w] *= (-tau).exp();
             }
-            if ground && l > 0.0 {
-                // Sunlight reflected by the Lambertian ground, the sun's path by Eq. (12).
-                let sun_tau: f64 = species
-                    .iter()
-                    .map(|(flat, _)| flat.beta_sea_level_per_m * flat.scale_height_m / l)
-                    .sum();
-                radiance[w] +=
-                    transmittance[w] * self.ground_albedo / PI * e * (-sun_tau).exp() * l;
+        }
+        if ground {
+            // The Lambertian ground lit by the transmitted sun, as any surface element
+            // facing up at the ray's end.
+            let end = segment.end_point();
+            let irradiance = self.surface_irradiance(end, end, sun)?;
+            for w in 0..n {
+                radiance[w] += transmittance[w] * self.ground_albedo / PI * irradiance[w];
             }
         }
         Ok(self.answer(radiance, transmittance))

@@ -94,6 +94,23 @@ impl SurfaceElement {
         normal: DVec3,
         sun_direction: DVec3,
     ) -> Result<SurfaceElement, ModelError> {
+        SurfaceElement::new_within(
+            atmosphere.bottom_radius_m,
+            atmosphere.top_radius_m,
+            point_m,
+            normal,
+            sun_direction,
+        )
+    }
+
+    /// As [`SurfaceElement::new`], for the shell between radii `bottom` and `top`.
+    pub fn new_within(
+        bottom: f64,
+        top: f64,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<SurfaceElement, ModelError> {
         let bad = |what: &str| ModelError::Ray(format!("surface element: {what}"));
         let normal = normal
             .try_normalize()
@@ -104,7 +121,6 @@ impl SurfaceElement {
         if !point_m.is_finite() {
             return Err(bad("the point must be finite"));
         }
-        let (bottom, top) = (atmosphere.bottom_radius_m, atmosphere.top_radius_m);
         let r = point_m.length();
         if r < bottom * (1.0 - 1e-9) {
             return Err(bad(&format!(

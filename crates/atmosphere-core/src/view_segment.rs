@@ -33,6 +33,10 @@ pub struct ViewSegment {
     /// Length of the segment, m.
     pub length: f64,
     pub end: SegmentEnd,
+    /// True when the ray's object ends it before the ground or the top would: the
+    /// segment is shorter than the ray's way through the atmosphere. An object beyond the
+    /// ground ends the ray there (`end` is `Object`) without cutting it.
+    pub cut: bool,
 }
 
 impl ViewSegment {
@@ -90,12 +94,14 @@ impl ViewSegment {
         };
         // An object beyond the ground ends the ray on the ground, as an object: terrain
         // is drawn over the sphere, and a caller lights the end with its own surface.
+        let mut cut = false;
         if let Some(d) = ray.max_distance_m {
             let remaining = d - t_enter;
             if remaining <= 0.0 {
                 return Ok(None);
             }
-            if remaining < length || end == SegmentEnd::Ground {
+            cut = remaining < length;
+            if cut || end == SegmentEnd::Ground {
                 length = remaining.min(length);
                 end = SegmentEnd::Object;
             }
@@ -109,6 +115,7 @@ impl ViewSegment {
             mu,
             length,
             end,
+            cut,
         }))
     }
 

@@ -11,7 +11,9 @@ use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
 use glam::DVec3;
 
 /// The models that light surfaces.
-const MODELS: &[&str] = &["nishita"];
+const MODELS: &[&str] = &[
+    "nishita", "oneil", "riley", "dobashi", "bruneton", "hillaire",
+];
 
 fn models(a: &Atmosphere) -> Vec<Box<dyn SkyModel>> {
     MODELS

@@ -46,6 +46,7 @@ use crate::pipeline::{
     uniform_buffer, uniform_entry,
 };
 use crate::readback::{map_and_read, read_texture};
+use crate::surface_buffer::{ALBEDO_BINDING, GEOMETRY_BINDING, SurfaceBuffer};
 use crate::transmittance_pass::{TableOutput, TransmittancePass};
 
 /// Texels of a row of S (mu_s x nu) at most: the workgroup of the row shaders
@@ -248,11 +249,14 @@ impl BrunetonPass {
             storage_texture_entry(7, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(8, wgpu::TextureFormat::Rgba32Float, D3),
         ]);
+        let surface_entries = SurfaceBuffer::layout_entries();
         let render_entries = with(&[
             texture_entry(6, D3),
             texture_entry(7, D3),
             texture_entry(8, D3),
             storage_texture_entry(9, HDR_FORMAT, D2),
+            surface_entries[0],
+            surface_entries[1],
         ]);
         let pipelines = Pipelines {
             density: make("bruneton_density.wgsl", "main", "bruneton density", &common)?,
@@ -586,7 +590,7 @@ impl BrunetonPass {
     }
 
     /// The bind group of `pipeline`: bindings 0-5 with `params`, 12, then `extra` from
-    /// binding 6 on.
+    /// binding 6 on, and for the per-pixel pass the frame's `surface` at 30 and 31.
     fn bind_group(
         &self,
         gpu: &GpuContext,
@@ -594,6 +598,7 @@ impl BrunetonPass {
         pipeline: &ComputePipeline,
         params: &wgpu::Buffer,
         extra: &[wgpu::BindingResource<'_>],
+        surface: Option<&[wgpu::TextureView; 2]>,
     ) -> wgpu::BindGroup {
         let tables = self.tables.as_ref().expect("plan makes the tables");
         let columns = tables.columns.texture().create_view(&Default::default());
@@ -615,6 +620,13 @@ impl BrunetonPass {
             ),
         ];
         resources.extend((6..).zip(extra.iter().cloned()));
+        if let Some([geometry, albedo]) = surface {
+            resources.push((
+                GEOMETRY_BINDING,
+                wgpu::BindingResource::TextureView(geometry),
+            ));
+            resources.push((ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)));
+        }
         pipeline.bind_group_numbered(gpu, &resources)
     }
 
@@ -644,10 +656,19 @@ impl BrunetonPass {
                 Vec::new()
             }
         };
-        let first =
-            |pipeline| self.bind_group(gpu, io, pipeline, &tables.params_first, &extra(pipeline));
-        let later = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &extra(pipeline));
-        let ordered = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &state);
+        let first = |pipeline| {
+            self.bind_group(
+                gpu,
+                io,
+                pipeline,
+                &tables.params_first,
+                &extra(pipeline),
+                None,
+            )
+        };
+        let later =
+            |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &extra(pipeline), None);
+        let ordered = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &state, None);
         let steps = [
             ("moments", &p.moments),
             ("scattering_density", &p.scattering_density),
@@ -906,7 +927,7 @@ impl ModelPass for BrunetonPass {
         let p = &self.pipelines;
         let simple =
             |pipeline: &ComputePipeline, label, x, encoder: &mut wgpu::CommandEncoder, ts| {
-                let bind_group = self.bind_group(gpu, io, pipeline, &tables.params, &[]);
+                let bind_group = self.bind_group(gpu, io, pipeline, &tables.params, &[], None);
                 pipeline.dispatch(encoder, label, &bind_group, [x, 1, 1], ts);
             };
         match step {
@@ -963,6 +984,7 @@ impl ModelPass for BrunetonPass {
                     &p.texture,
                     &tables.params,
                     &views.each_ref().map(wgpu::BindingResource::TextureView),
+                    None,
                 );
                 p.texture.dispatch(
                     encoder,
@@ -983,7 +1005,8 @@ impl ModelPass for BrunetonPass {
                     .map(wgpu::BindingResource::TextureView)
                     .collect();
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
-                let bind_group = self.bind_group(gpu, io, &p.render, &tables.params, &extra);
+                let bind_group =
+                    self.bind_group(gpu, io, &p.render, &tables.params, &extra, Some(io.surface));
                 let groups = texel_groups(io.hdr);
                 p.render
                     .dispatch(encoder, "bruneton", &bind_group, groups, timestamps);

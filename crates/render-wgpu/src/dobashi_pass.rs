@@ -25,6 +25,7 @@ use crate::pipeline::{
     texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::readback::read_texture;
+use crate::surface_buffer::SurfaceBuffer;
 use crate::transmittance_pass::{TABLE_FORMAT, TableOutput, TransmittancePass};
 
 /// Panels of 5-point Gauss-Legendre per plane segment (at most Delta_t, 8.8 km for the
@@ -402,6 +403,7 @@ impl DobashiPass {
             &entries,
         )?;
         entries.push(storage_texture_entry(12, HDR_FORMAT, D2));
+        entries.extend(SurfaceBuffer::layout_entries());
         let pass_pipeline =
             ComputePipeline::new(gpu, "dobashi.wgsl", "main", "the dobashi pass", &entries)?;
         Ok(DobashiPass {
@@ -422,7 +424,8 @@ impl DobashiPass {
         })
     }
 
-    /// The resources of the ambient and per-pixel pipelines from binding 0 to 11.
+    /// The resources of the ambient and per-pixel pipelines from binding 0 to 11; the
+    /// per-pixel one's HDR target at 12 and the frame's surface at 30 and 31.
     fn bind_group(
         &self,
         gpu: &GpuContext,
@@ -445,10 +448,13 @@ impl DobashiPass {
         resources.extend(views.iter().map(wgpu::BindingResource::TextureView));
         resources.push(tables.rows().as_entire_binding());
         resources.push(self.ambient.as_entire_binding());
-        if let Some(hdr) = hdr {
-            resources.push(wgpu::BindingResource::TextureView(hdr));
+        match hdr {
+            Some(hdr) => {
+                resources.push(wgpu::BindingResource::TextureView(hdr));
+                pipeline.pixel_bind_group(gpu, &resources, io.surface)
+            }
+            None => pipeline.bind_group(gpu, &resources),
         }
-        pipeline.bind_group(gpu, &resources)
     }
 }
 

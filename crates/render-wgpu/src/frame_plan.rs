@@ -25,6 +25,10 @@ pub struct PlanStep {
 pub struct FramePlan {
     pub steps: Vec<PlanStep>,
     pub skipped: Vec<(&'static str, &'static str)>,
+    /// Whether the frame's rays may end on a surface (`surface_buffer.rs`), set by the
+    /// renderer before the model plans: a surface may lie at any distance in any
+    /// direction, so passes that serve nearby ground serve it too.
+    pub surface: bool,
 }
 
 impl FramePlan {

@@ -37,6 +37,7 @@ use crate::pipeline::{
     uniform_entry,
 };
 use crate::readback::read_texture;
+use crate::surface_buffer::SurfaceBuffer;
 use crate::transmittance_pass::{TABLE_FORMAT, TableOutput, TransmittancePass};
 
 /// WGSL `HillaireParams`, 112 bytes: the view of the per-view tables, the settings'
@@ -329,12 +330,15 @@ impl HillairePass {
                 ]),
             )?,
             pass: {
+                let surface_entries = SurfaceBuffer::layout_entries();
                 let entries = with(&[
                     texture_entry(5, D2),
                     texture_entry(6, D2),
                     texture_entry(7, D3),
                     texture_entry(8, D3),
                     storage_texture_entry(9, HDR_FORMAT, D2),
+                    surface_entries[0],
+                    surface_entries[1],
                 ]);
                 let variant = |entry| {
                     ComputePipeline::new(gpu, "hillaire.wgsl", entry, "the hillaire pass", &entries)
@@ -450,9 +454,11 @@ impl ModelPass for HillairePass {
         } else {
             plan.skip("sky_view", "camera above the atmosphere");
         }
+        // A surface counts as ground in view, near and far: it may end any ray at any
+        // distance, read from the volume within its range and marched beyond.
         if !inside {
             plan.skip("aerial_perspective", "camera above the atmosphere");
-        } else if ground_within(frame, settings.aerial_range_m) {
+        } else if plan.surface || ground_within(frame, settings.aerial_range_m) {
             plan.build_if("aerial_perspective", stale(Table::AerialPerspective));
         } else {
             plan.skip("aerial_perspective", "no ground in view");
@@ -460,8 +466,9 @@ impl ModelPass for HillairePass {
         // Rays to the ground beyond the volume are marched; none when the horizon is
         // nearer than the volume's range or no ground is in view.
         let horizon_m = ((r - a.bottom_radius_m) * (r + a.bottom_radius_m)).sqrt();
-        let far_ground = horizon_m > settings.aerial_range_m * (1.0 - 1e-3)
-            && ground_within(frame, f64::INFINITY);
+        let far_ground = plan.surface
+            || horizon_m > settings.aerial_range_m * (1.0 - 1e-3)
+                && ground_within(frame, f64::INFINITY);
         self.variant = match (inside, far_ground) {
             (true, true) => 0,
             (true, false) => 1,
@@ -488,9 +495,12 @@ impl ModelPass for HillairePass {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let transmittance = view(tables.transmittance.texture());
         let psi = view(&tables.multiple_scattering);
+        // Bindings 0-3, `extra` from 4 on, and for the per-pixel pass the frame's
+        // `surface` at 30 and 31.
         let run = |pipeline: &ComputePipeline,
                    encoder: &mut wgpu::CommandEncoder,
                    extra: &[wgpu::BindingResource<'_>],
+                   surface: Option<&[wgpu::TextureView; 2]>,
                    groups: [u32; 3],
                    timestamps| {
             let mut resources = vec![
@@ -500,7 +510,10 @@ impl ModelPass for HillairePass {
                 wgpu::BindingResource::TextureView(&transmittance),
             ];
             resources.extend_from_slice(extra);
-            let bind_group = pipeline.bind_group(gpu, &resources);
+            let bind_group = match surface {
+                Some(surface) => pipeline.pixel_bind_group(gpu, &resources, surface),
+                None => pipeline.bind_group(gpu, &resources),
+            };
             pipeline.dispatch(encoder, step, &bind_group, groups, timestamps);
         };
         let tiles = |t: &wgpu::Texture| texel_groups(t);
@@ -518,6 +531,7 @@ impl ModelPass for HillairePass {
                     &self.multiple_scattering,
                     encoder,
                     &[psi_view],
+                    None,
                     [t.width(), t.height(), 1],
                     timestamps,
                 );
@@ -530,6 +544,7 @@ impl ModelPass for HillairePass {
                     &self.ground_irradiance,
                     encoder,
                     &[psi_view, wgpu::BindingResource::TextureView(&out)],
+                    None,
                     [t.width(), 1, 1],
                     timestamps,
                 );
@@ -541,6 +556,7 @@ impl ModelPass for HillairePass {
                     &self.sky_view,
                     encoder,
                     &[psi_view, wgpu::BindingResource::TextureView(&out)],
+                    None,
                     tiles(&tables.sky_view),
                     timestamps,
                 );
@@ -559,6 +575,7 @@ impl ModelPass for HillairePass {
                         wgpu::BindingResource::TextureView(&radiance),
                         wgpu::BindingResource::TextureView(&transmittance),
                     ],
+                    None,
                     tiles(&tables.aerial_radiance),
                     timestamps,
                 );
@@ -580,6 +597,7 @@ impl ModelPass for HillairePass {
                     &self.pass[self.variant],
                     encoder,
                     &extra,
+                    Some(io.surface),
                     tiles(io.hdr),
                     timestamps,
                 );

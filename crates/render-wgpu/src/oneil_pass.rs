@@ -21,6 +21,7 @@ use crate::pipeline::{
     uniform_entry,
 };
 use crate::readback::read_texture;
+use crate::surface_buffer::SurfaceBuffer;
 use crate::transmittance_pass::TABLE_FORMAT;
 
 /// WGSL `OneilParams` (the per-pixel pass), 16 bytes.
@@ -163,6 +164,7 @@ pub struct OneilPass {
 impl OneilPass {
     pub fn new(gpu: &GpuContext) -> Result<OneilPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
+        let surface_entries = SurfaceBuffer::layout_entries();
         let pipeline = ComputePipeline::new(
             gpu,
             "oneil.wgsl",
@@ -174,6 +176,8 @@ impl OneilPass {
                 uniform_entry(2, size_of::<OneilUniform>()),
                 texture_entry(3, D2),
                 storage_texture_entry(4, HDR_FORMAT, D2),
+                surface_entries[0],
+                surface_entries[1],
             ],
         )?;
         Ok(OneilPass {
@@ -248,7 +252,7 @@ impl ModelPass for OneilPass {
             "oneil" => {
                 let view = table.pass.texture().create_view(&Default::default());
                 let hdr = io.hdr.create_view(&Default::default());
-                let bind_group = self.pipeline.bind_group(
+                let bind_group = self.pipeline.pixel_bind_group(
                     gpu,
                     &[
                         io.atmosphere.as_entire_binding(),
@@ -257,6 +261,7 @@ impl ModelPass for OneilPass {
                         wgpu::BindingResource::TextureView(&view),
                         wgpu::BindingResource::TextureView(&hdr),
                     ],
+                    io.surface,
                 );
                 let groups = texel_groups(io.hdr);
                 self.pipeline

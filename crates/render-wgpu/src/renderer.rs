@@ -176,8 +176,9 @@ impl Renderer {
             }
             _ => false,
         };
+        plan.surface = surface.is_some() || draws_terrain;
         let mut frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        frame_uniform.size_px[2] = u32::from(surface.is_some() || draws_terrain);
+        frame_uniform.size_px[2] = u32::from(plan.surface);
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
         let targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,

@@ -18,6 +18,7 @@ use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
     ComputePipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
 };
+use crate::surface_buffer::SurfaceBuffer;
 
 /// WGSL `RileyParams`, 80 bytes: the fitted species.
 #[repr(C)]
@@ -67,6 +68,7 @@ pub struct RileyPass {
 impl RileyPass {
     pub fn new(gpu: &GpuContext) -> Result<RileyPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
+        let surface_entries = SurfaceBuffer::layout_entries();
         let pipeline = ComputePipeline::new(
             gpu,
             "riley.wgsl",
@@ -77,6 +79,8 @@ impl RileyPass {
                 uniform_entry(1, size_of::<FrameUniform>()),
                 uniform_entry(2, size_of::<RileyUniform>()),
                 storage_texture_entry(3, HDR_FORMAT, D2),
+                surface_entries[0],
+                surface_entries[1],
             ],
         )?;
         Ok(RileyPass {
@@ -122,7 +126,7 @@ impl ModelPass for RileyPass {
     ) {
         assert_eq!(step, "riley", "the riley plan has no step {step}");
         let hdr = io.hdr.create_view(&Default::default());
-        let bind_group = self.pipeline.bind_group(
+        let bind_group = self.pipeline.pixel_bind_group(
             gpu,
             &[
                 io.atmosphere.as_entire_binding(),
@@ -130,6 +134,7 @@ impl ModelPass for RileyPass {
                 self.params.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&hdr),
             ],
+            io.surface,
         );
         let groups = texel_groups(io.hdr);
         self.pipeline

@@ -21,6 +21,8 @@ pub mod tables;
 
 use std::f64::consts::PI;
 
+use glam::DVec3;
+
 use crate::atmosphere::Atmosphere;
 use crate::bruneton::parameterization::{Radii, ScatteringSize, table_position};
 use crate::bruneton::precompute::{Builder, Channels, DeltaM, OrderStats, Tables};
@@ -30,6 +32,7 @@ use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::model_options::ModelOptions;
 use crate::phase::rayleigh;
 use crate::reference::Spectra;
+use crate::surface_lighting::SurfaceElement;
 use crate::table_inputs::Inputs;
 use crate::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 use crate::view_segment::{SegmentEnd, ViewSegment};
@@ -395,6 +398,35 @@ impl SkyModel for Bruneton {
         &self.solar_irradiance
     }
 
+    /// The transmitted sun T(x, s) from the transmittance table (zero where the planet
+    /// hides the sun's centre) and the sky's irradiance E[L](r, mu_s) from the irradiance
+    /// table (section 4, Eq. 15: the irradiance on a horizontal element at radius r, from
+    /// every order), at the element's radius and sun angle: the paper's ground term
+    /// (Eq. 16) for any element.
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let n = self.wavelengths_nm.len();
+        let column_sun = (!ray_hits_ground(e.r, e.mu_s, self.radii.bottom_m))
+            .then(|| self.transmittance.column(e.r, e.mu_s));
+        let mut out = Vec::with_capacity(n);
+        for (g, tables) in self.groups.iter().enumerate() {
+            let sky = tables.irradiance.lookup(e.r, e.mu_s);
+            let sun_t = column_sun.map_or([0.0; 3], |c| tables.channels.transmittance(c));
+            for k in 0..3 {
+                if 3 * g + k < n {
+                    let solar = self.solar_irradiance[3 * g + k];
+                    out.push(e.irradiance(solar, sun_t[k], solar * sky[k]));
+                }
+            }
+        }
+        Ok(out)
+    }
+
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
@@ -412,7 +444,10 @@ impl SkyModel for Bruneton {
         // The half of the mu axis: that of the whole ray, also when an object ends it
         // before the ground.
         let ground = ray_hits_ground(r, mu, bottom);
-        let object = (segment.end == SegmentEnd::Object).then_some(length);
+        // The aerial perspective S(x) - T(x, x_o) S(x_o) (section 4, Eq. 3) for an object
+        // that cuts the ray short; one beyond the ground ends the ray there, where S(x_o)
+        // looks into the ground along a ray of length 0 and is zero.
+        let object = segment.cut.then_some(length);
         let column = self.segment_column(r, mu, length, ground);
         let mie_phase = if self.groups[0].single_mie.is_some() {
             self.atmosphere.mie.phase.eval(nu)
@@ -427,17 +462,14 @@ impl SkyModel for Bruneton {
             let mu_s_d = ((r * mu_s + d * nu) / r_d).clamp(-1.0, 1.0);
             table_position(&self.radii, &size, r_d, mu_d, mu_s_d, nu, ground)
         });
-        // The ground point and its light, for rays ending on the ground.
-        let ground_light = (segment.end == SegmentEnd::Ground).then(|| {
-            let point = segment.end_point();
-            let mu_s_g = (point.normalize().dot(sun)).clamp(-1.0, 1.0);
-            let column_sun = if ray_hits_ground(bottom, mu_s_g, bottom) {
-                None
-            } else {
-                Some(self.transmittance.column(bottom, mu_s_g))
-            };
-            (mu_s_g, column_sun)
-        });
+        // The ground's irradiance at the ray's end, the element facing up there.
+        let ground_light = match segment.end {
+            SegmentEnd::Ground => {
+                let point = segment.end_point();
+                Some(self.surface_irradiance(point, point, sun)?)
+            }
+            _ => None,
+        };
         let mut radiance = Vec::with_capacity(n);
         let mut transmittance = Vec::with_capacity(n);
         for (g, tables) in self.groups.iter().enumerate() {
@@ -450,17 +482,12 @@ impl SkyModel for Bruneton {
                     l[k] -= t[k] * l_end[k];
                 }
             }
-            if let Some((mu_s_g, column_sun)) = ground_light {
-                let sky = tables.irradiance.lookup(bottom, mu_s_g);
-                let sun_t = column_sun.map_or([0.0; 3], |c| tables.channels.transmittance(c));
-                for k in 0..3 {
-                    let direct = sun_t[k] * mu_s_g.max(0.0);
-                    l[k] += t[k] * self.atmosphere.ground_albedo / PI * (direct + sky[k]);
-                }
-            }
             for k in 0..3 {
                 if 3 * g + k < n {
-                    radiance.push((solar[k] * l[k]).max(0.0));
+                    let ground = ground_light.as_ref().map_or(0.0, |e| {
+                        t[k] * self.atmosphere.ground_albedo / PI * e[3 * g + k]
+                    });
+                    radiance.push((solar[k] * l[k] + ground).max(0.0));
                     transmittance.push(t[k].clamp(0.0, 1.0));
                 }
             }

@@ -22,9 +22,12 @@ pub mod settings;
 pub mod sphere_tables;
 pub mod trace;
 
+use glam::DVec3;
+
 use crate::atmosphere::Atmosphere;
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::reference::Spectra;
+use crate::surface_lighting::SurfaceElement;
 use crate::table_inputs::Inputs;
 use crate::transmittance_table::TransmittanceTable;
 
@@ -127,6 +130,14 @@ impl Dobashi {
     pub fn ambient(&self) -> Option<&AmbientTable> {
         self.ambient.as_ref()
     }
+
+    /// The ambient radiance the model's traces use: its table, or none.
+    fn ambient_radiance(&self) -> Ambient<'_> {
+        match &self.ambient {
+            Some(table) => Ambient::Table(table),
+            None => Ambient::Off,
+        }
+    }
 }
 
 impl SkyModel for Dobashi {
@@ -188,11 +199,30 @@ impl SkyModel for Dobashi {
         Ok(rebuilt)
     }
 
+    /// The transmitted sun g_l (seed 000 Eq. 11) and the ambient term's sky, pi psi on a
+    /// horizontal element, psi read at the element's sun angle (`Tracer::element_light`);
+    /// no sky for single scattering.
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let n_w = self.spectra.wavelengths_nm.len();
+        let (mut sun, mut sky) = (vec![0.0; n_w], vec![0.0; n_w]);
+        self.tracer()
+            .element_light(&e, self.ambient_radiance(), &mut sun, &mut sky);
+        Ok((0..n_w)
+            .map(|w| {
+                let solar = self.spectra.solar_irradiance[w];
+                e.irradiance(solar, sun[w], solar * sky[w])
+            })
+            .collect())
+    }
+
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
-        let ambient = match &self.ambient {
-            Some(table) => Ambient::Table(table),
-            None => Ambient::Off,
-        };
+        let ambient = self.ambient_radiance();
         let terms = self.tracer().trace(ray, ambient)?;
         let radiance = (0..terms.single.len())
             .map(|w| self.spectra.solar_irradiance[w] * (terms.single[w] + terms.ambient[w]))

@@ -28,6 +28,7 @@ use crate::geometry::safe_sqrt;
 use crate::model::{ModelError, ViewRay};
 use crate::nishita::sun_column;
 use crate::reference::Spectra;
+use crate::surface_lighting::SurfaceElement;
 use crate::transmittance_table::TransmittanceTable;
 use crate::view_segment::{SegmentEnd, ViewSegment};
 
@@ -108,12 +109,69 @@ impl Tracer<'_> {
             self.through_planes(&segment, &mut acc);
         }
         if segment.end == SegmentEnd::Ground {
-            acc.add_ground(segment.end_point());
+            let end = segment.end_point();
+            let element = SurfaceElement::new(self.atmosphere, end, end, segment.sun_direction)?;
+            acc.add_ground(&element);
         }
         Ok(acc.terms)
     }
 
-    /// Section 5.2: segments of Delta_t from the start of the segment.
+    /// The light on a surface element per unit solar irradiance (Eq. 11's sunlit ground,
+    /// and the ambient term's sky): the sun's transmittance g_l(h, theta_sun) into `sun`
+    /// (0 where the sun's centre is behind the planet, section 5.2) and the irradiance of
+    /// the ambient radiance on a horizontal element into `sky`: pi psi on the ground, and
+    /// above it pi psi times the share of the ground's vertical optical depth that lies
+    /// above the element (psi is the radiance arriving at the ground; a peak has less sky
+    /// over it, and at the top none). The element's facing weighs both
+    /// (`SurfaceElement::irradiance`).
+    pub fn element_light(
+        &self,
+        element: &SurfaceElement,
+        ambient: Ambient<'_>,
+        sun: &mut [f64],
+        sky: &mut [f64],
+    ) {
+        self.light(element.r, element.mu_s, ambient, sun, sky);
+        let above = self.sun_table.column(element.r, 1.0);
+        let whole = self.sun_table.column(self.atmosphere.bottom_radius_m, 1.0);
+        for (psi, e) in sky.iter_mut().zip(&self.spectra.extinction) {
+            let total = optical_depth(whole, *e);
+            let share = if total > 0.0 {
+                optical_depth(above, *e) / total
+            } else {
+                1.0
+            };
+            *psi *= PI * share;
+        }
+    }
+
+    /// g_l at radius `r` and sun cosine `mu_sun` per wavelength into `sunlight` (0 where
+    /// the sun is behind the planet), and the ambient radiance psi into `psi`.
+    fn light(
+        &self,
+        r: f64,
+        mu_sun: f64,
+        ambient: Ambient<'_>,
+        sunlight: &mut [f64],
+        psi: &mut [f64],
+    ) {
+        match sun_column(self.sun_table, r, mu_sun) {
+            Some(column) => {
+                for (g, e) in sunlight.iter_mut().zip(&self.spectra.extinction) {
+                    *g = (-optical_depth(column, *e)).exp();
+                }
+            }
+            None => sunlight.fill(0.0),
+        }
+        match ambient {
+            Ambient::Off => psi.fill(0.0),
+            Ambient::Unit => psi.fill(1.0),
+            Ambient::Table(table) => table.lookup(mu_sun, psi),
+        }
+    }
+
+    /// Section 5.2: segments of Delta_t from the start of the segment, the last one cut
+    /// where an object ends the ray short (`ViewSegment::cut`).
     fn through_planes(&self, segment: &ViewSegment, acc: &mut Accumulator<'_, '_>) {
         let dt = self.planes.interval_m;
         let n = (segment.length / dt).ceil() as usize;
@@ -124,7 +182,7 @@ impl Tracer<'_> {
             let mu = p.dot(segment.direction) / r;
             self.planes.lookup(r, mu, &mut acc.values);
             let mut fraction = 1.0;
-            if segment.end == SegmentEnd::Object && k + 1 == n {
+            if segment.cut && k + 1 == n {
                 let full = self.planes.segment_length(r, mu);
                 let remaining = segment.length - t;
                 if remaining < full {
@@ -136,7 +194,8 @@ impl Tracer<'_> {
     }
 
     /// Section 5.3: segments between crossings of the sample spheres, from the top
-    /// sphere where the ray enters the atmosphere.
+    /// sphere where the ray enters the atmosphere, the last one cut where an object ends
+    /// the ray short.
     fn through_spheres(&self, segment: &ViewSegment, acc: &mut Accumulator<'_, '_>) {
         let spheres = self.spheres;
         let (mut k, mut mu, mut t) = (spheres.radii_m.len() - 1, segment.mu, 0.0);
@@ -147,7 +206,7 @@ impl Tracer<'_> {
             }
             let p = segment.start + segment.direction * t;
             spheres.lookup(k, &step, &mut acc.values);
-            if segment.end == SegmentEnd::Object && remaining < step.length_m {
+            if segment.cut && remaining < step.length_m {
                 acc.add(p, remaining / step.length_m);
                 break;
             }
@@ -201,28 +260,12 @@ impl<'t, 'a> Accumulator<'t, 'a> {
     }
 
     /// g_l at `p` per wavelength into `sunlight` (0 where the sun is behind the planet,
-    /// section 5.2), and the ambient radiance into `psi`; returns the sun's cosine there.
-    fn light_at(&mut self, p: DVec3) -> f64 {
+    /// section 5.2), and the ambient radiance into `psi`.
+    fn light_at(&mut self, p: DVec3) {
         let r = p.length();
         let mu_sun = (p.dot(self.sun) / r).clamp(-1.0, 1.0);
-        match sun_column(self.tracer.sun_table, r, mu_sun) {
-            Some(column) => {
-                for (g, e) in self
-                    .sunlight
-                    .iter_mut()
-                    .zip(&self.tracer.spectra.extinction)
-                {
-                    *g = (-optical_depth(column, *e)).exp();
-                }
-            }
-            None => self.sunlight.fill(0.0),
-        }
-        match self.ambient {
-            Ambient::Off => self.psi.fill(0.0),
-            Ambient::Unit => self.psi.fill(1.0),
-            Ambient::Table(table) => table.lookup(mu_sun, &mut self.psi),
-        }
-        mu_sun
+        self.tracer
+            .light(r, mu_sun, self.ambient, &mut self.sunlight, &mut self.psi);
     }
 
     /// Adds the segment starting at `p` whose values are in `self.values`, or its first
@@ -256,18 +299,19 @@ impl<'t, 'a> Accumulator<'t, 'a> {
         }
     }
 
-    /// The ground at the end of the ray: I_e = I_sun (r/π) g_l(0, θ_g) cos θ_g (Eq. 11;
-    /// r/π for a Lambertian albedo in radiance), and the ambient radiance from the sky
-    /// hemisphere reflected, r ψ, both seen through Π dg_v.
-    fn add_ground(&mut self, end: DVec3) {
+    /// The ground at the end of the ray, the element facing up there: I_e = I_sun (r/π)
+    /// g_l(0, θ_g) cos θ_g (Eq. 11; r/π for a Lambertian albedo in radiance), and the
+    /// ambient radiance from the sky hemisphere reflected, (r/π) π ψ, both seen through
+    /// Π dg_v.
+    fn add_ground(&mut self, element: &SurfaceElement) {
         let albedo = self.tracer.atmosphere.ground_albedo;
-        let cos_g = self.light_at(end.normalize() * self.tracer.atmosphere.bottom_radius_m);
+        self.tracer
+            .element_light(element, self.ambient, &mut self.sunlight, &mut self.psi);
         for w in 0..self.sunlight.len() {
             let t = self.terms.transmittance[w];
-            if cos_g > 0.0 {
-                self.terms.single[w] += t * albedo / PI * self.sunlight[w] * cos_g;
-            }
-            self.terms.ambient[w] += t * albedo * self.psi[w];
+            self.terms.single[w] +=
+                t * albedo / PI * element.irradiance(1.0, self.sunlight[w], 0.0);
+            self.terms.ambient[w] += t * albedo / PI * element.irradiance(0.0, 0.0, self.psi[w]);
         }
     }
 }

@@ -22,6 +22,8 @@ pub mod view_cache;
 
 use std::f64::consts::PI;
 
+use glam::DVec3;
+
 use crate::atmosphere::Atmosphere;
 use crate::column::optical_depth;
 use crate::geometry::ray_hits_ground;
@@ -36,6 +38,7 @@ use crate::hillaire::view_cache::ViewCache;
 use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::model_options::ModelOptions;
 use crate::reference::Spectra;
+use crate::surface_lighting::SurfaceElement;
 use crate::table_inputs::Inputs;
 use crate::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 use crate::view_segment::{SegmentEnd, ViewSegment};
@@ -365,23 +368,6 @@ impl Hillaire {
         });
     }
 
-    /// Light leaving the ground at `point` per unit solar irradiance:
-    /// albedo / pi (T_sun max(mu_s, 0) + E_sky(mu_s)), per wavelength.
-    fn ground_light(&self, point: glam::DVec3, sun: glam::DVec3) -> Vec<f64> {
-        let n = self.spectra.wavelengths_nm.len();
-        let mu_s = point.normalize().dot(sun).clamp(-1.0, 1.0);
-        let mut direct = vec![0.0; n];
-        self.medium()
-            .sun_transmittance(self.atmosphere.bottom_radius_m, mu_s, &mut direct);
-        let mut sky = vec![0.0; n];
-        if let Some(ground) = &self.ground {
-            ground.lookup(mu_s, &mut sky);
-        }
-        (0..n)
-            .map(|w| self.atmosphere.ground_albedo / PI * (direct[w] * mu_s.max(0.0) + sky[w]))
-            .collect()
-    }
-
     /// The per-pixel march of a segment: radiance per unit solar irradiance and
     /// transmittance.
     fn march(&self, segment: &ViewSegment) -> (Vec<f64>, Vec<f64>) {
@@ -496,6 +482,45 @@ impl SkyModel for Hillaire {
         Ok(rebuilt)
     }
 
+    /// The transmitted sun from the transmittance LUT (zero where the planet hides the
+    /// sun) and the sky's irradiance E_sky (`ground.rs`; none for single scattering): the
+    /// paper's lit planet surface (section 5). The sky-irradiance table is tabulated on
+    /// the ground only, over mu_s: an element higher up reads it at its own mu_s, times
+    /// the share of the ground's vertical optical depth that lies above the element (the
+    /// sky over a peak is thinner; at the top there is none).
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let n = self.spectra.wavelengths_nm.len();
+        let mut sun = vec![0.0; n];
+        self.medium().sun_transmittance(e.r, e.mu_s, &mut sun);
+        let mut sky = vec![0.0; n];
+        if let Some(ground) = &self.ground {
+            ground.lookup(e.mu_s, &mut sky);
+        }
+        let above = self.transmittance.column(e.r, 1.0);
+        let whole = self
+            .transmittance
+            .column(self.atmosphere.bottom_radius_m, 1.0);
+        Ok((0..n)
+            .map(|w| {
+                let extinction = self.spectra.extinction[w];
+                let total = optical_depth(whole, extinction);
+                let share = if total > 0.0 {
+                    optical_depth(above, extinction) / total
+                } else {
+                    1.0
+                };
+                let solar = self.spectra.solar_irradiance[w];
+                e.irradiance(solar, sun[w], solar * sky[w] * share)
+            })
+            .collect())
+    }
+
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.spectra.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
@@ -513,18 +538,20 @@ impl SkyModel for Hillaire {
         } else {
             self.march(&segment)
         };
+        for (l, e) in radiance.iter_mut().zip(&self.spectra.solar_irradiance) {
+            *l *= e;
+        }
+        // The ground lit as a surface element facing up at the ray's end.
         if segment.end == SegmentEnd::Ground {
-            let light = self.ground_light(segment.end_point(), segment.sun_direction);
+            let end = segment.end_point();
+            let irradiance = self.surface_irradiance(end, end, segment.sun_direction)?;
             for w in 0..n {
-                radiance[w] += transmittance[w] * light[w];
+                radiance[w] +=
+                    transmittance[w] * self.atmosphere.ground_albedo / PI * irradiance[w];
             }
         }
         Ok(RayRadiance {
-            radiance: radiance
-                .iter()
-                .zip(&self.spectra.solar_irradiance)
-                .map(|(l, e)| (l * e).max(0.0))
-                .collect(),
+            radiance: radiance.iter().map(|l| l.max(0.0)).collect(),
             transmittance: transmittance.iter().map(|t| t.clamp(0.0, 1.0)).collect(),
             radiance_std_error: vec![0.0; n],
         })
