@@ -7,6 +7,7 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::dobashi::{Dobashi, DobashiSettings};
 use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
 use atmosphere_core::model_options::ModelOptions;
+use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
 
 fn ray(a: &Atmosphere, altitude_m: f64, view: f64, sun: f64, azimuth: f64) -> ViewRay {
     ViewRay::from_angles(a.bottom_radius_m, altitude_m, view, sun, azimuth, None).unwrap()
@@ -317,11 +318,26 @@ fn objects_and_extreme_rays_are_finite() {
                             );
                         }
                         if distance == Some(1e9) {
+                            // An object beyond everything answers as the open ray, except
+                            // that one beyond the ground ends the ray there as an object:
+                            // the same segments, without the ground's light (its caller
+                            // lights it; tests/surface_lighting.rs).
                             let open = ViewRay {
                                 max_distance_m: None,
                                 ..ray
                             };
-                            assert_eq!(out, m.radiance(&open).unwrap());
+                            let open_out = m.radiance(&open).unwrap();
+                            let on_ground = ViewSegment::new(&a, &open)
+                                .unwrap()
+                                .is_some_and(|s| s.end == SegmentEnd::Ground);
+                            if on_ground {
+                                assert_eq!(out.transmittance, open_out.transmittance);
+                                for w in 0..3 {
+                                    assert!(out.radiance[w] <= open_out.radiance[w]);
+                                }
+                            } else {
+                                assert_eq!(out, open_out);
+                            }
                         }
                     }
                 }

@@ -253,12 +253,19 @@ fn sun_below_the_horizon_gives_finite_non_negative_radiance() {
             let out = m
                 .radiance(&ray(&earth, alt, view_up, sun_up, 45.0, None))
                 .unwrap();
+            // The air's light alone: the ray ended where it meets the ground as an object,
+            // since the ground is lit by the sun at its own point (`surface_irradiance`),
+            // which may be up where the camera's is not.
+            let air = m
+                .radiance(&ray(&earth, alt, view_up, sun_up, 45.0, Some(1e9)))
+                .unwrap();
             for w in 0..3 {
                 let (l, t) = (out.radiance[w], out.transmittance[w]);
                 assert!(
                     l.is_finite() && l >= 0.0,
                     "sun {sun_elevation_deg} alt {alt}: {l}"
                 );
+                let l = air.radiance[w];
                 // From far out the ray enters the air far from under the camera, where
                 // the sun may still be up; elsewhere there is no light.
                 if alt < earth.thickness_m() {
