@@ -117,7 +117,7 @@ impl Default for ViewerSettings {
             mie_g: mie_g(&earth).unwrap_or(0.8),
             ozone: true,
             ground_albedo: earth.ground_albedo,
-            model: "nishita".into(),
+            model: "hillaire".into(),
             exposure_ev100: 14.0,
             exposure_mode: ExposureMode::default(),
             terrain: true,
