@@ -67,6 +67,61 @@ fn renders_a_png_with_sky_above_ground() {
     assert!(!dir.path().join("frame.png.partial").exists());
 }
 
+/// The Earth's terrain over the Alps from 8 km, looking down the valleys to the
+/// south-west: the ground differs from the smooth sphere's (relief and the colour map
+/// instead of one albedo) while the sky above the mountains is the same.
+#[test]
+fn renders_terrain_at_a_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let render_at = |terrain: &str| {
+        let out = dir.path().join(format!("alps_{terrain}.png"));
+        let mut args = vec!["render".to_string()];
+        args.extend(scene_with(&[
+            ("--latitude-deg", "46.0"),
+            ("--longitude-deg", "7.8"),
+            ("--terrain", terrain),
+            ("--altitude-m", "8000"),
+            ("--view-zenith-deg", "100"),
+            ("--view-azimuth-deg", "225"),
+        ]));
+        args.extend(["--out".to_string(), out.display().to_string()]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let output = atmos(&args);
+        if !output.status.success() && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") {
+            println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {}", stderr(&output));
+            return None;
+        }
+        assert!(output.status.success(), "{}", stderr(&output));
+        Some(image::open(&out).unwrap().to_rgb8())
+    };
+    let (Some(terrain), Some(sphere)) = (render_at("true"), render_at("false")) else {
+        return;
+    };
+    let mean_difference = |rows: std::ops::Range<u32>| {
+        let mut sum = 0.0;
+        let mut count = 0.0;
+        for y in rows {
+            for x in 0..32 {
+                for c in 0..3 {
+                    sum += (f64::from(terrain.get_pixel(x, y)[c])
+                        - f64::from(sphere.get_pixel(x, y)[c]))
+                    .abs();
+                    count += 1.0;
+                }
+            }
+        }
+        sum / count
+    };
+    let sky = terrain.get_pixel(16, 0);
+    assert!(sky[2] > sky[0], "sky {sky:?}");
+    assert!(mean_difference(0..2) < 1.0, "the sky changed");
+    let ground = mean_difference(12..18);
+    assert!(
+        ground > 5.0,
+        "terrain and sphere differ by {ground} levels only"
+    );
+}
+
 #[test]
 fn renders_an_exr_of_linear_radiance_from_a_scene_file() {
     let dir = tempfile::tempdir().unwrap();
@@ -111,7 +166,7 @@ fn renders_an_exr_of_linear_radiance_from_a_scene_file() {
 
 /// `SCENE` as `--flag=value` arguments, with `overrides` replacing values by flag.
 fn scene_with(overrides: &[(&str, &str)]) -> Vec<String> {
-    SCENE
+    let mut args: Vec<String> = SCENE
         .chunks_exact(2)
         .map(|pair| {
             let value = overrides
@@ -120,7 +175,13 @@ fn scene_with(overrides: &[(&str, &str)]) -> Vec<String> {
                 .map_or(pair[1], |(_, v)| *v);
             format!("{}={value}", pair[0])
         })
-        .collect()
+        .collect();
+    for (flag, value) in overrides {
+        if !SCENE.contains(flag) {
+            args.push(format!("{flag}={value}"));
+        }
+    }
+    args
 }
 
 #[test]
@@ -138,6 +199,26 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "not yet on the GPU",
         ),
         (&[("--set", "colour=1")], "frame.png", "colour"),
+        (
+            &[("--latitude-deg", "95"), ("--longitude-deg", "0")],
+            "frame.png",
+            "--latitude-deg 95",
+        ),
+        (
+            // 10 m above sea level in the Alps is inside the mountains.
+            &[
+                ("--latitude-deg", "46.0"),
+                ("--longitude-deg", "7.8"),
+                ("--terrain", "true"),
+            ],
+            "frame.png",
+            "is not above the terrain: the ground there is at",
+        ),
+        (
+            &[("--terrain", "true"), ("--exaggeration", "500")],
+            "frame.png",
+            "--exaggeration 500",
+        ),
     ];
     for (overrides, name, message) in cases {
         let out = dir.path().join(name);
