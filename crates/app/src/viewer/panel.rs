@@ -343,6 +343,24 @@ fn model(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
             })
             .response
             .on_hover_text("Scattering model on the GPU (docs/models/); the camera stays");
+        let valid = settings.parsed_model_options().is_ok();
+        let text = settings
+            .model_options
+            .entry(settings.model.clone())
+            .or_default();
+        let mut edit = egui::TextEdit::singleline(text).hint_text("paper's values");
+        if !valid {
+            edit = edit.text_color(egui::Color32::RED);
+        }
+        ui.horizontal(|ui| {
+            ui.label("quality");
+            ui.add(edit).on_hover_text(
+                "The model's accuracy/time settings as key=value items separated by \
+                 spaces, e.g. samples=32 (nishita) or ms_samples=40 (hillaire); each \
+                 model's keys and the papers' values are in docs/models/. Red: not valid \
+                 for this model (the last valid frame stays).",
+            );
+        });
     });
 }
 

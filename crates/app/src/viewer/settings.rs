@@ -5,6 +5,7 @@
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::model::ModelSettings;
+use atmosphere_core::model_options::ModelOptions;
 use atmosphere_core::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Frame;
@@ -93,6 +94,10 @@ pub struct ViewerSettings {
     pub ground_albedo: f64,
     /// One of `render_wgpu::model_pass::GPU_MODELS`.
     pub model: String,
+    /// The model's quality settings as `key=value` items separated by spaces (e.g.
+    /// `samples=32` for nishita; each model's keys are in docs/models/); empty: the
+    /// paper's values. Kept per model.
+    pub model_options: std::collections::BTreeMap<String, String>,
     /// The exposure; in automatic mode the last adapted value.
     pub exposure_ev100: f64,
     pub exposure_mode: ExposureMode,
@@ -118,6 +123,7 @@ impl Default for ViewerSettings {
             ozone: true,
             ground_albedo: earth.ground_albedo,
             model: "hillaire".into(),
+            model_options: Default::default(),
             exposure_ev100: 14.0,
             exposure_mode: ExposureMode::default(),
             terrain: true,
@@ -304,6 +310,16 @@ impl ViewerSettings {
         self.sun_clock.mode = mode;
     }
 
+    /// The current model's quality settings, parsed; an error names the bad item.
+    pub fn parsed_model_options(&self) -> anyhow::Result<ModelOptions> {
+        let text = self
+            .model_options
+            .get(&self.model)
+            .map_or("", String::as_str);
+        let items: Vec<&str> = text.split_whitespace().collect();
+        ModelOptions::parse(&items).with_context(|| format!("{} settings '{text}'", self.model))
+    }
+
     /// The frame these settings show at `width` x `height` pixels.
     pub fn frame(&self, width: u32, height: u32) -> anyhow::Result<Frame> {
         let atmosphere = self.atmosphere()?;
@@ -320,7 +336,10 @@ impl ViewerSettings {
             sun_direction,
             atmosphere,
             model: self.model.clone(),
-            settings: ModelSettings::default(),
+            settings: ModelSettings {
+                options: self.parsed_model_options()?,
+                ..ModelSettings::default()
+            },
             exposure_ev100: self.exposure_ev100,
             width,
             height,
@@ -334,6 +353,31 @@ impl ViewerSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quality_settings_reach_the_frame_per_model_and_bad_ones_are_named() {
+        let mut s = ViewerSettings {
+            model: "nishita".into(),
+            ..ViewerSettings::default()
+        };
+        s.model_options
+            .insert("nishita".into(), " samples=32  ".into());
+        let frame = s.frame(4, 2).unwrap();
+        let nishita =
+            atmosphere_core::nishita::NishitaSettings::from_options(&frame.settings.options)
+                .unwrap();
+        assert_eq!(nishita.view_samples, 32);
+        // Another model keeps its own (none: the paper's values).
+        s.model = "hillaire".into();
+        assert_eq!(
+            s.frame(4, 2).unwrap().settings.options,
+            ModelOptions::default()
+        );
+        s.model_options
+            .insert("hillaire".into(), "ms_samples".into());
+        let err = format!("{:#}", s.frame(4, 2).unwrap_err());
+        assert!(err.contains("ms_samples"), "{err}");
+    }
 
     #[test]
     fn the_altitude_slider_is_logarithmic_and_round_trips() {
