@@ -184,3 +184,68 @@ fn a_parameter_change_mid_build_starts_again_and_ends_at_the_fresh_result() {
     );
     assert_eq!(renderer.read_hdr().unwrap(), one_shot(&f));
 }
+
+/// Wall-clock time of each frame of a progressive build at the paper's table sizes (or
+/// with `ATMOS_PROGRESSIVE_SET` options, `key=value` separated by spaces), at
+/// `ATMOS_PROGRESSIVE_SIZE` pixels (`640x360`), measured rather than asserted. Run with
+/// `./scripts/test.sh -p atmos-tests --test gpu_bruneton_progressive frame_times --
+/// --ignored --nocapture`.
+#[test]
+#[ignore = "a measurement: a minute or more on lavapipe"]
+fn frame_times_of_a_progressive_build() {
+    let Some(mut renderer) = renderer_or_skip("bruneton progressive frame times") else {
+        return;
+    };
+    let size = std::env::var("ATMOS_PROGRESSIVE_SIZE").unwrap_or_else(|_| "640x360".into());
+    let (w, h) = size.split_once('x').unwrap();
+    let mut f = frame(
+        "bruneton",
+        view(1_000.0, 80.0, 70.0),
+        70.0,
+        w.parse().unwrap(),
+        h.parse().unwrap(),
+    );
+    for item in std::env::var("ATMOS_PROGRESSIVE_SET")
+        .unwrap_or_default()
+        .split_whitespace()
+    {
+        let (k, v) = item.split_once('=').unwrap();
+        f.settings.options.set(k, v);
+    }
+    // A first one-shot build compiles lavapipe's shaders; the progressive build follows
+    // a change of the ground albedo (orders only) and one of the aerosol (everything).
+    renderer.render(&f).unwrap();
+    renderer.set_progressive(true);
+    for (what, change) in [
+        (
+            "ground albedo 0.3",
+            Box::new(|f: &mut Frame| f.atmosphere.ground_albedo = 0.3) as Box<dyn Fn(&mut Frame)>,
+        ),
+        (
+            "aerosol x2",
+            Box::new(|f: &mut Frame| f.atmosphere = f.atmosphere.with_aerosol_scale(2.0)),
+        ),
+    ] {
+        change(&mut f);
+        let (mut total, mut worst, mut frames) = (0.0f64, 0.0f64, 0);
+        loop {
+            let start = std::time::Instant::now();
+            let plan = renderer.render(&f).unwrap();
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            println!(
+                "{ms:7.0} ms  {}",
+                plan.building.as_deref().unwrap_or("(complete)")
+            );
+            total += ms;
+            worst = worst.max(ms);
+            frames += 1;
+            if plan.building.is_none() {
+                break;
+            }
+        }
+        println!(
+            "{what} at {size}: {frames} frames, {:.1} s in all, worst frame {worst:.0} ms",
+            total / 1e3
+        );
+    }
+}
