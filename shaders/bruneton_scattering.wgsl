@@ -12,6 +12,10 @@
 #import bruneton_ray_nodes.wgsl
 
 @group(0) @binding(6) var delta_j: texture_3d<f32>;
+// x: the first texel of this dispatch. An order's Delta S is dispatched in slices of
+// texels (`SLICE_TEXELS` of bruneton_pass.rs), so that a progressive build can spread
+// it over frames.
+@group(0) @binding(7) var<uniform> slice: vec4<u32>;
 
 // Delta J of nu slice `inu` at mu_s texel `imus` interpolated in (r, mu) at `p`: the
 // CPU's plane entry (`scattering_of`), corner weights and order as there.
@@ -27,11 +31,12 @@ fn plane_entry(p: Position, imus: u32, inu: u32) -> vec3<f32> {
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= bruneton.offsets_c.z {
+    let index = slice.x + id.x;
+    if index >= bruneton.offsets_c.z {
         return;
     }
     let size = bruneton.size;
-    let tx = texel_of_index(id.x);
+    let tx = texel_of_index(index);
     let ray = row_ray(tx);
     let nu_axis = axis(u_nu(tx.nu), size.w);
     let n = bruneton.flags.x;
@@ -46,5 +51,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let b = mix(plane_entry(p, s.i, nu_axis.i + 1u), plane_entry(p, s.i + 1u, nu_axis.i + 1u), s.w);
         sum += node.weighted_transmittance * mix(a, b, nu_axis.w);
     }
-    store[bruneton.offsets_b.x + id.x] = vec4<f32>(sum, 0.0);
+    store[bruneton.offsets_b.x + index] = vec4<f32>(sum, 0.0);
 }

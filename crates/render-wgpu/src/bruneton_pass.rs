@@ -62,6 +62,17 @@ const SUM_GROUPS: u32 = 256;
 const DENSITY_BINDING: u32 = 12;
 /// Invocations of the flat shaders' workgroups.
 const FLAT: u32 = 64;
+/// Texels of S per Delta S dispatch at most: an order's Delta S is dispatched in slices of
+/// this many texels, so that a progressive build can spread it over frames (a multiple of
+/// [`FLAT`]).
+pub const SLICE_TEXELS: u32 = 65536;
+
+/// The Delta S slices of an order over `texels` texels of S: how many, and the texels of
+/// each (a multiple of [`FLAT`]; the last slice may hold fewer).
+fn delta_s_slices(texels: u32) -> (u32, u32) {
+    let slices = texels.div_ceil(SLICE_TEXELS);
+    (slices, texels.div_ceil(slices).next_multiple_of(FLAT))
+}
 
 /// WGSL `BrunetonParams`, 128 bytes.
 #[repr(C)]
@@ -179,7 +190,70 @@ struct Tables {
     density: wgpu::Texture,
     /// Delta J as a 3D texture like S's, written with the store's copy, read by Delta S.
     delta_j: wgpu::Texture,
+    /// The first texel of each Delta S slice (`vec4<u32>`, x), one per uniform offset
+    /// alignment.
+    slice_starts: wgpu::Buffer,
+    /// Bytes between two slices' starts in `slice_starts`.
+    slice_stride: u64,
+    /// Delta S slices per order.
+    slices: u32,
     built: Built,
+    /// The share of the loop over orders that the next progressive frame records;
+    /// `None` when no progressive build is under way.
+    next: Option<Share>,
+}
+
+/// A share of the loop over orders that one progressive frame records: order 1 (after
+/// clearing S's multiple part and E, the sums of single scattering and their decision),
+/// or part `part` of an order of two or more (0: Delta J's moments, Delta J and Delta E;
+/// 1 to `slices`: Delta S slice `part - 1`, the last with the order's sums, decision and
+/// accumulation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Share {
+    order: u32,
+    part: u32,
+}
+
+impl Share {
+    /// The first share: single scattering's.
+    const FIRST: Share = Share { order: 1, part: 0 };
+
+    /// Whether this share ends its order: S and E then hold every order up to it.
+    fn ends_order(self, slices: u32) -> bool {
+        self.order == 1 || self.part == slices
+    }
+
+    /// The share after this one, `None` after the last order's last.
+    fn after(self, slices: u32, max_orders: u32) -> Option<Share> {
+        if !self.ends_order(slices) {
+            Some(Share {
+                part: self.part + 1,
+                ..self
+            })
+        } else if self.order < max_orders {
+            Some(Share {
+                order: self.order + 1,
+                part: 0,
+            })
+        } else {
+            None
+        }
+    }
+
+    /// What the share builds, for [`FramePlan::building`].
+    fn describe(self, slices: u32, max_orders: u32) -> String {
+        match self.part {
+            _ if self.order == 1 => "bruneton: single scattering".to_string(),
+            0 => format!(
+                "bruneton: order {} of at most {max_orders}, Delta J and Delta E",
+                self.order
+            ),
+            p => format!(
+                "bruneton: order {} of at most {max_orders}, Delta S slice {p} of {slices}",
+                self.order
+            ),
+        }
+    }
 }
 
 /// The pipelines of every step.
@@ -208,6 +282,10 @@ pub struct BrunetonPass {
     atmosphere: AtmosphereUniform,
     /// The frame's atmosphere and whether Mie is computed, while its steps are encoded.
     pending: Option<(Atmosphere, bool)>,
+    /// Whether the loop over orders is spread over frames ([`ModelPass::set_progressive`]).
+    progressive: bool,
+    /// The share of the loop over orders this frame records; `None`: all of it.
+    recording: Option<Share>,
 }
 
 /// Bindings 0-5 and 12 of every bruneton shader: atmosphere, frame, parameters, the
@@ -243,7 +321,7 @@ impl BrunetonPass {
             wgpu::TextureFormat::Rgba32Float,
             D3,
         )]);
-        let delta_j_in = with(&[texture_entry(6, D3)]);
+        let delta_j_in = with(&[texture_entry(6, D3), uniform_entry(7, 16)]);
         let texture_entries = with(&[
             storage_texture_entry(6, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(7, wgpu::TextureFormat::Rgba32Float, D3),
@@ -333,6 +411,8 @@ impl BrunetonPass {
             uniform: BrunetonUniform::default(),
             atmosphere: AtmosphereUniform::default(),
             pending: None,
+            progressive: false,
+            recording: None,
         })
     }
 
@@ -369,6 +449,20 @@ impl BrunetonPass {
             )));
         }
         let device = &gpu.device;
+        let (slices, slice_texels) = delta_s_slices(s.texels() as u32);
+        let slice_stride = u64::from(limits.min_uniform_buffer_offset_alignment).max(16);
+        let slice_starts = uniform_buffer(
+            device,
+            "bruneton Delta S slices",
+            (slice_stride * u64::from(slices)) as usize,
+        );
+        for k in 0..slices {
+            gpu.queue.write_buffer(
+                &slice_starts,
+                slice_stride * u64::from(k),
+                bytemuck::bytes_of(&[k * slice_texels, 0, 0, 0]),
+            );
+        }
         let (t_width, t_height) = (
             settings.transmittance_size.0 as u32,
             settings.transmittance_size.1 as u32,
@@ -441,7 +535,11 @@ impl BrunetonPass {
                 texture("bruneton single Mie"),
                 texture("bruneton multiple scattering"),
             ],
+            slice_starts,
+            slice_stride,
+            slices,
             built: Built::default(),
+            next: None,
         })
     }
 
@@ -495,7 +593,7 @@ impl BrunetonPass {
             groups(((s.r * s.mu_s) as u32).div_ceil(FLAT)),
             groups(n.div_ceil(FLAT)),
             groups(e.div_ceil(FLAT)),
-            groups(n.div_ceil(FLAT)),
+            groups(delta_s_slices(n).1 / FLAT),
             groups(SUM_GROUPS),
             groups(n.max(e).div_ceil(FLAT)),
         ];
@@ -630,113 +728,127 @@ impl BrunetonPass {
         pipeline.bind_group_numbered(gpu, &resources)
     }
 
-    /// The dispatches of the loop over orders (Algorithm 4.1), in order, after clearing
-    /// S's multiple part and E: each with its step's name and the order it belongs to (1
-    /// for the sums of single scattering).
-    fn order_dispatches(
-        &self,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-    ) -> Vec<OrderDispatch<'_>> {
+    /// The dispatches of the loop over orders (Algorithm 4.1), in order: each with its
+    /// step's name and the share of a progressive build it belongs to (order 1 for the
+    /// sums of single scattering). The loop starts by clearing S's multiple part and E
+    /// ([`BrunetonPass::clear_orders`]).
+    fn order_dispatches(&self, gpu: &GpuContext, io: &PassIo<'_>) -> Vec<OrderDispatch<'_>> {
         let tables = self.tables.as_ref().expect("plan makes the tables");
         let p = &self.pipelines;
-        for table in [StoreTable::Multiple, StoreTable::Irradiance] {
-            let (offset, size) = tables.layout.range(table);
-            encoder.clear_buffer(&tables.store, offset, Some(size));
-        }
         let state = [tables.state.as_entire_binding()];
         let delta_j = tables.delta_j.create_view(&Default::default());
-        let extra = |pipeline: &ComputePipeline| -> Vec<wgpu::BindingResource<'_>> {
-            if std::ptr::eq(pipeline, &p.scattering_density)
-                || std::ptr::eq(pipeline, &p.scattering)
-            {
-                vec![wgpu::BindingResource::TextureView(&delta_j)]
-            } else {
-                Vec::new()
-            }
+        let slice = |k: u32| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &tables.slice_starts,
+                offset: tables.slice_stride * u64::from(k),
+                size: wgpu::BufferSize::new(16),
+            })
         };
-        let first = |pipeline| {
-            self.bind_group(
-                gpu,
-                io,
-                pipeline,
-                &tables.params_first,
-                &extra(pipeline),
-                None,
-            )
+        let with_delta_j = [wgpu::BindingResource::TextureView(&delta_j)];
+        let bind = |pipeline, params, extra: &[wgpu::BindingResource<'_>]| {
+            self.bind_group(gpu, io, pipeline, params, extra, None)
         };
-        let later =
-            |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &extra(pipeline), None);
-        let ordered = |pipeline| self.bind_group(gpu, io, pipeline, &tables.params, &state, None);
-        let steps = [
-            ("moments", &p.moments),
-            ("scattering_density", &p.scattering_density),
-            ("irradiance", &p.irradiance),
-            ("scattering", &p.scattering),
+        // Bind groups of order 2 (`params_first`) and of later orders.
+        let both = |pipeline, extra: &[wgpu::BindingResource<'_>]| {
+            [
+                bind(pipeline, &tables.params_first, extra),
+                bind(pipeline, &tables.params, extra),
+            ]
+        };
+        let first_steps = [
+            ("moments", &p.moments, both(&p.moments, &[])),
+            (
+                "scattering_density",
+                &p.scattering_density,
+                both(&p.scattering_density, &with_delta_j),
+            ),
+            ("irradiance", &p.irradiance, both(&p.irradiance, &[])),
         ];
-        let groups: Vec<_> = steps
-            .iter()
-            .map(|(name, pipeline)| (*name, *pipeline, first(pipeline), later(pipeline)))
+        let slice_groups: Vec<_> = (0..tables.slices)
+            .map(|k| both(&p.scattering, &[with_delta_j[0].clone(), slice(k)]))
             .collect();
         // The state is bound to `decide` only: the other steps are dispatched from it.
-        let sum_single = later(&p.sum_single);
-        let sum_order = later(&p.sum_order);
-        let decide = ordered(&p.decide);
-        let accumulate = later(&p.accumulate);
+        let sum_single = bind(&p.sum_single, &tables.params, &[]);
+        let sum_order = bind(&p.sum_order, &tables.params, &[]);
+        let decide = bind(&p.decide, &tables.params, &state);
+        let accumulate = bind(&p.accumulate, &tables.params, &[]);
         let args = |k: u64| 48 + 16 * k;
+        let dispatch = OrderDispatch::new;
+        let single = Share::FIRST;
         let mut out = vec![
-            OrderDispatch {
-                name: "sum_single",
-                order: 1,
-                pipeline: &p.sum_single.pipeline,
-                bind_group: sum_single,
-                size: DispatchSize::Direct(SUM_GROUPS),
-            },
-            OrderDispatch {
-                name: "decide",
-                order: 1,
-                pipeline: &p.decide.pipeline,
-                bind_group: decide.clone(),
-                size: DispatchSize::Direct(1),
-            },
+            dispatch(
+                "sum_single",
+                single,
+                &p.sum_single,
+                sum_single,
+                DispatchSize::Direct(SUM_GROUPS),
+            ),
+            dispatch(
+                "decide",
+                single,
+                &p.decide,
+                decide.clone(),
+                DispatchSize::Direct(1),
+            ),
         ];
         for order in 2..=tables.max_orders {
-            for (k, (name, pipeline, first_group, later_group)) in groups.iter().enumerate() {
-                out.push(OrderDispatch {
+            let later = usize::from(order > 2);
+            let part = |part| Share { order, part };
+            for (k, (name, pipeline, groups)) in first_steps.iter().enumerate() {
+                out.push(dispatch(
                     name,
-                    order,
-                    pipeline: &pipeline.pipeline,
-                    bind_group: if order == 2 { first_group } else { later_group }.clone(),
-                    size: DispatchSize::Indirect(&tables.state, args(k as u64)),
-                });
+                    part(0),
+                    pipeline,
+                    groups[later].clone(),
+                    DispatchSize::Indirect(&tables.state, args(k as u64)),
+                ));
             }
-            out.push(OrderDispatch {
-                name: "sum_order",
-                order,
-                pipeline: &p.sum_order.pipeline,
-                bind_group: sum_order.clone(),
-                size: DispatchSize::Indirect(&tables.state, args(4)),
-            });
-            out.push(OrderDispatch {
-                name: "decide",
-                order,
-                pipeline: &p.decide.pipeline,
-                bind_group: decide.clone(),
-                size: DispatchSize::Direct(1),
-            });
-            out.push(OrderDispatch {
-                name: "accumulate",
-                order,
-                pipeline: &p.accumulate.pipeline,
-                bind_group: accumulate.clone(),
-                size: DispatchSize::Indirect(&tables.state, args(5)),
-            });
+            for (k, groups) in (1..).zip(&slice_groups) {
+                out.push(dispatch(
+                    "scattering",
+                    part(k),
+                    &p.scattering,
+                    groups[later].clone(),
+                    DispatchSize::Indirect(&tables.state, args(3)),
+                ));
+            }
+            let last = part(tables.slices);
+            out.push(dispatch(
+                "sum_order",
+                last,
+                &p.sum_order,
+                sum_order.clone(),
+                DispatchSize::Indirect(&tables.state, args(4)),
+            ));
+            out.push(dispatch(
+                "decide",
+                last,
+                &p.decide,
+                decide.clone(),
+                DispatchSize::Direct(1),
+            ));
+            out.push(dispatch(
+                "accumulate",
+                last,
+                &p.accumulate,
+                accumulate.clone(),
+                DispatchSize::Indirect(&tables.state, args(5)),
+            ));
         }
         out
     }
 
-    /// Records the loop over orders (Algorithm 4.1) into one compute pass.
+    /// Clears S's multiple part and E, where the loop over orders adds its orders.
+    fn clear_orders(&self, encoder: &mut wgpu::CommandEncoder) {
+        let tables = self.tables.as_ref().expect("plan makes the tables");
+        for table in [StoreTable::Multiple, StoreTable::Irradiance] {
+            let (offset, size) = tables.layout.range(table);
+            encoder.clear_buffer(&tables.store, offset, Some(size));
+        }
+    }
+
+    /// Records the loop over orders (Algorithm 4.1) into one compute pass: all of it, or
+    /// the share of this progressive frame ([`BrunetonPass::recording`]).
     fn encode_orders(
         &self,
         gpu: &GpuContext,
@@ -744,13 +856,18 @@ impl BrunetonPass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let dispatches = self.order_dispatches(gpu, io, encoder);
+        if self.recording.is_none_or(|s| s == Share::FIRST) {
+            self.clear_orders(encoder);
+        }
+        let dispatches = self.order_dispatches(gpu, io);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("bruneton scattering orders"),
             timestamp_writes: timestamps,
         });
         for d in &dispatches {
-            d.record(&mut pass);
+            if self.recording.is_none_or(|s| s == d.share) {
+                d.record(&mut pass);
+            }
         }
     }
 
@@ -790,7 +907,8 @@ impl BrunetonPass {
                 continue;
             }
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
-            let dispatches = self.order_dispatches(gpu, &io, &mut encoder);
+            self.clear_orders(&mut encoder);
+            let dispatches = self.order_dispatches(gpu, &io);
             gpu.queue.submit([encoder.finish()]);
             wait()?;
             for d in &dispatches {
@@ -803,7 +921,7 @@ impl BrunetonPass {
                 gpu.queue.submit([encoder.finish()]);
                 wait()?;
                 times.push((
-                    format!("scattering_orders order {} {}", d.order, d.name),
+                    format!("scattering_orders order {} {}", d.share.order, d.name),
                     start.elapsed().as_secs_f64() * 1e3,
                 ));
             }
@@ -827,13 +945,30 @@ enum DispatchSize<'a> {
 #[derive(Debug)]
 struct OrderDispatch<'a> {
     name: &'static str,
-    order: u32,
+    /// The share of a progressive build it belongs to.
+    share: Share,
     pipeline: &'a wgpu::ComputePipeline,
     bind_group: wgpu::BindGroup,
     size: DispatchSize<'a>,
 }
 
-impl OrderDispatch<'_> {
+impl<'a> OrderDispatch<'a> {
+    fn new(
+        name: &'static str,
+        share: Share,
+        pipeline: &'a ComputePipeline,
+        bind_group: wgpu::BindGroup,
+        size: DispatchSize<'a>,
+    ) -> Self {
+        OrderDispatch {
+            name,
+            share,
+            pipeline: &pipeline.pipeline,
+            bind_group,
+            size,
+        }
+    }
+
     fn record(&self, pass: &mut wgpu::ComputePass<'_>) {
         pass.set_pipeline(self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
@@ -875,19 +1010,43 @@ impl ModelPass for BrunetonPass {
         let columns = stale(&tables.built.columns, Inputs::COLUMNS);
         let sun = stale(&tables.built.sun, Inputs::EXTINCTION);
         let single = stale(&tables.built.single, Inputs::EXTINCTION);
+        // The loop over orders starts again when its inputs changed, and a progressive
+        // build under way is done in one go once progressive building is off.
         let orders = single
+            || (tables.next.is_some() && !self.progressive)
             || tables.built.orders.as_ref().is_none_or(|(old, old_mie)| {
                 let changed = Inputs::changed(old, atmosphere);
                 changed.intersects(Inputs::GROUND_ALBEDO)
                     || (changed.intersects(Inputs::MIE_PHASE) && *old_mie)
             });
+        // Before an order after the second, whether the GPU has ended the loop (a read of
+        // its state, the last frame's work done): the orders after it would add nothing.
+        let ask = !orders && tables.next.is_some_and(|n| n.part == 0 && n.order > 2);
+        let ended = ask && self.read_orders(gpu)?.running == 0;
+        let tables = self.tables.as_mut().expect("made above");
+        if orders || ended {
+            tables.next = None;
+        }
+        self.recording = match (self.progressive, orders) {
+            (false, _) => None,
+            (true, true) => Some(Share::FIRST),
+            (true, false) => tables.next,
+        };
+        let (slices, max_orders) = (tables.slices, tables.max_orders);
+        let refresh = orders && self.recording.is_none()
+            || self.recording.is_some_and(|s| s.ends_order(slices));
         plan.build_if("transmittance", columns);
         plan.build_if("density", columns);
         plan.build_if("sun_transmittance", sun);
         plan.build_if("single_scattering", single);
-        plan.build_if("scattering_orders", orders);
-        plan.build_if("scattering_texture", single || orders);
+        plan.build_if("scattering_orders", orders || self.recording.is_some());
+        plan.build_if("scattering_texture", refresh);
         plan.run("bruneton", StepKind::Pass);
+        plan.building = self
+            .recording
+            .filter(|s| s.after(slices, max_orders).is_some())
+            .map(|s| s.describe(slices, max_orders));
+        let tables = self.tables.as_ref().expect("made above");
         // Mie pruning as built (a frame that rebuilds nothing renders what was built).
         let mie = if orders {
             mie
@@ -1013,14 +1172,32 @@ impl ModelPass for BrunetonPass {
             }
             other => unreachable!("the bruneton plan has no step {other}"),
         }
-        let built = &mut self.tables.as_mut().expect("plan makes the tables").built;
+        let tables = self.tables.as_mut().expect("plan makes the tables");
+        let built = &mut tables.built;
         match step {
             "transmittance" => built.columns = Some(atmosphere),
             "sun_transmittance" => built.sun = Some(atmosphere),
             "single_scattering" => built.single = Some(atmosphere),
-            "scattering_orders" => built.orders = Some((atmosphere, mie)),
+            "scattering_orders" => {
+                if self.recording.is_none_or(|s| s == Share::FIRST) {
+                    built.orders = Some((atmosphere, mie));
+                }
+                tables.next = self
+                    .recording
+                    .and_then(|s| s.after(tables.slices, tables.max_orders));
+            }
             _ => {}
         }
+    }
+
+    /// On: the loop over orders spreads over frames: the first frame builds every table
+    /// up to single scattering (S's multiple part zero), each later one a share of an
+    /// order ([`Share`]: Delta J and Delta E, then each Delta S slice, the last with the
+    /// order's accumulation), the scattering textures refreshed after each order, until
+    /// the order limit or the GPU's end of the loop. Off: the whole build in one frame;
+    /// a build under way is finished at the next frame.
+    fn set_progressive(&mut self, on: bool) {
+        self.progressive = on;
     }
 
     fn table_bytes(&self) -> u64 {

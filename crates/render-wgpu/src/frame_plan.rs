@@ -29,6 +29,11 @@ pub struct FramePlan {
     /// renderer before the model plans: a surface may lie at any distance in any
     /// direction, so passes that serve nearby ground serve it too.
     pub surface: bool,
+    /// What a progressive table build ([`crate::Renderer::set_progressive`]) is doing
+    /// this frame when more of it follows in later frames (`bruneton: order 3 of at most
+    /// 32, Delta S slice 2 of 16`): the image is not final yet. `None` when the tables
+    /// are complete.
+    pub building: Option<String>,
 }
 
 impl FramePlan {
@@ -68,7 +73,8 @@ impl FramePlan {
 }
 
 impl std::fmt::Display for FramePlan {
-    /// One line: `g_l 1.20 ms, nishita 3.40 ms, tone_map 0.10 ms; skipped: ...`.
+    /// One line: `g_l 1.20 ms, nishita 3.40 ms, tone_map 0.10 ms; skipped: ...;
+    /// building: ...`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         for (i, step) in self.steps.iter().enumerate() {
             let sep = if i == 0 { "" } else { ", " };
@@ -80,6 +86,9 @@ impl std::fmt::Display for FramePlan {
         for (i, (name, why)) in self.skipped.iter().enumerate() {
             let sep = if i == 0 { "; skipped: " } else { ", " };
             write!(f, "{sep}{name} ({why})")?;
+        }
+        if let Some(building) = &self.building {
+            write!(f, "; building: {building}")?;
         }
         Ok(())
     }
@@ -103,5 +112,11 @@ mod tests {
         assert_eq!(plan.total_gpu_ms(), None);
         plan.steps.iter_mut().for_each(|s| s.gpu_ms = Some(1.5));
         assert_eq!(plan.total_gpu_ms(), Some(3.0));
+        plan.building = Some("bruneton: single scattering".into());
+        assert!(
+            plan.to_string()
+                .ends_with("(inputs unchanged); building: bruneton: single scattering"),
+            "{plan}"
+        );
     }
 }

@@ -112,6 +112,11 @@ pub trait ModelPass: std::fmt::Debug {
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     );
 
+    /// Whether the model may spread its table builds over frames
+    /// ([`crate::Renderer::set_progressive`]); off until set. A model whose tables build
+    /// in milliseconds builds them in one frame either way.
+    fn set_progressive(&mut self, _on: bool) {}
+
     /// Bytes of GPU memory held by the model's tables.
     fn table_bytes(&self) -> u64;
 }

@@ -46,6 +46,8 @@ pub struct Renderer {
     luminance: LuminancePass,
     targets: Option<Targets>,
     timer: Option<GpuTimer>,
+    /// Whether models may spread their table builds over frames.
+    progressive: bool,
 }
 
 fn target(
@@ -93,6 +95,7 @@ impl Renderer {
             luminance: LuminancePass::new(&gpu, RGB_WAVELENGTHS_NM)?,
             timer: GpuTimer::new(&gpu, MAX_STEPS),
             targets: None,
+            progressive: false,
             gpu,
         })
     }
@@ -106,6 +109,19 @@ impl Renderer {
     /// The GPU context.
     pub fn gpu(&self) -> &GpuContext {
         &self.gpu
+    }
+
+    /// On: a model may spread a long table build over frames, each frame showing what is
+    /// built so far, [`FramePlan::building`] saying what is not yet (bruneton: single
+    /// scattering in the first frame, then its orders; the others build in one frame
+    /// anyway), so that a window stays interactive while tables rebuild. Off (the
+    /// default, for headless renders and tests): every frame shows complete tables.
+    /// Turning it off finishes a build under way at the next frame.
+    pub fn set_progressive(&mut self, on: bool) {
+        self.progressive = on;
+        for (_, model) in &mut self.models {
+            model.set_progressive(on);
+        }
     }
 
     /// Bytes of GPU memory held by the tables of the models used so far.
@@ -202,7 +218,8 @@ impl Renderer {
             let index = match self.models.iter().position(|(m, _)| *m == frame.model) {
                 Some(i) => i,
                 None => {
-                    let pass = model_pass::create(&frame.model, gpu)?;
+                    let mut pass = model_pass::create(&frame.model, gpu)?;
+                    pass.set_progressive(self.progressive);
                     self.models.push((frame.model.clone(), pass));
                     self.models.len() - 1
                 }

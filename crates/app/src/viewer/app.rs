@@ -1,7 +1,10 @@
 //! The eframe app: keyboard and mouse into the flight controller, the side panel, and the
 //! sky rendered by the [`Renderer`] on the window's own wgpu device, shown as an egui
 //! image the size of the central panel. A frame is rendered only when the size or an
-//! input changed; while the camera moves it renders at half resolution.
+//! input changed, or while tables are still being built: the renderer builds them
+//! progressively ([`Renderer::set_progressive`]), so the view stays interactive while
+//! they rebuild after a parameter change. While the camera moves it renders at half
+//! resolution.
 
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -104,11 +107,14 @@ impl ViewerApp {
             Ok(_) => String::new(),
             Err(e) => format!("{e}"),
         };
+        let mut renderer = Renderer::new(gpu)?;
+        // Batch screenshots (`--frames`) show complete tables in every frame.
+        renderer.set_progressive(args.frames.is_none());
         Ok(ViewerApp {
             terrain: terrain.ok(),
             flight: settings.flight(),
             settings,
-            renderer: Renderer::new(gpu)?,
+            renderer,
             render_state,
             texture: None,
             last_frame: None,
@@ -143,9 +149,17 @@ impl ViewerApp {
         })
     }
 
-    /// Renders `frame` if it differs from the last one and points the egui texture at it.
+    /// Whether the last frame's tables were still being built (more of them next frame).
+    fn building(&self) -> bool {
+        self.last_plan
+            .as_ref()
+            .is_some_and(|p| p.building.is_some())
+    }
+
+    /// Renders `frame` if it differs from the last one or tables are being built, and
+    /// points the egui texture at it.
     fn render(&mut self, frame: Frame) -> anyhow::Result<()> {
-        if self.last_frame.as_ref() == Some(&frame) {
+        if self.last_frame.as_ref() == Some(&frame) && !self.building() {
             return Ok(());
         }
         let start = Instant::now();
@@ -317,7 +331,7 @@ impl eframe::App for ViewerApp {
                 let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
                 ui.painter().image(id, rect, uv, egui::Color32::WHITE);
             }
-            if moving || animating {
+            if moving || animating || self.building() {
                 ctx.request_repaint();
             }
         });

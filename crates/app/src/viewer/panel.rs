@@ -403,6 +403,12 @@ fn stats_section(ui: &mut egui::Ui, stats: &Stats) {
         ))
         .on_hover_text("Wall time of the last render and its size in pixels");
         if let Some(plan) = stats.plan {
+            if let Some(building) = &plan.building {
+                ui.label(format!("building {building}")).on_hover_text(
+                    "Tables are built over several frames after a change; the image \
+                     fills in (single scattering first, then each order) meanwhile",
+                );
+            }
             ui.label(format!("plan: {plan}")).on_hover_text(
                 "The last frame's steps, with GPU times where the adapter has timestamps",
             );
