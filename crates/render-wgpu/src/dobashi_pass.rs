@@ -22,7 +22,7 @@ use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
     ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_entry, uniform_buffer, uniform_entry,
+    texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::surface_buffer::SurfaceBuffer;
@@ -118,22 +118,15 @@ pub struct SegmentTextures {
 impl SegmentTextures {
     fn new(gpu: &GpuContext, label: &str, width: u32, height: u32) -> SegmentTextures {
         let texture = |what: &str| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(&format!("dobashi {label} {what}")),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: TABLE_FORMAT,
-                usage: wgpu::TextureUsages::STORAGE_BINDING
+            texture_2d(
+                &gpu.device,
+                &format!("dobashi {label} {what}"),
+                (width, height),
+                TABLE_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
+            )
         };
         SegmentTextures {
             scatter_r: texture("dI_r"),

@@ -14,7 +14,7 @@ use crate::gpu_timer::GpuTimer;
 use crate::luminance_pass::LuminancePass;
 use crate::model_pass::{self, ModelPass, PassIo};
 use crate::nishita_pass::HDR_FORMAT;
-use crate::pipeline::uniform_buffer;
+use crate::pipeline::{texture_2d, uniform_buffer};
 use crate::readback::read_texture;
 use crate::surface_buffer::{SurfaceBuffer, SurfaceTexel};
 use crate::terrain_pass::TerrainPass;
@@ -61,20 +61,13 @@ fn target(
     } else {
         wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING
     };
-    gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: frame.width,
-            height: frame.height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
+    texture_2d(
+        &gpu.device,
+        label,
+        (frame.width, frame.height),
         format,
-        usage: usage | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
+        usage | wgpu::TextureUsages::COPY_SRC,
+    )
 }
 
 impl Renderer {

@@ -5,6 +5,7 @@
 //! perspective. Its CPU twin is atmosphere-core's `surface_lighting::radiance_with_surface`.
 
 use crate::device::GpuContext;
+use crate::pipeline::texture_2d;
 
 /// Per pixel: xyz the outward unit normal, w the distance from the camera along the
 /// pixel's ray, m (0: no surface).
@@ -49,23 +50,16 @@ impl SurfaceBuffer {
     /// model passes; their content is undefined until drawn or uploaded.
     pub fn new(gpu: &GpuContext, width: u32, height: u32) -> SurfaceBuffer {
         let texture = |label, format| {
-            gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
+            texture_2d(
+                &gpu.device,
+                label,
+                (width, height),
                 format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                wgpu::TextureUsages::RENDER_ATTACHMENT
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_DST
                     | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
+            )
         };
         SurfaceBuffer {
             geometry: texture("surface geometry", GEOMETRY_FORMAT),

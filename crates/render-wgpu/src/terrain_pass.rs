@@ -21,6 +21,7 @@ use rayon::prelude::*;
 use crate::device::GpuContext;
 use crate::error::{GpuError, RenderError};
 use crate::frame::{Frame, TerrainOptions};
+use crate::pipeline::texture_2d;
 use crate::shader_source;
 use crate::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT, SurfaceBuffer};
 use crate::terrain::chunk_key::ChunkKey;
@@ -370,20 +371,13 @@ impl TerrainPass {
         {
             return;
         }
-        self.depth = Some(gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("terrain depth"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        }));
+        self.depth = Some(texture_2d(
+            &gpu.device,
+            "terrain depth",
+            (width, height),
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        ));
     }
 
     /// Draws the chunks the last [`TerrainPass::prepare`] chose into `surface` (cleared
