@@ -67,10 +67,10 @@ fn bruneton_radiance(direction: vec3<f32>) -> Radiance {
     let t = exp(-optical_depth(segment_column(s.q, r, s.r_mu, s.length, s.on_ground)));
     if s.on_ground {
         let mu_s_g = clamp((s.start_dot_sun + s.length * nu) / bottom, -1.0, 1.0);
-        let sky = irradiance_at(bruneton.offsets_b.w, 0.0, bottom, mu_s_g);
+        let sky = ground_irradiance_at(bruneton.offsets_b.w, mu_s_g);
         var direct = vec3<f32>(0.0);
         if mu_s_g > 0.0 {
-            direct = exp(-optical_depth(table_columns(transmittance_columns, 0.0, mu_s_g))) * mu_s_g;
+            direct = exp(-optical_depth(ground_columns(transmittance_columns, mu_s_g))) * mu_s_g;
         }
         l += t * (atmosphere.ground_albedo / PI) * (direct + sky);
     }

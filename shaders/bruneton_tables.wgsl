@@ -53,6 +53,16 @@ fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
     return mix(lower, upper, ar.w);
 }
 
+// `irradiance_at` on the ground (q = 0): the table's first row, the only one with
+// weight there, interpolated along mu_s alone (two reads of the store instead of four,
+// the same value).
+fn ground_irradiance_at(base: u32, mu_s: f32) -> vec3<f32> {
+    let n = bruneton.irradiance_size;
+    let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), n.x);
+    let i = base + am.i;
+    return mix(store[i].xyz, store[i + 1u].xyz, am.w);
+}
+
 // Relative densities at `altitude_m` from the density table (`DensityTable::at`, 8192
 // samples over the atmosphere's thickness), read from its copy in a 1D texture
 // (binding 12): lavapipe reads a storage buffer at a computed index lane by lane, with
@@ -69,21 +79,17 @@ fn density_at(altitude_m: f32) -> vec3<f32> {
 }
 
 // Columns of matter of the segment of length d from (q, r mu): differences of the
-// columns table, from the far end for rays that meet the ground (`segment_column`).
+// columns table, from the far end for rays that meet the ground (`segment_column`). The
+// two ends are chosen before the two look-ups, so that a shader whose pixels take both
+// kinds of ray (which lavapipe runs for every pixel) reads the table twice, not four
+// times.
 fn segment_column(q: f32, r: f32, r_mu: f32, d: f32, ground: bool) -> vec3<f32> {
     let q_d = clamp(q + d * (d + 2.0 * r_mu), 0.0, horizon_sq());
     let r_d = radius_of_q(q_d);
     let mu_d = clamp((r_mu + d) / r_d, -1.0, 1.0);
     let mu = clamp(r_mu / r, -1.0, 1.0);
-    var a: vec3<f32>;
-    var b: vec3<f32>;
-    if ground {
-        a = table_columns(transmittance_columns, q_d, -mu_d);
-        b = table_columns(transmittance_columns, q, -mu);
-    } else {
-        a = table_columns(transmittance_columns, q, mu);
-        b = table_columns(transmittance_columns, q_d, mu_d);
-    }
+    let a = table_columns(transmittance_columns, select(q, q_d, ground), select(mu, -mu_d, ground));
+    let b = table_columns(transmittance_columns, select(q_d, q, ground), select(mu_d, -mu, ground));
     return max(a - b, vec3<f32>(0.0));
 }
 
