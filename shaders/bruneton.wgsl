@@ -10,42 +10,60 @@
 // zero (its ray has length 0), so it is not looked up. The sun disk with limb darkening
 // is added where the ray reaches space, times its transmittance.
 
-#import bruneton_tables.wgsl
+#import bruneton_lookup.wgsl
 #import frame_params.wgsl
 #import phase.wgsl
 
-@group(0) @binding(6) var single_rayleigh: texture_3d<f32>;
-@group(0) @binding(7) var single_mie: texture_3d<f32>;
-@group(0) @binding(8) var multiple: texture_3d<f32>;
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(10) var view_slice: texture_2d<f32>;
 
-// Trilinear interpolation over (r, mu, mu_s) in nu slice `inu` of a scattering texture.
-fn texture_slice(table: texture_3d<f32>, p: Position, inu: u32) -> vec3<f32> {
-    let x = inu * bruneton.size.z + p.mu_s.i;
-    var out = vec3<f32>(0.0);
-    for (var dm = 0u; dm < 2u; dm++) {
-        let wm = select(1.0 - p.mu.w, p.mu.w, dm == 1u);
-        for (var dr = 0u; dr < 2u; dr++) {
-            let w_r = select(1.0 - p.r.w, p.r.w, dr == 1u);
-            let at = vec3<u32>(x, p.mu.i + dm, p.r.i + dr);
-            let a = textureLoad(table, at, 0).xyz;
-            let b = textureLoad(table, at + vec3<u32>(1u, 0u, 0u), 0).xyz;
-            out += (wm * w_r) * mix(a, b, p.mu_s.w);
-        }
-    }
-    return out;
+// Row imu, nu slice inu of scattering texture `k` (0 single Rayleigh, 1 single Mie, 2
+// multiple) interpolated at the camera's r and mu_s, from the view slice
+// (`bruneton_view_slice.wgsl`).
+fn view_slice_row(k: u32, imu: u32, inu: u32) -> vec3<f32> {
+    return textureLoad(view_slice, vec2<u32>(k * bruneton.size.w + inu, imu), 0).xyz;
 }
 
-// Quadrilinear interpolation of a scattering texture (`Table4::at_position`).
-fn texture_lookup(table: texture_3d<f32>, p: Position) -> vec3<f32> {
-    let lo = texture_slice(table, p, p.nu.i);
+// `texture_lookup` of scattering texture `k` for a camera inside the atmosphere: every
+// ray starts at the camera's r and mu_s, so the interpolation in r and mu_s, the same for
+// every pixel, is done once per frame into the view slice, and each pixel interpolates
+// in mu and nu (4 texel reads instead of 16; the same quadrilinear interpolation).
+fn view_slice_lookup(k: u32, p: Position) -> vec3<f32> {
+    var lo = vec3<f32>(0.0);
+    var hi = vec3<f32>(0.0);
+    for (var dm = 0u; dm < 2u; dm++) {
+        let wm = select(1.0 - p.mu.w, p.mu.w, dm == 1u);
+        lo += wm * view_slice_row(k, p.mu.i + dm, p.nu.i);
+        hi += wm * view_slice_row(k, p.mu.i + dm, p.nu.i + 1u);
+    }
     if p.nu.w == 0.0 {
         return lo;
     }
-    return mix(lo, texture_slice(table, p, p.nu.i + 1u), p.nu.w);
+    return mix(lo, hi, p.nu.w);
 }
 
-fn bruneton_radiance(direction: vec3<f32>) -> Radiance {
+// S without phase functions at `p` in scattering texture `k`: from the view slice for a
+// camera inside the atmosphere (`inside`, fixed by the entry point, so that lavapipe,
+// which runs every branch for every pixel, does not pay for the other way), else from
+// the 3D textures.
+fn scattering_at(k: u32, p: Position, inside: bool) -> vec3<f32> {
+    if inside {
+        return view_slice_lookup(k, p);
+    }
+    switch k {
+        case 0u: {
+            return texture_lookup(single_rayleigh, p);
+        }
+        case 1u: {
+            return texture_lookup(single_mie, p);
+        }
+        default: {
+            return texture_lookup(multiple, p);
+        }
+    }
+}
+
+fn bruneton_radiance(direction: vec3<f32>, inside: bool) -> Radiance {
     var out: Radiance;
     out.radiance = vec3<f32>(0.0);
     out.transmittance = vec3<f32>(1.0);
@@ -60,9 +78,9 @@ fn bruneton_radiance(direction: vec3<f32>) -> Radiance {
     let mu_s = clamp(s.start_dot_sun / r, -1.0, 1.0);
     let nu = clamp(dot(direction, sun), -1.0, 1.0);
     let p = table_position(s.q, r, s.r_mu, mu_s, nu, s.on_ground);
-    var l = rayleigh_phase(nu) * texture_lookup(single_rayleigh, p) + texture_lookup(multiple, p);
+    var l = rayleigh_phase(nu) * scattering_at(0u, p, inside) + scattering_at(2u, p, inside);
     if bruneton.flags.y == 1u {
-        l += mie_phase(nu) * texture_lookup(single_mie, p);
+        l += mie_phase(nu) * scattering_at(1u, p, inside);
     }
     let t = exp(-optical_depth(segment_column(s.q, r, s.r_mu, s.length, s.on_ground)));
     if s.on_ground {
@@ -80,12 +98,25 @@ fn bruneton_radiance(direction: vec3<f32>) -> Radiance {
     return out;
 }
 
+// The pass for a camera above the atmosphere (rays start where they enter it, at
+// different sun cosines).
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size_px.xy) {
+    shade(id.xy, false);
+}
+
+// The pass for a camera inside the atmosphere, after the view slice.
+@compute @workgroup_size(8, 8)
+fn inside(@builtin(global_invocation_id) id: vec3<u32>) {
+    shade(id.xy, true);
+}
+
+// Pixel `px`: the radiance and the sun disk into the HDR target.
+fn shade(px: vec2<u32>, inside: bool) {
+    if any(px >= frame.size_px.xy) {
         return;
     }
-    let direction = pixel_direction(id.xy);
-    let r = bruneton_radiance(direction);
-    textureStore(hdr, id.xy, hdr_pixel(direction, r));
+    let direction = pixel_direction(px);
+    let r = bruneton_radiance(direction, inside);
+    textureStore(hdr, px, hdr_pixel(direction, r));
 }

@@ -18,6 +18,11 @@
 //! - `scattering_texture`: S into three `Rgba32Float` 3D textures (single Rayleigh,
 //!   single Mie, orders two and up) at (x = nu * mu_s_size + mu_s, y = mu, z = r).
 //!
+//! Passes, each frame: for a camera inside the atmosphere, `view_slice`
+//! (`bruneton_view_slice.wgsl`): S interpolated at the camera's r and mu_s for every
+//! (mu, nu) node, which the pass's `inside` entry point interpolates in mu and nu (4
+//! texel reads per table and pixel instead of 16); then `bruneton`.
+//!
 //! Tables being built live in one storage buffer (the store), indexed as the CPU's, so a
 //! table read back compares texel by texel. Rebuilds follow the CPU's `update`: the
 //! columns and densities on [`Inputs::COLUMNS`], single scattering on
@@ -178,6 +183,9 @@ struct Tables {
     density: wgpu::Texture,
     /// Delta J as a 3D texture like S's, written with the store's copy, read by Delta S.
     delta_j: wgpu::Texture,
+    /// S of the three textures at the camera's r and mu_s per (mu, nu) node, side by
+    /// side (`bruneton_view_slice.wgsl`).
+    view_slice: wgpu::Texture,
     built: Built,
 }
 
@@ -195,7 +203,11 @@ struct Pipelines {
     decide: ComputePipeline,
     accumulate: ComputePipeline,
     texture: ComputePipeline,
+    view_slice: ComputePipeline,
+    /// The pass for a camera above the atmosphere, and for one inside (after the view
+    /// slice).
     render: ComputePipeline,
+    render_inside: ComputePipeline,
 }
 
 /// The steps' pipelines and the tables; see the module documentation.
@@ -207,6 +219,9 @@ pub struct BrunetonPass {
     atmosphere: AtmosphereUniform,
     /// The frame's atmosphere and whether Mie is computed, while its steps are encoded.
     pending: Option<(Atmosphere, bool)>,
+    /// Whether the frame's camera is inside the atmosphere (the view slice and the
+    /// `inside` pass).
+    inside: bool,
 }
 
 /// Bindings 0-5 and 12 of every bruneton shader: atmosphere, frame, parameters, the
@@ -248,11 +263,18 @@ impl BrunetonPass {
             storage_texture_entry(7, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(8, wgpu::TextureFormat::Rgba32Float, D3),
         ]);
+        let view_slice_entries = with(&[
+            texture_entry(6, D3),
+            texture_entry(7, D3),
+            texture_entry(8, D3),
+            storage_texture_entry(9, wgpu::TextureFormat::Rgba32Float, D2),
+        ]);
         let render_entries = with(&[
             texture_entry(6, D3),
             texture_entry(7, D3),
             texture_entry(8, D3),
             storage_texture_entry(9, HDR_FORMAT, D2),
+            texture_entry(10, D2),
         ]);
         let pipelines = Pipelines {
             density: make("bruneton_density.wgsl", "main", "bruneton density", &common)?,
@@ -316,9 +338,21 @@ impl BrunetonPass {
                 "bruneton scattering texture",
                 &texture_entries,
             )?,
+            view_slice: make(
+                "bruneton_view_slice.wgsl",
+                "main",
+                "bruneton view slice",
+                &view_slice_entries,
+            )?,
             render: make(
                 "bruneton.wgsl",
                 "main",
+                "the bruneton pass",
+                &render_entries,
+            )?,
+            render_inside: make(
+                "bruneton.wgsl",
+                "inside",
                 "the bruneton pass",
                 &render_entries,
             )?,
@@ -329,6 +363,7 @@ impl BrunetonPass {
             uniform: BrunetonUniform::default(),
             atmosphere: AtmosphereUniform::default(),
             pending: None,
+            inside: false,
         })
     }
 
@@ -432,6 +467,20 @@ impl BrunetonPass {
                 view_formats: &[],
             }),
             delta_j: texture("bruneton Delta J"),
+            view_slice: device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("bruneton view slice"),
+                size: wgpu::Extent3d {
+                    width: 3 * s.nu as u32,
+                    height: s.mu as u32,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            }),
             textures: [
                 texture("bruneton single Rayleigh"),
                 texture("bruneton single Mie"),
@@ -907,6 +956,11 @@ impl ModelPass for BrunetonPass {
         plan.build_if("single_scattering", single);
         plan.build_if("scattering_orders", orders);
         plan.build_if("scattering_texture", single || orders);
+        let r = frame.camera_position_m.length();
+        self.inside = r <= atmosphere.top_radius_m;
+        if self.inside {
+            plan.run("view_slice", StepKind::Pass);
+        }
         plan.run("bruneton", StepKind::Pass);
         // Mie pruning as built (a frame that rebuilds nothing renders what was built).
         let mie = if orders {
@@ -1013,21 +1067,43 @@ impl ModelPass for BrunetonPass {
                     timestamps,
                 );
             }
+            "view_slice" => {
+                let views = tables
+                    .textures
+                    .each_ref()
+                    .map(|t| t.create_view(&Default::default()));
+                let slice = tables.view_slice.create_view(&Default::default());
+                let mut extra: Vec<wgpu::BindingResource<'_>> = views
+                    .iter()
+                    .map(wgpu::BindingResource::TextureView)
+                    .collect();
+                extra.push(wgpu::BindingResource::TextureView(&slice));
+                let bind_group = self.bind_group(gpu, io, &p.view_slice, &tables.params, &extra);
+                let groups = texel_groups(&tables.view_slice);
+                p.view_slice
+                    .dispatch(encoder, "view slice", &bind_group, groups, timestamps);
+            }
             "bruneton" => {
                 let views = tables
                     .textures
                     .each_ref()
                     .map(|t| t.create_view(&Default::default()));
                 let hdr = io.hdr.create_view(&Default::default());
+                let slice = tables.view_slice.create_view(&Default::default());
                 let mut extra: Vec<wgpu::BindingResource<'_>> = views
                     .iter()
                     .map(wgpu::BindingResource::TextureView)
                     .collect();
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
-                let bind_group = self.bind_group(gpu, io, &p.render, &tables.params, &extra);
+                extra.push(wgpu::BindingResource::TextureView(&slice));
+                let render = if self.inside {
+                    &p.render_inside
+                } else {
+                    &p.render
+                };
+                let bind_group = self.bind_group(gpu, io, render, &tables.params, &extra);
                 let groups = texel_groups(io.hdr);
-                p.render
-                    .dispatch(encoder, "bruneton", &bind_group, groups, timestamps);
+                render.dispatch(encoder, "bruneton", &bind_group, groups, timestamps);
             }
             other => unreachable!("the bruneton plan has no step {other}"),
         }
@@ -1045,7 +1121,10 @@ impl ModelPass for BrunetonPass {
         self.tables.as_ref().map_or(0, |t| {
             let s = t.settings.scattering_size;
             let (w, h) = t.settings.transmittance_size;
-            t.layout.bytes() + 3 * 16 * s.texels() as u64 + 2 * 16 * (w * h) as u64
+            t.layout.bytes()
+                + 3 * 16 * s.texels() as u64
+                + 2 * 16 * (w * h) as u64
+                + 3 * 16 * (s.nu * s.mu) as u64
         })
     }
 }
