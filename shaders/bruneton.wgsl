@@ -16,6 +16,18 @@
 
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(10) var view_slice: texture_2d<f32>;
+// E, copied from the store by `bruneton_scattering_texture.wgsl` (x = mu_s, y = r).
+@group(0) @binding(11) var irradiance: texture_2d<f32>;
+
+// `IrradianceTable::lookup` on the ground (q = 0, as `irradiance_at`): the table's first
+// row, the only one with weight there, interpolated along mu_s alone (two texel reads;
+// the same value).
+fn ground_irradiance_at(mu_s: f32) -> vec3<f32> {
+    let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), bruneton.irradiance_size.x);
+    let low = textureLoad(irradiance, vec2<u32>(am.i, 0u), 0).xyz;
+    let high = textureLoad(irradiance, vec2<u32>(am.i + 1u, 0u), 0).xyz;
+    return mix(low, high, am.w);
+}
 
 // Row imu, nu slice inu of scattering texture `k` (0 single Rayleigh, 1 single Mie, 2
 // multiple) interpolated at the camera's r and mu_s, from the view slice
@@ -85,7 +97,7 @@ fn bruneton_radiance(direction: vec3<f32>, inside: bool) -> Radiance {
     let t = exp(-optical_depth(segment_column(s.q, r, s.r_mu, s.length, s.on_ground)));
     if s.on_ground {
         let mu_s_g = clamp((s.start_dot_sun + s.length * nu) / bottom, -1.0, 1.0);
-        let sky = ground_irradiance_at(bruneton.offsets_b.w, mu_s_g);
+        let sky = ground_irradiance_at(mu_s_g);
         var direct = vec3<f32>(0.0);
         if mu_s_g > 0.0 {
             direct = exp(-optical_depth(ground_columns(transmittance_columns, mu_s_g))) * mu_s_g;

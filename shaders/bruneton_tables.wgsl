@@ -53,16 +53,6 @@ fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
     return mix(lower, upper, ar.w);
 }
 
-// `irradiance_at` on the ground (q = 0): the table's first row, the only one with
-// weight there, interpolated along mu_s alone (two reads of the store instead of four,
-// the same value).
-fn ground_irradiance_at(base: u32, mu_s: f32) -> vec3<f32> {
-    let n = bruneton.irradiance_size;
-    let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), n.x);
-    let i = base + am.i;
-    return mix(store[i].xyz, store[i + 1u].xyz, am.w);
-}
-
 // Relative densities at `altitude_m` from the density table (`DensityTable::at`, 8192
 // samples over the atmosphere's thickness), read from its copy in a 1D texture
 // (binding 12): lavapipe reads a storage buffer at a computed index lane by lane, with

@@ -16,7 +16,8 @@
 //!   dispatch no workgroups (indirect dispatch sizes written by the GPU), so nothing is
 //!   read back.
 //! - `scattering_texture`: S into three `Rgba32Float` 3D textures (single Rayleigh,
-//!   single Mie, orders two and up) at (x = nu * mu_s_size + mu_s, y = mu, z = r).
+//!   single Mie, orders two and up) at (x = nu * mu_s_size + mu_s, y = mu, z = r), and E
+//!   into a 2D texture (x = mu_s, y = r) for the pass's ground term.
 //!
 //! Passes, each frame: for a camera inside the atmosphere, `view_slice`
 //! (`bruneton_view_slice.wgsl`): S interpolated at the camera's r and mu_s for every
@@ -179,6 +180,8 @@ struct Tables {
     params: wgpu::Buffer,
     /// Single Rayleigh, single Mie, multiple.
     textures: [wgpu::Texture; 3],
+    /// E, copied from the store with S for the pass's reads.
+    irradiance: wgpu::Texture,
     /// The density table, copied from the store for the shaders' reads.
     density: wgpu::Texture,
     /// Delta J as a 3D texture like S's, written with the store's copy, read by Delta S.
@@ -262,6 +265,7 @@ impl BrunetonPass {
             storage_texture_entry(6, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(7, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(8, wgpu::TextureFormat::Rgba32Float, D3),
+            storage_texture_entry(9, wgpu::TextureFormat::Rgba32Float, D2),
         ]);
         let view_slice_entries = with(&[
             texture_entry(6, D3),
@@ -275,6 +279,7 @@ impl BrunetonPass {
             texture_entry(8, D3),
             storage_texture_entry(9, HDR_FORMAT, D2),
             texture_entry(10, D2),
+            texture_entry(11, D2),
         ]);
         let pipelines = Pipelines {
             density: make("bruneton_density.wgsl", "main", "bruneton density", &common)?,
@@ -467,6 +472,20 @@ impl BrunetonPass {
                 view_formats: &[],
             }),
             delta_j: texture("bruneton Delta J"),
+            irradiance: device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("bruneton irradiance"),
+                size: wgpu::Extent3d {
+                    width: e_mu_s as u32,
+                    height: e_r as u32,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            }),
             view_slice: device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("bruneton view slice"),
                 size: wgpu::Extent3d {
@@ -1052,18 +1071,20 @@ impl ModelPass for BrunetonPass {
                     .textures
                     .each_ref()
                     .map(|t| t.create_view(&Default::default()));
-                let bind_group = self.bind_group(
-                    gpu,
-                    io,
-                    &p.texture,
-                    &tables.params,
-                    &views.each_ref().map(wgpu::BindingResource::TextureView),
-                );
+                let irradiance = tables.irradiance.create_view(&Default::default());
+                let mut extra: Vec<wgpu::BindingResource<'_>> = views
+                    .iter()
+                    .map(wgpu::BindingResource::TextureView)
+                    .collect();
+                extra.push(wgpu::BindingResource::TextureView(&irradiance));
+                let bind_group = self.bind_group(gpu, io, &p.texture, &tables.params, &extra);
+                let (e_mu_s, e_r) = tables.settings.irradiance_size;
+                let texels = n.max((e_mu_s * e_r) as u32);
                 p.texture.dispatch(
                     encoder,
                     "scattering texture",
                     &bind_group,
-                    [n.div_ceil(FLAT), 1, 1],
+                    [texels.div_ceil(FLAT), 1, 1],
                     timestamps,
                 );
             }
@@ -1094,8 +1115,10 @@ impl ModelPass for BrunetonPass {
                     .iter()
                     .map(wgpu::BindingResource::TextureView)
                     .collect();
+                let irradiance = tables.irradiance.create_view(&Default::default());
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
                 extra.push(wgpu::BindingResource::TextureView(&slice));
+                extra.push(wgpu::BindingResource::TextureView(&irradiance));
                 let render = if self.inside {
                     &p.render_inside
                 } else {
@@ -1120,11 +1143,13 @@ impl ModelPass for BrunetonPass {
     fn table_bytes(&self) -> u64 {
         self.tables.as_ref().map_or(0, |t| {
             let s = t.settings.scattering_size;
+            let (e_mu_s, e_r) = t.settings.irradiance_size;
             let (w, h) = t.settings.transmittance_size;
             t.layout.bytes()
                 + 3 * 16 * s.texels() as u64
                 + 2 * 16 * (w * h) as u64
                 + 3 * 16 * (s.nu * s.mu) as u64
+                + 16 * (e_mu_s * e_r) as u64
         })
     }
 }
