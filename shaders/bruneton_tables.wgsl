@@ -69,21 +69,17 @@ fn density_at(altitude_m: f32) -> vec3<f32> {
 }
 
 // Columns of matter of the segment of length d from (q, r mu): differences of the
-// columns table, from the far end for rays that meet the ground (`segment_column`).
+// columns table, from the far end for rays that meet the ground (`segment_column`). The
+// two ends are chosen before the two look-ups, so that a shader whose pixels take both
+// kinds of ray (which lavapipe runs for every pixel) reads the table twice, not four
+// times.
 fn segment_column(q: f32, r: f32, r_mu: f32, d: f32, ground: bool) -> vec3<f32> {
     let q_d = clamp(q + d * (d + 2.0 * r_mu), 0.0, horizon_sq());
     let r_d = radius_of_q(q_d);
     let mu_d = clamp((r_mu + d) / r_d, -1.0, 1.0);
     let mu = clamp(r_mu / r, -1.0, 1.0);
-    var a: vec3<f32>;
-    var b: vec3<f32>;
-    if ground {
-        a = table_columns(transmittance_columns, q_d, -mu_d);
-        b = table_columns(transmittance_columns, q, -mu);
-    } else {
-        a = table_columns(transmittance_columns, q, mu);
-        b = table_columns(transmittance_columns, q_d, mu_d);
-    }
+    let a = table_columns(transmittance_columns, select(q, q_d, ground), select(mu, -mu_d, ground));
+    let b = table_columns(transmittance_columns, select(q_d, q, ground), select(mu_d, -mu, ground));
     return max(a - b, vec3<f32>(0.0));
 }
 

@@ -84,20 +84,13 @@ fn ground_irradiance_lookup(mu_s: f32) -> vec3<f32> {
     return select(lo + a * (hi - lo), geometric, lo > vec3<f32>(0.0) & hi > vec3<f32>(0.0));
 }
 
-// `Medium::sun_transmittance` on the ground: the table's first row (radius = bottom) is
-// its only row with weight there, so it is interpolated along mu alone (two texels, the
-// same value as the bilinear read of `sun_transmittance`).
+// `Medium::sun_transmittance` on the ground (`ground_columns`: the same value as the
+// bilinear read of `sun_transmittance`).
 fn ground_sun_transmittance(mu_s: f32) -> vec3<f32> {
-    let bottom = atmosphere.bottom_radius_m;
     if mu_s < 0.0 {
         return vec3<f32>(0.0);
     }
-    let width = textureDimensions(transmittance_columns).x;
-    let f = table_unit_from_q_mu(0.0, bottom, min(mu_s, 1.0)).x * f32(width - 1u);
-    let i = min(u32(f), width - 2u);
-    let low = textureLoad(transmittance_columns, vec2<u32>(i, 0u), 0).xyz;
-    let high = textureLoad(transmittance_columns, vec2<u32>(i + 1u, 0u), 0).xyz;
-    return exp(-optical_depth(low + (f - f32(i)) * (high - low)));
+    return exp(-optical_depth(ground_columns(transmittance_columns, min(mu_s, 1.0))));
 }
 
 // `Hillaire::ground_light`: light leaving the ground per unit solar irradiance with the

@@ -45,3 +45,16 @@ fn table_columns(table: texture_2d<f32>, q: f32, mu: f32) -> vec3<f32> {
     let upper = c01 + a.x * (c11 - c01);
     return lower + a.y * (upper - lower);
 }
+
+// `table_columns` on the ground (q = 0, mu >= 0): the table's first row, the only one
+// with weight there, interpolated along mu alone (two texel reads instead of four, the
+// same value).
+fn ground_columns(table: texture_2d<f32>, mu: f32) -> vec3<f32> {
+    let bottom = atmosphere.bottom_radius_m;
+    let width = textureDimensions(table).x;
+    let f = table_unit_from_q_mu(0.0, bottom, mu).x * f32(width - 1u);
+    let i = min(u32(f), width - 2u);
+    let low = textureLoad(table, vec2<u32>(i, 0u), 0).xyz;
+    let high = textureLoad(table, vec2<u32>(i + 1u, 0u), 0).xyz;
+    return low + (f - f32(i)) * (high - low);
+}

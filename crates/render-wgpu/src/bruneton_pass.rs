@@ -16,7 +16,13 @@
 //!   dispatch no workgroups (indirect dispatch sizes written by the GPU), so nothing is
 //!   read back.
 //! - `scattering_texture`: S into three `Rgba32Float` 3D textures (single Rayleigh,
-//!   single Mie, orders two and up) at (x = nu * mu_s_size + mu_s, y = mu, z = r).
+//!   single Mie, orders two and up) at (x = nu * mu_s_size + mu_s, y = mu, z = r), and E
+//!   into a 2D texture (x = mu_s, y = r) for the pass's ground term.
+//!
+//! Passes, each frame: for a camera inside the atmosphere, `view_slice`
+//! (`bruneton_view_slice.wgsl`): S interpolated at the camera's r and mu_s for every
+//! (mu, nu) node, which the pass's `inside` entry point interpolates in mu and nu (4
+//! texel reads per table and pixel instead of 16); then `bruneton`.
 //!
 //! Tables being built live in one storage buffer (the store), indexed as the CPU's, so a
 //! table read back compares texel by texel. Rebuilds follow the CPU's `update`: the
@@ -186,6 +192,8 @@ struct Tables {
     params: wgpu::Buffer,
     /// Single Rayleigh, single Mie, multiple.
     textures: [wgpu::Texture; 3],
+    /// E, copied from the store with S for the pass's reads.
+    irradiance: wgpu::Texture,
     /// The density table, copied from the store for the shaders' reads.
     density: wgpu::Texture,
     /// Delta J as a 3D texture like S's, written with the store's copy, read by Delta S.
@@ -197,6 +205,9 @@ struct Tables {
     slice_stride: u64,
     /// Delta S slices per order.
     slices: u32,
+    /// S of the three textures at the camera's r and mu_s per (mu, nu) node, side by
+    /// side (`bruneton_view_slice.wgsl`).
+    view_slice: wgpu::Texture,
     built: Built,
     /// The share of the loop over orders that the next progressive frame records;
     /// `None` when no progressive build is under way.
@@ -270,7 +281,11 @@ struct Pipelines {
     decide: ComputePipeline,
     accumulate: ComputePipeline,
     texture: ComputePipeline,
+    view_slice: ComputePipeline,
+    /// The pass for a camera above the atmosphere, and for one inside (after the view
+    /// slice).
     render: ComputePipeline,
+    render_inside: ComputePipeline,
 }
 
 /// The steps' pipelines and the tables; see the module documentation.
@@ -286,6 +301,9 @@ pub struct BrunetonPass {
     progressive: bool,
     /// The share of the loop over orders this frame records; `None`: all of it.
     recording: Option<Share>,
+    /// Whether the frame's camera is inside the atmosphere (the view slice and the
+    /// `inside` pass).
+    inside: bool,
 }
 
 /// Bindings 0-5 and 12 of every bruneton shader: atmosphere, frame, parameters, the
@@ -326,6 +344,13 @@ impl BrunetonPass {
             storage_texture_entry(6, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(7, wgpu::TextureFormat::Rgba32Float, D3),
             storage_texture_entry(8, wgpu::TextureFormat::Rgba32Float, D3),
+            storage_texture_entry(9, wgpu::TextureFormat::Rgba32Float, D2),
+        ]);
+        let view_slice_entries = with(&[
+            texture_entry(6, D3),
+            texture_entry(7, D3),
+            texture_entry(8, D3),
+            storage_texture_entry(9, wgpu::TextureFormat::Rgba32Float, D2),
         ]);
         let surface_entries = SurfaceBuffer::layout_entries();
         let render_entries = with(&[
@@ -335,6 +360,8 @@ impl BrunetonPass {
             storage_texture_entry(9, HDR_FORMAT, D2),
             surface_entries[0],
             surface_entries[1],
+            texture_entry(10, D2),
+            texture_entry(11, D2),
         ]);
         let pipelines = Pipelines {
             density: make("bruneton_density.wgsl", "main", "bruneton density", &common)?,
@@ -398,9 +425,21 @@ impl BrunetonPass {
                 "bruneton scattering texture",
                 &texture_entries,
             )?,
+            view_slice: make(
+                "bruneton_view_slice.wgsl",
+                "main",
+                "bruneton view slice",
+                &view_slice_entries,
+            )?,
             render: make(
                 "bruneton.wgsl",
                 "main",
+                "the bruneton pass",
+                &render_entries,
+            )?,
+            render_inside: make(
+                "bruneton.wgsl",
+                "inside",
                 "the bruneton pass",
                 &render_entries,
             )?,
@@ -413,6 +452,7 @@ impl BrunetonPass {
             pending: None,
             progressive: false,
             recording: None,
+            inside: false,
         })
     }
 
@@ -530,6 +570,34 @@ impl BrunetonPass {
                 view_formats: &[],
             }),
             delta_j: texture("bruneton Delta J"),
+            irradiance: device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("bruneton irradiance"),
+                size: wgpu::Extent3d {
+                    width: e_mu_s as u32,
+                    height: e_r as u32,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            }),
+            view_slice: device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("bruneton view slice"),
+                size: wgpu::Extent3d {
+                    width: 3 * s.nu as u32,
+                    height: s.mu as u32,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            }),
             textures: [
                 texture("bruneton single Rayleigh"),
                 texture("bruneton single Mie"),
@@ -1041,6 +1109,11 @@ impl ModelPass for BrunetonPass {
         plan.build_if("single_scattering", single);
         plan.build_if("scattering_orders", orders || self.recording.is_some());
         plan.build_if("scattering_texture", refresh);
+        let r = frame.camera_position_m.length();
+        self.inside = r <= atmosphere.top_radius_m;
+        if self.inside {
+            plan.run("view_slice", StepKind::Pass);
+        }
         plan.run("bruneton", StepKind::Pass);
         plan.building = self
             .recording
@@ -1137,21 +1210,39 @@ impl ModelPass for BrunetonPass {
                     .textures
                     .each_ref()
                     .map(|t| t.create_view(&Default::default()));
-                let bind_group = self.bind_group(
-                    gpu,
-                    io,
-                    &p.texture,
-                    &tables.params,
-                    &views.each_ref().map(wgpu::BindingResource::TextureView),
-                    None,
-                );
+                let irradiance = tables.irradiance.create_view(&Default::default());
+                let mut extra: Vec<wgpu::BindingResource<'_>> = views
+                    .iter()
+                    .map(wgpu::BindingResource::TextureView)
+                    .collect();
+                extra.push(wgpu::BindingResource::TextureView(&irradiance));
+                let bind_group = self.bind_group(gpu, io, &p.texture, &tables.params, &extra, None);
+                let (e_mu_s, e_r) = tables.settings.irradiance_size;
+                let texels = n.max((e_mu_s * e_r) as u32);
                 p.texture.dispatch(
                     encoder,
                     "scattering texture",
                     &bind_group,
-                    [n.div_ceil(FLAT), 1, 1],
+                    [texels.div_ceil(FLAT), 1, 1],
                     timestamps,
                 );
+            }
+            "view_slice" => {
+                let views = tables
+                    .textures
+                    .each_ref()
+                    .map(|t| t.create_view(&Default::default()));
+                let slice = tables.view_slice.create_view(&Default::default());
+                let mut extra: Vec<wgpu::BindingResource<'_>> = views
+                    .iter()
+                    .map(wgpu::BindingResource::TextureView)
+                    .collect();
+                extra.push(wgpu::BindingResource::TextureView(&slice));
+                let bind_group =
+                    self.bind_group(gpu, io, &p.view_slice, &tables.params, &extra, None);
+                let groups = texel_groups(&tables.view_slice);
+                p.view_slice
+                    .dispatch(encoder, "view slice", &bind_group, groups, timestamps);
             }
             "bruneton" => {
                 let views = tables
@@ -1159,16 +1250,24 @@ impl ModelPass for BrunetonPass {
                     .each_ref()
                     .map(|t| t.create_view(&Default::default()));
                 let hdr = io.hdr.create_view(&Default::default());
+                let slice = tables.view_slice.create_view(&Default::default());
                 let mut extra: Vec<wgpu::BindingResource<'_>> = views
                     .iter()
                     .map(wgpu::BindingResource::TextureView)
                     .collect();
+                let irradiance = tables.irradiance.create_view(&Default::default());
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
+                extra.push(wgpu::BindingResource::TextureView(&slice));
+                extra.push(wgpu::BindingResource::TextureView(&irradiance));
+                let render = if self.inside {
+                    &p.render_inside
+                } else {
+                    &p.render
+                };
                 let bind_group =
-                    self.bind_group(gpu, io, &p.render, &tables.params, &extra, Some(io.surface));
+                    self.bind_group(gpu, io, render, &tables.params, &extra, Some(io.surface));
                 let groups = texel_groups(io.hdr);
-                p.render
-                    .dispatch(encoder, "bruneton", &bind_group, groups, timestamps);
+                render.dispatch(encoder, "bruneton", &bind_group, groups, timestamps);
             }
             other => unreachable!("the bruneton plan has no step {other}"),
         }
@@ -1203,8 +1302,13 @@ impl ModelPass for BrunetonPass {
     fn table_bytes(&self) -> u64 {
         self.tables.as_ref().map_or(0, |t| {
             let s = t.settings.scattering_size;
+            let (e_mu_s, e_r) = t.settings.irradiance_size;
             let (w, h) = t.settings.transmittance_size;
-            t.layout.bytes() + 3 * 16 * s.texels() as u64 + 2 * 16 * (w * h) as u64
+            t.layout.bytes()
+                + 3 * 16 * s.texels() as u64
+                + 2 * 16 * (w * h) as u64
+                + 3 * 16 * (s.nu * s.mu) as u64
+                + 16 * (e_mu_s * e_r) as u64
         })
     }
 }

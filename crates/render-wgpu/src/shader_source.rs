@@ -21,6 +21,10 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/bruneton_irradiance.wgsl"),
     ),
     (
+        "bruneton_lookup.wgsl",
+        include_str!("../../../shaders/bruneton_lookup.wgsl"),
+    ),
+    (
         "bruneton_orders.wgsl",
         include_str!("../../../shaders/bruneton_orders.wgsl"),
     ),
@@ -59,6 +63,10 @@ const SHADERS: &[(&str, &str)] = &[
     (
         "atmosphere_params.wgsl",
         include_str!("../../../shaders/atmosphere_params.wgsl"),
+    ),
+    (
+        "bruneton_view_slice.wgsl",
+        include_str!("../../../shaders/bruneton_view_slice.wgsl"),
     ),
     (
         "dobashi.wgsl",
