@@ -14,6 +14,11 @@
 // rgb: albedo (linear).
 @group(0) @binding(31) var surface_albedo: texture_2d<f32>;
 
+// Whether the pipeline reads a surface at all (`PixelPipeline`): its variant without one
+// has every branch of the surface compiled out, as a software rasteriser runs both sides
+// of every branch.
+override SURFACE: bool = true;
+
 struct Surface {
     present: bool,
     // Distance from the camera, m; 0 when absent (`view_segment`'s "no object").
@@ -28,7 +33,7 @@ fn frame_surface(px: vec2<u32>) -> Surface {
     var out: Surface;
     out.present = false;
     out.distance = 0.0;
-    if frame.size_px.z == 0u {
+    if !SURFACE || frame.size_px.z == 0u {
         return out;
     }
     let geometry = textureLoad(surface_geometry, px, 0);

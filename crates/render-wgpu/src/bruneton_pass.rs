@@ -48,8 +48,8 @@ use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo, StandaloneInputs};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, storage_buffer_entry, storage_texture_entry, texel_groups, texture_entry,
-    uniform_buffer, uniform_entry,
+    ComputePipeline, PixelPipeline, storage_buffer_entry, storage_texture_entry, texel_groups,
+    texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::readback::{map_and_read, read_texture};
 use crate::surface_buffer::{ALBEDO_BINDING, GEOMETRY_BINDING, SurfaceBuffer};
@@ -284,8 +284,8 @@ struct Pipelines {
     view_slice: ComputePipeline,
     /// The pass for a camera above the atmosphere, and for one inside (after the view
     /// slice).
-    render: ComputePipeline,
-    render_inside: ComputePipeline,
+    render: PixelPipeline,
+    render_inside: PixelPipeline,
 }
 
 /// The steps' pipelines and the tables; see the module documentation.
@@ -431,13 +431,15 @@ impl BrunetonPass {
                 "bruneton view slice",
                 &view_slice_entries,
             )?,
-            render: make(
+            render: PixelPipeline::new(
+                gpu,
                 "bruneton.wgsl",
                 "main",
                 "the bruneton pass",
                 &render_entries,
             )?,
-            render_inside: make(
+            render_inside: PixelPipeline::new(
+                gpu,
                 "bruneton.wgsl",
                 "inside",
                 "the bruneton pass",
@@ -1263,7 +1265,8 @@ impl ModelPass for BrunetonPass {
                     &p.render_inside
                 } else {
                     &p.render
-                };
+                }
+                .variant(io.has_surface);
                 let bind_group =
                     self.bind_group(gpu, io, render, &tables.params, &extra, Some(io.surface));
                 let groups = texel_groups(io.hdr);

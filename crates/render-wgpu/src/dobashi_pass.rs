@@ -21,8 +21,8 @@ use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, PixelPipeline, read_only_storage_buffer_entry, storage_texture_entry,
+    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::surface_buffer::SurfaceBuffer;
@@ -350,7 +350,7 @@ type AmbientKey = (Atmosphere, [usize; 5], [usize; 2], Option<u32>);
 /// Pipelines and uniforms, made once; tables remade when their sizes change.
 #[derive(Debug)]
 pub struct DobashiPass {
-    pass_pipeline: ComputePipeline,
+    pass_pipeline: PixelPipeline,
     ambient_pipeline: ComputePipeline,
     params: wgpu::Buffer,
     /// psi per sun cosine, `ambient_sun_angles` vec4s.
@@ -398,7 +398,7 @@ impl DobashiPass {
         entries.push(storage_texture_entry(12, HDR_FORMAT, D2));
         entries.extend(SurfaceBuffer::layout_entries());
         let pass_pipeline =
-            ComputePipeline::new(gpu, "dobashi.wgsl", "main", "the dobashi pass", &entries)?;
+            PixelPipeline::new(gpu, "dobashi.wgsl", "main", "the dobashi pass", &entries)?;
         Ok(DobashiPass {
             pass_pipeline,
             ambient_pipeline,
@@ -615,10 +615,10 @@ impl ModelPass for DobashiPass {
             }
             "dobashi" => {
                 let hdr = io.hdr.create_view(&Default::default());
-                let bind_group = self.bind_group(gpu, &self.pass_pipeline, io, Some(&hdr));
+                let pipeline = self.pass_pipeline.variant(io.has_surface);
+                let bind_group = self.bind_group(gpu, pipeline, io, Some(&hdr));
                 let groups = texel_groups(io.hdr);
-                self.pass_pipeline
-                    .dispatch(encoder, "dobashi", &bind_group, groups, timestamps);
+                pipeline.dispatch(encoder, "dobashi", &bind_group, groups, timestamps);
             }
             other => unreachable!("the dobashi plan has no step {other}"),
         }

@@ -33,8 +33,8 @@ use crate::ground_in_view::ground_within;
 use crate::model_pass::{ModelPass, PassIo, StandaloneInputs};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
-    uniform_entry,
+    ComputePipeline, PixelPipeline, storage_texture_entry, texel_groups, texture_entry,
+    uniform_buffer, uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::surface_buffer::SurfaceBuffer;
@@ -271,7 +271,7 @@ pub struct HillairePass {
     aerial_perspective: ComputePipeline,
     /// The pass's entry points by the rays a frame may have: `main` (read from the
     /// tables or marched), `tables_only`, `from_space` (all marched).
-    pass: [ComputePipeline; 3],
+    pass: [PixelPipeline; 3],
     params: wgpu::Buffer,
     tables: Option<Tables>,
     /// The atmosphere of the frame being planned, in the GPU's layout, and what the
@@ -341,7 +341,7 @@ impl HillairePass {
                     surface_entries[1],
                 ]);
                 let variant = |entry| {
-                    ComputePipeline::new(gpu, "hillaire.wgsl", entry, "the hillaire pass", &entries)
+                    PixelPipeline::new(gpu, "hillaire.wgsl", entry, "the hillaire pass", &entries)
                 };
                 [
                     variant("main")?,
@@ -594,7 +594,7 @@ impl ModelPass for HillairePass {
                 extra.extend(views.iter().map(wgpu::BindingResource::TextureView));
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
                 run(
-                    &self.pass[self.variant],
+                    self.pass[self.variant].variant(io.has_surface),
                     encoder,
                     &extra,
                     Some(io.surface),

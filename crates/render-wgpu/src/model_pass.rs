@@ -40,6 +40,8 @@ pub struct PassIo<'a> {
     /// Views of the frame's surface buffer (`surface_buffer.rs`), bound by every pixel
     /// pass at bindings 30 and 31.
     pub surface: &'a [wgpu::TextureView; 2],
+    /// Whether the frame has a surface: which variant of a `PixelPipeline` runs.
+    pub has_surface: bool,
 }
 
 /// What a model's table steps read when they run outside a `Renderer` frame (tests and
@@ -84,6 +86,7 @@ impl StandaloneInputs {
             frame: &self.frame,
             hdr: &self.hdr,
             surface: &self.surface,
+            has_surface: false,
         }
     }
 }

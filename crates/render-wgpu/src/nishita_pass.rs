@@ -16,7 +16,7 @@ use crate::frame_plan::{FramePlan, StepKind};
 use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
+    PixelPipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
     uniform_entry,
 };
 use crate::surface_buffer::SurfaceBuffer;
@@ -69,7 +69,7 @@ struct GlTable {
 /// Pipeline, uniform and table, made once; the table is remade when its size changes.
 #[derive(Debug)]
 pub struct NishitaPass {
-    pipeline: ComputePipeline,
+    pipeline: PixelPipeline,
     params: wgpu::Buffer,
     g_l: Option<GlTable>,
     /// The atmosphere of the frame being planned, in the GPU's layout.
@@ -81,7 +81,7 @@ impl NishitaPass {
     pub fn new(gpu: &GpuContext) -> Result<NishitaPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
         let surface_entries = SurfaceBuffer::layout_entries();
-        let pipeline = ComputePipeline::new(
+        let pipeline = PixelPipeline::new(
             gpu,
             "nishita.wgsl",
             "main",
@@ -160,7 +160,8 @@ impl ModelPass for NishitaPass {
             "nishita" => {
                 let table = g_l.pass.texture().create_view(&Default::default());
                 let hdr = io.hdr.create_view(&Default::default());
-                let bind_group = self.pipeline.pixel_bind_group(
+                let pipeline = self.pipeline.variant(io.has_surface);
+                let bind_group = pipeline.pixel_bind_group(
                     gpu,
                     &[
                         io.atmosphere.as_entire_binding(),
@@ -172,8 +173,7 @@ impl ModelPass for NishitaPass {
                     io.surface,
                 );
                 let groups = texel_groups(io.hdr);
-                self.pipeline
-                    .dispatch(encoder, "nishita", &bind_group, groups, timestamps);
+                pipeline.dispatch(encoder, "nishita", &bind_group, groups, timestamps);
             }
             other => unreachable!("the nishita plan has no step {other}"),
         }

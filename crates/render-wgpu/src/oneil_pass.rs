@@ -17,8 +17,8 @@ use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
-    uniform_entry,
+    ComputePipeline, PixelPipeline, storage_texture_entry, texel_groups, texture_entry,
+    uniform_buffer, uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::surface_buffer::SurfaceBuffer;
@@ -153,7 +153,7 @@ struct Table {
 /// changes.
 #[derive(Debug)]
 pub struct OneilPass {
-    pipeline: ComputePipeline,
+    pipeline: PixelPipeline,
     params: wgpu::Buffer,
     table: Option<Table>,
     settings: OneilSettings,
@@ -165,7 +165,7 @@ impl OneilPass {
     pub fn new(gpu: &GpuContext) -> Result<OneilPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
         let surface_entries = SurfaceBuffer::layout_entries();
-        let pipeline = ComputePipeline::new(
+        let pipeline = PixelPipeline::new(
             gpu,
             "oneil.wgsl",
             "main",
@@ -252,7 +252,8 @@ impl ModelPass for OneilPass {
             "oneil" => {
                 let view = table.pass.texture().create_view(&Default::default());
                 let hdr = io.hdr.create_view(&Default::default());
-                let bind_group = self.pipeline.pixel_bind_group(
+                let pipeline = self.pipeline.variant(io.has_surface);
+                let bind_group = pipeline.pixel_bind_group(
                     gpu,
                     &[
                         io.atmosphere.as_entire_binding(),
@@ -264,8 +265,7 @@ impl ModelPass for OneilPass {
                     io.surface,
                 );
                 let groups = texel_groups(io.hdr);
-                self.pipeline
-                    .dispatch(encoder, "oneil", &bind_group, groups, timestamps);
+                pipeline.dispatch(encoder, "oneil", &bind_group, groups, timestamps);
             }
             other => unreachable!("the oneil plan has no step {other}"),
         }

@@ -233,6 +233,7 @@ impl Renderer {
             frame: &self.frame,
             hdr: &targets.hdr,
             surface: &surface_views,
+            has_surface: plan.surface,
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         for (index, step) in plan.steps.iter().enumerate() {

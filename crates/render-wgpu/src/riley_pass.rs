@@ -16,7 +16,7 @@ use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
+    PixelPipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
 };
 use crate::surface_buffer::SurfaceBuffer;
 
@@ -59,7 +59,7 @@ impl RileyUniform {
 /// pruning changes.
 #[derive(Debug)]
 pub struct RileyPass {
-    pipeline: ComputePipeline,
+    pipeline: PixelPipeline,
     params: wgpu::Buffer,
     /// What the uploaded uniform was fitted from.
     fitted_from: Option<(Atmosphere, bool)>,
@@ -69,7 +69,7 @@ impl RileyPass {
     pub fn new(gpu: &GpuContext) -> Result<RileyPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
         let surface_entries = SurfaceBuffer::layout_entries();
-        let pipeline = ComputePipeline::new(
+        let pipeline = PixelPipeline::new(
             gpu,
             "riley.wgsl",
             "main",
@@ -126,7 +126,8 @@ impl ModelPass for RileyPass {
     ) {
         assert_eq!(step, "riley", "the riley plan has no step {step}");
         let hdr = io.hdr.create_view(&Default::default());
-        let bind_group = self.pipeline.pixel_bind_group(
+        let pipeline = self.pipeline.variant(io.has_surface);
+        let bind_group = pipeline.pixel_bind_group(
             gpu,
             &[
                 io.atmosphere.as_entire_binding(),
@@ -137,8 +138,7 @@ impl ModelPass for RileyPass {
             io.surface,
         );
         let groups = texel_groups(io.hdr);
-        self.pipeline
-            .dispatch(encoder, "riley", &bind_group, groups, timestamps);
+        pipeline.dispatch(encoder, "riley", &bind_group, groups, timestamps);
     }
 
     fn table_bytes(&self) -> u64 {
