@@ -27,13 +27,13 @@ struct Surface {
     albedo: vec3<f32>,
 }
 
-// The surface in pixel `px`; none at all when the frame has no surface buffer
-// (`frame.size_px.z` = 0), without reading it.
+// The surface in pixel `px`; none at all, without reading, in the pipeline variant for
+// frames without a surface.
 fn frame_surface(px: vec2<u32>) -> Surface {
     var out: Surface;
     out.present = false;
     out.distance = 0.0;
-    if !SURFACE || frame.size_px.z == 0u {
+    if !SURFACE {
         return out;
     }
     let geometry = textureLoad(surface_geometry, px, 0);

@@ -214,6 +214,15 @@ struct Tables {
     next: Option<Share>,
 }
 
+impl Tables {
+    /// Views of the three scattering textures (single Rayleigh, single Mie, multiple).
+    fn scattering_views(&self) -> [wgpu::TextureView; 3] {
+        self.textures
+            .each_ref()
+            .map(|t| t.create_view(&Default::default()))
+    }
+}
+
 /// A share of the loop over orders that one progressive frame records: order 1 (after
 /// clearing S's multiple part and E, the sums of single scattering and their decision),
 /// or part `part` of an order of two or more (0: Delta J's moments, Delta J and Delta E;
@@ -1208,10 +1217,7 @@ impl ModelPass for BrunetonPass {
             ),
             "scattering_orders" => self.encode_orders(gpu, io, encoder, timestamps),
             "scattering_texture" => {
-                let views = tables
-                    .textures
-                    .each_ref()
-                    .map(|t| t.create_view(&Default::default()));
+                let views = tables.scattering_views();
                 let irradiance = tables.irradiance.create_view(&Default::default());
                 let mut extra: Vec<wgpu::BindingResource<'_>> = views
                     .iter()
@@ -1230,10 +1236,7 @@ impl ModelPass for BrunetonPass {
                 );
             }
             "view_slice" => {
-                let views = tables
-                    .textures
-                    .each_ref()
-                    .map(|t| t.create_view(&Default::default()));
+                let views = tables.scattering_views();
                 let slice = tables.view_slice.create_view(&Default::default());
                 let mut extra: Vec<wgpu::BindingResource<'_>> = views
                     .iter()
@@ -1247,10 +1250,7 @@ impl ModelPass for BrunetonPass {
                     .dispatch(encoder, "view slice", &bind_group, groups, timestamps);
             }
             "bruneton" => {
-                let views = tables
-                    .textures
-                    .each_ref()
-                    .map(|t| t.create_view(&Default::default()));
+                let views = tables.scattering_views();
                 let hdr = io.hdr.create_view(&Default::default());
                 let slice = tables.view_slice.create_view(&Default::default());
                 let mut extra: Vec<wgpu::BindingResource<'_>> = views

@@ -38,8 +38,7 @@ pub struct FrameUniform {
     pub sun_centre_radiance: [f32; 4],
     /// xyz: the limb-darkening exponent at the three wavelengths; w: 0.
     pub sun_limb_exponent: [f32; 4],
-    /// Image width and height, px; z: 1 when the frame's surface buffer holds a surface
-    /// (`surface.wgsl`), else 0; w: 0.
+    /// Image width and height, px; zw: 0.
     pub size_px: [u32; 4],
 }
 

@@ -99,6 +99,12 @@ impl Renderer {
         model_pass::check_model(id)
     }
 
+    /// The terrain's elevation (m above the reference sphere) in a unit direction, as
+    /// the last frame with terrain drew it; `None` before any.
+    pub fn terrain_elevation_m(&self, direction: glam::DVec3) -> Option<f64> {
+        self.terrain.as_ref().map(|t| t.elevation_m(direction))
+    }
+
     /// The GPU context.
     pub fn gpu(&self) -> &GpuContext {
         &self.gpu
@@ -172,7 +178,10 @@ impl Renderer {
         let draws_terrain = match (frame.terrain, surface) {
             (Some(options), None) => {
                 if self.terrain.is_none() {
-                    self.terrain = Some(TerrainPass::new(&self.gpu)?);
+                    self.terrain = Some(TerrainPass::new(
+                        &self.gpu,
+                        frame.atmosphere.bottom_radius_m,
+                    )?);
                 }
                 let terrain = self.terrain.as_mut().expect("made above");
                 let chunks = terrain.prepare(&self.gpu, frame, &options)?;
@@ -186,8 +195,7 @@ impl Renderer {
             _ => false,
         };
         plan.surface = surface.is_some() || draws_terrain;
-        let mut frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        frame_uniform.size_px[2] = u32::from(plan.surface);
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
         let targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,

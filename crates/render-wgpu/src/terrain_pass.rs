@@ -105,14 +105,12 @@ pub struct TerrainPass {
 }
 
 impl TerrainPass {
-    /// Loads the shipped Earth maps (`assets/earth`) and compiles the pass.
-    pub fn new(gpu: &GpuContext) -> Result<TerrainPass, RenderError> {
+    /// Loads the shipped Earth maps (`assets/earth`) onto a planet of `radius_m` and
+    /// compiles the pass.
+    pub fn new(gpu: &GpuContext, radius_m: f64) -> Result<TerrainPass, RenderError> {
         let dir = earth_assets_dir();
         let heights = HeightMap::load(&dir.join("height.png"))?;
         let colours = ColourMap::load(&dir.join("colour.jpg"))?;
-        let radius_m = atmosphere_core::atmosphere::Atmosphere::preset("earth")
-            .map_err(atmosphere_core::model::ModelError::from)?
-            .bottom_radius_m;
         let device = &gpu.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let colour = upload_colour(gpu, &colours);
@@ -259,6 +257,16 @@ impl TerrainPass {
         }
         let camera = frame.camera_position_m;
         let surface = &self.surface;
+        let ground_m = surface.elevation_m(camera.normalize());
+        let altitude_m = camera.length() - radius_m;
+        if altitude_m < ground_m {
+            return Err(RenderError::Frame(format!(
+                "the camera at {altitude_m:.0} m is not above the terrain: the ground there is \
+                 at {ground_m:.0} m (with exaggeration {}); raise it to at least {:.0} m",
+                options.exaggeration,
+                ground_m + 1.0
+            )));
+        }
         let view = LodView::new(
             camera,
             f64::from(frame.height),
@@ -349,8 +357,7 @@ impl TerrainPass {
         }
         gpu.queue
             .write_buffer(&self.chunk_buffer, 0, bytemuck::cast_slice(&uniforms));
-        let clearance =
-            camera.length() - self.surface.radius_m - surface.elevation_m(camera.normalize());
+        let clearance = altitude_m - ground_m;
         let params = TerrainUniform {
             right: v4(right / half_w),
             up: v4(up / half_h),
@@ -454,9 +461,10 @@ impl TerrainPass {
         }
     }
 
-    /// Chunks in the cache (chosen recently), for the stats.
-    pub fn cached_chunks(&self) -> usize {
-        self.chunks.len()
+    /// The drawn terrain's elevation above the reference sphere in a unit direction, m,
+    /// with the last frame's exaggeration: what the camera must stay above.
+    pub fn elevation_m(&self, direction: DVec3) -> f64 {
+        self.surface.elevation_m(direction)
     }
 }
 

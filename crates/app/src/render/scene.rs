@@ -10,12 +10,11 @@ use atmosphere_core::model::{MODEL_IDS, ModelSettings};
 use atmosphere_core::model_options::ModelOptions;
 use clap::Args;
 use clap::builder::PossibleValuesParser;
-use glam::{DQuat, DVec3};
+use glam::DQuat;
 use render_wgpu::Frame;
 use render_wgpu::frame::{
     LocalView, MAX_EXAGGERATION, MAX_SIDE_PX, TerrainOptions, location_rotation,
 };
-use render_wgpu::terrain::{HeightMap, TerrainSurface, earth_assets_dir};
 use serde::{Deserialize, Serialize};
 
 /// The fields of a scene; every one optional here, the required ones checked by
@@ -237,12 +236,9 @@ impl Scene {
             }
             _ => None,
         };
-        let camera_position_m = place * view.position_m(atmosphere.bottom_radius_m);
-        if let Some(t) = terrain {
-            check_above_terrain(camera_position_m, &atmosphere, t.exaggeration)?;
-        }
+        // A camera inside the terrain is refused by the renderer, which has the heights.
         Ok(Frame {
-            camera_position_m,
+            camera_position_m: place * view.position_m(atmosphere.bottom_radius_m),
             orientation: place * view.orientation(),
             vertical_fov_deg: fov_deg,
             sun_direction: place * view.sun_direction(),
@@ -258,30 +254,6 @@ impl Scene {
             terrain,
         })
     }
-}
-
-/// Fails when the camera is not at least 1 m above the terrain below it, naming the
-/// ground's height there.
-fn check_above_terrain(
-    camera_m: DVec3,
-    atmosphere: &Atmosphere,
-    exaggeration: f64,
-) -> anyhow::Result<()> {
-    let heights = HeightMap::load(&earth_assets_dir().join("height.png"))?;
-    let surface = TerrainSurface {
-        exaggeration,
-        ..TerrainSurface::new(heights, atmosphere.bottom_radius_m)
-    };
-    let ground_m = surface.elevation_m(camera_m.normalize());
-    let altitude_m = camera_m.length() - atmosphere.bottom_radius_m;
-    if altitude_m < ground_m + 1.0 {
-        bail!(
-            "--altitude-m {altitude_m:.0} is not above the terrain: the ground there is at \
-             {ground_m:.0} m (with exaggeration {exaggeration}); give at least {:.0}",
-            ground_m + 1.0
-        );
-    }
-    Ok(())
 }
 
 /// Where a frame goes: the output file and its kind, from the extension.

@@ -12,7 +12,6 @@ use std::time::Instant;
 use anyhow::Context;
 use eframe::egui;
 use render_wgpu::frame_plan::FramePlan;
-use render_wgpu::terrain::{HeightMap, TerrainSurface, earth_assets_dir};
 use render_wgpu::{Frame, GpuContext, Renderer};
 
 use crate::cli::ViewArgs;
@@ -44,9 +43,6 @@ pub struct ViewerApp {
     settings: ViewerSettings,
     /// The live camera (with its velocity); `settings` holds its position and view.
     flight: FlightState,
-    /// The terrain's heights, to keep the camera above them (`None`: the maps are
-    /// missing, said in `message`).
-    terrain: Option<TerrainSurface<HeightMap>>,
     renderer: Renderer,
     render_state: egui_wgpu::RenderState,
     texture: Option<egui::TextureId>,
@@ -100,18 +96,10 @@ impl ViewerApp {
             .filter(|s| s.frame(1, 1).is_ok() && Renderer::check_model(&s.model).is_ok())
             .unwrap_or_default();
         start_view::apply(&args.start, &mut settings)?;
-        // The heights the flight keeps above; without them terrain cannot be drawn either.
-        let terrain = HeightMap::load(&earth_assets_dir().join("height.png"))
-            .map(|heights| TerrainSurface::new(heights, 6_360_000.0));
-        let message = match &terrain {
-            Ok(_) => String::new(),
-            Err(e) => format!("{e}"),
-        };
         let mut renderer = Renderer::new(gpu)?;
         // Batch screenshots (`--frames`) show complete tables in every frame.
         renderer.set_progressive(args.frames.is_none());
         Ok(ViewerApp {
-            terrain: terrain.ok(),
             flight: settings.flight(),
             settings,
             renderer,
@@ -122,7 +110,7 @@ impl ViewerApp {
             auto_exposure: AutoExposure::default(),
             frame_ms: 0.0,
             adapter,
-            message,
+            message: String::new(),
             show_help: false,
             args,
             frames_shown: 0,
@@ -296,19 +284,16 @@ impl eframe::App for ViewerApp {
                 .settings
                 .atmosphere()
                 .map_or(6_360_000.0, |a| a.bottom_radius_m);
-            // The camera stays above the terrain drawn.
-            let ground = self
-                .terrain
-                .as_mut()
-                .filter(|_| self.settings.terrain)
-                .map(|t| {
-                    t.radius_m = radius;
-                    t.exaggeration = self.settings.exaggeration;
-                    &*t
-                });
+            // The camera stays above the terrain drawn (the renderer's heights; none before
+            // its first frame with terrain, or with terrain off).
+            let renderer = &self.renderer;
+            let terrain = self.settings.terrain;
             self.flight
                 .step(&FlightSettings::new(radius), &input, dt, |d| {
-                    ground.map_or(0.0, |t| t.elevation_m(d))
+                    terrain
+                        .then(|| renderer.terrain_elevation_m(d))
+                        .flatten()
+                        .unwrap_or(0.0)
                 });
             self.settings.set_flight(&self.flight);
             let moving = self.flight.velocity_m_s.length() > 1e-3 || response.dragged();
