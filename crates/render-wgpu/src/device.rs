@@ -19,16 +19,25 @@ pub struct GpuContext {
 impl GpuContext {
     /// A context without a window, for table building, tests and off-screen rendering.
     pub fn headless() -> Result<GpuContext, GpuError> {
-        pollster::block_on(Self::headless_async())
+        pollster::block_on(Self::headless_async(wgpu::Features::empty()))
     }
 
-    async fn headless_async() -> Result<GpuContext, GpuError> {
+    /// As [`GpuContext::headless`], with a device that lacks the optional `features`
+    /// even where the adapter has them: to test the passes' ways round a missing one
+    /// (e.g. `FLOAT32_FILTERABLE`) on any adapter.
+    pub fn headless_without(features: wgpu::Features) -> Result<GpuContext, GpuError> {
+        pollster::block_on(Self::headless_async(features))
+    }
+
+    async fn headless_async(without: wgpu::Features) -> Result<GpuContext, GpuError> {
         let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         let backends = descriptor.backends;
         let instance = wgpu::Instance::new(descriptor);
         let adapter = choose_adapter(instance.enumerate_adapters(backends).await, backends)?;
+        let mut descriptor = device_descriptor(&adapter);
+        descriptor.required_features.remove(without);
         let (device, queue) = adapter
-            .request_device(&device_descriptor(&adapter))
+            .request_device(&descriptor)
             .await
             .map_err(|source| GpuError::RequestDevice {
                 adapter: summary(&adapter.get_info()),

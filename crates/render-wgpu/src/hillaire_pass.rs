@@ -13,7 +13,10 @@
 //!   a camera above the atmosphere, whose rays are marched;
 //! - `aerial_perspective` likewise, and only when some pixel may see the ground within
 //!   the volume's range (`ground_in_view`);
-//! - `hillaire`: the pass, every frame.
+//! - `hillaire`: the pass, every frame. It reads the transmittance table, the sky view
+//!   and the volume through the texture unit's filter where the device can
+//!   (`table_sampling`): one read per look-up instead of 4 (8 for the volume's trilinear
+//!   one).
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::hillaire::directions::horizon_zenith;
@@ -38,6 +41,7 @@ use crate::pipeline::{
 };
 use crate::readback::read_texture;
 use crate::surface_buffer::SurfaceBuffer;
+use crate::table_sampling::TableSampling;
 use crate::transmittance_pass::{TABLE_FORMAT, TableOutput, TransmittancePass};
 
 /// WGSL `HillaireParams`, 112 bytes: the view of the per-view tables, the settings'
@@ -280,11 +284,14 @@ pub struct HillairePass {
     pending: Option<Source>,
     /// The entry point of `pass` the frame being planned uses.
     variant: usize,
+    /// How the pass reads its tables.
+    sampling: TableSampling,
 }
 
 impl HillairePass {
     pub fn new(gpu: &GpuContext) -> Result<HillairePass, GpuError> {
         use wgpu::TextureViewDimension::{D2, D3};
+        let sampling = TableSampling::new(gpu);
         // Bindings 0-4 of every hillaire shader: atmosphere, frame (read by the pass
         // only), `HillaireParams`, the transmittance table and Psi_ms.
         let common = |fifth: wgpu::BindGroupLayoutEntry| {
@@ -330,18 +337,28 @@ impl HillairePass {
                 ]),
             )?,
             pass: {
+                // The transmittance table, the sky view and the volume may be sampled.
                 let surface_entries = SurfaceBuffer::layout_entries();
-                let entries = with(&[
+                let mut entries = with(&[
                     texture_entry(5, D2),
-                    texture_entry(6, D2),
-                    texture_entry(7, D3),
-                    texture_entry(8, D3),
+                    sampling.texture_entry(6, D2),
+                    sampling.texture_entry(7, D3),
+                    sampling.texture_entry(8, D3),
                     storage_texture_entry(9, HDR_FORMAT, D2),
+                    sampling.sampler_entry(10),
                     surface_entries[0],
                     surface_entries[1],
                 ]);
+                entries[3] = sampling.texture_entry(3, D2);
                 let variant = |entry| {
-                    PixelPipeline::new(gpu, "hillaire.wgsl", entry, "the hillaire pass", &entries)
+                    PixelPipeline::with_constants(
+                        gpu,
+                        "hillaire.wgsl",
+                        entry,
+                        "the hillaire pass",
+                        &entries,
+                        &[sampling.constant()],
+                    )
                 };
                 [
                     variant("main")?,
@@ -354,6 +371,7 @@ impl HillairePass {
             atmosphere: AtmosphereUniform::default(),
             pending: None,
             variant: 0,
+            sampling,
         })
     }
 
@@ -593,6 +611,7 @@ impl ModelPass for HillairePass {
                 let mut extra = vec![psi_view];
                 extra.extend(views.iter().map(wgpu::BindingResource::TextureView));
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
+                extra.push(wgpu::BindingResource::Sampler(self.sampling.sampler()));
                 run(
                     self.pass[self.variant].variant(io.has_surface),
                     encoder,

@@ -28,6 +28,7 @@ pub mod renderer;
 pub mod riley_pass;
 pub mod shader_source;
 pub mod surface_buffer;
+pub mod table_sampling;
 pub mod terrain;
 pub mod terrain_pass;
 pub mod tone_map;

@@ -280,15 +280,23 @@ impl PixelPipeline {
         label: &'static str,
         entries: &[wgpu::BindGroupLayoutEntry],
     ) -> Result<PixelPipeline, GpuError> {
+        PixelPipeline::with_constants(gpu, shader, entry, label, entries, &[])
+    }
+
+    /// As [`PixelPipeline::new`], with the shader's other pipeline-overridable constants
+    /// set to `constants` (name, value) in both variants.
+    pub fn with_constants(
+        gpu: &GpuContext,
+        shader: &str,
+        entry: &str,
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        constants: &[(&str, f64)],
+    ) -> Result<PixelPipeline, GpuError> {
         let variant = |surface: f64| {
-            ComputePipeline::with_constants(
-                gpu,
-                shader,
-                entry,
-                label,
-                entries,
-                &[("SURFACE", surface)],
-            )
+            let mut all = vec![("SURFACE", surface)];
+            all.extend_from_slice(constants);
+            ComputePipeline::with_constants(gpu, shader, entry, label, entries, &all)
         };
         Ok(PixelPipeline {
             with_surface: variant(1.0)?,

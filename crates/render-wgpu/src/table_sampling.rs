@@ -1,0 +1,102 @@
+//! How a pass reads its `Rgba32Float` tables: with the texture unit's linear filter where
+//! the device filters that format (`Features::FLOAT32_FILTERABLE`), else texel by texel
+//! with the interpolation written out in WGSL. One filtered read replaces the 4 texel
+//! reads of a bilinear look-up, or the 8 of a trilinear one; on lavapipe a texel read
+//! costs about as much as a filtered one, about 0.005 of the nishita-16 frame per read
+//! per pixel at 1280x720, so this is most of a table-driven pass's cost.
+//!
+//! The two ways give the same interpolation (weights from the same coordinates), up to
+//! the filter's precision: lavapipe computes the weights in f32; real GPUs quantise them
+//! (8 fractional bits on NVIDIA), an error of at most 1/512 of the difference of two
+//! neighbouring texels. A shader chooses at pipeline creation from the override constant
+//! [`TableSampling::CONSTANT`], so the other way is compiled out.
+
+use crate::device::GpuContext;
+
+/// The sampler and the layout entries of a pass's table reads on one device.
+#[derive(Debug)]
+pub struct TableSampling {
+    filtered: bool,
+    sampler: wgpu::Sampler,
+}
+
+impl TableSampling {
+    /// The WGSL override constant (bool) that says whether tables are read filtered.
+    pub const CONSTANT: &'static str = "FILTERED_TABLES";
+
+    /// Filtered reads where `gpu`'s device has `FLOAT32_FILTERABLE`.
+    pub fn new(gpu: &GpuContext) -> TableSampling {
+        let filtered = gpu
+            .device
+            .features()
+            .contains(wgpu::Features::FLOAT32_FILTERABLE);
+        TableSampling::with_filtering(gpu, filtered)
+    }
+
+    /// Filtered reads if `filtered` (the device must then have `FLOAT32_FILTERABLE`),
+    /// else texel reads; for tests of both on one device.
+    pub fn with_filtering(gpu: &GpuContext, filtered: bool) -> TableSampling {
+        let filter = if filtered {
+            wgpu::FilterMode::Linear
+        } else {
+            wgpu::FilterMode::Nearest
+        };
+        let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("tables"),
+            mag_filter: filter,
+            min_filter: filter,
+            ..Default::default()
+        });
+        TableSampling { filtered, sampler }
+    }
+
+    /// Whether tables are read through the filter.
+    pub fn filtered(&self) -> bool {
+        self.filtered
+    }
+
+    /// The pipeline constant for [`TableSampling::CONSTANT`].
+    pub fn constant(&self) -> (&'static str, f64) {
+        (TableSampling::CONSTANT, f64::from(u8::from(self.filtered)))
+    }
+
+    /// A table texture that the shader may sample (filterable when filtered).
+    pub fn texture_entry(
+        &self,
+        binding: u32,
+        dimension: wgpu::TextureViewDimension,
+    ) -> wgpu::BindGroupLayoutEntry {
+        wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float {
+                    filterable: self.filtered,
+                },
+                view_dimension: dimension,
+                multisampled: false,
+            },
+            count: None,
+        }
+    }
+
+    /// The sampler's entry (bound in both ways; unused by the texel reads).
+    pub fn sampler_entry(&self, binding: u32) -> wgpu::BindGroupLayoutEntry {
+        let kind = if self.filtered {
+            wgpu::SamplerBindingType::Filtering
+        } else {
+            wgpu::SamplerBindingType::NonFiltering
+        };
+        wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Sampler(kind),
+            count: None,
+        }
+    }
+
+    /// The sampler, to bind at [`TableSampling::sampler_entry`]'s binding.
+    pub fn sampler(&self) -> &wgpu::Sampler {
+        &self.sampler
+    }
+}
