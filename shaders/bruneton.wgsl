@@ -11,12 +11,15 @@
 // surface where it lies beyond the ground. A surface that cuts the ray short
 // (`Segment::cut`) subtracts T(x, x_o) S(x_o) looked up at its point x_o, and is lit by
 // `bruneton_surface_irradiance`. The sun disk with limb darkening is added where the ray
-// reaches space, times its transmittance.
+// reaches space, times its transmittance. The view slice, E and the transmittance
+// table are read through the texture unit's linear filter where the device filters
+// Rgba32Float (`table_sampling.wgsl`), else texel by texel.
 
 #import bruneton_lookup.wgsl
 #import frame_params.wgsl
 #import phase.wgsl
 #import surface.wgsl
+#import table_sampling.wgsl
 
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(10) var view_slice: texture_2d<f32>;
@@ -24,10 +27,13 @@
 @group(0) @binding(11) var irradiance: texture_2d<f32>;
 
 // `IrradianceTable::lookup` on the ground (q = 0, as `irradiance_at`): the table's first
-// row, the only one with weight there, interpolated along mu_s alone (two texel reads;
-// the same value).
+// row, the only one with weight there, interpolated along mu_s alone (two texel reads,
+// or one filtered; the same value).
 fn ground_irradiance_at(mu_s: f32) -> vec3<f32> {
     let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), bruneton.irradiance_size.x);
+    if FILTERED_TABLES {
+        return sample_2d(irradiance, vec2<f32>(f32(am.i) + am.w, 0.0));
+    }
     let low = textureLoad(irradiance, vec2<u32>(am.i, 0u), 0).xyz;
     let high = textureLoad(irradiance, vec2<u32>(am.i + 1u, 0u), 0).xyz;
     return mix(low, high, am.w);
@@ -43,8 +49,13 @@ fn view_slice_row(k: u32, imu: u32, inu: u32) -> vec3<f32> {
 // `texture_lookup` of scattering texture `k` for a camera inside the atmosphere: every
 // ray starts at the camera's r and mu_s, so the interpolation in r and mu_s, the same for
 // every pixel, is done once per frame into the view slice, and each pixel interpolates
-// in mu and nu (4 texel reads instead of 16; the same quadrilinear interpolation).
+// in mu and nu (4 texel reads instead of 16, or one filtered; the same quadrilinear
+// interpolation).
 fn view_slice_lookup(k: u32, p: Position) -> vec3<f32> {
+    if FILTERED_TABLES {
+        let nu = f32(k * bruneton.size.w + p.nu.i) + p.nu.w;
+        return sample_2d(view_slice, vec2<f32>(nu, f32(p.mu.i) + p.mu.w));
+    }
     var lo = vec3<f32>(0.0);
     var hi = vec3<f32>(0.0);
     for (var dm = 0u; dm < 2u; dm++) {
@@ -105,7 +116,10 @@ fn bruneton_radiance(direction: vec3<f32>, object_m: f32, inside: bool) -> Radia
     let nu = clamp(dot(direction, sun), -1.0, 1.0);
     let p = table_position(s.q, r, s.r_mu, mu_s, nu, s.on_ground);
     var l = scattered(p, nu, inside);
-    let t = exp(-optical_depth(segment_column(s.q, r, s.r_mu, s.length, s.on_ground)));
+    let ends = segment_ends(s.q, r, s.r_mu, s.length, s.on_ground);
+    let columns = read_table_columns(transmittance_columns, ends.x, ends.y)
+        - read_table_columns(transmittance_columns, ends.z, ends.w);
+    let t = exp(-optical_depth(max(columns, vec3<f32>(0.0))));
     if s.cut {
         // Aerial perspective (section 4, Eq. 3): S(x) - T(x, x_o) S(x_o), on the same
         // half of the mu axis.
@@ -120,7 +134,7 @@ fn bruneton_radiance(direction: vec3<f32>, object_m: f32, inside: bool) -> Radia
         let sky = ground_irradiance_at(mu_s_g);
         var direct = vec3<f32>(0.0);
         if mu_s_g > 0.0 {
-            direct = exp(-optical_depth(ground_columns(transmittance_columns, mu_s_g))) * mu_s_g;
+            direct = exp(-optical_depth(read_ground_columns(transmittance_columns, mu_s_g))) * mu_s_g;
         }
         l += t * (atmosphere.ground_albedo / PI) * (direct + sky);
     }
@@ -138,7 +152,7 @@ fn bruneton_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32>
     let q = (e.r - bottom) * (e.r + bottom);
     var t = vec3<f32>(0.0);
     if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
-        t = exp(-optical_depth(table_columns(transmittance_columns, q, e.mu_s)));
+        t = exp(-optical_depth(read_table_columns(transmittance_columns, q, e.mu_s)));
     }
     let sky = irradiance_at(bruneton.offsets_b.w, q, e.r, e.mu_s);
     return element_irradiance(e, t, atmosphere.solar_irradiance.xyz * sky);

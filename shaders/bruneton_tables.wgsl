@@ -74,13 +74,21 @@ fn density_at(altitude_m: f32) -> vec3<f32> {
 // kinds of ray (which lavapipe runs for every pixel) reads the table twice, not four
 // times.
 fn segment_column(q: f32, r: f32, r_mu: f32, d: f32, ground: bool) -> vec3<f32> {
+    let ends = segment_ends(q, r, r_mu, d, ground);
+    let a = table_columns(transmittance_columns, ends.x, ends.y);
+    let b = table_columns(transmittance_columns, ends.z, ends.w);
+    return max(a - b, vec3<f32>(0.0));
+}
+
+// The two rays of `segment_column`, (q, mu) of the one whose columns are added, then of
+// the one whose columns are subtracted.
+fn segment_ends(q: f32, r: f32, r_mu: f32, d: f32, ground: bool) -> vec4<f32> {
     let q_d = clamp(q + d * (d + 2.0 * r_mu), 0.0, horizon_sq());
     let r_d = radius_of_q(q_d);
     let mu_d = clamp((r_mu + d) / r_d, -1.0, 1.0);
     let mu = clamp(r_mu / r, -1.0, 1.0);
-    let a = table_columns(transmittance_columns, select(q, q_d, ground), select(mu, -mu_d, ground));
-    let b = table_columns(transmittance_columns, select(q_d, q, ground), select(mu_d, -mu, ground));
-    return max(a - b, vec3<f32>(0.0));
+    return vec4<f32>(select(q, q_d, ground), select(mu, -mu_d, ground), select(q_d, q, ground),
+        select(mu_d, -mu, ground));
 }
 
 // Transmittance to the sun (a point) from (q, r) at sun cosine mu_s, interpolated in the

@@ -22,30 +22,25 @@
 #import hillaire_directions.wgsl
 #import frame_params.wgsl
 #import surface.wgsl
+#import table_sampling.wgsl
 
 @group(0) @binding(5) var ground_irradiance: texture_2d<f32>;
 @group(0) @binding(6) var sky_view: texture_2d<f32>;
 @group(0) @binding(7) var aerial_radiance: texture_3d<f32>;
 @group(0) @binding(8) var aerial_transmittance: texture_3d<f32>;
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(10) var table_sampler: sampler;
 
-// Whether the tables are read through `table_sampler`'s linear filter; the other way is
-// compiled out.
-override FILTERED_TABLES: bool = true;
-
-// The coordinates of a grid position for a filtered read: texel centres at
-// (i + 0.5) / size; the two rows are neighbours in storage, in either order.
-fn grid_uv(p: GridPosition, size: vec2<u32>) -> vec2<f32> {
+// The fractional texel position of a grid position, for a filtered read: the two rows
+// are neighbours in storage, in either order.
+fn grid_texel(p: GridPosition) -> vec2<f32> {
     let row = f32(p.row0) + p.row_weight * (f32(p.row1) - f32(p.row0));
-    return (vec2<f32>(f32(p.column) + p.column_weight, row) + 0.5) / vec2<f32>(size);
+    return vec2<f32>(f32(p.column) + p.column_weight, row);
 }
 
 // `SkyView::lookup` at a grid position.
 fn sky_view_lookup(p: GridPosition) -> vec3<f32> {
     if FILTERED_TABLES {
-        let uv = grid_uv(p, textureDimensions(sky_view));
-        return textureSampleLevel(sky_view, table_sampler, uv, 0.0).xyz;
+        return sample_2d(sky_view, grid_texel(p));
     }
     let a = p.column_weight;
     let c00 = textureLoad(sky_view, vec2<u32>(p.column, p.row0), 0).xyz;
@@ -74,17 +69,15 @@ fn slice_lookup(volume: texture_3d<f32>, p: GridPosition, k: u32) -> vec3<f32> {
 // without branches (a software rasteriser would run both under a mask): within the
 // first slice the lower end is the camera's values.
 fn aerial_lookup(p: GridPosition, depth_m: f32) -> ViewMarch {
-    let size = textureDimensions(aerial_radiance);
-    let slices = size.z;
+    let slices = textureDimensions(aerial_radiance).z;
     let f = clamp(depth_m / hillaire.aerial_range_m, 0.0, 1.0) * f32(slices);
     let first = f <= 1.0;
     if FILTERED_TABLES {
         // One trilinear read per volume: between slices k and k + 1 at f - 1; within the
         // first slice, slice 0 itself, blended with the camera's values by hand.
-        let w = (clamp(f - 1.0, 0.0, f32(slices - 1u)) + 0.5) / f32(slices);
-        let uvw = vec3<f32>(grid_uv(p, size.xy), w);
-        let radiance = textureSampleLevel(aerial_radiance, table_sampler, uvw, 0.0).xyz;
-        let transmittance = textureSampleLevel(aerial_transmittance, table_sampler, uvw, 0.0).xyz;
+        let at = vec3<f32>(grid_texel(p), clamp(f - 1.0, 0.0, f32(slices - 1u)));
+        let radiance = sample_3d(aerial_radiance, at);
+        let transmittance = sample_3d(aerial_transmittance, at);
         var m: ViewMarch;
         m.radiance = select(radiance, f * radiance, first);
         m.throughput = select(transmittance, 1.0 + f * (transmittance - 1.0), first);
@@ -122,11 +115,7 @@ fn ground_sun_transmittance(mu_s: f32) -> vec3<f32> {
     if mu_s < 0.0 {
         return vec3<f32>(0.0);
     }
-    let mu = min(mu_s, 1.0);
-    if FILTERED_TABLES {
-        return exp(-optical_depth(sampled_ground_columns(transmittance_columns, table_sampler, mu)));
-    }
-    return exp(-optical_depth(ground_columns(transmittance_columns, mu)));
+    return exp(-optical_depth(read_ground_columns(transmittance_columns, min(mu_s, 1.0))));
 }
 
 // `Hillaire::ground_light`: light leaving the ground per unit solar irradiance with the
@@ -138,14 +127,6 @@ fn ground_light(mu_s: f32) -> vec3<f32> {
     }
     let direct = ground_sun_transmittance(mu_s) * max(mu_s, 0.0);
     return atmosphere.ground_albedo / PI * (direct + sky);
-}
-
-// `table_columns` of the transmittance table, filtered or not as the tables are.
-fn columns_to_top(q: f32, mu: f32) -> vec3<f32> {
-    if FILTERED_TABLES {
-        return sampled_table_columns(transmittance_columns, table_sampler, q, mu);
-    }
-    return table_columns(transmittance_columns, q, mu);
 }
 
 // `view_angles`: zenith angle and azimuth from the sun's vertical plane of `direction`
@@ -188,7 +169,7 @@ fn hillaire_radiance(direction: vec3<f32>, object_m: f32, tables: bool, march: b
         } else {
             m.radiance = sky_view_lookup(p);
             let mu = clamp(s.r_mu / frame.camera_m.w, -1.0, 1.0);
-            m.throughput = exp(-optical_depth(columns_to_top(s.q, mu)));
+            m.throughput = exp(-optical_depth(read_table_columns(transmittance_columns, s.q, mu)));
         }
     } else if march {
         m = march_run(view_ray(s.q, s.r_mu, s.start_dot_sun, nu), s.length,
@@ -212,12 +193,12 @@ fn hillaire_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32>
     let q = (e.r - bottom) * (e.r + bottom);
     var t = vec3<f32>(0.0);
     if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
-        t = exp(-optical_depth(columns_to_top(q, e.mu_s)));
+        t = exp(-optical_depth(read_table_columns(transmittance_columns, q, e.mu_s)));
     }
     var sky = vec3<f32>(0.0);
     if hillaire.multiple_on != 0u {
-        let whole = optical_depth(columns_to_top(0.0, 1.0));
-        let above = optical_depth(columns_to_top(q, 1.0));
+        let whole = optical_depth(read_table_columns(transmittance_columns, 0.0, 1.0));
+        let above = optical_depth(read_table_columns(transmittance_columns, q, 1.0));
         sky = ground_irradiance_lookup(e.mu_s)
             * select(vec3<f32>(1.0), above / whole, whole > vec3<f32>(0.0));
     }

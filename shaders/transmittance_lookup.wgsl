@@ -59,23 +59,3 @@ fn ground_columns(table: texture_2d<f32>, mu: f32) -> vec3<f32> {
     return low + (f - f32(i)) * (high - low);
 }
 
-// `table_columns` read through a linear filter (`table_sampler`; texel centres at
-// (i + 0.5) / size, so unit coordinate 0 and 1 are the first and last nodes): one
-// filtered read instead of four, the same interpolation up to the filter's precision.
-fn sampled_table_columns(table: texture_2d<f32>, table_sampler: sampler, q: f32, mu: f32) -> vec3<f32> {
-    let bottom = atmosphere.bottom_radius_m;
-    let r = sqrt(bottom * bottom + q);
-    let unit = table_unit_from_q_mu(q, r, mu);
-    let size = vec2<f32>(textureDimensions(table));
-    let uv = (unit * (size - 1.0) + 0.5) / size;
-    return textureSampleLevel(table, table_sampler, uv, 0.0).xyz;
-}
-
-// `ground_columns` read through a linear filter, as `sampled_table_columns`.
-fn sampled_ground_columns(table: texture_2d<f32>, table_sampler: sampler, mu: f32) -> vec3<f32> {
-    let bottom = atmosphere.bottom_radius_m;
-    let size = vec2<f32>(textureDimensions(table));
-    let x = table_unit_from_q_mu(0.0, bottom, mu).x;
-    let uv = vec2<f32>((x * (size.x - 1.0) + 0.5) / size.x, 0.5 / size.y);
-    return textureSampleLevel(table, table_sampler, uv, 0.0).xyz;
-}

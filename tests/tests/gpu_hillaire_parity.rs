@@ -16,9 +16,11 @@ use atmosphere_core::model::ModelSettings;
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::frame_plan::FramePlan;
 use render_wgpu::hillaire_pass::{HillairePass, Table};
-use render_wgpu::table_sampling::TableSampling;
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{check, check_surface, standard_frames, view};
+use support::{
+    check, check_surface, filtered_against_texel_reads, standard_frames,
+    texel_read_renderer_or_skip, view,
+};
 
 /// Largest relative error of a table's texel, |gpu - cpu| / max(|cpu|, 1e-3 of the
 /// table's largest value). Both sides march in the same order with the same samples;
@@ -28,7 +30,8 @@ use support::{check, check_surface, standard_frames, view};
 const MAX_TABLE_ERROR: f64 = 1e-3;
 
 /// Largest relative difference of a pixel read through the filter from the same pixel
-/// read texel by texel.
+/// read texel by texel: the same interpolation up to the filter's f32 weights, and the
+/// f16 store (4.9e-4 per rounding).
 const MAX_FILTER_DIFFERENCE: f32 = 1e-3;
 
 /// Largest |gpu - cpu| of the volume's transmittance.
@@ -246,17 +249,12 @@ fn hillaire_frames_match_the_cpu_from_the_ground_to_far_orbit() {
 /// (the default where the adapter filters Rgba32Float, as lavapipe does) pixel by pixel.
 #[test]
 fn texel_reads_match_the_cpu_and_the_filtered_reads() {
-    let gpu = match GpuContext::headless_without(wgpu::Features::FLOAT32_FILTERABLE) {
-        Ok(gpu) => gpu,
-        Err(e) if skip_gpu("hillaire texel reads", &e) => return,
-        Err(e) => panic!("{e}"),
+    let Some(mut texel_reads) = texel_read_renderer_or_skip("hillaire texel reads") else {
+        return;
     };
-    assert!(!TableSampling::new(&gpu).filtered());
-    let mut texel_reads = Renderer::new(gpu).unwrap();
     let Some(mut default) = renderer_or_skip("hillaire texel reads") else {
         return;
     };
-    let filtered = TableSampling::new(default.gpu()).filtered();
     let ground = frame(view(1.0, 85.0, 10.0), 70.0, 64, 36);
     let down = frame(view(10_000.0, 100.0, 50.0), 60.0, 64, 36);
     check(
@@ -273,20 +271,9 @@ fn texel_reads_match_the_cpu_and_the_filtered_reads() {
     );
     let (name, surface) = &standard_frames("hillaire")[0];
     check_surface(&mut texel_reads, name, surface, MAX_RELATIVE_ERROR);
-    // Filtered against texel reads: the same interpolation, up to the filter's f32
-    // weights and the f16 store (4.9e-4 per rounding).
-    for f in [&ground, &down] {
-        let (_, a) = render(&mut texel_reads, f);
-        let (_, b) = render(&mut default, f);
-        let worst = a
-            .iter()
-            .zip(&b)
-            .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / a[c].abs().max(1e-3)))
-            .fold(0.0f32, f32::max);
-        println!(
-            "filtered ({filtered}) against texel reads: worst relative difference {worst:.2e}"
-        );
-        assert!(worst <= MAX_FILTER_DIFFERENCE, "{worst:e}");
+    for (name, f) in [("ground, noon", &ground), ("10 km", &down)] {
+        let worst = filtered_against_texel_reads(&mut texel_reads, &mut default, name, f);
+        assert!(worst <= MAX_FILTER_DIFFERENCE, "{name}: {worst:e}");
     }
 }
 

@@ -53,6 +53,7 @@ use crate::pipeline::{
 };
 use crate::readback::{map_and_read, read_texture};
 use crate::surface_buffer::{ALBEDO_BINDING, GEOMETRY_BINDING, SurfaceBuffer};
+use crate::table_sampling::TableSampling;
 use crate::transmittance_pass::{TableOutput, TransmittancePass};
 
 /// Texels of a row of S (mu_s x nu) at most: the workgroup of the row shaders
@@ -313,6 +314,8 @@ pub struct BrunetonPass {
     /// Whether the frame's camera is inside the atmosphere (the view slice and the
     /// `inside` pass).
     inside: bool,
+    /// How the pass reads its tables.
+    sampling: TableSampling,
 }
 
 /// Bindings 0-5 and 12 of every bruneton shader: atmosphere, frame, parameters, the
@@ -361,17 +364,35 @@ impl BrunetonPass {
             texture_entry(8, D3),
             storage_texture_entry(9, wgpu::TextureFormat::Rgba32Float, D2),
         ]);
+        // The pass may sample the columns table, the view slice and E.
+        let sampling = TableSampling::new(gpu);
         let surface_entries = SurfaceBuffer::layout_entries();
-        let render_entries = with(&[
+        let mut render_entries = with(&[
             texture_entry(6, D3),
             texture_entry(7, D3),
             texture_entry(8, D3),
             storage_texture_entry(9, HDR_FORMAT, D2),
             surface_entries[0],
             surface_entries[1],
-            texture_entry(10, D2),
-            texture_entry(11, D2),
+            sampling.texture_entry(10, D2),
+            sampling.texture_entry(11, D2),
+            sampling.sampler_entry(),
         ]);
+        for entry in &mut render_entries {
+            if entry.binding == 3 {
+                *entry = sampling.texture_entry(3, D2);
+            }
+        }
+        let render = |entry| {
+            PixelPipeline::with_constants(
+                gpu,
+                "bruneton.wgsl",
+                entry,
+                "the bruneton pass",
+                &render_entries,
+                &[sampling.constant()],
+            )
+        };
         let pipelines = Pipelines {
             density: make("bruneton_density.wgsl", "main", "bruneton density", &common)?,
             single: make(
@@ -440,20 +461,8 @@ impl BrunetonPass {
                 "bruneton view slice",
                 &view_slice_entries,
             )?,
-            render: PixelPipeline::new(
-                gpu,
-                "bruneton.wgsl",
-                "main",
-                "the bruneton pass",
-                &render_entries,
-            )?,
-            render_inside: PixelPipeline::new(
-                gpu,
-                "bruneton.wgsl",
-                "inside",
-                "the bruneton pass",
-                &render_entries,
-            )?,
+            render: render("main")?,
+            render_inside: render("inside")?,
         };
         Ok(BrunetonPass {
             pipelines,
@@ -464,6 +473,7 @@ impl BrunetonPass {
             progressive: false,
             recording: None,
             inside: false,
+            sampling,
         })
     }
 
@@ -767,7 +777,8 @@ impl BrunetonPass {
     }
 
     /// The bind group of `pipeline`: bindings 0-5 with `params`, 12, then `extra` from
-    /// binding 6 on, and for the per-pixel pass the frame's `surface` at 30 and 31.
+    /// binding 6 on, and for the per-pixel pass the frame's `surface` at 30 and 31 and the
+    /// table sampler.
     fn bind_group(
         &self,
         gpu: &GpuContext,
@@ -803,6 +814,7 @@ impl BrunetonPass {
                 wgpu::BindingResource::TextureView(geometry),
             ));
             resources.push((ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)));
+            resources.push(self.sampling.sampler_binding());
         }
         pipeline.bind_group_numbered(gpu, &resources)
     }

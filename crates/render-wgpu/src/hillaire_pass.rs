@@ -345,7 +345,7 @@ impl HillairePass {
                     sampling.texture_entry(7, D3),
                     sampling.texture_entry(8, D3),
                     storage_texture_entry(9, HDR_FORMAT, D2),
-                    sampling.sampler_entry(10),
+                    sampling.sampler_entry(),
                     surface_entries[0],
                     surface_entries[1],
                 ]);
@@ -529,7 +529,12 @@ impl ModelPass for HillairePass {
             ];
             resources.extend_from_slice(extra);
             let bind_group = match surface {
-                Some(surface) => pipeline.pixel_bind_group(gpu, &resources, surface),
+                Some(surface) => pipeline.pixel_bind_group_with(
+                    gpu,
+                    &resources,
+                    surface,
+                    &[self.sampling.sampler_binding()],
+                ),
                 None => pipeline.bind_group(gpu, &resources),
             };
             pipeline.dispatch(encoder, step, &bind_group, groups, timestamps);
@@ -611,7 +616,6 @@ impl ModelPass for HillairePass {
                 let mut extra = vec![psi_view];
                 extra.extend(views.iter().map(wgpu::BindingResource::TextureView));
                 extra.push(wgpu::BindingResource::TextureView(&hdr));
-                extra.push(wgpu::BindingResource::Sampler(self.sampling.sampler()));
                 run(
                     self.pass[self.variant].variant(io.has_surface),
                     encoder,

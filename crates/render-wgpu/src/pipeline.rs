@@ -204,11 +204,24 @@ impl ComputePipeline {
         resources: &[wgpu::BindingResource<'_>],
         surface: &[wgpu::TextureView; 2],
     ) -> wgpu::BindGroup {
+        self.pixel_bind_group_with(gpu, resources, surface, &[])
+    }
+
+    /// As [`ComputePipeline::pixel_bind_group`], with `more` (binding, resource) pairs
+    /// elsewhere (e.g. the table sampler of `table_sampling`).
+    pub fn pixel_bind_group_with(
+        &self,
+        gpu: &GpuContext,
+        resources: &[wgpu::BindingResource<'_>],
+        surface: &[wgpu::TextureView; 2],
+        more: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> wgpu::BindGroup {
         let mut numbered: Vec<_> = resources
             .iter()
             .enumerate()
             .map(|(binding, resource)| (binding as u32, resource.clone()))
             .collect();
+        numbered.extend_from_slice(more);
         numbered.push((
             crate::surface_buffer::GEOMETRY_BINDING,
             wgpu::BindingResource::TextureView(&surface[0]),

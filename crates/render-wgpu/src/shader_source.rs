@@ -144,6 +144,10 @@ const SHADERS: &[(&str, &str)] = &[
         include_str!("../../../shaders/surface.wgsl"),
     ),
     (
+        "table_sampling.wgsl",
+        include_str!("../../../shaders/table_sampling.wgsl"),
+    ),
+    (
         "terrain.wgsl",
         include_str!("../../../shaders/terrain.wgsl"),
     ),

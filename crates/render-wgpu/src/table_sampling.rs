@@ -8,8 +8,9 @@
 //! The two ways give the same interpolation (weights from the same coordinates), up to
 //! the filter's precision: lavapipe computes the weights in f32; real GPUs quantise them
 //! (8 fractional bits on NVIDIA), an error of at most 1/512 of the difference of two
-//! neighbouring texels. A shader chooses at pipeline creation from the override constant
-//! [`TableSampling::CONSTANT`], so the other way is compiled out.
+//! neighbouring texels. A shader imports `shaders/table_sampling.wgsl`, whose override
+//! constant [`TableSampling::CONSTANT`] is set at pipeline creation, so the other way is
+//! compiled out, and whose sampler is at [`TableSampling::SAMPLER_BINDING`].
 
 use crate::device::GpuContext;
 
@@ -23,6 +24,9 @@ pub struct TableSampling {
 impl TableSampling {
     /// The WGSL override constant (bool) that says whether tables are read filtered.
     pub const CONSTANT: &'static str = "FILTERED_TABLES";
+
+    /// The sampler's binding in `table_sampling.wgsl`.
+    pub const SAMPLER_BINDING: u32 = 29;
 
     /// Filtered reads where `gpu`'s device has `FLOAT32_FILTERABLE`.
     pub fn new(gpu: &GpuContext) -> TableSampling {
@@ -81,22 +85,25 @@ impl TableSampling {
     }
 
     /// The sampler's entry (bound in both ways; unused by the texel reads).
-    pub fn sampler_entry(&self, binding: u32) -> wgpu::BindGroupLayoutEntry {
+    pub fn sampler_entry(&self) -> wgpu::BindGroupLayoutEntry {
         let kind = if self.filtered {
             wgpu::SamplerBindingType::Filtering
         } else {
             wgpu::SamplerBindingType::NonFiltering
         };
         wgpu::BindGroupLayoutEntry {
-            binding,
+            binding: TableSampling::SAMPLER_BINDING,
             visibility: wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Sampler(kind),
             count: None,
         }
     }
 
-    /// The sampler, to bind at [`TableSampling::sampler_entry`]'s binding.
-    pub fn sampler(&self) -> &wgpu::Sampler {
-        &self.sampler
+    /// The sampler at its binding, for a bind group.
+    pub fn sampler_binding(&self) -> (u32, wgpu::BindingResource<'_>) {
+        (
+            TableSampling::SAMPLER_BINDING,
+            wgpu::BindingResource::Sampler(&self.sampler),
+        )
     }
 }

@@ -18,8 +18,9 @@ use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
 use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::surface_buffer::SurfaceTexel;
+use render_wgpu::table_sampling::TableSampling;
 use render_wgpu::tone_map::ToneMap;
-use render_wgpu::{GpuError, RenderError, Renderer};
+use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
 
 /// Radiance below which errors count as absolute, W m^-2 sr^-1 nm^-1: 1e-3 of a bright
 /// daytime sky (about 0.1), far below what an 8-bit display shows.
@@ -43,6 +44,49 @@ pub fn renderer_or_skip(test: &str) -> Option<Renderer> {
         }
         Err(e) => panic!("{e}"),
     }
+}
+
+/// A renderer whose device lacks `FLOAT32_FILTERABLE` even where the adapter has it, so
+/// that the passes read their tables texel by texel (`render_wgpu::table_sampling`), or
+/// `None` as [`renderer_or_skip`].
+pub fn texel_read_renderer_or_skip(test: &str) -> Option<Renderer> {
+    match GpuContext::headless_without(wgpu::Features::FLOAT32_FILTERABLE) {
+        Ok(gpu) => {
+            assert!(!TableSampling::new(&gpu).filtered());
+            Some(Renderer::new(gpu).unwrap())
+        }
+        Err(e @ GpuError::NoAdapter { .. })
+            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
+        {
+            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
+            None
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// Largest relative difference |a - b| / max(|a|, 1e-3) of the HDR images of `frame`
+/// rendered by `texel_reads` and by `default` (filtered reads where its device filters
+/// Rgba32Float, which it prints).
+pub fn filtered_against_texel_reads(
+    texel_reads: &mut Renderer,
+    default: &mut Renderer,
+    name: &str,
+    frame: &Frame,
+) -> f32 {
+    texel_reads.render(frame).unwrap();
+    default.render(frame).unwrap();
+    let (a, b) = (texel_reads.read_hdr().unwrap(), default.read_hdr().unwrap());
+    let worst = a
+        .iter()
+        .zip(&b)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / a[c].abs().max(1e-3)))
+        .fold(0.0f32, f32::max);
+    println!(
+        "{name}: filtered reads ({}) against texel reads: worst relative difference {worst:.2e}",
+        TableSampling::new(default.gpu()).filtered()
+    );
+    worst
 }
 
 /// A frame of `model` on the earth preset, default settings, exposure EV100 14.
