@@ -3,7 +3,8 @@
 // (`MultipleScattering::lookup`, section 5.5) it needs. Along a view ray the light
 // scattered towards the camera at each segment's midpoint is
 // sigma_s (T_sun p(nu) + Psi_ms), integrated with `segment_weight`; per unit solar
-// irradiance. The Psi_ms LUT is bound at 4 in every shader that marches view rays.
+// irradiance. The Psi_ms LUT is bound at 4 in every shader that marches view rays, and
+// read as `table_sampling.wgsl` says.
 
 #import hillaire_medium.wgsl
 
@@ -32,6 +33,9 @@ fn psi_ms_lookup(q: f32, r: f32, mu_s: f32) -> vec3<f32> {
     let size = vec2<f32>(textureDimensions(psi_ms));
     let x = (clamp(mu_s, -1.0, 1.0) + 1.0) * 0.5;
     let y = clamp((q / (r + a.bottom_radius_m)) / (a.top_radius_m - a.bottom_radius_m), 0.0, 1.0);
+    if FILTERED_TABLES {
+        return sample_2d(psi_ms, vec2<f32>(x, y) * (size - 1.0));
+    }
     return texel_bilinear(psi_ms, vec2<f32>(x, y) * (size - 1.0));
 }
 

@@ -4,10 +4,10 @@
 // `frame_params.wgsl`), so that no planet-sized f32 numbers are subtracted. Also the
 // model's uniform (`HillaireParams`, Rust twin `hillaire_pass.rs`) and the transmittance
 // table (the columns of `transmittance_table.wgsl`, as the CPU's shared table), which
-// every hillaire shader binds at 2 and 3.
+// every hillaire shader binds at 2 and 3 and reads as `table_sampling.wgsl` says.
 
 #import atmosphere_params.wgsl
-#import transmittance_lookup.wgsl
+#import table_sampling.wgsl
 #import phase.wgsl
 
 struct HillaireParams {
@@ -119,7 +119,7 @@ fn sun_transmittance(q: f32, mu_s: f32) -> vec3<f32> {
     if mu < 0.0 && (r * mu) * (r * mu) - qc >= 0.0 {
         return vec3<f32>(0.0);
     }
-    return exp(-optical_depth(table_columns(transmittance_columns, qc, mu)));
+    return exp(-optical_depth(read_table_columns(transmittance_columns, qc, mu)));
 }
 
 // `ground_distance`: from (q, r mu) to the ground for a ray at or below the horizon; a

@@ -244,9 +244,10 @@ fn hillaire_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     );
 }
 
-/// The pass's texel-by-texel reads, which a device without `FLOAT32_FILTERABLE` runs,
-/// against the CPU on the views that read the tables, and against the filtered reads
-/// (the default where the adapter filters Rgba32Float, as lavapipe does) pixel by pixel.
+/// The texel-by-texel reads, which a device without `FLOAT32_FILTERABLE` runs, against
+/// the CPU on views that read the tables and one that marches (whose every segment reads
+/// the transmittance table and Psi_ms), and against the filtered reads (the default where
+/// the adapter filters Rgba32Float, as lavapipe does) pixel by pixel.
 #[test]
 fn texel_reads_match_the_cpu_and_the_filtered_reads() {
     let Some(mut texel_reads) = texel_read_renderer_or_skip("hillaire texel reads") else {
@@ -255,23 +256,22 @@ fn texel_reads_match_the_cpu_and_the_filtered_reads() {
     let Some(mut default) = renderer_or_skip("hillaire texel reads") else {
         return;
     };
-    let ground = frame(view(1.0, 85.0, 10.0), 70.0, 64, 36);
-    let down = frame(view(10_000.0, 100.0, 50.0), 60.0, 64, 36);
-    check(
-        &mut texel_reads,
-        "ground, noon, texel reads",
-        &ground,
-        MAX_RELATIVE_ERROR,
-    );
-    check(
-        &mut texel_reads,
-        "10 km, texel reads",
-        &down,
-        MAX_RELATIVE_ERROR,
-    );
+    let frames = [
+        ("ground, noon", frame(view(1.0, 85.0, 10.0), 70.0, 64, 36)),
+        ("10 km", frame(view(10_000.0, 100.0, 50.0), 60.0, 64, 36)),
+        ("100 km", frame(view(100_000.0, 100.0, 60.0), 40.0, 64, 36)),
+    ];
+    for (name, f) in &frames {
+        check(
+            &mut texel_reads,
+            &format!("{name}, texel reads"),
+            f,
+            MAX_RELATIVE_ERROR,
+        );
+    }
     let (name, surface) = &standard_frames("hillaire")[0];
     check_surface(&mut texel_reads, name, surface, MAX_RELATIVE_ERROR);
-    for (name, f) in [("ground, noon", &ground), ("10 km", &down)] {
+    for (name, f) in &frames {
         let worst = filtered_against_texel_reads(&mut texel_reads, &mut default, name, f);
         assert!(worst <= MAX_FILTER_DIFFERENCE, "{name}: {worst:e}");
     }

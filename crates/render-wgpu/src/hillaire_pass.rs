@@ -293,24 +293,27 @@ impl HillairePass {
         use wgpu::TextureViewDimension::{D2, D3};
         let sampling = TableSampling::new(gpu);
         // Bindings 0-4 of every hillaire shader: atmosphere, frame (read by the pass
-        // only), `HillaireParams`, the transmittance table and Psi_ms.
+        // only), `HillaireParams`, the transmittance table and Psi_ms; and the table
+        // sampler. The tables that are read may be sampled.
         let common = |fifth: wgpu::BindGroupLayoutEntry| {
             vec![
                 uniform_entry(0, size_of::<AtmosphereUniform>()),
                 uniform_entry(1, size_of::<FrameUniform>()),
                 uniform_entry(2, size_of::<HillaireUniform>()),
-                texture_entry(3, D2),
+                sampling.texture_entry(3, D2),
                 fifth,
+                sampling.sampler_entry(),
             ]
         };
-        let psi = texture_entry(4, D2);
+        let psi = sampling.texture_entry(4, D2);
         let with = |extra: &[wgpu::BindGroupLayoutEntry]| {
             let mut entries = common(psi);
             entries.extend_from_slice(extra);
             entries
         };
+        let constants = [sampling.constant()];
         let pipeline = |shader: &str, label: &'static str, entries: &[_]| {
-            ComputePipeline::new(gpu, shader, "main", label, entries)
+            ComputePipeline::with_constants(gpu, shader, "main", label, entries, &constants)
         };
         Ok(HillairePass {
             multiple_scattering: pipeline(
@@ -337,19 +340,16 @@ impl HillairePass {
                 ]),
             )?,
             pass: {
-                // The transmittance table, the sky view and the volume may be sampled.
                 let surface_entries = SurfaceBuffer::layout_entries();
-                let mut entries = with(&[
+                let entries = with(&[
                     texture_entry(5, D2),
                     sampling.texture_entry(6, D2),
                     sampling.texture_entry(7, D3),
                     sampling.texture_entry(8, D3),
                     storage_texture_entry(9, HDR_FORMAT, D2),
-                    sampling.sampler_entry(),
                     surface_entries[0],
                     surface_entries[1],
                 ]);
-                entries[3] = sampling.texture_entry(3, D2);
                 let variant = |entry| {
                     PixelPipeline::with_constants(
                         gpu,
@@ -357,7 +357,7 @@ impl HillairePass {
                         entry,
                         "the hillaire pass",
                         &entries,
-                        &[sampling.constant()],
+                        &constants,
                     )
                 };
                 [
@@ -513,8 +513,8 @@ impl ModelPass for HillairePass {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let transmittance = view(tables.transmittance.texture());
         let psi = view(&tables.multiple_scattering);
-        // Bindings 0-3, `extra` from 4 on, and for the per-pixel pass the frame's
-        // `surface` at 30 and 31.
+        // Bindings 0-3, `extra` from 4 on, the table sampler, and for the per-pixel pass
+        // the frame's `surface` at 30 and 31.
         let run = |pipeline: &ComputePipeline,
                    encoder: &mut wgpu::CommandEncoder,
                    extra: &[wgpu::BindingResource<'_>],
@@ -528,14 +528,16 @@ impl ModelPass for HillairePass {
                 wgpu::BindingResource::TextureView(&transmittance),
             ];
             resources.extend_from_slice(extra);
+            let sampler = self.sampling.sampler_binding();
             let bind_group = match surface {
-                Some(surface) => pipeline.pixel_bind_group_with(
-                    gpu,
-                    &resources,
-                    surface,
-                    &[self.sampling.sampler_binding()],
-                ),
-                None => pipeline.bind_group(gpu, &resources),
+                Some(surface) => {
+                    pipeline.pixel_bind_group_with(gpu, &resources, surface, &[sampler])
+                }
+                None => {
+                    let mut numbered: Vec<_> = (0..).zip(resources).collect();
+                    numbered.push(sampler);
+                    pipeline.bind_group_numbered(gpu, &numbered)
+                }
             };
             pipeline.dispatch(encoder, step, &bind_group, groups, timestamps);
         };
