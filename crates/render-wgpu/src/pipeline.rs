@@ -38,11 +38,20 @@ pub fn texture_entry(
     binding: u32,
     dimension: wgpu::TextureViewDimension,
 ) -> wgpu::BindGroupLayoutEntry {
+    float_texture_entry(binding, dimension, false)
+}
+
+/// A float texture, sampled through a filter if `filterable`.
+pub fn float_texture_entry(
+    binding: u32,
+    dimension: wgpu::TextureViewDimension,
+    filterable: bool,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            sample_type: wgpu::TextureSampleType::Float { filterable },
             view_dimension: dimension,
             multisampled: false,
         },

@@ -13,6 +13,7 @@
 //! compiled out, and whose sampler is at [`TableSampling::SAMPLER_BINDING`].
 
 use crate::device::GpuContext;
+use crate::pipeline::float_texture_entry;
 
 /// The sampler and the layout entries of a pass's table reads on one device.
 #[derive(Debug)]
@@ -70,18 +71,7 @@ impl TableSampling {
         binding: u32,
         dimension: wgpu::TextureViewDimension,
     ) -> wgpu::BindGroupLayoutEntry {
-        wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float {
-                    filterable: self.filtered,
-                },
-                view_dimension: dimension,
-                multisampled: false,
-            },
-            count: None,
-        }
+        float_texture_entry(binding, dimension, self.filtered)
     }
 
     /// The sampler's entry (bound in both ways; unused by the texel reads).
