@@ -9,7 +9,27 @@
 #import dobashi_trace.wgsl
 #import surface.wgsl
 
+// psi per unit solar irradiance (rgb) at equal steps of the sun's cosine from -1 to 1,
+// written by `dobashi_ambient.wgsl`.
+@group(0) @binding(11) var ambient_table: texture_2d<f32>;
 @group(0) @binding(12) var hdr: texture_storage_2d<rgba16float, write>;
+
+// The ambient radiance psi per unit solar irradiance for a sun of cosine `mu_sun`
+// (`AmbientTable::lookup`): 0 when the ambient term is off.
+fn ambient_at(mu_sun: f32) -> vec3<f32> {
+    if dobashi.ambient_on == 0u {
+        return vec3<f32>(0.0);
+    }
+    let n = textureDimensions(ambient_table).x;
+    let x = 0.5 * (clamp(mu_sun, -1.0, 1.0) + 1.0) * f32(n - 1u);
+    if FILTERED_TABLES {
+        return sample_2d(ambient_table, vec2<f32>(x, 0.0));
+    }
+    let i = min(u32(x), n - 2u);
+    let low = textureLoad(ambient_table, vec2<u32>(i, 0u), 0).xyz;
+    let high = textureLoad(ambient_table, vec2<u32>(i + 1u, 0u), 0).xyz;
+    return mix(low, high, x - f32(i));
+}
 
 // `Dobashi::surface_irradiance` (`Tracer::element_light`): the transmitted sun g_l
 // (Eq. 11) and the ambient sky, pi psi on a horizontal element, psi at the element's sun
@@ -22,8 +42,8 @@ fn dobashi_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> 
     if e.sun_cosine > 0.0 {
         t = sunlight_at(q, e.mu_s);
     }
-    let whole = optical_depth(table_columns(g_l, 0.0, 1.0));
-    let share = select(vec3<f32>(1.0), optical_depth(table_columns(g_l, q, 1.0)) / whole,
+    let whole = optical_depth(read_table_columns(g_l, 0.0, 1.0));
+    let share = select(vec3<f32>(1.0), optical_depth(read_table_columns(g_l, q, 1.0)) / whole,
         whole > vec3<f32>(0.0));
     let sky = PI * ambient_at(e.mu_s) * share * atmosphere.solar_irradiance.xyz;
     return element_irradiance(e, t, sky);
@@ -39,8 +59,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let s = view_segment(direction, surface.distance);
     var r = radiance_of_empty(s, direction);
     if s.hit {
-        let terms = trace(make_ray(s, direction, frame.sun_direction.xyz, false),
-            dobashi.use_spheres != 0u);
+        let terms = trace(make_ray(s, direction, frame.sun_direction.xyz), dobashi.use_spheres != 0u);
         r.radiance = atmosphere.solar_irradiance.xyz * (terms.single + terms.ambient);
         r.transmittance = terms.transmittance;
     }

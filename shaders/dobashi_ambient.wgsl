@@ -4,13 +4,22 @@
 // steps of the zenith cosine times equal steps of azimuth) with a unit ambient radiance:
 // psi_1, the mean single-scattered and sunlit-ground radiance, and f, the mean transfer
 // of a unit isotropic radiance; psi = psi_1 (1 + f + ... + f^(N-2)) for N orders, or
-// psi_1 / (1 - f) for all. Writes psi per unit solar irradiance into `ambient_table`.
+// psi_1 / (1 - f) for all. Writes psi per unit solar irradiance into `ambient_out`.
 
 #import dobashi_trace.wgsl
 
+// psi per unit solar irradiance (rgb) at equal steps of the sun's cosine from -1 to 1,
+// an n x 1 texture read by the per-pixel pass.
+@group(0) @binding(11) var ambient_out: texture_storage_2d<rgba32float, write>;
+
+// The ambient radiance the traced rays see while the table is built: one everywhere.
+fn ambient_at(mu_sun: f32) -> vec3<f32> {
+    return vec3<f32>(1.0);
+}
+
 @compute @workgroup_size(8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let n_sun = arrayLength(&ambient_table);
+    let n_sun = textureDimensions(ambient_out).x;
     if id.x >= n_sun {
         return;
     }
@@ -39,7 +48,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let horizon_sq = (atmosphere.top_radius_m - bottom) * (atmosphere.top_radius_m + bottom);
         let root = sqrt(s.r_mu * s.r_mu + horizon_sq);
         s.length = select(horizon_sq / (max(s.r_mu, 0.0) + root), 0.0, s.on_ground);
-        let terms = trace(make_ray(s, direction, sun, true), false);
+        let terms = trace(make_ray(s, direction, sun), false);
         psi_1 += weight * terms.single;
         transfer += weight * terms.ambient;
     }
@@ -53,5 +62,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             power *= f;
         }
     }
-    ambient_table[id.x] = vec4<f32>(psi_1 * series, 1.0);
+    textureStore(ambient_out, vec2<u32>(id.x, 0u), vec4<f32>(psi_1 * series, 1.0));
 }

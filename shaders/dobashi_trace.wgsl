@@ -11,11 +11,15 @@
 //
 // plus the ambient radiance psi, scattered by each segment (dI_r + dI_m) and reflected
 // by the ground. Positions are those of `frame_params.wgsl`: q = r^2 - bottom^2 and
-// r mu along the ray, no difference of radii near 6.4e6 m.
+// r mu along the ray, no difference of radii near 6.4e6 m. The tables are read through
+// the texture unit's filter where the device filters Rgba32Float (`table_sampling.wgsl`).
+// The ambient radiance psi at a sun cosine, `ambient_at(mu_sun) -> vec3<f32>`, is
+// defined by the shader that imports this one: the ambient table in the pass
+// (`dobashi.wgsl`), a unit radiance while that table is built (`dobashi_ambient.wgsl`).
 
 #import atmosphere_params.wgsl
 #import frame_params.wgsl
-#import transmittance_lookup.wgsl
+#import table_sampling.wgsl
 #import phase.wgsl
 
 struct DobashiParams {
@@ -47,9 +51,6 @@ struct DobashiParams {
 // Per sphere and kind (down, chord, up): q0 of the sphere, q of the end sphere minus q0,
 // shortest and longest segment (negative: no such segment) (`sphere_rows`).
 @group(0) @binding(10) var<storage, read> sphere_rows: array<vec4<f32>>;
-// psi per unit solar irradiance (rgb) at equal steps of the sun's cosine from -1 to 1:
-// written by `dobashi_ambient.wgsl`, read by the per-pixel pass.
-@group(0) @binding(11) var<storage, read_write> ambient_table: array<vec4<f32>>;
 
 // dI_r, dI_m, dg_v of one segment.
 struct Segment3 {
@@ -59,15 +60,21 @@ struct Segment3 {
 }
 
 // The three textures of a table at (x, y) in node units, bilinear, clamped to the grid
-// (`Grid::sample`).
+// (`Grid::sample`): one filtered read each, or four texel reads (`table_sampling.wgsl`).
 fn sample_planes(x: f32, y: f32) -> Segment3 {
     let size = textureDimensions(plane_scatter_r);
     let xy = clamp(vec2<f32>(x, y), vec2<f32>(0.0), vec2<f32>(size - 1u));
+    var out: Segment3;
+    if FILTERED_TABLES {
+        out.scatter_r = sample_2d(plane_scatter_r, xy);
+        out.scatter_m = sample_2d(plane_scatter_m, xy);
+        out.transmittance = sample_2d(plane_transmittance, xy);
+        return out;
+    }
     let i = min(vec2<u32>(xy), size - 2u);
     let a = xy - vec2<f32>(i);
     let o = vec2<u32>(1u, 0u);
     let p = vec2<u32>(0u, 1u);
-    var out: Segment3;
     out.scatter_r = mix(
         mix(textureLoad(plane_scatter_r, i, 0).xyz, textureLoad(plane_scatter_r, i + o, 0).xyz, a.x),
         mix(textureLoad(plane_scatter_r, i + p, 0).xyz, textureLoad(plane_scatter_r, i + o + p, 0).xyz, a.x),
@@ -137,11 +144,18 @@ fn sphere_lookup(row: u32, length: f32) -> Segment3 {
     let x = select(0.0, (length - range.z) / (range.w - range.z) * f32(size.x - 1u),
         range.w > range.z);
     let xc = clamp(x, 0.0, f32(size.x - 1u));
+    var out: Segment3;
+    if FILTERED_TABLES {
+        let at = vec2<f32>(xc, f32(row));
+        out.scatter_r = sample_2d(sphere_scatter_r, at);
+        out.scatter_m = sample_2d(sphere_scatter_m, at);
+        out.transmittance = sample_2d(sphere_transmittance, at);
+        return out;
+    }
     let i = min(u32(xc), size.x - 2u);
     let a = xc - f32(i);
     let p0 = vec2<u32>(i, row);
     let p1 = vec2<u32>(i + 1u, row);
-    var out: Segment3;
     out.scatter_r = mix(textureLoad(sphere_scatter_r, p0, 0).xyz, textureLoad(sphere_scatter_r, p1, 0).xyz, a);
     out.scatter_m = mix(textureLoad(sphere_scatter_m, p0, 0).xyz, textureLoad(sphere_scatter_m, p1, 0).xyz, a);
     out.transmittance = mix(textureLoad(sphere_transmittance, p0, 0).xyz, textureLoad(sphere_transmittance, p1, 0).xyz, a);
@@ -162,21 +176,6 @@ struct Ray {
     nu: f32,
     phase_r: f32,
     phase_m: f32,
-    // True: the ambient radiance is one everywhere (building the ambient table); false:
-    // the ambient table at the local sun angle (or none when it is off).
-    unit_ambient: bool,
-}
-
-// The ambient radiance psi per unit solar irradiance for a sun of cosine `mu_sun`
-// (`AmbientTable::lookup`): 0 when the ambient term is off.
-fn ambient_at(mu_sun: f32) -> vec3<f32> {
-    if dobashi.ambient_on == 0u {
-        return vec3<f32>(0.0);
-    }
-    let n = arrayLength(&ambient_table);
-    let x = 0.5 * (clamp(mu_sun, -1.0, 1.0) + 1.0) * f32(n - 1u);
-    let i = min(u32(x), n - 2u);
-    return mix(ambient_table[i].xyz, ambient_table[i + 1u].xyz, x - f32(i));
 }
 
 // g_l at the point at distance t (q = r^2 - bottom^2 there) per channel, 0 where the
@@ -186,7 +185,7 @@ fn sunlight_at(q: f32, mu_sun: f32) -> vec3<f32> {
     if mu_sun < 0.0 && (r * mu_sun) * (r * mu_sun) - q >= 0.0 {
         return vec3<f32>(0.0);
     }
-    return exp(-optical_depth(table_columns(g_l, q, mu_sun)));
+    return exp(-optical_depth(read_table_columns(g_l, q, mu_sun)));
 }
 
 // `Accumulator::add` for the segment starting at distance t whose table values are `v`.
@@ -195,10 +194,7 @@ fn add_segment(terms: Terms, ray: Ray, t: f32, v: Segment3) -> Terms {
     let q = q_along(s, t);
     let r = sqrt(atmosphere.bottom_radius_m * atmosphere.bottom_radius_m + q);
     let mu_sun = clamp((s.start_dot_sun + t * ray.nu) / r, -1.0, 1.0);
-    var psi = vec3<f32>(1.0);
-    if !ray.unit_ambient {
-        psi = ambient_at(mu_sun);
-    }
+    let psi = ambient_at(mu_sun);
     var out = terms;
     out.single += terms.transmittance * sunlight_at(q, mu_sun)
         * (ray.phase_r * v.scatter_r + ray.phase_m * v.scatter_m);
@@ -332,10 +328,7 @@ fn trace(ray: Ray, spheres: bool) -> Terms {
     if s.end == END_GROUND {
         let bottom = atmosphere.bottom_radius_m;
         let cos_g = clamp((s.start_dot_sun + s.length * ray.nu) / bottom, -1.0, 1.0);
-        var psi = vec3<f32>(1.0);
-        if !ray.unit_ambient {
-            psi = ambient_at(cos_g);
-        }
+        let psi = ambient_at(cos_g);
         let albedo = atmosphere.ground_albedo;
         if cos_g > 0.0 {
             terms.single += terms.transmittance * albedo / PI * sunlight_at(0.0, cos_g) * cos_g;
@@ -346,12 +339,11 @@ fn trace(ray: Ray, spheres: bool) -> Terms {
 }
 
 // The ray of `direction` from the segment `s` towards the sun `sun`.
-fn make_ray(s: Segment, direction: vec3<f32>, sun: vec3<f32>, unit_ambient: bool) -> Ray {
+fn make_ray(s: Segment, direction: vec3<f32>, sun: vec3<f32>) -> Ray {
     var ray: Ray;
     ray.segment = s;
     ray.nu = dot(direction, sun);
     ray.phase_r = rayleigh_phase(ray.nu);
     ray.phase_m = mie_phase(ray.nu);
-    ray.unit_ambient = unit_ambient;
     return ray;
 }

@@ -22,10 +22,11 @@ use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
     ComputePipeline, PixelPipeline, read_only_storage_buffer_entry, storage_texture_entry,
-    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    texel_groups, texture_2d, uniform_buffer, uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::surface_buffer::SurfaceBuffer;
+use crate::table_sampling::TableSampling;
 use crate::transmittance_pass::{TABLE_FORMAT, TableOutput, TransmittancePass};
 
 /// Panels of 5-point Gauss-Legendre per plane segment (at most Delta_t, 8.8 km for the
@@ -353,8 +354,8 @@ pub struct DobashiPass {
     pass_pipeline: PixelPipeline,
     ambient_pipeline: ComputePipeline,
     params: wgpu::Buffer,
-    /// psi per sun cosine, `ambient_sun_angles` vec4s.
-    ambient: wgpu::Buffer,
+    /// psi per sun cosine, `ambient_sun_angles` x 1 texels (made by `plan`).
+    ambient: Option<wgpu::Texture>,
     ambient_from: Option<AmbientKey>,
     g_l: Option<GlTable>,
     tables: Option<DobashiTables>,
@@ -366,44 +367,51 @@ pub struct DobashiPass {
     max_orders: Option<u32>,
     interval_m: f64,
     rows: Vec<[f32; 4]>,
+    /// How the ambient table and the pass read the tables.
+    sampling: TableSampling,
 }
 
 impl DobashiPass {
     pub fn new(gpu: &GpuContext) -> Result<DobashiPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
+        // g_l and the six segment tables may be sampled (`table_sampling`).
+        let sampling = TableSampling::new(gpu);
         let mut entries = vec![
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
             uniform_entry(2, size_of::<DobashiUniform>()),
+            sampling.sampler_entry(),
         ];
-        entries.extend((3..10).map(|b| texture_entry(b, D2)));
+        entries.extend((3..10).map(|b| sampling.texture_entry(b, D2)));
         entries.push(read_only_storage_buffer_entry(10, 16));
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: 11,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: wgpu::BufferSize::new(32),
-            },
-            count: None,
-        });
-        let ambient_pipeline = ComputePipeline::new(
+        // The ambient table at 11: written by its build, read by the pass.
+        let constants = [sampling.constant()];
+        let mut ambient_entries = entries.clone();
+        ambient_entries.push(storage_texture_entry(11, TABLE_FORMAT, D2));
+        let ambient_pipeline = ComputePipeline::with_constants(
             gpu,
             "dobashi_ambient.wgsl",
             "main",
             "the dobashi ambient table",
-            &entries,
+            &ambient_entries,
+            &constants,
         )?;
+        entries.push(sampling.texture_entry(11, D2));
         entries.push(storage_texture_entry(12, HDR_FORMAT, D2));
         entries.extend(SurfaceBuffer::layout_entries());
-        let pass_pipeline =
-            PixelPipeline::new(gpu, "dobashi.wgsl", "main", "the dobashi pass", &entries)?;
+        let pass_pipeline = PixelPipeline::with_constants(
+            gpu,
+            "dobashi.wgsl",
+            "main",
+            "the dobashi pass",
+            &entries,
+            &constants,
+        )?;
         Ok(DobashiPass {
             pass_pipeline,
             ambient_pipeline,
             params: uniform_buffer(&gpu.device, "dobashi", size_of::<DobashiUniform>()),
-            ambient: ambient_buffer(gpu, DobashiSettings::default().ambient_sun_angles),
+            ambient: None,
             ambient_from: None,
             g_l: None,
             tables: None,
@@ -414,11 +422,13 @@ impl DobashiPass {
             max_orders: None,
             interval_m: 0.0,
             rows: Vec::new(),
+            sampling,
         })
     }
 
-    /// The resources of the ambient and per-pixel pipelines from binding 0 to 11; the
-    /// per-pixel one's HDR target at 12 and the frame's surface at 30 and 31.
+    /// The resources of the ambient and per-pixel pipelines from binding 0 to 11 and the
+    /// table sampler; the per-pixel one's HDR target at 12 and the frame's surface at 30
+    /// and 31.
     fn bind_group(
         &self,
         gpu: &GpuContext,
@@ -426,13 +436,18 @@ impl DobashiPass {
         io: &PassIo<'_>,
         hdr: Option<&wgpu::TextureView>,
     ) -> wgpu::BindGroup {
-        let (Some(g_l), Some(tables)) = (self.g_l.as_ref(), self.tables.as_ref()) else {
+        let (Some(g_l), Some(tables), Some(ambient)) = (
+            self.g_l.as_ref(),
+            self.tables.as_ref(),
+            self.ambient.as_ref(),
+        ) else {
             unreachable!("plan makes every table before any step");
         };
         let mut views = vec![g_l.pass.texture().create_view(&Default::default())];
         for t in tables.planes.all().into_iter().chain(tables.spheres.all()) {
             views.push(t.create_view(&Default::default()));
         }
+        let ambient = ambient.create_view(&Default::default());
         let mut resources = vec![
             io.atmosphere.as_entire_binding(),
             io.frame.as_entire_binding(),
@@ -440,25 +455,33 @@ impl DobashiPass {
         ];
         resources.extend(views.iter().map(wgpu::BindingResource::TextureView));
         resources.push(tables.rows().as_entire_binding());
-        resources.push(self.ambient.as_entire_binding());
-        match hdr {
-            Some(hdr) => {
-                resources.push(wgpu::BindingResource::TextureView(hdr));
-                pipeline.pixel_bind_group(gpu, &resources, io.surface)
-            }
-            None => pipeline.bind_group(gpu, &resources),
+        resources.push(wgpu::BindingResource::TextureView(&ambient));
+        if let Some(hdr) = hdr {
+            resources.push(wgpu::BindingResource::TextureView(hdr));
         }
+        let surface = hdr.map(|_| io.surface);
+        self.sampling.bind_group(gpu, pipeline, &resources, surface)
     }
 }
 
-/// The ambient table's buffer of `sun_angles` entries.
-fn ambient_buffer(gpu: &GpuContext, sun_angles: usize) -> wgpu::Buffer {
-    gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("dobashi ambient"),
-        size: (16 * sun_angles) as u64,
-        usage: wgpu::BufferUsages::STORAGE,
-        mapped_at_creation: false,
-    })
+/// The ambient table's texture of `sun_angles` x 1 texels, or why this GPU cannot hold it.
+fn ambient_texture(gpu: &GpuContext, sun_angles: usize) -> Result<wgpu::Texture, RenderError> {
+    let largest = gpu.device.limits().max_texture_dimension_2d;
+    let width = u32::try_from(sun_angles)
+        .ok()
+        .filter(|&n| n <= largest)
+        .ok_or_else(|| {
+            RenderError::Unsupported(format!(
+                "dobashi ambient_sun_angles = {sun_angles} (this GPU's largest texture side is {largest})"
+            ))
+        })?;
+    Ok(texture_2d(
+        &gpu.device,
+        "dobashi ambient",
+        (width, 1),
+        TABLE_FORMAT,
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+    ))
 }
 
 impl ModelPass for DobashiPass {
@@ -508,8 +531,12 @@ impl ModelPass for DobashiPass {
             .is_none_or(|(old, old_key)| *old_key != key || changed(old, PlaneTables::INPUTS));
 
         let ambient_on = max_orders != Some(1);
-        if self.ambient.size() != (16 * settings.ambient_sun_angles) as u64 {
-            self.ambient = ambient_buffer(gpu, settings.ambient_sun_angles);
+        if self
+            .ambient
+            .as_ref()
+            .is_none_or(|t| t.width() as usize != settings.ambient_sun_angles)
+        {
+            self.ambient = Some(ambient_texture(gpu, settings.ambient_sun_angles)?);
             self.ambient_from = None;
         }
         let ambient_settings = ambient_key(&settings);
@@ -629,6 +656,10 @@ impl ModelPass for DobashiPass {
             let texture = t.pass.texture();
             u64::from(texture.width()) * u64::from(texture.height()) * 16
         });
-        g_l + self.tables.as_ref().map_or(0, DobashiTables::bytes) + self.ambient.size()
+        g_l + self.tables.as_ref().map_or(0, DobashiTables::bytes)
+            + self
+                .ambient
+                .as_ref()
+                .map_or(0, |t| 16 * u64::from(t.width()))
     }
 }

@@ -528,17 +528,7 @@ impl ModelPass for HillairePass {
                 wgpu::BindingResource::TextureView(&transmittance),
             ];
             resources.extend_from_slice(extra);
-            let sampler = self.sampling.sampler_binding();
-            let bind_group = match surface {
-                Some(surface) => {
-                    pipeline.pixel_bind_group_with(gpu, &resources, surface, &[sampler])
-                }
-                None => {
-                    let mut numbered: Vec<_> = (0..).zip(resources).collect();
-                    numbered.push(sampler);
-                    pipeline.bind_group_numbered(gpu, &numbered)
-                }
-            };
+            let bind_group = self.sampling.bind_group(gpu, pipeline, &resources, surface);
             pipeline.dispatch(encoder, step, &bind_group, groups, timestamps);
         };
         let tiles = |t: &wgpu::Texture| texel_groups(t);

@@ -13,7 +13,7 @@
 //! compiled out, and whose sampler is at [`TableSampling::SAMPLER_BINDING`].
 
 use crate::device::GpuContext;
-use crate::pipeline::float_texture_entry;
+use crate::pipeline::{ComputePipeline, float_texture_entry};
 
 /// The sampler and the layout entries of a pass's table reads on one device.
 #[derive(Debug)]
@@ -95,5 +95,25 @@ impl TableSampling {
             TableSampling::SAMPLER_BINDING,
             wgpu::BindingResource::Sampler(&self.sampler),
         )
+    }
+
+    /// The bind group of `pipeline`: `resources` in order from binding 0, the sampler,
+    /// and for a pixel pass the frame's `surface` (`ComputePipeline::pixel_bind_group`).
+    pub fn bind_group(
+        &self,
+        gpu: &GpuContext,
+        pipeline: &ComputePipeline,
+        resources: &[wgpu::BindingResource<'_>],
+        surface: Option<&[wgpu::TextureView; 2]>,
+    ) -> wgpu::BindGroup {
+        let sampler = self.sampler_binding();
+        match surface {
+            Some(surface) => pipeline.pixel_bind_group_with(gpu, resources, surface, &[sampler]),
+            None => {
+                let mut numbered: Vec<_> = (0..).zip(resources.iter().cloned()).collect();
+                numbered.push(sampler);
+                pipeline.bind_group_numbered(gpu, &numbered)
+            }
+        }
     }
 }
