@@ -17,6 +17,7 @@
 #import frame_params.wgsl
 #import phase.wgsl
 #import surface.wgsl
+#import table_sampling.wgsl
 
 struct OneilParams {
     samples: u32,
@@ -31,12 +32,16 @@ struct OneilParams {
 
 // `OpticalDepthTable::lookup`: the four channels (Rayleigh density, Rayleigh column,
 // Mie density, Mie column) at `altitude_m` for a ray `angle` radians from the vertical,
-// interpolated bilinearly between nodes (by hand: Rgba32Float need not be filterable).
+// interpolated bilinearly between nodes: one filtered read where the device filters
+// Rgba32Float, else four texel reads (`table_sampling.wgsl`).
 fn table_lookup(altitude_m: f32, angle: f32) -> vec4<f32> {
     let size = textureDimensions(optical_depth_table);
     let thickness = atmosphere.top_radius_m - atmosphere.bottom_radius_m;
     let x = clamp(altitude_m / thickness, 0.0, 1.0) * f32(size.x - 1u);
     let y = clamp(angle / PI, 0.0, 1.0) * f32(size.y - 1u);
+    if FILTERED_TABLES {
+        return sample_2d_rgba(optical_depth_table, vec2<f32>(x, y));
+    }
     let i = min(vec2<u32>(vec2<f32>(x, y)), size - 2u);
     let f = vec2<f32>(x, y) - vec2<f32>(i);
     let a = textureLoad(optical_depth_table, i, 0);

@@ -11,10 +11,15 @@ override FILTERED_TABLES: bool = true;
 
 @group(0) @binding(29) var table_sampler: sampler;
 
-// The 2D table's bilinear value at fractional texel position `f`, filtered.
+// The 2D table's bilinear value (rgb) at fractional texel position `f`, filtered.
 fn sample_2d(table: texture_2d<f32>, f: vec2<f32>) -> vec3<f32> {
+    return sample_2d_rgba(table, f).xyz;
+}
+
+// As `sample_2d`, all four channels.
+fn sample_2d_rgba(table: texture_2d<f32>, f: vec2<f32>) -> vec4<f32> {
     let size = vec2<f32>(textureDimensions(table));
-    return textureSampleLevel(table, table_sampler, (f + 0.5) / size, 0.0).xyz;
+    return textureSampleLevel(table, table_sampler, (f + 0.5) / size, 0.0);
 }
 
 // The 3D table's trilinear value at fractional texel position `f`, filtered.

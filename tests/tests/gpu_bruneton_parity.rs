@@ -13,10 +13,7 @@ use atmosphere_core::model::ModelSettings;
 use render_wgpu::bruneton_pass::{BrunetonPass, StoreTable};
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{
-    check, check_surface, filtered_against_texel_reads, standard_frames,
-    texel_read_renderer_or_skip, view,
-};
+use support::{check, check_surface, check_texel_reads, standard_frames, view};
 
 /// Reduced table sizes for the parity tests (S 8 x 32 x 16 x 8, the paper's sample
 /// counts), so that the CPU and lavapipe build them in seconds.
@@ -160,11 +157,6 @@ fn tables_match_the_cpu() {
 /// see the test output and docs/rendering.md.
 const MAX_RELATIVE_ERROR: f64 = 5e-3;
 
-/// Largest relative difference of a pixel read through the filter from the same pixel
-/// read texel by texel: the same interpolation up to the filter's f32 weights, and the
-/// f16 store (4.9e-4 per rounding).
-const MAX_FILTER_DIFFERENCE: f32 = 1e-3;
-
 #[test]
 fn frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(gpu) = gpu_or_skip("bruneton frames") else {
@@ -215,32 +207,28 @@ fn bruneton_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
 /// pixel by pixel.
 #[test]
 fn texel_reads_match_the_cpu_and_the_filtered_reads() {
-    let Some(mut texel_reads) = texel_read_renderer_or_skip("bruneton texel reads") else {
-        return;
-    };
-    let Some(gpu) = gpu_or_skip("bruneton texel reads") else {
-        return;
-    };
-    let mut default = Renderer::new(gpu).unwrap();
     let s = settings(&REDUCED);
-    let ground = frame("earth", s.clone(), view(1.0, 80.0, 10.0), 70.0, 48, 27);
-    let down = frame("earth", s.clone(), view(10_000.0, 95.0, 60.0), 60.0, 48, 27);
-    check(
-        &mut texel_reads,
-        "ground, noon, texel reads",
-        &ground,
-        MAX_RELATIVE_ERROR,
-    );
+    let frames = [
+        (
+            "ground, noon",
+            frame("earth", s.clone(), view(1.0, 80.0, 10.0), 70.0, 48, 27),
+        ),
+        (
+            "10 km",
+            frame("earth", s.clone(), view(10_000.0, 95.0, 60.0), 60.0, 48, 27),
+        ),
+    ];
     let (name, surface) = &standard_frames("bruneton")[0];
     let surface = Frame {
         settings: s,
         ..surface.clone()
     };
-    check_surface(&mut texel_reads, name, &surface, MAX_RELATIVE_ERROR);
-    for (name, f) in [("ground, noon", &ground), ("10 km", &down)] {
-        let worst = filtered_against_texel_reads(&mut texel_reads, &mut default, name, f);
-        assert!(worst <= MAX_FILTER_DIFFERENCE, "{name}: {worst:e}");
-    }
+    check_texel_reads(
+        "bruneton",
+        &frames,
+        Some((name, &surface)),
+        MAX_RELATIVE_ERROR,
+    );
 }
 
 #[test]

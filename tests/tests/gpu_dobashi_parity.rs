@@ -15,8 +15,8 @@ use render_wgpu::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use render_wgpu::dobashi_pass::{DobashiTables, plane_interval_m, sphere_rows};
 use render_wgpu::pipeline::uniform_buffer;
 use support::{
-    check, check_surface, filtered_against_texel_reads, frame, frame_in, renderer_or_skip,
-    standard_frames, texel_read_renderer_or_skip, view,
+    check, check_surface, check_texel_reads, frame, frame_in, renderer_or_skip, standard_frames,
+    view,
 };
 
 /// Largest allowed difference of a table value between GPU and CPU, relative to the
@@ -153,23 +153,12 @@ fn dobashi_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     check(&mut renderer, "30,000 km, planes", &f, MAX_RELATIVE_ERROR);
 }
 
-/// Largest relative difference of a pixel read through the filter from the same pixel
-/// read texel by texel: the same interpolation up to the filter's f32 weights, and the
-/// f16 store (4.9e-4 per rounding).
-const MAX_FILTER_DIFFERENCE: f32 = 1e-3;
-
 /// The texel-by-texel reads, which a device without `FLOAT32_FILTERABLE` runs, against
 /// the CPU through the planes (with the ambient table, which traces rays too) and the
 /// spheres, and against the filtered reads (the default where the adapter filters
 /// Rgba32Float, as lavapipe does) pixel by pixel.
 #[test]
 fn texel_reads_match_the_cpu_and_the_filtered_reads() {
-    let Some(mut texel_reads) = texel_read_renderer_or_skip("dobashi texel reads") else {
-        return;
-    };
-    let Some(mut default) = renderer_or_skip("dobashi texel reads") else {
-        return;
-    };
     let frames = [
         (
             "ground",
@@ -180,16 +169,7 @@ fn texel_reads_match_the_cpu_and_the_filtered_reads() {
             frame("dobashi", view(3e7, 180.0, 40.0), 30.0, 48, 27),
         ),
     ];
-    for (name, f) in &frames {
-        check(
-            &mut texel_reads,
-            &format!("{name}, texel reads"),
-            f,
-            MAX_RELATIVE_ERROR,
-        );
-        let worst = filtered_against_texel_reads(&mut texel_reads, &mut default, name, f);
-        assert!(worst <= MAX_FILTER_DIFFERENCE, "{name}: {worst:e}");
-    }
+    check_texel_reads("dobashi", &frames, None, MAX_RELATIVE_ERROR);
 }
 
 #[test]

@@ -17,10 +17,7 @@ use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::frame_plan::FramePlan;
 use render_wgpu::hillaire_pass::{HillairePass, Table};
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{
-    check, check_surface, filtered_against_texel_reads, standard_frames,
-    texel_read_renderer_or_skip, view,
-};
+use support::{check, check_surface, check_texel_reads, standard_frames, view};
 
 /// Largest relative error of a table's texel, |gpu - cpu| / max(|cpu|, 1e-3 of the
 /// table's largest value). Both sides march in the same order with the same samples;
@@ -28,11 +25,6 @@ use support::{
 /// table's look-ups, whose coordinates carry rounding of the radius) against f64.
 /// Measured on lavapipe: see the test output and `tables_match_the_cpu`.
 const MAX_TABLE_ERROR: f64 = 1e-3;
-
-/// Largest relative difference of a pixel read through the filter from the same pixel
-/// read texel by texel: the same interpolation up to the filter's f32 weights, and the
-/// f16 store (4.9e-4 per rounding).
-const MAX_FILTER_DIFFERENCE: f32 = 1e-3;
 
 /// Largest |gpu - cpu| of the volume's transmittance.
 const MAX_TRANSMITTANCE_ERROR: f64 = 1e-5;
@@ -250,31 +242,18 @@ fn hillaire_frames_match_the_cpu_from_the_ground_to_far_orbit() {
 /// the adapter filters Rgba32Float, as lavapipe does) pixel by pixel.
 #[test]
 fn texel_reads_match_the_cpu_and_the_filtered_reads() {
-    let Some(mut texel_reads) = texel_read_renderer_or_skip("hillaire texel reads") else {
-        return;
-    };
-    let Some(mut default) = renderer_or_skip("hillaire texel reads") else {
-        return;
-    };
     let frames = [
         ("ground, noon", frame(view(1.0, 85.0, 10.0), 70.0, 64, 36)),
         ("10 km", frame(view(10_000.0, 100.0, 50.0), 60.0, 64, 36)),
         ("100 km", frame(view(100_000.0, 100.0, 60.0), 40.0, 64, 36)),
     ];
-    for (name, f) in &frames {
-        check(
-            &mut texel_reads,
-            &format!("{name}, texel reads"),
-            f,
-            MAX_RELATIVE_ERROR,
-        );
-    }
     let (name, surface) = &standard_frames("hillaire")[0];
-    check_surface(&mut texel_reads, name, surface, MAX_RELATIVE_ERROR);
-    for (name, f) in &frames {
-        let worst = filtered_against_texel_reads(&mut texel_reads, &mut default, name, f);
-        assert!(worst <= MAX_FILTER_DIFFERENCE, "{name}: {worst:e}");
-    }
+    check_texel_reads(
+        "hillaire",
+        &frames,
+        Some((name, surface)),
+        MAX_RELATIVE_ERROR,
+    );
 }
 
 #[test]

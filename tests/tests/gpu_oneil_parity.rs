@@ -12,7 +12,10 @@ use render_wgpu::GpuContext;
 use render_wgpu::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use render_wgpu::oneil_pass::OneilTablePass;
 use render_wgpu::pipeline::uniform_buffer;
-use support::{check, check_surface, frame, frame_in, renderer_or_skip, standard_frames, view};
+use support::{
+    check, check_surface, check_texel_reads, frame, frame_in, renderer_or_skip, standard_frames,
+    view,
+};
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
 /// store (4.9e-4), the f32 table and f32 lookups. Measured on lavapipe: see the test
@@ -93,6 +96,17 @@ fn the_optical_depth_table_matches_the_cpu_node_by_node() {
             );
         }
     }
+}
+
+/// The texel-by-texel reads, which a device without `FLOAT32_FILTERABLE` runs, against
+/// the CPU and against the filtered reads (the default where the adapter filters
+/// Rgba32Float, as lavapipe does) pixel by pixel.
+#[test]
+fn texel_reads_match_the_cpu_and_the_filtered_reads() {
+    let frames = standard_frames("oneil");
+    let frames = [frames[0].clone(), frames[2].clone()];
+    let (name, surface) = &frames[0];
+    check_texel_reads("oneil", &frames, Some((name, surface)), MAX_RELATIVE_ERROR);
 }
 
 #[test]

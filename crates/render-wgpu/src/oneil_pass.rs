@@ -17,11 +17,12 @@ use crate::frame_uniform::FrameUniform;
 use crate::model_pass::{ModelPass, PassIo};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
-    ComputePipeline, PixelPipeline, storage_texture_entry, texel_groups, texture_entry,
-    uniform_buffer, uniform_entry,
+    ComputePipeline, PixelPipeline, storage_texture_entry, texel_groups, uniform_buffer,
+    uniform_entry,
 };
 use crate::readback::read_texture;
 use crate::surface_buffer::SurfaceBuffer;
+use crate::table_sampling::TableSampling;
 use crate::transmittance_pass::TABLE_FORMAT;
 
 /// WGSL `OneilParams` (the per-pixel pass), 16 bytes.
@@ -159,13 +160,17 @@ pub struct OneilPass {
     settings: OneilSettings,
     /// What the table build of the frame being planned is for.
     pending: Option<(Atmosphere, usize)>,
+    /// How the pass reads the table.
+    sampling: TableSampling,
 }
 
 impl OneilPass {
     pub fn new(gpu: &GpuContext) -> Result<OneilPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
         let surface_entries = SurfaceBuffer::layout_entries();
-        let pipeline = PixelPipeline::new(
+        // The table may be sampled (`table_sampling`).
+        let sampling = TableSampling::new(gpu);
+        let pipeline = PixelPipeline::with_constants(
             gpu,
             "oneil.wgsl",
             "main",
@@ -174,11 +179,13 @@ impl OneilPass {
                 uniform_entry(0, size_of::<AtmosphereUniform>()),
                 uniform_entry(1, size_of::<FrameUniform>()),
                 uniform_entry(2, size_of::<OneilUniform>()),
-                texture_entry(3, D2),
+                sampling.texture_entry(3, D2),
                 storage_texture_entry(4, HDR_FORMAT, D2),
+                sampling.sampler_entry(),
                 surface_entries[0],
                 surface_entries[1],
             ],
+            &[sampling.constant()],
         )?;
         Ok(OneilPass {
             params: uniform_buffer(&gpu.device, "oneil", size_of::<OneilUniform>()),
@@ -186,6 +193,7 @@ impl OneilPass {
             table: None,
             settings: OneilSettings::default(),
             pending: None,
+            sampling,
         })
     }
 }
@@ -253,8 +261,9 @@ impl ModelPass for OneilPass {
                 let view = table.pass.texture().create_view(&Default::default());
                 let hdr = io.hdr.create_view(&Default::default());
                 let pipeline = self.pipeline.variant(io.has_surface);
-                let bind_group = pipeline.pixel_bind_group(
+                let bind_group = self.sampling.bind_group(
                     gpu,
+                    pipeline,
                     &[
                         io.atmosphere.as_entire_binding(),
                         io.frame.as_entire_binding(),
@@ -262,7 +271,7 @@ impl ModelPass for OneilPass {
                         wgpu::BindingResource::TextureView(&view),
                         wgpu::BindingResource::TextureView(&hdr),
                     ],
-                    io.surface,
+                    Some(io.surface),
                 );
                 let groups = texel_groups(io.hdr);
                 pipeline.dispatch(encoder, "oneil", &bind_group, groups, timestamps);

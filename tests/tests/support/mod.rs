@@ -65,28 +65,50 @@ pub fn texel_read_renderer_or_skip(test: &str) -> Option<Renderer> {
     }
 }
 
-/// Largest relative difference |a - b| / max(|a|, 1e-3) of the HDR images of `frame`
-/// rendered by `texel_reads` and by `default` (filtered reads where its device filters
-/// Rgba32Float, which it prints).
-pub fn filtered_against_texel_reads(
-    texel_reads: &mut Renderer,
-    default: &mut Renderer,
-    name: &str,
-    frame: &Frame,
-) -> f32 {
-    texel_reads.render(frame).unwrap();
-    default.render(frame).unwrap();
-    let (a, b) = (texel_reads.read_hdr().unwrap(), default.read_hdr().unwrap());
-    let worst = a
-        .iter()
-        .zip(&b)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / a[c].abs().max(1e-3)))
-        .fold(0.0f32, f32::max);
-    println!(
-        "{name}: filtered reads ({}) against texel reads: worst relative difference {worst:.2e}",
-        TableSampling::new(default.gpu()).filtered()
-    );
-    worst
+/// Largest relative difference of a pixel read through the filter from the same pixel
+/// read texel by texel: the same interpolation up to the filter's f32 weights, and the
+/// f16 store (4.9e-4 per rounding).
+pub const MAX_FILTER_DIFFERENCE: f32 = 1e-3;
+
+/// The texel-by-texel table reads, which a device without `FLOAT32_FILTERABLE` runs:
+/// `frames` (and `surface`'s frame over [`synthetic_surface`]) rendered that way against
+/// the CPU within `max_relative_error`, and `frames` against the default renderer's
+/// (filtered where its device filters Rgba32Float, as lavapipe does) within
+/// [`MAX_FILTER_DIFFERENCE`] per pixel and channel.
+pub fn check_texel_reads(
+    test: &str,
+    frames: &[(&str, Frame)],
+    surface: Option<(&str, &Frame)>,
+    max_relative_error: f64,
+) {
+    let Some(mut texel_reads) = texel_read_renderer_or_skip(test) else {
+        return;
+    };
+    let Some(mut default) = renderer_or_skip(test) else {
+        return;
+    };
+    let filtered = TableSampling::new(default.gpu()).filtered();
+    for (name, frame) in frames {
+        let label = format!("{name}, texel reads");
+        check(&mut texel_reads, &label, frame, max_relative_error);
+        texel_reads.render(frame).unwrap();
+        default.render(frame).unwrap();
+        let (a, b) = (texel_reads.read_hdr().unwrap(), default.read_hdr().unwrap());
+        let worst = a
+            .iter()
+            .zip(&b)
+            .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() / a[c].abs().max(1e-3)))
+            .fold(0.0f32, f32::max);
+        println!(
+            "{test}, {name}: filtered reads ({filtered}) against texel reads: worst relative \
+             difference {worst:.2e}"
+        );
+        assert!(worst <= MAX_FILTER_DIFFERENCE, "{name}: {worst:e}");
+    }
+    if let Some((name, frame)) = surface {
+        let label = format!("{name}, texel reads");
+        check_surface(&mut texel_reads, &label, frame, max_relative_error);
+    }
 }
 
 /// A frame of `model` on the earth preset, default settings, exposure EV100 14.
