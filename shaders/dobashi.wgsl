@@ -9,27 +9,7 @@
 #import dobashi_trace.wgsl
 #import surface.wgsl
 
-// psi per unit solar irradiance (rgb) at equal steps of the sun's cosine from -1 to 1,
-// written by `dobashi_ambient.wgsl`.
-@group(0) @binding(11) var ambient_table: texture_2d<f32>;
 @group(0) @binding(12) var hdr: texture_storage_2d<rgba16float, write>;
-
-// The ambient radiance psi per unit solar irradiance for a sun of cosine `mu_sun`
-// (`AmbientTable::lookup`): 0 when the ambient term is off.
-fn ambient_at(mu_sun: f32) -> vec3<f32> {
-    if dobashi.ambient_on == 0u {
-        return vec3<f32>(0.0);
-    }
-    let n = textureDimensions(ambient_table).x;
-    let x = 0.5 * (clamp(mu_sun, -1.0, 1.0) + 1.0) * f32(n - 1u);
-    if FILTERED_TABLES {
-        return sample_2d(ambient_table, vec2<f32>(x, 0.0));
-    }
-    let i = min(u32(x), n - 2u);
-    let low = textureLoad(ambient_table, vec2<u32>(i, 0u), 0).xyz;
-    let high = textureLoad(ambient_table, vec2<u32>(i + 1u, 0u), 0).xyz;
-    return mix(low, high, x - f32(i));
-}
 
 // `Dobashi::surface_irradiance` (`Tracer::element_light`): the transmitted sun g_l
 // (Eq. 11) and the ambient sky, pi psi on a horizontal element, psi at the element's sun

@@ -9,13 +9,9 @@
 #import dobashi_trace.wgsl
 
 // psi per unit solar irradiance (rgb) at equal steps of the sun's cosine from -1 to 1,
-// an n x 1 texture read by the per-pixel pass.
-@group(0) @binding(11) var ambient_out: texture_storage_2d<rgba32float, write>;
-
-// The ambient radiance the traced rays see while the table is built: one everywhere.
-fn ambient_at(mu_sun: f32) -> vec3<f32> {
-    return vec3<f32>(1.0);
-}
+// an n x 1 texture read by the per-pixel pass (as `ambient_table`). The rays traced here
+// see a unit ambient radiance: `ambient_table` is a table of ones.
+@group(0) @binding(12) var ambient_out: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 1)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

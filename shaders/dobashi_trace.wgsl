@@ -13,9 +13,6 @@
 // by the ground. Positions are those of `frame_params.wgsl`: q = r^2 - bottom^2 and
 // r mu along the ray, no difference of radii near 6.4e6 m. The tables are read through
 // the texture unit's filter where the device filters Rgba32Float (`table_sampling.wgsl`).
-// The ambient radiance psi at a sun cosine, `ambient_at(mu_sun) -> vec3<f32>`, is
-// defined by the shader that imports this one: the ambient table in the pass
-// (`dobashi.wgsl`), a unit radiance while that table is built (`dobashi_ambient.wgsl`).
 
 #import atmosphere_params.wgsl
 #import frame_params.wgsl
@@ -51,6 +48,10 @@ struct DobashiParams {
 // Per sphere and kind (down, chord, up): q0 of the sphere, q of the end sphere minus q0,
 // shortest and longest segment (negative: no such segment) (`sphere_rows`).
 @group(0) @binding(10) var<storage, read> sphere_rows: array<vec4<f32>>;
+// psi per unit solar irradiance (rgb) at equal steps of the sun's cosine from -1 to 1,
+// an n x 1 texture: in the pass the table `dobashi_ambient.wgsl` wrote; while that table
+// is built, a table of ones, the unit ambient radiance its rays see.
+@group(0) @binding(11) var ambient_table: texture_2d<f32>;
 
 // dI_r, dI_m, dg_v of one segment.
 struct Segment3 {
@@ -176,6 +177,23 @@ struct Ray {
     nu: f32,
     phase_r: f32,
     phase_m: f32,
+}
+
+// The ambient radiance psi per unit solar irradiance for a sun of cosine `mu_sun`
+// (`AmbientTable::lookup`): 0 when the ambient term is off.
+fn ambient_at(mu_sun: f32) -> vec3<f32> {
+    if dobashi.ambient_on == 0u {
+        return vec3<f32>(0.0);
+    }
+    let n = textureDimensions(ambient_table).x;
+    let x = 0.5 * (clamp(mu_sun, -1.0, 1.0) + 1.0) * f32(n - 1u);
+    if FILTERED_TABLES {
+        return sample_2d(ambient_table, vec2<f32>(x, 0.0));
+    }
+    let i = min(u32(x), n - 2u);
+    let low = textureLoad(ambient_table, vec2<u32>(i, 0u), 0).xyz;
+    let high = textureLoad(ambient_table, vec2<u32>(i + 1u, 0u), 0).xyz;
+    return mix(low, high, x - f32(i));
 }
 
 // g_l at the point at distance t (q = r^2 - bottom^2 there) per channel, 0 where the

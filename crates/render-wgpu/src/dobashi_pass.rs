@@ -356,6 +356,8 @@ pub struct DobashiPass {
     params: wgpu::Buffer,
     /// psi per sun cosine, `ambient_sun_angles` x 1 texels (made by `plan`).
     ambient: Option<wgpu::Texture>,
+    /// The unit ambient radiance the ambient build's rays see: 2 x 1 texels of ones.
+    unit_ambient: wgpu::Texture,
     ambient_from: Option<AmbientKey>,
     g_l: Option<GlTable>,
     tables: Option<DobashiTables>,
@@ -384,10 +386,12 @@ impl DobashiPass {
         ];
         entries.extend((3..10).map(|b| sampling.texture_entry(b, D2)));
         entries.push(read_only_storage_buffer_entry(10, 16));
-        // The ambient table at 11: written by its build, read by the pass.
+        // The ambient table read at 11 (by the build, a table of ones), and at 12 what
+        // each writes.
+        entries.push(sampling.texture_entry(11, D2));
         let constants = [sampling.constant()];
         let mut ambient_entries = entries.clone();
-        ambient_entries.push(storage_texture_entry(11, TABLE_FORMAT, D2));
+        ambient_entries.push(storage_texture_entry(12, TABLE_FORMAT, D2));
         let ambient_pipeline = ComputePipeline::with_constants(
             gpu,
             "dobashi_ambient.wgsl",
@@ -396,7 +400,6 @@ impl DobashiPass {
             &ambient_entries,
             &constants,
         )?;
-        entries.push(sampling.texture_entry(11, D2));
         entries.push(storage_texture_entry(12, HDR_FORMAT, D2));
         entries.extend(SurfaceBuffer::layout_entries());
         let pass_pipeline = PixelPipeline::with_constants(
@@ -412,6 +415,7 @@ impl DobashiPass {
             ambient_pipeline,
             params: uniform_buffer(&gpu.device, "dobashi", size_of::<DobashiUniform>()),
             ambient: None,
+            unit_ambient: unit_ambient_texture(gpu),
             ambient_from: None,
             g_l: None,
             tables: None,
@@ -426,9 +430,10 @@ impl DobashiPass {
         })
     }
 
-    /// The resources of the ambient and per-pixel pipelines from binding 0 to 11 and the
-    /// table sampler; the per-pixel one's HDR target at 12 and the frame's surface at 30
-    /// and 31.
+    /// The resources of the ambient build (`hdr` none) and the per-pixel pass from
+    /// binding 0 to 12 and the table sampler: at 11 the ambient table they read (the
+    /// unit table for the build), at 12 what they write (the ambient table, the HDR
+    /// target); the pass's frame surface at 30 and 31.
     fn bind_group(
         &self,
         gpu: &GpuContext,
@@ -448,6 +453,13 @@ impl DobashiPass {
             views.push(t.create_view(&Default::default()));
         }
         let ambient = ambient.create_view(&Default::default());
+        let unit_ambient = self.unit_ambient.create_view(&Default::default());
+        // The build reads the unit table and writes the ambient table; the pass reads
+        // the ambient table and writes the HDR target.
+        let (ambient_in, out) = match hdr {
+            Some(hdr) => (&ambient, hdr),
+            None => (&unit_ambient, &ambient),
+        };
         let mut resources = vec![
             io.atmosphere.as_entire_binding(),
             io.frame.as_entire_binding(),
@@ -455,13 +467,33 @@ impl DobashiPass {
         ];
         resources.extend(views.iter().map(wgpu::BindingResource::TextureView));
         resources.push(tables.rows().as_entire_binding());
-        resources.push(wgpu::BindingResource::TextureView(&ambient));
-        if let Some(hdr) = hdr {
-            resources.push(wgpu::BindingResource::TextureView(hdr));
-        }
+        resources.push(wgpu::BindingResource::TextureView(ambient_in));
+        resources.push(wgpu::BindingResource::TextureView(out));
         let surface = hdr.map(|_| io.surface);
         self.sampling.bind_group(gpu, pipeline, &resources, surface)
     }
+}
+
+/// A table of ones in the ambient table's place: psi = 1 at every sun angle.
+fn unit_ambient_texture(gpu: &GpuContext) -> wgpu::Texture {
+    let texture = texture_2d(
+        &gpu.device,
+        "dobashi unit ambient",
+        (2, 1),
+        TABLE_FORMAT,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    gpu.queue.write_texture(
+        texture.as_image_copy(),
+        bytemuck::cast_slice(&[[1.0f32; 4]; 2]),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(32),
+            rows_per_image: None,
+        },
+        texture.size(),
+    );
+    texture
 }
 
 /// The ambient table's texture of `sun_angles` x 1 texels, or why this GPU cannot hold it.
