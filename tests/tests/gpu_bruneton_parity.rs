@@ -13,7 +13,7 @@ use atmosphere_core::model::ModelSettings;
 use render_wgpu::bruneton_pass::{BrunetonPass, StoreTable};
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{check, check_surface, check_texel_reads, standard_frames, view};
+use support::{BRUNETON_TABLES, check, check_surface, check_texel_reads, standard_frames, view};
 
 /// Reduced table sizes for the parity tests (S 8 x 32 x 16 x 8, the paper's sample
 /// counts), so that the CPU and lavapipe build them in seconds.
@@ -237,14 +237,7 @@ fn unchanged_tables_and_sun_changes_rebuild_nothing() {
         return;
     };
     let mut renderer = Renderer::new(gpu).unwrap();
-    let tables = [
-        "transmittance",
-        "density",
-        "sun_transmittance",
-        "single_scattering",
-        "scattering_orders",
-        "scattering_texture",
-    ];
+    let tables = BRUNETON_TABLES;
     let mut f = frame(
         "earth",
         settings(&REDUCED),

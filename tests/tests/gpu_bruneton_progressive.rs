@@ -12,7 +12,7 @@ mod support;
 use atmosphere_core::model::ModelSettings;
 use render_wgpu::frame_plan::FramePlan;
 use render_wgpu::{Frame, Renderer};
-use support::{frame, renderer_or_skip, view};
+use support::{BRUNETON_TABLES, frame, renderer_or_skip, view};
 
 /// Small tables of 131072 texels, so that an order's Delta S is two slices
 /// (`bruneton_pass::SLICE_TEXELS`), built on lavapipe in seconds.
@@ -96,14 +96,7 @@ fn progressive_frames_show_single_scattering_then_one_more_order_each() {
     let f = small_frame(0.1, None);
     // The first frame builds every table up to single scattering and says more follows.
     let first = renderer.render(&f).unwrap();
-    for step in [
-        "transmittance",
-        "density",
-        "sun_transmittance",
-        "single_scattering",
-        "scattering_orders",
-        "scattering_texture",
-    ] {
+    for step in BRUNETON_TABLES {
         assert!(first.runs(step), "{first}");
     }
     assert_eq!(

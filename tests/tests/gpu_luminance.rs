@@ -50,20 +50,13 @@ fn a_known_image_matches_the_cpu() {
     let weights = luminance_weights(RGB_WAVELENGTHS_NM).unwrap();
     for (width, height) in [(301, 173), (5, 3), (1, 1)] {
         let pixels = known_image(width, height);
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("known image"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
+        let texture = render_wgpu::pipeline::texture_2d(
+            &gpu.device,
+            "known image",
+            (width, height),
+            wgpu::TextureFormat::Rgba32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
         gpu.queue.write_texture(
             texture.as_image_copy(),
             bytemuck::cast_slice(&pixels),

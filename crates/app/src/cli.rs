@@ -289,3 +289,34 @@ impl FromStr for Wavelength {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::parse_utc;
+
+    #[test]
+    fn utc_times_are_read_and_bad_ones_named() {
+        let t = parse_utc("2024-10-15T16:05").unwrap();
+        assert_eq!(
+            (t.year, t.month, t.day, t.hour, t.minute),
+            (2024, 10, 15, 16, 5)
+        );
+        assert_eq!(t.second, 0.0);
+        let t = parse_utc("2024-10-15T16:05:30Z").unwrap();
+        assert_eq!((t.minute, t.second), (5, 30.0));
+        for bad in [
+            "2024-10-15",
+            "2024-10-15T16",
+            "2024-13-01T00:00",
+            "2024-10-15T25:00",
+        ] {
+            let e = parse_utc(bad).unwrap_err();
+            assert!(!e.is_empty(), "{bad}");
+        }
+        assert!(
+            parse_utc("2024-10-15")
+                .unwrap_err()
+                .contains("'2024-10-15'")
+        );
+    }
+}

@@ -49,7 +49,7 @@ use crate::model_pass::{ModelPass, PassIo, StandaloneInputs};
 use crate::nishita_pass::{HDR_FORMAT, check_wavelengths};
 use crate::pipeline::{
     ComputePipeline, PixelPipeline, storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_entry, uniform_buffer, uniform_entry,
+    texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::readback::{map_and_read, read_texture};
 use crate::surface_buffer::{ALBEDO_BINDING, GEOMETRY_BINDING, SurfaceBuffer};
@@ -591,34 +591,20 @@ impl BrunetonPass {
                 view_formats: &[],
             }),
             delta_j: texture("bruneton Delta J"),
-            irradiance: device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("bruneton irradiance"),
-                size: wgpu::Extent3d {
-                    width: e_mu_s as u32,
-                    height: e_r as u32,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            }),
-            view_slice: device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("bruneton view slice"),
-                size: wgpu::Extent3d {
-                    width: 3 * s.nu as u32,
-                    height: s.mu as u32,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            }),
+            irradiance: texture_2d(
+                device,
+                "bruneton irradiance",
+                (e_mu_s as u32, e_r as u32),
+                wgpu::TextureFormat::Rgba32Float,
+                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            ),
+            view_slice: texture_2d(
+                device,
+                "bruneton view slice",
+                (3 * s.nu as u32, s.mu as u32),
+                wgpu::TextureFormat::Rgba32Float,
+                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            ),
             textures: [
                 texture("bruneton single Rayleigh"),
                 texture("bruneton single Mie"),

@@ -42,10 +42,16 @@ pub fn log_average_luminance(weights: [f64; 3], pixels: &[[f32; 4]]) -> f64 {
         .map(|p| (0..3).map(|c| weights[c] * f64::from(p[c])).sum::<f64>())
         .filter(|&l| l > FLOOR_CD_M2)
         .fold((0.0, 0u64), |(s, n), l| (s + l.ln(), n + 1));
-    if count == 0 {
+    mean_or_floor(sum, count as f64)
+}
+
+/// exp(sum / count), the log-average of `count` luminances whose logarithms add up to
+/// `sum`, or the floor when no pixel was above it.
+fn mean_or_floor(sum: f64, count: f64) -> f64 {
+    if count == 0.0 {
         FLOOR_CD_M2
     } else {
-        (sum / count as f64).exp()
+        (sum / count).exp()
     }
 }
 
@@ -126,10 +132,6 @@ impl LuminancePass {
         let (sum, count) = sums.iter().fold((0.0, 0.0), |(s, n), p| {
             (s + f64::from(p[0]), n + f64::from(p[1]))
         });
-        Ok(if count == 0.0 {
-            FLOOR_CD_M2
-        } else {
-            (sum / count).exp()
-        })
+        Ok(mean_or_floor(sum, count))
     }
 }

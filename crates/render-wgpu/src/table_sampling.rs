@@ -31,16 +31,7 @@ impl TableSampling {
 
     /// Filtered reads where `gpu`'s device has `FLOAT32_FILTERABLE`.
     pub fn new(gpu: &GpuContext) -> TableSampling {
-        let filtered = gpu
-            .device
-            .features()
-            .contains(wgpu::Features::FLOAT32_FILTERABLE);
-        TableSampling::with_filtering(gpu, filtered)
-    }
-
-    /// Filtered reads if `filtered` (the device must then have `FLOAT32_FILTERABLE`),
-    /// else texel reads; for tests of both on one device.
-    pub fn with_filtering(gpu: &GpuContext, filtered: bool) -> TableSampling {
+        let filtered = TableSampling::device_filters(gpu);
         let filter = if filtered {
             wgpu::FilterMode::Linear
         } else {
@@ -55,9 +46,11 @@ impl TableSampling {
         TableSampling { filtered, sampler }
     }
 
-    /// Whether tables are read through the filter.
-    pub fn filtered(&self) -> bool {
-        self.filtered
+    /// Whether `gpu`'s device filters `Rgba32Float`, so that tables are read filtered.
+    pub fn device_filters(gpu: &GpuContext) -> bool {
+        gpu.device
+            .features()
+            .contains(wgpu::Features::FLOAT32_FILTERABLE)
     }
 
     /// The pipeline constant for [`TableSampling::CONSTANT`].

@@ -17,6 +17,7 @@ use std::collections::HashMap;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use rayon::prelude::*;
+use wgpu::util::DeviceExt;
 
 use crate::device::GpuContext;
 use crate::error::{GpuError, RenderError};
@@ -484,15 +485,12 @@ fn buffer_with<T: Pod>(
     data: &[T],
     usage: wgpu::BufferUsages,
 ) -> wgpu::Buffer {
-    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: std::mem::size_of_val(data) as u64,
-        usage: usage | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    gpu.queue
-        .write_buffer(&buffer, 0, bytemuck::cast_slice(data));
-    buffer
+    gpu.device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytemuck::cast_slice(data),
+            usage,
+        })
 }
 
 fn chunk_buffer(gpu: &GpuContext, chunks: usize) -> wgpu::Buffer {

@@ -22,6 +22,16 @@ use render_wgpu::table_sampling::TableSampling;
 use render_wgpu::tone_map::ToneMap;
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
 
+/// The bruneton model's table-building steps, in the order its plan lists them.
+pub const BRUNETON_TABLES: [&str; 6] = [
+    "transmittance",
+    "density",
+    "sun_transmittance",
+    "single_scattering",
+    "scattering_orders",
+    "scattering_texture",
+];
+
 /// Radiance below which errors count as absolute, W m^-2 sr^-1 nm^-1: 1e-3 of a bright
 /// daytime sky (about 0.1), far below what an 8-bit display shows.
 pub const FLOOR: f64 = 1e-4;
@@ -52,7 +62,7 @@ pub fn renderer_or_skip(test: &str) -> Option<Renderer> {
 pub fn texel_read_renderer_or_skip(test: &str) -> Option<Renderer> {
     match GpuContext::headless_without(wgpu::Features::FLOAT32_FILTERABLE) {
         Ok(gpu) => {
-            assert!(!TableSampling::new(&gpu).filtered());
+            assert!(!TableSampling::device_filters(&gpu));
             Some(Renderer::new(gpu).unwrap())
         }
         Err(e @ GpuError::NoAdapter { .. })
@@ -87,7 +97,7 @@ pub fn check_texel_reads(
     let Some(mut default) = renderer_or_skip(test) else {
         return;
     };
-    let filtered = TableSampling::new(default.gpu()).filtered();
+    let filtered = TableSampling::device_filters(default.gpu());
     for (name, frame) in frames {
         let label = format!("{name}, texel reads");
         check(&mut texel_reads, &label, frame, max_relative_error);

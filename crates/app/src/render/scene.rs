@@ -200,30 +200,21 @@ impl Scene {
         let name = s.atmosphere.unwrap_or_default();
         let atmosphere = Atmosphere::from_preset_or_file(&name)
             .with_context(|| format!("--atmosphere {name}"))?;
-        let place = match (s.latitude_deg, s.longitude_deg) {
+        // Geographic azimuths turn the other way (`location_rotation`): `turn`.
+        let (place, turn) = match (s.latitude_deg, s.longitude_deg) {
             (Some(lat), Some(lon)) => {
                 let lat = finite(lat, "latitude-deg")?;
                 if !(-90.0..=90.0).contains(&lat) {
                     bail!("--latitude-deg {lat} must lie in [-90, 90]");
                 }
-                location_rotation(lat, finite(lon, "longitude-deg")?)
+                (location_rotation(lat, finite(lon, "longitude-deg")?), -1.0)
             }
-            (None, None) => DQuat::IDENTITY,
+            (None, None) => (DQuat::IDENTITY, 1.0),
             _ => bail!("--latitude-deg and --longitude-deg go together"),
         };
-        let geographic = place != DQuat::IDENTITY;
         let view = LocalView {
-            // Geographic azimuths turn the other way (`location_rotation`).
-            view_azimuth_deg: if geographic {
-                -view.view_azimuth_deg
-            } else {
-                view.view_azimuth_deg
-            },
-            sun_azimuth_deg: if geographic {
-                -view.sun_azimuth_deg
-            } else {
-                view.sun_azimuth_deg
-            },
+            view_azimuth_deg: turn * view.view_azimuth_deg,
+            sun_azimuth_deg: turn * view.sun_azimuth_deg,
             ..view
         };
         let terrain = match s.terrain {

@@ -271,7 +271,9 @@ impl eframe::App for ViewerApp {
         if self.settings.camera_position_m != before.camera_position_m
             || self.settings.camera_forward != before.camera_forward
         {
+            // A jump of the view from the panel: the exposure meets the new view at once.
             self.flight = self.settings.flight();
+            self.auto_exposure.reset();
         }
 
         egui::CentralPanel::default().show(ui, |ui| {
@@ -280,10 +282,7 @@ impl eframe::App for ViewerApp {
             let drag = response.drag_delta();
             input.yaw_rad = f64::from(drag.x) * LOOK_RAD_PER_POINT;
             input.pitch_rad = -f64::from(drag.y) * LOOK_RAD_PER_POINT;
-            let radius = self
-                .settings
-                .atmosphere()
-                .map_or(6_360_000.0, |a| a.bottom_radius_m);
+            let radius = self.settings.bottom_radius_m();
             // The camera stays above the terrain drawn (the renderer's heights; none before
             // its first frame with terrain, or with terrain off).
             let renderer = &self.renderer;

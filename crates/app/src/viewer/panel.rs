@@ -185,7 +185,7 @@ fn date_and_time(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
 
 fn camera(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
     ui.collapsing("Camera", |ui| {
-        let radius = bottom_radius_m(settings);
+        let radius = settings.bottom_radius_m();
         let altitude = settings.altitude_m(radius);
         ui.label(format!("altitude {}", format_distance(altitude)))
             .on_hover_text("Height of the camera above the ground");
@@ -421,12 +421,6 @@ fn stats_section(ui: &mut egui::Ui, stats: &Stats) {
         ui.label(format!("adapter: {}", stats.adapter))
             .on_hover_text("The GPU the window and the renderer share");
     });
-}
-
-/// The bottom radius of the preset (the Earth's if the preset is unknown).
-fn bottom_radius_m(settings: &ViewerSettings) -> f64 {
-    atmosphere_core::atmosphere::Atmosphere::preset(&settings.preset)
-        .map_or(6_360_000.0, |a| a.bottom_radius_m)
 }
 
 /// "2 m", "10.0 km", "36000 km".

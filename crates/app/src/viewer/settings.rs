@@ -239,10 +239,14 @@ impl ViewerSettings {
         self.set_heading_pitch(heading_deg, target.pitch_deg);
     }
 
+    /// The bottom radius of the preset (the Earth's if the preset is unknown).
+    pub fn bottom_radius_m(&self) -> f64 {
+        Atmosphere::preset(&self.preset).map_or(6_360_000.0, |a| a.bottom_radius_m)
+    }
+
     /// Camera and sun of the default view ([`default_view`]) over this preset's planet.
     pub fn reset_view(&mut self) {
-        let radius = Atmosphere::preset(&self.preset).map_or(6_360_000.0, |a| a.bottom_radius_m);
-        self.set_flight(&default_view::camera(radius));
+        self.set_flight(&default_view::camera(self.bottom_radius_m()));
         self.sun_clock = default_view::sun_clock();
     }
 
