@@ -17,9 +17,10 @@
 use std::path::{Path, PathBuf};
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::ModelSettings;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
 use render_wgpu::frame::{Frame, LocalView};
-use render_wgpu::model_pass::GPU_MODELS;
+use render_wgpu::sky::registry::GPU_MODELS;
 use render_wgpu::{GpuError, RenderError, Renderer};
 
 /// Largest allowed difference of one channel, 8-bit levels.
@@ -84,12 +85,12 @@ const BRUNETON_SIZES: [(&str, &str); 4] = [("r", "16"), ("mu", "64"), ("mu_s", "
 
 fn render(
     renderer: &mut Renderer,
-    model: &str,
+    model: ModelId,
     (view, fov, preset, ev): (LocalView, f64, &str, f64),
 ) -> Vec<u8> {
     let atmosphere = Atmosphere::preset(preset).unwrap();
     let mut settings = ModelSettings::default();
-    if model == "bruneton" {
+    if model == ModelId::Bruneton {
         for (key, value) in BRUNETON_SIZES {
             settings.options.set(key, value);
         }
@@ -100,7 +101,7 @@ fn render(
         vertical_fov_deg: fov,
         sun_direction: view.sun_direction(),
         atmosphere,
-        model: model.into(),
+        model,
         settings,
         exposure_ev100: ev,
         width: WIDTH,

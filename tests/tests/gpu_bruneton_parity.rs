@@ -8,10 +8,11 @@
 mod support;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::bruneton::Bruneton;
-use atmosphere_core::model::ModelSettings;
-use render_wgpu::bruneton_pass::{BrunetonPass, StoreTable};
+use atmosphere_core::models::bruneton::Bruneton;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
 use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::sky::bruneton::{BrunetonPass, StoreTable};
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
 use support::{BRUNETON_TABLES, check, check_surface, check_texel_reads, standard_frames, view};
 
@@ -49,7 +50,7 @@ fn frame(preset: &str, settings: ModelSettings, v: LocalView, fov: f64, w: u32, 
         vertical_fov_deg: fov,
         sun_direction: v.sun_direction(),
         atmosphere,
-        model: "bruneton".into(),
+        model: ModelId::Bruneton,
         settings,
         exposure_ev100: 14.0,
         width: w,
@@ -192,7 +193,7 @@ fn bruneton_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
     let mut renderer = Renderer::new(gpu).unwrap();
     // The aerial perspective's second look-up where a surface cuts the ray short, none
     // where it lies beyond the ground; the tables reduced as above.
-    for (name, f) in standard_frames("bruneton").iter().take(4) {
+    for (name, f) in standard_frames(ModelId::Bruneton).iter().take(4) {
         let f = Frame {
             settings: settings(&REDUCED),
             ..f.clone()
@@ -218,7 +219,7 @@ fn texel_reads_match_the_cpu_and_the_filtered_reads() {
             frame("earth", s.clone(), view(10_000.0, 95.0, 60.0), 60.0, 48, 27),
         ),
     ];
-    let (name, surface) = &standard_frames("bruneton")[0];
+    let (name, surface) = &standard_frames(ModelId::Bruneton)[0];
     let surface = Frame {
         settings: s,
         ..surface.clone()
@@ -330,11 +331,11 @@ fn cost_at_1280x720_against_nishita_16() {
         1280,
         720,
     );
-    nishita.model = "nishita".into();
+    nishita.model = ModelId::Nishita;
     let options = env_options("ATMOS_BRUNETON_COST_SET");
     let options: Vec<&str> = options.iter().map(String::as_str).collect();
     let mut bruneton = nishita.clone();
-    bruneton.model = "bruneton".into();
+    bruneton.model = ModelId::Bruneton;
     bruneton.settings = settings(&options);
     let runs: usize = std::env::var("ATMOS_COST_RUNS").map_or(5, |v| v.parse().unwrap());
     let timed = |renderer: &mut Renderer, f: &Frame| {

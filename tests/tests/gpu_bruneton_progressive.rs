@@ -9,8 +9,9 @@
 
 mod support;
 
-use atmosphere_core::model::ModelSettings;
-use render_wgpu::frame_plan::FramePlan;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
+use render_wgpu::frame::plan::FramePlan;
 use render_wgpu::{Frame, Renderer};
 use support::{BRUNETON_TABLES, frame, renderer_or_skip, view};
 
@@ -24,7 +25,7 @@ const SMALL: [&str; 5] = ["r=16", "mu=32", "mu_s=16", "nu=16", "view_samples=20"
 const MAX_FRAMES: usize = 40;
 
 fn small_frame(albedo: f64, max_orders: Option<u32>) -> Frame {
-    let mut f = frame("bruneton", view(1_000.0, 80.0, 70.0), 70.0, 32, 18);
+    let mut f = frame(ModelId::Bruneton, view(1_000.0, 80.0, 70.0), 70.0, 32, 18);
     let mut settings = ModelSettings::default();
     for item in SMALL {
         let (k, v) = item.split_once('=').unwrap();
@@ -192,7 +193,7 @@ fn frame_times_of_a_progressive_build() {
     let size = std::env::var("ATMOS_PROGRESSIVE_SIZE").unwrap_or_else(|_| "640x360".into());
     let (w, h) = size.split_once('x').unwrap();
     let mut f = frame(
-        "bruneton",
+        ModelId::Bruneton,
         view(1_000.0, 80.0, 70.0),
         70.0,
         w.parse().unwrap(),

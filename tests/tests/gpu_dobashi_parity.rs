@@ -1,19 +1,20 @@
 //! The dobashi model on the GPU against its CPU twin: the plane and sphere tables of
-//! `shaders/dobashi_tables.wgsl` node by node against `PlaneTables::build` and
-//! `SphereTables::build`, and the frames of `shaders/dobashi.wgsl` (with the ambient table
-//! of `dobashi_ambient.wgsl`) through the `Renderer` against `Dobashi::radiance` on the
+//! `shaders/sky/dobashi/tables.wgsl` node by node against `PlaneTables::build` and
+//! `SphereTables::build`, and the frames of `shaders/sky/dobashi/pixel.wgsl` (with the ambient table
+//! of `sky/dobashi/ambient.wgsl`) through the `Renderer` against `Dobashi::radiance` on the
 //! same pixel rays (see `support/mod.rs`).
 
 mod support;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::dobashi::grid::Grid;
-use atmosphere_core::dobashi::{DobashiSettings, PlaneTables, SphereTables};
-use atmosphere_core::model_options::ModelOptions;
-use atmosphere_core::reference::Spectra;
-use render_wgpu::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
-use render_wgpu::dobashi_pass::{DobashiTables, plane_interval_m, sphere_rows};
-use render_wgpu::pipeline::uniform_buffer;
+use atmosphere_core::atmosphere::spectra::Spectra;
+use atmosphere_core::models::dobashi::grid::Grid;
+use atmosphere_core::models::dobashi::{DobashiSettings, PlaneTables, SphereTables};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use render_wgpu::gpu::pipeline::uniform_buffer;
+use render_wgpu::sky::dobashi::{DobashiTables, plane_interval_m, sphere_rows};
 use support::{
     check, check_surface, check_texel_reads, frame, frame_in, renderer_or_skip, standard_frames,
     view,
@@ -132,22 +133,29 @@ fn dobashi_frames_match_the_cpu_from_the_ground_to_far_orbit() {
         return;
     };
     // The standard frames: planes up to 100 km, spheres from 1e8 m.
-    for (name, f) in &standard_frames("dobashi") {
+    for (name, f) in &standard_frames(ModelId::Dobashi) {
         check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
     // Single scattering (no ambient term), a hazy atmosphere, Mars.
-    let mut f = frame("dobashi", view(1.0, 85.0, 50.0), 70.0, 64, 36);
+    let mut f = frame(ModelId::Dobashi, view(1.0, 85.0, 50.0), 70.0, 64, 36);
     f.settings.max_orders = Some(1);
     check(&mut renderer, "single scattering", &f, MAX_RELATIVE_ERROR);
     f.settings.max_orders = Some(3);
     check(&mut renderer, "three orders", &f, MAX_RELATIVE_ERROR);
     for name in ["hazy", "mars"] {
         let atmosphere = Atmosphere::preset(name).unwrap();
-        let f = frame_in(atmosphere, "dobashi", view(1.0, 85.0, 50.0), 70.0, 64, 36);
+        let f = frame_in(
+            atmosphere,
+            ModelId::Dobashi,
+            view(1.0, 85.0, 50.0),
+            70.0,
+            64,
+            36,
+        );
         check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
     }
     // Spheres from 30,000 km looking down, and planes from there when allowed more.
-    let mut f = frame("dobashi", view(3e7, 180.0, 40.0), 30.0, 48, 27);
+    let mut f = frame(ModelId::Dobashi, view(3e7, 180.0, 40.0), 30.0, 48, 27);
     check(&mut renderer, "30,000 km, spheres", &f, MAX_RELATIVE_ERROR);
     f.settings.options = ModelOptions::parse(&["max_planes=100000"]).unwrap();
     check(&mut renderer, "30,000 km, planes", &f, MAX_RELATIVE_ERROR);
@@ -162,11 +170,11 @@ fn texel_reads_match_the_cpu_and_the_filtered_reads() {
     let frames = [
         (
             "ground",
-            frame("dobashi", view(1.0, 85.0, 50.0), 70.0, 64, 36),
+            frame(ModelId::Dobashi, view(1.0, 85.0, 50.0), 70.0, 64, 36),
         ),
         (
             "30,000 km, spheres",
-            frame("dobashi", view(3e7, 180.0, 40.0), 30.0, 48, 27),
+            frame(ModelId::Dobashi, view(3e7, 180.0, 40.0), 30.0, 48, 27),
         ),
     ];
     check_texel_reads("dobashi", &frames, None, MAX_RELATIVE_ERROR);
@@ -178,7 +186,7 @@ fn dobashi_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
         return;
     };
     // Planes up to 100 km, spheres from 1e8 m: both cut where an object ends the ray.
-    for (name, f) in standard_frames("dobashi").iter().take(4) {
+    for (name, f) in standard_frames(ModelId::Dobashi).iter().take(4) {
         check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
@@ -193,7 +201,7 @@ fn dobashi_tables_are_rebuilt_only_when_their_inputs_change() {
     let Some(mut renderer) = renderer_or_skip("dobashi plan") else {
         return;
     };
-    let mut f = frame("dobashi", view(10.0, 80.0, 40.0), 60.0, 16, 9);
+    let mut f = frame(ModelId::Dobashi, view(10.0, 80.0, 40.0), 60.0, 16, 9);
     let all = ["g_l", "plane_tables", "sphere_tables", "ambient"];
     let plan = renderer.render(&f).unwrap();
     assert!(all.iter().all(|s| plan.runs(s)), "{plan}");

@@ -17,14 +17,15 @@
 use std::time::Instant;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::ModelSettings;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::{GpuError, RenderError, Renderer};
 
 /// The target: hillaire at most this share of the nishita frame.
 const TARGET_SHARE: f64 = 0.25;
 
-fn ground_view(model: &str, sun_zenith_deg: f64) -> Frame {
+fn ground_view(model: ModelId, sun_zenith_deg: f64) -> Frame {
     let atmosphere = Atmosphere::preset("earth").unwrap();
     let view = LocalView {
         altitude_m: 2.0,
@@ -34,7 +35,7 @@ fn ground_view(model: &str, sun_zenith_deg: f64) -> Frame {
         sun_azimuth_deg: 20.0,
     };
     let mut settings = ModelSettings::default();
-    if model == "nishita" {
+    if model == ModelId::Nishita {
         settings.options.set("samples", 16);
     }
     Frame {
@@ -43,7 +44,7 @@ fn ground_view(model: &str, sun_zenith_deg: f64) -> Frame {
         vertical_fov_deg: 70.0,
         sun_direction: view.sun_direction(),
         atmosphere,
-        model: model.into(),
+        model,
         settings,
         exposure_ev100: 14.0,
         width: 1280,
@@ -79,23 +80,27 @@ fn a_hillaire_ground_view_costs_at_most_a_quarter_of_nishita_16() {
     timed(
         &mut renderer,
         "nishita, first",
-        &ground_view("nishita", 50.0),
+        &ground_view(ModelId::Nishita, 50.0),
     );
-    let nishita = timed(&mut renderer, "nishita 16", &ground_view("nishita", 50.0));
+    let nishita = timed(
+        &mut renderer,
+        "nishita 16",
+        &ground_view(ModelId::Nishita, 50.0),
+    );
     timed(
         &mut renderer,
         "hillaire, first",
-        &ground_view("hillaire", 60.0),
+        &ground_view(ModelId::Hillaire, 60.0),
     );
     let pass_only = timed(
         &mut renderer,
         "hillaire, same view",
-        &ground_view("hillaire", 60.0),
+        &ground_view(ModelId::Hillaire, 60.0),
     );
     let per_view = timed(
         &mut renderer,
         "hillaire, sun moved",
-        &ground_view("hillaire", 50.0),
+        &ground_view(ModelId::Hillaire, 50.0),
     );
     for (name, (gpu, wall)) in [("same view", pass_only), ("sun moved", per_view)] {
         println!(

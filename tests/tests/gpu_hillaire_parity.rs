@@ -1,5 +1,5 @@
-//! The GPU hillaire model (`render_wgpu::hillaire_pass`, `shaders/hillaire*.wgsl`) against
-//! its CPU twin (`atmosphere_core::hillaire`): every table read back and compared texel by
+//! The GPU hillaire model (`render_wgpu::sky::hillaire`, `shaders/hillaire*.wgsl`) against
+//! its CPU twin (`atmosphere_core::models::hillaire`): every table read back and compared texel by
 //! texel, rendered pixels against `Hillaire::radiance` on `Frame::pixel_ray` rays (plus
 //! the transmitted sun disk), and the frame planner's choices.
 //!
@@ -10,12 +10,13 @@
 mod support;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::hillaire::view_cache::view_key;
-use atmosphere_core::hillaire::{Hillaire, HillaireSettings};
-use atmosphere_core::model::ModelSettings;
+use atmosphere_core::models::hillaire::view_cache::view_key;
+use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
+use render_wgpu::frame::plan::FramePlan;
 use render_wgpu::frame::{Frame, LocalView};
-use render_wgpu::frame_plan::FramePlan;
-use render_wgpu::hillaire_pass::{HillairePass, Table};
+use render_wgpu::sky::hillaire::{HillairePass, Table};
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
 use support::{check, check_surface, check_texel_reads, standard_frames, view};
 
@@ -59,7 +60,7 @@ fn frame(view: LocalView, fov_deg: f64, width: u32, height: u32) -> Frame {
         vertical_fov_deg: fov_deg,
         sun_direction: view.sun_direction(),
         atmosphere,
-        model: "hillaire".into(),
+        model: ModelId::Hillaire,
         settings: ModelSettings::default(),
         exposure_ev100: 14.0,
         width,
@@ -247,7 +248,7 @@ fn texel_reads_match_the_cpu_and_the_filtered_reads() {
         ("10 km", frame(view(10_000.0, 100.0, 50.0), 60.0, 64, 36)),
         ("100 km", frame(view(100_000.0, 100.0, 60.0), 40.0, 64, 36)),
     ];
-    let (name, surface) = &standard_frames("hillaire")[0];
+    let (name, surface) = &standard_frames(ModelId::Hillaire)[0];
     check_texel_reads(
         "hillaire",
         &frames,
@@ -263,7 +264,7 @@ fn hillaire_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
     };
     // Surfaces within the volume's range read it, those beyond are marched (the planner
     // picks the entry point that does both), and from space every ray is marched.
-    for (name, f) in standard_frames("hillaire").iter().take(4) {
+    for (name, f) in standard_frames(ModelId::Hillaire).iter().take(4) {
         check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
@@ -387,7 +388,8 @@ fn skipped_steps_change_nothing_and_only_changed_inputs_rebuild() {
         &[("transmittance", "inputs unchanged")],
     ));
     let mut phase = albedo.clone();
-    phase.atmosphere.mie.phase = atmosphere_core::phase::PhaseFunction::HenyeyGreenstein { g: 0.7 };
+    phase.atmosphere.mie.phase =
+        atmosphere_core::optics::phase::PhaseFunction::HenyeyGreenstein { g: 0.7 };
     steps.push((
         "another Mie phase function",
         phase.clone(),
@@ -410,7 +412,7 @@ fn skipped_steps_change_nothing_and_only_changed_inputs_rebuild() {
         let builds: Vec<&str> = plan
             .steps
             .iter()
-            .filter(|s| s.kind == render_wgpu::frame_plan::StepKind::TableBuild)
+            .filter(|s| s.kind == render_wgpu::frame::plan::StepKind::TableBuild)
             .map(|s| s.name)
             .collect();
         for table in all {

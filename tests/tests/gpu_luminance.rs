@@ -1,5 +1,5 @@
-//! The luminance pass (`shaders/luminance.wgsl`, automatic exposure) against its CPU twin
-//! (`render_wgpu::luminance_pass::log_average_luminance`): on a known image with dark,
+//! The luminance pass (`shaders/post/luminance.wgsl`, automatic exposure) against its CPU twin
+//! (`render_wgpu::post::luminance::log_average_luminance`): on a known image with dark,
 //! bright and very bright (sun-disk) pixels, of a size that is no multiple of the
 //! dispatch, and on a rendered frame read back from the renderer.
 //!
@@ -7,8 +7,9 @@
 
 mod support;
 
-use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
-use render_wgpu::luminance_pass::{
+use atmosphere_core::models::id::ModelId;
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use render_wgpu::post::luminance::{
     FLOOR_CD_M2, LuminancePass, log_average_luminance, luminance_weights,
 };
 
@@ -50,7 +51,7 @@ fn a_known_image_matches_the_cpu() {
     let weights = luminance_weights(RGB_WAVELENGTHS_NM).unwrap();
     for (width, height) in [(301, 173), (5, 3), (1, 1)] {
         let pixels = known_image(width, height);
-        let texture = render_wgpu::pipeline::texture_2d(
+        let texture = render_wgpu::gpu::pipeline::texture_2d(
             &gpu.device,
             "known image",
             (width, height),
@@ -84,7 +85,13 @@ fn a_rendered_frame_matches_the_cpu() {
     let Some(mut renderer) = support::renderer_or_skip("luminance") else {
         return;
     };
-    let frame = support::frame("nishita", support::view(2_000.0, 80.0, 85.0), 60.0, 97, 61);
+    let frame = support::frame(
+        ModelId::Nishita,
+        support::view(2_000.0, 80.0, 85.0),
+        60.0,
+        97,
+        61,
+    );
     renderer.render(&frame).unwrap();
     let gpu_mean = renderer.average_luminance().unwrap();
     let hdr = renderer.read_hdr().unwrap();

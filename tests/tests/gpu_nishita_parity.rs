@@ -1,10 +1,11 @@
-//! The GPU nishita frame (`shaders/nishita.wgsl` through the `Renderer`) against the CPU
-//! model (`atmosphere_core::model::prepare("nishita", ..)`) on the same pixel rays, the
-//! sun disk against `atmosphere_core::sun_disk`, and the tone map against its CPU twin
-//! (`render_wgpu::tone_map`); see `support/mod.rs`.
+//! The GPU nishita frame (`shaders/sky/nishita/pixel.wgsl` through the `Renderer`) against the CPU
+//! model (`atmosphere_core::models::registry::prepare(ModelId::Nishita, ..)`) on the same pixel rays, the
+//! sun disk against `atmosphere_core::optics::sun_disk`, and the tone map against its CPU twin
+//! (`render_wgpu::post::tone_map`); see `support/mod.rs`.
 
 mod support;
 
+use atmosphere_core::models::id::ModelId;
 use render_wgpu::frame::LocalView;
 use support::{check, check_surface, frame, renderer_or_skip, standard_frames};
 
@@ -18,7 +19,7 @@ fn nishita_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("nishita parity") else {
         return;
     };
-    for (name, f) in standard_frames("nishita").iter().take(4) {
+    for (name, f) in standard_frames(ModelId::Nishita).iter().take(4) {
         check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
@@ -28,7 +29,7 @@ fn nishita_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
     let Some(mut renderer) = renderer_or_skip("nishita surfaces") else {
         return;
     };
-    for (name, f) in standard_frames("nishita").iter().take(4) {
+    for (name, f) in standard_frames(ModelId::Nishita).iter().take(4) {
         check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
@@ -38,7 +39,7 @@ fn the_sun_disk_is_limb_darkened_as_on_the_cpu() {
     let Some(mut renderer) = renderer_or_skip("sun disk") else {
         return;
     };
-    let (name, f) = &standard_frames("nishita")[4];
+    let (name, f) = &standard_frames(ModelId::Nishita)[4];
     check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     let hdr = renderer.read_hdr().unwrap();
     let centre = hdr[(9 * 33 + 16) as usize][1];
@@ -58,7 +59,7 @@ fn tables_are_rebuilt_only_when_their_inputs_change_and_unknown_models_are_refus
         sun_zenith_deg: 40.0,
         sun_azimuth_deg: 0.0,
     };
-    let mut f = frame("nishita", view, 60.0, 16, 9);
+    let mut f = frame(ModelId::Nishita, view, 60.0, 16, 9);
     assert!(renderer.render(&f).unwrap().runs("g_l"));
     f.exposure_ev100 = 12.0;
     assert!(!renderer.render(&f).unwrap().runs("g_l"));
@@ -72,9 +73,14 @@ fn tables_are_rebuilt_only_when_their_inputs_change_and_unknown_models_are_refus
     assert!(fresh.render(&f).unwrap().runs("g_l"));
     assert_eq!(skipped, fresh.read_hdr().unwrap());
     // Another aerosol profile changes the Mie columns.
-    f.atmosphere.mie.density = atmosphere_core::density::DensityProfile::exponential(1_500.0);
+    f.atmosphere.mie.density =
+        atmosphere_core::atmosphere::density::DensityProfile::exponential(1_500.0);
     assert!(renderer.render(&f).unwrap().runs("g_l"));
-    f.model = "nonesuch".into();
+    f.model = ModelId::Reference;
     let err = renderer.render(&f).unwrap_err();
-    assert!(err.to_string().contains("nonesuch"), "{err}");
+    assert!(
+        err.to_string()
+            .contains("'reference' is not yet on the GPU"),
+        "{err}"
+    );
 }

@@ -1,17 +1,18 @@
 //! The oneil model on the GPU against its CPU twin: the optical-depth table of
-//! `shaders/oneil_table.wgsl` node by node against `OpticalDepthTable::build`, and the
-//! frames of `shaders/oneil.wgsl` through the `Renderer` against `Oneil::radiance` on the
+//! `shaders/sky/oneil/optical_depth_table.wgsl` node by node against `OpticalDepthTable::build`, and the
+//! frames of `shaders/sky/oneil/pixel.wgsl` through the `Renderer` against `Oneil::radiance` on the
 //! same pixel rays (see `support/mod.rs`).
 
 mod support;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model_options::ModelOptions;
-use atmosphere_core::oneil::OpticalDepthTable;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::oneil::OpticalDepthTable;
+use atmosphere_core::models::options::ModelOptions;
 use render_wgpu::GpuContext;
-use render_wgpu::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
-use render_wgpu::oneil_pass::OneilTablePass;
-use render_wgpu::pipeline::uniform_buffer;
+use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use render_wgpu::gpu::pipeline::uniform_buffer;
+use render_wgpu::sky::oneil::OneilTablePass;
 use support::{
     check, check_surface, check_texel_reads, frame, frame_in, renderer_or_skip, standard_frames,
     view,
@@ -103,7 +104,7 @@ fn the_optical_depth_table_matches_the_cpu_node_by_node() {
 /// Rgba32Float, as lavapipe does) pixel by pixel.
 #[test]
 fn texel_reads_match_the_cpu_and_the_filtered_reads() {
-    let frames = standard_frames("oneil");
+    let frames = standard_frames(ModelId::Oneil);
     let frames = [frames[0].clone(), frames[2].clone()];
     let (name, surface) = &frames[0];
     check_texel_reads("oneil", &frames, Some((name, surface)), MAX_RELATIVE_ERROR);
@@ -114,19 +115,26 @@ fn oneil_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("oneil parity") else {
         return;
     };
-    for (name, f) in &standard_frames("oneil") {
+    for (name, f) in &standard_frames(ModelId::Oneil) {
         check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
     // A camera just inside the top looking through the limb, where the two-lookup
     // subtraction changes form along the ray; the paper's settings replaced by finer ones.
-    let mut f = frame("oneil", view(59_000.0, 95.0, 70.0), 30.0, 64, 36);
+    let mut f = frame(ModelId::Oneil, view(59_000.0, 95.0, 70.0), 30.0, 64, 36);
     check(&mut renderer, "inside the top", &f, MAX_RELATIVE_ERROR);
     f.settings.options =
         ModelOptions::parse(&["samples=16", "table_heights=128", "table_angles=256"]).unwrap();
     check(&mut renderer, "finer settings", &f, MAX_RELATIVE_ERROR);
     for name in ["hazy", "mars"] {
         let atmosphere = Atmosphere::preset(name).unwrap();
-        let f = frame_in(atmosphere, "oneil", view(1.0, 85.0, 50.0), 70.0, 64, 36);
+        let f = frame_in(
+            atmosphere,
+            ModelId::Oneil,
+            view(1.0, 85.0, 50.0),
+            70.0,
+            64,
+            36,
+        );
         check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
     }
 }
@@ -136,7 +144,7 @@ fn oneil_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
     let Some(mut renderer) = renderer_or_skip("oneil surfaces") else {
         return;
     };
-    for (name, f) in standard_frames("oneil").iter().take(4) {
+    for (name, f) in standard_frames(ModelId::Oneil).iter().take(4) {
         check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
@@ -151,7 +159,7 @@ fn the_table_is_rebuilt_only_when_densities_or_its_settings_change() {
     let Some(mut renderer) = renderer_or_skip("oneil plan") else {
         return;
     };
-    let mut f = frame("oneil", view(10.0, 80.0, 40.0), 60.0, 16, 9);
+    let mut f = frame(ModelId::Oneil, view(10.0, 80.0, 40.0), 60.0, 16, 9);
     assert!(builds(&mut renderer, &f));
     assert_eq!(renderer.table_bytes(), 64 * 64 * 16);
     f.exposure_ev100 = 12.0;

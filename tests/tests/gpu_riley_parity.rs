@@ -1,11 +1,12 @@
-//! The GPU riley frame (`shaders/riley.wgsl` through the `Renderer`) against the CPU
-//! model (`atmosphere_core::riley`) on the same pixel rays: the standard frames, frames
+//! The GPU riley frame (`shaders/sky/riley/pixel.wgsl` through the `Renderer`) against the CPU
+//! model (`atmosphere_core::models::riley`) on the same pixel rays: the standard frames, frames
 //! whose pixel rays pass through the closed form's stiff directions (view elevation equal
 //! to the sun's, horizontal rays), other atmospheres; see `support/mod.rs`.
 
 mod support;
 
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::models::id::ModelId;
 use render_wgpu::frame::{Frame, LocalView};
 use support::{
     FLOOR, check, check_surface, frame, frame_in, renderer_or_skip, standard_frames, view,
@@ -21,7 +22,7 @@ fn riley_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("riley parity") else {
         return;
     };
-    for (name, f) in &standard_frames("riley") {
+    for (name, f) in &standard_frames(ModelId::Riley) {
         check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
     // The ground frame in other atmospheres: the fit is redone on the CPU and the uniform
@@ -34,7 +35,14 @@ fn riley_frames_match_the_cpu_from_the_ground_to_far_orbit() {
             Atmosphere::preset("earth").unwrap().with_aerosol_scale(0.0),
         ),
     ] {
-        let f = frame_in(atmosphere, "riley", view(1.0, 85.0, 50.0), 70.0, 64, 36);
+        let f = frame_in(
+            atmosphere,
+            ModelId::Riley,
+            view(1.0, 85.0, 50.0),
+            70.0,
+            64,
+            36,
+        );
         check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
     }
 }
@@ -44,7 +52,7 @@ fn riley_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
     let Some(mut renderer) = renderer_or_skip("riley surfaces") else {
         return;
     };
-    for (name, f) in standard_frames("riley").iter().take(4) {
+    for (name, f) in standard_frames(ModelId::Riley).iter().take(4) {
         check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
     }
 }
@@ -52,7 +60,7 @@ fn riley_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
 /// A 33 x 33 frame 0.01 deg high around `view`: the centre row is the view direction
 /// itself, the rows step by about 5e-6 rad in elevation across it.
 fn narrow(view: LocalView) -> Frame {
-    frame("riley", view, 0.01, 33, 33)
+    frame(ModelId::Riley, view, 0.01, 33, 33)
 }
 
 /// The largest step between vertically neighbouring pixels of the centre column of the
@@ -98,7 +106,7 @@ fn stiff_directions_stay_finite_and_match_the_cpu() {
         // A wide frame through both at once.
         (
             "wide",
-            frame("riley", at(3_000.0, 75.0, 75.0, 60.0), 40.0, 64, 37),
+            frame(ModelId::Riley, at(3_000.0, 75.0, 75.0, 60.0), 40.0, 64, 37),
         ),
     ];
     for (name, f) in &cases {
@@ -121,13 +129,13 @@ fn riley_runs_one_pass_and_no_table() {
     let Some(mut renderer) = renderer_or_skip("riley plan") else {
         return;
     };
-    let mut f = frame("riley", view(10.0, 80.0, 40.0), 60.0, 16, 9);
+    let mut f = frame(ModelId::Riley, view(10.0, 80.0, 40.0), 60.0, 16, 9);
     let plan = renderer.render(&f).unwrap();
     let names: Vec<_> = plan.steps.iter().map(|s| s.name).collect();
     assert_eq!(names, ["riley", "tone_map"]);
     assert_eq!(renderer.table_bytes(), 0);
     f.settings.options =
-        atmosphere_core::model_options::ModelOptions::parse(&["samples=3"]).unwrap();
+        atmosphere_core::models::options::ModelOptions::parse(&["samples=3"]).unwrap();
     let err = renderer.render(&f).unwrap_err();
     assert!(err.to_string().contains("samples"), "{err}");
 }

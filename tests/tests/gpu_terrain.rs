@@ -1,4 +1,4 @@
-//! The terrain pass on the GPU (`terrain_pass.rs`, `shaders/terrain.wgsl`) against its
+//! The terrain pass on the GPU (`terrain_pass.rs`, `shaders/terrain/terrain.wgsl`) against its
 //! CPU twin: the surface buffer's distance, normal and albedo at each pixel equal the
 //! nearest hit of the pixel's ray (`Frame::pixel_ray`) on the chunk meshes the CPU
 //! selects for the same camera (`select_chunks`, `ChunkMesh`), the normal interpolated
@@ -10,6 +10,7 @@
 
 mod support;
 
+use atmosphere_core::models::id::ModelId;
 use std::collections::HashMap;
 
 use glam::DVec3;
@@ -28,7 +29,7 @@ fn terrain_frame(lat: f64, lon: f64, view: LocalView, fov_deg: f64, w: u32, h: u
         sun_azimuth_deg: -view.sun_azimuth_deg,
         ..view
     };
-    let mut f = frame("nishita", local, fov_deg, w, h);
+    let mut f = frame(ModelId::Nishita, local, fov_deg, w, h);
     let place = location_rotation(lat, lon);
     f.camera_position_m = place * f.camera_position_m;
     f.orientation = place * f.orientation;

@@ -1,5 +1,5 @@
-//! The GPU transmittance table (`shaders/transmittance_table.wgsl`) against its CPU twin
-//! (`atmosphere_core::transmittance_table`), texel by texel at 680, 550 and 440 nm.
+//! The GPU transmittance table (`shaders/sky/transmittance_table.wgsl`) against its CPU twin
+//! (`atmosphere_core::optics::transmittance_table`), texel by texel at 680, 550 and 440 nm.
 //!
 //! Needs a GPU adapter (lavapipe will do). Without one the tests fail with the
 //! `NoAdapter` message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when
@@ -8,9 +8,9 @@
 use std::time::Instant;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
-use render_wgpu::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
-use render_wgpu::transmittance_pass::TransmittancePass;
+use atmosphere_core::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
+use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use render_wgpu::sky::transmittance::TransmittancePass;
 use render_wgpu::{GpuContext, GpuError};
 
 /// Largest allowed |T_gpu - T_cpu|. Measured on lavapipe: 4.4e-7 (earth), 5.5e-7 (mars),

@@ -3,9 +3,9 @@
 use std::path::PathBuf;
 use std::str::FromStr;
 
-use atmosphere_core::model::{MODEL_IDS, ModelSettings};
+use atmosphere_core::models::id::{ModelId, UnknownModel};
+use atmosphere_core::models::sky_model::ModelSettings;
 use atmosphere_core::sun_position::UtcDateTime;
-use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
 
 /// Physically based atmospheric scattering.
@@ -56,8 +56,8 @@ pub struct ViewArgs {
 #[derive(Clone, Debug, Default, Args)]
 pub struct StartView {
     /// Scattering model.
-    #[arg(long, value_parser = PossibleValuesParser::new(render_wgpu::model_pass::GPU_MODELS))]
-    pub model: Option<String>,
+    #[arg(long, value_parser = gpu_model)]
+    pub model: Option<ModelId>,
     /// Camera latitude, degrees north.
     #[arg(
         long,
@@ -125,8 +125,8 @@ fn parse_utc(text: &str) -> Result<UtcDateTime, String> {
 pub struct ContactSheetArgs {
     /// Only these models, one row each (repeat the flag); every model on the GPU when
     /// absent.
-    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
-    pub model: Vec<String>,
+    #[arg(long, value_enum)]
+    pub model: Vec<ModelId>,
     /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
     #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
     pub atmosphere: String,
@@ -147,8 +147,8 @@ pub struct ContactSheetArgs {
 pub struct BenchArgs {
     /// Only these models (repeat the flag); every model on the GPU when absent. The
     /// baseline, nishita with 16 samples, is always measured.
-    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
-    pub model: Vec<String>,
+    #[arg(long, value_enum)]
+    pub model: Vec<ModelId>,
     /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
     #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
     pub atmosphere: String,
@@ -189,8 +189,8 @@ pub struct ReportArgs {
     #[arg(long, value_name = "COLUMNSxROWS", default_value = "16x9", value_parser = parse_grid)]
     pub rays: (usize, usize),
     /// Only these models (repeat the flag); all when absent.
-    #[arg(long, value_parser = PossibleValuesParser::new(crate::report::report_models()))]
-    pub model: Vec<String>,
+    #[arg(long, value_parser = report_model)]
+    pub model: Vec<ModelId>,
     /// Relative standard error the reference aims for per ray and wavelength.
     #[arg(long, value_name = "REL", default_value_t = ModelSettings::default().target_relative_error)]
     pub reference_error: f64,
@@ -212,6 +212,27 @@ fn parse_grid(text: &str) -> Result<(usize, usize), String> {
 }
 
 /// "320x180" -> (320, 180), each side 1 to the GPU's largest texture side.
+/// A model the GPU renders (`atmos view --model`).
+fn gpu_model(text: &str) -> Result<ModelId, String> {
+    let id: ModelId = text.parse().map_err(|e: UnknownModel| e.to_string())?;
+    render_wgpu::Renderer::check_model(id).map_err(|e| e.to_string())?;
+    Ok(id)
+}
+
+/// A model the report has settings for (`atmos report --model`).
+fn report_model(text: &str) -> Result<ModelId, String> {
+    let id: ModelId = text.parse().map_err(|e: UnknownModel| e.to_string())?;
+    let known = crate::report::report_models();
+    if known.contains(&id) {
+        Ok(id)
+    } else {
+        Err(format!(
+            "the report has no settings for {id} (it has: {})",
+            ModelId::list(&known)
+        ))
+    }
+}
+
 fn parse_tile(text: &str) -> Result<(u32, u32), String> {
     let (w, h) = parse_grid(text)?;
     let max = render_wgpu::frame::MAX_SIDE_PX as usize;
@@ -225,16 +246,16 @@ fn parse_tile(text: &str) -> Result<(u32, u32), String> {
 #[derive(Debug, Args)]
 pub struct StabilityArgs {
     /// Models to check (repeat the flag); all models when absent.
-    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
-    pub model: Vec<String>,
+    #[arg(long, value_enum)]
+    pub model: Vec<ModelId>,
 }
 
 /// The flags of `atmos probe`.
 #[derive(Debug, Args)]
 pub struct ProbeArgs {
     /// Scattering model.
-    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
-    pub model: String,
+    #[arg(long, value_enum)]
+    pub model: ModelId,
     /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
     #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
     pub atmosphere: String,

@@ -6,11 +6,12 @@ use std::io::Cursor;
 
 use anyhow::{Context, anyhow};
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::ModelSettings;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
 use plotters::prelude::*;
 use render_wgpu::Renderer;
 use render_wgpu::frame::{Frame, LocalView};
-use render_wgpu::model_pass::GPU_MODELS;
+use render_wgpu::sky::registry::GPU_MODELS;
 
 use crate::cli::ContactSheetArgs;
 use crate::files::write_atomically;
@@ -91,10 +92,10 @@ const TOP_PX: u32 = 26;
 pub fn run(args: &ContactSheetArgs) -> anyhow::Result<()> {
     let (tile_w, tile_h) = args.tile;
     for m in &args.model {
-        Renderer::check_model(m)?;
+        Renderer::check_model(*m)?;
     }
-    let models: Vec<String> = if args.model.is_empty() {
-        GPU_MODELS.iter().map(|m| m.to_string()).collect()
+    let models: Vec<ModelId> = if args.model.is_empty() {
+        GPU_MODELS.to_vec()
     } else {
         args.model.clone()
     };
@@ -119,7 +120,7 @@ pub fn run(args: &ContactSheetArgs) -> anyhow::Result<()> {
                 vertical_fov_deg: v.fov_deg,
                 sun_direction: v.view.sun_direction(),
                 atmosphere: atmosphere.clone(),
-                model: model.clone(),
+                model: *model,
                 settings: ModelSettings::default(),
                 exposure_ev100: v.exposure_ev100,
                 width: tile_w,
@@ -161,7 +162,7 @@ pub fn run(args: &ContactSheetArgs) -> anyhow::Result<()> {
 /// Writes the view names above the columns and the model names left of the rows.
 fn label(
     sheet: &mut image::RgbImage,
-    models: &[String],
+    models: &[ModelId],
     tile_w: u32,
     tile_h: u32,
 ) -> anyhow::Result<()> {

@@ -13,8 +13,10 @@ use std::io::Write;
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::color::SpectrumToColor;
-use atmosphere_core::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay, prepare};
-use atmosphere_core::model_options::ModelOptions;
+use atmosphere_core::models::error::ModelError;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
 use rayon::prelude::*;
 use thiserror::Error;
 
@@ -251,7 +253,7 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     let file = args.input.display().to_string();
     let text = fs::read_to_string(&args.input).with_context(|| format!("cannot read {file}"))?;
     let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
-    let model = prepare(&args.model, &atmosphere, &settings)?;
+    let model = prepare(args.model, &atmosphere, &settings)?;
 
     let results = evaluate(model.as_ref(), &input.rows)
         .into_iter()

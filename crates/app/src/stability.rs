@@ -2,17 +2,17 @@
 //! the chosen ones), as a table of pass or fail and the worst value seen.
 
 use anyhow::{Context, bail};
-use atmosphere_core::model::MODEL_IDS;
-use atmosphere_core::stability;
+use atmosphere_core::analysis::stability;
+use atmosphere_core::models::id::ModelId;
 
 use crate::cli::StabilityArgs;
 
 /// Runs the sweep and prints a Markdown table; fails if any case fails.
 pub fn run(args: &StabilityArgs) -> anyhow::Result<()> {
-    let models: Vec<&str> = if args.model.is_empty() {
-        MODEL_IDS.to_vec()
+    let models: Vec<ModelId> = if args.model.is_empty() {
+        ModelId::ALL.to_vec()
     } else {
-        args.model.iter().map(String::as_str).collect()
+        args.model.clone()
     };
     println!("| model | case | result | worst | failure |");
     println!("|---|---|---|---|---|");

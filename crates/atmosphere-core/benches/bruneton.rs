@@ -5,8 +5,8 @@
 //! Run: `cargo bench -p atmosphere-core --bench bruneton`.
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::bruneton::{Bruneton, BrunetonSettings};
-use atmosphere_core::model::ModelSettings;
+use atmosphere_core::models::bruneton::{Bruneton, BrunetonSettings};
+use atmosphere_core::models::sky_model::ModelSettings;
 
 fn main() {
     let earth = Atmosphere::preset("earth").expect("earth preset");

@@ -9,8 +9,8 @@
 use std::time::Instant;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::hillaire::{Hillaire, HillaireSettings};
-use atmosphere_core::model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 
 fn main() {
     let earth = Atmosphere::preset("earth").expect("earth preset");

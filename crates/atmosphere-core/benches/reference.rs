@@ -7,7 +7,9 @@
 use std::time::Instant;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::{ModelSettings, ViewRay, prepare};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use rayon::prelude::*;
 
 /// A fixed, varied set of rays: altitudes from the ground to space, every view and sun
@@ -62,7 +64,7 @@ fn main() {
             ..ModelSettings::default()
         };
         let start = Instant::now();
-        let model = prepare("reference", &earth, &settings).expect("reference prepares");
+        let model = prepare(ModelId::Reference, &earth, &settings).expect("reference prepares");
         let prepared = start.elapsed().as_secs_f64();
         let start = Instant::now();
         let results: Vec<_> = rays

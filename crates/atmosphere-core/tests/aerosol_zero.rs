@@ -3,7 +3,9 @@
 //! has its own test in model_bruneton.rs, the build being slow).
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::{ModelSettings, ViewRay, prepare};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 
 fn rays(a: &Atmosphere) -> Vec<ViewRay> {
     [
@@ -21,7 +23,7 @@ fn rays(a: &Atmosphere) -> Vec<ViewRay> {
 #[test]
 fn pruned_models_equal_the_full_path_at_zero_aerosol() {
     let clean = Atmosphere::preset("earth").unwrap().with_aerosol_scale(0.0);
-    for id in ["nishita", "oneil", "riley"] {
+    for id in [ModelId::Nishita, ModelId::Oneil, ModelId::Riley] {
         let settings = |prune| ModelSettings {
             prune,
             ..ModelSettings::default()

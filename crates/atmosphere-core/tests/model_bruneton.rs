@@ -8,13 +8,15 @@ use common::luminance_errors;
 use std::sync::OnceLock;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::bruneton::parameterization::{
+use atmosphere_core::color::SpectrumToColor;
+use atmosphere_core::models::bruneton::parameterization::{
     Radii, ScatteringSize, mu_s_from_u, nu_from_u, table_position, texel_parameters, u_mu_s, u_nu,
 };
-use atmosphere_core::bruneton::{Bruneton, BrunetonSettings};
-use atmosphere_core::color::SpectrumToColor;
-use atmosphere_core::geometry::{horizon_mu, ray_hits_ground};
-use atmosphere_core::model::{ModelSettings, SkyModel, ViewRay, prepare};
+use atmosphere_core::models::bruneton::{Bruneton, BrunetonSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::optics::geometry::{horizon_mu, ray_hits_ground};
 
 fn earth() -> Atmosphere {
     Atmosphere::preset("earth").unwrap()
@@ -137,7 +139,7 @@ fn full_model() -> &'static Bruneton {
 fn single_scattering_matches_the_reference() {
     let a = earth();
     let reference = prepare(
-        "reference",
+        ModelId::Reference,
         &a,
         &ModelSettings {
             max_orders: Some(1),
@@ -155,7 +157,7 @@ fn single_scattering_matches_the_reference() {
 fn all_orders_match_the_reference() {
     let a = earth();
     let reference = prepare(
-        "reference",
+        ModelId::Reference,
         &a,
         &ModelSettings {
             target_relative_error: 0.003,
@@ -354,7 +356,7 @@ fn orders_against_the_reference() {
     };
     let reference = |orders| {
         luminances(
-            prepare("reference", &a, &settings(orders))
+            prepare(ModelId::Reference, &a, &settings(orders))
                 .unwrap()
                 .as_ref(),
         )

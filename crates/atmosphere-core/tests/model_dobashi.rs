@@ -4,10 +4,12 @@
 //! states, pruning and table updates change nothing (the stability sweep is in stability.rs).
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::dobashi::{Dobashi, DobashiSettings};
-use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
-use atmosphere_core::model_options::ModelOptions;
-use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
+use atmosphere_core::models::dobashi::{Dobashi, DobashiSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
 
 fn ray(a: &Atmosphere, altitude_m: f64, view: f64, sun: f64, azimuth: f64) -> ViewRay {
     ViewRay::from_angles(a.bottom_radius_m, altitude_m, view, sun, azimuth, None).unwrap()
@@ -39,16 +41,15 @@ fn worst(errors: &[f64]) -> f64 {
 
 #[test]
 fn dobashi_is_registered_and_reads_its_options() {
-    assert!(MODEL_IDS.contains(&"dobashi"));
     let a = Atmosphere::preset("earth").unwrap();
     let mut settings = single();
     settings.options = ModelOptions::parse(&["planes=50", "spheres=4"]).unwrap();
-    let m = prepare("dobashi", &a, &settings).unwrap();
-    assert_eq!(m.id(), "dobashi");
+    let m = prepare(ModelId::Dobashi, &a, &settings).unwrap();
+    assert_eq!(m.id(), ModelId::Dobashi);
     assert_eq!(m.wavelengths_nm(), &[680.0, 550.0, 440.0]);
     assert!(m.table_bytes() > 0);
     settings.options = ModelOptions::parse(&["samples=16"]).unwrap();
-    assert!(prepare("dobashi", &a, &settings).is_err());
+    assert!(prepare(ModelId::Dobashi, &a, &settings).is_err());
 }
 
 /// The daytime views of the measured table (docs/models/dobashi.md).
@@ -76,7 +77,7 @@ fn daytime(a: &Atmosphere) -> Vec<ViewRay> {
 #[test]
 fn single_scattering_converges_to_the_reference() {
     let a = Atmosphere::preset("earth").unwrap();
-    let reference = prepare("reference", &a, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
     let views = daytime(&a);
     let errors: Vec<Vec<f64>> = [100, 400, 1600]
         .into_iter()
@@ -113,8 +114,8 @@ fn single_scattering_converges_to_the_reference() {
 #[test]
 fn paper_settings_against_the_reference_single_scattering() {
     let a = Atmosphere::preset("earth").unwrap();
-    let reference = prepare("reference", &a, &single()).unwrap();
-    let m = prepare("dobashi", &a, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
+    let m = prepare(ModelId::Dobashi, &a, &single()).unwrap();
     for ray in daytime(&a) {
         let e = relative(m.as_ref(), reference.as_ref(), &ray);
         assert!(worst(&e) < 0.08, "{ray:?}: {e:?}");
@@ -153,7 +154,7 @@ fn spheres_far_out_and_planes_near() {
         },
     );
     assert!(!planes_only.tracer().uses_spheres(r(1e8)));
-    let reference = prepare("reference", &a, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
     for ray in [
         ray(&a, 3e7, 179.5, 10.0, 0.0),
         ray(&a, 1e8, 176.6, 30.0, 0.0),
@@ -177,9 +178,9 @@ fn ambient_term_against_all_orders() {
         target_relative_error: 0.01,
         ..ModelSettings::default()
     };
-    let reference = prepare("reference", &a, &settings).unwrap();
-    let with = prepare("dobashi", &a, &settings).unwrap();
-    let without = prepare("dobashi", &a, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
+    let with = prepare(ModelId::Dobashi, &a, &settings).unwrap();
+    let without = prepare(ModelId::Dobashi, &a, &single()).unwrap();
     let views = daytime(&a);
     for ray in [&views[0], &views[1], &views[3], &views[5], &views[7]] {
         let r = reference.radiance(ray).unwrap();
@@ -241,8 +242,8 @@ fn pruning_changes_nothing() {
         ..ModelSettings::default()
     };
     let pruned = ModelSettings::default();
-    let f = prepare("dobashi", &a, &full).unwrap();
-    let p = prepare("dobashi", &a, &pruned).unwrap();
+    let f = prepare(ModelId::Dobashi, &a, &full).unwrap();
+    let p = prepare(ModelId::Dobashi, &a, &pruned).unwrap();
     assert!(p.table_bytes() < f.table_bytes());
     let mut views = daytime(&a);
     views.push(ray(&a, 0.0, 60.0, 96.0, 0.0));
@@ -261,7 +262,7 @@ fn pruning_changes_nothing() {
 fn update_rebuilds_only_what_changed() {
     let earth = Atmosphere::preset("earth").unwrap();
     let settings = ModelSettings::default();
-    let mut m = prepare("dobashi", &earth, &settings).unwrap();
+    let mut m = prepare(ModelId::Dobashi, &earth, &settings).unwrap();
     assert!(m.update(&earth).unwrap().is_empty());
     let mut brighter = earth.clone();
     brighter.ground_albedo = 0.3;
@@ -275,7 +276,7 @@ fn update_rebuilds_only_what_changed() {
     let clear = hazy.with_aerosol_scale(0.0);
     let rebuilt = m.update(&clear).unwrap();
     assert!(!rebuilt.contains(&"dI_m"), "{rebuilt:?}");
-    let fresh = prepare("dobashi", &clear, &settings).unwrap();
+    let fresh = prepare(ModelId::Dobashi, &clear, &settings).unwrap();
     for ray in daytime(&clear) {
         assert_eq!(m.radiance(&ray).unwrap(), fresh.radiance(&ray).unwrap());
     }
@@ -293,7 +294,7 @@ fn objects_and_extreme_rays_are_finite() {
         earth.with_aerosol_scale(100.0),
         Atmosphere::preset("mars").unwrap(),
     ] {
-        let m = prepare("dobashi", &a, &ModelSettings::default()).unwrap();
+        let m = prepare(ModelId::Dobashi, &a, &ModelSettings::default()).unwrap();
         let top = a.thickness_m();
         for altitude in [0.0, 1.0, top - 1.0, top + 1.0, 5e5, 1e8] {
             for view in [0.0, 60.0, 90.0, 93.0, 120.0, 180.0] {
@@ -350,7 +351,7 @@ fn objects_and_extreme_rays_are_finite() {
 #[test]
 fn impossible_rays_are_errors() {
     let a = Atmosphere::preset("earth").unwrap();
-    let m = prepare("dobashi", &a, &single()).unwrap();
+    let m = prepare(ModelId::Dobashi, &a, &single()).unwrap();
     let mut below = ray(&a, 0.0, 0.0, 0.0, 0.0);
     below.origin_m.z -= 10.0;
     assert!(m.radiance(&below).is_err());

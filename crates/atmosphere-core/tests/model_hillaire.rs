@@ -11,22 +11,24 @@ use std::f64::consts::PI;
 use std::sync::OnceLock;
 
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::density::DensityProfile;
+use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::color::SpectrumToColor;
-use atmosphere_core::column::{column, densities, optical_depth};
-use atmosphere_core::density::DensityProfile;
-use atmosphere_core::geometry::{
+use atmosphere_core::models::hillaire::ground::{HemisphereQuadrature, sky_irradiance};
+use atmosphere_core::models::hillaire::march::ViewMarch;
+use atmosphere_core::models::hillaire::multiple_scattering::transfer;
+use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::numerics::quadrature::{GAUSS_LEGENDRE_8, mapped};
+use atmosphere_core::optics::column::{column, densities, optical_depth};
+use atmosphere_core::optics::geometry::{
     distance_to_entry, distance_to_exit, horizon_mu, radius_at, ray_hits_ground,
 };
-use atmosphere_core::hillaire::ground::{HemisphereQuadrature, sky_irradiance};
-use atmosphere_core::hillaire::march::ViewMarch;
-use atmosphere_core::hillaire::multiple_scattering::transfer;
-use atmosphere_core::hillaire::{Hillaire, HillaireSettings};
-use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
-use atmosphere_core::model_options::ModelOptions;
-use atmosphere_core::phase::PhaseFunction;
-use atmosphere_core::quadrature::{GAUSS_LEGENDRE_8, mapped};
-use atmosphere_core::reference::Spectra;
-use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
+use atmosphere_core::optics::phase::PhaseFunction;
+use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
 
 fn earth() -> Atmosphere {
     Atmosphere::preset("earth").unwrap()
@@ -133,10 +135,9 @@ fn worst_relative(a: &[f64], b: &[f64]) -> f64 {
 
 #[test]
 fn hillaire_is_registered_with_the_papers_settings() {
-    assert!(MODEL_IDS.contains(&"hillaire"));
     let a = earth();
-    let m = prepare("hillaire", &a, &ModelSettings::default()).unwrap();
-    assert_eq!(m.id(), "hillaire");
+    let m = prepare(ModelId::Hillaire, &a, &ModelSettings::default()).unwrap();
+    assert_eq!(m.id(), ModelId::Hillaire);
     assert_eq!(m.wavelengths_nm(), &[680.0, 550.0, 440.0]);
     let d = HillaireSettings::default();
     assert_eq!(d.transmittance_size, (256, 64));
@@ -181,7 +182,7 @@ fn settings_are_read_and_checked() {
         options: ModelOptions::parse(&["sky_view_width=1"]).unwrap(),
         ..ModelSettings::default()
     };
-    assert!(prepare("hillaire", &earth(), &settings).is_err());
+    assert!(prepare(ModelId::Hillaire, &earth(), &settings).is_err());
 }
 
 /// L_2nd order and f_ms (section 5.5) at (r, mu_s) by brute force, per wavelength: the
@@ -386,7 +387,7 @@ fn aerial_perspective_matches_a_direct_march() {
             }
             let got = model.radiance(&ray).unwrap();
             let e = worst_relative(&got.radiance, &direct(model, &ray, 1000));
-            let column = atmosphere_core::column::column(&a, segment.r, segment.mu, d);
+            let column = atmosphere_core::optics::column::column(&a, segment.r, segment.mu, d);
             for w in 0..3 {
                 let exact = (-optical_depth(column, spectra.extinction[w])).exp();
                 worst_t = worst_t.max((got.transmittance[w] - exact).abs());
@@ -428,7 +429,7 @@ fn single_scattering_matches_the_reference() {
     let a = earth();
     let model = Hillaire::prepare(&a, &single(), HillaireSettings::default()).unwrap();
     assert!(model.multiple_scattering().is_none() && model.ground_irradiance().is_none());
-    let reference = prepare("reference", &a, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
     let mut rays = daytime_rays(&a);
     rays.extend(sunset_rays(&a));
     let (e, rms) = errors(&model, reference.as_ref(), &rays);
@@ -445,7 +446,7 @@ fn single_scattering_matches_the_reference() {
 fn all_orders_match_the_reference() {
     let a = earth();
     let reference = prepare(
-        "reference",
+        ModelId::Reference,
         &a,
         &ModelSettings {
             target_relative_error: 0.01,
@@ -490,7 +491,7 @@ fn twilight_is_lit_and_falls_smoothly() {
     let (below, above) = (zenith(90.01), zenith(89.99));
     assert!((below / above - 1.0).abs() < 0.01, "{below} vs {above}");
     let reference = prepare(
-        "reference",
+        ModelId::Reference,
         &a,
         &ModelSettings {
             target_relative_error: 0.02,
@@ -678,7 +679,7 @@ fn ground_light_matches_a_finer_quadrature_and_the_reference() {
     }
     assert!(worst < 0.03, "{worst}");
     let reference = prepare(
-        "reference",
+        ModelId::Reference,
         &a,
         &ModelSettings {
             target_relative_error: 0.01,

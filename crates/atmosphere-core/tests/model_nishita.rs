@@ -4,9 +4,11 @@
 //! docs/models/nishita.md states.
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::geometry::horizon_mu;
-use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
-use atmosphere_core::nishita::{Nishita, NishitaSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::optics::geometry::horizon_mu;
 
 fn ray(a: &Atmosphere, altitude_m: f64, view: f64, sun: f64, azimuth: f64) -> ViewRay {
     ViewRay::from_angles(a.bottom_radius_m, altitude_m, view, sun, azimuth, None).unwrap()
@@ -43,10 +45,9 @@ fn worst_relative(model: &dyn SkyModel, reference: &dyn SkyModel, ray: &ViewRay)
 
 #[test]
 fn nishita_is_registered() {
-    assert!(MODEL_IDS.contains(&"nishita"));
     let a = Atmosphere::preset("earth").unwrap();
-    let m = prepare("nishita", &a, &ModelSettings::default()).unwrap();
-    assert_eq!(m.id(), "nishita");
+    let m = prepare(ModelId::Nishita, &a, &ModelSettings::default()).unwrap();
+    assert_eq!(m.id(), ModelId::Nishita);
     assert_eq!(m.wavelengths_nm(), &[680.0, 550.0, 440.0]);
 }
 
@@ -59,7 +60,7 @@ fn nishita_is_registered() {
 #[test]
 fn converges_to_the_reference_single_scattering() {
     let a = Atmosphere::preset("earth").unwrap();
-    let reference = prepare("reference", &a, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
     let fine = nishita(&a, 4096, 256, 1024);
     let daytime = [
         ray(&a, 0.0, 0.0, 30.0, 0.0),
@@ -98,7 +99,7 @@ fn converges_to_the_reference_single_scattering() {
 #[test]
 fn error_falls_as_view_samples_grow() {
     let a = Atmosphere::preset("earth").unwrap();
-    let reference = prepare("reference", &a, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
     let sunset = ray(&a, 0.0, 85.0, 88.0, 0.0);
     let errors: Vec<f64> = [4, 16, 64]
         .into_iter()
@@ -201,8 +202,8 @@ fn error_against_all_orders_on_daytime_views() {
         target_relative_error: 0.01,
         ..ModelSettings::default()
     };
-    let reference = prepare("reference", &a, &settings).unwrap();
-    let model = prepare("nishita", &a, &settings).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
+    let model = prepare(ModelId::Nishita, &a, &settings).unwrap();
     let views = [
         ray(&a, 0.0, 0.0, 30.0, 0.0),
         ray(&a, 0.0, 60.0, 45.0, 90.0),

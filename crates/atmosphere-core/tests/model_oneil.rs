@@ -3,16 +3,18 @@
 //! across the top of the atmosphere. Measured numbers are in docs/models/oneil.md.
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::column::column;
-use atmosphere_core::density::DensityProfile;
-use atmosphere_core::geometry::{
-    discriminant, distance_to_entry, distance_to_exit, horizon_mu, ray_hits_ground,
-};
-use atmosphere_core::model::{ModelSettings, RayRadiance, SkyModel, ViewRay, prepare};
-use atmosphere_core::oneil::{
+use atmosphere_core::atmosphere::density::DensityProfile;
+use atmosphere_core::atmosphere::spectral::Spectral;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::oneil::{
     MIE_DENSITY, MIE_LENGTH, Oneil, OneilSettings, RAYLEIGH_DENSITY, RAYLEIGH_LENGTH, line_column,
 };
-use atmosphere_core::spectral::Spectral;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use atmosphere_core::optics::column::column;
+use atmosphere_core::optics::geometry::{
+    discriminant, distance_to_entry, distance_to_exit, horizon_mu, ray_hits_ground,
+};
 
 fn single() -> ModelSettings {
     ModelSettings {
@@ -141,7 +143,7 @@ fn many_samples_approach_the_reference_and_the_papers_few_samples_are_bounded() 
     // Without ozone: the paper's table has no channel for it (checked separately below).
     let mut air = Atmosphere::preset("earth").unwrap();
     air.ozone.absorption_per_m = Spectral::Constant { value: 0.0 };
-    let reference = prepare("reference", &air, &single()).unwrap();
+    let reference = prepare(ModelId::Reference, &air, &single()).unwrap();
     let fine = Oneil::prepare(
         &air,
         &single(),
@@ -153,7 +155,7 @@ fn many_samples_approach_the_reference_and_the_papers_few_samples_are_bounded() 
         },
     )
     .unwrap();
-    let paper = prepare("oneil", &air, &single()).unwrap();
+    let paper = prepare(ModelId::Oneil, &air, &single()).unwrap();
     let (mut fine_l, mut fine_t, mut paper_l, mut paper_t) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     for (alt, view, sun, az) in VIEWS {
         let r = ray(&air, alt, view, sun, az);
@@ -224,7 +226,7 @@ fn extreme_rays_are_finite_non_negative_and_bounded() {
         Atmosphere::preset("mars").unwrap(),
         venus_like(),
     ] {
-        let m = prepare("oneil", &a, &single()).unwrap();
+        let m = prepare(ModelId::Oneil, &a, &single()).unwrap();
         let top = a.thickness_m();
         for altitude in [0.0, 1e-3, 1.0, top - 1e-6, top, top + 1.0, 1e5, 1e8] {
             let r = a.bottom_radius_m + altitude;
@@ -273,7 +275,7 @@ fn extreme_rays_are_finite_non_negative_and_bounded() {
 #[test]
 fn camera_inside_and_just_outside_the_top_agree() {
     let earth = Atmosphere::preset("earth").unwrap();
-    let m = prepare("oneil", &earth, &single()).unwrap();
+    let m = prepare(ModelId::Oneil, &earth, &single()).unwrap();
     let top = earth.thickness_m();
     let mut worst = (0.0f64, 0.0f64);
     for view in [95.0, 100.0, 120.0, 150.0, 180.0, 97.0, 98.0] {

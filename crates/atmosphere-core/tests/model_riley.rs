@@ -4,10 +4,12 @@
 //! sun below the horizon.
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::density::DensityProfile;
-use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
-use atmosphere_core::riley::FlatExponential;
-use atmosphere_core::spectral::Spectral;
+use atmosphere_core::atmosphere::density::DensityProfile;
+use atmosphere_core::atmosphere::spectral::Spectral;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::riley::FlatExponential;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 
 /// Earth's radius times 1000: flat for every path in these tests.
 const FLAT_RADIUS_M: f64 = 6.36e9;
@@ -58,14 +60,13 @@ fn ray(
 
 #[test]
 fn riley_is_registered() {
-    assert!(MODEL_IDS.contains(&"riley"));
     let m = prepare(
-        "riley",
+        ModelId::Riley,
         &Atmosphere::preset("earth").unwrap(),
         &settings(None, 0.01),
     )
     .unwrap();
-    assert_eq!(m.id(), "riley");
+    assert_eq!(m.id(), ModelId::Riley);
     assert_eq!(m.wavelengths_nm(), &[680.0, 550.0, 440.0]);
 }
 
@@ -76,8 +77,8 @@ fn riley_is_registered() {
 #[test]
 fn flat_earth_limit_equals_the_reference_single_scattering() {
     let flat = flat_rayleigh(0.3);
-    let riley = prepare("riley", &flat, &settings(None, 0.01)).unwrap();
-    let reference = prepare("reference", &flat, &settings(Some(1), 0.01)).unwrap();
+    let riley = prepare(ModelId::Riley, &flat, &settings(None, 0.01)).unwrap();
+    let reference = prepare(ModelId::Reference, &flat, &settings(Some(1), 0.01)).unwrap();
     let top = flat.thickness_m();
     let cases: &[(f64, f64, f64, f64, Option<f64>)] = &[
         (0.0, 1.0, 0.6, 0.0, None),
@@ -199,7 +200,7 @@ fn stiff_directions_match_the_direct_integral() {
 #[test]
 fn stiff_directions_are_finite_and_continuous() {
     let earth = Atmosphere::preset("earth").unwrap();
-    let m = prepare("riley", &earth, &settings(None, 0.01)).unwrap();
+    let m = prepare(ModelId::Riley, &earth, &settings(None, 0.01)).unwrap();
     let sun_up = 0.4f64;
     let sweeps = [(1000.0, 0.0), (0.0, 0.0), (1000.0, sun_up), (20_000.0, 0.0)];
     for (alt, centre) in sweeps {
@@ -240,7 +241,7 @@ fn stiff_directions_are_finite_and_continuous() {
 #[test]
 fn sun_below_the_horizon_gives_finite_non_negative_radiance() {
     let earth = Atmosphere::preset("earth").unwrap();
-    let m = prepare("riley", &earth, &settings(None, 0.01)).unwrap();
+    let m = prepare(ModelId::Riley, &earth, &settings(None, 0.01)).unwrap();
     for sun_elevation_deg in [-20.0f64, -6.0, -0.5, -1e-9, 0.0, 1e-9] {
         let sun_up = sun_elevation_deg.to_radians().sin();
         for (alt, view_up) in [
@@ -336,9 +337,9 @@ fn daytime_errors(
 #[test]
 fn earth_daytime_error_against_the_reference_is_bounded() {
     let earth = Atmosphere::preset("earth").unwrap();
-    let riley = prepare("riley", &earth, &settings(None, 0.01)).unwrap();
-    let reference = prepare("reference", &earth, &settings(None, 0.01)).unwrap();
-    let single = prepare("reference", &earth, &settings(Some(1), 0.01)).unwrap();
+    let riley = prepare(ModelId::Riley, &earth, &settings(None, 0.01)).unwrap();
+    let reference = prepare(ModelId::Reference, &earth, &settings(None, 0.01)).unwrap();
+    let single = prepare(ModelId::Reference, &earth, &settings(Some(1), 0.01)).unwrap();
     for (orders, bound_worst, bound_mean) in [
         ("all orders", 0.50, (-0.25, -0.10)),
         ("order one", 0.30, (0.0, 0.20)),

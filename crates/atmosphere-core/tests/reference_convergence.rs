@@ -2,9 +2,12 @@
 //! Monte Carlo standard errors describe the actual scatter of its results.
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::column::Fineness;
-use atmosphere_core::model::{ModelSettings, ViewRay, prepare};
-use atmosphere_core::reference::{Spectra, ViewPath, single_scattering};
+use atmosphere_core::atmosphere::spectra::Spectra;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
+use atmosphere_core::optics::column::Fineness;
+use atmosphere_core::reference::{ViewPath, single_scattering};
 
 fn rays(a: &Atmosphere) -> Vec<ViewRay> {
     [
@@ -60,7 +63,7 @@ fn reported_standard_error_matches_the_scatter_between_seeds() {
     let results: Vec<(f64, f64)> = (0..runs)
         .map(|seed| {
             let m = prepare(
-                "reference",
+                ModelId::Reference,
                 &a,
                 &ModelSettings {
                     wavelengths_nm: vec![440.0],
@@ -91,7 +94,7 @@ fn orders_add_light() {
     let ray = ViewRay::from_angles(a.bottom_radius_m, 0.0, 45.0, 45.0, 90.0, None).unwrap();
     let at = |orders| {
         prepare(
-            "reference",
+            ModelId::Reference,
             &a,
             &ModelSettings {
                 max_orders: orders,

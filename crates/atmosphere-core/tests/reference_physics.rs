@@ -4,11 +4,13 @@
 use std::f64::consts::PI;
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::density::{DensityLayer, DensityProfile};
-use atmosphere_core::model::{ModelSettings, SkyModel, ViewRay, prepare};
-use atmosphere_core::phase::rayleigh;
-use atmosphere_core::riley::FlatExponential;
-use atmosphere_core::spectral::Spectral;
+use atmosphere_core::atmosphere::density::{DensityLayer, DensityProfile};
+use atmosphere_core::atmosphere::spectral::Spectral;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::riley::FlatExponential;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::optics::phase::rayleigh;
 
 const LAMBDA: f64 = 550.0;
 
@@ -42,7 +44,7 @@ fn model(atmosphere: &Atmosphere, orders: Option<u32>, target: f64) -> Box<dyn S
         options: Default::default(),
         prune: true,
     };
-    prepare("reference", atmosphere, &settings).unwrap()
+    prepare(ModelId::Reference, atmosphere, &settings).unwrap()
 }
 
 /// A ray with view and sun given by their cosines to the zenith and the azimuth between.
@@ -71,7 +73,7 @@ fn vertical_transmittance_of_exponential_layers_is_closed_form() {
         max_orders: Some(1),
         ..ModelSettings::default()
     };
-    let m = prepare("reference", &earth, &settings).unwrap();
+    let m = prepare(ModelId::Reference, &earth, &settings).unwrap();
     let r = m.radiance(&ray(&earth, 0.0, 1.0, 1.0, 0.0)).unwrap();
     let z = earth.thickness_m();
     for (w, lambda) in [680.0, 550.0, 440.0].into_iter().enumerate() {
@@ -174,7 +176,7 @@ fn flat_earth_limit_matches_riley_closed_form() {
 fn rayleigh_optical_depth_at_550_nm_is_near_the_published_value() {
     let earth = Atmosphere::preset("earth").unwrap();
     let m = prepare(
-        "reference",
+        ModelId::Reference,
         &earth,
         &ModelSettings {
             wavelengths_nm: vec![550.0],
@@ -198,9 +200,14 @@ fn rayleigh_optical_depth_at_550_nm_is_near_the_published_value() {
 #[test]
 fn earth_ozone_column_is_300_dobson_units() {
     let earth = Atmosphere::preset("earth").unwrap();
-    let column =
-        atmosphere_core::column::column(&earth, earth.bottom_radius_m, 1.0, earth.thickness_m())[2];
-    let molecules = column * atmosphere_core::presets::EARTH_OZONE_PEAK_NUMBER_DENSITY_PER_M3;
+    let column = atmosphere_core::optics::column::column(
+        &earth,
+        earth.bottom_radius_m,
+        1.0,
+        earth.thickness_m(),
+    )[2];
+    let molecules =
+        column * atmosphere_core::atmosphere::presets::EARTH_OZONE_PEAK_NUMBER_DENSITY_PER_M3;
     let dobson = molecules / 2.6867e20;
     assert!((dobson - 300.0).abs() < 0.5, "{dobson}");
 }
@@ -213,7 +220,7 @@ fn extraterrestrial_illuminance_matches_the_luminous_solar_constant() {
     let wavelengths: Vec<f64> = (0..48).map(|i| 360.0 + 10.0 * i as f64).collect();
     let irradiance: Vec<f64> = wavelengths
         .iter()
-        .map(|l| atmosphere_core::solar::astm_g173_irradiance_w_m2_nm(*l))
+        .map(|l| atmosphere_core::atmosphere::solar::astm_g173_irradiance_w_m2_nm(*l))
         .collect();
     let lux = atmosphere_core::color::SpectrumToColor::new(&wavelengths)
         .unwrap()

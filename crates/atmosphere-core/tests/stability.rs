@@ -2,10 +2,12 @@
 //! (DESIGN.md, "Numerical stability").
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::geometry::horizon_mu;
-use atmosphere_core::model::{MODEL_IDS, ModelSettings, SkyModel, ViewRay, prepare};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::optics::geometry::horizon_mu;
 
-use atmosphere_core::stability::venus_like;
+use atmosphere_core::analysis::stability::venus_like;
 
 fn atmospheres() -> Vec<Atmosphere> {
     let earth = Atmosphere::preset("earth").unwrap();
@@ -20,7 +22,7 @@ fn atmospheres() -> Vec<Atmosphere> {
 
 fn model(a: &Atmosphere, orders: Option<u32>, target: f64) -> Box<dyn SkyModel> {
     prepare(
-        "reference",
+        ModelId::Reference,
         a,
         &ModelSettings {
             max_orders: orders,
@@ -49,7 +51,7 @@ fn ray(
     .unwrap()
 }
 
-fn assert_sane(a: &Atmosphere, what: &str, r: &atmosphere_core::model::RayRadiance) {
+fn assert_sane(a: &Atmosphere, what: &str, r: &atmosphere_core::models::sky_model::RayRadiance) {
     for w in 0..r.radiance.len() {
         let (l, t) = (r.radiance[w], r.transmittance[w]);
         assert!(
@@ -221,63 +223,61 @@ fn radiance_converges_as_rays_graze_the_horizon() {
 
 /// The sweep of `atmos stability` passes for every model.
 /// The sweep for one model (one test per model, so that they run in parallel).
-fn sweep_passes(id: &str) {
-    let results = atmosphere_core::stability::run(id).unwrap();
+fn sweep_passes(id: ModelId) {
+    let results = atmosphere_core::analysis::stability::run(id).unwrap();
     let failed: Vec<_> = results.iter().filter(|r| !r.passed).collect();
     assert!(failed.is_empty(), "{id}: {failed:#?}");
 }
 
-/// The models the sweep tests below cover.
-const SWEPT: [&str; 7] = [
-    "reference",
-    "bruneton",
-    "dobashi",
-    "hillaire",
-    "nishita",
-    "oneil",
-    "riley",
-];
-
+/// The sweep test of each model: the match is exhaustive, so a new model without a sweep
+/// test does not compile.
 #[test]
 fn the_sweep_covers_every_model() {
-    let mut known: Vec<&str> = MODEL_IDS.to_vec();
-    known.sort_unstable();
-    let mut swept = SWEPT.to_vec();
-    swept.sort_unstable();
-    assert_eq!(known, swept);
+    for id in ModelId::ALL {
+        let test: fn() = match id {
+            ModelId::Reference => stability_sweep_reference,
+            ModelId::Bruneton => stability_sweep_bruneton,
+            ModelId::Dobashi => stability_sweep_dobashi,
+            ModelId::Hillaire => stability_sweep_hillaire,
+            ModelId::Nishita => stability_sweep_nishita,
+            ModelId::Oneil => stability_sweep_oneil,
+            ModelId::Riley => stability_sweep_riley,
+        };
+        let _ = test;
+    }
 }
 
 #[test]
 fn stability_sweep_reference() {
-    sweep_passes("reference");
+    sweep_passes(ModelId::Reference);
 }
 
 #[test]
 fn stability_sweep_bruneton() {
-    sweep_passes("bruneton");
+    sweep_passes(ModelId::Bruneton);
 }
 
 #[test]
 fn stability_sweep_dobashi() {
-    sweep_passes("dobashi");
+    sweep_passes(ModelId::Dobashi);
 }
 
 #[test]
 fn stability_sweep_hillaire() {
-    sweep_passes("hillaire");
+    sweep_passes(ModelId::Hillaire);
 }
 
 #[test]
 fn stability_sweep_nishita() {
-    sweep_passes("nishita");
+    sweep_passes(ModelId::Nishita);
 }
 
 #[test]
 fn stability_sweep_oneil() {
-    sweep_passes("oneil");
+    sweep_passes(ModelId::Oneil);
 }
 
 #[test]
 fn stability_sweep_riley() {
-    sweep_passes("riley");
+    sweep_passes(ModelId::Riley);
 }

@@ -5,20 +5,28 @@
 //! from the sun receives nothing; and the reference says it does not light surfaces.
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::{ModelError, ModelSettings, SkyModel, ViewRay, prepare};
-use atmosphere_core::surface_lighting::{SurfaceHit, radiance_with_surface};
-use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
+use atmosphere_core::models::error::ModelError;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
+use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
 use glam::DVec3;
 
 /// The models that light surfaces.
-const MODELS: &[&str] = &[
-    "nishita", "oneil", "riley", "dobashi", "bruneton", "hillaire",
+const MODELS: &[ModelId] = &[
+    ModelId::Nishita,
+    ModelId::Oneil,
+    ModelId::Riley,
+    ModelId::Dobashi,
+    ModelId::Bruneton,
+    ModelId::Hillaire,
 ];
 
 fn models(a: &Atmosphere) -> Vec<Box<dyn SkyModel>> {
     MODELS
         .iter()
-        .map(|id| prepare(id, a, &ModelSettings::default()).unwrap())
+        .map(|&id| prepare(id, a, &ModelSettings::default()).unwrap())
         .collect()
 }
 
@@ -94,7 +102,7 @@ fn the_reference_does_not_light_surfaces() {
         target_relative_error: 0.5,
         ..ModelSettings::default()
     };
-    let reference = prepare("reference", &a, &settings).unwrap();
+    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
     let err = reference
         .surface_irradiance(DVec3::new(0.0, 0.0, a.bottom_radius_m), DVec3::Z, DVec3::Z)
         .unwrap_err();

@@ -6,8 +6,10 @@
 //! model_bruneton.rs.
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::density::DensityProfile;
-use atmosphere_core::model::{ModelSettings, SkyModel, ViewRay, prepare};
+use atmosphere_core::atmosphere::density::DensityProfile;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 
 fn settings() -> ModelSettings {
     ModelSettings {
@@ -45,7 +47,7 @@ fn answers(model: &dyn SkyModel, rays: &[ViewRay]) -> Vec<Vec<f64>> {
 struct Change {
     name: &'static str,
     atmosphere: Atmosphere,
-    rebuilt: [(&'static str, Vec<&'static str>); 4],
+    rebuilt: [(ModelId, Vec<&'static str>); 4],
 }
 
 fn changes() -> Vec<Change> {
@@ -63,40 +65,40 @@ fn changes() -> Vec<Change> {
             name: "ground albedo",
             atmosphere: albedo,
             rebuilt: [
-                ("nishita", vec![]),
-                ("oneil", vec![]),
-                ("riley", vec![]),
-                ("reference", vec![]),
+                (ModelId::Nishita, vec![]),
+                (ModelId::Oneil, vec![]),
+                (ModelId::Riley, vec![]),
+                (ModelId::Reference, vec![]),
             ],
         },
         Change {
             name: "aerosol amount",
             atmosphere: aerosol,
             rebuilt: [
-                ("nishita", vec![]),
-                ("oneil", vec![]),
-                ("riley", vec![]),
-                ("reference", vec![]),
+                (ModelId::Nishita, vec![]),
+                (ModelId::Oneil, vec![]),
+                (ModelId::Riley, vec![]),
+                (ModelId::Reference, vec![]),
             ],
         },
         Change {
             name: "aerosol profile",
             atmosphere: profile,
             rebuilt: [
-                ("nishita", columns),
-                ("oneil", vec!["optical depth"]),
-                ("riley", vec![]),
-                ("reference", vec!["transmittance"]),
+                (ModelId::Nishita, columns),
+                (ModelId::Oneil, vec!["optical depth"]),
+                (ModelId::Riley, vec![]),
+                (ModelId::Reference, vec!["transmittance"]),
             ],
         },
         Change {
             name: "solar spectrum",
             atmosphere: sun,
             rebuilt: [
-                ("nishita", vec![]),
-                ("oneil", vec![]),
-                ("riley", vec![]),
-                ("reference", vec![]),
+                (ModelId::Nishita, vec![]),
+                (ModelId::Oneil, vec![]),
+                (ModelId::Riley, vec![]),
+                (ModelId::Reference, vec![]),
             ],
         },
     ]
@@ -120,7 +122,7 @@ fn each_change_rebuilds_only_what_depends_on_it_and_answers_as_a_fresh_model() {
                 answers(model.as_ref(), &rays(&changed)),
                 answers(fresh.as_ref(), &rays(&changed)),
             );
-            if id == "reference" {
+            if id == ModelId::Reference {
                 // Deterministic at order 1: equal to rounding.
                 for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
                     assert!(
@@ -144,7 +146,12 @@ fn each_change_rebuilds_only_what_depends_on_it_and_answers_as_a_fresh_model() {
 #[test]
 fn the_sun_direction_and_an_unchanged_atmosphere_rebuild_nothing() {
     let earth = Atmosphere::preset("earth").unwrap();
-    for id in ["nishita", "oneil", "riley", "reference"] {
+    for id in [
+        ModelId::Nishita,
+        ModelId::Oneil,
+        ModelId::Riley,
+        ModelId::Reference,
+    ] {
         let mut model = prepare(id, &earth, &settings()).unwrap();
         assert!(model.update(&earth).unwrap().is_empty(), "{id}");
         // The sun's direction is part of each ray: two suns, one model, no update.

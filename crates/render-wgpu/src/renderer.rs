@@ -4,22 +4,26 @@
 //! texture: read back ([`Renderer::read_ldr`]) or sampled by a window
 //! ([`Renderer::ldr_texture`], e.g. as an egui image).
 
-use crate::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
-use crate::device::GpuContext;
-use crate::error::{GpuError, RenderError};
+use atmosphere_core::models::id::ModelId;
+
 use crate::frame::Frame;
-use crate::frame_plan::{FramePlan, StepKind};
-use crate::frame_uniform::FrameUniform;
-use crate::gpu_timer::GpuTimer;
-use crate::luminance_pass::LuminancePass;
-use crate::model_pass::{self, ModelPass, PassIo};
-use crate::nishita_pass::HDR_FORMAT;
-use crate::pipeline::{texture_2d, uniform_buffer};
-use crate::readback::read_texture;
-use crate::surface_buffer::{SurfaceBuffer, SurfaceTexel};
-use crate::terrain_pass::TerrainPass;
-use crate::tone_map::ToneMap;
-use crate::tone_map_pass::{LDR_FORMAT, ToneMapPass};
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use crate::frame::plan::{FramePlan, StepKind};
+use crate::frame::surface_buffer::{SurfaceBuffer, SurfaceTexel};
+use crate::frame::uniform::FrameUniform;
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::{GpuError, RenderError};
+use crate::gpu::formats::HDR_FORMAT;
+use crate::gpu::formats::LDR_FORMAT;
+use crate::gpu::pipeline::{texture_2d, uniform_buffer};
+use crate::gpu::readback::read_texture;
+use crate::gpu::timer::GpuTimer;
+use crate::post::luminance::LuminancePass;
+use crate::post::tone_map::ToneMap;
+use crate::post::tone_map_pass::ToneMapPass;
+use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::sky::registry;
+use crate::terrain::pass::TerrainPass;
 
 /// Most steps a frame runs (table builds and passes), for the timer.
 const MAX_STEPS: u32 = 24;
@@ -39,7 +43,7 @@ pub struct Renderer {
     atmosphere: wgpu::Buffer,
     frame: wgpu::Buffer,
     /// Every model used so far, with its tables.
-    models: Vec<(String, Box<dyn ModelPass>)>,
+    models: Vec<(ModelId, Box<dyn ModelPass>)>,
     tone_map: ToneMapPass,
     /// The terrain's maps and chunks, loaded when a frame first asks for terrain.
     terrain: Option<TerrainPass>,
@@ -95,8 +99,8 @@ impl Renderer {
 
     /// Whether model `id` can be rendered: an error naming it when it is unknown or not
     /// yet on the GPU (no model silently stands in for another).
-    pub fn check_model(id: &str) -> Result<(), RenderError> {
-        model_pass::check_model(id)
+    pub fn check_model(id: ModelId) -> Result<(), RenderError> {
+        registry::check_model(id)
     }
 
     /// The terrain's elevation (m above the reference sphere) in a unit direction, as
@@ -166,11 +170,11 @@ impl Renderer {
         surface: Option<&[SurfaceTexel]>,
     ) -> Result<FramePlan, RenderError> {
         frame.validate()?;
-        Renderer::check_model(&frame.model)?;
+        Renderer::check_model(frame.model)?;
         frame
             .atmosphere
             .validate()
-            .map_err(atmosphere_core::model::ModelError::from)?;
+            .map_err(atmosphere_core::models::error::ModelError::from)?;
         frame.settings.validate()?;
         let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
         let mut plan = FramePlan::default();
@@ -219,9 +223,9 @@ impl Renderer {
             let index = match self.models.iter().position(|(m, _)| *m == frame.model) {
                 Some(i) => i,
                 None => {
-                    let mut pass = model_pass::create(&frame.model, gpu)?;
+                    let mut pass = registry::create(frame.model, gpu)?;
                     pass.set_progressive(self.progressive);
-                    self.models.push((frame.model.clone(), pass));
+                    self.models.push((frame.model, pass));
                     self.models.len() - 1
                 }
             };
@@ -313,7 +317,7 @@ impl Renderer {
     }
 
     /// The last frame's log-average luminance in cd/m^2 over its lit pixels, for
-    /// automatic exposure (a small compute pass; see [`crate::luminance_pass`]).
+    /// automatic exposure (a small compute pass; see [`crate::post::luminance`]).
     pub fn average_luminance(&self) -> Result<f64, RenderError> {
         let targets = self.last_targets()?;
         self.luminance.measure(&self.gpu, &targets.hdr)

@@ -4,10 +4,10 @@
 use std::path::Path;
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use render_wgpu::atmosphere_uniform::{
+use render_wgpu::frame::atmosphere_uniform::{
     AtmosphereUniform, DensityLayerUniform, DensityProfileUniform,
 };
-use render_wgpu::shader_source;
+use render_wgpu::gpu::shaders;
 
 /// What the device offers shaders: WebGPU's defaults (naga's default capabilities).
 /// Add a capability here when `GpuContext` starts requesting the feature behind it.
@@ -33,14 +33,14 @@ fn every_shader_file_is_embedded() {
         .filter(|name| name.ends_with(".wgsl"))
         .collect();
     on_disk.sort();
-    let mut embedded: Vec<String> = shader_source::shader_names().map(String::from).collect();
+    let mut embedded: Vec<String> = shaders::shader_names().map(String::from).collect();
     embedded.sort();
     assert_eq!(on_disk, embedded, "shaders/ and shader_source.rs disagree");
 }
 
 #[test]
 fn every_shader_validates() {
-    let shaders = shader_source::all_composed().unwrap();
+    let shaders = shaders::all_composed().unwrap();
     let failures: Vec<String> = shaders
         .iter()
         .filter_map(|(name, source)| validate(name, source).err())
@@ -60,8 +60,8 @@ fn broken_shaders_are_rejected() {
 
 #[test]
 fn atmosphere_uniform_matches_its_wgsl_layout() {
-    let source = shader_source::composed("atmosphere_params.wgsl").unwrap();
-    let module = validate("atmosphere_params.wgsl", &source).unwrap();
+    let source = shaders::composed("common/atmosphere_params.wgsl").unwrap();
+    let module = validate("common/atmosphere_params.wgsl", &source).unwrap();
     let layout = |struct_name: &str| {
         module
             .types
@@ -158,7 +158,7 @@ fn atmosphere_uniform_matches_its_wgsl_layout() {
 
 /// Size and member offsets (by name) of WGSL struct `name` in composed shader `shader`.
 fn wgsl_layout(shader: &str, name: &str) -> (usize, Vec<(String, usize)>) {
-    let source = shader_source::composed(shader).unwrap();
+    let source = shaders::composed(shader).unwrap();
     let module = validate(shader, &source).unwrap();
     module
         .types
@@ -191,11 +191,11 @@ macro_rules! assert_layout {
 
 #[test]
 fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
-    use render_wgpu::frame_uniform::FrameUniform;
-    use render_wgpu::nishita_pass::NishitaUniform;
-    use render_wgpu::tone_map::ToneMapUniform;
+    use render_wgpu::frame::uniform::FrameUniform;
+    use render_wgpu::post::tone_map::ToneMapUniform;
+    use render_wgpu::sky::nishita::NishitaUniform;
     assert_layout!(
-        "nishita.wgsl",
+        "sky/nishita/pixel.wgsl",
         "FrameParams",
         FrameUniform,
         [
@@ -211,13 +211,13 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
         ]
     );
     assert_layout!(
-        "nishita.wgsl",
+        "sky/nishita/pixel.wgsl",
         "NishitaParams",
         NishitaUniform,
         [view_samples, pad0, pad1, pad2]
     );
     assert_layout!(
-        "tone_map.wgsl",
+        "post/tone_map.wgsl",
         "ToneMapParams",
         ToneMapUniform,
         [red, green, blue]
@@ -226,9 +226,9 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
 
 #[test]
 fn hillaire_uniform_matches_its_wgsl_layout() {
-    use render_wgpu::hillaire_pass::HillaireUniform;
+    use render_wgpu::sky::hillaire::HillaireUniform;
     assert_layout!(
-        "hillaire.wgsl",
+        "sky/hillaire/pixel.wgsl",
         "HillaireParams",
         HillaireUniform,
         [
@@ -257,10 +257,10 @@ fn hillaire_uniform_matches_its_wgsl_layout() {
 
 #[test]
 fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
-    use render_wgpu::oneil_pass::{OneilTableUniform, OneilUniform};
-    use render_wgpu::riley_pass::RileyUniform;
+    use render_wgpu::sky::oneil::{OneilTableUniform, OneilUniform};
+    use render_wgpu::sky::riley::RileyUniform;
     assert_layout!(
-        "riley.wgsl",
+        "sky/riley/pixel.wgsl",
         "RileyParams",
         RileyUniform,
         [
@@ -272,13 +272,13 @@ fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
         ]
     );
     assert_layout!(
-        "oneil.wgsl",
+        "sky/oneil/pixel.wgsl",
         "OneilParams",
         OneilUniform,
         [samples, pad0, pad1, pad2]
     );
     assert_layout!(
-        "oneil_table.wgsl",
+        "sky/oneil/optical_depth_table.wgsl",
         "OneilTableParams",
         OneilTableUniform,
         [ray_samples, pad0, pad1, pad2]
@@ -287,14 +287,14 @@ fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
 
 #[test]
 fn dobashi_uniforms_match_their_wgsl_layouts() {
-    use render_wgpu::dobashi_pass::{DobashiTableUniform, DobashiUniform};
+    use render_wgpu::sky::dobashi::{DobashiTableUniform, DobashiUniform};
     assert_layout!(
-        "dobashi_tables.wgsl",
+        "sky/dobashi/tables.wgsl",
         "DobashiTableParams",
         DobashiTableUniform,
         [interval_m, plane_panels, sphere_panels, pad0]
     );
-    for shader in ["dobashi.wgsl", "dobashi_ambient.wgsl"] {
+    for shader in ["sky/dobashi/pixel.wgsl", "sky/dobashi/ambient.wgsl"] {
         let (span, members) = wgsl_layout(shader, "DobashiParams");
         assert_eq!(span, size_of::<DobashiUniform>(), "{shader}");
         let rust = [
@@ -331,9 +331,9 @@ fn dobashi_uniforms_match_their_wgsl_layouts() {
 
 #[test]
 fn bruneton_uniforms_match_their_wgsl_layouts() {
-    use render_wgpu::bruneton_pass::{BrunetonUniform, OrderState};
+    use render_wgpu::sky::bruneton::{BrunetonUniform, OrderState};
     assert_layout!(
-        "bruneton.wgsl",
+        "sky/bruneton/pixel.wgsl",
         "BrunetonParams",
         BrunetonUniform,
         [
@@ -348,7 +348,7 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
         ]
     );
     assert_layout!(
-        "bruneton_orders.wgsl",
+        "sky/bruneton/orders.wgsl",
         "OrderState",
         OrderState,
         [

@@ -1,7 +1,7 @@
 //! What the GPU parity tests share: a renderer (or a skip without an adapter), frames on
 //! the earth preset, and the comparison of a rendered frame with the CPU model of the
 //! same id on the same pixel rays (`Frame::pixel_ray`), the sun disk added from
-//! `atmosphere_core::sun_disk`, the tone map against its CPU twin.
+//! `atmosphere_core::optics::sun_disk`, the tone map against its CPU twin.
 //!
 //! Needs a GPU adapter (lavapipe will do). Without one the tests fail with the
 //! `NoAdapter` message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when
@@ -11,15 +11,17 @@
 #![allow(dead_code)]
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::{ModelSettings, SkyModel, prepare};
-use atmosphere_core::sun_disk;
-use atmosphere_core::surface_lighting::{SurfaceHit, radiance_with_surface};
-use atmosphere_core::view_segment::{SegmentEnd, ViewSegment};
-use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel};
+use atmosphere_core::optics::sun_disk;
+use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
+use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::frame::{Frame, LocalView};
-use render_wgpu::surface_buffer::SurfaceTexel;
-use render_wgpu::table_sampling::TableSampling;
-use render_wgpu::tone_map::ToneMap;
+use render_wgpu::post::tone_map::ToneMap;
+use render_wgpu::sky::table_sampling::TableSampling;
 use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
 
 /// The bruneton model's table-building steps, in the order its plan lists them.
@@ -57,7 +59,7 @@ pub fn renderer_or_skip(test: &str) -> Option<Renderer> {
 }
 
 /// A renderer whose device lacks `FLOAT32_FILTERABLE` even where the adapter has it, so
-/// that the passes read their tables texel by texel (`render_wgpu::table_sampling`), or
+/// that the passes read their tables texel by texel (`render_wgpu::sky::table_sampling`), or
 /// `None` as [`renderer_or_skip`].
 pub fn texel_read_renderer_or_skip(test: &str) -> Option<Renderer> {
     match GpuContext::headless_without(wgpu::Features::FLOAT32_FILTERABLE) {
@@ -122,7 +124,7 @@ pub fn check_texel_reads(
 }
 
 /// A frame of `model` on the earth preset, default settings, exposure EV100 14.
-pub fn frame(model: &str, view: LocalView, fov_deg: f64, width: u32, height: u32) -> Frame {
+pub fn frame(model: ModelId, view: LocalView, fov_deg: f64, width: u32, height: u32) -> Frame {
     let earth = Atmosphere::preset("earth").unwrap();
     frame_in(earth, model, view, fov_deg, width, height)
 }
@@ -130,7 +132,7 @@ pub fn frame(model: &str, view: LocalView, fov_deg: f64, width: u32, height: u32
 /// A frame of `model` in `atmosphere`, default settings, exposure EV100 14.
 pub fn frame_in(
     atmosphere: Atmosphere,
-    model: &str,
+    model: ModelId,
     view: LocalView,
     fov_deg: f64,
     width: u32,
@@ -142,7 +144,7 @@ pub fn frame_in(
         vertical_fov_deg: fov_deg,
         sun_direction: view.sun_direction(),
         atmosphere,
-        model: model.into(),
+        model,
         settings: ModelSettings::default(),
         exposure_ev100: 14.0,
         width,
@@ -257,7 +259,7 @@ fn check_over(
     };
     let hdr = renderer.read_hdr().unwrap();
     let ldr = renderer.read_ldr().unwrap();
-    let model = prepare(&frame.model, &frame.atmosphere, &frame.settings).unwrap();
+    let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100).unwrap();
     let (mut worst, mut at, mut limb, mut lit) = (0.0f64, (0, 0, 0), 0, 0);
     let mut values = (0.0, 0.0);
@@ -320,7 +322,7 @@ fn check_over(
 /// horizon in the afternoon, sunset from 2 km towards the sun, the limb from 100 km,
 /// the whole planet from 1e8 m with the terminator in view (64 x 36), and a 33 x 19
 /// frame of 1 deg on a sun 60 deg from the zenith, whose disk spans about 10 pixels.
-pub fn standard_frames(model: &str) -> Vec<(&'static str, Frame)> {
+pub fn standard_frames(model: ModelId) -> Vec<(&'static str, Frame)> {
     let mut sunset = view(2_000.0, 88.0, 89.0);
     sunset.sun_azimuth_deg = 5.0;
     let sun = LocalView {

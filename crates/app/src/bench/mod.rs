@@ -12,12 +12,13 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::ModelSettings;
-use atmosphere_core::model_options::ModelOptions;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::sky_model::ModelSettings;
 use render_wgpu::Renderer;
 use render_wgpu::frame::Frame;
-use render_wgpu::frame_plan::{FramePlan, StepKind};
-use render_wgpu::model_pass::GPU_MODELS;
+use render_wgpu::frame::plan::{FramePlan, StepKind};
+use render_wgpu::sky::registry::GPU_MODELS;
 
 use crate::cli::BenchArgs;
 use crate::files::write_atomically;
@@ -32,12 +33,12 @@ pub const BASELINE: &str = "nishita samples=16";
 pub struct Variant {
     /// `model` or `model key=value ...`.
     pub label: String,
-    pub model: String,
+    pub model: ModelId,
     pub options: Vec<String>,
 }
 
 impl Variant {
-    fn new(model: &str, options: &[&str]) -> Variant {
+    fn new(model: ModelId, options: &[&str]) -> Variant {
         let mut label = model.to_string();
         for o in options {
             label.push(' ');
@@ -45,19 +46,19 @@ impl Variant {
         }
         Variant {
             label,
-            model: model.to_string(),
+            model,
             options: options.iter().map(|o| o.to_string()).collect(),
         }
     }
 }
 
 /// The baseline, then each requested model (all on the GPU when none) with its defaults.
-pub fn variants(models: &[String]) -> Vec<Variant> {
-    let mut out = vec![Variant::new("nishita", &["samples=16"])];
-    let chosen: Vec<&str> = if models.is_empty() {
+pub fn variants(models: &[ModelId]) -> Vec<Variant> {
+    let mut out = vec![Variant::new(ModelId::Nishita, &["samples=16"])];
+    let chosen: Vec<ModelId> = if models.is_empty() {
         GPU_MODELS.to_vec()
     } else {
-        models.iter().map(String::as_str).collect()
+        models.to_vec()
     };
     out.extend(chosen.into_iter().map(|m| Variant::new(m, &[])));
     out
@@ -106,7 +107,7 @@ fn frame(
         vertical_fov_deg: view.fov_deg,
         sun_direction: view.view.sun_direction(),
         atmosphere: atmosphere.clone(),
-        model: variant.model.clone(),
+        model: variant.model,
         settings: ModelSettings {
             options: ModelOptions::parse(&variant.options)?,
             ..ModelSettings::default()
@@ -292,7 +293,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         bail!("--frames must be at least 1");
     }
     for m in &args.model {
-        Renderer::check_model(m)?;
+        Renderer::check_model(*m)?;
     }
     let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)
         .with_context(|| format!("--atmosphere {}", args.atmosphere))?;
@@ -329,7 +330,7 @@ mod tests {
         assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
         assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), Some(2.0));
         assert_eq!(median(&[]), None);
-        let v = variants(&["nishita".to_string()]);
+        let v = variants(&[ModelId::Nishita]);
         assert_eq!(v[0].label, BASELINE);
         assert_eq!(v[1].label, "nishita");
         assert_eq!(v[1].options, Vec::<String>::new());

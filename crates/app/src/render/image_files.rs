@@ -12,7 +12,7 @@ use exr::prelude::{
     Encoding, Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
 };
 use render_wgpu::Frame;
-use render_wgpu::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 
 use crate::files::write_atomically;
 
@@ -42,7 +42,7 @@ pub fn header_attributes(frame: &Frame, scene_toml: &str) -> Vec<(&'static str, 
             "atmos:units",
             "linear sRGB (IEC 61966-2-1, D65) in cd/m^2, from spectral radiance at 680, 550, 440 nm (CIE 1931)".into(),
         ),
-        ("atmos:model", frame.model.clone()),
+        ("atmos:model", frame.model.to_string()),
         ("atmos:model_settings", model_settings.join(", ")),
         ("atmos:atmosphere_name", frame.atmosphere.name.clone()),
         ("atmos:atmosphere", frame.atmosphere.to_toml()),

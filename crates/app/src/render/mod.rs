@@ -22,7 +22,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     .resolved()?;
     let frame = scene.frame()?;
-    Renderer::check_model(&frame.model)?;
+    Renderer::check_model(frame.model)?;
     let mut renderer = Renderer::headless()?;
     let start = Instant::now();
     let plan = renderer.render(&frame)?;

@@ -6,10 +6,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::{MODEL_IDS, ModelSettings};
-use atmosphere_core::model_options::ModelOptions;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::sky_model::ModelSettings;
 use clap::Args;
-use clap::builder::PossibleValuesParser;
 use glam::DQuat;
 use render_wgpu::Frame;
 use render_wgpu::frame::{
@@ -23,8 +23,8 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields)]
 pub struct Scene {
     /// Scattering model (every model but the reference is on the GPU).
-    #[arg(long, value_parser = PossibleValuesParser::new(MODEL_IDS))]
-    pub model: Option<String>,
+    #[arg(long, value_enum)]
+    pub model: Option<ModelId>,
     /// Camera altitude above the ground, m (up to 1e8 and beyond).
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub altitude_m: Option<f64>,
@@ -100,15 +100,6 @@ impl Scene {
         {
             scene.atmosphere = Some(dir.join(a).display().to_string());
         }
-        if let Some(model) = &scene.model
-            && !MODEL_IDS.contains(&model.as_str())
-        {
-            bail!(
-                "scene {}: unknown model '{model}' (known: {})",
-                path.display(),
-                MODEL_IDS.join(", ")
-            );
-        }
         Ok(scene)
     }
 
@@ -144,7 +135,6 @@ impl Scene {
         Ok(Scene {
             model: Some(
                 self.model
-                    .clone()
                     .context("--model is required (or give --scene FILE.toml)")?,
             ),
             altitude_m: Some(required(self.altitude_m, "altitude-m")?),
@@ -234,7 +224,9 @@ impl Scene {
             vertical_fov_deg: fov_deg,
             sun_direction: place * view.sun_direction(),
             atmosphere,
-            model: s.model.unwrap_or_default(),
+            model: s
+                .model
+                .context("--model is required (or give --scene FILE.toml)")?,
             settings: ModelSettings {
                 options: ModelOptions::parse(&s.set)?,
                 ..ModelSettings::default()
@@ -280,7 +272,7 @@ mod tests {
 
     fn scene() -> Scene {
         Scene {
-            model: Some("nishita".into()),
+            model: Some(ModelId::Nishita),
             altitude_m: Some(10.0),
             sun_zenith_deg: Some(45.0),
             ..Scene::default()
@@ -294,11 +286,11 @@ mod tests {
         )
         .unwrap();
         let merged = file.overridden_by(Scene {
-            model: Some("nishita".into()),
+            model: Some(ModelId::Nishita),
             set: vec!["b=2".into()],
             ..Scene::default()
         });
-        assert_eq!(merged.model.as_deref(), Some("nishita"));
+        assert_eq!(merged.model, Some(ModelId::Nishita));
         assert_eq!(merged.altitude_m, Some(5.0));
         assert_eq!(merged.set, ["a=1", "b=2"]);
         let resolved = merged.resolved().unwrap();
@@ -317,7 +309,7 @@ mod tests {
             let path = entry.unwrap().path();
             let frame = Scene::load(&path).unwrap().frame().unwrap();
             assert!(
-                render_wgpu::Renderer::check_model(&frame.model).is_ok(),
+                render_wgpu::Renderer::check_model(frame.model).is_ok(),
                 "{}",
                 path.display()
             );

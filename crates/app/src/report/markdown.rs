@@ -3,7 +3,7 @@
 
 use std::fmt::Write;
 
-use atmosphere_core::error_statistics::RelativeErrorStats;
+use atmosphere_core::analysis::error_statistics::RelativeErrorStats;
 
 use crate::report::measure::{FRAME_PIXELS, VariantResult};
 use crate::report::plot::{Point, pareto_front};

@@ -6,12 +6,14 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
+use atmosphere_core::analysis::color_difference::{D65_WHITE, ciede2000, xyz_to_lab};
+use atmosphere_core::analysis::error_statistics::{RelativeErrorStats, percentile_sorted};
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::color::SpectrumToColor;
-use atmosphere_core::color_difference::{D65_WHITE, ciede2000, xyz_to_lab};
-use atmosphere_core::error_statistics::{RelativeErrorStats, percentile_sorted};
-use atmosphere_core::model::{ModelSettings, RayRadiance, SkyModel, ViewRay, prepare};
-use atmosphere_core::model_options::ModelOptions;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
 
 use crate::report::reference_cache::ReferenceRadiance;
 use crate::report::views::ReportView;
@@ -28,14 +30,14 @@ const MIN_TIMING: Duration = Duration::from_millis(200);
 /// One model with one choice of settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Variant {
-    pub model: &'static str,
+    pub model: ModelId,
     /// Highest order (`None`: the model's own choice).
     pub max_orders: Option<u32>,
     pub options: ModelOptions,
 }
 
 impl Variant {
-    pub fn new(model: &'static str, max_orders: Option<u32>, options: &[&str]) -> Variant {
+    pub fn new(model: ModelId, max_orders: Option<u32>, options: &[&str]) -> Variant {
         Variant {
             model,
             max_orders,
@@ -193,7 +195,7 @@ pub fn measure(
 /// Prepares the model; builds under half a second are repeated (up to five times) and
 /// the fastest is kept.
 fn timed_prepare(
-    id: &str,
+    id: ModelId,
     atmosphere: &Atmosphere,
     settings: &ModelSettings,
 ) -> anyhow::Result<(Box<dyn SkyModel>, f64)> {

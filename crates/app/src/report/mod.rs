@@ -11,7 +11,8 @@ use std::fs;
 
 use anyhow::{Context, bail};
 use atmosphere_core::color::SpectrumToColor;
-use atmosphere_core::model::{MODEL_IDS, ModelSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
 
 use crate::cli::ReportArgs;
 use crate::files::write_atomically;
@@ -23,28 +24,40 @@ use crate::report::plot::Point;
 /// that trade accuracy for time around them.
 pub fn report_variants() -> Vec<Variant> {
     vec![
-        Variant::new("riley", None, &[]),
-        Variant::new("nishita", None, &["samples=4"]),
-        Variant::new("nishita", None, &["samples=16"]),
-        Variant::new("nishita", None, &["samples=64"]),
-        Variant::new("nishita", None, &[]),
-        Variant::new("oneil", None, &["samples=2"]),
-        Variant::new("oneil", None, &[]),
-        Variant::new("oneil", None, &["samples=16"]),
-        Variant::new("dobashi", Some(1), &[]),
-        Variant::new("dobashi", None, &["planes=30"]),
-        Variant::new("dobashi", None, &[]),
-        Variant::new("dobashi", None, &["planes=400"]),
-        Variant::new("hillaire", Some(1), &[]),
-        Variant::new("hillaire", None, &["sky_view_samples=10", "ms_samples=4"]),
-        Variant::new("hillaire", None, &[]),
-        Variant::new("hillaire", None, &["ms_samples=32", "sky_view_samples=60"]),
-        Variant::new("bruneton", Some(1), &[]),
-        Variant::new("bruneton", Some(2), &[]),
-        Variant::new("bruneton", None, &[]),
-        Variant::new("bruneton", None, &["view_samples=30"]),
-        Variant::new("bruneton", None, &["view_samples=100"]),
-        Variant::new("bruneton", None, &["r=16", "mu=64", "mu_s=16", "nu=4"]),
+        Variant::new(ModelId::Riley, None, &[]),
+        Variant::new(ModelId::Nishita, None, &["samples=4"]),
+        Variant::new(ModelId::Nishita, None, &["samples=16"]),
+        Variant::new(ModelId::Nishita, None, &["samples=64"]),
+        Variant::new(ModelId::Nishita, None, &[]),
+        Variant::new(ModelId::Oneil, None, &["samples=2"]),
+        Variant::new(ModelId::Oneil, None, &[]),
+        Variant::new(ModelId::Oneil, None, &["samples=16"]),
+        Variant::new(ModelId::Dobashi, Some(1), &[]),
+        Variant::new(ModelId::Dobashi, None, &["planes=30"]),
+        Variant::new(ModelId::Dobashi, None, &[]),
+        Variant::new(ModelId::Dobashi, None, &["planes=400"]),
+        Variant::new(ModelId::Hillaire, Some(1), &[]),
+        Variant::new(
+            ModelId::Hillaire,
+            None,
+            &["sky_view_samples=10", "ms_samples=4"],
+        ),
+        Variant::new(ModelId::Hillaire, None, &[]),
+        Variant::new(
+            ModelId::Hillaire,
+            None,
+            &["ms_samples=32", "sky_view_samples=60"],
+        ),
+        Variant::new(ModelId::Bruneton, Some(1), &[]),
+        Variant::new(ModelId::Bruneton, Some(2), &[]),
+        Variant::new(ModelId::Bruneton, None, &[]),
+        Variant::new(ModelId::Bruneton, None, &["view_samples=30"]),
+        Variant::new(ModelId::Bruneton, None, &["view_samples=100"]),
+        Variant::new(
+            ModelId::Bruneton,
+            None,
+            &["r=16", "mu=64", "mu_s=16", "nu=4"],
+        ),
     ]
 }
 
@@ -59,7 +72,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     base.validate()?;
     let mut variants = report_variants();
     if !args.model.is_empty() {
-        variants.retain(|v| args.model.iter().any(|m| m == v.model));
+        variants.retain(|v| args.model.contains(&v.model));
     }
     if variants.is_empty() {
         bail!("no report settings for the models {:?}", args.model);
@@ -128,10 +141,9 @@ fn command_line(args: &ReportArgs) -> String {
 pub const DEFAULT_OUT: &str = "docs/report";
 
 /// Models the report knows; `--model` accepts these.
-pub fn report_models() -> Vec<&'static str> {
-    MODEL_IDS
-        .iter()
-        .copied()
+pub fn report_models() -> Vec<ModelId> {
+    ModelId::ALL
+        .into_iter()
         .filter(|m| report_variants().iter().any(|v| v.model == *m))
         .collect()
 }

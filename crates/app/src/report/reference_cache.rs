@@ -8,7 +8,9 @@ use std::path::Path;
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::{ModelSettings, RayRadiance, prepare};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance};
 use rayon::prelude::*;
 
 use crate::files::write_atomically;
@@ -62,7 +64,7 @@ fn compute(views: &[ReportView], settings: &ModelSettings) -> anyhow::Result<Ref
     let mut all = Vec::with_capacity(views.len());
     for view in views {
         let atmosphere = Atmosphere::preset(view.atmosphere)?;
-        let model = prepare("reference", &atmosphere, settings)?;
+        let model = prepare(ModelId::Reference, &atmosphere, settings)?;
         let answers = view
             .rays(&atmosphere)
             .par_iter()

@@ -3,7 +3,7 @@
 //! plane).
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::ViewRay;
+use atmosphere_core::models::sky_model::ViewRay;
 use glam::DVec3;
 
 /// One view of the report.

@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use anyhow::Context;
 use eframe::egui;
-use render_wgpu::frame_plan::FramePlan;
+use render_wgpu::frame::plan::FramePlan;
 use render_wgpu::{Frame, GpuContext, Renderer};
 
 use crate::cli::ViewArgs;
@@ -93,7 +93,7 @@ impl ViewerApp {
         };
         // Settings of another version that no longer make a frame are dropped.
         let mut settings = stored
-            .filter(|s| s.frame(1, 1).is_ok() && Renderer::check_model(&s.model).is_ok())
+            .filter(|s| s.frame(1, 1).is_ok() && Renderer::check_model(s.model).is_ok())
             .unwrap_or_default();
         start_view::apply(&args.start, &mut settings)?;
         let mut renderer = Renderer::new(gpu)?;

@@ -45,7 +45,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     }
     let batch = args.frames.is_some();
     let wgpu_setup = egui_wgpu::WgpuSetupCreateNew {
-        device_descriptor: Arc::new(render_wgpu::device::device_descriptor),
+        device_descriptor: Arc::new(render_wgpu::gpu::context::device_descriptor),
         ..egui_wgpu::WgpuSetupCreateNew::without_display_handle()
     };
     let options = eframe::NativeOptions {

@@ -4,8 +4,8 @@
 
 use eframe::egui;
 use render_wgpu::frame::MAX_EXAGGERATION;
-use render_wgpu::frame_plan::FramePlan;
-use render_wgpu::model_pass::GPU_MODELS;
+use render_wgpu::frame::plan::FramePlan;
+use render_wgpu::sky::registry::GPU_MODELS;
 
 use atmosphere_core::sun_position::days_in_month;
 
@@ -335,10 +335,10 @@ fn atmosphere(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
 fn model(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
     ui.collapsing("Model", |ui| {
         egui::ComboBox::from_label("model")
-            .selected_text(&settings.model)
+            .selected_text(settings.model.as_str())
             .show_ui(ui, |ui| {
                 for id in GPU_MODELS {
-                    ui.selectable_value(&mut settings.model, id.to_string(), *id);
+                    ui.selectable_value(&mut settings.model, id, id.as_str());
                 }
             })
             .response
@@ -346,7 +346,7 @@ fn model(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         let valid = settings.parsed_model_options().is_ok();
         let text = settings
             .model_options
-            .entry(settings.model.clone())
+            .entry(settings.model.to_string())
             .or_default();
         let mut edit = egui::TextEdit::singleline(text).hint_text("paper's values");
         if !valid {

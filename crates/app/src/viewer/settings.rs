@@ -4,9 +4,10 @@
 
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::model::ModelSettings;
-use atmosphere_core::model_options::ModelOptions;
-use atmosphere_core::phase::PhaseFunction;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::sky_model::ModelSettings;
+use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Frame;
 use render_wgpu::frame::{TerrainOptions, look_orientation};
@@ -92,8 +93,8 @@ pub struct ViewerSettings {
     pub mie_g: f64,
     pub ozone: bool,
     pub ground_albedo: f64,
-    /// One of `render_wgpu::model_pass::GPU_MODELS`.
-    pub model: String,
+    /// One of `render_wgpu::sky::model_pass::GPU_MODELS`.
+    pub model: ModelId,
     /// The model's quality settings as `key=value` items separated by spaces (e.g.
     /// `samples=32` for nishita; each model's keys are in docs/models/); empty: the
     /// paper's values. Kept per model.
@@ -122,7 +123,7 @@ impl Default for ViewerSettings {
             mie_g: mie_g(&earth).unwrap_or(0.8),
             ozone: true,
             ground_albedo: earth.ground_albedo,
-            model: "hillaire".into(),
+            model: ModelId::Hillaire,
             model_options: Default::default(),
             exposure_ev100: 14.0,
             exposure_mode: ExposureMode::default(),
@@ -318,7 +319,7 @@ impl ViewerSettings {
     pub fn parsed_model_options(&self) -> anyhow::Result<ModelOptions> {
         let text = self
             .model_options
-            .get(&self.model)
+            .get(self.model.as_str())
             .map_or("", String::as_str);
         let items: Vec<&str> = text.split_whitespace().collect();
         ModelOptions::parse(&items).with_context(|| format!("{} settings '{text}'", self.model))
@@ -339,7 +340,7 @@ impl ViewerSettings {
             vertical_fov_deg: self.vertical_fov_deg,
             sun_direction,
             atmosphere,
-            model: self.model.clone(),
+            model: self.model,
             settings: ModelSettings {
                 options: self.parsed_model_options()?,
                 ..ModelSettings::default()
@@ -361,18 +362,19 @@ mod tests {
     #[test]
     fn quality_settings_reach_the_frame_per_model_and_bad_ones_are_named() {
         let mut s = ViewerSettings {
-            model: "nishita".into(),
+            model: ModelId::Nishita,
             ..ViewerSettings::default()
         };
         s.model_options
             .insert("nishita".into(), " samples=32  ".into());
         let frame = s.frame(4, 2).unwrap();
-        let nishita =
-            atmosphere_core::nishita::NishitaSettings::from_options(&frame.settings.options)
-                .unwrap();
+        let nishita = atmosphere_core::models::nishita::NishitaSettings::from_options(
+            &frame.settings.options,
+        )
+        .unwrap();
         assert_eq!(nishita.view_samples, 32);
         // Another model keeps its own (none: the paper's values).
-        s.model = "hillaire".into();
+        s.model = ModelId::Hillaire;
         assert_eq!(
             s.frame(4, 2).unwrap().settings.options,
             ModelOptions::default()
@@ -538,7 +540,7 @@ mod tests {
     #[test]
     fn older_settings_load_with_defaults() {
         let mut settings = ViewerSettings {
-            model: "riley".into(),
+            model: ModelId::Riley,
             ..ViewerSettings::default()
         };
         settings.sun_clock.utc_s = 1e6;
@@ -546,7 +548,7 @@ mod tests {
         table.remove("sun_clock").unwrap();
         table.remove("exposure_mode").unwrap();
         let loaded: ViewerSettings = table.try_into().unwrap();
-        assert_eq!(loaded.model, "riley");
+        assert_eq!(loaded.model, ModelId::Riley);
         assert_eq!(loaded.sun_clock, ViewerSettings::default().sun_clock);
         assert_eq!(loaded.exposure_mode, ExposureMode::Auto);
         let back: ViewerSettings = toml::from_str(&toml::to_string(&settings).unwrap()).unwrap();

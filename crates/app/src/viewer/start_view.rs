@@ -19,7 +19,7 @@ pub fn apply(start: &StartView, settings: &mut ViewerSettings) -> anyhow::Result
         }
     };
     if let Some(model) = &start.model {
-        settings.model = model.clone();
+        settings.model = *model;
     }
     if let (Some(lat), Some(lon)) = (start.latitude_deg, start.longitude_deg) {
         let lat = finite(lat, "latitude-deg")?;
@@ -75,13 +75,14 @@ pub fn apply(start: &StartView, settings: &mut ViewerSettings) -> anyhow::Result
 #[cfg(test)]
 mod tests {
     use super::*;
+    use atmosphere_core::models::id::ModelId;
     use atmosphere_core::sun_position::UtcDateTime;
 
     #[test]
     fn flags_set_the_place_view_sun_and_terrain() {
         let mut s = ViewerSettings::default();
         let start = StartView {
-            model: Some("hillaire".into()),
+            model: Some(ModelId::Hillaire),
             latitude_deg: Some(-33.9),
             longitude_deg: Some(200.0),
             altitude_m: Some(20_000.0),
@@ -104,8 +105,8 @@ mod tests {
         assert_eq!(s.sun_clock.mode, SunMode::Date);
         assert_eq!(s.sun_clock.date_time().month, 6);
         assert_eq!(
-            (s.model.as_str(), s.exaggeration, s.terrain),
-            ("hillaire", 5.0, false)
+            (s.model, s.exaggeration, s.terrain),
+            (ModelId::Hillaire, 5.0, false)
         );
     }
 

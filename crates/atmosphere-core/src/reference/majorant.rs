@@ -2,7 +2,7 @@
 //! segment that stays above altitude h never meets denser air than the bound at h.
 
 use crate::atmosphere::Atmosphere;
-use crate::density::DensityProfile;
+use crate::atmosphere::density::DensityProfile;
 
 /// Bins of altitude over the atmosphere's thickness.
 const BINS: usize = 512;

@@ -24,12 +24,15 @@ pub use sun::disk_mean_transmittance;
 pub use view_path::{RayEnd, ViewPath};
 
 use crate::atmosphere::Atmosphere;
-use crate::column::{Fineness, optical_depth};
-use crate::model::{ModelError, ModelSettings, RayRadiance, SkyModel, ViewRay};
-use crate::phase_sampling::PhaseSampler;
-use crate::sampling::{Sampler, cosine_weighted, direction_around, mix_seed};
-use crate::table_inputs::Inputs;
-use crate::transmittance_table::TransmittanceTable;
+use crate::atmosphere::spectra::Spectra;
+use crate::atmosphere::table_inputs::Inputs;
+use crate::models::error::ModelError;
+use crate::models::id::ModelId;
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::numerics::sampling::{Sampler, cosine_weighted, direction_around, mix_seed};
+use crate::optics::column::{Fineness, optical_depth};
+use crate::optics::phase_sampling::PhaseSampler;
+use crate::optics::transmittance_table::TransmittanceTable;
 
 /// Size of the columns table for the sun's transmittance in Monte Carlo events.
 const MC_TABLE_SIZE: (usize, usize) = (512, 128);
@@ -42,42 +45,6 @@ const MAX_PATHS: usize = 1 << 17;
 /// Radiance below this fraction of the solar irradiance (sr^-1) counts as darkness: its
 /// error is not refined further.
 const DARKNESS: f64 = 1e-10;
-
-/// The coefficients of the atmosphere at each wavelength of a model.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Spectra {
-    pub wavelengths_nm: Vec<f64>,
-    /// Extinction per species (Rayleigh, Mie, ozone) at density 1, m^-1.
-    pub extinction: Vec<[f64; 3]>,
-    pub rayleigh_scattering: Vec<f64>,
-    pub mie_scattering: Vec<f64>,
-    pub solar_irradiance: Vec<f64>,
-}
-
-impl Spectra {
-    /// Whether a model must do Mie work: always without pruning
-    /// ([`crate::model::ModelSettings::prune`]), else only when aerosols scatter or
-    /// absorb at some wavelength.
-    pub fn needs_mie(&self, prune: bool) -> bool {
-        !prune
-            || self.mie_scattering.iter().any(|s| *s != 0.0)
-            || self.extinction.iter().any(|e| e[1] != 0.0)
-    }
-
-    pub fn new(atmosphere: &Atmosphere, wavelengths_nm: &[f64]) -> Spectra {
-        let c: Vec<_> = wavelengths_nm
-            .iter()
-            .map(|l| atmosphere.coefficients(*l))
-            .collect();
-        Spectra {
-            wavelengths_nm: wavelengths_nm.to_vec(),
-            extinction: c.iter().map(|c| c.extinction_per_species()).collect(),
-            rayleigh_scattering: c.iter().map(|c| c.rayleigh_scattering_per_m).collect(),
-            mie_scattering: c.iter().map(|c| c.mie_scattering_per_m).collect(),
-            solar_irradiance: c.iter().map(|c| c.solar_irradiance_w_m2_nm).collect(),
-        }
-    }
-}
 
 /// The reference model, prepared for one atmosphere.
 #[derive(Debug)]
@@ -194,7 +161,7 @@ impl Reference {
                     let sm = bm * node.densities[1];
                     let (nu, weight) = if sampler.uniform() * (sr + sm) < sr {
                         (
-                            crate::phase_sampling::sample_rayleigh(sampler.uniform()),
+                            crate::optics::phase_sampling::sample_rayleigh(sampler.uniform()),
                             1.0,
                         )
                     } else {
@@ -232,8 +199,8 @@ impl Reference {
 }
 
 impl SkyModel for Reference {
-    fn id(&self) -> &'static str {
-        "reference"
+    fn id(&self) -> ModelId {
+        ModelId::Reference
     }
 
     fn wavelengths_nm(&self) -> &[f64] {

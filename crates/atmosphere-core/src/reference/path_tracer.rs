@@ -9,14 +9,14 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
-use crate::column::{densities, optical_depth};
-use crate::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
-use crate::phase::rayleigh;
-use crate::phase_sampling::{PhaseSampler, sample_rayleigh};
+use crate::numerics::sampling::{Sampler, cosine_weighted, direction_around, uniform_in_cone};
+use crate::optics::column::{densities, optical_depth};
+use crate::optics::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
+use crate::optics::phase::rayleigh;
+use crate::optics::phase_sampling::{PhaseSampler, sample_rayleigh};
+use crate::optics::transmittance_table::TransmittanceTable;
 use crate::reference::majorant::DensityBounds;
 use crate::reference::view_path::altitude;
-use crate::sampling::{Sampler, cosine_weighted, direction_around, uniform_in_cone};
-use crate::transmittance_table::TransmittanceTable;
 
 /// Scattering order from which Russian roulette may end a path.
 const ROULETTE_FROM_ORDER: u32 = 8;

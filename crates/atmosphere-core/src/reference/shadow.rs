@@ -12,12 +12,12 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use crate::column::{densities, optical_depth};
-use crate::geometry::{mu_at, radius_at};
-use crate::phase::rayleigh;
+use crate::numerics::sampling::{Sampler, uniform_in_cone};
+use crate::optics::column::{densities, optical_depth};
+use crate::optics::geometry::{mu_at, radius_at};
+use crate::optics::phase::rayleigh;
 use crate::reference::path_tracer::{PathTracer, Segment};
 use crate::reference::view_path::altitude;
-use crate::sampling::{Sampler, uniform_in_cone};
 
 /// Pieces of the lit part on which the rough integrand is evaluated.
 const PIECES: usize = 8;
@@ -216,8 +216,8 @@ impl PathTracer<'_> {
 mod tests {
     use super::*;
     use crate::atmosphere::Atmosphere;
-    use crate::column::Fineness;
-    use crate::model::{ModelSettings, ViewRay};
+    use crate::models::sky_model::{ModelSettings, ViewRay};
+    use crate::optics::column::Fineness;
     use crate::reference::{Reference, Spectra, ViewPath, single_scattering};
 
     /// In twilight, the mean of the one-sample estimate is the single scattering along the

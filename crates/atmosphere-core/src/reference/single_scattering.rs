@@ -5,8 +5,8 @@
 use std::f64::consts::PI;
 
 use crate::atmosphere::Atmosphere;
-use crate::column::optical_depth;
-use crate::reference::Spectra;
+use crate::atmosphere::spectra::Spectra;
+use crate::optics::column::optical_depth;
 use crate::reference::sun::disk_mean_transmittance;
 use crate::reference::view_path::{RayEnd, ViewPath};
 
@@ -22,7 +22,7 @@ pub fn single_scattering(
     let mut radiance = vec![0.0; n];
     let mut sun_t = vec![0.0; n];
     let nu = path.direction.dot(sun);
-    let phase_r = crate::phase::rayleigh(nu);
+    let phase_r = crate::optics::phase::rayleigh(nu);
     let phase_m = atmosphere.mie.phase.eval(nu);
     for node in &path.nodes {
         let scattering_r = node.densities[0] * phase_r;

@@ -7,8 +7,8 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
-use crate::column::{column, optical_depth};
-use crate::geometry::{distance_to_exit, horizon_mu, ray_hits_ground};
+use crate::optics::column::{column, optical_depth};
+use crate::optics::geometry::{distance_to_exit, horizon_mu, ray_hits_ground};
 
 /// Within this angle (radians, 15 degrees) of the geometric horizon the disk is
 /// integrated; further up the centre's transmittance stands for the disk. The error

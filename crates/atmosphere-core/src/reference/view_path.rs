@@ -5,10 +5,11 @@
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
-use crate::column::{Fineness, densities, panels};
-use crate::model::{ModelError, ViewRay};
-use crate::quadrature::{GAUSS_LEGENDRE_8, mapped};
-use crate::view_segment::{SegmentEnd, ViewSegment};
+use crate::models::error::ModelError;
+use crate::models::sky_model::ViewRay;
+use crate::numerics::quadrature::{GAUSS_LEGENDRE_8, mapped};
+use crate::optics::column::{Fineness, densities, panels};
+use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
 /// How a view ray ends.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,8 +1,8 @@
 //! Helpers shared by the model tests.
 
+use atmosphere_core::analysis::error_statistics::RelativeErrorStats;
 use atmosphere_core::color::SpectrumToColor;
-use atmosphere_core::error_statistics::RelativeErrorStats;
-use atmosphere_core::model::{SkyModel, ViewRay};
+use atmosphere_core::models::sky_model::{SkyModel, ViewRay};
 
 /// Luminance of `model` against `reference` on labelled rays, each printed: the signed
 /// relative error per ray, in order, and their statistics.

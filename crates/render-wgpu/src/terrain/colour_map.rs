@@ -6,7 +6,7 @@ use std::path::Path;
 
 use super::geo_grid::bilinear_taps;
 use super::map_error::MapError;
-use crate::tone_map::srgb_decode;
+use atmosphere_core::color::srgb::srgb_decode;
 
 /// 8-bit sRGB texels on an equirectangular grid (layout in `geo_grid.rs`).
 #[derive(Clone, Debug)]

@@ -4,7 +4,7 @@
 //! does not shimmer. An equirectangular map twice as wide as tall stays so down to 2 x 1.
 
 use super::colour_map::ColourMap;
-use crate::tone_map::{srgb_decode, srgb_encode};
+use atmosphere_core::color::srgb::{srgb_decode, srgb_encode};
 
 /// One level: `width x height` RGBA8 sRGB texels, row-major, alpha 255.
 #[derive(Clone, Debug, PartialEq)]

@@ -16,6 +16,7 @@ pub mod height_field;
 pub mod height_map;
 pub mod lod;
 pub mod map_error;
+pub mod pass;
 pub mod stitching;
 pub mod surface;
 

@@ -1,0 +1,298 @@
+//! The mappings of Bruneton and Neyret 2008, section 4, between the physical parameters
+//! of the tables and unit coordinates:
+//!
+//! - scattering S(r, mu, mu_s, nu): u_r = rho / H; u_mu = 1/2 + (r mu + sqrt(Delta)) /
+//!   (2 rho) for rays that meet the ground (r mu < 0, Delta > 0), else
+//!   1/2 - (r mu - sqrt(Delta + H^2)) / (2 rho + 2 H); u_mu_s = (1 - exp(-3 mu_s - 0.6)) /
+//!   (1 - exp(-3.6)); u_nu = (1 + nu) / 2, with H = sqrt(Rt^2 - Rg^2),
+//!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2. u_mu is refined as in
+//!   Bruneton 2017: the distance d to the ray's end is mapped from its range at r
+//!   ([r - Rg, rho] to the ground, [Rt - r, rho + H] to the top) rather than from
+//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]);
+//! - irradiance E(r, mu_s): linear in r over [Rg, Rt] and in mu_s over [-0.2, 1] (the
+//!   paper's implementation).
+//!
+//! u_mu is discontinuous at the horizon: ground rays take [0, 1/2), the others (1/2, 1].
+//! As in the paper's implementation, each half is its own set of texels (the first and
+//! the second half of the mu axis), so that interpolation never mixes the two sides of
+//! the horizon. Texel k of an axis of n texels lies at unit coordinate k / (n - 1): the
+//! first and last texels sit on the ends of the range.
+
+use crate::optics::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground, safe_sqrt};
+
+/// 1 - exp(-3.6): the normalisation of u_mu_s.
+fn mu_s_norm() -> f64 {
+    1.0 - (-3.6f64).exp()
+}
+
+/// The lowest sun cosine the scattering table resolves: u_mu_s = 0 at mu_s = -0.2; lower
+/// suns are clamped to it.
+pub const MIN_MU_S: f64 = -0.2;
+
+/// Planet radii of the mappings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Radii {
+    pub bottom_m: f64,
+    pub top_m: f64,
+}
+
+impl Radii {
+    /// H = sqrt(Rt^2 - Rg^2): the distance to the top boundary of a horizontal ray from
+    /// the ground.
+    pub fn horizon_length(&self) -> f64 {
+        safe_sqrt((self.top_m - self.bottom_m) * (self.top_m + self.bottom_m))
+    }
+
+    /// rho = sqrt(r^2 - Rg^2): the distance to the horizon from radius r.
+    pub fn rho(&self, r: f64) -> f64 {
+        safe_sqrt((r - self.bottom_m) * (r + self.bottom_m))
+    }
+
+    /// u_r = rho / H.
+    pub fn u_r(&self, r: f64) -> f64 {
+        (self.rho(r) / self.horizon_length()).clamp(0.0, 1.0)
+    }
+
+    /// Inverse of [`Radii::u_r`].
+    pub fn r_from_u(&self, u_r: f64) -> f64 {
+        let rho = self.horizon_length() * u_r;
+        (rho * rho + self.bottom_m * self.bottom_m).sqrt()
+    }
+
+    /// The range [d_min, d_max] of the distance to the ray's end (the ground, or the top
+    /// boundary) from radius r over one half of the mu axis: [r - Rg, rho] for rays that
+    /// meet the ground, [Rt - r, rho + H] for the others.
+    fn distance_range(&self, r: f64, ground: bool) -> (f64, f64) {
+        let rho = self.rho(r);
+        if ground {
+            (r - self.bottom_m, rho)
+        } else {
+            (self.top_m - r, rho + self.horizon_length())
+        }
+    }
+
+    /// The unit coordinate within the half of the mu axis chosen by `ground`: the
+    /// distance d to the ray's end mapped linearly from its range at r (Bruneton 2017's
+    /// refinement of the paper's d / rho and d / (rho + H), which spend a few texels on
+    /// distances no ray from r has: at the ground mu in [0.86, 1] fell within one
+    /// texel). x = 0 at the horizon and 1 straight down on the ground's side, 0 at the
+    /// zenith and 1 at the horizon on the sky's. A ray whose geometry disagrees with
+    /// `ground` by rounding falls on the horizon's texel.
+    pub fn x_mu(&self, r: f64, mu: f64, ground: bool) -> f64 {
+        let (d_min, d_max) = self.distance_range(r, ground);
+        if d_max <= d_min {
+            return if ground { 1.0 } else { 0.0 };
+        }
+        if ground {
+            let d = if ray_hits_ground(r, mu, self.bottom_m) {
+                distance_to_entry(r, mu, self.bottom_m).unwrap_or(0.0)
+            } else {
+                d_max
+            };
+            ((d_max - d) / (d_max - d_min)).clamp(0.0, 1.0)
+        } else {
+            let d = distance_to_exit(r, mu, self.top_m);
+            ((d - d_min) / (d_max - d_min)).clamp(0.0, 1.0)
+        }
+    }
+
+    /// Inverse of [`Radii::x_mu`]: mu at unit coordinate x within the half of the mu
+    /// axis chosen by `ground`, clamped to [-1, 1] where x lies outside the range the
+    /// radius can reach (x = 1 on the ground's side is straight down).
+    pub fn mu_from_x(&self, r: f64, x: f64, ground: bool) -> f64 {
+        let rho = self.rho(r);
+        let h = self.horizon_length();
+        let (d_min, d_max) = self.distance_range(r, ground);
+        if ground {
+            let d = d_max - x * (d_max - d_min);
+            if d <= 0.0 {
+                return -1.0;
+            }
+            // Rg^2 = r^2 + d^2 + 2 r mu d.
+            (-(rho * rho + d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
+        } else {
+            let d = d_min + x * (d_max - d_min);
+            if d <= 0.0 {
+                return 1.0;
+            }
+            // Rt^2 = r^2 + d^2 + 2 r mu d.
+            ((h * h - rho * rho - d * d) / (2.0 * r * d)).clamp(-1.0, 1.0)
+        }
+    }
+}
+
+/// u_mu_s = (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)), clamped to [0, 1].
+pub fn u_mu_s(mu_s: f64) -> f64 {
+    ((1.0 - (-3.0 * mu_s - 0.6).exp()) / mu_s_norm()).clamp(0.0, 1.0)
+}
+
+/// Inverse of [`u_mu_s`].
+pub fn mu_s_from_u(u: f64) -> f64 {
+    (-(1.0 - u * mu_s_norm()).ln() - 0.6) / 3.0
+}
+
+/// u_nu = (1 + nu) / 2.
+pub fn u_nu(nu: f64) -> f64 {
+    (0.5 * (1.0 + nu)).clamp(0.0, 1.0)
+}
+
+/// Inverse of [`u_nu`].
+pub fn nu_from_u(u: f64) -> f64 {
+    2.0 * u - 1.0
+}
+
+/// The cosine of the view-sun angle clamped to what view and sun zenith cosines allow.
+pub fn clamp_nu(mu: f64, mu_s: f64, nu: f64) -> f64 {
+    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
+    nu.clamp(mu * mu_s - s, mu * mu_s + s)
+}
+
+/// Texel position along an axis of `n` texels for a unit coordinate: the lower texel
+/// index (at most n - 2) and the interpolation weight of the next one.
+pub fn axis(x: f64, n: usize) -> (usize, f64) {
+    if n < 2 {
+        return (0, 0.0);
+    }
+    let f = (x.clamp(0.0, 1.0) * (n - 1) as f64).max(0.0);
+    let i = (f as usize).min(n - 2);
+    let w = (f - i as f64).clamp(0.0, 1.0);
+    // Texel centres hit by rounding count as exact (one texel, weight 0).
+    if w < 1e-9 {
+        (i, 0.0)
+    } else if w > 1.0 - 1e-9 && i + 2 < n {
+        (i + 1, 0.0)
+    } else if w > 1.0 - 1e-9 {
+        (i, 1.0)
+    } else {
+        (i, w)
+    }
+}
+
+/// Unit coordinate of texel `k` of `n`.
+pub fn texel_unit(k: usize, n: usize) -> f64 {
+    if n < 2 {
+        0.0
+    } else {
+        k as f64 / (n - 1) as f64
+    }
+}
+
+/// Sizes of the 4D scattering table: (r, mu, mu_s, nu). The mu axis has an even size: its
+/// first half is for rays that meet the ground.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ScatteringSize {
+    pub r: usize,
+    pub mu: usize,
+    pub mu_s: usize,
+    pub nu: usize,
+}
+
+impl ScatteringSize {
+    pub fn texels(&self) -> usize {
+        self.r * self.mu * self.mu_s * self.nu
+    }
+
+    /// Linear index of texel (r, mu, mu_s, nu): mu_s fastest, then r, mu, nu. Along one
+    /// view ray nu is fixed and the texels of equal (r, mu) and neighbouring mu_s are
+    /// built one after the other, so they read neighbouring memory.
+    pub fn index(&self, ir: usize, imu: usize, imus: usize, inu: usize) -> usize {
+        ((inu * self.mu + imu) * self.r + ir) * self.mu_s + imus
+    }
+
+    /// (ir, imu, imus, inu) of a linear index.
+    pub fn coords(&self, index: usize) -> (usize, usize, usize, usize) {
+        let imus = index % self.mu_s;
+        let rest = index / self.mu_s;
+        let ir = rest % self.r;
+        let rest = rest / self.r;
+        (ir, rest % self.mu, imus, rest / self.mu)
+    }
+
+    /// Texels in one half of the mu axis.
+    pub fn half_mu(&self) -> usize {
+        self.mu / 2
+    }
+}
+
+/// The physical parameters at a texel of the scattering table: (r, mu, mu_s, nu) and
+/// whether its ray meets the ground.
+pub fn texel_parameters(
+    radii: &Radii,
+    size: &ScatteringSize,
+    ir: usize,
+    imu: usize,
+    imus: usize,
+    inu: usize,
+) -> (f64, f64, f64, f64, bool) {
+    let r = radii.r_from_u(texel_unit(ir, size.r));
+    let half = size.half_mu();
+    let ground = imu < half;
+    let x = texel_unit(if ground { imu } else { imu - half }, half);
+    let mut mu = radii.mu_from_x(r, x, ground);
+    // Keep the texel on its side of the horizon (rounding at the horizon itself).
+    let hits = ray_hits_ground(r, mu, radii.bottom_m);
+    if ground && !hits {
+        mu = crate::optics::geometry::horizon_mu(r, radii.bottom_m) - 1e-12;
+    } else if !ground && hits {
+        mu = crate::optics::geometry::horizon_mu(r, radii.bottom_m) + 1e-12;
+    }
+    let mu_s = mu_s_from_u(texel_unit(imus, size.mu_s));
+    let nu = clamp_nu(mu, mu_s, nu_from_u(texel_unit(inu, size.nu)));
+    (r, mu, mu_s, nu, ground)
+}
+
+/// Where (r, mu, mu_s, nu) falls in the table: for each axis the lower texel and the
+/// weight of the next. `ground` chooses the half of the mu axis (it must be the same for
+/// every point of one view ray).
+pub fn table_position(
+    radii: &Radii,
+    size: &ScatteringSize,
+    r: f64,
+    mu: f64,
+    mu_s: f64,
+    nu: f64,
+    ground: bool,
+) -> [(usize, f64); 4] {
+    let half = size.half_mu();
+    let x_mu = radii.x_mu(r, mu, ground);
+    let (imu, wmu) = axis(x_mu, half);
+    [
+        axis(radii.u_r(r), size.r),
+        (if ground { imu } else { imu + half }, wmu),
+        axis(u_mu_s(mu_s), size.mu_s),
+        axis(u_nu(nu), size.nu),
+    ]
+}
+
+/// Sizes and mapping of the irradiance table E(r, mu_s): (mu_s, r).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IrradianceMapping {
+    pub radii: Radii,
+    pub mu_s_size: usize,
+    pub r_size: usize,
+}
+
+impl IrradianceMapping {
+    pub fn unit_from_r_mu_s(&self, r: f64, mu_s: f64) -> (f64, f64) {
+        (
+            ((r - self.radii.bottom_m) / (self.radii.top_m - self.radii.bottom_m)).clamp(0.0, 1.0),
+            ((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S)).clamp(0.0, 1.0),
+        )
+    }
+
+    pub fn r_mu_s_from_unit(&self, x_r: f64, x_mu_s: f64) -> (f64, f64) {
+        (
+            self.radii.bottom_m + x_r * (self.radii.top_m - self.radii.bottom_m),
+            MIN_MU_S + x_mu_s * (1.0 - MIN_MU_S),
+        )
+    }
+
+    /// Linear index of texel (r, mu_s).
+    pub fn index(&self, ir: usize, imus: usize) -> usize {
+        ir * self.mu_s_size + imus
+    }
+
+    pub fn texels(&self) -> usize {
+        self.mu_s_size * self.r_size
+    }
+}

@@ -1,0 +1,238 @@
+//! Dobashi, Yamamoto, Nishita 2002, "Interactive rendering of atmospheric scattering
+//! effects using graphics hardware" (seed 000), sections 5.2-5.3 and appendix A: the sky by
+//! sampling planes whose segments are read from pre-integrated tables dI_r, dI_m, dg_v over
+//! (h, theta_v), the sun's attenuation from g_l(h, theta_sun), the plane interval by the
+//! rule of section 4.2.1, sample spheres for cameras far out in space, and multiple
+//! scattering as a constant ambient term (not in the paper).
+//!
+//! - `settings`: what trades accuracy for time, with the paper's values.
+//! - `segment`: the integrals of one segment (Eq. 12, A.5-A.6).
+//! - `plane_tables`: dI_r, dI_m, dg_v(h, theta_v) and the interval rule.
+//! - `sphere_tables`: the sample spheres and their 1D tables.
+//! - `trace`: Eq. 12 along a ray, through planes or spheres.
+//! - `ambient`: the ambient term and how its value is chosen.
+//!
+//! See docs/models/dobashi.md for the equations, the settings and the measured errors.
+
+pub mod ambient;
+pub mod grid;
+pub mod plane_tables;
+pub mod segment;
+pub mod settings;
+pub mod sphere_tables;
+pub mod trace;
+
+use glam::DVec3;
+
+use crate::atmosphere::Atmosphere;
+use crate::atmosphere::spectra::Spectra;
+use crate::atmosphere::table_inputs::Inputs;
+use crate::models::error::ModelError;
+use crate::models::id::ModelId;
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::transmittance_table::TransmittanceTable;
+
+pub use ambient::AmbientTable;
+pub use plane_tables::PlaneTables;
+pub use settings::DobashiSettings;
+pub use sphere_tables::SphereTables;
+pub use trace::{Ambient, Terms, Tracer};
+
+/// The dobashi model, prepared for one atmosphere.
+#[derive(Debug)]
+pub struct Dobashi {
+    atmosphere: Atmosphere,
+    settings: DobashiSettings,
+    max_orders: Option<u32>,
+    prune: bool,
+    spectra: Spectra,
+    sun_table: TransmittanceTable,
+    planes: PlaneTables,
+    spheres: SphereTables,
+    /// `None` for single scattering (`max_orders = Some(1)`).
+    ambient: Option<AmbientTable>,
+}
+
+impl Dobashi {
+    /// Prepares every table. Orders two and up (`max_orders` other than `Some(1)`) are the
+    /// ambient term.
+    pub fn prepare(
+        atmosphere: &Atmosphere,
+        model_settings: &ModelSettings,
+        settings: DobashiSettings,
+    ) -> Result<Dobashi, ModelError> {
+        atmosphere.validate()?;
+        model_settings.validate()?;
+        settings.validate()?;
+        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
+        let with_mie = spectra.needs_mie(model_settings.prune);
+        let mut model = Dobashi {
+            atmosphere: atmosphere.clone(),
+            settings,
+            max_orders: model_settings.max_orders,
+            prune: model_settings.prune,
+            sun_table: TransmittanceTable::build(
+                atmosphere,
+                settings.sun_table_angles,
+                settings.sun_table_heights,
+            ),
+            planes: PlaneTables::build(atmosphere, &spectra, &settings, with_mie),
+            spheres: SphereTables::build(
+                atmosphere,
+                &spectra,
+                settings.spheres,
+                settings.sphere_table_angles,
+                with_mie,
+            ),
+            spectra,
+            ambient: None,
+        };
+        model.ambient = model.build_ambient()?;
+        Ok(model)
+    }
+
+    fn build_ambient(&self) -> Result<Option<AmbientTable>, ModelError> {
+        if self.max_orders == Some(1) {
+            return Ok(None);
+        }
+        AmbientTable::build(
+            &self.tracer(),
+            self.settings.ambient_directions,
+            self.settings.ambient_sun_angles,
+            self.max_orders,
+        )
+        .map(Some)
+    }
+
+    /// The tables as a [`Tracer`].
+    pub fn tracer(&self) -> Tracer<'_> {
+        Tracer {
+            atmosphere: &self.atmosphere,
+            spectra: &self.spectra,
+            sun_table: &self.sun_table,
+            planes: &self.planes,
+            spheres: &self.spheres,
+            max_planes: self.settings.max_planes,
+        }
+    }
+
+    pub fn settings(&self) -> &DobashiSettings {
+        &self.settings
+    }
+
+    pub fn planes(&self) -> &PlaneTables {
+        &self.planes
+    }
+
+    pub fn spheres(&self) -> &SphereTables {
+        &self.spheres
+    }
+
+    pub fn ambient(&self) -> Option<&AmbientTable> {
+        self.ambient.as_ref()
+    }
+
+    /// The ambient radiance the model's traces use: its table, or none.
+    fn ambient_radiance(&self) -> Ambient<'_> {
+        match &self.ambient {
+            Some(table) => Ambient::Table(table),
+            None => Ambient::Off,
+        }
+    }
+}
+
+impl SkyModel for Dobashi {
+    fn id(&self) -> ModelId {
+        ModelId::Dobashi
+    }
+
+    fn wavelengths_nm(&self) -> &[f64] {
+        &self.spectra.wavelengths_nm
+    }
+
+    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
+        &self.spectra.solar_irradiance
+    }
+
+    fn table_bytes(&self) -> usize {
+        std::mem::size_of_val(self.sun_table.columns.as_slice())
+            + self.planes.bytes()
+            + self.spheres.bytes()
+            + self.ambient.as_ref().map_or(0, AmbientTable::bytes)
+    }
+
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        let with_mie = spectra.needs_mie(self.prune);
+        let mie_switched = with_mie != self.planes.scatter_m.is_some();
+        let mut rebuilt = Vec::new();
+        if changed.intersects(Inputs::COLUMNS) {
+            self.sun_table = TransmittanceTable::build(
+                atmosphere,
+                self.settings.sun_table_angles,
+                self.settings.sun_table_heights,
+            );
+            rebuilt.push("g_l");
+        }
+        let segments = changed.intersects(PlaneTables::INPUTS) || mie_switched;
+        if segments {
+            self.planes = PlaneTables::build(atmosphere, &spectra, &self.settings, with_mie);
+            self.spheres = SphereTables::build(
+                atmosphere,
+                &spectra,
+                self.settings.spheres,
+                self.settings.sphere_table_angles,
+                with_mie,
+            );
+            rebuilt.extend(["dI_r", "dg_v", "sphere dI_r", "sphere dg_v"]);
+            if with_mie {
+                rebuilt.extend(["dI_m", "sphere dI_m"]);
+            }
+        }
+        self.spectra = spectra;
+        self.atmosphere = atmosphere.clone();
+        if self.max_orders != Some(1) && (segments || changed.intersects(AmbientTable::INPUTS)) {
+            self.ambient = self.build_ambient()?;
+            rebuilt.push("ambient");
+        }
+        Ok(rebuilt)
+    }
+
+    /// The transmitted sun g_l (seed 000 Eq. 11) and the ambient term's sky, pi psi on a
+    /// horizontal element, psi read at the element's sun angle (`Tracer::element_light`);
+    /// no sky for single scattering.
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let n_w = self.spectra.wavelengths_nm.len();
+        let (mut sun, mut sky) = (vec![0.0; n_w], vec![0.0; n_w]);
+        self.tracer()
+            .element_light(&e, self.ambient_radiance(), &mut sun, &mut sky);
+        Ok((0..n_w)
+            .map(|w| {
+                let solar = self.spectra.solar_irradiance[w];
+                e.irradiance(solar, sun[w], solar * sky[w])
+            })
+            .collect())
+    }
+
+    fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
+        let ambient = self.ambient_radiance();
+        let terms = self.tracer().trace(ray, ambient)?;
+        let radiance = (0..terms.single.len())
+            .map(|w| self.spectra.solar_irradiance[w] * (terms.single[w] + terms.ambient[w]))
+            .collect();
+        Ok(RayRadiance {
+            radiance,
+            radiance_std_error: vec![0.0; terms.single.len()],
+            transmittance: terms.transmittance,
+        })
+    }
+}

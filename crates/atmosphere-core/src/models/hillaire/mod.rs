@@ -1,0 +1,561 @@
+//! Hillaire 2020, "A Scalable and Production Ready Sky and Atmosphere Rendering
+//! Technique" (EGSR 2020): no high-dimensional table; a transmittance LUT (256 x 64), a
+//! multiple-scattering LUT Psi_ms (32 x 32) from an isotropic approximation of orders two
+//! and up, and per view a sky-view LUT (192 x 108) and an aerial-perspective volume
+//! (32 slices over 32 km), all filled by short ray marches.
+//!
+//! A view ray from a camera inside the atmosphere reads the sky-view LUT if it ends in
+//! space, the aerial-perspective volume if it ends on the ground or an object within the
+//! volume's range, and is ray marched per pixel otherwise (surfaces beyond the volume);
+//! a camera in space marches every ray per pixel from where it enters the atmosphere, as
+//! the paper does for views from space. Rays that end on the ground add the ground's
+//! Lambertian light times the ray's transmittance. See docs/models/hillaire.md.
+
+pub mod aerial_perspective;
+pub mod directions;
+pub mod ground;
+pub mod march;
+pub mod medium;
+pub mod multiple_scattering;
+pub mod sky_view;
+pub mod view_cache;
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use crate::atmosphere::Atmosphere;
+use crate::atmosphere::spectra::Spectra;
+use crate::atmosphere::table_inputs::Inputs;
+use crate::models::error::ModelError;
+use crate::models::hillaire::aerial_perspective::{AerialPerspective, VolumeShape};
+use crate::models::hillaire::directions::{LatLong, view_angles};
+use crate::models::hillaire::ground::{GroundIrradiance, HemisphereQuadrature};
+use crate::models::hillaire::march::ViewMarch;
+use crate::models::hillaire::medium::Medium;
+use crate::models::hillaire::multiple_scattering::MultipleScattering;
+use crate::models::hillaire::sky_view::SkyView;
+use crate::models::hillaire::view_cache::ViewCache;
+use crate::models::id::ModelId;
+use crate::models::options::ModelOptions;
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::optics::column::optical_depth;
+use crate::optics::geometry::ray_hits_ground;
+use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
+use crate::optics::view_segment::{SegmentEnd, ViewSegment};
+
+/// The settings that trade accuracy for time. `Default` gives the paper's sizes and
+/// sample counts (section 5 and its published implementation); docs/models/hillaire.md
+/// gives the source of each.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HillaireSettings {
+    /// Transmittance LUT (mu, r): 256 x 64.
+    pub transmittance_size: (usize, usize),
+    /// Psi_ms LUT (mu_s, altitude): 32 x 32.
+    pub multiple_scattering_size: (usize, usize),
+    /// Directions over the sphere per Psi_ms texel, a square number: 64 (8 x 8).
+    pub multiple_scattering_directions: usize,
+    /// Segments per Psi_ms ray: 20.
+    pub multiple_scattering_samples: usize,
+    /// Sky-view LUT (longitude, latitude): 192 x 108; the latitude count must be even.
+    pub sky_view_size: (usize, usize),
+    /// Segments per sky-view ray: 30.
+    pub sky_view_samples: usize,
+    /// Aerial-perspective volume (longitude, latitude, depth slices): 96 x 96 x 32. The
+    /// paper's 32 x 32 froxels per slice cover the camera's frustum; 96 x 96 over all
+    /// directions is the same angular spacing for a 60 degree field of view.
+    pub aerial_size: (usize, usize, usize),
+    /// Depth covered by the volume: 32 km.
+    pub aerial_range_m: f64,
+    /// Segments per slice and direction: 2.
+    pub aerial_samples_per_slice: usize,
+    /// Segments of the per-pixel march (cameras in space, surfaces beyond the volume):
+    /// 30, the sky-view's count (the paper's implementation varies it from 4 to 14 with
+    /// the ray's length, for speed on the GPU).
+    pub march_samples: usize,
+    /// Values of the ground's sky-irradiance table over mu_s: 32 (not in the paper; see
+    /// `ground.rs`).
+    pub ground_size: usize,
+    /// Its hemisphere quadrature: 8-point Gauss-Legendre panels in the zenith cosine (1)
+    /// and azimuths over half the circle (8).
+    pub ground_zenith_panels: usize,
+    pub ground_azimuths: usize,
+    /// Views whose per-view tables are kept: 8 (about 7.4 MB each at three wavelengths;
+    /// a frame needs one, the stability sweep cycles through five sun elevations).
+    pub view_cache: usize,
+}
+
+impl Default for HillaireSettings {
+    fn default() -> Self {
+        HillaireSettings {
+            transmittance_size: BRUNETON_TABLE_SIZE,
+            multiple_scattering_size: (32, 32),
+            multiple_scattering_directions: 64,
+            multiple_scattering_samples: 20,
+            sky_view_size: (192, 108),
+            sky_view_samples: 30,
+            aerial_size: (96, 96, 32),
+            aerial_range_m: 32_000.0,
+            aerial_samples_per_slice: 2,
+            march_samples: 30,
+            ground_size: 32,
+            ground_zenith_panels: 1,
+            ground_azimuths: 8,
+            view_cache: 8,
+        }
+    }
+}
+
+impl HillaireSettings {
+    /// The settings from `key=value` options (keys in docs/models/hillaire.md); the
+    /// defaults where absent.
+    pub fn from_options(options: &ModelOptions) -> Result<HillaireSettings, ModelError> {
+        let d = HillaireSettings::default();
+        let mut o = options.reader("hillaire");
+        let settings = HillaireSettings {
+            transmittance_size: (
+                o.count("transmittance_width", d.transmittance_size.0)?,
+                o.count("transmittance_height", d.transmittance_size.1)?,
+            ),
+            multiple_scattering_size: (
+                o.count("ms_width", d.multiple_scattering_size.0)?,
+                o.count("ms_height", d.multiple_scattering_size.1)?,
+            ),
+            multiple_scattering_directions: o
+                .count("ms_directions", d.multiple_scattering_directions)?,
+            multiple_scattering_samples: o.count("ms_samples", d.multiple_scattering_samples)?,
+            sky_view_size: (
+                o.count("sky_view_width", d.sky_view_size.0)?,
+                o.count("sky_view_height", d.sky_view_size.1)?,
+            ),
+            sky_view_samples: o.count("sky_view_samples", d.sky_view_samples)?,
+            aerial_size: (
+                o.count("ap_width", d.aerial_size.0)?,
+                o.count("ap_height", d.aerial_size.1)?,
+                o.count("ap_slices", d.aerial_size.2)?,
+            ),
+            aerial_range_m: o.number("ap_range_m", d.aerial_range_m)?,
+            aerial_samples_per_slice: o
+                .count("ap_samples_per_slice", d.aerial_samples_per_slice)?,
+            march_samples: o.count("march_samples", d.march_samples)?,
+            ground_size: o.count("ground_size", d.ground_size)?,
+            ground_zenith_panels: o.count("ground_zenith_panels", d.ground_zenith_panels)?,
+            ground_azimuths: o.count("ground_azimuths", d.ground_azimuths)?,
+            view_cache: o.count("view_cache", d.view_cache)?,
+        };
+        o.finish()?;
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    /// Why these settings cannot be used, if they cannot.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let bad = |m: String| Err(ModelError::Settings(format!("hillaire: {m}")));
+        let two = |(a, b): (usize, usize)| a >= 2 && b >= 2;
+        if !two(self.transmittance_size) || !two(self.multiple_scattering_size) {
+            return bad("the transmittance and Psi_ms LUTs need 2 x 2 texels".into());
+        }
+        let root = self.multiple_scattering_directions.isqrt();
+        if root == 0 || root * root != self.multiple_scattering_directions {
+            return bad(format!(
+                "ms_directions {} must be a square number of at least 1",
+                self.multiple_scattering_directions
+            ));
+        }
+        let (aw, ah, slices) = self.aerial_size;
+        for (name, (w, h)) in [("sky view", self.sky_view_size), ("aerial", (aw, ah))] {
+            if w < 2 || h < 4 || !h.is_multiple_of(2) {
+                return bad(format!(
+                    "{name} grid {w} x {h}: at least 2 columns and an even count of 4 or more rows"
+                ));
+            }
+        }
+        if slices < 2 {
+            return bad(format!("ap_slices {slices} must be at least 2"));
+        }
+        if !(self.aerial_range_m.is_finite() && self.aerial_range_m > 0.0) {
+            return bad(format!("ap_range_m {} must be > 0", self.aerial_range_m));
+        }
+        if self.ground_size < 2 {
+            return bad("ground_size must be at least 2".into());
+        }
+        if [
+            self.multiple_scattering_samples,
+            self.sky_view_samples,
+            self.aerial_samples_per_slice,
+            self.march_samples,
+            self.ground_zenith_panels,
+            self.ground_azimuths,
+            self.view_cache,
+        ]
+        .contains(&0)
+        {
+            return bad("sample counts and the view cache must be at least 1".into());
+        }
+        Ok(())
+    }
+
+    fn sky_view_grid(&self) -> LatLong {
+        LatLong {
+            width: self.sky_view_size.0,
+            height: self.sky_view_size.1,
+        }
+    }
+
+    fn volume_shape(&self) -> VolumeShape {
+        VolumeShape {
+            grid: LatLong {
+                width: self.aerial_size.0,
+                height: self.aerial_size.1,
+            },
+            slices: self.aerial_size.2,
+            range_m: self.aerial_range_m,
+            samples_per_slice: self.aerial_samples_per_slice,
+        }
+    }
+
+    fn hemisphere(&self) -> HemisphereQuadrature {
+        HemisphereQuadrature {
+            zenith_panels: self.ground_zenith_panels,
+            azimuths: self.ground_azimuths,
+            samples: self.sky_view_samples,
+        }
+    }
+}
+
+/// The inputs of Psi_ms: extinction, scattering (part of the extinction inputs) and the
+/// ground's albedo; not the Mie phase function (isotropic there) nor the sun (the table
+/// is per unit irradiance).
+pub const MULTIPLE_SCATTERING_INPUTS: Inputs = Inputs::EXTINCTION.union(Inputs::GROUND_ALBEDO);
+/// The inputs of the ground's sky irradiance and of the per-view tables.
+pub const VIEW_INPUTS: Inputs = MULTIPLE_SCATTERING_INPUTS.union(Inputs::MIE_PHASE);
+
+/// The Hillaire 2020 model, prepared for one atmosphere.
+#[derive(Debug)]
+pub struct Hillaire {
+    atmosphere: Atmosphere,
+    settings: HillaireSettings,
+    spectra: Spectra,
+    /// Orders two and up (the Psi_ms term and the sky's light on the ground); off for
+    /// `ModelSettings::max_orders == Some(1)`.
+    multiple_on: bool,
+    prune: bool,
+    mie: bool,
+    transmittance: TransmittanceTable,
+    multiple: Option<MultipleScattering>,
+    ground: Option<GroundIrradiance>,
+    views: ViewCache,
+}
+
+impl Hillaire {
+    /// Builds the global tables (transmittance, Psi_ms, the ground's sky irradiance);
+    /// the per-view tables are built when a view first needs them. Orders two and up
+    /// are on unless `model_settings.max_orders` is `Some(1)` (the approximation has no
+    /// notion of a finite number of orders above one).
+    pub fn prepare(
+        atmosphere: &Atmosphere,
+        model_settings: &ModelSettings,
+        settings: HillaireSettings,
+    ) -> Result<Hillaire, ModelError> {
+        atmosphere.validate()?;
+        model_settings.validate()?;
+        settings.validate()?;
+        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
+        let (w, h) = settings.transmittance_size;
+        let mut model = Hillaire {
+            atmosphere: atmosphere.clone(),
+            settings,
+            mie: spectra.needs_mie(model_settings.prune),
+            spectra,
+            multiple_on: model_settings.max_orders != Some(1),
+            prune: model_settings.prune,
+            transmittance: TransmittanceTable::build(atmosphere, w, h),
+            multiple: None,
+            ground: None,
+            views: ViewCache::new(settings.view_cache),
+        };
+        model.build_multiple_scattering();
+        model.build_ground_irradiance();
+        Ok(model)
+    }
+
+    pub fn settings(&self) -> &HillaireSettings {
+        &self.settings
+    }
+
+    /// The medium as the ray marches see it.
+    pub fn medium(&self) -> Medium<'_> {
+        Medium {
+            atmosphere: &self.atmosphere,
+            spectra: &self.spectra,
+            transmittance: &self.transmittance,
+            mie: self.mie,
+        }
+    }
+
+    /// The Psi_ms LUT (none for single scattering).
+    pub fn multiple_scattering(&self) -> Option<&MultipleScattering> {
+        self.multiple.as_ref()
+    }
+
+    /// The ground's sky-irradiance table (none for single scattering).
+    pub fn ground_irradiance(&self) -> Option<&GroundIrradiance> {
+        self.ground.as_ref()
+    }
+
+    /// Runs `f` on the sky-view LUT of a camera at radius `r` with the sun at zenith
+    /// cosine `mu_s`, built if this view has none yet.
+    pub fn with_sky_view<T>(&self, r: f64, mu_s: f64, f: impl FnOnce(&SkyView) -> T) -> T {
+        let tables = self.views.get(r, mu_s);
+        f(tables.sky_view.get_or_init(|| {
+            SkyView::build(
+                &self.medium(),
+                self.multiple.as_ref(),
+                self.settings.sky_view_grid(),
+                r,
+                mu_s,
+                self.settings.sky_view_samples,
+            )
+        }))
+    }
+
+    /// Runs `f` on the aerial-perspective volume of a camera at radius `r` with the sun at
+    /// zenith cosine `mu_s`, built if this view has none yet.
+    pub fn with_aerial_perspective<T>(
+        &self,
+        r: f64,
+        mu_s: f64,
+        f: impl FnOnce(&AerialPerspective) -> T,
+    ) -> T {
+        let tables = self.views.get(r, mu_s);
+        f(tables.aerial_perspective.get_or_init(|| {
+            AerialPerspective::build(
+                &self.medium(),
+                self.multiple.as_ref(),
+                self.settings.volume_shape(),
+                r,
+                mu_s,
+            )
+        }))
+    }
+
+    /// Views whose tables are held.
+    pub fn cached_views(&self) -> usize {
+        self.views.len()
+    }
+
+    /// Builds Psi_ms (orders two and up on).
+    fn build_multiple_scattering(&mut self) {
+        let s = self.settings;
+        self.multiple = self.multiple_on.then(|| {
+            MultipleScattering::build(
+                &self.medium(),
+                s.multiple_scattering_size,
+                s.multiple_scattering_directions.isqrt(),
+                s.multiple_scattering_samples,
+            )
+        });
+    }
+
+    /// Builds the ground's sky irradiance from Psi_ms (orders two and up on).
+    fn build_ground_irradiance(&mut self) {
+        self.ground = self.multiple.as_ref().map(|multiple| {
+            GroundIrradiance::build(
+                &self.medium(),
+                Some(multiple),
+                self.settings.ground_size,
+                self.settings.hemisphere(),
+            )
+        });
+    }
+
+    /// The per-pixel march of a segment: radiance per unit solar irradiance and
+    /// transmittance.
+    fn march(&self, segment: &ViewSegment) -> (Vec<f64>, Vec<f64>) {
+        let mu_s =
+            (segment.start.dot(segment.sun_direction) / segment.start.length()).clamp(-1.0, 1.0);
+        let nu = segment
+            .direction
+            .dot(segment.sun_direction)
+            .clamp(-1.0, 1.0);
+        let mut march = ViewMarch::new(
+            self.medium(),
+            self.multiple.as_ref(),
+            segment.r,
+            segment.mu,
+            mu_s,
+            nu,
+        );
+        march.run(segment.length, self.settings.march_samples);
+        (march.radiance, march.throughput)
+    }
+
+    /// The view a camera at radius `r` with the sun at zenith cosine `mu_s` belongs to
+    /// ([`view_cache::view_key`]).
+    pub fn view_key(&self, r: f64, mu_s: f64) -> (f64, f64) {
+        view_cache::view_key(&self.atmosphere, r, mu_s)
+    }
+
+    /// Radiance per unit solar irradiance and transmittance of a segment whose camera is
+    /// inside the atmosphere.
+    fn read_tables(&self, segment: &ViewSegment) -> (Vec<f64>, Vec<f64>) {
+        let n = self.spectra.wavelengths_nm.len();
+        let up = segment.start / segment.start.length();
+        let (r, mu_s) = self.view_key(segment.r, segment.sun_direction.dot(up));
+        let (_, phi) = view_angles(up, segment.direction, segment.sun_direction);
+        let ground = ray_hits_ground(segment.r, segment.mu, self.atmosphere.bottom_radius_m);
+        let mut radiance = vec![0.0; n];
+        if segment.end == SegmentEnd::Space {
+            self.with_sky_view(r, mu_s, |sky| {
+                sky.lookup(segment.mu, phi, false, &mut radiance);
+            });
+            let column = self.transmittance.column(segment.r, segment.mu);
+            let transmittance = self
+                .spectra
+                .extinction
+                .iter()
+                .map(|e| (-optical_depth(column, *e)).exp())
+                .collect();
+            return (radiance, transmittance);
+        }
+        let mut transmittance = vec![1.0; n];
+        self.with_aerial_perspective(r, mu_s, |volume| {
+            volume.lookup(
+                segment.mu,
+                phi,
+                ground,
+                segment.length,
+                &mut radiance,
+                &mut transmittance,
+            );
+        });
+        (radiance, transmittance)
+    }
+}
+
+impl SkyModel for Hillaire {
+    fn id(&self) -> ModelId {
+        ModelId::Hillaire
+    }
+
+    fn wavelengths_nm(&self) -> &[f64] {
+        &self.spectra.wavelengths_nm
+    }
+
+    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
+        &self.spectra.solar_irradiance
+    }
+
+    /// The global tables plus the per-view tables of one view.
+    fn table_bytes(&self) -> usize {
+        let n = self.spectra.wavelengths_nm.len();
+        std::mem::size_of_val(self.transmittance.columns.as_slice())
+            + self.multiple.as_ref().map_or(0, MultipleScattering::bytes)
+            + self.ground.as_ref().map_or(0, GroundIrradiance::bytes)
+            + SkyView::bytes_for(self.settings.sky_view_grid(), n)
+            + AerialPerspective::bytes_for(self.settings.volume_shape(), n)
+    }
+
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        self.atmosphere = atmosphere.clone();
+        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        self.mie = self.spectra.needs_mie(self.prune);
+        let mut rebuilt = Vec::new();
+        if changed.intersects(Inputs::COLUMNS) {
+            let (w, h) = self.settings.transmittance_size;
+            self.transmittance = TransmittanceTable::build(atmosphere, w, h);
+            rebuilt.push("transmittance");
+        }
+        if self.multiple_on && changed.intersects(MULTIPLE_SCATTERING_INPUTS) {
+            self.build_multiple_scattering();
+            rebuilt.push("multiple scattering");
+        }
+        if self.multiple_on && changed.intersects(VIEW_INPUTS) {
+            self.build_ground_irradiance();
+            rebuilt.push("ground irradiance");
+        }
+        if changed.intersects(VIEW_INPUTS) {
+            self.views.clear();
+            rebuilt.push("sky view and aerial perspective");
+        }
+        Ok(rebuilt)
+    }
+
+    /// The transmitted sun from the transmittance LUT (zero where the planet hides the
+    /// sun) and the sky's irradiance E_sky (`ground.rs`; none for single scattering): the
+    /// paper's lit planet surface (section 5). The sky-irradiance table is tabulated on
+    /// the ground only, over mu_s: an element higher up reads it at its own mu_s, times
+    /// the share of the ground's vertical optical depth that lies above the element (the
+    /// sky over a peak is thinner; at the top there is none).
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let n = self.spectra.wavelengths_nm.len();
+        let mut sun = vec![0.0; n];
+        self.medium().sun_transmittance(e.r, e.mu_s, &mut sun);
+        let mut sky = vec![0.0; n];
+        if let Some(ground) = &self.ground {
+            ground.lookup(e.mu_s, &mut sky);
+        }
+        let above = self.transmittance.column(e.r, 1.0);
+        let whole = self
+            .transmittance
+            .column(self.atmosphere.bottom_radius_m, 1.0);
+        Ok((0..n)
+            .map(|w| {
+                let extinction = self.spectra.extinction[w];
+                let total = optical_depth(whole, extinction);
+                let share = if total > 0.0 {
+                    optical_depth(above, extinction) / total
+                } else {
+                    1.0
+                };
+                let solar = self.spectra.solar_irradiance[w];
+                e.irradiance(solar, sun[w], solar * sky[w] * share)
+            })
+            .collect())
+    }
+
+    fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
+        let n = self.spectra.wavelengths_nm.len();
+        let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
+            return Ok(RayRadiance {
+                radiance: vec![0.0; n],
+                transmittance: vec![1.0; n],
+                radiance_std_error: vec![0.0; n],
+            });
+        };
+        let inside = ray.origin_m.length() <= self.atmosphere.top_radius_m;
+        let (mut radiance, transmittance) = if inside
+            && (segment.end == SegmentEnd::Space || segment.length <= self.settings.aerial_range_m)
+        {
+            self.read_tables(&segment)
+        } else {
+            self.march(&segment)
+        };
+        for (l, e) in radiance.iter_mut().zip(&self.spectra.solar_irradiance) {
+            *l *= e;
+        }
+        // The ground lit as a surface element facing up at the ray's end.
+        if segment.end == SegmentEnd::Ground {
+            let end = segment.end_point();
+            let irradiance = self.surface_irradiance(end, end, segment.sun_direction)?;
+            for w in 0..n {
+                radiance[w] +=
+                    transmittance[w] * self.atmosphere.ground_albedo / PI * irradiance[w];
+            }
+        }
+        Ok(RayRadiance {
+            radiance: radiance.iter().map(|l| l.max(0.0)).collect(),
+            transmittance: transmittance.iter().map(|t| t.clamp(0.0, 1.0)).collect(),
+            radiance_std_error: vec![0.0; n],
+        })
+    }
+}

@@ -1,0 +1,437 @@
+//! O'Neil 2004, "Real-time atmospheric scattering" (seed 002): single scattering from a
+//! few samples per view ray, with every optical depth and density read from one 2D table.
+//!
+//! The table ([`OpticalDepthTable`]) has height above the ground (0 to the top of the
+//! atmosphere) on one axis and the angle of a ray from the local vertical (0 to 180
+//! degrees) on the other, and four channels: Rayleigh density, Rayleigh optical length,
+//! Mie density, Mie optical length. The density channels are 0 where the ray meets the
+//! planet (the point is in the planet's shadow when the ray goes to the sun); the optical
+//! lengths of such rays "pretend the ray didn't hit the planet" and run on through it to
+//! the top of the atmosphere. "Optical length" here is the column of the species (the
+//! integral of its relative density, m); times the atmosphere's extinction coefficient at
+//! a wavelength it is the optical depth, so one table serves every wavelength.
+//!
+//! Along the view ray the model takes `samples` equal sample rays and, at the centre of
+//! each, reads the density and the optical length to the sun from the table; the optical
+//! length back to the camera is the difference of two lookups (sample point and camera,
+//! same direction), with the direction reversed when the camera is above the point; a
+//! camera in space stands at the point where the ray enters the atmosphere. See
+//! docs/models/oneil.md for the equations, the settings' sources and the measured errors.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use crate::atmosphere::Atmosphere;
+use crate::atmosphere::spectra::Spectra;
+use crate::atmosphere::table_inputs::Inputs;
+use crate::models::error::ModelError;
+use crate::models::id::ModelId;
+use crate::models::options::ModelOptions;
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
+use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::view_segment::{SegmentEnd, ViewSegment};
+
+/// What trades accuracy for time in O'Neil's model. `Default` is the paper's choice.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OneilSettings {
+    /// Sample rays per view ray. Seed 002: "3 or 4 samples seems to be sufficient to make
+    /// it look good"; the demo's `m_nSamples = 4`.
+    pub samples: usize,
+    /// Table nodes along the height axis (ground to top). The seed's text gives no size;
+    /// the demo's `CPixelBuffer::MakeOpticalDepthBuffer` uses `nSize = 64` on both axes.
+    pub table_heights: usize,
+    /// Table nodes along the angle axis (0 to 180 degrees from the vertical); 64 as above.
+    pub table_angles: usize,
+    /// Midpoint samples along each table ray; the demo's `nSamples = 50`.
+    pub table_ray_samples: usize,
+}
+
+impl Default for OneilSettings {
+    fn default() -> Self {
+        OneilSettings {
+            samples: 4,
+            table_heights: 64,
+            table_angles: 64,
+            table_ray_samples: 50,
+        }
+    }
+}
+
+impl OneilSettings {
+    /// The settings from `key=value` options: `samples`, `table_heights`,
+    /// `table_angles`, `table_ray_samples`; the paper's where absent.
+    pub fn from_options(options: &ModelOptions) -> Result<OneilSettings, ModelError> {
+        let d = OneilSettings::default();
+        let mut o = options.reader("oneil");
+        let settings = OneilSettings {
+            samples: o.count("samples", d.samples)?,
+            table_heights: o.count("table_heights", d.table_heights)?,
+            table_angles: o.count("table_angles", d.table_angles)?,
+            table_ray_samples: o.count("table_ray_samples", d.table_ray_samples)?,
+        };
+        o.finish()?;
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    /// Why these settings cannot be used, if they cannot.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let bad = |m: String| Err(ModelError::Settings(m));
+        if self.samples == 0 {
+            return bad("oneil: samples must be at least 1".into());
+        }
+        if self.table_heights < 2 || self.table_angles < 2 {
+            return bad(format!(
+                "oneil: the table needs at least 2 x 2 nodes, got {} x {}",
+                self.table_heights, self.table_angles
+            ));
+        }
+        if self.table_ray_samples == 0 {
+            return bad("oneil: table_ray_samples must be at least 1".into());
+        }
+        Ok(())
+    }
+}
+
+/// Channels of a table node.
+pub const RAYLEIGH_DENSITY: usize = 0;
+pub const RAYLEIGH_LENGTH: usize = 1;
+pub const MIE_DENSITY: usize = 2;
+pub const MIE_LENGTH: usize = 3;
+
+/// The 4-channel optical-depth table of seed 002, stored as f32 (a GL_FLOAT RGBA texture
+/// in the paper's demo), read by bilinear interpolation between nodes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OpticalDepthTable {
+    heights: usize,
+    angles: usize,
+    bottom_radius_m: f64,
+    thickness_m: f64,
+    /// Node (i height, j angle) at `j * heights + i`.
+    data: Vec<[f32; 4]>,
+}
+
+impl OpticalDepthTable {
+    /// What the table depends on: densities only, so the aerosol amount and every
+    /// coefficient can change without a rebuild.
+    pub const INPUTS: Inputs = Inputs::GEOMETRY
+        .union(Inputs::RAYLEIGH_PROFILE)
+        .union(Inputs::MIE_PROFILE);
+
+    /// Bytes of the table.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of_val(self.data.as_slice())
+    }
+
+    /// Builds the table: node i is at height `thickness * i / (heights - 1)`, node j at
+    /// angle `180 deg * j / (angles - 1)` from the vertical; each node's optical lengths
+    /// are the midpoint rule with `ray_samples` samples along the ray to the top sphere.
+    pub fn build(
+        atmosphere: &Atmosphere,
+        heights: usize,
+        angles: usize,
+        ray_samples: usize,
+    ) -> OpticalDepthTable {
+        let bottom = atmosphere.bottom_radius_m;
+        let thickness = atmosphere.thickness_m();
+        let mut data = Vec::with_capacity(heights * angles);
+        for j in 0..angles {
+            let theta = PI * j as f64 / (angles - 1) as f64;
+            let mu = theta.cos();
+            for i in 0..heights {
+                let h = thickness * i as f64 / (heights - 1) as f64;
+                let r = bottom + h;
+                let lengths = line_column(atmosphere, r, mu, ray_samples);
+                let (rho_r, rho_m) = if ray_hits_ground(r, mu, bottom) {
+                    (0.0, 0.0)
+                } else {
+                    (
+                        atmosphere.rayleigh.density.density(h),
+                        atmosphere.mie.density.density(h),
+                    )
+                };
+                data.push([
+                    rho_r as f32,
+                    lengths[0] as f32,
+                    rho_m as f32,
+                    lengths[1] as f32,
+                ]);
+            }
+        }
+        OpticalDepthTable {
+            heights,
+            angles,
+            bottom_radius_m: bottom,
+            thickness_m: thickness,
+            data,
+        }
+    }
+
+    pub fn heights(&self) -> usize {
+        self.heights
+    }
+
+    pub fn angles(&self) -> usize {
+        self.angles
+    }
+
+    /// Height above the ground of node row `i`, m.
+    pub fn node_height_m(&self, i: usize) -> f64 {
+        self.thickness_m * i as f64 / (self.heights - 1) as f64
+    }
+
+    /// Angle from the vertical of node column `j`, radians.
+    pub fn node_angle_rad(&self, j: usize) -> f64 {
+        PI * j as f64 / (self.angles - 1) as f64
+    }
+
+    /// The stored channels of node (i, j).
+    pub fn node(&self, i: usize, j: usize) -> [f32; 4] {
+        self.data[j * self.heights + i]
+    }
+
+    /// The four channels at radius `r` (clamped to the atmosphere) for a ray whose cosine
+    /// with the local vertical is `mu`, interpolated bilinearly in height and angle.
+    pub fn lookup(&self, r: f64, mu: f64) -> [f64; 4] {
+        let x = ((r - self.bottom_radius_m) / self.thickness_m).clamp(0.0, 1.0)
+            * (self.heights - 1) as f64;
+        let y = (mu.clamp(-1.0, 1.0).acos() / PI).clamp(0.0, 1.0) * (self.angles - 1) as f64;
+        let i = (x.floor() as usize).min(self.heights - 2);
+        let j = (y.floor() as usize).min(self.angles - 2);
+        let (fx, fy) = (x - i as f64, y - j as f64);
+        let (a, b) = (self.node(i, j), self.node(i + 1, j));
+        let (c, d) = (self.node(i, j + 1), self.node(i + 1, j + 1));
+        let mut out = [0.0; 4];
+        for k in 0..4 {
+            let low = a[k] as f64 * (1.0 - fx) + b[k] as f64 * fx;
+            let high = c[k] as f64 * (1.0 - fx) + d[k] as f64 * fx;
+            out[k] = low * (1.0 - fy) + high * fy;
+        }
+        out
+    }
+}
+
+/// Rayleigh and Mie columns (m) along the whole line from (r, mu) to where it leaves the
+/// top sphere, through the planet if it meets it, by the midpoint rule with `samples`
+/// samples (the demo's `MakeOpticalDepthBuffer`). Inside the planet the density is held at
+/// its ground value: the demo lets exp(-h/H) grow with depth and zeroes sums past 1e25,
+/// which is not usable; holding it keeps the lengths continuous across the horizon
+/// (a grazing chord through the planet has zero length).
+pub fn line_column(atmosphere: &Atmosphere, r: f64, mu: f64, samples: usize) -> [f64; 2] {
+    let bottom = atmosphere.bottom_radius_m;
+    let length = distance_to_exit(r, mu, atmosphere.top_radius_m);
+    let step = length / samples as f64;
+    let mut sum = [0.0; 2];
+    for k in 0..samples {
+        let t = (k as f64 + 0.5) * step;
+        let h = (crate::optics::geometry::radius_at(r, mu, t) - bottom).max(0.0);
+        sum[0] += atmosphere.rayleigh.density.density(h);
+        sum[1] += atmosphere.mie.density.density(h);
+    }
+    [sum[0] * step, sum[1] * step]
+}
+
+/// O'Neil's model, prepared for one atmosphere.
+#[derive(Debug)]
+pub struct Oneil {
+    atmosphere: Atmosphere,
+    settings: OneilSettings,
+    spectra: Spectra,
+    table: OpticalDepthTable,
+    prune: bool,
+    /// False when pruning at zero aerosol: the Mie terms are skipped (the table's Mie
+    /// channels are density integrals, built in the same pass as the Rayleigh ones).
+    with_mie: bool,
+}
+
+impl Oneil {
+    /// Prepares the table. `settings.max_orders` is ignored: the model has single
+    /// scattering only, as in the paper.
+    pub fn prepare(
+        atmosphere: &Atmosphere,
+        settings: &ModelSettings,
+        oneil: OneilSettings,
+    ) -> Result<Oneil, ModelError> {
+        atmosphere.validate()?;
+        settings.validate()?;
+        oneil.validate()?;
+        let spectra = Spectra::new(atmosphere, &settings.wavelengths_nm);
+        Ok(Oneil {
+            atmosphere: atmosphere.clone(),
+            settings: oneil,
+            prune: settings.prune,
+            with_mie: spectra.needs_mie(settings.prune),
+            spectra,
+            table: OpticalDepthTable::build(
+                atmosphere,
+                oneil.table_heights,
+                oneil.table_angles,
+                oneil.table_ray_samples,
+            ),
+        })
+    }
+
+    pub fn table(&self) -> &OpticalDepthTable {
+        &self.table
+    }
+
+    pub fn settings(&self) -> &OneilSettings {
+        &self.settings
+    }
+}
+
+impl SkyModel for Oneil {
+    fn id(&self) -> ModelId {
+        ModelId::Oneil
+    }
+
+    fn wavelengths_nm(&self) -> &[f64] {
+        &self.spectra.wavelengths_nm
+    }
+
+    fn table_bytes(&self) -> usize {
+        self.table.bytes()
+    }
+
+    fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        atmosphere.validate()?;
+        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut rebuilt = Vec::new();
+        if changed.intersects(OpticalDepthTable::INPUTS) {
+            self.table = OpticalDepthTable::build(
+                atmosphere,
+                self.settings.table_heights,
+                self.settings.table_angles,
+                self.settings.table_ray_samples,
+            );
+            rebuilt.push("optical depth");
+        }
+        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        self.with_mie = self.spectra.needs_mie(self.prune);
+        self.atmosphere = atmosphere.clone();
+        Ok(rebuilt)
+    }
+
+    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
+        &self.spectra.solar_irradiance
+    }
+
+    /// The transmitted sun only (single scattering has no sky light): the sun's columns
+    /// from the table at the element's height and sun angle (seed 002's ground shader
+    /// reads the same lookup), zero where the planet hides the sun's centre, the table's
+    /// own shadow test (its density channels are 0 where `ray_hits_ground`).
+    fn surface_irradiance(
+        &self,
+        point_m: DVec3,
+        normal: DVec3,
+        sun_direction: DVec3,
+    ) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+        let s = &self.spectra;
+        let lit =
+            e.sun_cosine > 0.0 && !ray_hits_ground(e.r, e.mu_s, self.atmosphere.bottom_radius_m);
+        let column = lit.then(|| {
+            let light = self.table.lookup(e.r, e.mu_s);
+            [light[RAYLEIGH_LENGTH], light[MIE_LENGTH]]
+        });
+        Ok((0..s.wavelengths_nm.len())
+            .map(|w| {
+                let t = column.map_or(0.0, |c| {
+                    (-(s.extinction[w][0] * c[0] + s.extinction[w][1] * c[1])).exp()
+                });
+                e.irradiance(s.solar_irradiance[w], t, 0.0)
+            })
+            .collect())
+    }
+
+    fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
+        let n = self.spectra.wavelengths_nm.len();
+        let Some(seg) = ViewSegment::new(&self.atmosphere, ray)? else {
+            return Ok(RayRadiance {
+                radiance: vec![0.0; n],
+                transmittance: vec![1.0; n],
+                radiance_std_error: vec![0.0; n],
+            });
+        };
+        let table = &self.table;
+        let sun = ray.sun_direction.normalize();
+        let dir = seg.direction;
+        let end = seg.start + dir * seg.length;
+        // "When a point is above the camera the angle to the camera points down, putting
+        // you in the wrong spot in your lookup buffer ... reverse the ray direction for
+        // both lookups when the target vertex is higher than the camera" (seed 002). The
+        // test is made for each point, not once per ray: then neither lookup ray meets the
+        // planet (the line climbs beyond the higher of the two points), and where a point
+        // crosses the camera's height the two forms read mirror-image texels and agree,
+        // so the result is continuous. A camera in space stands at the entry point on the
+        // top boundary, above every point, as the paper says.
+        let r_camera = seg.start.length();
+        let camera_forward = table.lookup(r_camera, seg.start.dot(dir) / r_camera);
+        let camera_back = table.lookup(r_camera, -seg.start.dot(dir) / r_camera);
+        // Columns (Rayleigh, Mie) from the camera to a point, by two lookups.
+        let to_camera = |p: DVec3| {
+            let r = p.length();
+            let (a, b) = if r <= r_camera {
+                (table.lookup(r, -p.dot(dir) / r), camera_back)
+            } else {
+                (camera_forward, table.lookup(r, p.dot(dir) / r))
+            };
+            [
+                (a[RAYLEIGH_LENGTH] - b[RAYLEIGH_LENGTH]).max(0.0),
+                (a[MIE_LENGTH] - b[MIE_LENGTH]).max(0.0),
+            ]
+        };
+        let ext = &self.spectra.extinction;
+        let depth = |w: usize, c: [f64; 2]| ext[w][0] * c[0] + ext[w][1] * c[1];
+
+        let nu = dir.dot(sun);
+        let phase_r = crate::optics::phase::rayleigh(nu);
+        let phase_m = if self.with_mie {
+            self.atmosphere.mie.phase.eval(nu)
+        } else {
+            0.0
+        };
+        let mut radiance = vec![0.0; n];
+        let ds = seg.length / self.settings.samples as f64;
+        for k in 0..self.settings.samples {
+            let p = seg.start + dir * ((k as f64 + 0.5) * ds);
+            let r = p.length();
+            let light = table.lookup(r, p.dot(sun) / r);
+            let (rho_r, rho_m) = (light[RAYLEIGH_DENSITY], light[MIE_DENSITY]);
+            if rho_r <= 0.0 && rho_m <= 0.0 {
+                continue; // in the planet's shadow
+            }
+            let view = to_camera(p);
+            let column = [
+                light[RAYLEIGH_LENGTH] + view[0],
+                light[MIE_LENGTH] + view[1],
+            ];
+            for w in 0..n {
+                let mut j = self.spectra.rayleigh_scattering[w] * rho_r * phase_r;
+                if self.with_mie {
+                    j += self.spectra.mie_scattering[w] * rho_m * phase_m;
+                }
+                radiance[w] +=
+                    ds * j * self.spectra.solar_irradiance[w] * (-depth(w, column)).exp();
+            }
+        }
+        let total = to_camera(end);
+        let transmittance: Vec<f64> = (0..n).map(|w| (-depth(w, total)).exp()).collect();
+        // The ground's Lambertian reflection of the transmitted sun (seed 002's ground
+        // shader), as any surface element facing up.
+        if seg.end == SegmentEnd::Ground {
+            let irradiance = self.surface_irradiance(end, end, sun)?;
+            for w in 0..n {
+                radiance[w] +=
+                    transmittance[w] * self.atmosphere.ground_albedo / PI * irradiance[w];
+            }
+        }
+        Ok(RayRadiance {
+            radiance,
+            transmittance,
+            radiance_std_error: vec![0.0; n],
+        })
+    }
+}

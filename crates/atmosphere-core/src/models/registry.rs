@@ -1,0 +1,53 @@
+//! The factory of the CPU models: [`prepare`] any [`ModelId`] for an atmosphere.
+
+use crate::atmosphere::Atmosphere;
+use crate::models::error::ModelError;
+use crate::models::id::ModelId;
+use crate::models::sky_model::{ModelSettings, SkyModel};
+
+/// Prepares the model `id` for an atmosphere.
+pub fn prepare(
+    id: ModelId,
+    atmosphere: &Atmosphere,
+    settings: &ModelSettings,
+) -> Result<Box<dyn SkyModel>, ModelError> {
+    atmosphere.validate()?;
+    settings.validate()?;
+    match id {
+        ModelId::Reference => {
+            settings.options.reader("reference").finish()?;
+            Ok(Box::new(crate::reference::Reference::prepare(
+                atmosphere, settings,
+            )))
+        }
+        ModelId::Bruneton => Ok(Box::new(crate::models::bruneton::Bruneton::prepare(
+            atmosphere, settings,
+        )?)),
+        ModelId::Hillaire => Ok(Box::new(crate::models::hillaire::Hillaire::prepare(
+            atmosphere,
+            settings,
+            crate::models::hillaire::HillaireSettings::from_options(&settings.options)?,
+        )?)),
+        ModelId::Nishita => Ok(Box::new(crate::models::nishita::Nishita::prepare(
+            atmosphere,
+            settings,
+            crate::models::nishita::NishitaSettings::from_options(&settings.options)?,
+        )?)),
+        ModelId::Oneil => Ok(Box::new(crate::models::oneil::Oneil::prepare(
+            atmosphere,
+            settings,
+            crate::models::oneil::OneilSettings::from_options(&settings.options)?,
+        )?)),
+        ModelId::Riley => {
+            settings.options.reader("riley").finish()?;
+            Ok(Box::new(crate::models::riley::Riley::prepare(
+                atmosphere, settings,
+            )))
+        }
+        ModelId::Dobashi => Ok(Box::new(crate::models::dobashi::Dobashi::prepare(
+            atmosphere,
+            settings,
+            crate::models::dobashi::DobashiSettings::from_options(&settings.options)?,
+        )?)),
+    }
+}

@@ -1,0 +1,4 @@
+//! Numerical building blocks: quadrature rules and random sampling.
+
+pub mod quadrature;
+pub mod sampling;

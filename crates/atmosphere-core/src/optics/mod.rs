@@ -1,0 +1,12 @@
+//! Light in the atmosphere: ray geometry on the sphere, optical columns and
+//! transmittance, phase functions, the view ray's segment inside the atmosphere, the
+//! sun's disk and the lighting of surfaces.
+
+pub mod column;
+pub mod geometry;
+pub mod phase;
+pub mod phase_sampling;
+pub mod sun_disk;
+pub mod surface_lighting;
+pub mod transmittance_table;
+pub mod view_segment;

@@ -1,0 +1,70 @@
+//! What goes wrong on the GPU side. Each message says what was being done and, where the
+//! user can fix it, how.
+
+use thiserror::Error;
+
+/// Errors of device creation, shader composition, pipelines and read-back.
+#[derive(Debug, Error)]
+pub enum GpuError {
+    #[error(
+        "no GPU adapter with compute shaders found (backends tried: {backends}). \
+         Install a Vulkan driver; without a GPU, the software one: \
+         `apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe)"
+    )]
+    NoAdapter { backends: String },
+    #[error("WGPU_ADAPTER_NAME={wanted} matches no adapter (available: {available})")]
+    NoAdapterNamed { wanted: String, available: String },
+    #[error("cannot create a device on {adapter}: {source}")]
+    RequestDevice {
+        adapter: String,
+        #[source]
+        source: wgpu::RequestDeviceError,
+    },
+    #[error("unknown shader '{0}' (not embedded in shader_source.rs)")]
+    UnknownShader(String),
+    #[error("shader {shader} imports '{import}', which is not embedded in shader_source.rs")]
+    UnknownImport { shader: String, import: String },
+    #[error("{what} failed GPU validation: {source}")]
+    Validation {
+        what: &'static str,
+        #[source]
+        source: wgpu::Error,
+    },
+    #[error("{species} density profile has {layers} layers; the GPU uniform holds at most 2")]
+    TooManyDensityLayers {
+        species: &'static str,
+        layers: usize,
+    },
+    #[error(
+        "Mie phase function {0} is not yet on the GPU (use cornette_shanks, henyey_greenstein or nishita_hazy)"
+    )]
+    UnsupportedPhase(String),
+    #[error("waiting for the GPU failed: {0}")]
+    Poll(#[from] wgpu::PollError),
+    #[error("mapping a read-back buffer failed: {0}")]
+    Map(#[from] wgpu::BufferAsyncError),
+    #[error("reading a mapped buffer failed: {0}")]
+    MapRange(#[from] wgpu::MapRangeError),
+}
+
+/// Errors of rendering a frame: the frame or model cannot be rendered, or the GPU failed.
+#[derive(Debug, Error)]
+pub enum RenderError {
+    #[error("invalid frame: {0}")]
+    Frame(String),
+    #[error("model '{model}' is not yet on the GPU (models on the GPU: {on_gpu})")]
+    NotOnGpu {
+        model: atmosphere_core::models::id::ModelId,
+        on_gpu: String,
+    },
+    #[error("not supported on the GPU: {0}")]
+    Unsupported(String),
+    #[error(transparent)]
+    Model(#[from] atmosphere_core::models::error::ModelError),
+    #[error(transparent)]
+    Color(#[from] atmosphere_core::color::ColorError),
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    #[error("terrain: {0}")]
+    Terrain(#[from] crate::terrain::MapError),
+}

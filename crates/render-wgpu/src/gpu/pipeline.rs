@@ -1,0 +1,351 @@
+//! Building blocks every pass shares: bind group layout entries, uniform buffers, and a
+//! compute pipeline from an embedded shader, checked inside a validation scope so a
+//! broken shader is an error naming it rather than a panic.
+
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::GpuError;
+use crate::gpu::shaders;
+
+/// Side of the square workgroup of every shader that runs one invocation per texel
+/// (`@workgroup_size(8, 8)`).
+pub const WORKGROUP_SIDE: u32 = 8;
+
+/// The workgroups that cover every texel of the 2D `texture`, one invocation each.
+pub fn texel_groups(texture: &wgpu::Texture) -> [u32; 3] {
+    [
+        texture.width().div_ceil(WORKGROUP_SIDE),
+        texture.height().div_ceil(WORKGROUP_SIDE),
+        1,
+    ]
+}
+
+/// A uniform buffer of `size` bytes visible to compute shaders.
+pub fn uniform_entry(binding: u32, size: usize) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(size as u64),
+        },
+        count: None,
+    }
+}
+
+/// A float texture read with `textureLoad` (not filterable: `Rgba32Float` tables).
+pub fn texture_entry(
+    binding: u32,
+    dimension: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
+    float_texture_entry(binding, dimension, false)
+}
+
+/// A float texture, sampled through a filter if `filterable`.
+pub fn float_texture_entry(
+    binding: u32,
+    dimension: wgpu::TextureViewDimension,
+    filterable: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension: dimension,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A read-only storage buffer of at least `min_size` bytes.
+pub fn read_only_storage_buffer_entry(binding: u32, min_size: usize) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(min_size as u64),
+        },
+        count: None,
+    }
+}
+
+/// A write-only storage texture of `format`.
+pub fn storage_texture_entry(
+    binding: u32,
+    format: wgpu::TextureFormat,
+    dimension: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: dimension,
+        },
+        count: None,
+    }
+}
+
+/// A 2D texture of one mip level and sample.
+pub fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// A uniform buffer of `size` bytes that the CPU writes.
+pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size as u64,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// A compute pipeline and its one bind group layout.
+#[derive(Debug)]
+pub struct ComputePipeline {
+    pub pipeline: wgpu::ComputePipeline,
+    pub layout: wgpu::BindGroupLayout,
+}
+
+impl ComputePipeline {
+    /// Compiles entry point `entry` of the embedded shader `shader` (imports resolved)
+    /// with one bind group of `entries`; `label` names it in errors and GPU captures.
+    pub fn new(
+        gpu: &GpuContext,
+        shader: &str,
+        entry: &str,
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+    ) -> Result<ComputePipeline, GpuError> {
+        ComputePipeline::with_constants(gpu, shader, entry, label, entries, &[])
+    }
+
+    /// As [`ComputePipeline::new`], with the shader's pipeline-overridable constants set
+    /// to `constants` (name, value).
+    pub fn with_constants(
+        gpu: &GpuContext,
+        shader: &str,
+        entry: &str,
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        constants: &[(&str, f64)],
+    ) -> Result<ComputePipeline, GpuError> {
+        let device = &gpu.device;
+        let source = shaders::composed(shader)?;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(shader),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
+            cache: None,
+        });
+        if let Some(source) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Validation {
+                what: label,
+                source,
+            });
+        }
+        Ok(ComputePipeline { pipeline, layout })
+    }
+
+    /// A bind group of `resources`, bound in order from binding 0.
+    pub fn bind_group(
+        &self,
+        gpu: &GpuContext,
+        resources: &[wgpu::BindingResource<'_>],
+    ) -> wgpu::BindGroup {
+        let numbered: Vec<_> = resources
+            .iter()
+            .enumerate()
+            .map(|(binding, resource)| (binding as u32, resource.clone()))
+            .collect();
+        self.bind_group_numbered(gpu, &numbered)
+    }
+
+    /// The bind group of a model's pixel pass: `resources` bound in order from binding
+    /// 0, and the frame's surface buffer at bindings 30 and 31 (`shaders/common/surface.wgsl`).
+    pub fn pixel_bind_group(
+        &self,
+        gpu: &GpuContext,
+        resources: &[wgpu::BindingResource<'_>],
+        surface: &[wgpu::TextureView; 2],
+    ) -> wgpu::BindGroup {
+        self.pixel_bind_group_with(gpu, resources, surface, &[])
+    }
+
+    /// As [`ComputePipeline::pixel_bind_group`], with `more` (binding, resource) pairs
+    /// elsewhere (e.g. the table sampler of `table_sampling`).
+    pub fn pixel_bind_group_with(
+        &self,
+        gpu: &GpuContext,
+        resources: &[wgpu::BindingResource<'_>],
+        surface: &[wgpu::TextureView; 2],
+        more: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> wgpu::BindGroup {
+        let mut numbered: Vec<_> = resources
+            .iter()
+            .enumerate()
+            .map(|(binding, resource)| (binding as u32, resource.clone()))
+            .collect();
+        numbered.extend_from_slice(more);
+        numbered.push((
+            crate::frame::surface_buffer::GEOMETRY_BINDING,
+            wgpu::BindingResource::TextureView(&surface[0]),
+        ));
+        numbered.push((
+            crate::frame::surface_buffer::ALBEDO_BINDING,
+            wgpu::BindingResource::TextureView(&surface[1]),
+        ));
+        self.bind_group_numbered(gpu, &numbered)
+    }
+
+    /// A bind group of (binding, resource) pairs.
+    pub fn bind_group_numbered(
+        &self,
+        gpu: &GpuContext,
+        resources: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+            .iter()
+            .map(|(binding, resource)| wgpu::BindGroupEntry {
+                binding: *binding,
+                resource: resource.clone(),
+            })
+            .collect();
+        gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &self.layout,
+            entries: &entries,
+        })
+    }
+
+    /// Records one dispatch of `groups` workgroups with `bind_group`, timed by
+    /// `timestamps` when given.
+    pub fn dispatch(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        label: &str,
+        bind_group: &wgpu::BindGroup,
+        groups: [u32; 3],
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(label),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups(groups[0], groups[1], groups[2]);
+    }
+}
+
+/// A model's pixel pass in two variants: one that reads the frame's surface buffer and
+/// one with `common/surface.wgsl`'s `SURFACE` constant false, which compiles every branch of the
+/// surface out. A software rasteriser (lavapipe) runs both sides of every branch, even
+/// one that no pixel takes, so a frame without a surface would otherwise pay for it
+/// (bruneton's ground view: 0.55 of nishita-16 against 0.25).
+#[derive(Debug)]
+pub struct PixelPipeline {
+    with_surface: ComputePipeline,
+    without_surface: ComputePipeline,
+}
+
+impl PixelPipeline {
+    /// Both variants of entry point `entry` of `shader`; see [`ComputePipeline::new`].
+    pub fn new(
+        gpu: &GpuContext,
+        shader: &str,
+        entry: &str,
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+    ) -> Result<PixelPipeline, GpuError> {
+        PixelPipeline::with_constants(gpu, shader, entry, label, entries, &[])
+    }
+
+    /// As [`PixelPipeline::new`], with the shader's other pipeline-overridable constants
+    /// set to `constants` (name, value) in both variants.
+    pub fn with_constants(
+        gpu: &GpuContext,
+        shader: &str,
+        entry: &str,
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        constants: &[(&str, f64)],
+    ) -> Result<PixelPipeline, GpuError> {
+        let variant = |surface: f64| {
+            let mut all = vec![("SURFACE", surface)];
+            all.extend_from_slice(constants);
+            ComputePipeline::with_constants(gpu, shader, entry, label, entries, &all)
+        };
+        Ok(PixelPipeline {
+            with_surface: variant(1.0)?,
+            without_surface: variant(0.0)?,
+        })
+    }
+
+    /// The variant for a frame with (`true`) or without a surface.
+    pub fn variant(&self, surface: bool) -> &ComputePipeline {
+        if surface {
+            &self.with_surface
+        } else {
+            &self.without_surface
+        }
+    }
+}
+
+/// A read-write storage buffer of at least `min_size` bytes.
+pub fn storage_buffer_entry(binding: u32, min_size: usize) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(min_size as u64),
+        },
+        count: None,
+    }
+}

@@ -1,0 +1,112 @@
+//! One sky model on the GPU: its tables (kept between frames, rebuilt only when an input
+//! they depend on changed) and its per-pixel pass into the HDR target. The
+//! [`crate::Renderer`] keeps one per model used, so switching models and back rebuilds
+//! nothing. Every model's shader binds the atmosphere at binding 0 and the frame at
+//! binding 1 (`common/atmosphere_params.wgsl`, `common/frame_params.wgsl`); its own resources follow,
+//! and its pixel pass reads the frame's surface at bindings 30 and 31 (`common/surface.wgsl`).
+
+use crate::frame::Frame;
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use crate::frame::plan::FramePlan;
+use crate::frame::surface_buffer::SurfaceBuffer;
+use crate::frame::uniform::FrameUniform;
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::RenderError;
+use crate::gpu::formats::HDR_FORMAT;
+use crate::gpu::pipeline::uniform_buffer;
+
+/// What a model's steps read and write besides their own tables.
+#[derive(Debug)]
+pub struct PassIo<'a> {
+    /// `AtmosphereUniform` (binding 0 of every model shader).
+    pub atmosphere: &'a wgpu::Buffer,
+    /// `FrameUniform` (binding 1).
+    pub frame: &'a wgpu::Buffer,
+    /// The HDR target, of [`crate::gpu::formats::HDR_FORMAT`].
+    pub hdr: &'a wgpu::Texture,
+    /// Views of the frame's surface buffer (`surface_buffer.rs`), bound by every pixel
+    /// pass at bindings 30 and 31.
+    pub surface: &'a [wgpu::TextureView; 2],
+    /// Whether the frame has a surface: which variant of a `PixelPipeline` runs.
+    pub has_surface: bool,
+}
+
+/// What a model's table steps read when they run outside a `Renderer` frame (tests and
+/// profiling): the uniforms of a frame, and a 1x1 HDR target and surface, which they do
+/// not touch.
+#[derive(Debug)]
+pub struct StandaloneInputs {
+    atmosphere: wgpu::Buffer,
+    frame: wgpu::Buffer,
+    hdr: wgpu::Texture,
+    surface: [wgpu::TextureView; 2],
+}
+
+impl StandaloneInputs {
+    pub fn new(gpu: &GpuContext, atmosphere: &AtmosphereUniform, frame: &Frame) -> Self {
+        let inputs = StandaloneInputs {
+            atmosphere: uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>()),
+            frame: uniform_buffer(&gpu.device, "frame", size_of::<FrameUniform>()),
+            hdr: gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("unused"),
+                size: wgpu::Extent3d::default(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: HDR_FORMAT,
+                usage: wgpu::TextureUsages::STORAGE_BINDING,
+                view_formats: &[],
+            }),
+            surface: SurfaceBuffer::new(gpu, 1, 1).views(),
+        };
+        gpu.queue
+            .write_buffer(&inputs.atmosphere, 0, bytemuck::bytes_of(atmosphere));
+        let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
+        gpu.queue
+            .write_buffer(&inputs.frame, 0, bytemuck::bytes_of(&frame_uniform));
+        inputs
+    }
+
+    pub fn io(&self) -> PassIo<'_> {
+        PassIo {
+            atmosphere: &self.atmosphere,
+            frame: &self.frame,
+            hdr: &self.hdr,
+            surface: &self.surface,
+            has_surface: false,
+        }
+    }
+}
+
+/// A sky model's tables and passes on the GPU; see the module documentation.
+pub trait ModelPass: std::fmt::Debug {
+    /// Takes the frame's atmosphere and model settings: checks them (an error names what
+    /// the GPU cannot follow), remakes tables whose size changed, uploads the model's
+    /// uniforms, and adds to `plan` the table builds this frame needs (those never built
+    /// or whose inputs changed), those it skips with why, and the per-pixel pass.
+    fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        plan: &mut FramePlan,
+    ) -> Result<(), RenderError>;
+
+    /// Records `step`, one that the last [`ModelPass::plan`] listed, timed by `timestamps`
+    /// when given.
+    fn encode(
+        &mut self,
+        step: &'static str,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    );
+
+    /// Whether the model may spread its table builds over frames
+    /// ([`crate::Renderer::set_progressive`]); off until set. A model whose tables build
+    /// in milliseconds builds them in one frame either way.
+    fn set_progressive(&mut self, _on: bool) {}
+
+    /// Bytes of GPU memory held by the model's tables.
+    fn table_bytes(&self) -> u64;
+}

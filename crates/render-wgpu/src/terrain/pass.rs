@@ -1,0 +1,556 @@
+//! The terrain pass: the Earth's relief drawn into the frame's surface buffer
+//! (`surface_buffer.rs`), which every model's pixel pass then lights and sees through
+//! its atmosphere (`shaders/common/surface.wgsl`). The shader is `shaders/terrain/terrain.wgsl`.
+//!
+//! Each frame: the quadtree's chunks for the camera ([`select_chunks`], screen-space
+//! error), those whose bounding sphere meets the view pyramid ([`Frustum`]), their meshes
+//! (built on first use, in parallel, and kept while drawn; a changed exaggeration
+//! rebuilds them), and one draw per chunk with its `origin - camera` offset computed in
+//! f64. Depth is reversed with an infinite far plane and a near plane at half the
+//! camera's height above the terrain below it, so 1 m and 1e8 m need nothing special.
+//! Albedo comes from the colour map (decoded from sRGB, mip-mapped in linear light),
+//! taken as the albedo at the three wavelengths: the Blue Marble is a true-colour
+//! picture, not a measured albedo, which docs/terrain.md discusses.
+
+use std::collections::HashMap;
+
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+use rayon::prelude::*;
+use wgpu::util::DeviceExt;
+
+use crate::frame::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT, SurfaceBuffer};
+use crate::frame::{Frame, TerrainOptions};
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::{GpuError, RenderError};
+use crate::gpu::pipeline::texture_2d;
+use crate::gpu::shaders;
+use crate::terrain::chunk_key::ChunkKey;
+use crate::terrain::colour_mips::colour_mips;
+use crate::terrain::frustum::Frustum;
+use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
+use crate::terrain::stitching::stitched_indices;
+use crate::terrain::{ChunkMesh, ColourMap, HeightMap, TerrainSurface, earth_assets_dir};
+
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Chunks the level of detail has not chosen for this many frames leave the cache.
+const KEEP_FRAMES: u64 = 240;
+
+/// The smallest near plane, m.
+const MIN_NEAR_M: f64 = 0.05;
+
+/// WGSL `TerrainParams`, 64 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct TerrainUniform {
+    pub right: [f32; 4],
+    pub up: [f32; 4],
+    pub forward: [f32; 4],
+    pub near: [f32; 4],
+}
+
+/// WGSL `Chunk`, 32 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+struct ChunkUniform {
+    offset: [f32; 4],
+    origin: [f32; 4],
+}
+
+/// A chunk's vertices on the GPU: position relative to the origin, then the normal.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+struct Vertex {
+    position: [f32; 3],
+    normal: [f32; 3],
+}
+
+#[derive(Debug)]
+struct GpuChunk {
+    vertices: wgpu::Buffer,
+    origin_m: DVec3,
+    /// Bounding sphere (centre, radius), m.
+    bounds: (DVec3, f64),
+    /// The largest distance of a vertex from the planet's centre, m: no point of the
+    /// chunk's flat triangles lies farther (the distance is convex).
+    max_radius_m: f64,
+    /// The last frame whose level of detail chose the chunk.
+    last_selected: u64,
+}
+
+/// One chunk of this frame: its key and which edges border a coarser chunk.
+#[derive(Clone, Copy, Debug)]
+struct Draw {
+    key: ChunkKey,
+    coarser: [bool; 4],
+}
+
+/// The terrain's maps, pipeline and chunk cache; see the module documentation.
+#[derive(Debug)]
+pub struct TerrainPass {
+    surface: TerrainSurface<HeightMap>,
+    lod: LodSettings,
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    params: wgpu::Buffer,
+    colour: wgpu::TextureView,
+    sampler: wgpu::Sampler,
+    chunks: HashMap<ChunkKey, GpuChunk>,
+    /// Index buffers by coarser-edge pattern (the same for every chunk).
+    indices: HashMap<[bool; 4], (wgpu::Buffer, u32)>,
+    chunk_buffer: wgpu::Buffer,
+    depth: Option<wgpu::Texture>,
+    draws: Vec<Draw>,
+    frame_number: u64,
+}
+
+impl TerrainPass {
+    /// Loads the shipped Earth maps (`assets/earth`) onto a planet of `radius_m` and
+    /// compiles the pass.
+    pub fn new(gpu: &GpuContext, radius_m: f64) -> Result<TerrainPass, RenderError> {
+        let dir = earth_assets_dir();
+        let heights = HeightMap::load(&dir.join("height.png"))?;
+        let colours = ColourMap::load(&dir.join("colour.jpg"))?;
+        let device = &gpu.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let colour = upload_colour(gpu, &colours);
+        let source = shaders::composed("terrain/terrain.wgsl")?;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("terrain/terrain.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty,
+            count: None,
+        };
+        use wgpu::ShaderStages as S;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("terrain"),
+            entries: &[
+                entry(
+                    0,
+                    S::VERTEX,
+                    wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(size_of::<TerrainUniform>() as u64),
+                    },
+                ),
+                entry(
+                    1,
+                    S::VERTEX,
+                    wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(size_of::<ChunkUniform>() as u64),
+                    },
+                ),
+                entry(
+                    2,
+                    S::FRAGMENT,
+                    wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                ),
+                entry(
+                    3,
+                    S::FRAGMENT,
+                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                ),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("terrain"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("terrain"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vertex_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: size_of::<Vertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                front_face: wgpu::FrontFace::Ccw,
+                cull_mode: Some(wgpu::Face::Back),
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fragment_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(GEOMETRY_FORMAT.into()), Some(ALBEDO_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("colour map"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+        let params =
+            crate::gpu::pipeline::uniform_buffer(device, "terrain", size_of::<TerrainUniform>());
+        let chunk_buffer = chunk_buffer(gpu, 1);
+        if let Some(source) = pollster::block_on(scope.pop()) {
+            return Err(GpuError::Validation {
+                what: "the terrain pipeline",
+                source,
+            }
+            .into());
+        }
+        Ok(TerrainPass {
+            surface: TerrainSurface::new(heights, radius_m),
+            lod: LodSettings::new(radius_m),
+            pipeline,
+            layout,
+            params,
+            colour,
+            sampler,
+            chunks: HashMap::new(),
+            indices: HashMap::new(),
+            chunk_buffer,
+            depth: None,
+            draws: Vec::new(),
+            frame_number: 0,
+        })
+    }
+
+    /// Chooses, builds and uploads the chunks `frame` sees with `options`; returns how
+    /// many it will draw (0: no terrain in view, the pass can be skipped).
+    pub fn prepare(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        options: &TerrainOptions,
+    ) -> Result<usize, RenderError> {
+        self.frame_number += 1;
+        let radius_m = frame.atmosphere.bottom_radius_m;
+        if self.surface.exaggeration != options.exaggeration || self.surface.radius_m != radius_m {
+            self.surface.exaggeration = options.exaggeration;
+            self.surface.radius_m = radius_m;
+            self.lod.radius_m = radius_m;
+            self.chunks.clear();
+        }
+        let camera = frame.camera_position_m;
+        let surface = &self.surface;
+        let ground_m = surface.elevation_m(camera.normalize());
+        let altitude_m = camera.length() - radius_m;
+        if altitude_m < ground_m {
+            return Err(RenderError::Frame(format!(
+                "the camera at {altitude_m:.0} m is not above the terrain: the ground there is \
+                 at {ground_m:.0} m (with exaggeration {}); raise it to at least {:.0} m",
+                options.exaggeration,
+                ground_m + 1.0
+            )));
+        }
+        let view = LodView::new(
+            camera,
+            f64::from(frame.height),
+            frame.vertical_fov_deg.to_radians(),
+        );
+        let selected = select_chunks(&self.lod, &view, |d| surface.elevation_m(d))
+            .map_err(|e| RenderError::Frame(e.to_string()))?;
+        let missing: Vec<&SelectedChunk> = selected
+            .iter()
+            .filter(|c| !self.chunks.contains_key(&c.key))
+            .collect();
+        let built: Vec<(ChunkMesh, (DVec3, f64))> = missing
+            .par_iter()
+            .map(|chunk| {
+                let mesh = ChunkMesh::build(surface, chunk, self.lod.cells);
+                let bounds = self
+                    .lod
+                    .bounding_sphere(chunk.key, &|d| surface.elevation_m(d));
+                (mesh, bounds)
+            })
+            .collect();
+        for (mesh, bounds) in built {
+            let vertices: Vec<Vertex> = mesh
+                .positions
+                .iter()
+                .zip(&mesh.normals)
+                .map(|(&position, &normal)| Vertex { position, normal })
+                .collect();
+            let buffer = buffer_with(gpu, "terrain chunk", &vertices, wgpu::BufferUsages::VERTEX);
+            let max_radius_m = (0..mesh.positions.len() as u32)
+                .map(|k| mesh.world_position_m(k).length())
+                .fold(0.0, f64::max);
+            self.chunks.insert(
+                mesh.key,
+                GpuChunk {
+                    vertices: buffer,
+                    origin_m: mesh.origin_m,
+                    bounds,
+                    max_radius_m,
+                    last_selected: 0,
+                },
+            );
+        }
+
+        let [right, up, forward] = frame.axes();
+        let (half_w, half_h) = frame.half_extent();
+        let frustum = Frustum::new(camera, [right, up, forward], half_w, half_h);
+        let lowest_ray_m = frustum.lowest_radius_m();
+        self.draws.clear();
+        let mut uniforms = Vec::new();
+        for chunk in &selected {
+            let gpu_chunk = self.chunks.get_mut(&chunk.key).expect("built above");
+            gpu_chunk.last_selected = self.frame_number;
+            // The sphere grows by a margin for the relief between its sampled points.
+            let (centre, radius) = gpu_chunk.bounds;
+            let below_every_ray = gpu_chunk.max_radius_m + 1.0 < lowest_ray_m;
+            if below_every_ray || !frustum.sees_sphere(centre, radius * 1.05 + 1.0) {
+                continue;
+            }
+            self.draws.push(Draw {
+                key: chunk.key,
+                coarser: chunk.coarser,
+            });
+            uniforms.push(ChunkUniform {
+                offset: v4(gpu_chunk.origin_m - camera),
+                origin: v4(gpu_chunk.origin_m),
+            });
+        }
+        let frame_number = self.frame_number;
+        self.chunks
+            .retain(|_, c| frame_number - c.last_selected < KEEP_FRAMES);
+        for draw in &self.draws {
+            self.indices.entry(draw.coarser).or_insert_with(|| {
+                let indices = stitched_indices(self.lod.cells, draw.coarser);
+                let count = indices.len() as u32;
+                (
+                    buffer_with(gpu, "terrain indices", &indices, wgpu::BufferUsages::INDEX),
+                    count,
+                )
+            });
+        }
+        if uniforms.is_empty() {
+            return Ok(0);
+        }
+        let needed = (uniforms.len() * size_of::<ChunkUniform>()) as u64;
+        if self.chunk_buffer.size() < needed {
+            self.chunk_buffer = chunk_buffer(gpu, uniforms.len().next_power_of_two());
+        }
+        gpu.queue
+            .write_buffer(&self.chunk_buffer, 0, bytemuck::cast_slice(&uniforms));
+        let clearance = altitude_m - ground_m;
+        let params = TerrainUniform {
+            right: v4(right / half_w),
+            up: v4(up / half_h),
+            forward: v4(forward),
+            near: [near_plane_m(clearance) as f32, 0.0, 0.0, 0.0],
+        };
+        gpu.queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        self.ensure_depth(gpu, frame.width, frame.height);
+        Ok(self.draws.len())
+    }
+
+    fn ensure_depth(&mut self, gpu: &GpuContext, width: u32, height: u32) {
+        if self
+            .depth
+            .as_ref()
+            .is_some_and(|d| (d.width(), d.height()) == (width, height))
+        {
+            return;
+        }
+        self.depth = Some(texture_2d(
+            &gpu.device,
+            "terrain depth",
+            (width, height),
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        ));
+    }
+
+    /// Draws the chunks the last [`TerrainPass::prepare`] chose into `surface` (cleared
+    /// to "no surface" first).
+    pub fn encode(
+        &self,
+        gpu: &GpuContext,
+        surface: &SurfaceBuffer,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let Some(depth) = self.depth.as_ref() else {
+            unreachable!("prepare makes the depth buffer before a frame draws terrain");
+        };
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("terrain"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.chunk_buffer.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&self.colour),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+            ],
+        });
+        let [geometry, albedo] = surface.views();
+        let colour = |view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        };
+        let depth_view = depth.create_view(&Default::default());
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("terrain"),
+            color_attachments: &[colour(&geometry), colour(&albedo)],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        for (instance, draw) in self.draws.iter().enumerate() {
+            let chunk = &self.chunks[&draw.key];
+            let (indices, count) = &self.indices[&draw.coarser];
+            pass.set_vertex_buffer(0, chunk.vertices.slice(..));
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+            let instance = instance as u32;
+            pass.draw_indexed(0..*count, 0, instance..instance + 1);
+        }
+    }
+
+    /// The drawn terrain's elevation above the reference sphere in a unit direction, m,
+    /// with the last frame's exaggeration: what the camera must stay above.
+    pub fn elevation_m(&self, direction: DVec3) -> f64 {
+        self.surface.elevation_m(direction)
+    }
+}
+
+/// The near plane for a camera `clearance_m` above the terrain below it: half of it, so
+/// nothing in front of the camera is cut, and at least [`MIN_NEAR_M`].
+pub fn near_plane_m(clearance_m: f64) -> f64 {
+    (0.5 * clearance_m).max(MIN_NEAR_M)
+}
+
+fn v4(v: DVec3) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, 0.0]
+}
+
+fn buffer_with<T: Pod>(
+    gpu: &GpuContext,
+    label: &str,
+    data: &[T],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    gpu.device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytemuck::cast_slice(data),
+            usage,
+        })
+}
+
+fn chunk_buffer(gpu: &GpuContext, chunks: usize) -> wgpu::Buffer {
+    gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("terrain chunks"),
+        size: (chunks.max(1) * size_of::<ChunkUniform>()) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// The colour map as an sRGB texture with its mip chain.
+fn upload_colour(gpu: &GpuContext, map: &ColourMap) -> wgpu::TextureView {
+    let levels = colour_mips(map);
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("colour map"),
+        size: wgpu::Extent3d {
+            width: map.width as u32,
+            height: map.height as u32,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels.len() as u32,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (level, mip) in levels.iter().enumerate() {
+        gpu.queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: level as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(&mip.texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(mip.width as u32 * 4),
+                rows_per_image: Some(mip.height as u32),
+            },
+            wgpu::Extent3d {
+                width: mip.width as u32,
+                height: mip.height as u32,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    texture.create_view(&Default::default())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_near_plane_is_half_the_clearance_and_never_zero() {
+        assert_eq!(near_plane_m(1000.0), 500.0);
+        assert_eq!(near_plane_m(0.02), MIN_NEAR_M);
+        assert_eq!(near_plane_m(-30.0), MIN_NEAR_M);
+    }
+}

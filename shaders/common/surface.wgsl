@@ -1,0 +1,83 @@
+// The surface a frame's rays end on, per pixel (`surface_buffer.rs`): drawn by the
+// terrain pass, or given by the caller. Every model's pixel pass binds it at bindings
+// 30 and 31, ends its rays there (`view_segment`'s object) and adds the surface's
+// Lambertian reflection T a / pi E(x, n) with the model's own irradiance E: the GPU twin
+// of atmosphere-core's `surface_lighting.rs`.
+
+#import common/atmosphere_params.wgsl
+#import common/frame_params.wgsl
+#import common/phase.wgsl
+
+// xyz: outward unit normal; w: distance from the camera along the pixel's ray, m
+// (0: no surface in this pixel).
+@group(0) @binding(30) var surface_geometry: texture_2d<f32>;
+// rgb: albedo (linear).
+@group(0) @binding(31) var surface_albedo: texture_2d<f32>;
+
+// Whether the pipeline reads a surface at all (`PixelPipeline`): its variant without one
+// has every branch of the surface compiled out, as a software rasteriser runs both sides
+// of every branch.
+override SURFACE: bool = true;
+
+struct Surface {
+    present: bool,
+    // Distance from the camera, m; 0 when absent (`view_segment`'s "no object").
+    distance: f32,
+    normal: vec3<f32>,
+    albedo: vec3<f32>,
+}
+
+// The surface in pixel `px`; none at all, without reading, in the pipeline variant for
+// frames without a surface.
+fn frame_surface(px: vec2<u32>) -> Surface {
+    var out: Surface;
+    out.present = false;
+    out.distance = 0.0;
+    if !SURFACE {
+        return out;
+    }
+    let geometry = textureLoad(surface_geometry, px, 0);
+    out.present = geometry.w > 0.0;
+    out.distance = max(geometry.w, 0.0);
+    out.normal = geometry.xyz;
+    out.albedo = textureLoad(surface_albedo, px, 0).rgb;
+    return out;
+}
+
+// A surface element in the variables the models look up (`SurfaceElement::new`).
+struct SurfaceElement {
+    r: f32,
+    mu_s: f32,
+    sun_cosine: f32,
+    sky_view_factor: f32,
+}
+
+// The element at planet-centred `point` with outward unit `normal`; a point above the
+// atmosphere is lit as at its top.
+fn surface_element(point: vec3<f32>, normal: vec3<f32>) -> SurfaceElement {
+    let sun = frame.sun_direction.xyz;
+    let r = length(point);
+    let up = point / r;
+    var e: SurfaceElement;
+    e.r = clamp(r, atmosphere.bottom_radius_m, atmosphere.top_radius_m);
+    e.mu_s = clamp(dot(up, sun), -1.0, 1.0);
+    e.sun_cosine = max(dot(normal, sun), 0.0);
+    e.sky_view_factor = 0.5 * (1.0 + clamp(dot(normal, up), -1.0, 1.0));
+    return e;
+}
+
+// E_sun T_sun max(n . s, 0) + E_sky (1 + n . up) / 2 (`SurfaceElement::irradiance`).
+fn element_irradiance(e: SurfaceElement, sun_transmittance: vec3<f32>, sky: vec3<f32>) -> vec3<f32> {
+    return atmosphere.solar_irradiance.xyz * sun_transmittance * e.sun_cosine
+        + sky * e.sky_view_factor;
+}
+
+
+// `r` with the surface's reflection added for the model's `irradiance` at its end
+// (`radiance_with_surface`); the surface hides the sun disk.
+fn add_surface(r: Radiance, surface: Surface, irradiance: vec3<f32>) -> Radiance {
+    var out = r;
+    out.radiance += r.transmittance * surface.albedo / PI * irradiance;
+    out.reaches_space = false;
+    return out;
+}

@@ -1,0 +1,249 @@
+// The mappings of Bruneton and Neyret 2008, section 4, between the parameters of the
+// model's tables and their texels: the GPU twin of atmosphere-core's
+// `bruneton/parameterization.rs` (u_r = rho / H; u_mu from the distance to the ray's end
+// mapped over its range at r, one half of the mu axis per side of the horizon; u_mu_s =
+// (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)); u_nu = (1 + nu) / 2; E linear in r and mu_s).
+//
+// Radii enter as q = r^2 - bottom^2 (and r mu) rather than r alone: in f32 a radius near
+// 6.4e6 m carries half a metre of rounding, and r - bottom is formed as q / (r + bottom)
+// (docs/rendering.md, "Camera-relative rendering").
+
+#import common/atmosphere_params.wgsl
+
+struct BrunetonParams {
+    // Texels of S along r, mu, mu_s, nu.
+    size: vec4<u32>,
+    // x, y: E's texels along mu_s and r; z: Gauss-Legendre panels of 8 zenith angles on
+    // each side of the horizon (sphere integrals); w: azimuths over [0, pi].
+    irradiance_size: vec4<u32>,
+    // x: trapezoid intervals along each texel's ray; y: 1 when Mie is computed (not
+    // pruned); z: 1 for order 2 (the previous order is single scattering, the previous
+    // irradiance direct sunlight); w: the most orders.
+    flags: vec4<u32>,
+    // Offsets in the store (vec4 units): density, single Rayleigh, single Mie, multiple.
+    offsets_a: vec4<u32>,
+    // Delta S, Delta J, Delta E, irradiance E.
+    offsets_b: vec4<u32>,
+    // Moments of Delta J, partial sums, Delta J's 4D texel count, E's texel count.
+    offsets_c: vec4<u32>,
+    // The delta-M Mie phase function: forward fraction, chi1, chi2; w: the order threshold.
+    delta_m: vec4<f32>,
+    // x: step of the density table, m.
+    density: vec4<f32>,
+}
+
+@group(0) @binding(2) var<uniform> bruneton: BrunetonParams;
+
+// A texel position along one axis: the lower texel and the weight of the next.
+struct Axis {
+    i: u32,
+    w: f32,
+}
+
+// Where a point falls in S: one axis each for r, mu, mu_s, nu.
+struct Position {
+    r: Axis,
+    mu: Axis,
+    mu_s: Axis,
+    nu: Axis,
+}
+
+// The physical parameters of a texel of S (`texel_parameters`).
+struct Texel {
+    q: f32,
+    r: f32,
+    mu: f32,
+    mu_s: f32,
+    nu: f32,
+    ground: bool,
+}
+
+// H^2 = top^2 - bottom^2.
+fn horizon_sq() -> f32 {
+    let bottom = atmosphere.bottom_radius_m;
+    let top = atmosphere.top_radius_m;
+    return (top - bottom) * (top + bottom);
+}
+
+// The radius of q = r^2 - bottom^2.
+fn radius_of_q(q: f32) -> f32 {
+    let bottom = atmosphere.bottom_radius_m;
+    return sqrt(bottom * bottom + q);
+}
+
+// `ray_hits_ground` from (q, r mu).
+fn hits_ground(q: f32, r_mu: f32) -> bool {
+    return r_mu < 0.0 && r_mu * r_mu - q >= 0.0;
+}
+
+// Distance to the ground along a ray that meets it, as the near root q / (-r mu + root);
+// the discriminant is clamped at 0 so that rays on the horizon reach their tangent point.
+fn ground_distance(q: f32, r_mu: f32) -> f32 {
+    let denom = -r_mu + safe_sqrt(r_mu * r_mu - q);
+    return select(0.0, max(q / denom, 0.0), denom > 0.0);
+}
+
+// Distance to the top boundary (`distance_to_exit`), with r^2 - top^2 = q - H^2.
+fn top_distance(q: f32, r_mu: f32) -> f32 {
+    let h2 = horizon_sq();
+    let root = safe_sqrt(r_mu * r_mu - q + h2);
+    if r_mu > 0.0 {
+        let s = r_mu + root;
+        return select(0.0, max((h2 - q) / s, 0.0), s > 0.0);
+    }
+    return max(-r_mu + root, 0.0);
+}
+
+// Length of the ray of a texel row: to the ground on the ground's half, else to the top.
+fn ray_length(q: f32, r_mu: f32, ground: bool) -> f32 {
+    return select(top_distance(q, r_mu), ground_distance(q, r_mu), ground);
+}
+
+// The cosine of the horizon seen from q (`horizon_mu`; 0 on the ground).
+fn horizon_mu_of(q: f32, r: f32) -> f32 {
+    return select(-sqrt(q) / r, 0.0, q <= 0.0);
+}
+
+// `Radii::x_mu`: the unit coordinate within the half of the mu axis chosen by `ground`.
+fn x_mu(q: f32, r: f32, r_mu: f32, ground: bool) -> f32 {
+    let bottom = atmosphere.bottom_radius_m;
+    let top = atmosphere.top_radius_m;
+    let h2 = horizon_sq();
+    let rho = safe_sqrt(q);
+    if ground {
+        let d_min = q / (r + bottom);
+        let d_max = rho;
+        if d_max <= d_min {
+            return 1.0;
+        }
+        let d = select(d_max, ground_distance(q, r_mu), hits_ground(q, r_mu));
+        return clamp((d_max - d) / (d_max - d_min), 0.0, 1.0);
+    }
+    let d_min = (h2 - q) / (top + r);
+    let d_max = rho + sqrt(h2);
+    if d_max <= d_min {
+        return 0.0;
+    }
+    return clamp((top_distance(q, r_mu) - d_min) / (d_max - d_min), 0.0, 1.0);
+}
+
+// `Radii::mu_from_x`.
+fn mu_from_x(q: f32, r: f32, x: f32, ground: bool) -> f32 {
+    let bottom = atmosphere.bottom_radius_m;
+    let top = atmosphere.top_radius_m;
+    let h2 = horizon_sq();
+    let rho = safe_sqrt(q);
+    if ground {
+        let d_min = q / (r + bottom);
+        let d = rho - x * (rho - d_min);
+        if d <= 0.0 {
+            return -1.0;
+        }
+        return clamp(-(q + d * d) / (2.0 * r * d), -1.0, 1.0);
+    }
+    let d_min = (h2 - q) / (top + r);
+    let d = d_min + x * (rho + sqrt(h2) - d_min);
+    if d <= 0.0 {
+        return 1.0;
+    }
+    return clamp((h2 - q - d * d) / (2.0 * r * d), -1.0, 1.0);
+}
+
+// 1 - exp(-3.6).
+const MU_S_NORM: f32 = 0.972676278;
+
+fn u_mu_s(mu_s: f32) -> f32 {
+    return clamp((1.0 - exp(-3.0 * mu_s - 0.6)) / MU_S_NORM, 0.0, 1.0);
+}
+
+fn mu_s_from_u(u: f32) -> f32 {
+    return (-log(1.0 - u * MU_S_NORM) - 0.6) / 3.0;
+}
+
+fn u_nu(nu: f32) -> f32 {
+    return clamp(0.5 * (1.0 + nu), 0.0, 1.0);
+}
+
+// The view-sun cosine clamped to what the view and sun zenith cosines allow.
+fn clamp_nu(mu: f32, mu_s: f32, nu: f32) -> f32 {
+    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
+    return clamp(nu, mu * mu_s - s, mu * mu_s + s);
+}
+
+// `axis`: the lower texel (at most n - 2) and the weight of the next.
+fn axis(x: f32, n: u32) -> Axis {
+    let f = clamp(x, 0.0, 1.0) * f32(n - 1u);
+    let i = min(u32(f), n - 2u);
+    return Axis(i, clamp(f - f32(i), 0.0, 1.0));
+}
+
+// Unit coordinate of texel k of n.
+fn texel_unit(k: u32, n: u32) -> f32 {
+    return f32(k) / f32(n - 1u);
+}
+
+// `texel_parameters`: the parameters of texel (ir, imu, imus, inu) of S. A texel whose
+// mu falls on the wrong side of the horizon by rounding is put on the horizon; its
+// `ground` flag, not its mu, decides its half from then on.
+fn texel(ir: u32, imu: u32, imus: u32, inu: u32) -> Texel {
+    let size = bruneton.size;
+    var t: Texel;
+    let rho = sqrt(horizon_sq()) * texel_unit(ir, size.x);
+    t.q = rho * rho;
+    t.r = radius_of_q(t.q);
+    let half = size.y / 2u;
+    t.ground = imu < half;
+    let x = texel_unit(select(imu - half, imu, t.ground), half);
+    t.mu = mu_from_x(t.q, t.r, x, t.ground);
+    if t.ground != hits_ground(t.q, t.r * t.mu) {
+        t.mu = horizon_mu_of(t.q, t.r);
+    }
+    t.mu_s = mu_s_from_u(texel_unit(imus, size.z));
+    t.nu = clamp_nu(t.mu, t.mu_s, 2.0 * texel_unit(inu, size.w) - 1.0);
+    return t;
+}
+
+// The texel of linear index `index` (`ScatteringSize::coords`): mu_s fastest, then r,
+// mu, nu.
+fn texel_of_index(index: u32) -> Texel {
+    let size = bruneton.size;
+    let imus = index % size.z;
+    let rest = index / size.z;
+    let ir = rest % size.x;
+    let rest2 = rest / size.x;
+    return texel(ir, rest2 % size.y, imus, rest2 / size.y);
+}
+
+// `ScatteringSize::index`.
+fn table_index(ir: u32, imu: u32, imus: u32, inu: u32) -> u32 {
+    let size = bruneton.size;
+    return ((inu * size.y + imu) * size.x + ir) * size.z + imus;
+}
+
+// `table_position`: where (q, r mu, mu_s, nu) falls in S, on the half of the mu axis
+// chosen by `ground`.
+fn table_position(q: f32, r: f32, r_mu: f32, mu_s: f32, nu: f32, ground: bool) -> Position {
+    let size = bruneton.size;
+    let half = size.y / 2u;
+    var mu = axis(x_mu(q, r, r_mu, ground), half);
+    if !ground {
+        mu.i += half;
+    }
+    return Position(
+        axis(sqrt(max(q, 0.0) / horizon_sq()), size.x),
+        mu,
+        axis(u_mu_s(mu_s), size.z),
+        axis(u_nu(nu), size.w),
+    );
+}
+
+// The lowest sun cosine of E (`MIN_MU_S`).
+const MIN_MU_S: f32 = -0.2;
+
+// E's texel (ir, imus): (q, r, mu_s) (`IrradianceTable::texel_r_mu_s`).
+fn irradiance_texel(index: u32) -> vec3<f32> {
+    let n = bruneton.irradiance_size;
+    let altitude = texel_unit(index / n.x, n.y) * (atmosphere.top_radius_m - atmosphere.bottom_radius_m);
+    let q = altitude * (2.0 * atmosphere.bottom_radius_m + altitude);
+    return vec3<f32>(q, atmosphere.bottom_radius_m + altitude, MIN_MU_S + texel_unit(index % n.x, n.x) * (1.0 - MIN_MU_S));
+}

@@ -1,0 +1,187 @@
+// Bruneton and Neyret 2008 per pixel: the GPU twin of `Bruneton::radiance`
+// (atmosphere-core `bruneton/mod.rs`). From the camera (moved to where the ray enters
+// the atmosphere when it is in space, `view_segment`):
+//     L = E_sun (S(x, v, s) + T(x, x_o) alpha / pi (E_direct + E_sky)(x_o)),
+// the ground term for rays ending on the ground at x_o (paper Eq. 13-16 with the ground
+// a sphere), where S = P_R(nu) S_R + P_M(nu) S_M + S_multiple from the 3D textures
+// (quadrilinear, as `Table4::lookup`), on the half of the mu axis of the ray's end. For
+// a ray that ends on the ground the paper's aerial perspective S(x) - T(x, x_o) S(x_o)
+// is S(x) on the ground's half: S(x_o) looks straight into the ground from it and is
+// zero (its ray has length 0), so it is not looked up; the same holds for the frame's
+// surface where it lies beyond the ground. A surface that cuts the ray short
+// (`Segment::cut`) subtracts T(x, x_o) S(x_o) looked up at its point x_o, and is lit by
+// `bruneton_surface_irradiance`. The sun disk with limb darkening is added where the ray
+// reaches space, times its transmittance. The view slice, E and the transmittance
+// table are read through the texture unit's linear filter where the device filters
+// Rgba32Float (`common/table_sampling.wgsl`), else texel by texel.
+
+#import sky/bruneton/lookup.wgsl
+#import common/frame_params.wgsl
+#import common/phase.wgsl
+#import common/surface.wgsl
+#import common/table_sampling.wgsl
+
+@group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(10) var view_slice: texture_2d<f32>;
+// E, copied from the store by `sky/bruneton/scattering_texture.wgsl` (x = mu_s, y = r).
+@group(0) @binding(11) var irradiance: texture_2d<f32>;
+
+// `IrradianceTable::lookup` on the ground (q = 0, as `irradiance_at`): the table's first
+// row, the only one with weight there, interpolated along mu_s alone (two texel reads,
+// or one filtered; the same value).
+fn ground_irradiance_at(mu_s: f32) -> vec3<f32> {
+    let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), bruneton.irradiance_size.x);
+    if FILTERED_TABLES {
+        return sample_2d(irradiance, vec2<f32>(f32(am.i) + am.w, 0.0));
+    }
+    let low = textureLoad(irradiance, vec2<u32>(am.i, 0u), 0).xyz;
+    let high = textureLoad(irradiance, vec2<u32>(am.i + 1u, 0u), 0).xyz;
+    return mix(low, high, am.w);
+}
+
+// Row imu, nu slice inu of scattering texture `k` (0 single Rayleigh, 1 single Mie, 2
+// multiple) interpolated at the camera's r and mu_s, from the view slice
+// (`sky/bruneton/view_slice.wgsl`).
+fn view_slice_row(k: u32, imu: u32, inu: u32) -> vec3<f32> {
+    return textureLoad(view_slice, vec2<u32>(k * bruneton.size.w + inu, imu), 0).xyz;
+}
+
+// `texture_lookup` of scattering texture `k` for a camera inside the atmosphere: every
+// ray starts at the camera's r and mu_s, so the interpolation in r and mu_s, the same for
+// every pixel, is done once per frame into the view slice, and each pixel interpolates
+// in mu and nu (4 texel reads instead of 16, or one filtered; the same quadrilinear
+// interpolation).
+fn view_slice_lookup(k: u32, p: Position) -> vec3<f32> {
+    if FILTERED_TABLES {
+        let nu = f32(k * bruneton.size.w + p.nu.i) + p.nu.w;
+        return sample_2d(view_slice, vec2<f32>(nu, f32(p.mu.i) + p.mu.w));
+    }
+    var lo = vec3<f32>(0.0);
+    var hi = vec3<f32>(0.0);
+    for (var dm = 0u; dm < 2u; dm++) {
+        let wm = select(1.0 - p.mu.w, p.mu.w, dm == 1u);
+        lo += wm * view_slice_row(k, p.mu.i + dm, p.nu.i);
+        hi += wm * view_slice_row(k, p.mu.i + dm, p.nu.i + 1u);
+    }
+    if p.nu.w == 0.0 {
+        return lo;
+    }
+    return mix(lo, hi, p.nu.w);
+}
+
+// S without phase functions at `p` in scattering texture `k`: from the view slice for a
+// camera inside the atmosphere (`inside`, fixed by the entry point, so that lavapipe,
+// which runs every branch for every pixel, does not pay for the other way), else from
+// the 3D textures. The view slice holds the camera's r and mu_s only: points elsewhere
+// (a surface's x_o) read the 3D textures.
+fn scattering_at(k: u32, p: Position, inside: bool) -> vec3<f32> {
+    if inside {
+        return view_slice_lookup(k, p);
+    }
+    switch k {
+        case 0u: {
+            return texture_lookup(single_rayleigh, p);
+        }
+        case 1u: {
+            return texture_lookup(single_mie, p);
+        }
+        default: {
+            return texture_lookup(multiple, p);
+        }
+    }
+}
+
+// S = P_R S_R + P_M S_M + S_multiple at table position `p`.
+fn scattered(p: Position, nu: f32, inside: bool) -> vec3<f32> {
+    var l = rayleigh_phase(nu) * scattering_at(0u, p, inside) + scattering_at(2u, p, inside);
+    if bruneton.flags.y == 1u {
+        l += mie_phase(nu) * scattering_at(1u, p, inside);
+    }
+    return l;
+}
+
+// `Bruneton::radiance` for the view ray with unit `direction` from the camera, ending on
+// an object at `object_m` (0: none); `inside`: the camera is inside the atmosphere and
+// the view slice holds S at its r and mu_s.
+fn bruneton_radiance(direction: vec3<f32>, object_m: f32, inside: bool) -> Radiance {
+    let s = view_segment(direction, object_m);
+    var out = radiance_of_empty(s, direction);
+    if !s.hit {
+        return out;
+    }
+    let bottom = atmosphere.bottom_radius_m;
+    let sun = frame.sun_direction.xyz;
+    let r = radius_of_q(s.q);
+    let mu_s = clamp(s.start_dot_sun / r, -1.0, 1.0);
+    let nu = clamp(dot(direction, sun), -1.0, 1.0);
+    let p = table_position(s.q, r, s.r_mu, mu_s, nu, s.on_ground);
+    var l = scattered(p, nu, inside);
+    let ends = segment_ends(s.q, r, s.r_mu, s.length, s.on_ground);
+    let columns = read_table_columns(transmittance_columns, ends.x, ends.y)
+        - read_table_columns(transmittance_columns, ends.z, ends.w);
+    let t = exp(-optical_depth(max(columns, vec3<f32>(0.0))));
+    if s.cut {
+        // Aerial perspective (section 4, Eq. 3): S(x) - T(x, x_o) S(x_o), on the same
+        // half of the mu axis.
+        let q_o = q_along(s, s.length);
+        let r_o = radius_of_q(q_o);
+        let mu_s_o = clamp((s.start_dot_sun + s.length * nu) / r_o, -1.0, 1.0);
+        let p_o = table_position(q_o, r_o, s.r_mu + s.length, mu_s_o, nu, s.on_ground);
+        l -= t * scattered(p_o, nu, false);
+    }
+    if s.end == END_GROUND {
+        let mu_s_g = clamp((s.start_dot_sun + s.length * nu) / bottom, -1.0, 1.0);
+        let sky = ground_irradiance_at(mu_s_g);
+        var direct = vec3<f32>(0.0);
+        if mu_s_g > 0.0 {
+            direct = exp(-optical_depth(read_ground_columns(transmittance_columns, mu_s_g))) * mu_s_g;
+        }
+        l += t * (atmosphere.ground_albedo / PI) * (direct + sky);
+    }
+    out.radiance = max(atmosphere.solar_irradiance.xyz * l, vec3<f32>(0.0));
+    out.transmittance = clamp(t, vec3<f32>(0.0), vec3<f32>(1.0));
+    return out;
+}
+
+// `Bruneton::surface_irradiance`: the transmitted sun from the transmittance table and
+// the sky's irradiance E[L](r, mu_s) from the irradiance table (Eq. 15), at the
+// element's radius and sun angle.
+fn bruneton_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let e = surface_element(point, normal);
+    let bottom = atmosphere.bottom_radius_m;
+    let q = (e.r - bottom) * (e.r + bottom);
+    var t = vec3<f32>(0.0);
+    if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
+        t = exp(-optical_depth(read_table_columns(transmittance_columns, q, e.mu_s)));
+    }
+    let sky = irradiance_at(bruneton.offsets_b.w, q, e.r, e.mu_s);
+    return element_irradiance(e, t, atmosphere.solar_irradiance.xyz * sky);
+}
+
+// The pass for a camera above the atmosphere (rays start where they enter it, at
+// different sun cosines).
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    shade(id.xy, false);
+}
+
+// The pass for a camera inside the atmosphere, after the view slice.
+@compute @workgroup_size(8, 8)
+fn inside(@builtin(global_invocation_id) id: vec3<u32>) {
+    shade(id.xy, true);
+}
+
+// Pixel `px`: the radiance and the sun disk into the HDR target.
+fn shade(px: vec2<u32>, inside: bool) {
+    if any(px >= frame.size_px.xy) {
+        return;
+    }
+    let direction = pixel_direction(px);
+    let surface = frame_surface(px);
+    var r = bruneton_radiance(direction, surface.distance, inside);
+    if surface.present {
+        let e = bruneton_surface_irradiance(r.end, surface.normal);
+        r = add_surface(r, surface, e);
+    }
+    textureStore(hdr, px, hdr_pixel(direction, r));
+}

@@ -1,0 +1,101 @@
+// Reading the model's tables while building and rendering: the GPU twins of
+// atmosphere-core's `bruneton/tables.rs` (`Table4::lookup`, `IrradianceTable::lookup`,
+// `DensityTable::at`) and of the transmittance helpers of `bruneton/precompute.rs`.
+//
+// Every table being built lives in one storage buffer, the store, at the offsets of
+// `BrunetonParams` (vec4 per texel, rgb = the three channels), indexed as on the CPU so
+// that a table read back compares texel by texel. The transmittance tables are the
+// `columns` (binding 3) and transmittance (binding 5) outputs of
+// `sky/transmittance_table.wgsl`, 256 x 64.
+
+#import sky/bruneton/parameterization.wgsl
+#import common/transmittance_lookup.wgsl
+
+@group(0) @binding(3) var transmittance_columns: texture_2d<f32>;
+@group(0) @binding(4) var<storage, read_write> store: array<vec4<f32>>;
+@group(0) @binding(5) var transmittance: texture_2d<f32>;
+
+// Trilinear interpolation over (r, mu, mu_s) in nu slice `inu` (`Table4::slice`).
+fn table4_slice(base: u32, p: Position, inu: u32) -> vec3<f32> {
+    var out = vec3<f32>(0.0);
+    for (var dm = 0u; dm < 2u; dm++) {
+        let wm = select(1.0 - p.mu.w, p.mu.w, dm == 1u);
+        for (var dr = 0u; dr < 2u; dr++) {
+            let w_r = select(1.0 - p.r.w, p.r.w, dr == 1u);
+            let i = base + table_index(p.r.i + dr, p.mu.i + dm, p.mu_s.i, inu);
+            out += (wm * w_r) * mix(store[i].xyz, store[i + 1u].xyz, p.mu_s.w);
+        }
+    }
+    return out;
+}
+
+// Quadrilinear interpolation of the 4D table at `base` (`Table4::at_position`).
+fn table4(base: u32, p: Position) -> vec3<f32> {
+    let lo = table4_slice(base, p, p.nu.i);
+    if p.nu.w == 0.0 {
+        return lo;
+    }
+    return mix(lo, table4_slice(base, p, p.nu.i + 1u), p.nu.w);
+}
+
+// Bilinear interpolation of the irradiance table at `base` at (q, r, mu_s)
+// (`IrradianceTable::lookup`).
+fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
+    let n = bruneton.irradiance_size;
+    let bottom = atmosphere.bottom_radius_m;
+    let x_r = clamp(q / (r + bottom) / (atmosphere.top_radius_m - bottom), 0.0, 1.0);
+    let x_mu_s = clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0);
+    let ar = axis(x_r, n.y);
+    let am = axis(x_mu_s, n.x);
+    let i = base + ar.i * n.x + am.i;
+    let lower = mix(store[i].xyz, store[i + 1u].xyz, am.w);
+    let upper = mix(store[i + n.x].xyz, store[i + n.x + 1u].xyz, am.w);
+    return mix(lower, upper, ar.w);
+}
+
+// Relative densities at `altitude_m` from the density table (`DensityTable::at`, 8192
+// samples over the atmosphere's thickness), read from its copy in a 1D texture
+// (binding 12): lavapipe reads a storage buffer at a computed index lane by lane, with
+// a bounds check per component, several times slower than a texel read, and the
+// trapezoid nodes read it twice per node and texel.
+const DENSITY_SAMPLES: u32 = 8192u;
+
+@group(0) @binding(12) var density_table: texture_1d<f32>;
+
+fn density_at(altitude_m: f32) -> vec3<f32> {
+    let f = clamp(altitude_m / bruneton.density.x, 0.0, f32(DENSITY_SAMPLES - 1u));
+    let i = min(u32(f), DENSITY_SAMPLES - 2u);
+    return mix(textureLoad(density_table, i, 0).xyz, textureLoad(density_table, i + 1u, 0).xyz, f - f32(i));
+}
+
+// Columns of matter of the segment of length d from (q, r mu): differences of the
+// columns table, from the far end for rays that meet the ground (`segment_column`). The
+// two ends are chosen before the two look-ups, so that a shader whose pixels take both
+// kinds of ray (which lavapipe runs for every pixel) reads the table twice, not four
+// times.
+fn segment_column(q: f32, r: f32, r_mu: f32, d: f32, ground: bool) -> vec3<f32> {
+    let ends = segment_ends(q, r, r_mu, d, ground);
+    let a = table_columns(transmittance_columns, ends.x, ends.y);
+    let b = table_columns(transmittance_columns, ends.z, ends.w);
+    return max(a - b, vec3<f32>(0.0));
+}
+
+// The two rays of `segment_column`, (q, mu) of the one whose columns are added, then of
+// the one whose columns are subtracted.
+fn segment_ends(q: f32, r: f32, r_mu: f32, d: f32, ground: bool) -> vec4<f32> {
+    let q_d = clamp(q + d * (d + 2.0 * r_mu), 0.0, horizon_sq());
+    let r_d = radius_of_q(q_d);
+    let mu_d = clamp((r_mu + d) / r_d, -1.0, 1.0);
+    let mu = clamp(r_mu / r, -1.0, 1.0);
+    return vec4<f32>(select(q, q_d, ground), select(mu, -mu_d, ground), select(q_d, q, ground),
+        select(mu_d, -mu, ground));
+}
+
+// Transmittance to the sun (a point) from (q, r) at sun cosine mu_s, interpolated in the
+// transmittance table (`Builder::sun_transmittance`); zero behind the planet.
+fn sun_transmittance(q: f32, r: f32, mu_s: f32) -> vec3<f32> {
+    if hits_ground(q, r * mu_s) {
+        return vec3<f32>(0.0);
+    }
+    return table_columns(transmittance, q, mu_s);
+}

@@ -1,0 +1,152 @@
+// The medium along a ray and the segment integral of Hillaire 2020, shared by every
+// hillaire table and the per-pixel pass: the GPU twin of atmosphere-core's
+// `hillaire/medium.rs`. Radii enter as q = r^2 - bottom^2 and r mu, r mu_s (see
+// `common/frame_params.wgsl`), so that no planet-sized f32 numbers are subtracted. Also the
+// model's uniform (`HillaireParams`, Rust twin `hillaire_pass.rs`) and the transmittance
+// table (the columns of `sky/transmittance_table.wgsl`, as the CPU's shared table), which
+// every hillaire shader binds at 2 and 3 and reads as `common/table_sampling.wgsl` says.
+
+#import common/atmosphere_params.wgsl
+#import common/table_sampling.wgsl
+#import common/phase.wgsl
+
+struct HillaireParams {
+    // The view of the per-view tables (`view_cache::view_key`): camera radius, its
+    // r^2 - bottom^2 (from f64) and the sun's zenith cosine there.
+    view_r: f32,
+    view_q: f32,
+    view_mu_s: f32,
+    // Depth covered by the aerial-perspective volume, m.
+    aerial_range_m: f32,
+    // `HillaireSettings`' sample counts.
+    ms_sqrt_directions: u32,
+    ms_samples: u32,
+    sky_view_samples: u32,
+    ap_samples_per_slice: u32,
+    march_samples: u32,
+    ground_zenith_panels: u32,
+    ground_azimuths: u32,
+    // 1: orders two and up (Psi_ms and the sky's light on the ground); 0: single
+    // scattering (`max_orders = 1`).
+    multiple_on: u32,
+    // Zenith angle of the geometric horizon at the view's radius (`horizon_zenith`, f64).
+    view_theta_h: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+    // The camera's zenith, and two horizontal unit vectors there: towards the sun's
+    // azimuth and 90 degrees from it (any horizontal pair when the sun is at the zenith
+    // or nadir); xyz, w = 0. The pass measures view angles in this frame.
+    view_up: vec4<f32>,
+    view_sun_side: vec4<f32>,
+    view_across: vec4<f32>,
+}
+
+@group(0) @binding(2) var<uniform> hillaire: HillaireParams;
+@group(0) @binding(3) var transmittance_columns: texture_2d<f32>;
+
+// top^2 - bottom^2: q at the top of the atmosphere.
+fn top_q() -> f32 {
+    let a = atmosphere;
+    return (a.top_radius_m - a.bottom_radius_m) * (a.top_radius_m + a.bottom_radius_m);
+}
+
+// 1 - exp(-x) per channel, by its series below 0.01 (where 1 - exp(-x) in f32 loses up
+// to 6e-8 absolute: 3e-3 relative for the thin segments high in the atmosphere).
+fn one_minus_exp(x: vec3<f32>) -> vec3<f32> {
+    let series = x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x * (1.0 / 24.0))));
+    return select(1.0 - exp(-x), series, x < vec3<f32>(0.01));
+}
+
+struct SegmentWeight {
+    transmittance: vec3<f32>,
+    // Integral of the transmittance from the segment's start over its length, m.
+    integral: vec3<f32>,
+}
+
+// `segment_weight`: exp(-sigma_t dt) and (1 - exp(-sigma_t dt)) / sigma_t (Hillaire 2015's
+// energy-conserving integration), dt without extinction.
+fn segment_weight(extinction: vec3<f32>, dt: f32) -> SegmentWeight {
+    let x = extinction * dt;
+    let lost = one_minus_exp(x);
+    var w: SegmentWeight;
+    w.transmittance = exp(-x);
+    w.integral = select(dt * lost / max(x, vec3<f32>(1e-30)), vec3<f32>(dt), x <= vec3<f32>(0.0));
+    return w;
+}
+
+// A point along a ray: q = r^2 - bottom^2 (below 0 under the ground), its radius and the
+// sun's zenith cosine there.
+struct RayPoint {
+    q: f32,
+    r: f32,
+    mu_s: f32,
+}
+
+// `point_along`: the point at distance t along the ray from (q, r mu) whose start has
+// r mu_s = `r_mu_s` (the start's position . sun) and view-sun cosine `nu`.
+fn point_along(q: f32, r_mu: f32, r_mu_s: f32, nu: f32, t: f32) -> RayPoint {
+    let bottom = atmosphere.bottom_radius_m;
+    var p: RayPoint;
+    p.q = q + t * (t + 2.0 * r_mu);
+    p.r = safe_sqrt(bottom * bottom + p.q);
+    p.mu_s = clamp((r_mu_s + t * nu) / max(p.r, 1.0), -1.0, 1.0);
+    return p;
+}
+
+// `Medium::densities`: relative densities at q, zero above the top, the ground's below it.
+fn medium_densities(q: f32) -> vec3<f32> {
+    if q > top_q() {
+        return vec3<f32>(0.0);
+    }
+    return densities(altitude_from_q_clamped(q));
+}
+
+// The altitude for r^2 - bottom^2 = q, at least 0, as q / (r + bottom).
+fn altitude_from_q_clamped(q: f32) -> f32 {
+    let bottom = atmosphere.bottom_radius_m;
+    let qc = max(q, 0.0);
+    return qc / (sqrt(bottom * bottom + qc) + bottom);
+}
+
+// `Medium::sun_transmittance`: transmittance towards a point sun at zenith cosine `mu_s`
+// from the table, radii clamped to the atmosphere; 0 where the planet hides the sun.
+fn sun_transmittance(q: f32, mu_s: f32) -> vec3<f32> {
+    let bottom = atmosphere.bottom_radius_m;
+    let qc = clamp(q, 0.0, top_q());
+    let r = sqrt(bottom * bottom + qc);
+    let mu = clamp(mu_s, -1.0, 1.0);
+    if mu < 0.0 && (r * mu) * (r * mu) - qc >= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    return exp(-optical_depth(read_table_columns(transmittance_columns, qc, mu)));
+}
+
+// `ground_distance`: from (q, r mu) to the ground for a ray at or below the horizon; a
+// tangent ray gives the distance to the tangent point.
+fn ground_distance(q: f32, r_mu: f32) -> f32 {
+    let denom = -r_mu + safe_sqrt(r_mu * r_mu - q);
+    return select(0.0, max(q / denom, 0.0), denom > 0.0);
+}
+
+// `distance_to_exit` to the top from (q, r mu) inside the atmosphere, by the product of
+// the roots for rising rays.
+fn exit_distance(q: f32, r_mu: f32) -> f32 {
+    let h2 = top_q();
+    let root = safe_sqrt(r_mu * r_mu - q + h2);
+    if r_mu > 0.0 {
+        return max((h2 - q) / (r_mu + root), 0.0);
+    }
+    return max(-r_mu + root, 0.0);
+}
+
+// Whether the ray from (q, r mu) meets the ground (`ray_hits_ground`).
+fn hits_ground(q: f32, r_mu: f32) -> bool {
+    return r_mu < 0.0 && r_mu * r_mu - q >= 0.0;
+}
+
+// The centre of texel i of n mapped to [0, 1], first and last centres on the bounds
+// (`unit_from_coord((i + 0.5) / n, n)` = i / (n - 1)).
+fn unit_from_texel(i: u32, n: u32) -> f32 {
+    return f32(i) / f32(n - 1u);
+}

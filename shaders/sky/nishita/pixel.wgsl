@@ -1,0 +1,98 @@
+// Nishita 1993 per pixel: the GPU twin of atmosphere-core's `nishita.rs`. Single
+// scattering integrated along each view ray with N equal sub-segments, one sample at
+// each midpoint (seed 000 Eq. 12); the sun's optical depth from the table g_l (the
+// `columns` of `sky/transmittance_table.wgsl`); the ground's Lambertian reflection of the
+// transmitted sun (seed 000 Eq. 11); the sun disk with limb darkening where the ray
+// reaches space. Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three wavelengths
+// of the uniform to the HDR target, clamped to the largest finite f16.
+
+#import common/atmosphere_params.wgsl
+#import common/frame_params.wgsl
+#import common/transmittance_lookup.wgsl
+#import common/phase.wgsl
+#import common/surface.wgsl
+
+struct NishitaParams {
+    view_samples: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+@group(0) @binding(2) var<uniform> nishita: NishitaParams;
+@group(0) @binding(3) var g_l: texture_2d<f32>;
+@group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
+
+// `Nishita::radiance` for the view ray with unit `direction` from the camera, ending on
+// an object at `object_m` (0: none).
+fn nishita_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+    let s = view_segment(direction, object_m);
+    var out = radiance_of_empty(s, direction);
+    if !s.hit {
+        return out;
+    }
+    let sun = frame.sun_direction.xyz;
+    let bottom = atmosphere.bottom_radius_m;
+    let n = nishita.view_samples;
+    let dt = s.length / f32(n);
+    let nu = dot(direction, sun);
+    let phase_r = rayleigh_phase(nu);
+    let phase_m = mie_phase(nu);
+    var view_column = vec3<f32>(0.0);
+    for (var k = 0u; k < n; k++) {
+        let t = (f32(k) + 0.5) * dt;
+        let q = q_along(s, t);
+        let rho = densities(altitude_from_q(q));
+        let to_sample = view_column + 0.5 * dt * rho;
+        view_column += dt * rho;
+        let radius = sqrt(bottom * bottom + q);
+        let mu_sun = clamp((s.start_dot_sun + t * nu) / radius, -1.0, 1.0);
+        // The sun's centre behind the planet: g_l = 0 (`sun_column`).
+        if mu_sun < 0.0 && (radius * mu_sun) * (radius * mu_sun) - q >= 0.0 {
+            continue;
+        }
+        let sun_column = table_columns(g_l, q, mu_sun);
+        let tau = optical_depth(to_sample) + optical_depth(sun_column);
+        let j = atmosphere.rayleigh_scattering_per_m.xyz * (rho.x * phase_r)
+            + atmosphere.mie_scattering_per_m.xyz * (rho.y * phase_m);
+        out.radiance += dt * exp(-tau) * j * atmosphere.solar_irradiance.xyz;
+    }
+    out.transmittance = exp(-optical_depth(view_column));
+    if s.end == END_GROUND {
+        let cos_g = (s.start_dot_sun + s.length * nu) / bottom;
+        if cos_g > 0.0 {
+            let sun_column = table_columns(g_l, 0.0, min(cos_g, 1.0));
+            out.radiance += out.transmittance * atmosphere.ground_albedo / PI
+                * atmosphere.solar_irradiance.xyz * cos_g * exp(-optical_depth(sun_column));
+        }
+    }
+    return out;
+}
+
+// `Nishita::surface_irradiance`: the transmitted sun only.
+fn nishita_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let e = surface_element(point, normal);
+    let bottom = atmosphere.bottom_radius_m;
+    let q = (e.r - bottom) * (e.r + bottom);
+    var t = vec3<f32>(0.0);
+    let behind_planet = e.mu_s < 0.0 && (e.r * e.mu_s) * (e.r * e.mu_s) - q >= 0.0;
+    if e.sun_cosine > 0.0 && !behind_planet {
+        t = exp(-optical_depth(table_columns(g_l, q, e.mu_s)));
+    }
+    return element_irradiance(e, t, vec3<f32>(0.0));
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size_px.xy) {
+        return;
+    }
+    let direction = pixel_direction(id.xy);
+    let surface = frame_surface(id.xy);
+    var r = nishita_radiance(direction, surface.distance);
+    if surface.present {
+        let e = nishita_surface_irradiance(r.end, surface.normal);
+        r = add_surface(r, surface, e);
+    }
+    textureStore(hdr, id.xy, hdr_pixel(direction, r));
+}
