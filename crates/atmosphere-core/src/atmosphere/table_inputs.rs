@@ -65,6 +65,12 @@ impl Inputs {
         self.0 == 0
     }
 
+    /// Whether a table that depends on these inputs must be rebuilt for `now`: it was
+    /// never built (`built_from` is `None`) or one of its inputs changed since.
+    pub fn stale(self, built_from: Option<&Atmosphere>, now: &Atmosphere) -> bool {
+        built_from.is_none_or(|old| Inputs::changed(old, now).intersects(self))
+    }
+
     /// The inputs that differ between `old` and `new`.
     pub fn changed(old: &Atmosphere, new: &Atmosphere) -> Inputs {
         let mut changed = Inputs::NONE;
@@ -125,9 +131,13 @@ mod tests {
     fn names_exactly_what_changed() {
         let a = earth();
         assert_eq!(Inputs::changed(&a, &a), Inputs::NONE);
+        assert!(Inputs::COLUMNS.stale(None, &a));
+        assert!(!Inputs::ALL.stale(Some(&a), &a));
         let mut b = a.clone();
         b.ground_albedo = 0.3;
         assert_eq!(Inputs::changed(&a, &b), Inputs::GROUND_ALBEDO);
+        assert!(Inputs::GROUND_ALBEDO.stale(Some(&a), &b));
+        assert!(!Inputs::COLUMNS.stale(Some(&a), &b));
         let mut c = a.clone();
         c.mie.scattering_per_m = a.mie.scattering_per_m.scaled(0.5);
         let changed = Inputs::changed(&a, &c);
