@@ -15,6 +15,7 @@
 //! See docs/models/dobashi.md for the equations, the settings and the measured errors.
 
 pub mod ambient;
+pub mod ambient_build;
 pub mod grid;
 pub mod plane_tables;
 pub mod segment;

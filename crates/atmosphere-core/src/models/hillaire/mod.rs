@@ -17,6 +17,7 @@ pub mod ground;
 pub mod march;
 pub mod medium;
 pub mod multiple_scattering;
+pub mod rows;
 pub mod sky_view;
 pub mod view_cache;
 
