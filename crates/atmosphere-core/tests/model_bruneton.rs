@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{all_orders_reference, luminance_errors};
+use common::{all_orders_reference, earth, luminance_errors};
 use std::sync::OnceLock;
 
 use atmosphere_core::atmosphere::Atmosphere;
@@ -17,10 +17,6 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 use atmosphere_core::optics::geometry::{horizon_mu, ray_hits_ground};
-
-fn earth() -> Atmosphere {
-    Atmosphere::preset("earth").unwrap()
-}
 
 fn radii(a: &Atmosphere) -> Radii {
     Radii {
