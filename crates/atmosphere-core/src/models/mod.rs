@@ -12,3 +12,4 @@ pub mod options;
 pub mod registry;
 pub mod riley;
 pub mod sky_model;
+pub mod table_update;

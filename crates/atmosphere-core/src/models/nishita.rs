@@ -7,8 +7,6 @@
 //! table serves every wavelength; optical depth at a wavelength is the sum of columns times
 //! the species' extinctions. See docs/models/nishita.md.
 
-use std::f64::consts::PI;
-
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
@@ -18,9 +16,10 @@ use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::column::{densities, optical_depth};
 use crate::optics::geometry::ray_hits_ground;
-use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
@@ -166,21 +165,15 @@ impl SkyModel for Nishita {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
-        let mut rebuilt = Vec::new();
-        if changed.intersects(Inputs::COLUMNS) {
-            self.table = TransmittanceTable::build(
-                atmosphere,
-                self.settings.table_angles,
-                self.settings.table_heights,
-            );
-            rebuilt.push("g_l");
-        }
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let (angles, heights) = (self.settings.table_angles, self.settings.table_heights);
+        update.rebuild(Inputs::COLUMNS, "g_l", &mut self.table, || {
+            TransmittanceTable::build(atmosphere, angles, heights)
+        });
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
@@ -199,12 +192,9 @@ impl SkyModel for Nishita {
         let column = (e.sun_cosine > 0.0)
             .then(|| sun_column(&self.table, e.r, e.mu_s))
             .flatten();
-        Ok((0..s.wavelengths_nm.len())
-            .map(|w| {
-                let t = column.map_or(0.0, |c| (-optical_depth(c, s.extinction[w])).exp());
-                e.irradiance(s.solar_irradiance[w], t, 0.0)
-            })
-            .collect())
+        Ok(e.sun_irradiances(&s.solar_irradiance, |w| {
+            column.map_or(0.0, |c| (-optical_depth(c, s.extinction[w])).exp())
+        }))
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
@@ -213,11 +203,7 @@ impl SkyModel for Nishita {
         let n_w = s.wavelengths_nm.len();
         let bottom = a.bottom_radius_m;
         let Some(segment) = ViewSegment::new(a, ray)? else {
-            return Ok(RayRadiance {
-                radiance: vec![0.0; n_w],
-                transmittance: vec![1.0; n_w],
-                radiance_std_error: vec![0.0; n_w],
-            });
+            return Ok(RayRadiance::unattenuated(n_w));
         };
         let (start, direction, sun) = (segment.start, segment.direction, segment.sun_direction);
         let (length, on_ground) = (segment.length, segment.end == SegmentEnd::Ground);
@@ -278,10 +264,14 @@ impl SkyModel for Nishita {
         // (seed 000 Eq. 11-12), with r / pi for a Lambertian albedo in radiance units.
         if on_ground {
             let end = start + direction * length;
-            let irradiance = self.surface_irradiance(end, end, sun)?;
-            for w in 0..n_w {
-                radiance[w] += transmittance[w] * a.ground_albedo / PI * irradiance[w];
-            }
+            add_ground_light(
+                self,
+                end,
+                sun,
+                a.ground_albedo,
+                &transmittance,
+                &mut radiance,
+            )?;
         }
         Ok(RayRadiance {
             radiance,

@@ -29,8 +29,9 @@ use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
-use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
 /// What trades accuracy for time in O'Neil's model. `Default` is the paper's choice.
@@ -296,22 +297,25 @@ impl SkyModel for Oneil {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
-        let mut rebuilt = Vec::new();
-        if changed.intersects(OpticalDepthTable::INPUTS) {
-            self.table = OpticalDepthTable::build(
-                atmosphere,
-                self.settings.table_heights,
-                self.settings.table_angles,
-                self.settings.table_ray_samples,
-            );
-            rebuilt.push("optical depth");
-        }
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let s = self.settings;
+        update.rebuild(
+            OpticalDepthTable::INPUTS,
+            "optical depth",
+            &mut self.table,
+            || {
+                OpticalDepthTable::build(
+                    atmosphere,
+                    s.table_heights,
+                    s.table_angles,
+                    s.table_ray_samples,
+                )
+            },
+        );
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
@@ -336,24 +340,17 @@ impl SkyModel for Oneil {
             let light = self.table.lookup(e.r, e.mu_s);
             [light[RAYLEIGH_LENGTH], light[MIE_LENGTH]]
         });
-        Ok((0..s.wavelengths_nm.len())
-            .map(|w| {
-                let t = column.map_or(0.0, |c| {
-                    (-(s.extinction[w][0] * c[0] + s.extinction[w][1] * c[1])).exp()
-                });
-                e.irradiance(s.solar_irradiance[w], t, 0.0)
+        Ok(e.sun_irradiances(&s.solar_irradiance, |w| {
+            column.map_or(0.0, |c| {
+                (-(s.extinction[w][0] * c[0] + s.extinction[w][1] * c[1])).exp()
             })
-            .collect())
+        }))
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.spectra.wavelengths_nm.len();
         let Some(seg) = ViewSegment::new(&self.atmosphere, ray)? else {
-            return Ok(RayRadiance {
-                radiance: vec![0.0; n],
-                transmittance: vec![1.0; n],
-                radiance_std_error: vec![0.0; n],
-            });
+            return Ok(RayRadiance::unattenuated(n));
         };
         let table = &self.table;
         let sun = ray.sun_direction.normalize();
@@ -422,11 +419,8 @@ impl SkyModel for Oneil {
         // The ground's Lambertian reflection of the transmitted sun (seed 002's ground
         // shader), as any surface element facing up.
         if seg.end == SegmentEnd::Ground {
-            let irradiance = self.surface_irradiance(end, end, sun)?;
-            for w in 0..n {
-                radiance[w] +=
-                    transmittance[w] * self.atmosphere.ground_albedo / PI * irradiance[w];
-            }
+            let albedo = self.atmosphere.ground_albedo;
+            add_ground_light(self, end, sun, albedo, &transmittance, &mut radiance)?;
         }
         Ok(RayRadiance {
             radiance,

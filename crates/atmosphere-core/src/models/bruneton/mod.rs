@@ -43,6 +43,7 @@ use crate::models::bruneton::tables::{DensityTable, Table4};
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::geometry::ray_hits_ground;
 use crate::optics::phase::rayleigh;
 use crate::optics::surface_lighting::SurfaceElement;
@@ -225,8 +226,8 @@ impl SkyModel for Bruneton {
     /// phase function (unless Mie is pruned). Tables are per unit solar irradiance, so
     /// the sun ([`Inputs::SUN`]) rebuilds nothing.
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let changed = update.changed;
         let was_pruned = self.mie_pruned();
         self.atmosphere = atmosphere.clone();
         self.solar_irradiance = solar_irradiance(atmosphere, &self.wavelengths_nm);
@@ -234,15 +235,13 @@ impl SkyModel for Bruneton {
             bottom_m: atmosphere.bottom_radius_m,
             top_m: atmosphere.top_radius_m,
         };
-        let mut rebuilt = Vec::new();
-        if changed.intersects(Inputs::COLUMNS) {
-            self.transmittance = TransmittanceTable::build(
-                atmosphere,
-                self.settings.transmittance_size.0,
-                self.settings.transmittance_size.1,
-            );
-            rebuilt.push("transmittance");
-        }
+        let (w, h) = self.settings.transmittance_size;
+        update.rebuild(
+            Inputs::COLUMNS,
+            "transmittance",
+            &mut self.transmittance,
+            || TransmittanceTable::build(atmosphere, w, h),
+        );
         let single = changed.intersects(Inputs::EXTINCTION);
         let multiple = single
             || changed.intersects(Inputs::GROUND_ALBEDO)
@@ -266,11 +265,11 @@ impl SkyModel for Bruneton {
                 .collect();
             self.groups = groups;
             if single {
-                rebuilt.push("single scattering");
+                update.mark(&["single scattering"]);
             }
-            rebuilt.extend(["multiple scattering", "irradiance"]);
+            update.mark(&["multiple scattering", "irradiance"]);
         }
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
@@ -309,11 +308,7 @@ impl SkyModel for Bruneton {
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
-            return Ok(RayRadiance {
-                radiance: vec![0.0; n],
-                transmittance: vec![1.0; n],
-                radiance_std_error: vec![0.0; n],
-            });
+            return Ok(RayRadiance::unattenuated(n));
         };
         let (bottom, top) = (self.radii.bottom_m, self.radii.top_m);
         let (x, direction, sun) = (segment.start, segment.direction, segment.sun_direction);
