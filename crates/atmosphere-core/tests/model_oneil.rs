@@ -1,4 +1,4 @@
-//! O'Neil 2004 (seed 002): the optical-depth table against converged columns, the model
+//! O'Neil 2004: the optical-depth table against converged columns, the model
 //! against the reference's single scattering, stability on extreme rays and continuity
 //! across the top of the atmosphere. Measured numbers are in docs/models/oneil.md.
 

@@ -1,5 +1,4 @@
-//! Stiff and extreme cases give finite, non-negative, bounded and continuous results
-//! (DESIGN.md, "Numerical stability").
+//! Stiff and extreme cases give finite, non-negative, bounded and continuous results.
 
 mod common;
 

@@ -1,4 +1,4 @@
-//! O'Neil 2004, "Real-time atmospheric scattering" (seed 002): single scattering from a
+//! O'Neil 2004, "Real-time atmospheric scattering": single scattering from a
 //! few samples per view ray, with every optical depth and density read from one 2D table.
 //!
 //! The table ([`OpticalDepthTable`]) has height above the ground (0 to the top of the
@@ -37,10 +37,10 @@ use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 /// What trades accuracy for time in O'Neil's model. `Default` is the paper's choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OneilSettings {
-    /// Sample rays per view ray. Seed 002: "3 or 4 samples seems to be sufficient to make
+    /// Sample rays per view ray. O'Neil 2004: "3 or 4 samples seems to be sufficient to make
     /// it look good"; the demo's `m_nSamples = 4`.
     pub samples: usize,
-    /// Table nodes along the height axis (ground to top). The seed's text gives no size;
+    /// Table nodes along the height axis (ground to top). The paper's text gives no size;
     /// the demo's `CPixelBuffer::MakeOpticalDepthBuffer` uses `nSize = 64` on both axes.
     pub table_heights: usize,
     /// Table nodes along the angle axis (0 to 180 degrees from the vertical); 64 as above.
@@ -102,7 +102,7 @@ pub const RAYLEIGH_LENGTH: usize = 1;
 pub const MIE_DENSITY: usize = 2;
 pub const MIE_LENGTH: usize = 3;
 
-/// The 4-channel optical-depth table of seed 002, stored as f32 (a GL_FLOAT RGBA texture
+/// The 4-channel optical-depth table of O'Neil 2004, stored as f32 (a GL_FLOAT RGBA texture
 /// in the paper's demo), read by bilinear interpolation between nodes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OpticalDepthTable {
@@ -323,8 +323,8 @@ impl SkyModel for Oneil {
     }
 
     /// The transmitted sun only (single scattering has no sky light): the sun's columns
-    /// from the table at the element's height and sun angle (seed 002's ground shader
-    /// reads the same lookup), zero where the planet hides the sun's centre, the table's
+    /// from the table at the element's height and sun angle (O'Neil 2004's ground
+    /// shader reads the same lookup), zero where the planet hides the sun's centre, the table's
     /// own shadow test (its density channels are 0 where `ray_hits_ground`).
     fn surface_irradiance(
         &self,
@@ -358,7 +358,7 @@ impl SkyModel for Oneil {
         let end = seg.start + dir * seg.length;
         // "When a point is above the camera the angle to the camera points down, putting
         // you in the wrong spot in your lookup buffer ... reverse the ray direction for
-        // both lookups when the target vertex is higher than the camera" (seed 002). The
+        // both lookups when the target vertex is higher than the camera" (O'Neil 2004). The
         // test is made for each point, not once per ray: then neither lookup ray meets the
         // planet (the line climbs beyond the higher of the two points), and where a point
         // crosses the camera's height the two forms read mirror-image texels and agree,
@@ -416,8 +416,8 @@ impl SkyModel for Oneil {
         }
         let total = to_camera(end);
         let transmittance: Vec<f64> = (0..n).map(|w| (-depth(w, total)).exp()).collect();
-        // The ground's Lambertian reflection of the transmitted sun (seed 002's ground
-        // shader), as any surface element facing up.
+        // The ground's Lambertian reflection of the transmitted sun (O'Neil 2004's
+        // ground shader), as any surface element facing up.
         if seg.end == SegmentEnd::Ground {
             let albedo = self.atmosphere.ground_albedo;
             add_ground_light(self, end, sun, albedo, &transmittance, &mut radiance)?;

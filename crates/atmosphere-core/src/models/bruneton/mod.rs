@@ -1,4 +1,4 @@
-//! Bruneton and Neyret 2008, "Precomputed atmospheric scattering" (seed 004): a
+//! Bruneton and Neyret 2008, "Precomputed atmospheric scattering": a
 //! transmittance table T(r, mu), a 4D scattering table S(u_r, u_mu, u_mu_s, u_nu) holding
 //! every scattering order, and an irradiance table E(r, mu_s); a view ray then costs a
 //! few look-ups.

@@ -1,5 +1,5 @@
 //! Dobashi, Yamamoto, Nishita 2002, "Interactive rendering of atmospheric scattering
-//! effects using graphics hardware" (seed 000), sections 5.2-5.3 and appendix A: the sky by
+//! effects using graphics hardware", sections 5.2-5.3 and appendix A: the sky by
 //! sampling planes whose segments are read from pre-integrated tables dI_r, dI_m, dg_v over
 //! (h, theta_v), the sun's attenuation from g_l(h, theta_sun), the plane interval by the
 //! rule of section 4.2.1, sample spheres for cameras far out in space, and multiple
@@ -201,7 +201,7 @@ impl SkyModel for Dobashi {
         Ok(update.rebuilt())
     }
 
-    /// The transmitted sun g_l (seed 000 Eq. 11) and the ambient term's sky, pi psi on a
+    /// The transmitted sun g_l (Eq. 11) and the ambient term's sky, pi psi on a
     /// horizontal element, psi read at the element's sun angle (`Tracer::element_light`);
     /// no sky for single scattering.
     fn surface_irradiance(
