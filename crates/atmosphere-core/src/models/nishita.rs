@@ -301,8 +301,8 @@ mod tests {
     }
 
     /// The default 256 x 64 table gives the sun's transmittance at 440 nm within 3e-4 of
-    /// the converged columns at every height and sun angle up to the horizon (measured
-    /// 2.3e-4, docs/models/nishita.md).
+    /// the converged columns at every height and sun angle up to the horizon
+    /// (docs/models/nishita.md).
     #[test]
     fn default_table_is_accurate_up_to_the_horizon() {
         let earth = Atmosphere::preset("earth").unwrap();

@@ -18,11 +18,10 @@ pub struct BrunetonSettings {
     /// the shared table of Bruneton 2017's mapping).
     pub transmittance_size: (usize, usize),
     /// Trapezoid intervals along each texel's ray for single scattering and each
-    /// Delta S: 50 (INSCATTER_INTEGRAL_SAMPLES of the paper's code). 30 saves a third of
-    /// the build and costs little on clear days, but misses the thin hazy boundary layer
-    /// (docs/report: hazy view 5.1 % against 4.4 %). Unlike that code,
-    /// nodes are spaced quadratically towards the dense end of climbing and descending
-    /// rays: evenly spaced, vertical rays overestimate Mie scattering by 8 %.
+    /// Delta S: 50 (INSCATTER_INTEGRAL_SAMPLES of the paper's code); fewer miss the thin
+    /// hazy boundary layer. Unlike that code, nodes are spaced quadratically towards the
+    /// dense end of climbing and descending rays, where evenly spaced nodes overestimate
+    /// Mie scattering on vertical rays.
     pub view_samples: usize,
     /// Directions (zenith angle, azimuth) of the sphere integrals for Delta J and
     /// Delta E: 16 x 32 (INSCATTER_SPHERICAL_INTEGRAL_SAMPLES). The zenith angle is
@@ -30,8 +29,8 @@ pub struct BrunetonSettings {
     /// of panels per 16 directions.
     pub sphere_samples: (usize, usize),
     /// Stop after an order whose share of all the table's radiance (sum over texels, worst
-    /// channel) is below this: 0.02. On Earth order 5 adds 1.1 % and stops the loop; the
-    /// orders left out would add about 0.6 %.
+    /// channel) is below this: 0.02 (on Earth the loop stops after a few orders; those
+    /// left out add less than the last one).
     pub order_threshold: f64,
     /// The most orders when `ModelSettings::max_orders` is `None` (a guard for thick
     /// atmospheres whose orders fade slowly): 32.
