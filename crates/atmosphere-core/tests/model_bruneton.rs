@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::luminance_errors;
+use common::{all_orders_reference, earth, luminance_errors};
 use std::sync::OnceLock;
 
 use atmosphere_core::atmosphere::Atmosphere;
@@ -17,10 +17,6 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 use atmosphere_core::optics::geometry::{horizon_mu, ray_hits_ground};
-
-fn earth() -> Atmosphere {
-    Atmosphere::preset("earth").unwrap()
-}
 
 fn radii(a: &Atmosphere) -> Radii {
     Radii {
@@ -156,15 +152,7 @@ fn single_scattering_matches_the_reference() {
 #[test]
 fn all_orders_match_the_reference() {
     let a = earth();
-    let reference = prepare(
-        ModelId::Reference,
-        &a,
-        &ModelSettings {
-            target_relative_error: 0.003,
-            ..ModelSettings::default()
-        },
-    )
-    .unwrap();
+    let reference = all_orders_reference(&a, 0.003);
     let (rms, worst) = relative_rms(full_model(), reference.as_ref(), &daytime_rays(&a));
     eprintln!("all orders: relative RMS {rms:.4}, worst {worst:.4}");
     // Measured: RMS 0.0067, worst 0.0129 (object at 20 km); the reference's Monte Carlo

@@ -3,40 +3,19 @@
 //! settings and with the ambient term against all orders is what docs/models/dobashi.md
 //! states, pruning and table updates change nothing (the stability sweep is in stability.rs).
 
+mod common;
+
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::dobashi::{Dobashi, DobashiSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
-
-fn ray(a: &Atmosphere, altitude_m: f64, view: f64, sun: f64, azimuth: f64) -> ViewRay {
-    ViewRay::from_angles(a.bottom_radius_m, altitude_m, view, sun, azimuth, None).unwrap()
-}
-
-fn single() -> ModelSettings {
-    ModelSettings {
-        max_orders: Some(1),
-        ..ModelSettings::default()
-    }
-}
+use common::{ray, relative_radiance, single, worst};
 
 fn dobashi(a: &Atmosphere, settings: &ModelSettings, d: DobashiSettings) -> Dobashi {
     Dobashi::prepare(a, settings, d).unwrap()
-}
-
-/// Relative radiance errors per wavelength.
-fn relative(model: &dyn SkyModel, reference: &dyn SkyModel, ray: &ViewRay) -> Vec<f64> {
-    let m = model.radiance(ray).unwrap();
-    let r = reference.radiance(ray).unwrap();
-    (0..m.radiance.len())
-        .map(|w| m.radiance[w] / r.radiance[w] - 1.0)
-        .collect()
-}
-
-fn worst(errors: &[f64]) -> f64 {
-    errors.iter().fold(0.0, |a, e| a.max(e.abs()))
 }
 
 #[test]
@@ -93,7 +72,7 @@ fn single_scattering_converges_to_the_reference() {
             );
             views
                 .iter()
-                .map(|r| worst(&relative(&m, reference.as_ref(), r)))
+                .map(|r| worst(&relative_radiance(&m, reference.as_ref(), r)))
                 .collect()
         })
         .collect();
@@ -117,7 +96,7 @@ fn paper_settings_against_the_reference_single_scattering() {
     let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
     let m = prepare(ModelId::Dobashi, &a, &single()).unwrap();
     for ray in daytime(&a) {
-        let e = relative(m.as_ref(), reference.as_ref(), &ray);
+        let e = relative_radiance(m.as_ref(), reference.as_ref(), &ray);
         assert!(worst(&e) < 0.08, "{ray:?}: {e:?}");
         let (x, y) = (m.radiance(&ray).unwrap(), reference.radiance(&ray).unwrap());
         let bound = if ray.max_distance_m.is_some() {
@@ -160,7 +139,7 @@ fn spheres_far_out_and_planes_near() {
         ray(&a, 1e8, 176.6, 30.0, 0.0),
     ] {
         for model in [&m, &planes_only] {
-            let e = relative(model, reference.as_ref(), &ray);
+            let e = relative_radiance(model, reference.as_ref(), &ray);
             assert!(worst(&e) < 0.04, "{ray:?}: {e:?}");
         }
     }
@@ -184,8 +163,8 @@ fn ambient_term_against_all_orders() {
     let views = daytime(&a);
     for ray in [&views[0], &views[1], &views[3], &views[5], &views[7]] {
         let r = reference.radiance(ray).unwrap();
-        let e = relative(with.as_ref(), reference.as_ref(), ray);
-        let e1 = relative(without.as_ref(), reference.as_ref(), ray);
+        let e = relative_radiance(with.as_ref(), reference.as_ref(), ray);
+        let e1 = relative_radiance(without.as_ref(), reference.as_ref(), ray);
         for w in 0..3 {
             let noise = 3.0 * r.radiance_std_error[w] / r.radiance[w];
             assert!(e[w].abs() < 0.12 + noise, "{ray:?}: {e:?}");

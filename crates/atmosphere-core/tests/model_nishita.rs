@@ -3,23 +3,15 @@
 //! bounded on extreme rays, and its error against all orders is what
 //! docs/models/nishita.md states.
 
+mod common;
+
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 use atmosphere_core::optics::geometry::horizon_mu;
-
-fn ray(a: &Atmosphere, altitude_m: f64, view: f64, sun: f64, azimuth: f64) -> ViewRay {
-    ViewRay::from_angles(a.bottom_radius_m, altitude_m, view, sun, azimuth, None).unwrap()
-}
-
-fn single() -> ModelSettings {
-    ModelSettings {
-        max_orders: Some(1),
-        ..ModelSettings::default()
-    }
-}
+use common::{ray, single};
 
 fn nishita(a: &Atmosphere, view_samples: usize, heights: usize, angles: usize) -> Nishita {
     Nishita::prepare(

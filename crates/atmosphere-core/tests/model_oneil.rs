@@ -1,6 +1,8 @@
-//! O'Neil 2004 (seed 002): the optical-depth table against converged columns, the model
+//! O'Neil 2004: the optical-depth table against converged columns, the model
 //! against the reference's single scattering, stability on extreme rays and continuity
 //! across the top of the atmosphere. Measured numbers are in docs/models/oneil.md.
+
+mod common;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::density::DensityProfile;
@@ -10,18 +12,12 @@ use atmosphere_core::models::oneil::{
     MIE_DENSITY, MIE_LENGTH, Oneil, OneilSettings, RAYLEIGH_DENSITY, RAYLEIGH_LENGTH, line_column,
 };
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
 use atmosphere_core::optics::column::column;
 use atmosphere_core::optics::geometry::{
     discriminant, distance_to_entry, distance_to_exit, horizon_mu, ray_hits_ground,
 };
-
-fn single() -> ModelSettings {
-    ModelSettings {
-        max_orders: Some(1),
-        ..ModelSettings::default()
-    }
-}
+use common::{ray, single};
 
 /// The columns (Rayleigh, Mie) of the whole line from (r, mu) to the top sphere, by
 /// converged quadrature, with the density held at its ground value inside the planet.
@@ -101,10 +97,6 @@ fn table_matches_converged_columns() {
             assert!(err < 2e-5, "h {h} mu {mu} species {k}: {err:e}");
         }
     }
-}
-
-fn ray(a: &Atmosphere, altitude: f64, view: f64, sun: f64, azimuth: f64) -> ViewRay {
-    ViewRay::from_angles(a.bottom_radius_m, altitude, view, sun, azimuth, None).unwrap()
 }
 
 /// Views (altitude m, view zenith, sun zenith, azimuth deg) away from the two places

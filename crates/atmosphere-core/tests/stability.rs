@@ -1,11 +1,13 @@
-//! Stiff and extreme cases give finite, non-negative, bounded and continuous results
-//! (DESIGN.md, "Numerical stability").
+//! Stiff and extreme cases give finite, non-negative, bounded and continuous results.
+
+mod common;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel};
 use atmosphere_core::optics::geometry::horizon_mu;
+use common::ray;
 
 use atmosphere_core::analysis::stability::venus_like;
 
@@ -29,24 +31,6 @@ fn model(a: &Atmosphere, orders: Option<u32>, target: f64) -> Box<dyn SkyModel> 
             target_relative_error: target,
             ..ModelSettings::default()
         },
-    )
-    .unwrap()
-}
-
-fn ray(
-    a: &Atmosphere,
-    altitude_m: f64,
-    view_zenith_deg: f64,
-    sun_zenith_deg: f64,
-    azimuth_deg: f64,
-) -> ViewRay {
-    ViewRay::from_angles(
-        a.bottom_radius_m,
-        altitude_m,
-        view_zenith_deg,
-        sun_zenith_deg,
-        azimuth_deg,
-        None,
     )
     .unwrap()
 }

@@ -1,5 +1,4 @@
-//! Tables are rebuilt only when an input they depend on changes (DESIGN.md, "Leave out
-//! what a scene does not need"): for each model with quick tables, a change of the sun's
+//! Tables are rebuilt only when an input they depend on changes: for each model with quick tables, a change of the sun's
 //! direction, the ground albedo, the aerosol amount, the aerosol profile or the solar
 //! spectrum rebuilds exactly the tables named here, and the updated model answers as a
 //! model prepared from scratch. bruneton, whose build takes seconds, has its own test in

@@ -1,6 +1,5 @@
-//! The stability sweep: the stiff and extreme cases of DESIGN.md ("Numerical
-//! stability") run through a model. Shared by `atmos stability` and the test that fails on
-//! any failed case.
+//! The stability sweep: stiff and extreme cases run through a model. Shared by
+//! `atmos stability` and the test that fails on any failed case.
 //!
 //! Every case is a set of view rays on one atmosphere, checked for finite, non-negative
 //! radiance and transmittance in [0, 1]; the continuity cases also compare rays that should

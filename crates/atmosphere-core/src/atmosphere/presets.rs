@@ -12,8 +12,7 @@ use crate::optics::phase::PhaseFunction;
 /// half-width).
 pub const EARTH_OZONE_PEAK_NUMBER_DENSITY_PER_M3: f64 = 5.374e18;
 
-/// Earth as in Bruneton 2017's demo, so that results compare number for number
-/// (DESIGN.md, "Units and conventions").
+/// Earth as in Bruneton 2017's demo, so that results compare number for number.
 pub fn earth() -> Atmosphere {
     Atmosphere {
         name: "earth".into(),

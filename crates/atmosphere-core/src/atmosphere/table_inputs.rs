@@ -1,6 +1,5 @@
 //! Which parts of an atmosphere a table depends on, and which parts changed between two
-//! atmospheres: a model rebuilds a table only when one of its inputs changed (DESIGN.md,
-//! "Leave out what a scene does not need"). The sun's direction is never an input of a
+//! atmospheres: a model rebuilds a table only when one of its inputs changed. The sun's direction is never an input of a
 //! CPU table here: it is part of each view ray.
 
 use std::ops::BitOr;

@@ -1,5 +1,6 @@
-//! Every scattering model of the papers on the CPU, behind one trait
-//! ([`sky_model::SkyModel`]); [`registry`] names them and prepares one by its id.
+//! The scattering models of the papers on the CPU, each behind one trait
+//! ([`sky_model::SkyModel`]): [`id`] names them, [`registry`] prepares one by its id with
+//! its [`options`], [`table_update`] is the bookkeeping of their `update`.
 
 pub mod bruneton;
 pub mod dobashi;
@@ -12,3 +13,4 @@ pub mod options;
 pub mod registry;
 pub mod riley;
 pub mod sky_model;
+pub mod table_update;

@@ -1,13 +1,11 @@
-//! Nishita 1993 as described in seeds 000 (Dobashi, Yamamoto, Nishita 2002, section 5 and
-//! appendix A) and 002 (O'Neil 2004, "The Problem"): single scattering integrated along each
+//! Nishita et al. 1993 as described by Dobashi, Yamamoto and Nishita 2002 (section 5 and
+//! appendix A) and O'Neil 2004 ("The Problem"): single scattering integrated along each
 //! view ray with N samples, the optical depth from each sample to the sun read from a
 //! precomputed table g_l(h, theta_sun).
 //!
 //! The table stores columns of matter per species (Rayleigh, Mie, ozone) in f64, so one
 //! table serves every wavelength; optical depth at a wavelength is the sum of columns times
 //! the species' extinctions. See docs/models/nishita.md.
-
-use std::f64::consts::PI;
 
 use glam::DVec3;
 
@@ -18,9 +16,10 @@ use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::column::{densities, optical_depth};
 use crate::optics::geometry::ray_hits_ground;
-use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
@@ -28,17 +27,18 @@ use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NishitaSettings {
     /// Samples along each view ray (equal sub-segments, one sample at each midpoint).
-    /// Default 100: the number of sampling planes seed 000 uses for the sky (Table 1,
-    /// Fig. 10(a), "100 (sky)"); neither seed states a per-ray count for Nishita 1993.
+    /// Default 100: the number of sampling planes Dobashi, Yamamoto and Nishita 2002 use
+    /// for the sky (Table 1, Fig. 10(a), "100 (sky)"); neither paper states a per-ray
+    /// count for Nishita et al. 1993.
     pub view_samples: usize,
     /// Rows of the table g_l: heights from the ground to the top of the atmosphere.
-    /// Default 64; the seeds do not state a size (see `table_angles`).
+    /// Default 64; the papers do not state a size (see `table_angles`).
     pub table_heights: usize,
     /// Columns of the table g_l: sun zenith angles from 0 to the geometric horizon of the
-    /// row's height ([`sun_column`]). Default 256: the seeds give no size for g_l, so the table has the size
-    /// of the transmittance tables of Bruneton 2017 and Hillaire 2020 (256 x 64), whose error
-    /// (at most 2.3e-4 in the sun's transmittance) is mostly below that of the default view
-    /// sampling (docs/models/nishita.md).
+    /// row's height ([`sun_column`]). Default 256: the papers give no size for g_l, so the
+    /// table has the size of the transmittance tables of Bruneton 2017 and Hillaire 2020
+    /// (256 x 64), whose error is mostly below that of the default view sampling
+    /// (docs/models/nishita.md).
     pub table_angles: usize,
 }
 
@@ -85,15 +85,15 @@ impl NishitaSettings {
     }
 }
 
-/// The optical-depth table g_l(h, theta_sun) of seed 000 appendix A.1, as columns of
+/// The optical-depth table g_l(h, theta_sun) of Dobashi, Yamamoto and Nishita 2002,
+/// appendix A.1, as columns of
 /// matter (m) from a point at radius r towards a sun whose direction has cosine `mu_sun`
 /// with the local zenith. The table is a [`TransmittanceTable`]: the paper's two axes
 /// (height, sun angle) with the spacing of Bruneton 2017 (rows at equal steps of
 /// sqrt(r^2 - R^2), sun angles at equal steps of the distance to the top, so that the
-/// horizon is the last column at every height); the seeds give no spacing, and with equal
-/// steps of theta_sun the 256 x 64 table's optical depth was 50 to 100 times worse near the
-/// horizon (docs/models/nishita.md). `None` when the sun's centre is
-/// behind the planet: g_l = 0 (seed 000 section 5.2).
+/// horizon is the last column at every height); the paper gives no spacing, and equal
+/// steps of theta_sun are far worse near the horizon (docs/models/nishita.md). `None`
+/// when the sun's centre is behind the planet: g_l = 0 (section 5.2).
 pub fn sun_column(table: &TransmittanceTable, r: f64, mu_sun: f64) -> Option<[f64; 3]> {
     let bottom = table.mapping.bottom_radius_m;
     let r = r.clamp(bottom, table.mapping.top_radius_m);
@@ -166,28 +166,22 @@ impl SkyModel for Nishita {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
-        let mut rebuilt = Vec::new();
-        if changed.intersects(Inputs::COLUMNS) {
-            self.table = TransmittanceTable::build(
-                atmosphere,
-                self.settings.table_angles,
-                self.settings.table_heights,
-            );
-            rebuilt.push("g_l");
-        }
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let (angles, heights) = (self.settings.table_angles, self.settings.table_heights);
+        update.rebuild(Inputs::COLUMNS, "g_l", &mut self.table, || {
+            TransmittanceTable::build(atmosphere, angles, heights)
+        });
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
         &self.spectra.solar_irradiance
     }
 
-    /// The transmitted sun only (seed 000 Eq. 11): single scattering has no sky light.
+    /// The transmitted sun only (Dobashi, Yamamoto and Nishita 2002, Eq. 11): single scattering has no sky light.
     fn surface_irradiance(
         &self,
         point_m: DVec3,
@@ -199,12 +193,9 @@ impl SkyModel for Nishita {
         let column = (e.sun_cosine > 0.0)
             .then(|| sun_column(&self.table, e.r, e.mu_s))
             .flatten();
-        Ok((0..s.wavelengths_nm.len())
-            .map(|w| {
-                let t = column.map_or(0.0, |c| (-optical_depth(c, s.extinction[w])).exp());
-                e.irradiance(s.solar_irradiance[w], t, 0.0)
-            })
-            .collect())
+        Ok(e.sun_irradiances(&s.solar_irradiance, |w| {
+            column.map_or(0.0, |c| (-optical_depth(c, s.extinction[w])).exp())
+        }))
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
@@ -213,17 +204,14 @@ impl SkyModel for Nishita {
         let n_w = s.wavelengths_nm.len();
         let bottom = a.bottom_radius_m;
         let Some(segment) = ViewSegment::new(a, ray)? else {
-            return Ok(RayRadiance {
-                radiance: vec![0.0; n_w],
-                transmittance: vec![1.0; n_w],
-                radiance_std_error: vec![0.0; n_w],
-            });
+            return Ok(RayRadiance::unattenuated(n_w));
         };
         let (start, direction, sun) = (segment.start, segment.direction, segment.sun_direction);
         let (length, on_ground) = (segment.length, segment.end == SegmentEnd::Ground);
 
-        // Seed 000 Eq. 12 with n equal sub-segments of length dt, each represented by its
-        // midpoint (seed 002: "for each sample ray, calculate the center point").
+        // Dobashi, Yamamoto and Nishita 2002, Eq. 12 with n equal sub-segments of length
+        // dt, each represented by its midpoint (O'Neil 2004: "for each sample ray,
+        // calculate the center point").
         let n = self.settings.view_samples;
         let dt = length / n as f64;
         let nu = direction.dot(sun);
@@ -275,13 +263,17 @@ impl SkyModel for Nishita {
             .collect();
 
         // Ground: I_e = I_sun r g_l(0, theta_g) cos(theta_g), attenuated by the view ray
-        // (seed 000 Eq. 11-12), with r / pi for a Lambertian albedo in radiance units.
+        // (Dobashi, Yamamoto and Nishita 2002, Eq. 11-12), with r / pi for a Lambertian albedo in radiance units.
         if on_ground {
             let end = start + direction * length;
-            let irradiance = self.surface_irradiance(end, end, sun)?;
-            for w in 0..n_w {
-                radiance[w] += transmittance[w] * a.ground_albedo / PI * irradiance[w];
-            }
+            add_ground_light(
+                self,
+                end,
+                sun,
+                a.ground_albedo,
+                &transmittance,
+                &mut radiance,
+            )?;
         }
         Ok(RayRadiance {
             radiance,
@@ -309,8 +301,8 @@ mod tests {
     }
 
     /// The default 256 x 64 table gives the sun's transmittance at 440 nm within 3e-4 of
-    /// the converged columns at every height and sun angle up to the horizon (measured
-    /// 2.3e-4, docs/models/nishita.md).
+    /// the converged columns at every height and sun angle up to the horizon
+    /// (docs/models/nishita.md).
     #[test]
     fn default_table_is_accurate_up_to_the_horizon() {
         let earth = Atmosphere::preset("earth").unwrap();

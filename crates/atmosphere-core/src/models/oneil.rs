@@ -1,4 +1,4 @@
-//! O'Neil 2004, "Real-time atmospheric scattering" (seed 002): single scattering from a
+//! O'Neil 2004, "Real-time atmospheric scattering": single scattering from a
 //! few samples per view ray, with every optical depth and density read from one 2D table.
 //!
 //! The table ([`OpticalDepthTable`]) has height above the ground (0 to the top of the
@@ -29,17 +29,18 @@ use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
-use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
 /// What trades accuracy for time in O'Neil's model. `Default` is the paper's choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OneilSettings {
-    /// Sample rays per view ray. Seed 002: "3 or 4 samples seems to be sufficient to make
+    /// Sample rays per view ray. O'Neil 2004: "3 or 4 samples seems to be sufficient to make
     /// it look good"; the demo's `m_nSamples = 4`.
     pub samples: usize,
-    /// Table nodes along the height axis (ground to top). The seed's text gives no size;
+    /// Table nodes along the height axis (ground to top). The paper's text gives no size;
     /// the demo's `CPixelBuffer::MakeOpticalDepthBuffer` uses `nSize = 64` on both axes.
     pub table_heights: usize,
     /// Table nodes along the angle axis (0 to 180 degrees from the vertical); 64 as above.
@@ -101,7 +102,7 @@ pub const RAYLEIGH_LENGTH: usize = 1;
 pub const MIE_DENSITY: usize = 2;
 pub const MIE_LENGTH: usize = 3;
 
-/// The 4-channel optical-depth table of seed 002, stored as f32 (a GL_FLOAT RGBA texture
+/// The 4-channel optical-depth table of O'Neil 2004, stored as f32 (a GL_FLOAT RGBA texture
 /// in the paper's demo), read by bilinear interpolation between nodes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OpticalDepthTable {
@@ -296,22 +297,25 @@ impl SkyModel for Oneil {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
-        let mut rebuilt = Vec::new();
-        if changed.intersects(OpticalDepthTable::INPUTS) {
-            self.table = OpticalDepthTable::build(
-                atmosphere,
-                self.settings.table_heights,
-                self.settings.table_angles,
-                self.settings.table_ray_samples,
-            );
-            rebuilt.push("optical depth");
-        }
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let s = self.settings;
+        update.rebuild(
+            OpticalDepthTable::INPUTS,
+            "optical depth",
+            &mut self.table,
+            || {
+                OpticalDepthTable::build(
+                    atmosphere,
+                    s.table_heights,
+                    s.table_angles,
+                    s.table_ray_samples,
+                )
+            },
+        );
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
@@ -319,8 +323,8 @@ impl SkyModel for Oneil {
     }
 
     /// The transmitted sun only (single scattering has no sky light): the sun's columns
-    /// from the table at the element's height and sun angle (seed 002's ground shader
-    /// reads the same lookup), zero where the planet hides the sun's centre, the table's
+    /// from the table at the element's height and sun angle (O'Neil 2004's ground
+    /// shader reads the same lookup), zero where the planet hides the sun's centre, the table's
     /// own shadow test (its density channels are 0 where `ray_hits_ground`).
     fn surface_irradiance(
         &self,
@@ -336,24 +340,17 @@ impl SkyModel for Oneil {
             let light = self.table.lookup(e.r, e.mu_s);
             [light[RAYLEIGH_LENGTH], light[MIE_LENGTH]]
         });
-        Ok((0..s.wavelengths_nm.len())
-            .map(|w| {
-                let t = column.map_or(0.0, |c| {
-                    (-(s.extinction[w][0] * c[0] + s.extinction[w][1] * c[1])).exp()
-                });
-                e.irradiance(s.solar_irradiance[w], t, 0.0)
+        Ok(e.sun_irradiances(&s.solar_irradiance, |w| {
+            column.map_or(0.0, |c| {
+                (-(s.extinction[w][0] * c[0] + s.extinction[w][1] * c[1])).exp()
             })
-            .collect())
+        }))
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.spectra.wavelengths_nm.len();
         let Some(seg) = ViewSegment::new(&self.atmosphere, ray)? else {
-            return Ok(RayRadiance {
-                radiance: vec![0.0; n],
-                transmittance: vec![1.0; n],
-                radiance_std_error: vec![0.0; n],
-            });
+            return Ok(RayRadiance::unattenuated(n));
         };
         let table = &self.table;
         let sun = ray.sun_direction.normalize();
@@ -361,7 +358,7 @@ impl SkyModel for Oneil {
         let end = seg.start + dir * seg.length;
         // "When a point is above the camera the angle to the camera points down, putting
         // you in the wrong spot in your lookup buffer ... reverse the ray direction for
-        // both lookups when the target vertex is higher than the camera" (seed 002). The
+        // both lookups when the target vertex is higher than the camera" (O'Neil 2004). The
         // test is made for each point, not once per ray: then neither lookup ray meets the
         // planet (the line climbs beyond the higher of the two points), and where a point
         // crosses the camera's height the two forms read mirror-image texels and agree,
@@ -419,14 +416,11 @@ impl SkyModel for Oneil {
         }
         let total = to_camera(end);
         let transmittance: Vec<f64> = (0..n).map(|w| (-depth(w, total)).exp()).collect();
-        // The ground's Lambertian reflection of the transmitted sun (seed 002's ground
-        // shader), as any surface element facing up.
+        // The ground's Lambertian reflection of the transmitted sun (O'Neil 2004's
+        // ground shader), as any surface element facing up.
         if seg.end == SegmentEnd::Ground {
-            let irradiance = self.surface_irradiance(end, end, sun)?;
-            for w in 0..n {
-                radiance[w] +=
-                    transmittance[w] * self.atmosphere.ground_albedo / PI * irradiance[w];
-            }
+            let albedo = self.atmosphere.ground_albedo;
+            add_ground_light(self, end, sun, albedo, &transmittance, &mut radiance)?;
         }
         Ok(RayRadiance {
             radiance,

@@ -28,8 +28,6 @@
 //! a series near 0), and the limits p_y = l_y, p_y = 0 and infinite horizontal rays come
 //! out of the same expression. See docs/models/riley.md.
 
-use std::f64::consts::PI;
-
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
@@ -39,7 +37,7 @@ use crate::models::id::ModelId;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::phase::{PhaseFunction, rayleigh};
-use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
 /// `(1 - exp(-x)) / x`, 1 at x = 0, accurate for every x (0 at +infinity).
@@ -400,23 +398,19 @@ impl SkyModel for Riley {
         )?;
         let y = e.r - self.bottom_radius_m;
         let (rayleigh, mie) = self.species();
-        Ok((0..self.wavelengths_nm.len())
-            .map(|w| {
-                let t = if e.sun_cosine > 0.0 && e.mu_s > 0.0 {
-                    let tau: f64 = std::iter::once(rayleigh)
-                        .chain(mie)
-                        .map(|s| {
-                            s.extinction[w] * s.scale_height_m * (-y / s.scale_height_m).exp()
-                                / e.mu_s
-                        })
-                        .sum();
-                    (-tau).exp()
-                } else {
-                    0.0
-                };
-                e.irradiance(self.solar_irradiance[w], t, 0.0)
-            })
-            .collect())
+        Ok(e.sun_irradiances(&self.solar_irradiance, |w| {
+            if e.sun_cosine > 0.0 && e.mu_s > 0.0 {
+                let tau: f64 = std::iter::once(rayleigh)
+                    .chain(mie)
+                    .map(|s| {
+                        s.extinction[w] * s.scale_height_m * (-y / s.scale_height_m).exp() / e.mu_s
+                    })
+                    .sum();
+                (-tau).exp()
+            } else {
+                0.0
+            }
+        }))
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
@@ -477,10 +471,8 @@ impl SkyModel for Riley {
             // The Lambertian ground lit by the transmitted sun, as any surface element
             // facing up at the ray's end.
             let end = segment.end_point();
-            let irradiance = self.surface_irradiance(end, end, sun)?;
-            for w in 0..n {
-                radiance[w] += transmittance[w] * self.ground_albedo / PI * irradiance[w];
-            }
+            let albedo = self.ground_albedo;
+            add_ground_light(self, end, sun, albedo, &transmittance, &mut radiance)?;
         }
         Ok(self.answer(radiance, transmittance))
     }

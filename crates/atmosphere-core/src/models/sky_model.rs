@@ -141,6 +141,18 @@ pub struct RayRadiance {
     pub radiance_std_error: Vec<f64>,
 }
 
+impl RayRadiance {
+    /// The answer for a ray that meets no atmosphere: no light, full transmittance, at
+    /// `wavelengths` wavelengths.
+    pub fn unattenuated(wavelengths: usize) -> RayRadiance {
+        RayRadiance {
+            radiance: vec![0.0; wavelengths],
+            transmittance: vec![1.0; wavelengths],
+            radiance_std_error: vec![0.0; wavelengths],
+        }
+    }
+}
+
 /// A scattering model on the CPU.
 pub trait SkyModel: Send + Sync {
     /// The model's id, as on the command line.

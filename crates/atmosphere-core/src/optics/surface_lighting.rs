@@ -71,6 +71,24 @@ pub fn radiance_with_surface(
     Ok(answer)
 }
 
+/// Adds to `radiance` the ground at a view ray's end `end_m`, lit as a surface element
+/// facing up (the models' ground term): `T a / pi E(x, up)` per wavelength, with `T` the
+/// ray's `transmittance` and `a` the ground's `albedo`.
+pub fn add_ground_light(
+    model: &dyn SkyModel,
+    end_m: DVec3,
+    sun_direction: DVec3,
+    albedo: f64,
+    transmittance: &[f64],
+    radiance: &mut [f64],
+) -> Result<(), ModelError> {
+    let irradiance = model.surface_irradiance(end_m, end_m, sun_direction)?;
+    for (w, l) in radiance.iter_mut().enumerate() {
+        *l += transmittance[w] * albedo / std::f64::consts::PI * irradiance[w];
+    }
+    Ok(())
+}
+
 /// A surface element, checked, in the variables the models look up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceElement {
@@ -141,6 +159,18 @@ impl SurfaceElement {
     /// `E_sun T_sun max(n . s, 0) + E_sky (1 + n . up) / 2` for one wavelength.
     pub fn irradiance(&self, solar_irradiance: f64, sun_transmittance: f64, sky: f64) -> f64 {
         solar_irradiance * sun_transmittance * self.sun_cosine + sky * self.sky_view_factor
+    }
+
+    /// [`SurfaceElement::irradiance`] at each wavelength `w` of `solar_irradiance`, lit by
+    /// the sun alone (the single-scattering models: no sky light).
+    pub fn sun_irradiances(
+        &self,
+        solar_irradiance: &[f64],
+        sun_transmittance: impl Fn(usize) -> f64,
+    ) -> Vec<f64> {
+        (0..solar_irradiance.len())
+            .map(|w| self.irradiance(solar_irradiance[w], sun_transmittance(w), 0.0))
+            .collect()
     }
 }
 

@@ -160,6 +160,21 @@ impl TransmittanceTable {
         self.interpolate(&self.columns, r, mu)
     }
 
+    /// Columns of the segment of length d from (r, mu), the difference of two table
+    /// look-ups (Bruneton and Neyret 2008, section 4; for a ray that meets the ground,
+    /// `ground`, both are read looking up, from the segment's far end and from its start).
+    pub fn segment_column(&self, r: f64, mu: f64, d: f64, ground: bool) -> [f64; 3] {
+        let (bottom, top) = (self.mapping.bottom_radius_m, self.mapping.top_radius_m);
+        let r_d = radius_at(r, mu, d).clamp(bottom, top);
+        let mu_d = ((r * mu + d) / r_d).clamp(-1.0, 1.0);
+        let (a, b) = if ground {
+            (self.column(r_d, -mu_d), self.column(r, -mu))
+        } else {
+            (self.column(r, mu), self.column(r_d, mu_d))
+        };
+        [0, 1, 2].map(|k| (a[k] - b[k]).max(0.0))
+    }
+
     /// Bilinear interpolation at (r, mu) of `values`, one per texel of this table (the
     /// columns, or a quantity derived from them such as transmittances).
     pub fn interpolate(&self, values: &[[f64; 3]], r: f64, mu: f64) -> [f64; 3] {

@@ -29,6 +29,7 @@ use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::numerics::sampling::{Sampler, cosine_weighted, direction_around, mix_seed};
 use crate::optics::column::{Fineness, optical_depth};
 use crate::optics::phase_sampling::PhaseSampler;
@@ -212,22 +213,21 @@ impl SkyModel for Reference {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
-        let mut rebuilt = Vec::new();
-        if changed.intersects(Inputs::COLUMNS) {
-            let (w, h) = MC_TABLE_SIZE;
-            self.table = TransmittanceTable::build(atmosphere, w, h);
-            rebuilt.push("transmittance");
-        }
-        if changed.intersects(Inputs::MIE_PHASE) {
-            self.mie_sampler = PhaseSampler::new(&atmosphere.mie.phase);
-            rebuilt.push("mie phase sampler");
-        }
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let (w, h) = MC_TABLE_SIZE;
+        update.rebuild(Inputs::COLUMNS, "transmittance", &mut self.table, || {
+            TransmittanceTable::build(atmosphere, w, h)
+        });
+        update.rebuild(
+            Inputs::MIE_PHASE,
+            "mie phase sampler",
+            &mut self.mie_sampler,
+            || PhaseSampler::new(&atmosphere.mie.phase),
+        );
         self.bounds = DensityBounds::new(atmosphere);
         self.spectra = Spectra::new(atmosphere, &self.settings.wavelengths_nm);
         self.atmosphere = atmosphere.clone();
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {

@@ -1,8 +1,88 @@
-//! Helpers shared by the model tests.
+//! Helpers shared by the model tests. Each test file uses some of them.
+#![allow(dead_code)]
+
+pub mod hillaire;
 
 use atmosphere_core::analysis::error_statistics::RelativeErrorStats;
+use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::color::SpectrumToColor;
-use atmosphere_core::models::sky_model::{SkyModel, ViewRay};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+
+pub fn earth() -> Atmosphere {
+    Atmosphere::preset("earth").unwrap()
+}
+
+/// The ray from `altitude_m` above the ground, `view` degrees from the zenith, the sun
+/// `sun` degrees from the zenith and `azimuth` degrees from the view, ending on the
+/// ground or in space.
+pub fn ray(a: &Atmosphere, altitude_m: f64, view: f64, sun: f64, azimuth: f64) -> ViewRay {
+    ray_to(a, altitude_m, view, sun, azimuth, None)
+}
+
+/// [`ray`], ending on an object at `distance_m` if given.
+pub fn ray_to(
+    a: &Atmosphere,
+    altitude_m: f64,
+    view: f64,
+    sun: f64,
+    azimuth: f64,
+    distance_m: Option<f64>,
+) -> ViewRay {
+    ViewRay::from_angles(
+        a.bottom_radius_m,
+        altitude_m,
+        view,
+        sun,
+        azimuth,
+        distance_m,
+    )
+    .unwrap()
+}
+
+/// The default settings with single scattering only.
+pub fn single() -> ModelSettings {
+    ModelSettings {
+        max_orders: Some(1),
+        ..ModelSettings::default()
+    }
+}
+
+/// The reference with all orders, its Monte Carlo run to `target_relative_error`.
+pub fn all_orders_reference(a: &Atmosphere, target_relative_error: f64) -> Box<dyn SkyModel> {
+    let settings = ModelSettings {
+        target_relative_error,
+        ..ModelSettings::default()
+    };
+    prepare(ModelId::Reference, a, &settings).unwrap()
+}
+
+/// Relative radiance differences of `model` against `reference` per wavelength.
+pub fn relative_radiance(
+    model: &dyn SkyModel,
+    reference: &dyn SkyModel,
+    ray: &ViewRay,
+) -> Vec<f64> {
+    let m = model.radiance(ray).unwrap();
+    let r = reference.radiance(ray).unwrap();
+    (0..m.radiance.len())
+        .map(|w| m.radiance[w] / r.radiance[w] - 1.0)
+        .collect()
+}
+
+/// The largest magnitude among `errors`.
+pub fn worst(errors: &[f64]) -> f64 {
+    errors.iter().fold(0.0, |a, e| a.max(e.abs()))
+}
+
+/// The largest relative difference of `a` from `b`, element by element.
+pub fn worst_relative(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x / y - 1.0).abs())
+        .fold(0.0, f64::max)
+}
 
 /// Luminance of `model` against `reference` on labelled rays, each printed: the signed
 /// relative error per ray, in order, and their statistics.

@@ -35,8 +35,8 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::atmosphere::table_inputs::Inputs;
 use atmosphere_core::models::bruneton::BrunetonSettings;
+use atmosphere_core::models::bruneton::delta_m::DeltaM;
 use atmosphere_core::models::bruneton::parameterization::ScatteringSize;
-use atmosphere_core::models::bruneton::precompute::DeltaM;
 use bytemuck::{Pod, Zeroable};
 
 use crate::frame::Frame;

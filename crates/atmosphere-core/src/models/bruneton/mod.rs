@@ -1,4 +1,4 @@
-//! Bruneton and Neyret 2008, "Precomputed atmospheric scattering" (seed 004): a
+//! Bruneton and Neyret 2008, "Precomputed atmospheric scattering": a
 //! transmittance table T(r, mu), a 4D scattering table S(u_r, u_mu, u_mu_s, u_nu) holding
 //! every scattering order, and an irradiance table E(r, mu_s); a view ray then costs a
 //! few look-ups.
@@ -15,9 +15,17 @@
 //! solar irradiance, so that `update` rebuilds nothing for a new solar spectrum. See
 //! docs/models/bruneton.md.
 
+pub mod builder;
+pub mod channels;
+pub mod delta_m;
 pub mod parameterization;
 pub mod precompute;
+pub mod settings;
+pub mod sphere_integrals;
 pub mod tables;
+pub mod view_integrals;
+
+pub use settings::BrunetonSettings;
 
 use std::f64::consts::PI;
 
@@ -26,133 +34,21 @@ use glam::DVec3;
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
-use crate::models::bruneton::parameterization::{Radii, ScatteringSize, table_position};
-use crate::models::bruneton::precompute::{Builder, Channels, DeltaM, OrderStats, Tables};
+use crate::models::bruneton::builder::Builder;
+use crate::models::bruneton::channels::Channels;
+use crate::models::bruneton::delta_m::DeltaM;
+use crate::models::bruneton::parameterization::{Radii, table_position};
+use crate::models::bruneton::precompute::{OrderStats, Tables};
 use crate::models::bruneton::tables::{DensityTable, Table4};
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::options::ModelOptions;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::geometry::ray_hits_ground;
 use crate::optics::phase::rayleigh;
 use crate::optics::surface_lighting::SurfaceElement;
-use crate::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
+use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
-
-/// The model's settings. `Default` gives the paper's sizes (section 6) and the sample
-/// counts of its published implementation.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BrunetonSettings {
-    /// S over (r, mu, mu_s, nu): 32 x 128 x 32 x 8 in the paper. mu must be even (half
-    /// for rays that meet the ground); every size at least 2.
-    pub scattering_size: ScatteringSize,
-    /// E over (mu_s, r): 64 x 16 in the paper.
-    pub irradiance_size: (usize, usize),
-    /// T over (mu, r): 256 x 64 (the paper has 256 x 64 too, in another mapping; this is
-    /// the shared table of Bruneton 2017's mapping).
-    pub transmittance_size: (usize, usize),
-    /// Trapezoid intervals along each texel's ray for single scattering and each
-    /// Delta S: 50 (INSCATTER_INTEGRAL_SAMPLES of the paper's code). 30 saves a third of
-    /// the build and costs little on clear days, but misses the thin hazy boundary layer
-    /// (docs/report: hazy view 5.1 % against 4.4 %). Unlike that code,
-    /// nodes are spaced quadratically towards the dense end of climbing and descending
-    /// rays: evenly spaced, vertical rays overestimate Mie scattering by 8 %.
-    pub view_samples: usize,
-    /// Directions (zenith angle, azimuth) of the sphere integrals for Delta J and
-    /// Delta E: 16 x 32 (INSCATTER_SPHERICAL_INTEGRAL_SAMPLES). The zenith angle is
-    /// integrated by 8-point Gauss-Legendre panels on each side of the horizon, one pair
-    /// of panels per 16 directions.
-    pub sphere_samples: (usize, usize),
-    /// Stop after an order whose share of all the table's radiance (sum over texels, worst
-    /// channel) is below this: 0.02. On Earth order 5 adds 1.1 % and stops the loop; the
-    /// orders left out would add about 0.6 %.
-    pub order_threshold: f64,
-    /// The most orders when `ModelSettings::max_orders` is `None` (a guard for thick
-    /// atmospheres whose orders fade slowly): 32.
-    pub order_limit: u32,
-}
-
-impl Default for BrunetonSettings {
-    fn default() -> Self {
-        BrunetonSettings {
-            scattering_size: ScatteringSize {
-                r: 32,
-                mu: 128,
-                mu_s: 32,
-                nu: 8,
-            },
-            irradiance_size: (64, 16),
-            transmittance_size: BRUNETON_TABLE_SIZE,
-            view_samples: 50,
-            sphere_samples: (16, 32),
-            order_threshold: 0.02,
-            order_limit: 32,
-        }
-    }
-}
-
-impl BrunetonSettings {
-    /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
-    /// `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
-    /// `order_limit`; the paper's values where absent.
-    pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
-        let d = BrunetonSettings::default();
-        let mut o = options.reader("bruneton");
-        let settings = BrunetonSettings {
-            scattering_size: ScatteringSize {
-                r: o.count("r", d.scattering_size.r)?,
-                mu: o.count("mu", d.scattering_size.mu)?,
-                mu_s: o.count("mu_s", d.scattering_size.mu_s)?,
-                nu: o.count("nu", d.scattering_size.nu)?,
-            },
-            view_samples: o.count("view_samples", d.view_samples)?,
-            sphere_samples: (
-                o.count("sphere_zenith", d.sphere_samples.0)?,
-                o.count("sphere_azimuth", d.sphere_samples.1)?,
-            ),
-            order_threshold: o.number("order_threshold", d.order_threshold)?,
-            order_limit: o.count("order_limit", d.order_limit as usize)? as u32,
-            ..d
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
-    }
-
-    /// Why these settings cannot be used, if they cannot.
-    pub fn validate(&self) -> Result<(), ModelError> {
-        let s = self.scattering_size;
-        if s.r < 2 || s.mu < 4 || !s.mu.is_multiple_of(2) || s.mu_s < 2 || s.nu < 2 {
-            return Err(ModelError::Settings(format!(
-                "scattering table size {s:?}: each axis needs 2 texels, mu an even count of 4 or more"
-            )));
-        }
-        if self.irradiance_size.0 < 2 || self.irradiance_size.1 < 2 {
-            return Err(ModelError::Settings(
-                "irradiance table needs 2 x 2 texels".into(),
-            ));
-        }
-        if self.transmittance_size.0 < 2 || self.transmittance_size.1 < 2 {
-            return Err(ModelError::Settings(
-                "transmittance table needs 2 x 2 texels".into(),
-            ));
-        }
-        if self.view_samples == 0 || self.sphere_samples.0 == 0 || self.sphere_samples.1 < 2 {
-            return Err(ModelError::Settings(
-                "sample counts must be positive".into(),
-            ));
-        }
-        if !(self.order_threshold.is_finite() && self.order_threshold >= 0.0) {
-            return Err(ModelError::Settings("order threshold must be >= 0".into()));
-        }
-        if self.order_limit == 0 {
-            return Err(ModelError::Settings(
-                "order limit must be at least 1".into(),
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// The Bruneton 2008 model, prepared for one atmosphere.
 #[derive(Debug)]
@@ -282,25 +178,6 @@ impl Bruneton {
         &self.groups
     }
 
-    /// Columns of matter from (r, mu) over distance d, from the transmittance table.
-    fn segment_column(&self, r: f64, mu: f64, d: f64, ground: bool) -> [f64; 3] {
-        let r_d = crate::optics::geometry::radius_at(r, mu, d)
-            .clamp(self.radii.bottom_m, self.radii.top_m);
-        let mu_d = ((r * mu + d) / r_d).clamp(-1.0, 1.0);
-        let (a, b) = if ground {
-            (
-                self.transmittance.column(r_d, -mu_d),
-                self.transmittance.column(r, -mu),
-            )
-        } else {
-            (
-                self.transmittance.column(r, mu),
-                self.transmittance.column(r_d, mu_d),
-            )
-        };
-        [0, 1, 2].map(|k| (a[k] - b[k]).max(0.0))
-    }
-
     /// S(x, v, s) of one group per unit solar irradiance: all orders, phase functions
     /// applied (paper section 4, "Angular precision": C* and C_M).
     fn scattered(tables: &Tables, p: &[(usize, f64); 4], nu: f64, mie_phase: f64) -> [f64; 3] {
@@ -349,8 +226,8 @@ impl SkyModel for Bruneton {
     /// phase function (unless Mie is pruned). Tables are per unit solar irradiance, so
     /// the sun ([`Inputs::SUN`]) rebuilds nothing.
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let changed = update.changed;
         let was_pruned = self.mie_pruned();
         self.atmosphere = atmosphere.clone();
         self.solar_irradiance = solar_irradiance(atmosphere, &self.wavelengths_nm);
@@ -358,15 +235,13 @@ impl SkyModel for Bruneton {
             bottom_m: atmosphere.bottom_radius_m,
             top_m: atmosphere.top_radius_m,
         };
-        let mut rebuilt = Vec::new();
-        if changed.intersects(Inputs::COLUMNS) {
-            self.transmittance = TransmittanceTable::build(
-                atmosphere,
-                self.settings.transmittance_size.0,
-                self.settings.transmittance_size.1,
-            );
-            rebuilt.push("transmittance");
-        }
+        let (w, h) = self.settings.transmittance_size;
+        update.rebuild(
+            Inputs::COLUMNS,
+            "transmittance",
+            &mut self.transmittance,
+            || TransmittanceTable::build(atmosphere, w, h),
+        );
         let single = changed.intersects(Inputs::EXTINCTION);
         let multiple = single
             || changed.intersects(Inputs::GROUND_ALBEDO)
@@ -390,11 +265,11 @@ impl SkyModel for Bruneton {
                 .collect();
             self.groups = groups;
             if single {
-                rebuilt.push("single scattering");
+                update.mark(&["single scattering"]);
             }
-            rebuilt.extend(["multiple scattering", "irradiance"]);
+            update.mark(&["multiple scattering", "irradiance"]);
         }
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
@@ -433,11 +308,7 @@ impl SkyModel for Bruneton {
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
-            return Ok(RayRadiance {
-                radiance: vec![0.0; n],
-                transmittance: vec![1.0; n],
-                radiance_std_error: vec![0.0; n],
-            });
+            return Ok(RayRadiance::unattenuated(n));
         };
         let (bottom, top) = (self.radii.bottom_m, self.radii.top_m);
         let (x, direction, sun) = (segment.start, segment.direction, segment.sun_direction);
@@ -451,7 +322,7 @@ impl SkyModel for Bruneton {
         // that cuts the ray short; one beyond the ground ends the ray there, where S(x_o)
         // looks into the ground along a ray of length 0 and is zero.
         let object = segment.cut.then_some(length);
-        let column = self.segment_column(r, mu, length, ground);
+        let column = self.transmittance.segment_column(r, mu, length, ground);
         let mie_phase = if self.groups[0].single_mie.is_some() {
             self.atmosphere.mie.phase.eval(nu)
         } else {

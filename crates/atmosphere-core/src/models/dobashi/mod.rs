@@ -1,5 +1,5 @@
 //! Dobashi, Yamamoto, Nishita 2002, "Interactive rendering of atmospheric scattering
-//! effects using graphics hardware" (seed 000), sections 5.2-5.3 and appendix A: the sky by
+//! effects using graphics hardware", sections 5.2-5.3 and appendix A: the sky by
 //! sampling planes whose segments are read from pre-integrated tables dI_r, dI_m, dg_v over
 //! (h, theta_v), the sun's attenuation from g_l(h, theta_sun), the plane interval by the
 //! rule of section 4.2.1, sample spheres for cameras far out in space, and multiple
@@ -15,6 +15,7 @@
 //! See docs/models/dobashi.md for the equations, the settings and the measured errors.
 
 pub mod ambient;
+pub mod ambient_build;
 pub mod grid;
 pub mod plane_tables;
 pub mod segment;
@@ -30,6 +31,7 @@ use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::surface_lighting::SurfaceElement;
 use crate::optics::transmittance_table::TransmittanceTable;
 
@@ -163,20 +165,18 @@ impl SkyModel for Dobashi {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let changed = update.changed;
         let spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         let with_mie = spectra.needs_mie(self.prune);
         let mie_switched = with_mie != self.planes.scatter_m.is_some();
-        let mut rebuilt = Vec::new();
-        if changed.intersects(Inputs::COLUMNS) {
-            self.sun_table = TransmittanceTable::build(
-                atmosphere,
-                self.settings.sun_table_angles,
-                self.settings.sun_table_heights,
-            );
-            rebuilt.push("g_l");
-        }
+        let (angles, heights) = (
+            self.settings.sun_table_angles,
+            self.settings.sun_table_heights,
+        );
+        update.rebuild(Inputs::COLUMNS, "g_l", &mut self.sun_table, || {
+            TransmittanceTable::build(atmosphere, angles, heights)
+        });
         let segments = changed.intersects(PlaneTables::INPUTS) || mie_switched;
         if segments {
             self.planes = PlaneTables::build(atmosphere, &spectra, &self.settings, with_mie);
@@ -187,21 +187,21 @@ impl SkyModel for Dobashi {
                 self.settings.sphere_table_angles,
                 with_mie,
             );
-            rebuilt.extend(["dI_r", "dg_v", "sphere dI_r", "sphere dg_v"]);
+            update.mark(&["dI_r", "dg_v", "sphere dI_r", "sphere dg_v"]);
             if with_mie {
-                rebuilt.extend(["dI_m", "sphere dI_m"]);
+                update.mark(&["dI_m", "sphere dI_m"]);
             }
         }
         self.spectra = spectra;
         self.atmosphere = atmosphere.clone();
         if self.max_orders != Some(1) && (segments || changed.intersects(AmbientTable::INPUTS)) {
             self.ambient = self.build_ambient()?;
-            rebuilt.push("ambient");
+            update.mark(&["ambient"]);
         }
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
-    /// The transmitted sun g_l (seed 000 Eq. 11) and the ambient term's sky, pi psi on a
+    /// The transmitted sun g_l (Eq. 11) and the ambient term's sky, pi psi on a
     /// horizontal element, psi read at the element's sun angle (`Tracer::element_light`);
     /// no sky for single scattering.
     fn surface_irradiance(

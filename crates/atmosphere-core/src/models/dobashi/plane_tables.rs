@@ -1,4 +1,4 @@
-//! The tables of the sampling planes (seed 000 section 5.2 and appendix A.2): dI_r, dI_m
+//! The tables of the sampling planes (Dobashi, Yamamoto and Nishita 2002, section 5.2 and appendix A.2): dI_r, dI_m
 //! and dg_v of a segment of fixed length Delta_t, as functions of the height h of its
 //! start and the angle theta_v of its direction from the local vertical, and the interval
 //! rule of section 4.2.1 that chooses Delta_t.

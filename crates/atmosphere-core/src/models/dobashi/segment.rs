@@ -1,4 +1,4 @@
-//! The pre-integrated values of one view segment (seed 000 Eq. 12 and appendix A.2,
+//! The pre-integrated values of one view segment (Dobashi, Yamamoto and Nishita 2002, Eq. 12 and appendix A.2,
 //! Eq. A.5-A.6): for a segment that starts at radius r with direction cosine mu,
 //!
 //! dI_r = ∫_0^L K_r ρ_r(t) exp(-τ(0 → t)) dt,  dI_m = ∫_0^L K_m ρ_m(t) exp(-τ(0 → t)) dt,

@@ -4,7 +4,7 @@
 use crate::models::error::ModelError;
 use crate::models::options::ModelOptions;
 
-/// What trades accuracy for time in Dobashi, Yamamoto, Nishita 2002 (seed 000, sections
+/// What trades accuracy for time in Dobashi, Yamamoto and Nishita 2002 (sections
 /// 4.2.1 and 5.2-5.3). `Default` is the paper's choice where it states one.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DobashiSettings {

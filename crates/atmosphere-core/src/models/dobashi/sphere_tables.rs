@@ -1,4 +1,4 @@
-//! The sample spheres of seed 000 section 5.3 (Fig. 7, appendix A.2): for a camera far
+//! The sample spheres of Dobashi, Yamamoto and Nishita 2002, section 5.3 (Fig. 7, appendix A.2): for a camera far
 //! out in space the view ray is cut where it crosses spheres concentric with the planet,
 //! and dI'_r, dI'_m, dg'_v of the segment from sphere k to the next crossing depend only on
 //! the direction at sphere k, so each sphere has 1D tables.

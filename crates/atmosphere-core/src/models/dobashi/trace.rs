@@ -1,4 +1,4 @@
-//! Seed 000 Eq. 12 along one view ray, on the CPU:
+//! Dobashi, Yamamoto and Nishita 2002, Eq. 12 along one view ray, on the CPU:
 //!
 //! I_v = I_sun (r/π) g_l(0, θ_g) cos θ_g Π_j dg_v(t_j)
 //!     + I_sun Σ_k g_l(h_k, θ_k) [F_r dI_r(t_k) + F_m dI_m(t_k)] Π_{j<k} dg_v(t_j),

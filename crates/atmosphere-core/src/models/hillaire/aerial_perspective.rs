@@ -17,7 +17,7 @@ use crate::models::hillaire::directions::{LatLong, view_sun_cosine};
 use crate::models::hillaire::march::ViewMarch;
 use crate::models::hillaire::medium::Medium;
 use crate::models::hillaire::multiple_scattering::MultipleScattering;
-use crate::models::hillaire::view_cache::rows_in_parallel;
+use crate::models::hillaire::rows::rows_in_parallel;
 
 /// The volume's shape.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -17,10 +17,9 @@ pub mod ground;
 pub mod march;
 pub mod medium;
 pub mod multiple_scattering;
+pub mod rows;
 pub mod sky_view;
 pub mod view_cache;
-
-use std::f64::consts::PI;
 
 use glam::DVec3;
 
@@ -39,9 +38,10 @@ use crate::models::hillaire::view_cache::ViewCache;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::table_update::TableUpdate;
 use crate::optics::column::optical_depth;
 use crate::optics::geometry::ray_hits_ground;
-use crate::optics::surface_lighting::SurfaceElement;
+use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
@@ -458,30 +458,31 @@ impl SkyModel for Hillaire {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        atmosphere.validate()?;
-        let changed = Inputs::changed(&self.atmosphere, atmosphere);
+        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let changed = update.changed;
         self.atmosphere = atmosphere.clone();
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         self.mie = self.spectra.needs_mie(self.prune);
-        let mut rebuilt = Vec::new();
-        if changed.intersects(Inputs::COLUMNS) {
-            let (w, h) = self.settings.transmittance_size;
-            self.transmittance = TransmittanceTable::build(atmosphere, w, h);
-            rebuilt.push("transmittance");
-        }
+        let (w, h) = self.settings.transmittance_size;
+        update.rebuild(
+            Inputs::COLUMNS,
+            "transmittance",
+            &mut self.transmittance,
+            || TransmittanceTable::build(atmosphere, w, h),
+        );
         if self.multiple_on && changed.intersects(MULTIPLE_SCATTERING_INPUTS) {
             self.build_multiple_scattering();
-            rebuilt.push("multiple scattering");
+            update.mark(&["multiple scattering"]);
         }
         if self.multiple_on && changed.intersects(VIEW_INPUTS) {
             self.build_ground_irradiance();
-            rebuilt.push("ground irradiance");
+            update.mark(&["ground irradiance"]);
         }
         if changed.intersects(VIEW_INPUTS) {
             self.views.clear();
-            rebuilt.push("sky view and aerial perspective");
+            update.mark(&["sky view and aerial perspective"]);
         }
-        Ok(rebuilt)
+        Ok(update.rebuilt())
     }
 
     /// The transmitted sun from the transmittance LUT (zero where the planet hides the
@@ -526,11 +527,7 @@ impl SkyModel for Hillaire {
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let n = self.spectra.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
-            return Ok(RayRadiance {
-                radiance: vec![0.0; n],
-                transmittance: vec![1.0; n],
-                radiance_std_error: vec![0.0; n],
-            });
+            return Ok(RayRadiance::unattenuated(n));
         };
         let inside = ray.origin_m.length() <= self.atmosphere.top_radius_m;
         let (mut radiance, transmittance) = if inside
@@ -546,11 +543,8 @@ impl SkyModel for Hillaire {
         // The ground lit as a surface element facing up at the ray's end.
         if segment.end == SegmentEnd::Ground {
             let end = segment.end_point();
-            let irradiance = self.surface_irradiance(end, end, segment.sun_direction)?;
-            for w in 0..n {
-                radiance[w] +=
-                    transmittance[w] * self.atmosphere.ground_albedo / PI * irradiance[w];
-            }
+            let (sun, albedo) = (segment.sun_direction, self.atmosphere.ground_albedo);
+            add_ground_light(self, end, sun, albedo, &transmittance, &mut radiance)?;
         }
         Ok(RayRadiance {
             radiance: radiance.iter().map(|l| l.max(0.0)).collect(),

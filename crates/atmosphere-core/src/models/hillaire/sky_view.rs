@@ -8,7 +8,7 @@ use crate::models::hillaire::directions::{LatLong, view_sun_cosine};
 use crate::models::hillaire::march::ViewMarch;
 use crate::models::hillaire::medium::{Medium, ground_distance};
 use crate::models::hillaire::multiple_scattering::MultipleScattering;
-use crate::models::hillaire::view_cache::rows_in_parallel;
+use crate::models::hillaire::rows::rows_in_parallel;
 use crate::optics::geometry::distance_to_exit;
 
 /// The sky-view LUT of one view.
