@@ -139,11 +139,10 @@ fn is_raw_string(chars: &[char], i: usize) -> bool {
 
 /// A `'` opening a character literal rather than a lifetime or label.
 fn is_char_literal(chars: &[char], i: usize) -> bool {
-    match (chars.get(i + 1), chars.get(i + 2)) {
-        (Some('\\'), _) => true,
-        (Some(_), Some('\'')) => true,
-        _ => false,
-    }
+    matches!(
+        (chars.get(i + 1), chars.get(i + 2)),
+        (Some('\\'), _) | (Some(_), Some('\''))
+    )
 }
 
 /// Every path the code names (`crate::`, `super::`, `self::` or a bare `child::`), as its
