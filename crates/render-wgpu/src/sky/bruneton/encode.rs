@@ -23,19 +23,25 @@ pub struct StepEncoder<'a> {
     pub sampling: &'a TableSampling,
 }
 
-/// The three scattering textures' views, then `more`, as a step's own bindings.
-fn with_scattering<'v>(
-    views: &'v [wgpu::TextureView; 3],
-    more: &[&'v wgpu::TextureView],
-) -> Vec<wgpu::BindingResource<'v>> {
-    views
-        .iter()
-        .chain(more.iter().copied())
-        .map(wgpu::BindingResource::TextureView)
-        .collect()
-}
-
 impl StepEncoder<'_> {
+    /// The bind group of `pipeline` whose own resources are the three scattering
+    /// textures then `own`, with `elsewhere` (binding, resource) pairs.
+    fn scattering_bind_group(
+        &self,
+        pipeline: &ComputePipeline,
+        own: &[&wgpu::TextureView],
+        elsewhere: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> wgpu::BindGroup {
+        let t = self.tables;
+        let views = t.scattering_views();
+        let extra: Vec<_> = views
+            .iter()
+            .chain(own.iter().copied())
+            .map(wgpu::BindingResource::TextureView)
+            .collect();
+        bind_group(self.gpu, self.io, t, pipeline, &t.params, &extra, elsewhere)
+    }
+
     /// One dispatch of `x` workgroups of `pipeline` with the shared bindings alone.
     fn shared_only(
         &self,
@@ -89,11 +95,9 @@ impl StepEncoder<'_> {
         timestamps: Timestamps<'_>,
     ) {
         let t = self.tables;
-        let views = t.scattering_views();
         let irradiance = t.irradiance.create_view(&Default::default());
-        let extra = with_scattering(&views, &[&irradiance]);
         let texture = &self.pipelines.texture;
-        let bind_group = bind_group(self.gpu, self.io, t, texture, &t.params, &extra, &[]);
+        let bind_group = self.scattering_bind_group(texture, &[&irradiance], &[]);
         let (e_mu_s, e_r) = t.settings.irradiance_size;
         let texels = (t.settings.scattering_size.texels() as u32).max((e_mu_s * e_r) as u32);
         let groups = [texels.div_ceil(FLAT), 1, 1];
@@ -108,13 +112,10 @@ impl StepEncoder<'_> {
 
     /// S at the camera's r and mu_s for every (mu, nu) node.
     pub fn view_slice(&self, encoder: &mut wgpu::CommandEncoder, timestamps: Timestamps<'_>) {
-        let t = self.tables;
-        let views = t.scattering_views();
-        let slice = t.view_slice.create_view(&Default::default());
-        let extra = with_scattering(&views, &[&slice]);
+        let slice = self.tables.view_slice.create_view(&Default::default());
         let pipeline = &self.pipelines.view_slice;
-        let bind_group = bind_group(self.gpu, self.io, t, pipeline, &t.params, &extra, &[]);
-        let groups = texel_groups(&t.view_slice);
+        let bind_group = self.scattering_bind_group(pipeline, &[&slice], &[]);
+        let groups = texel_groups(&self.tables.view_slice);
         pipeline.dispatch(encoder, "view slice", &bind_group, groups, timestamps);
     }
 
@@ -127,11 +128,9 @@ impl StepEncoder<'_> {
         timestamps: Timestamps<'_>,
     ) {
         let (t, io) = (self.tables, self.io);
-        let views = t.scattering_views();
         let hdr = io.hdr.create_view(&Default::default());
         let slice = t.view_slice.create_view(&Default::default());
         let irradiance = t.irradiance.create_view(&Default::default());
-        let extra = with_scattering(&views, &[&hdr, &slice, &irradiance]);
         let p = self.pipelines;
         let render = if inside { &p.render_inside } else { &p.render }.variant(io.has_surface);
         let [geometry, albedo] = io.surface;
@@ -143,7 +142,7 @@ impl StepEncoder<'_> {
             (ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)),
             self.sampling.sampler_binding(),
         ];
-        let bind_group = bind_group(self.gpu, io, t, render, &t.params, &extra, &surface);
+        let bind_group = self.scattering_bind_group(render, &[&hdr, &slice, &irradiance], &surface);
         let groups = texel_groups(io.hdr);
         render.dispatch(encoder, "bruneton", &bind_group, groups, timestamps);
     }
