@@ -16,7 +16,7 @@ use render_wgpu::{Frame, Renderer};
 use support::{BRUNETON_TABLES, frame, renderer_or_skip, view};
 
 /// Small tables of 131072 texels, so that an order's Delta S is two slices
-/// (`bruneton_pass::SLICE_TEXELS`), built on lavapipe in seconds.
+/// (`render_wgpu::sky::bruneton::SLICE_TEXELS`), built on lavapipe in seconds.
 const SMALL: [&str; 5] = ["r=16", "mu=32", "mu_s=16", "nu=16", "view_samples=20"];
 
 /// Frames a progressive build may take at most here: single scattering, then per order

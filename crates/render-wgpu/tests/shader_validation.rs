@@ -331,20 +331,45 @@ fn dobashi_uniforms_match_their_wgsl_layouts() {
 
 #[test]
 fn bruneton_uniforms_match_their_wgsl_layouts() {
-    use render_wgpu::sky::bruneton::{BrunetonUniform, OrderState};
+    use render_wgpu::sky::bruneton::order_state::OrderState;
+    use render_wgpu::sky::bruneton::uniform::BrunetonUniform;
     assert_layout!(
-        "sky/bruneton/pixel.wgsl",
+        "sky/bruneton/bindings.wgsl",
         "BrunetonParams",
         BrunetonUniform,
         [
-            size,
-            irradiance_size,
-            flags,
-            offsets_a,
-            offsets_b,
-            offsets_c,
-            delta_m,
-            density
+            r_size,
+            mu_size,
+            mu_s_size,
+            nu_size,
+            irradiance_mu_s_size,
+            irradiance_r_size,
+            sphere_panels,
+            sphere_azimuths,
+            view_samples,
+            mie_on,
+            previous_is_single,
+            max_orders,
+            density_offset,
+            single_rayleigh_offset,
+            single_mie_offset,
+            multiple_offset,
+            delta_s_offset,
+            delta_j_offset,
+            delta_e_offset,
+            irradiance_offset,
+            moments_offset,
+            partials_offset,
+            scattering_texels,
+            irradiance_texels,
+            mie_forward_fraction,
+            mie_chi1,
+            mie_chi2,
+            order_threshold,
+            density_step_m,
+            pad0,
+            pad1,
+            pad2
         ]
     );
     assert_layout!(

@@ -12,11 +12,10 @@
 // Bilinear interpolation over (r, mu_s) of row imu in nu slice `inu` of a scattering
 // texture.
 fn texture_row(table: texture_3d<f32>, p: Position, imu: u32, inu: u32) -> vec3<f32> {
-    let x = inu * bruneton.size.z + p.mu_s.i;
     var out = vec3<f32>(0.0);
     for (var dr = 0u; dr < 2u; dr++) {
         let w_r = select(1.0 - p.r.w, p.r.w, dr == 1u);
-        let at = vec3<u32>(x, imu, p.r.i + dr);
+        let at = texture_texel(p.r.i + dr, imu, p.mu_s.i, inu);
         let a = textureLoad(table, at, 0).xyz;
         let b = textureLoad(table, at + vec3<u32>(1u, 0u, 0u), 0).xyz;
         out += w_r * mix(a, b, p.mu_s.w);

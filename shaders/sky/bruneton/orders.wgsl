@@ -1,6 +1,6 @@
-// The bookkeeping of Algorithm 4.1 (Bruneton and Neyret 2008) on the GPU, without reading
-// anything back: the GPU twin of the loop of `Builder::multiple_orders` (atmosphere-core
-// `bruneton/precompute.rs`).
+// The bookkeeping of Algorithm 4.1 (Bruneton and Neyret 2008, section 4) on the GPU,
+// without reading anything back: the GPU twin of the loop of `Builder::multiple_orders`
+// (atmosphere-core `bruneton/precompute.rs`).
 //
 // `sum_single` and `sum_order` sum the radiance of all texels per channel (single
 // scattering with its phase functions, or an order's Delta S) into 256 partial sums;
@@ -37,7 +37,6 @@ struct OrderState {
     shares: array<f32, 64>,
 }
 
-@group(0) @binding(4) var<storage, read_write> store: array<vec4<f32>>;
 @group(0) @binding(6) var<storage, read_write> state: OrderState;
 
 // Workgroups of the partial sums, and their size.
@@ -61,18 +60,18 @@ fn reduce(lid: u32) {
 // else the order's Delta S.
 fn texel_radiance(index: u32, single: bool) -> vec3<f32> {
     if !single {
-        return store[bruneton.offsets_b.x + index].xyz;
+        return store[bruneton.delta_s_offset + index].xyz;
     }
     let nu = texel_of_index(index).nu;
-    var l = rayleigh_phase(nu) * store[bruneton.offsets_a.y + index].xyz;
-    if bruneton.flags.y == 1u {
-        l += mie_phase(nu) * store[bruneton.offsets_a.z + index].xyz;
+    var l = rayleigh_phase(nu) * store[bruneton.single_rayleigh_offset + index].xyz;
+    if bruneton.mie_on == 1u {
+        l += mie_phase(nu) * store[bruneton.single_mie_offset + index].xyz;
     }
     return l;
 }
 
 fn sum(group: u32, lid: u32, single: bool) {
-    let n = bruneton.offsets_c.z;
+    let n = bruneton.scattering_texels;
     var s = vec3<f32>(0.0);
     for (var i = group * SUM_SIZE + lid; i < n; i += SUM_GROUPS * SUM_SIZE) {
         s += texel_radiance(i, single);
@@ -80,7 +79,7 @@ fn sum(group: u32, lid: u32, single: bool) {
     partial[lid] = s;
     reduce(lid);
     if lid == 0u {
-        store[bruneton.offsets_c.y + group] = vec4<f32>(partial[0], 0.0);
+        store[bruneton.partials_offset + group] = vec4<f32>(partial[0], 0.0);
     }
 }
 
@@ -96,7 +95,7 @@ fn sum_order(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_
 
 @compute @workgroup_size(256)
 fn decide(@builtin(local_invocation_index) lid: u32) {
-    partial[lid] = store[bruneton.offsets_c.y + lid].xyz;
+    partial[lid] = store[bruneton.partials_offset + lid].xyz;
     reduce(lid);
     if lid != 0u {
         return;
@@ -127,11 +126,11 @@ fn decide(@builtin(local_invocation_index) lid: u32) {
         let share = max(shares.x, max(shares.y, shares.z));
         state.shares[order] = share;
         state.last_order = order;
-        if share < bruneton.delta_m.w {
+        if share < bruneton.order_threshold {
             state.running = 0u;
         }
     }
-    if order >= bruneton.flags.w {
+    if order >= bruneton.max_orders {
         state.running = 0u;
     }
     for (var k = 0u; k < 5u; k++) {
@@ -143,10 +142,10 @@ fn decide(@builtin(local_invocation_index) lid: u32) {
 // S += Delta S and E += Delta E, one invocation per texel.
 @compute @workgroup_size(64)
 fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x < bruneton.offsets_c.z {
-        store[bruneton.offsets_a.w + id.x] += store[bruneton.offsets_b.x + id.x];
+    if id.x < bruneton.scattering_texels {
+        store[bruneton.multiple_offset + id.x] += store[bruneton.delta_s_offset + id.x];
     }
-    if id.x < bruneton.offsets_c.w {
-        store[bruneton.offsets_b.w + id.x] += store[bruneton.offsets_b.z + id.x];
+    if id.x < bruneton.irradiance_texels {
+        store[bruneton.irradiance_offset + id.x] += store[bruneton.delta_e_offset + id.x];
     }
 }

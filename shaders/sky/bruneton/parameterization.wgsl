@@ -8,31 +8,7 @@
 // 6.4e6 m carries half a metre of rounding, and r - bottom is formed as q / (r + bottom)
 // (docs/rendering.md, "Camera-relative rendering").
 
-#import common/atmosphere_params.wgsl
-
-struct BrunetonParams {
-    // Texels of S along r, mu, mu_s, nu.
-    size: vec4<u32>,
-    // x, y: E's texels along mu_s and r; z: Gauss-Legendre panels of 8 zenith angles on
-    // each side of the horizon (sphere integrals); w: azimuths over [0, pi].
-    irradiance_size: vec4<u32>,
-    // x: trapezoid intervals along each texel's ray; y: 1 when Mie is computed (not
-    // pruned); z: 1 for order 2 (the previous order is single scattering, the previous
-    // irradiance direct sunlight); w: the most orders.
-    flags: vec4<u32>,
-    // Offsets in the store (vec4 units): density, single Rayleigh, single Mie, multiple.
-    offsets_a: vec4<u32>,
-    // Delta S, Delta J, Delta E, irradiance E.
-    offsets_b: vec4<u32>,
-    // Moments of Delta J, partial sums, Delta J's 4D texel count, E's texel count.
-    offsets_c: vec4<u32>,
-    // The delta-M Mie phase function: forward fraction, chi1, chi2; w: the order threshold.
-    delta_m: vec4<f32>,
-    // x: step of the density table, m.
-    density: vec4<f32>,
-}
-
-@group(0) @binding(2) var<uniform> bruneton: BrunetonParams;
+#import sky/bruneton/bindings.wgsl
 
 // A texel position along one axis: the lower texel and the weight of the next.
 struct Axis {
@@ -104,49 +80,50 @@ fn horizon_mu_of(q: f32, r: f32) -> f32 {
     return select(-sqrt(q) / r, 0.0, q <= 0.0);
 }
 
-// `Radii::x_mu`: the unit coordinate within the half of the mu axis chosen by `ground`.
-fn x_mu(q: f32, r: f32, r_mu: f32, ground: bool) -> f32 {
-    let bottom = atmosphere.bottom_radius_m;
-    let top = atmosphere.top_radius_m;
-    let h2 = horizon_sq();
+// `Radii::distance_range`: the range (d_min, d_max) of the distance to the ray's end over
+// the half of the mu axis chosen by `ground`: on the ground's half from straight down
+// (q / (r + bottom)) to the horizon (rho); on the sky's half from straight up to the
+// horizon, to the top boundary.
+fn distance_range(q: f32, r: f32, ground: bool) -> vec2<f32> {
     let rho = safe_sqrt(q);
     if ground {
-        let d_min = q / (r + bottom);
-        let d_max = rho;
-        if d_max <= d_min {
+        return vec2<f32>(q / (r + atmosphere.bottom_radius_m), rho);
+    }
+    let h2 = horizon_sq();
+    return vec2<f32>((h2 - q) / (atmosphere.top_radius_m + r), rho + sqrt(h2));
+}
+
+// `Radii::x_mu`: the unit coordinate within the half of the mu axis chosen by `ground`.
+fn x_mu(q: f32, r: f32, r_mu: f32, ground: bool) -> f32 {
+    let d = distance_range(q, r, ground);
+    if ground {
+        if d.y <= d.x {
             return 1.0;
         }
-        let d = select(d_max, ground_distance(q, r_mu), hits_ground(q, r_mu));
-        return clamp((d_max - d) / (d_max - d_min), 0.0, 1.0);
+        let end = select(d.y, ground_distance(q, r_mu), hits_ground(q, r_mu));
+        return clamp((d.y - end) / (d.y - d.x), 0.0, 1.0);
     }
-    let d_min = (h2 - q) / (top + r);
-    let d_max = rho + sqrt(h2);
-    if d_max <= d_min {
+    if d.y <= d.x {
         return 0.0;
     }
-    return clamp((top_distance(q, r_mu) - d_min) / (d_max - d_min), 0.0, 1.0);
+    return clamp((top_distance(q, r_mu) - d.x) / (d.y - d.x), 0.0, 1.0);
 }
 
 // `Radii::mu_from_x`.
 fn mu_from_x(q: f32, r: f32, x: f32, ground: bool) -> f32 {
-    let bottom = atmosphere.bottom_radius_m;
-    let top = atmosphere.top_radius_m;
-    let h2 = horizon_sq();
-    let rho = safe_sqrt(q);
+    let d = distance_range(q, r, ground);
     if ground {
-        let d_min = q / (r + bottom);
-        let d = rho - x * (rho - d_min);
-        if d <= 0.0 {
+        let end = d.y - x * (d.y - d.x);
+        if end <= 0.0 {
             return -1.0;
         }
-        return clamp(-(q + d * d) / (2.0 * r * d), -1.0, 1.0);
+        return clamp(-(q + end * end) / (2.0 * r * end), -1.0, 1.0);
     }
-    let d_min = (h2 - q) / (top + r);
-    let d = d_min + x * (rho + sqrt(h2) - d_min);
-    if d <= 0.0 {
+    let end = d.x + x * (d.y - d.x);
+    if end <= 0.0 {
         return 1.0;
     }
-    return clamp((h2 - q - d * d) / (2.0 * r * d), -1.0, 1.0);
+    return clamp((horizon_sq() - q - end * end) / (2.0 * r * end), -1.0, 1.0);
 }
 
 // 1 - exp(-3.6).
@@ -186,54 +163,69 @@ fn texel_unit(k: u32, n: u32) -> f32 {
 // mu falls on the wrong side of the horizon by rounding is put on the horizon; its
 // `ground` flag, not its mu, decides its half from then on.
 fn texel(ir: u32, imu: u32, imus: u32, inu: u32) -> Texel {
-    let size = bruneton.size;
     var t: Texel;
-    let rho = sqrt(horizon_sq()) * texel_unit(ir, size.x);
+    let rho = sqrt(horizon_sq()) * texel_unit(ir, bruneton.r_size);
     t.q = rho * rho;
     t.r = radius_of_q(t.q);
-    let half = size.y / 2u;
+    let half = bruneton.mu_size / 2u;
     t.ground = imu < half;
     let x = texel_unit(select(imu - half, imu, t.ground), half);
     t.mu = mu_from_x(t.q, t.r, x, t.ground);
     if t.ground != hits_ground(t.q, t.r * t.mu) {
         t.mu = horizon_mu_of(t.q, t.r);
     }
-    t.mu_s = mu_s_from_u(texel_unit(imus, size.z));
-    t.nu = clamp_nu(t.mu, t.mu_s, 2.0 * texel_unit(inu, size.w) - 1.0);
+    t.mu_s = mu_s_from_u(texel_unit(imus, bruneton.mu_s_size));
+    t.nu = clamp_nu(t.mu, t.mu_s, 2.0 * texel_unit(inu, bruneton.nu_size) - 1.0);
     return t;
+}
+
+// The coordinates of a texel of S: its texel along r, mu, mu_s and nu.
+struct TexelCoords {
+    r: u32,
+    mu: u32,
+    mu_s: u32,
+    nu: u32,
 }
 
 // The texel of linear index `index` (`ScatteringSize::coords`): mu_s fastest, then r,
 // mu, nu.
+fn texel_coords(index: u32) -> TexelCoords {
+    let rest = index / bruneton.mu_s_size;
+    let rest2 = rest / bruneton.r_size;
+    return TexelCoords(rest % bruneton.r_size, rest2 % bruneton.mu_size, index % bruneton.mu_s_size,
+        rest2 / bruneton.mu_size);
+}
+
+// Where texel (ir, imu, imus, inu) of S lies in a 3D texture of S: (x = nu * mu_s_size +
+// mu_s, y = mu, z = r).
+fn texture_texel(ir: u32, imu: u32, imus: u32, inu: u32) -> vec3<u32> {
+    return vec3<u32>(inu * bruneton.mu_s_size + imus, imu, ir);
+}
+
+// The parameters of the texel of linear index `index`.
 fn texel_of_index(index: u32) -> Texel {
-    let size = bruneton.size;
-    let imus = index % size.z;
-    let rest = index / size.z;
-    let ir = rest % size.x;
-    let rest2 = rest / size.x;
-    return texel(ir, rest2 % size.y, imus, rest2 / size.y);
+    let c = texel_coords(index);
+    return texel(c.r, c.mu, c.mu_s, c.nu);
 }
 
 // `ScatteringSize::index`.
 fn table_index(ir: u32, imu: u32, imus: u32, inu: u32) -> u32 {
-    let size = bruneton.size;
-    return ((inu * size.y + imu) * size.x + ir) * size.z + imus;
+    return ((inu * bruneton.mu_size + imu) * bruneton.r_size + ir) * bruneton.mu_s_size + imus;
 }
 
 // `table_position`: where (q, r mu, mu_s, nu) falls in S, on the half of the mu axis
 // chosen by `ground`.
 fn table_position(q: f32, r: f32, r_mu: f32, mu_s: f32, nu: f32, ground: bool) -> Position {
-    let size = bruneton.size;
-    let half = size.y / 2u;
+    let half = bruneton.mu_size / 2u;
     var mu = axis(x_mu(q, r, r_mu, ground), half);
     if !ground {
         mu.i += half;
     }
     return Position(
-        axis(sqrt(max(q, 0.0) / horizon_sq()), size.x),
+        axis(sqrt(max(q, 0.0) / horizon_sq()), bruneton.r_size),
         mu,
-        axis(u_mu_s(mu_s), size.z),
-        axis(u_nu(nu), size.w),
+        axis(u_mu_s(mu_s), bruneton.mu_s_size),
+        axis(u_nu(nu), bruneton.nu_size),
     );
 }
 
@@ -242,8 +234,7 @@ const MIN_MU_S: f32 = -0.2;
 
 // E's texel (ir, imus): (q, r, mu_s) (`IrradianceTable::texel_r_mu_s`).
 fn irradiance_texel(index: u32) -> vec3<f32> {
-    let n = bruneton.irradiance_size;
-    let altitude = texel_unit(index / n.x, n.y) * (atmosphere.top_radius_m - atmosphere.bottom_radius_m);
+    let altitude = texel_unit(index / bruneton.irradiance_mu_s_size, bruneton.irradiance_r_size) * (atmosphere.top_radius_m - atmosphere.bottom_radius_m);
     let q = altitude * (2.0 * atmosphere.bottom_radius_m + altitude);
-    return vec3<f32>(q, atmosphere.bottom_radius_m + altitude, MIN_MU_S + texel_unit(index % n.x, n.x) * (1.0 - MIN_MU_S));
+    return vec3<f32>(q, atmosphere.bottom_radius_m + altitude, MIN_MU_S + texel_unit(index % bruneton.irradiance_mu_s_size, bruneton.irradiance_mu_s_size) * (1.0 - MIN_MU_S));
 }

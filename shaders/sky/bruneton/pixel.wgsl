@@ -2,10 +2,10 @@
 // (atmosphere-core `bruneton/mod.rs`). From the camera (moved to where the ray enters
 // the atmosphere when it is in space, `view_segment`):
 //     L = E_sun (S(x, v, s) + T(x, x_o) alpha / pi (E_direct + E_sky)(x_o)),
-// the ground term for rays ending on the ground at x_o (paper Eq. 13-16 with the ground
-// a sphere), where S = P_R(nu) S_R + P_M(nu) S_M + S_multiple from the 3D textures
+// the ground term for rays ending on the ground at x_o (section 4, Eq. 13-16, with the
+// ground a sphere), where S = P_R(nu) S_R + P_M(nu) S_M + S_multiple from the 3D textures
 // (quadrilinear, as `Table4::lookup`), on the half of the mu axis of the ray's end. For
-// a ray that ends on the ground the paper's aerial perspective S(x) - T(x, x_o) S(x_o)
+// a ray that ends on the ground the aerial perspective S(x) - T(x, x_o) S(x_o) (Eq. 3)
 // is S(x) on the ground's half: S(x_o) looks straight into the ground from it and is
 // zero (its ray has length 0), so it is not looked up; the same holds for the frame's
 // surface where it lies beyond the ground. A surface that cuts the ray short
@@ -30,7 +30,7 @@
 // row, the only one with weight there, interpolated along mu_s alone (two texel reads,
 // or one filtered; the same value).
 fn ground_irradiance_at(mu_s: f32) -> vec3<f32> {
-    let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), bruneton.irradiance_size.x);
+    let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), bruneton.irradiance_mu_s_size);
     if FILTERED_TABLES {
         return sample_2d(irradiance, vec2<f32>(f32(am.i) + am.w, 0.0));
     }
@@ -43,7 +43,7 @@ fn ground_irradiance_at(mu_s: f32) -> vec3<f32> {
 // multiple) interpolated at the camera's r and mu_s, from the view slice
 // (`sky/bruneton/view_slice.wgsl`).
 fn view_slice_row(k: u32, imu: u32, inu: u32) -> vec3<f32> {
-    return textureLoad(view_slice, vec2<u32>(k * bruneton.size.w + inu, imu), 0).xyz;
+    return textureLoad(view_slice, vec2<u32>(k * bruneton.nu_size + inu, imu), 0).xyz;
 }
 
 // `texture_lookup` of scattering texture `k` for a camera inside the atmosphere: every
@@ -53,7 +53,7 @@ fn view_slice_row(k: u32, imu: u32, inu: u32) -> vec3<f32> {
 // interpolation).
 fn view_slice_lookup(k: u32, p: Position) -> vec3<f32> {
     if FILTERED_TABLES {
-        let nu = f32(k * bruneton.size.w + p.nu.i) + p.nu.w;
+        let nu = f32(k * bruneton.nu_size + p.nu.i) + p.nu.w;
         return sample_2d(view_slice, vec2<f32>(nu, f32(p.mu.i) + p.mu.w));
     }
     var lo = vec3<f32>(0.0);
@@ -94,7 +94,7 @@ fn scattering_at(k: u32, p: Position, inside: bool) -> vec3<f32> {
 // S = P_R S_R + P_M S_M + S_multiple at table position `p`.
 fn scattered(p: Position, nu: f32, inside: bool) -> vec3<f32> {
     var l = rayleigh_phase(nu) * scattering_at(0u, p, inside) + scattering_at(2u, p, inside);
-    if bruneton.flags.y == 1u {
+    if bruneton.mie_on == 1u {
         l += mie_phase(nu) * scattering_at(1u, p, inside);
     }
     return l;
@@ -144,7 +144,7 @@ fn bruneton_radiance(direction: vec3<f32>, object_m: f32, inside: bool) -> Radia
 }
 
 // `Bruneton::surface_irradiance`: the transmitted sun from the transmittance table and
-// the sky's irradiance E[L](r, mu_s) from the irradiance table (Eq. 15), at the
+// the sky's irradiance E[L](r, mu_s) from the irradiance table (section 4, Eq. 15), at the
 // element's radius and sun angle.
 fn bruneton_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let e = surface_element(point, normal);
@@ -154,7 +154,7 @@ fn bruneton_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32>
     if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
         t = exp(-optical_depth(read_table_columns(transmittance_columns, q, e.mu_s)));
     }
-    let sky = irradiance_at(bruneton.offsets_b.w, q, e.r, e.mu_s);
+    let sky = irradiance_at(bruneton.irradiance_offset, q, e.r, e.mu_s);
     return element_irradiance(e, t, atmosphere.solar_irradiance.xyz * sky);
 }
 

@@ -1,9 +1,9 @@
 // The radiance field of the previous scattering order as the tables hold it, and the
 // light arriving at a point from a direction: the GPU twins of
 // `Builder::previous_radiance` and `Builder::incoming` (atmosphere-core
-// `bruneton/precompute.rs`). Order 2 (flag z of the parameters) reads single scattering
-// with the phase functions applied and lights the ground with direct sunlight; later
-// orders read Delta S and Delta E of the order before.
+// `bruneton/precompute.rs`). Order 2 (`previous_is_single`) reads single scattering with
+// the phase functions applied and lights the ground with direct sunlight; later orders
+// read Delta S and Delta E of the order before.
 
 #import sky/bruneton/tables.wgsl
 #import common/phase.wgsl
@@ -11,14 +11,14 @@
 // Radiance of the previous order seen from (q, r) along mu towards nu, sky part only.
 fn previous_radiance(q: f32, r: f32, mu: f32, mu_s: f32, nu: f32, ground: bool) -> vec3<f32> {
     let p = table_position(q, r, r * mu, mu_s, nu, ground);
-    if bruneton.flags.z == 1u {
-        var l = rayleigh_phase(nu) * table4(bruneton.offsets_a.y, p);
-        if bruneton.flags.y == 1u {
-            l += mie_phase(nu) * table4(bruneton.offsets_a.z, p);
+    if bruneton.previous_is_single == 1u {
+        var l = rayleigh_phase(nu) * table4(bruneton.single_rayleigh_offset, p);
+        if bruneton.mie_on == 1u {
+            l += mie_phase(nu) * table4(bruneton.single_mie_offset, p);
         }
         return l;
     }
-    return table4(bruneton.offsets_b.x, p);
+    return table4(bruneton.delta_s_offset, p);
 }
 
 // Radiance of the previous order arriving at (q, r) from direction (mu, nu): its
@@ -31,10 +31,10 @@ fn incoming(q: f32, r: f32, mu: f32, mu_s: f32, nu: f32, ground: bool) -> vec3<f
         let d = ground_distance(q, r * mu);
         let mu_s_g = clamp((r * mu_s + d * nu) / bottom, -1.0, 1.0);
         var e: vec3<f32>;
-        if bruneton.flags.z == 1u {
+        if bruneton.previous_is_single == 1u {
             e = sun_transmittance(0.0, bottom, mu_s_g) * max(mu_s_g, 0.0);
         } else {
-            e = irradiance_at(bruneton.offsets_b.z, 0.0, bottom, mu_s_g);
+            e = irradiance_at(bruneton.delta_e_offset, 0.0, bottom, mu_s_g);
         }
         let t = exp(-optical_depth(segment_column(q, r, r * mu, d, true)));
         l += t * (atmosphere.ground_albedo / PI) * e;

@@ -1,5 +1,5 @@
 // Delta S of an order: T Delta J integrated along every texel's ray (Bruneton and Neyret
-// 2008, Eq. 7 and Algorithm 4.1 line 8) by the trapezoid rule on the nodes of
+// 2008, section 4, Eq. 7 and Algorithm 4.1 line 8) by the trapezoid rule on the nodes of
 // `sky/bruneton/ray_nodes.wgsl`: the GPU twin of `Builder::scattering_of` (atmosphere-core
 // `bruneton/precompute.rs`). One invocation per texel. At each node Delta J is
 // interpolated in (r, mu), then in mu_s and nu, as the CPU does. The CPU computes the
@@ -13,14 +13,14 @@
 
 @group(0) @binding(6) var delta_j: texture_3d<f32>;
 // x: the first texel of this dispatch. An order's Delta S is dispatched in slices of
-// texels (`SLICE_TEXELS` of bruneton_pass.rs), so that a progressive build can spread
-// it over frames.
+// texels (`SLICE_TEXELS` of render-wgpu's `sky/bruneton/workgroups.rs`), so that a
+// progressive build can spread it over frames.
 @group(0) @binding(7) var<uniform> slice: vec4<u32>;
 
 // Delta J of nu slice `inu` at mu_s texel `imus` interpolated in (r, mu) at `p`: the
 // CPU's plane entry (`scattering_of`), corner weights and order as there.
 fn plane_entry(p: Position, imus: u32, inu: u32) -> vec3<f32> {
-    let at = vec3<u32>(inu * bruneton.size.z + imus, p.mu.i, p.r.i);
+    let at = texture_texel(p.r.i, p.mu.i, imus, inu);
     let wr = p.r.w;
     let wm = p.mu.w;
     return (1.0 - wr) * (1.0 - wm) * textureLoad(delta_j, at, 0).xyz
@@ -32,24 +32,23 @@ fn plane_entry(p: Position, imus: u32, inu: u32) -> vec3<f32> {
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = slice.x + id.x;
-    if index >= bruneton.offsets_c.z {
+    if index >= bruneton.scattering_texels {
         return;
     }
-    let size = bruneton.size;
     let tx = texel_of_index(index);
     let ray = row_ray(tx);
-    let nu_axis = axis(u_nu(tx.nu), size.w);
-    let n = bruneton.flags.x;
+    let nu_axis = axis(u_nu(tx.nu), bruneton.nu_size);
+    let n = bruneton.view_samples;
     var column = vec3<f32>(0.0);
     var previous = vec3<f32>(0.0);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i <= n; i++) {
         let node = ray_node(ray, i, n, &column, &previous);
         let p = table_position(node.q, node.r, ray.r_mu + node.t, 0.0, 0.0, ray.ground);
-        let s = axis(u_mu_s(node_sun_cosine(ray, node, tx.mu_s, tx.nu)), size.z);
+        let s = axis(u_mu_s(node_sun_cosine(ray, node, tx.mu_s, tx.nu)), bruneton.mu_s_size);
         let a = mix(plane_entry(p, s.i, nu_axis.i), plane_entry(p, s.i + 1u, nu_axis.i), s.w);
         let b = mix(plane_entry(p, s.i, nu_axis.i + 1u), plane_entry(p, s.i + 1u, nu_axis.i + 1u), s.w);
         sum += node.weighted_transmittance * mix(a, b, nu_axis.w);
     }
-    store[bruneton.offsets_b.x + index] = vec4<f32>(sum, 0.0);
+    store[bruneton.delta_s_offset + index] = vec4<f32>(sum, 0.0);
 }

@@ -1,5 +1,5 @@
 // Delta J of the next order, the light scattered at each point and direction by the
-// previous order's radiance (Bruneton and Neyret 2008, Eq. 7 and Algorithm 4.1 line 6):
+// previous order's radiance (Bruneton and Neyret 2008, section 4, Eq. 7 and Algorithm 4.1 line 6):
 // the GPU twin of `Builder::scattering_density` (atmosphere-core
 // `bruneton/precompute.rs`), which is its specification.
 //
@@ -20,22 +20,21 @@
 
 // The moments of pair (ir, imus) start at this store index.
 fn moments_base(ir: u32, imus: u32) -> u32 {
-    return bruneton.offsets_c.x + 7u * (ir + bruneton.size.x * imus);
+    return bruneton.moments_offset + 7u * (ir + bruneton.r_size * imus);
 }
 
 @compute @workgroup_size(64)
 fn moments(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = bruneton.size;
-    if id.x >= size.x * size.z {
+    if id.x >= bruneton.r_size * bruneton.mu_s_size {
         return;
     }
-    let ir = id.x % size.x;
-    let imus = id.x / size.x;
+    let ir = id.x % bruneton.r_size;
+    let imus = id.x / bruneton.r_size;
     let tx = texel(ir, 0u, imus, 0u);
     let sin_s = safe_sqrt(1.0 - tx.mu_s * tx.mu_s);
     let theta_h = acos(horizon_mu_of(tx.q, tx.r));
-    let panels = bruneton.irradiance_size.z;
-    let phis = bruneton.irradiance_size.w;
+    let panels = bruneton.sphere_panels;
+    let phis = bruneton.sphere_azimuths;
     let phi_step = PI / f32(phis);
     var m: array<vec3<f32>, 7>;
     for (var j = 0u; j < 7u; j++) {
@@ -74,18 +73,16 @@ fn moments(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= bruneton.offsets_c.z {
+    if id.x >= bruneton.scattering_texels {
         return;
     }
-    let size = bruneton.size;
-    let imus = id.x % size.z;
-    let ir = (id.x / size.z) % size.x;
-    let tx = texel_of_index(id.x);
+    let c = texel_coords(id.x);
+    let tx = texel(c.r, c.mu, c.mu_s, c.nu);
     let sin_s = safe_sqrt(1.0 - tx.mu_s * tx.mu_s);
     let vx = select(0.0, (tx.nu - tx.mu * tx.mu_s) / sin_s, sin_s > 1e-9);
     let vy = safe_sqrt(1.0 - tx.mu * tx.mu - vx * vx);
     let vz = tx.mu;
-    let base = moments_base(ir, imus);
+    let base = moments_base(c.r, c.mu_s);
     let l0 = store[base].xyz;
     let fx = store[base + 1u].xyz;
     let fz = store[base + 2u].xyz;
@@ -93,17 +90,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         + store[base + 5u].xyz * (vz * vz) + store[base + 6u].xyz * (2.0 * vx * vz);
     let rho = density_at(tx.q / (tx.r + atmosphere.bottom_radius_m));
     var j = atmosphere.rayleigh_scattering_per_m.xyz * (rho.x * 3.0 / (16.0 * PI)) * (l0 + q);
-    if bruneton.flags.y == 1u {
-        let dm = bruneton.delta_m;
+    if bruneton.mie_on == 1u {
         let l_v = incoming(tx.q, tx.r, tx.mu, tx.mu_s, tx.nu, tx.ground);
         let p1 = vx * fx + vz * fz;
         let p2 = 0.5 * (3.0 * q - l0);
-        let j_m = dm.x * l_v + (1.0 - dm.x) / (4.0 * PI) * (l0 + 3.0 * dm.y * p1 + 5.0 * dm.z * p2);
+        let f = bruneton.mie_forward_fraction;
+        let j_m = f * l_v + (1.0 - f) / (4.0 * PI) * (l0 + 3.0 * bruneton.mie_chi1 * p1 + 5.0 * bruneton.mie_chi2 * p2);
         j += atmosphere.mie_scattering_per_m.xyz * rho.y * max(j_m, vec3<f32>(0.0));
     }
     let value = vec4<f32>(max(j, vec3<f32>(0.0)), 0.0);
-    store[bruneton.offsets_b.y + id.x] = value;
-    let imu = (id.x / (size.z * size.x)) % size.y;
-    let inu = id.x / (size.z * size.x * size.y);
-    textureStore(delta_j_out, vec3<u32>(inu * size.z + imus, imu, ir), value);
+    store[bruneton.delta_j_offset + id.x] = value;
+    textureStore(delta_j_out, texture_texel(c.r, c.mu, c.mu_s, c.nu), value);
 }

@@ -2,8 +2,8 @@
 // pass reads: S(r, mu, mu_s, nu) at texel (x = nu * mu_s_size + mu_s, y = mu, z = r),
 // Rgba32Float (the f32 of the CPU's `Table4`, so no rounding is added). Three textures:
 // single Rayleigh and single Mie without phase functions, orders two and up. Also the
-// irradiance table E into a 2D texture (x = mu_s, y = r): lavapipe reads a storage
-// buffer at a computed index lane by lane, several times slower than a texel read.
+// irradiance table E into a 2D texture (x = mu_s, y = r), which the pass reads faster
+// than the store (a CPU adapter reads a storage buffer at a computed index lane by lane).
 
 #import sky/bruneton/tables.wgsl
 
@@ -14,24 +14,18 @@
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let n_e = bruneton.irradiance_size;
-    if id.x < n_e.x * n_e.y {
-        let at_e = vec2<u32>(id.x % n_e.x, id.x / n_e.x);
-        textureStore(irradiance, at_e, vec4<f32>(store[bruneton.offsets_b.w + id.x].xyz, 1.0));
+    if id.x < bruneton.irradiance_mu_s_size * bruneton.irradiance_r_size {
+        let at_e = vec2<u32>(id.x % bruneton.irradiance_mu_s_size, id.x / bruneton.irradiance_mu_s_size);
+        textureStore(irradiance, at_e, vec4<f32>(store[bruneton.irradiance_offset + id.x].xyz, 1.0));
     }
-    if id.x >= bruneton.offsets_c.z {
+    if id.x >= bruneton.scattering_texels {
         return;
     }
-    let size = bruneton.size;
-    let imus = id.x % size.z;
-    let rest = id.x / size.z;
-    let ir = rest % size.x;
-    let imu = (rest / size.x) % size.y;
-    let inu = rest / (size.x * size.y);
-    let at = vec3<u32>(inu * size.z + imus, imu, ir);
-    textureStore(single_rayleigh, at, vec4<f32>(store[bruneton.offsets_a.y + id.x].xyz, 1.0));
-    textureStore(multiple, at, vec4<f32>(store[bruneton.offsets_a.w + id.x].xyz, 1.0));
-    if bruneton.flags.y == 1u {
-        textureStore(single_mie, at, vec4<f32>(store[bruneton.offsets_a.z + id.x].xyz, 1.0));
+    let c = texel_coords(id.x);
+    let at = texture_texel(c.r, c.mu, c.mu_s, c.nu);
+    textureStore(single_rayleigh, at, vec4<f32>(store[bruneton.single_rayleigh_offset + id.x].xyz, 1.0));
+    textureStore(multiple, at, vec4<f32>(store[bruneton.multiple_offset + id.x].xyz, 1.0));
+    if bruneton.mie_on == 1u {
+        textureStore(single_mie, at, vec4<f32>(store[bruneton.single_mie_offset + id.x].xyz, 1.0));
     }
 }

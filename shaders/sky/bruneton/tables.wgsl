@@ -2,18 +2,10 @@
 // atmosphere-core's `bruneton/tables.rs` (`Table4::lookup`, `IrradianceTable::lookup`,
 // `DensityTable::at`) and of the transmittance helpers of `bruneton/precompute.rs`.
 //
-// Every table being built lives in one storage buffer, the store, at the offsets of
-// `BrunetonParams` (vec4 per texel, rgb = the three channels), indexed as on the CPU so
-// that a table read back compares texel by texel. The transmittance tables are the
-// `columns` (binding 3) and transmittance (binding 5) outputs of
-// `sky/transmittance_table.wgsl`, 256 x 64.
+// The tables and the store are bound as `sky/bruneton/bindings.wgsl` declares.
 
 #import sky/bruneton/parameterization.wgsl
 #import common/transmittance_lookup.wgsl
-
-@group(0) @binding(3) var transmittance_columns: texture_2d<f32>;
-@group(0) @binding(4) var<storage, read_write> store: array<vec4<f32>>;
-@group(0) @binding(5) var transmittance: texture_2d<f32>;
 
 // Trilinear interpolation over (r, mu, mu_s) in nu slice `inu` (`Table4::slice`).
 fn table4_slice(base: u32, p: Position, inu: u32) -> vec3<f32> {
@@ -41,29 +33,25 @@ fn table4(base: u32, p: Position) -> vec3<f32> {
 // Bilinear interpolation of the irradiance table at `base` at (q, r, mu_s)
 // (`IrradianceTable::lookup`).
 fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
-    let n = bruneton.irradiance_size;
     let bottom = atmosphere.bottom_radius_m;
     let x_r = clamp(q / (r + bottom) / (atmosphere.top_radius_m - bottom), 0.0, 1.0);
     let x_mu_s = clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0);
-    let ar = axis(x_r, n.y);
-    let am = axis(x_mu_s, n.x);
-    let i = base + ar.i * n.x + am.i;
+    let ar = axis(x_r, bruneton.irradiance_r_size);
+    let am = axis(x_mu_s, bruneton.irradiance_mu_s_size);
+    let i = base + ar.i * bruneton.irradiance_mu_s_size + am.i;
     let lower = mix(store[i].xyz, store[i + 1u].xyz, am.w);
-    let upper = mix(store[i + n.x].xyz, store[i + n.x + 1u].xyz, am.w);
+    let upper = mix(store[i + bruneton.irradiance_mu_s_size].xyz, store[i + bruneton.irradiance_mu_s_size + 1u].xyz, am.w);
     return mix(lower, upper, ar.w);
 }
 
-// Relative densities at `altitude_m` from the density table (`DensityTable::at`, 8192
-// samples over the atmosphere's thickness), read from its copy in a 1D texture
-// (binding 12): lavapipe reads a storage buffer at a computed index lane by lane, with
-// a bounds check per component, several times slower than a texel read, and the
-// trapezoid nodes read it twice per node and texel.
+// Samples of the density table (`DensityTable::SAMPLES`), evenly spaced over the
+// atmosphere's thickness.
 const DENSITY_SAMPLES: u32 = 8192u;
 
-@group(0) @binding(12) var density_table: texture_1d<f32>;
-
+// Relative densities at `altitude_m` from the density table (`DensityTable::at`), read
+// from its copy in a 1D texture: the trapezoid nodes read it twice per node and texel.
 fn density_at(altitude_m: f32) -> vec3<f32> {
-    let f = clamp(altitude_m / bruneton.density.x, 0.0, f32(DENSITY_SAMPLES - 1u));
+    let f = clamp(altitude_m / bruneton.density_step_m, 0.0, f32(DENSITY_SAMPLES - 1u));
     let i = min(u32(f), DENSITY_SAMPLES - 2u);
     return mix(textureLoad(density_table, i, 0).xyz, textureLoad(density_table, i + 1u, 0).xyz, f - f32(i));
 }

@@ -14,12 +14,11 @@
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = bruneton.size;
-    if id.x >= 3u * size.w || id.y >= size.y {
+    if id.x >= 3u * bruneton.nu_size || id.y >= bruneton.mu_size {
         return;
     }
-    let k = id.x / size.w;
-    let inu = id.x % size.w;
+    let k = id.x / bruneton.nu_size;
+    let inu = id.x % bruneton.nu_size;
     // As `bruneton_radiance` finds r and mu_s for a camera inside the atmosphere.
     let q = frame.camera_height.x;
     let r = radius_of_q(q);
@@ -31,7 +30,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             value = texture_row(single_rayleigh, p, id.y, inu);
         }
         case 1u: {
-            if bruneton.flags.y == 1u {
+            if bruneton.mie_on == 1u {
                 value = texture_row(single_mie, p, id.y, inu);
             }
         }

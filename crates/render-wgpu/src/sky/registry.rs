@@ -4,7 +4,7 @@ use atmosphere_core::models::id::ModelId;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
-use crate::sky::bruneton::BrunetonPass;
+use crate::sky::bruneton::pass::BrunetonPass;
 use crate::sky::dobashi::DobashiPass;
 use crate::sky::hillaire::HillairePass;
 use crate::sky::model_pass::ModelPass;

@@ -1,0 +1,254 @@
+//! The bruneton model behind the [`ModelPass`] trait: the frame's plan (which tables its
+//! atmosphere makes stale, which share of a progressive build it records) and the
+//! recording of each step.
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::spectra::Spectra;
+use atmosphere_core::models::bruneton::BrunetonSettings;
+
+use crate::frame::Frame;
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM, check_wavelengths};
+use crate::frame::plan::{FramePlan, StepKind};
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::{GpuError, RenderError};
+use crate::sky::bruneton::encode::StepEncoder;
+use crate::sky::bruneton::order_state::OrderState;
+use crate::sky::bruneton::orders::encode_orders;
+use crate::sky::bruneton::pipelines::Pipelines;
+use crate::sky::bruneton::progressive::{Recording, Share};
+use crate::sky::bruneton::step::BrunetonStep;
+use crate::sky::bruneton::tables::Tables;
+use crate::sky::bruneton::uniform::BrunetonUniform;
+use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::sky::table_sampling::TableSampling;
+
+/// What the last plan decided for the frame whose steps are encoded.
+#[derive(Debug)]
+pub(super) struct PlannedFrame {
+    /// The frame's atmosphere, as the tables are built from it.
+    pub atmosphere: Atmosphere,
+    /// The same as the shaders read it.
+    pub atmosphere_uniform: AtmosphereUniform,
+    /// Whether Mie is computed (`Spectra::needs_mie`), or was in the tables as built.
+    pub mie: bool,
+    /// The part of the loop over orders recorded, when the plan lists it.
+    pub recording: Recording,
+    /// Whether the camera is inside the atmosphere (the view slice and the `inside`
+    /// pass).
+    pub inside: bool,
+}
+
+/// The steps' pipelines and the tables; see the module documentation of
+/// [`crate::sky::bruneton`].
+#[derive(Debug)]
+pub struct BrunetonPass {
+    pub(super) pipelines: Pipelines,
+    /// How the pass reads its tables.
+    pub(super) sampling: TableSampling,
+    /// The tables of the last plan's sizes.
+    pub(super) tables: Option<Tables>,
+    pub(super) frame: Option<PlannedFrame>,
+    /// Whether the loop over orders is spread over frames ([`ModelPass::set_progressive`]).
+    progressive: bool,
+}
+
+impl BrunetonPass {
+    pub fn new(gpu: &GpuContext) -> Result<BrunetonPass, GpuError> {
+        // The pass may sample the columns table, the view slice and E.
+        let sampling = TableSampling::new(gpu);
+        Ok(BrunetonPass {
+            pipelines: Pipelines::new(gpu, &sampling)?,
+            sampling,
+            tables: None,
+            frame: None,
+            progressive: false,
+        })
+    }
+
+    /// The tables as last built, or an error before the first plan.
+    pub(super) fn tables(&self) -> Result<&Tables, RenderError> {
+        self.tables
+            .as_ref()
+            .ok_or_else(|| RenderError::Frame("the bruneton tables are not built yet".into()))
+    }
+
+    /// The frame the last plan decided on, with its tables.
+    pub(super) fn planned(&self) -> Result<(&Tables, &PlannedFrame), RenderError> {
+        match (self.tables()?, self.frame.as_ref()) {
+            (tables, Some(frame)) => Ok((tables, frame)),
+            (_, None) => Err(RenderError::Frame("no bruneton frame is planned".into())),
+        }
+    }
+
+    /// Records `step` of the last plan, timed by `timestamps` when given, and notes what
+    /// the tables it builds were built from.
+    pub(super) fn encode_step(
+        &mut self,
+        step: BrunetonStep,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let (Some(tables), Some(frame)) = (self.tables.as_mut(), self.frame.as_ref()) else {
+            unreachable!("the plan makes the tables before its steps are encoded");
+        };
+        let steps = StepEncoder {
+            gpu,
+            io,
+            tables,
+            pipelines: &self.pipelines,
+            sampling: &self.sampling,
+        };
+        let atmosphere = &frame.atmosphere_uniform;
+        match step {
+            BrunetonStep::Transmittance => {
+                tables.columns.encode(gpu, atmosphere, encoder, timestamps)
+            }
+            BrunetonStep::SunTransmittance => tables
+                .transmittance
+                .encode(gpu, atmosphere, encoder, timestamps),
+            BrunetonStep::Density => steps.density(encoder, timestamps),
+            BrunetonStep::SingleScattering => steps.single_scattering(encoder, timestamps),
+            BrunetonStep::ScatteringOrders => encode_orders(
+                gpu,
+                io,
+                tables,
+                &self.pipelines,
+                frame.recording,
+                encoder,
+                timestamps,
+            ),
+            BrunetonStep::ScatteringTexture => steps.scattering_texture(encoder, timestamps),
+            BrunetonStep::ViewSlice => steps.view_slice(encoder, timestamps),
+            BrunetonStep::Render => steps.render(frame.inside, encoder, timestamps),
+        }
+        let built = &mut tables.built;
+        let atmosphere = || Some(frame.atmosphere.clone());
+        match step {
+            BrunetonStep::Transmittance => built.columns = atmosphere(),
+            BrunetonStep::SunTransmittance => built.sun = atmosphere(),
+            BrunetonStep::SingleScattering => built.single = atmosphere(),
+            BrunetonStep::ScatteringOrders => {
+                if frame.recording.starts() {
+                    built.orders = Some((frame.atmosphere.clone(), frame.mie));
+                }
+                tables.next = frame.recording.next(tables.slices, tables.max_orders);
+            }
+            BrunetonStep::Density
+            | BrunetonStep::ScatteringTexture
+            | BrunetonStep::ViewSlice
+            | BrunetonStep::Render => {}
+        }
+    }
+}
+
+impl ModelPass for BrunetonPass {
+    fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        plan: &mut FramePlan,
+    ) -> Result<(), RenderError> {
+        check_wavelengths(&frame.settings.wavelengths_nm)?;
+        let settings = BrunetonSettings::from_options(&frame.settings.options)?;
+        let max_orders = frame.settings.max_orders.unwrap_or(settings.order_limit);
+        let atmosphere_uniform = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
+        let tables = match &mut self.tables {
+            Some(t) if t.settings == settings && t.max_orders == max_orders => t,
+            slot => slot.insert(Tables::new(gpu, &settings, max_orders)?),
+        };
+        let atmosphere = &frame.atmosphere;
+        let stale = tables.built.stale(atmosphere);
+        // The loop over orders starts again when its inputs changed, and a progressive
+        // build under way is done in one go once progressive building is off.
+        let orders = stale.orders || (tables.next.is_some() && !self.progressive);
+        // Before an order after the second, whether the GPU has ended the loop (a read of
+        // its state, the last frame's work done): the orders after it would add nothing.
+        let ask = !orders && tables.next.is_some_and(|n| n.part == 0 && n.order > 2);
+        let ended = ask && tables.read_state(gpu)?.running == 0;
+        if orders || ended {
+            tables.next = None;
+        }
+        let recording = match (self.progressive, orders) {
+            (false, true) => Some(Recording::All),
+            (true, true) => Some(Recording::Share(Share::FIRST)),
+            (_, false) => tables.next.map(Recording::Share),
+        };
+        let (slices, max_orders) = (tables.slices, tables.max_orders);
+        let refresh = recording.is_some_and(|r| r.ends_order(slices));
+        plan.build_if(BrunetonStep::Transmittance.name(), stale.columns);
+        plan.build_if(BrunetonStep::Density.name(), stale.columns);
+        plan.build_if(BrunetonStep::SunTransmittance.name(), stale.sun);
+        plan.build_if(BrunetonStep::SingleScattering.name(), stale.single);
+        plan.build_if(BrunetonStep::ScatteringOrders.name(), recording.is_some());
+        plan.build_if(BrunetonStep::ScatteringTexture.name(), refresh);
+        let inside = frame.camera_position_m.length() <= atmosphere.top_radius_m;
+        if inside {
+            plan.run(BrunetonStep::ViewSlice.name(), StepKind::Pass);
+        }
+        plan.run(BrunetonStep::Render.name(), StepKind::Pass);
+        plan.building = match recording {
+            Some(Recording::Share(s)) if s.after(slices, max_orders).is_some() => {
+                Some(s.describe(slices, max_orders))
+            }
+            _ => None,
+        };
+        // Mie pruning as built (a frame that rebuilds nothing renders what was built).
+        let mie = if orders {
+            Spectra::new(atmosphere, RGB_WAVELENGTHS_NM.as_slice()).needs_mie(frame.settings.prune)
+        } else {
+            tables.built.mie()
+        };
+        let uniform = BrunetonUniform::new(
+            &tables.settings,
+            &tables.layout,
+            max_orders,
+            atmosphere,
+            mie,
+        );
+        tables.write_params(gpu, &uniform);
+        if orders {
+            let irradiance_texels = uniform.irradiance_texels;
+            let state = OrderState::initial(tables.settings.scattering_size, irradiance_texels);
+            gpu.queue
+                .write_buffer(&tables.state, 0, bytemuck::bytes_of(&state));
+        }
+        self.frame = Some(PlannedFrame {
+            atmosphere: atmosphere.clone(),
+            atmosphere_uniform,
+            mie,
+            recording: recording.unwrap_or(Recording::All),
+            inside,
+        });
+        Ok(())
+    }
+
+    fn encode(
+        &mut self,
+        step: &'static str,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let Some(step) = BrunetonStep::from_name(step) else {
+            unreachable!("the bruneton plan has no step {step}");
+        };
+        self.encode_step(step, gpu, io, encoder, timestamps);
+    }
+
+    /// On: the loop over orders spreads over frames: the first frame builds every table
+    /// up to single scattering (S's multiple part zero), each later one a share of an
+    /// order ([`Share`]: Delta J and Delta E, then each Delta S slice, the last with the
+    /// order's accumulation), the scattering textures refreshed after each order, until
+    /// the order limit or the GPU's end of the loop. Off: the whole build in one frame;
+    /// a build under way is finished at the next frame.
+    fn set_progressive(&mut self, on: bool) {
+        self.progressive = on;
+    }
+
+    fn table_bytes(&self) -> u64 {
+        self.tables.as_ref().map_or(0, Tables::bytes)
+    }
+}

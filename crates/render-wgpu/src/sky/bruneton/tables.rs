@@ -1,0 +1,243 @@
+//! The GPU resources of one set of table sizes: the store and the loop's state, the
+//! transmittance tables, the textures the shaders read, and the progressive build's
+//! position.
+
+use atmosphere_core::models::bruneton::BrunetonSettings;
+
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::RenderError;
+use crate::gpu::pipeline::{texture_2d, uniform_buffer};
+use crate::sky::bruneton::built::Built;
+use crate::sky::bruneton::order_state::{MAX_ORDERS, OrderState};
+use crate::sky::bruneton::progressive::Share;
+use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout};
+use crate::sky::bruneton::uniform::BrunetonUniform;
+use crate::sky::bruneton::workgroups::{FLAT, ROW_TEXELS, delta_s_slices};
+use crate::sky::transmittance::{TableOutput, TransmittancePass};
+
+/// The tables of one set of sizes.
+#[derive(Debug)]
+pub struct Tables {
+    pub settings: BrunetonSettings,
+    pub max_orders: u32,
+    pub layout: StoreLayout,
+    pub columns: TransmittancePass,
+    pub transmittance: TransmittancePass,
+    pub store: wgpu::Buffer,
+    /// [`OrderState`], also the indirect dispatch sizes of the loop's steps.
+    pub state: wgpu::Buffer,
+    /// The parameters of order 2 (`previous_is_single` = 1) and of every other step.
+    pub params_first: wgpu::Buffer,
+    pub params: wgpu::Buffer,
+    /// Single Rayleigh, single Mie, multiple.
+    pub textures: [wgpu::Texture; 3],
+    /// E, copied from the store with S for the pass's reads.
+    pub irradiance: wgpu::Texture,
+    /// The density table, copied from the store for the shaders' reads.
+    pub density: wgpu::Texture,
+    /// Delta J as a 3D texture like S's, written with the store's copy, read by Delta S.
+    pub delta_j: wgpu::Texture,
+    /// The first texel of each Delta S slice (`vec4<u32>`, x), one per uniform offset
+    /// alignment.
+    pub slice_starts: wgpu::Buffer,
+    /// Bytes between two slices' starts in `slice_starts`.
+    pub slice_stride: u64,
+    /// Delta S slices per order.
+    pub slices: u32,
+    /// S of the three textures at the camera's r and mu_s per (mu, nu) node, side by
+    /// side (`sky/bruneton/view_slice.wgsl`).
+    pub view_slice: wgpu::Texture,
+    pub built: Built,
+    /// The share of the loop over orders that the next progressive frame records;
+    /// `None` when no progressive build is under way.
+    pub next: Option<Share>,
+}
+
+/// Why the GPU cannot build tables of `settings` with `max_orders`, if it cannot.
+fn check_limits(
+    gpu: &GpuContext,
+    settings: &BrunetonSettings,
+    max_orders: u32,
+    layout: &StoreLayout,
+) -> Result<(), RenderError> {
+    let s = settings.scattering_size;
+    if s.mu_s * s.nu > ROW_TEXELS {
+        return Err(RenderError::Unsupported(format!(
+            "bruneton mu_s x nu = {} texels per row (the GPU's row workgroup holds {ROW_TEXELS})",
+            s.mu_s * s.nu
+        )));
+    }
+    if max_orders > MAX_ORDERS {
+        return Err(RenderError::Unsupported(format!(
+            "{max_orders} scattering orders (the GPU records at most {MAX_ORDERS})"
+        )));
+    }
+    let limits = gpu.device.limits();
+    let groups = (s.texels() as u64).div_ceil(u64::from(FLAT));
+    if layout.bytes() > limits.max_storage_buffer_binding_size
+        || groups > u64::from(limits.max_compute_workgroups_per_dimension)
+        || (s.r * s.mu) as u64 > u64::from(limits.max_compute_workgroups_per_dimension)
+    {
+        return Err(RenderError::Unsupported(format!(
+            "bruneton tables of {s:?}: {} bytes of tables being built, more than the device's \
+             storage buffer or workgroup limits allow",
+            layout.bytes()
+        )));
+    }
+    Ok(())
+}
+
+impl Tables {
+    /// The tables for `settings`, or why the GPU cannot hold them.
+    pub fn new(
+        gpu: &GpuContext,
+        settings: &BrunetonSettings,
+        max_orders: u32,
+    ) -> Result<Tables, RenderError> {
+        let s = settings.scattering_size;
+        let (e_mu_s, e_r) = settings.irradiance_size;
+        let layout = StoreLayout::new(s, e_mu_s * e_r);
+        check_limits(gpu, settings, max_orders, &layout)?;
+        let device = &gpu.device;
+        let (slices, slice_texels) = delta_s_slices(s.texels() as u32);
+        let slice_stride = u64::from(device.limits().min_uniform_buffer_offset_alignment).max(16);
+        let slice_starts = uniform_buffer(
+            device,
+            "bruneton Delta S slices",
+            (slice_stride * u64::from(slices)) as usize,
+        );
+        for k in 0..slices {
+            gpu.queue.write_buffer(
+                &slice_starts,
+                slice_stride * u64::from(k),
+                bytemuck::bytes_of(&[k * slice_texels, 0, 0, 0]),
+            );
+        }
+        let (t_width, t_height) = (
+            settings.transmittance_size.0 as u32,
+            settings.transmittance_size.1 as u32,
+        );
+        let scattering_texture = |label| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: (s.nu * s.mu_s) as u32,
+                    height: s.mu as u32,
+                    depth_or_array_layers: s.r as u32,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D3,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let storage_2d = |label, size| {
+            texture_2d(
+                device,
+                label,
+                size,
+                wgpu::TextureFormat::Rgba32Float,
+                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+        };
+        Ok(Tables {
+            settings: settings.clone(),
+            max_orders,
+            layout,
+            columns: TransmittancePass::with(gpu, TableOutput::Columns, t_width, t_height)?,
+            transmittance: TransmittancePass::with(
+                gpu,
+                TableOutput::Transmittance,
+                t_width,
+                t_height,
+            )?,
+            store: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("bruneton store"),
+                size: layout.bytes(),
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            state: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("bruneton order state"),
+                size: size_of::<OrderState>() as u64,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::INDIRECT
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            params_first: uniform_buffer(device, "bruneton order 2", size_of::<BrunetonUniform>()),
+            params: uniform_buffer(device, "bruneton", size_of::<BrunetonUniform>()),
+            density: device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("bruneton densities"),
+                size: Self::density_extent(),
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D1,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            }),
+            delta_j: scattering_texture("bruneton Delta J"),
+            irradiance: storage_2d("bruneton irradiance", (e_mu_s as u32, e_r as u32)),
+            view_slice: storage_2d("bruneton view slice", (3 * s.nu as u32, s.mu as u32)),
+            textures: [
+                scattering_texture("bruneton single Rayleigh"),
+                scattering_texture("bruneton single Mie"),
+                scattering_texture("bruneton multiple scattering"),
+            ],
+            slice_starts,
+            slice_stride,
+            slices,
+            built: Built::default(),
+            next: None,
+        })
+    }
+
+    /// The size of the density table's texture.
+    pub fn density_extent() -> wgpu::Extent3d {
+        wgpu::Extent3d {
+            width: DENSITY_SAMPLES,
+            height: 1,
+            depth_or_array_layers: 1,
+        }
+    }
+
+    /// Views of the three scattering textures (single Rayleigh, single Mie, multiple).
+    pub fn scattering_views(&self) -> [wgpu::TextureView; 3] {
+        self.textures
+            .each_ref()
+            .map(|t| t.create_view(&Default::default()))
+    }
+
+    /// Writes the parameters of every step for `uniform`, those of order 2 with
+    /// `previous_is_single` set.
+    pub fn write_params(&self, gpu: &GpuContext, uniform: &BrunetonUniform) {
+        let first = BrunetonUniform {
+            previous_is_single: 1,
+            ..*uniform
+        };
+        gpu.queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(uniform));
+        gpu.queue
+            .write_buffer(&self.params_first, 0, bytemuck::bytes_of(&first));
+    }
+
+    /// Bytes of GPU memory the tables hold.
+    pub fn bytes(&self) -> u64 {
+        let s = self.settings.scattering_size;
+        let (e_mu_s, e_r) = self.settings.irradiance_size;
+        let (w, h) = self.settings.transmittance_size;
+        self.layout.bytes()
+            + 3 * 16 * s.texels() as u64
+            + 2 * 16 * (w * h) as u64
+            + 3 * 16 * (s.nu * s.mu) as u64
+            + 16 * (e_mu_s * e_r) as u64
+    }
+}

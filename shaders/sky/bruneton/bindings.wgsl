@@ -1,0 +1,71 @@
+// The bindings every bruneton shader shares (render-wgpu's `sky/bruneton/bindings.rs`):
+// the atmosphere (binding 0, `common/atmosphere_params.wgsl`), the model's parameters,
+// the transmittance tables, the store and the density table. Each shader's own resources
+// follow from binding 6 on.
+
+#import common/atmosphere_params.wgsl
+
+// The parameters of the model's shaders (render-wgpu's `BrunetonUniform`). Offsets and
+// texel counts are in texels of the store (`vec4<f32>`).
+struct BrunetonParams {
+    // Texels of S along r, mu, mu_s and nu.
+    r_size: u32,
+    mu_size: u32,
+    mu_s_size: u32,
+    nu_size: u32,
+    // Texels of E along mu_s and r.
+    irradiance_mu_s_size: u32,
+    irradiance_r_size: u32,
+    // The sphere integrals: Gauss-Legendre panels of 8 zenith angles on each side of the
+    // horizon, and azimuths over [0, pi].
+    sphere_panels: u32,
+    sphere_azimuths: u32,
+    // Trapezoid intervals along each texel's ray.
+    view_samples: u32,
+    // 1 when Mie is computed (not pruned).
+    mie_on: u32,
+    // 1 for order 2: the previous order is single scattering, the previous irradiance
+    // direct sunlight.
+    previous_is_single: u32,
+    // The most orders.
+    max_orders: u32,
+    // The first texel of each table in the store.
+    density_offset: u32,
+    single_rayleigh_offset: u32,
+    single_mie_offset: u32,
+    multiple_offset: u32,
+    delta_s_offset: u32,
+    delta_j_offset: u32,
+    delta_e_offset: u32,
+    irradiance_offset: u32,
+    // The moments of Delta J (`sky/bruneton/scattering_density.wgsl`), and the partial
+    // sums of an order (`sky/bruneton/orders.wgsl`).
+    moments_offset: u32,
+    partials_offset: u32,
+    // Texels of S (and of each table of its size), and of E.
+    scattering_texels: u32,
+    irradiance_texels: u32,
+    // The delta-M Mie phase function: forward fraction, chi1, chi2.
+    mie_forward_fraction: f32,
+    mie_chi1: f32,
+    mie_chi2: f32,
+    // The share of all the table's radiance below which an order ends the loop.
+    order_threshold: f32,
+    // Step of the density table, m.
+    density_step_m: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+}
+
+@group(0) @binding(2) var<uniform> bruneton: BrunetonParams;
+// The columns of matter T(r, mu) and the transmittance table: the `columns` and
+// `transmittance` outputs of `sky/transmittance_table.wgsl`.
+@group(0) @binding(3) var transmittance_columns: texture_2d<f32>;
+@group(0) @binding(5) var transmittance: texture_2d<f32>;
+// The store: every table being built, each at its offset in `bruneton` (vec4 per texel,
+// rgb = the three channels), indexed as on the CPU so that a table read back compares
+// texel by texel.
+@group(0) @binding(4) var<storage, read_write> store: array<vec4<f32>>;
+// The density table, copied from the store into a 1D texture for the shaders' reads.
+@group(0) @binding(12) var density_table: texture_1d<f32>;
