@@ -21,8 +21,9 @@ use crate::gpu::timer::GpuTimer;
 use crate::post::luminance::LuminancePass;
 use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
-use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
+use crate::sky::sky_pass::SkyPass;
 use crate::terrain::pass::TerrainPass;
 
 /// Most steps a frame runs (table builds and passes), for the timer.
@@ -43,7 +44,7 @@ pub struct Renderer {
     atmosphere: wgpu::Buffer,
     frame: wgpu::Buffer,
     /// Every model used so far, with its tables.
-    models: Vec<(ModelId, Box<dyn ModelPass>)>,
+    models: Vec<(ModelId, Box<dyn SkyPass>)>,
     tone_map: ToneMapPass,
     /// The terrain's maps and chunks, loaded when a frame first asks for terrain.
     terrain: Option<TerrainPass>,
@@ -178,16 +179,14 @@ impl Renderer {
         frame.settings.validate()?;
         let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
         let mut plan = FramePlan::default();
-        // Terrain draws the surface first, unless the caller gives one.
+        // Terrain draws the surface first (step 0), unless the caller gives one.
         let draws_terrain = match (frame.terrain, surface) {
             (Some(options), None) => {
-                if self.terrain.is_none() {
-                    self.terrain = Some(TerrainPass::new(
-                        &self.gpu,
-                        frame.atmosphere.bottom_radius_m,
-                    )?);
-                }
-                let terrain = self.terrain.as_mut().expect("made above");
+                let terrain = match self.terrain.take() {
+                    Some(terrain) => terrain,
+                    None => TerrainPass::new(&self.gpu, frame.atmosphere.bottom_radius_m)?,
+                };
+                let terrain = self.terrain.insert(terrain);
                 let chunks = terrain.prepare(&self.gpu, frame, &options)?;
                 if chunks == 0 {
                     plan.skip("terrain", "no terrain in view");
@@ -236,6 +235,7 @@ impl Renderer {
             self.targets = Some(targets);
             return Err(e);
         }
+        let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
 
         let timer = self.timer.as_ref();
@@ -248,35 +248,23 @@ impl Renderer {
             has_surface: plan.surface,
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        for (index, step) in plan.steps.iter().enumerate() {
-            let index = index as u32;
-            if step.name == "terrain" {
-                let terrain = self.terrain.as_ref().expect("planned with terrain");
-                terrain.encode(
-                    gpu,
-                    &targets.surface,
-                    &mut encoder,
-                    timer.map(|t| t.render_writes(index)),
-                );
-            } else if step.name == "tone_map" {
-                self.tone_map.encode(
-                    gpu,
-                    &tone_map,
-                    &targets.hdr,
-                    &targets.ldr.create_view(&Default::default()),
-                    &mut encoder,
-                    timer.map(|t| t.render_writes(index)),
-                );
-            } else {
-                model.encode(
-                    step.name,
-                    gpu,
-                    &io,
-                    &mut encoder,
-                    timer.map(|t| t.compute_writes(index)),
-                );
-            }
+        if let Some(terrain) = self.terrain.as_ref().filter(|_| draws_terrain) {
+            terrain.encode(
+                gpu,
+                &targets.surface,
+                &mut encoder,
+                timer.map(|t| t.render_writes(0)),
+            );
         }
+        model.encode_planned(gpu, &io, &mut encoder, timer);
+        self.tone_map.encode(
+            gpu,
+            &tone_map,
+            &targets.hdr,
+            &targets.ldr.create_view(&Default::default()),
+            &mut encoder,
+            timer.map(|t| t.render_writes(tone_map_step)),
+        );
         let steps = plan.steps.len() as u32;
         if let Some(timer) = timer {
             timer.resolve(&mut encoder, steps);

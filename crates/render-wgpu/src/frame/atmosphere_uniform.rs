@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::gpu::error::{GpuError, RenderError};
 
-/// The wavelengths of the red, green and blue channels (DESIGN.md).
+/// The wavelengths of the red, green and blue channels, nm.
 pub const RGB_WAVELENGTHS_NM: [f64; 3] = [680.0, 550.0, 440.0];
 
 /// One density layer (WGSL `DensityLayer`), 32 bytes.

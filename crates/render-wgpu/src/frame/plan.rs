@@ -1,7 +1,11 @@
 //! The frame planner's record: which table builds and passes a frame runs, in order, and
-//! which it skips and why. Each model decides its own steps ([`crate::sky::model_pass`]); the
-//! renderer adds the tone map. Each step comes back with the frame, with its GPU time
-//! when the adapter can measure it.
+//! which it skips and why, by name. Each model decides its own steps (typed, in
+//! `crate::sky::steps`, which records them here); the renderer adds the terrain and the
+//! tone map. Each step comes back with the frame, with its GPU time when the adapter can
+//! measure it.
+
+/// Why a table build is skipped when nothing it depends on changed.
+pub const INPUTS_UNCHANGED: &str = "inputs unchanged";
 
 /// Whether a step builds a table or renders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,7 +56,7 @@ impl FramePlan {
         if stale {
             self.run(name, StepKind::TableBuild);
         } else {
-            self.skip(name, "inputs unchanged");
+            self.skip(name, INPUTS_UNCHANGED);
         }
     }
 

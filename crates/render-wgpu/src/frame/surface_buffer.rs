@@ -112,7 +112,7 @@ impl SurfaceBuffer {
         ]
     }
 
-    /// Views of the two textures, for [`crate::gpu::pipeline::ComputePipeline::pixel_bind_group`].
+    /// Views of the two textures, for a model's pixel pass (`crate::sky::pixel_pass`).
     pub fn views(&self) -> [wgpu::TextureView; 2] {
         [
             self.geometry.create_view(&Default::default()),

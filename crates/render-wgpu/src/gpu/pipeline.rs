@@ -61,11 +61,16 @@ pub fn float_texture_entry(
 
 /// A read-only storage buffer of at least `min_size` bytes.
 pub fn read_only_storage_buffer_entry(binding: u32, min_size: usize) -> wgpu::BindGroupLayoutEntry {
+    buffer_entry(binding, min_size, true)
+}
+
+/// A storage buffer of at least `min_size` bytes, read-only if `read_only`.
+fn buffer_entry(binding: u32, min_size: usize, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            ty: wgpu::BufferBindingType::Storage { read_only },
             has_dynamic_offset: false,
             min_binding_size: wgpu::BufferSize::new(min_size as u64),
         },
@@ -205,43 +210,6 @@ impl ComputePipeline {
         self.bind_group_numbered(gpu, &numbered)
     }
 
-    /// The bind group of a model's pixel pass: `resources` bound in order from binding
-    /// 0, and the frame's surface buffer at bindings 30 and 31 (`shaders/common/surface.wgsl`).
-    pub fn pixel_bind_group(
-        &self,
-        gpu: &GpuContext,
-        resources: &[wgpu::BindingResource<'_>],
-        surface: &[wgpu::TextureView; 2],
-    ) -> wgpu::BindGroup {
-        self.pixel_bind_group_with(gpu, resources, surface, &[])
-    }
-
-    /// As [`ComputePipeline::pixel_bind_group`], with `more` (binding, resource) pairs
-    /// elsewhere (e.g. the table sampler of `table_sampling`).
-    pub fn pixel_bind_group_with(
-        &self,
-        gpu: &GpuContext,
-        resources: &[wgpu::BindingResource<'_>],
-        surface: &[wgpu::TextureView; 2],
-        more: &[(u32, wgpu::BindingResource<'_>)],
-    ) -> wgpu::BindGroup {
-        let mut numbered: Vec<_> = resources
-            .iter()
-            .enumerate()
-            .map(|(binding, resource)| (binding as u32, resource.clone()))
-            .collect();
-        numbered.extend_from_slice(more);
-        numbered.push((
-            crate::frame::surface_buffer::GEOMETRY_BINDING,
-            wgpu::BindingResource::TextureView(&surface[0]),
-        ));
-        numbered.push((
-            crate::frame::surface_buffer::ALBEDO_BINDING,
-            wgpu::BindingResource::TextureView(&surface[1]),
-        ));
-        self.bind_group_numbered(gpu, &numbered)
-    }
-
     /// A bind group of (binding, resource) pairs.
     pub fn bind_group_numbered(
         &self,
@@ -283,10 +251,9 @@ impl ComputePipeline {
 }
 
 /// A model's pixel pass in two variants: one that reads the frame's surface buffer and
-/// one with `common/surface.wgsl`'s `SURFACE` constant false, which compiles every branch of the
-/// surface out. A software rasteriser (lavapipe) runs both sides of every branch, even
-/// one that no pixel takes, so a frame without a surface would otherwise pay for it
-/// (bruneton's ground view: 0.55 of nishita-16 against 0.25).
+/// one with `common/surface.wgsl`'s `SURFACE` constant false, which compiles every branch
+/// of the surface out. A software rasteriser (lavapipe) runs both sides of every branch,
+/// even one that no pixel takes, so a frame without a surface would otherwise pay for it.
 #[derive(Debug)]
 pub struct PixelPipeline {
     with_surface: ComputePipeline,
@@ -294,19 +261,9 @@ pub struct PixelPipeline {
 }
 
 impl PixelPipeline {
-    /// Both variants of entry point `entry` of `shader`; see [`ComputePipeline::new`].
-    pub fn new(
-        gpu: &GpuContext,
-        shader: &str,
-        entry: &str,
-        label: &'static str,
-        entries: &[wgpu::BindGroupLayoutEntry],
-    ) -> Result<PixelPipeline, GpuError> {
-        PixelPipeline::with_constants(gpu, shader, entry, label, entries, &[])
-    }
-
-    /// As [`PixelPipeline::new`], with the shader's other pipeline-overridable constants
-    /// set to `constants` (name, value) in both variants.
+    /// Both variants of entry point `entry` of `shader` (see [`ComputePipeline::new`]),
+    /// with the shader's other pipeline-overridable constants set to `constants` (name,
+    /// value) in both.
     pub fn with_constants(
         gpu: &GpuContext,
         shader: &str,
@@ -338,14 +295,5 @@ impl PixelPipeline {
 
 /// A read-write storage buffer of at least `min_size` bytes.
 pub fn storage_buffer_entry(binding: u32, min_size: usize) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: wgpu::BufferSize::new(min_size as u64),
-        },
-        count: None,
-    }
+    buffer_entry(binding, min_size, false)
 }

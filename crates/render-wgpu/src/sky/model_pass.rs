@@ -1,12 +1,13 @@
-//! One sky model on the GPU: its tables (kept between frames, rebuilt only when an input
-//! they depend on changed) and its per-pixel pass into the HDR target. The
-//! [`crate::Renderer`] keeps one per model used, so switching models and back rebuilds
-//! nothing. Every model's shader binds the atmosphere at binding 0 and the frame at
-//! binding 1 (`common/atmosphere_params.wgsl`, `common/frame_params.wgsl`); its own resources follow,
-//! and its pixel pass reads the frame's surface at bindings 30 and 31 (`common/surface.wgsl`).
+//! One sky model on the GPU ([`GpuModel`]): its tables (kept between frames, rebuilt only
+//! when an input they depend on changed) and its per-pixel pass into the HDR target, each
+//! a typed step. The [`crate::Renderer`] keeps one per model used, so switching models
+//! and back rebuilds nothing. Every model's shader binds the atmosphere at binding 0 and
+//! the frame at binding 1 (`common/atmosphere_params.wgsl`, `common/frame_params.wgsl`);
+//! its own resources follow, and its pixel pass reads the frame's surface at bindings 30
+//! and 31 (`common/surface.wgsl`; `crate::sky::pixel_pass`).
 
 use crate::frame::Frame;
-use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM, check_wavelengths};
 use crate::frame::plan::FramePlan;
 use crate::frame::surface_buffer::SurfaceBuffer;
 use crate::frame::uniform::FrameUniform;
@@ -14,6 +15,17 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::uniform_buffer;
+use crate::sky::steps::{NamedStep, PassStep, SkyPlan};
+
+/// The frame's atmosphere in the GPU's layout, once the frame's wavelengths are checked
+/// to be the GPU's channels.
+pub fn frame_atmosphere(frame: &Frame) -> Result<AtmosphereUniform, RenderError> {
+    check_wavelengths(&frame.settings.wavelengths_nm)?;
+    Ok(AtmosphereUniform::new(
+        &frame.atmosphere,
+        RGB_WAVELENGTHS_NM,
+    )?)
+}
 
 /// What a model's steps read and write besides their own tables.
 #[derive(Debug)]
@@ -78,8 +90,12 @@ impl StandaloneInputs {
     }
 }
 
-/// A sky model's tables and passes on the GPU; see the module documentation.
-pub trait ModelPass: std::fmt::Debug {
+/// A sky model on the GPU, its steps typed ([`PassStep`]); see the module documentation.
+/// The renderer holds it behind [`crate::sky::sky_pass::SkyPass`].
+pub trait GpuModel: std::fmt::Debug {
+    /// The model's table builds and passes.
+    type Step: PassStep;
+
     /// Takes the frame's atmosphere and model settings: checks them (an error names what
     /// the GPU cannot follow), remakes tables whose size changed, uploads the model's
     /// uniforms, and adds to `plan` the table builds this frame needs (those never built
@@ -88,11 +104,42 @@ pub trait ModelPass: std::fmt::Debug {
         &mut self,
         gpu: &GpuContext,
         frame: &Frame,
+        plan: &mut SkyPlan<'_, Self::Step>,
+    ) -> Result<(), RenderError>;
+
+    /// Records `step`, one that the last [`GpuModel::plan`] listed, timed by `timestamps`
+    /// when given.
+    fn encode(
+        &mut self,
+        step: Self::Step,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    );
+
+    /// Whether the model may spread its table builds over frames
+    /// ([`crate::Renderer::set_progressive`]); off until set. A model whose tables build
+    /// quickly builds them in one frame either way.
+    fn set_progressive(&mut self, _on: bool) {}
+
+    /// Bytes of GPU memory held by the model's tables.
+    fn table_bytes(&self) -> u64;
+}
+
+/// A sky model whose steps are named by strings: bruneton's, until it implements
+/// [`GpuModel`] (the renderer runs it as [`ByName`]). The methods are
+/// those of [`GpuModel`], the steps the names it adds to the frame's plan.
+pub trait ModelPass: std::fmt::Debug {
+    /// As [`GpuModel::plan`].
+    fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
         plan: &mut FramePlan,
     ) -> Result<(), RenderError>;
 
-    /// Records `step`, one that the last [`ModelPass::plan`] listed, timed by `timestamps`
-    /// when given.
+    /// Records the step named `step`, one that the last [`ModelPass::plan`] listed.
     fn encode(
         &mut self,
         step: &'static str,
@@ -102,11 +149,45 @@ pub trait ModelPass: std::fmt::Debug {
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     );
 
-    /// Whether the model may spread its table builds over frames
-    /// ([`crate::Renderer::set_progressive`]); off until set. A model whose tables build
-    /// in milliseconds builds them in one frame either way.
+    /// As [`GpuModel::set_progressive`].
     fn set_progressive(&mut self, _on: bool) {}
 
-    /// Bytes of GPU memory held by the model's tables.
+    /// As [`GpuModel::table_bytes`].
     fn table_bytes(&self) -> u64;
+}
+
+/// A [`ModelPass`] run as a [`GpuModel`] whose steps are their names.
+#[derive(Debug)]
+pub struct ByName<P>(pub P);
+
+impl<P: ModelPass> GpuModel for ByName<P> {
+    type Step = NamedStep;
+
+    fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        plan: &mut SkyPlan<'_, NamedStep>,
+    ) -> Result<(), RenderError> {
+        plan.by_name(|plan| self.0.plan(gpu, frame, plan))
+    }
+
+    fn encode(
+        &mut self,
+        step: NamedStep,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        self.0.encode(step.name, gpu, io, encoder, timestamps);
+    }
+
+    fn set_progressive(&mut self, on: bool) {
+        self.0.set_progressive(on);
+    }
+
+    fn table_bytes(&self) -> u64 {
+        self.0.table_bytes()
+    }
 }

@@ -1,28 +1,24 @@
-//! The oneil model on the GPU: O'Neil's 4-channel optical-depth table built by
-//! `shaders/sky/oneil/optical_depth_table.wgsl` (its CPU twin `OpticalDepthTable::build`), rebuilt only
-//! when the density profiles, the geometry or the table's settings change, and the
-//! per-pixel pass of `shaders/sky/oneil/pixel.wgsl` (`Oneil::radiance`).
+//! The oneil model on the GPU: the 4-channel optical-depth table of O'Neil 2004 built by
+//! `shaders/sky/oneil/optical_depth_table.wgsl` (its CPU twin `OpticalDepthTable::build`),
+//! rebuilt only when the density profiles, the geometry or the table's settings change,
+//! and the per-pixel pass of `shaders/sky/oneil/pixel.wgsl` (`Oneil::radiance`).
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::atmosphere::table_inputs::Inputs;
 use atmosphere_core::models::oneil::{OneilSettings, OpticalDepthTable};
 use bytemuck::{Pod, Zeroable};
 
 use crate::frame::Frame;
-use crate::frame::atmosphere_uniform::AtmosphereUniform;
-use crate::frame::atmosphere_uniform::check_wavelengths;
-use crate::frame::plan::{FramePlan, StepKind};
-use crate::frame::surface_buffer::SurfaceBuffer;
-use crate::frame::uniform::FrameUniform;
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, check_wavelengths};
+use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
-use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{
-    ComputePipeline, PixelPipeline, storage_texture_entry, texel_groups, uniform_buffer,
-    uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, texture_2d, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
-use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::sky::model_pass::{GpuModel, PassIo};
+use crate::sky::pixel_pass::{PixelPass, PixelShader};
+use crate::sky::steps::{PassStep, SkyPlan};
 use crate::sky::table_sampling::TableSampling;
 use crate::sky::transmittance::TABLE_FORMAT;
 
@@ -74,22 +70,15 @@ impl OneilTablePass {
                 storage_texture_entry(2, TABLE_FORMAT, wgpu::TextureViewDimension::D2),
             ],
         )?;
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("oneil optical depth"),
-            size: wgpu::Extent3d {
-                width: heights,
-                height: angles,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: TABLE_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
+        let texture = texture_2d(
+            &gpu.device,
+            "oneil optical depth",
+            (heights, angles),
+            TABLE_FORMAT,
+            wgpu::TextureUsages::STORAGE_BINDING
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        );
         Ok(OneilTablePass {
             pipeline,
             params: uniform_buffer(&gpu.device, "oneil table", size_of::<OneilTableUniform>()),
@@ -144,67 +133,105 @@ impl OneilTablePass {
     }
 }
 
-/// The table and what it was built from (`None`: not yet built).
+/// The model's steps: the optical-depth table and the pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OneilStep {
+    OpticalDepth,
+    Pass,
+}
+
+impl PassStep for OneilStep {
+    fn name(self) -> &'static str {
+        match self {
+            OneilStep::OpticalDepth => "optical_depth",
+            OneilStep::Pass => "oneil",
+        }
+    }
+
+    fn kind(self) -> StepKind {
+        match self {
+            OneilStep::OpticalDepth => StepKind::TableBuild,
+            OneilStep::Pass => StepKind::Pass,
+        }
+    }
+}
+
+/// What the table was built from: the atmosphere and the samples per node's ray.
+type TableKey = (Atmosphere, usize);
+
+/// The table, what it was built from and what the planned build is for.
 #[derive(Debug)]
 struct Table {
     pass: OneilTablePass,
-    built_from: Option<(Atmosphere, usize)>,
+    built_from: Option<TableKey>,
+    pending: Option<TableKey>,
+}
+
+impl Table {
+    /// An unbuilt table of the sizes of `settings`; an error names a size the shaders
+    /// cannot index.
+    fn new(gpu: &GpuContext, settings: &OneilSettings) -> Result<Table, RenderError> {
+        let (heights, angles) = table_size(settings)?;
+        Ok(Table {
+            pass: OneilTablePass::new(gpu, heights, angles)?,
+            built_from: None,
+            pending: None,
+        })
+    }
+}
+
+/// The table's (heights, angles) for `settings`.
+fn table_size(settings: &OneilSettings) -> Result<(u32, u32), RenderError> {
+    Ok((
+        count("table_heights", settings.table_heights)?,
+        count("table_angles", settings.table_angles)?,
+    ))
 }
 
 /// The per-pixel pipeline and uniform, made once; the table, remade when its size
 /// changes.
 #[derive(Debug)]
 pub struct OneilPass {
-    pipeline: PixelPipeline,
+    pass: PixelPass,
     params: wgpu::Buffer,
-    table: Option<Table>,
+    table: Table,
     settings: OneilSettings,
-    /// What the table build of the frame being planned is for.
-    pending: Option<(Atmosphere, usize)>,
-    /// How the pass reads the table.
-    sampling: TableSampling,
 }
 
 impl OneilPass {
-    pub fn new(gpu: &GpuContext) -> Result<OneilPass, GpuError> {
-        use wgpu::TextureViewDimension::D2;
-        let surface_entries = SurfaceBuffer::layout_entries();
+    /// The pipelines and an unbuilt table of the default settings' size.
+    pub fn new(gpu: &GpuContext) -> Result<OneilPass, RenderError> {
         // The table may be sampled (`table_sampling`).
         let sampling = TableSampling::new(gpu);
-        let pipeline = PixelPipeline::with_constants(
+        let pass = PixelPass::new(
             gpu,
-            "sky/oneil/pixel.wgsl",
-            "main",
-            "the oneil pass",
-            &[
-                uniform_entry(0, size_of::<AtmosphereUniform>()),
-                uniform_entry(1, size_of::<FrameUniform>()),
-                uniform_entry(2, size_of::<OneilUniform>()),
-                sampling.texture_entry(3, D2),
-                storage_texture_entry(4, HDR_FORMAT, D2),
-                sampling.sampler_entry(),
-                surface_entries[0],
-                surface_entries[1],
-            ],
-            &[sampling.constant()],
+            PixelShader {
+                path: "sky/oneil/pixel.wgsl",
+                entry: "main",
+                label: "the oneil pass",
+                params_size: size_of::<OneilUniform>(),
+                tables: &[sampling.texture_entry(3, wgpu::TextureViewDimension::D2)],
+                sampling: Some(&sampling),
+            },
         )?;
+        let settings = OneilSettings::default();
         Ok(OneilPass {
             params: uniform_buffer(&gpu.device, "oneil", size_of::<OneilUniform>()),
-            pipeline,
-            table: None,
-            settings: OneilSettings::default(),
-            pending: None,
-            sampling,
+            pass,
+            table: Table::new(gpu, &settings)?,
+            settings,
         })
     }
 }
 
-impl ModelPass for OneilPass {
+impl GpuModel for OneilPass {
+    type Step = OneilStep;
+
     fn plan(
         &mut self,
         gpu: &GpuContext,
         frame: &Frame,
-        plan: &mut FramePlan,
+        plan: &mut SkyPlan<'_, OneilStep>,
     ) -> Result<(), RenderError> {
         check_wavelengths(&frame.settings.wavelengths_nm)?;
         let settings = OneilSettings::from_options(&frame.settings.options)?;
@@ -212,27 +239,18 @@ impl ModelPass for OneilPass {
             samples: count("samples", settings.samples)?,
             ..Default::default()
         };
-        let size = (
-            count("table_heights", settings.table_heights)?,
-            count("table_angles", settings.table_angles)?,
-        );
+        let size = table_size(&settings)?;
         count("table_ray_samples", settings.table_ray_samples)?;
-        if self.table.as_ref().is_none_or(|t| t.pass.size() != size) {
-            self.table = Some(Table {
-                pass: OneilTablePass::new(gpu, size.0, size.1)?,
-                built_from: None,
-            });
+        if self.table.pass.size() != size {
+            self.table = Table::new(gpu, &settings)?;
         }
-        let stale = self.table.as_ref().is_none_or(|t| {
-            t.built_from.as_ref().is_none_or(|(old, ray_samples)| {
-                *ray_samples != settings.table_ray_samples
-                    || Inputs::changed(old, &frame.atmosphere).intersects(OpticalDepthTable::INPUTS)
-            })
-        });
+        let built = self.table.built_from.as_ref();
+        let stale = built.is_none_or(|(_, ray_samples)| *ray_samples != settings.table_ray_samples)
+            || OpticalDepthTable::INPUTS.stale(built.map(|(old, _)| old), &frame.atmosphere);
         self.settings = settings;
-        self.pending = stale.then(|| (frame.atmosphere.clone(), settings.table_ray_samples));
-        plan.build_if("optical_depth", stale);
-        plan.run("oneil", StepKind::Pass);
+        self.table.pending = stale.then(|| (frame.atmosphere.clone(), settings.table_ray_samples));
+        plan.build_if(OneilStep::OpticalDepth, stale);
+        plan.run(OneilStep::Pass);
         gpu.queue
             .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         Ok(())
@@ -240,51 +258,35 @@ impl ModelPass for OneilPass {
 
     fn encode(
         &mut self,
-        step: &'static str,
+        step: OneilStep,
         gpu: &GpuContext,
         io: &PassIo<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let Some(table) = self.table.as_mut() else {
-            unreachable!("plan makes the table before any step");
-        };
+        let table = &mut self.table;
         match step {
-            "optical_depth" => {
+            OneilStep::OpticalDepth => {
                 // `plan` checked that the count fits in u32.
                 let ray_samples = self.settings.table_ray_samples as u32;
                 table
                     .pass
                     .encode(gpu, io.atmosphere, ray_samples, encoder, timestamps);
-                table.built_from = self.pending.take();
+                if let Some(key) = table.pending.take() {
+                    table.built_from = Some(key);
+                }
             }
-            "oneil" => {
+            OneilStep::Pass => {
                 let view = table.pass.texture().create_view(&Default::default());
-                let hdr = io.hdr.create_view(&Default::default());
-                let pipeline = self.pipeline.variant(io.has_surface);
-                let bind_group = self.sampling.bind_group(
-                    gpu,
-                    pipeline,
-                    &[
-                        io.atmosphere.as_entire_binding(),
-                        io.frame.as_entire_binding(),
-                        self.params.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&view),
-                        wgpu::BindingResource::TextureView(&hdr),
-                    ],
-                    Some(io.surface),
-                );
-                let groups = texel_groups(io.hdr);
-                pipeline.dispatch(encoder, "oneil", &bind_group, groups, timestamps);
+                let tables = [wgpu::BindingResource::TextureView(&view)];
+                self.pass
+                    .encode(gpu, io, &self.params, &tables, encoder, timestamps);
             }
-            other => unreachable!("the oneil plan has no step {other}"),
         }
     }
 
     fn table_bytes(&self) -> u64 {
-        self.table.as_ref().map_or(0, |t| {
-            let (w, h) = t.pass.size();
-            u64::from(w) * u64::from(h) * 16
-        })
+        let (w, h) = self.table.pass.size();
+        u64::from(w) * u64::from(h) * 16
     }
 }

@@ -7,10 +7,11 @@ use crate::gpu::error::RenderError;
 use crate::sky::bruneton::pass::BrunetonPass;
 use crate::sky::dobashi::DobashiPass;
 use crate::sky::hillaire::HillairePass;
-use crate::sky::model_pass::ModelPass;
+use crate::sky::model_pass::ByName;
 use crate::sky::nishita::NishitaPass;
 use crate::sky::oneil::OneilPass;
 use crate::sky::riley::RileyPass;
+use crate::sky::sky_pass::{Planned, SkyPass};
 
 /// The models the GPU renders: every model but the reference.
 pub const GPU_MODELS: [ModelId; 6] = [
@@ -40,14 +41,14 @@ fn not_on_gpu(id: ModelId) -> RenderError {
 }
 
 /// The GPU twin of model `id`, its pipelines compiled, no table built yet.
-pub fn create(id: ModelId, gpu: &GpuContext) -> Result<Box<dyn ModelPass>, RenderError> {
+pub fn create(id: ModelId, gpu: &GpuContext) -> Result<Box<dyn SkyPass>, RenderError> {
     Ok(match id {
-        ModelId::Bruneton => Box::new(BrunetonPass::new(gpu)?),
-        ModelId::Dobashi => Box::new(DobashiPass::new(gpu)?),
-        ModelId::Hillaire => Box::new(HillairePass::new(gpu)?),
-        ModelId::Nishita => Box::new(NishitaPass::new(gpu)?),
-        ModelId::Oneil => Box::new(OneilPass::new(gpu)?),
-        ModelId::Riley => Box::new(RileyPass::new(gpu)?),
+        ModelId::Bruneton => Box::new(Planned::new(ByName(BrunetonPass::new(gpu)?))),
+        ModelId::Dobashi => Box::new(Planned::new(DobashiPass::new(gpu)?)),
+        ModelId::Hillaire => Box::new(Planned::new(HillairePass::new(gpu)?)),
+        ModelId::Nishita => Box::new(Planned::new(NishitaPass::new(gpu)?)),
+        ModelId::Oneil => Box::new(Planned::new(OneilPass::new(gpu)?)),
+        ModelId::Riley => Box::new(Planned::new(RileyPass::new(gpu)?)),
         ModelId::Reference => return Err(not_on_gpu(id)),
     })
 }

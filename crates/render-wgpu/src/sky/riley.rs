@@ -1,6 +1,7 @@
-//! The riley model on the GPU: no table, one per-pixel pass (`shaders/sky/riley/pixel.wgsl`) that
-//! evaluates Riley et al.'s closed form with the species atmosphere-core's `riley.rs`
-//! fits (one exponential each for Rayleigh and Mie), given in [`RileyUniform`].
+//! The riley model on the GPU: no table, one per-pixel pass
+//! (`shaders/sky/riley/pixel.wgsl`) that evaluates the closed form of Riley et al. 2004
+//! with the species atmosphere-core's `riley.rs` fits (one exponential each for Rayleigh
+//! and Mie), given in [`RileyUniform`].
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::riley::Riley;
@@ -8,18 +9,14 @@ use atmosphere_core::models::sky_model::ModelSettings;
 use bytemuck::{Pod, Zeroable};
 
 use crate::frame::Frame;
-use crate::frame::atmosphere_uniform::check_wavelengths;
-use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
-use crate::frame::plan::{FramePlan, StepKind};
-use crate::frame::surface_buffer::SurfaceBuffer;
-use crate::frame::uniform::FrameUniform;
+use crate::frame::atmosphere_uniform::{RGB_WAVELENGTHS_NM, check_wavelengths};
+use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
-use crate::gpu::formats::HDR_FORMAT;
-use crate::gpu::pipeline::{
-    PixelPipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
-};
-use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::gpu::pipeline::uniform_buffer;
+use crate::sky::model_pass::{GpuModel, PassIo};
+use crate::sky::pixel_pass::{PixelPass, PixelShader};
+use crate::sky::steps::{PassStep, SkyPlan};
 
 /// WGSL `RileyParams`, 80 bytes: the fitted species.
 #[repr(C)]
@@ -56,11 +53,27 @@ impl RileyUniform {
     }
 }
 
+/// The model's one step: the pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RileyStep {
+    Pass,
+}
+
+impl PassStep for RileyStep {
+    fn name(self) -> &'static str {
+        "riley"
+    }
+
+    fn kind(self) -> StepKind {
+        StepKind::Pass
+    }
+}
+
 /// Pipeline and uniform, made once; the fit is redone only when the atmosphere or the
 /// pruning changes.
 #[derive(Debug)]
 pub struct RileyPass {
-    pipeline: PixelPipeline,
+    pass: PixelPass,
     params: wgpu::Buffer,
     /// What the uploaded uniform was fitted from.
     fitted_from: Option<(Atmosphere, bool)>,
@@ -68,36 +81,33 @@ pub struct RileyPass {
 
 impl RileyPass {
     pub fn new(gpu: &GpuContext) -> Result<RileyPass, GpuError> {
-        use wgpu::TextureViewDimension::D2;
-        let surface_entries = SurfaceBuffer::layout_entries();
-        let pipeline = PixelPipeline::new(
+        let pass = PixelPass::new(
             gpu,
-            "sky/riley/pixel.wgsl",
-            "main",
-            "the riley pass",
-            &[
-                uniform_entry(0, size_of::<AtmosphereUniform>()),
-                uniform_entry(1, size_of::<FrameUniform>()),
-                uniform_entry(2, size_of::<RileyUniform>()),
-                storage_texture_entry(3, HDR_FORMAT, D2),
-                surface_entries[0],
-                surface_entries[1],
-            ],
+            PixelShader {
+                path: "sky/riley/pixel.wgsl",
+                entry: "main",
+                label: "the riley pass",
+                params_size: size_of::<RileyUniform>(),
+                tables: &[],
+                sampling: None,
+            },
         )?;
         Ok(RileyPass {
             params: uniform_buffer(&gpu.device, "riley", size_of::<RileyUniform>()),
-            pipeline,
+            pass,
             fitted_from: None,
         })
     }
 }
 
-impl ModelPass for RileyPass {
+impl GpuModel for RileyPass {
+    type Step = RileyStep;
+
     fn plan(
         &mut self,
         gpu: &GpuContext,
         frame: &Frame,
-        plan: &mut FramePlan,
+        plan: &mut SkyPlan<'_, RileyStep>,
     ) -> Result<(), RenderError> {
         check_wavelengths(&frame.settings.wavelengths_nm)?;
         frame.settings.options.reader("riley").finish()?;
@@ -113,33 +123,23 @@ impl ModelPass for RileyPass {
                 .write_buffer(&self.params, 0, bytemuck::bytes_of(&uniform));
             self.fitted_from = Some(key);
         }
-        plan.run("riley", StepKind::Pass);
+        plan.run(RileyStep::Pass);
         Ok(())
     }
 
     fn encode(
         &mut self,
-        step: &'static str,
+        step: RileyStep,
         gpu: &GpuContext,
         io: &PassIo<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        assert_eq!(step, "riley", "the riley plan has no step {step}");
-        let hdr = io.hdr.create_view(&Default::default());
-        let pipeline = self.pipeline.variant(io.has_surface);
-        let bind_group = pipeline.pixel_bind_group(
-            gpu,
-            &[
-                io.atmosphere.as_entire_binding(),
-                io.frame.as_entire_binding(),
-                self.params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&hdr),
-            ],
-            io.surface,
-        );
-        let groups = texel_groups(io.hdr);
-        pipeline.dispatch(encoder, "riley", &bind_group, groups, timestamps);
+        match step {
+            RileyStep::Pass => self
+                .pass
+                .encode(gpu, io, &self.params, &[], encoder, timestamps),
+        }
     }
 
     fn table_bytes(&self) -> u64 {

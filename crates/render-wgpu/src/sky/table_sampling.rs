@@ -1,22 +1,22 @@
 //! How a pass reads its `Rgba32Float` tables: with the texture unit's linear filter where
 //! the device filters that format (`Features::FLOAT32_FILTERABLE`), else texel by texel
 //! with the interpolation written out in WGSL. One filtered read replaces the 4 texel
-//! reads of a bilinear look-up, or the 8 of a trilinear one; on lavapipe a texel read
-//! costs about as much as a filtered one, about 0.005 of the nishita-16 frame per read
-//! per pixel at 1280x720, so this is most of a table-driven pass's cost.
+//! reads of a bilinear look-up, or the 8 of a trilinear one; a texel read costs about as
+//! much as a filtered one on a software rasteriser, so table reads are most of a
+//! table-driven pass's cost (docs/rendering.md).
 //!
 //! The two ways give the same interpolation (weights from the same coordinates), up to
 //! the filter's precision: lavapipe computes the weights in f32; real GPUs quantise them
 //! (8 fractional bits on NVIDIA), an error of at most 1/512 of the difference of two
-//! neighbouring texels. A shader imports `shaders/common/table_sampling.wgsl`, whose override
-//! constant [`TableSampling::CONSTANT`] is set at pipeline creation, so the other way is
-//! compiled out, and whose sampler is at [`TableSampling::SAMPLER_BINDING`].
+//! neighbouring texels. A shader imports `shaders/common/table_sampling.wgsl`, whose
+//! override constant [`TableSampling::CONSTANT`] is set at pipeline creation, so the
+//! other way is compiled out, and whose sampler is at [`TableSampling::SAMPLER_BINDING`].
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::pipeline::{ComputePipeline, float_texture_entry};
 
 /// The sampler and the layout entries of a pass's table reads on one device.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct TableSampling {
     filtered: bool,
     sampler: wgpu::Sampler,
@@ -90,23 +90,16 @@ impl TableSampling {
         )
     }
 
-    /// The bind group of `pipeline`: `resources` in order from binding 0, the sampler,
-    /// and for a pixel pass the frame's `surface` (`ComputePipeline::pixel_bind_group`).
+    /// The bind group of a table build's `pipeline`: `resources` in order from binding 0,
+    /// and the sampler (a model's pixel pass binds it through `pixel_pass`).
     pub fn bind_group(
         &self,
         gpu: &GpuContext,
         pipeline: &ComputePipeline,
         resources: &[wgpu::BindingResource<'_>],
-        surface: Option<&[wgpu::TextureView; 2]>,
     ) -> wgpu::BindGroup {
-        let sampler = self.sampler_binding();
-        match surface {
-            Some(surface) => pipeline.pixel_bind_group_with(gpu, resources, surface, &[sampler]),
-            None => {
-                let mut numbered: Vec<_> = (0..).zip(resources.iter().cloned()).collect();
-                numbered.push(sampler);
-                pipeline.bind_group_numbered(gpu, &numbered)
-            }
-        }
+        let mut numbered: Vec<_> = (0..).zip(resources.iter().cloned()).collect();
+        numbered.push(self.sampler_binding());
+        pipeline.bind_group_numbered(gpu, &numbered)
     }
 }

@@ -1,0 +1,82 @@
+//! The hillaire model's parameters on the GPU (WGSL `HillaireParams`): the view of the
+//! per-view tables, the settings' sample counts and the camera's frame.
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::models::hillaire::HillaireSettings;
+use atmosphere_core::models::hillaire::directions::horizon_zenith;
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+
+use crate::gpu::error::RenderError;
+
+/// WGSL `HillaireParams`, 112 bytes: the view of the per-view tables, the settings'
+/// sample counts, and the camera's frame for the pass's view angles.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct HillaireUniform {
+    pub view_r: f32,
+    pub view_q: f32,
+    pub view_mu_s: f32,
+    pub aerial_range_m: f32,
+    pub ms_sqrt_directions: u32,
+    pub ms_samples: u32,
+    pub sky_view_samples: u32,
+    pub ap_samples_per_slice: u32,
+    pub march_samples: u32,
+    pub ground_zenith_panels: u32,
+    pub ground_azimuths: u32,
+    pub multiple_on: u32,
+    pub view_theta_h: f32,
+    pub pad0: f32,
+    pub pad1: f32,
+    pub pad2: f32,
+    pub view_up: [f32; 4],
+    pub view_sun_side: [f32; 4],
+    pub view_across: [f32; 4],
+}
+
+/// A count as the shaders' u32, or an error naming it.
+pub fn count(name: &str, n: usize) -> Result<u32, RenderError> {
+    u32::try_from(n).map_err(|_| RenderError::Unsupported(format!("hillaire {name} = {n}")))
+}
+
+impl HillaireUniform {
+    /// The settings for a view (camera radius, sun zenith cosine: `view_key`) of
+    /// `atmosphere`, with the camera's zenith `up` and the sun's direction.
+    pub fn new(
+        settings: &HillaireSettings,
+        atmosphere: &Atmosphere,
+        view: (f64, f64),
+        (up, sun): (DVec3, DVec3),
+        multiple_on: bool,
+    ) -> Result<HillaireUniform, RenderError> {
+        let bottom = atmosphere.bottom_radius_m;
+        let (r, mu_s) = view;
+        let sun_side = (sun - up * sun.dot(up))
+            .try_normalize()
+            .unwrap_or_else(|| up.any_orthonormal_vector());
+        let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+        Ok(HillaireUniform {
+            view_r: r as f32,
+            view_q: ((r - bottom) * (r + bottom)) as f32,
+            view_mu_s: mu_s as f32,
+            aerial_range_m: settings.aerial_range_m as f32,
+            ms_sqrt_directions: count("ms_directions", settings.multiple_scattering_directions)?
+                .isqrt(),
+            ms_samples: count("ms_samples", settings.multiple_scattering_samples)?,
+            sky_view_samples: count("sky_view_samples", settings.sky_view_samples)?,
+            ap_samples_per_slice: count("ap_samples_per_slice", settings.aerial_samples_per_slice)?,
+            march_samples: count("march_samples", settings.march_samples)?,
+            ground_zenith_panels: count("ground_zenith_panels", settings.ground_zenith_panels)?,
+            ground_azimuths: count("ground_azimuths", settings.ground_azimuths)?,
+            multiple_on: u32::from(multiple_on),
+            view_theta_h: horizon_zenith(r, bottom) as f32,
+            pad0: 0.0,
+            pad1: 0.0,
+            pad2: 0.0,
+            view_up: v4(up),
+            view_sun_side: v4(sun_side),
+            view_across: v4(up.cross(sun_side)),
+        })
+    }
+}

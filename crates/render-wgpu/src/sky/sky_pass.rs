@@ -1,0 +1,115 @@
+//! The sky model of a frame as the renderer sees it ([`SkyPass`]): it plans its steps into
+//! the frame's plan, then encodes the steps it planned, in order, each timed in the slot of
+//! its index in the frame's plan. [`Planned`] runs a [`GpuModel`].
+
+use crate::frame::Frame;
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use crate::frame::plan::{FramePlan, StepKind};
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::RenderError;
+use crate::gpu::timer::GpuTimer;
+use crate::sky::model_pass::{GpuModel, PassIo, StandaloneInputs};
+use crate::sky::steps::{PassStep, PlannedStep, SkyPlan};
+
+/// A sky model behind one object-safe interface; see the module documentation.
+pub trait SkyPass: std::fmt::Debug {
+    /// Adds the model's steps for `frame` to `plan` ([`GpuModel::plan`]).
+    fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        plan: &mut FramePlan,
+    ) -> Result<(), RenderError>;
+
+    /// Records the steps the last [`SkyPass::plan`] added, in order, each timed by
+    /// `timer` (when given) at its index in the frame's plan.
+    fn encode_planned(
+        &mut self,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: Option<&GpuTimer>,
+    );
+
+    /// [`GpuModel::set_progressive`].
+    fn set_progressive(&mut self, on: bool);
+
+    /// [`GpuModel::table_bytes`].
+    fn table_bytes(&self) -> u64;
+}
+
+/// A [`GpuModel`] and the steps it planned for the frame.
+#[derive(Debug)]
+pub struct Planned<M: GpuModel> {
+    model: M,
+    steps: Vec<PlannedStep<M::Step>>,
+}
+
+impl<M: GpuModel> Planned<M> {
+    pub fn new(model: M) -> Planned<M> {
+        Planned {
+            model,
+            steps: Vec::new(),
+        }
+    }
+}
+
+impl<M: GpuModel> SkyPass for Planned<M> {
+    fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        plan: &mut FramePlan,
+    ) -> Result<(), RenderError> {
+        self.steps.clear();
+        self.model
+            .plan(gpu, frame, &mut SkyPlan::new(plan, &mut self.steps))
+    }
+
+    fn encode_planned(
+        &mut self,
+        gpu: &GpuContext,
+        io: &PassIo<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: Option<&GpuTimer>,
+    ) {
+        for &PlannedStep { index, step } in &self.steps {
+            let timestamps = timer.map(|t| t.compute_writes(index));
+            self.model.encode(step, gpu, io, encoder, timestamps);
+        }
+    }
+
+    fn set_progressive(&mut self, on: bool) {
+        self.model.set_progressive(on);
+    }
+
+    fn table_bytes(&self) -> u64 {
+        self.model.table_bytes()
+    }
+}
+
+/// Plans `frame` with `model` and builds the tables its plan lists, without rendering
+/// (to have them ready before a first frame, or to read them back); returns that plan,
+/// less the passes.
+pub fn build_tables<M: GpuModel>(
+    model: &mut M,
+    gpu: &GpuContext,
+    frame: &Frame,
+) -> Result<FramePlan, RenderError> {
+    frame.validate()?;
+    let mut plan = FramePlan::default();
+    let mut steps = Vec::new();
+    model.plan(gpu, frame, &mut SkyPlan::new(&mut plan, &mut steps))?;
+    plan.steps.retain(|s| s.kind == StepKind::TableBuild);
+    let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
+    let inputs = StandaloneInputs::new(gpu, &atmosphere, frame);
+    let io = inputs.io();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    for PlannedStep { step, .. } in steps {
+        if step.kind() == StepKind::TableBuild {
+            model.encode(step, gpu, &io, &mut encoder, None);
+        }
+    }
+    gpu.queue.submit([encoder.finish()]);
+    Ok(plan)
+}

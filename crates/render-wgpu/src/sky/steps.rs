@@ -1,0 +1,104 @@
+//! A model's steps, typed: each model names its table builds and passes in an enum
+//! ([`PassStep`]), plans them into a [`SkyPlan`], and encodes exactly the steps it
+//! planned. The plan records each step twice: by name in the frame's
+//! [`FramePlan`] (what the viewer shows and tests query) and as the typed step, with its
+//! index in the frame's plan (its timer slot), in the list the model encodes.
+
+use crate::frame::plan::{FramePlan, INPUTS_UNCHANGED, StepKind};
+
+/// One table build or pass of a model.
+pub trait PassStep: Copy + std::fmt::Debug + Eq + 'static {
+    /// The step's name in the frame's plan, like its shader or CPU twin (`g_l`, `nishita`).
+    fn name(self) -> &'static str;
+    /// Whether it builds a table or renders.
+    fn kind(self) -> StepKind;
+}
+
+/// A step known by its name only: one of a model whose steps are strings
+/// (`crate::sky::model_pass::ModelPass`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NamedStep {
+    pub name: &'static str,
+    pub kind: StepKind,
+}
+
+impl PassStep for NamedStep {
+    fn name(self) -> &'static str {
+        self.name
+    }
+
+    fn kind(self) -> StepKind {
+        self.kind
+    }
+}
+
+/// A step a frame runs, and its index in the frame's plan.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlannedStep<S> {
+    pub index: u32,
+    pub step: S,
+}
+
+/// The steps one model plans for a frame; see the module documentation.
+#[derive(Debug)]
+pub struct SkyPlan<'a, S> {
+    frame: &'a mut FramePlan,
+    steps: &'a mut Vec<PlannedStep<S>>,
+}
+
+impl<'a, S: PassStep> SkyPlan<'a, S> {
+    /// A plan adding to `frame` and to `steps`.
+    pub fn new(frame: &'a mut FramePlan, steps: &'a mut Vec<PlannedStep<S>>) -> Self {
+        SkyPlan { frame, steps }
+    }
+
+    /// Adds a step that runs.
+    pub fn run(&mut self, step: S) {
+        let index = self.frame.steps.len() as u32;
+        self.frame.run(step.name(), step.kind());
+        self.steps.push(PlannedStep { index, step });
+    }
+
+    /// Adds a table build when `stale`, else records it as skipped because its inputs did
+    /// not change.
+    pub fn build_if(&mut self, step: S, stale: bool) {
+        if stale {
+            self.run(step);
+        } else {
+            self.skip(step, INPUTS_UNCHANGED);
+        }
+    }
+
+    /// Records a step left out and why.
+    pub fn skip(&mut self, step: S, why: &'static str) {
+        self.frame.skip(step.name(), why);
+    }
+
+    /// Whether the frame's rays may end on a surface ([`FramePlan::surface`]).
+    pub fn surface(&self) -> bool {
+        self.frame.surface
+    }
+
+    /// What a progressive table build is doing this frame ([`FramePlan::building`]).
+    pub fn set_building(&mut self, building: Option<String>) {
+        self.frame.building = building;
+    }
+}
+
+impl SkyPlan<'_, NamedStep> {
+    /// Lets `plan_by_name` add steps to the frame's plan by name, and lists those it
+    /// added to be encoded.
+    pub fn by_name<R>(&mut self, plan_by_name: impl FnOnce(&mut FramePlan) -> R) -> R {
+        let first = self.frame.steps.len();
+        let result = plan_by_name(self.frame);
+        let added = self.frame.steps[first..].iter().zip(first..);
+        self.steps.extend(added.map(|(step, index)| PlannedStep {
+            index: index as u32,
+            step: NamedStep {
+                name: step.name,
+                kind: step.kind,
+            },
+        }));
+        result
+    }
+}
