@@ -1,5 +1,5 @@
 //! The sky on the GPU: every scattering model's tables and per-pixel pass, its steps typed
-//! ([`model_pass::GpuModel`], [`steps`]), behind one object-safe interface for the
+//! ([`model_pass::ModelPass`], [`steps`]), behind one object-safe interface for the
 //! renderer ([`sky_pass::SkyPass`]), made by the [`registry`]; and what several models
 //! share: the pixel pass's layout, the transmittance and columns tables, and the
 //! filtered table reads.

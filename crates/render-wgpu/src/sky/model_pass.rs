@@ -1,4 +1,4 @@
-//! One sky model on the GPU ([`GpuModel`]): its tables (kept between frames, rebuilt only
+//! One sky model on the GPU ([`ModelPass`]): its tables (kept between frames, rebuilt only
 //! when an input they depend on changed) and its per-pixel pass into the HDR target, each
 //! a typed step. The [`crate::Renderer`] keeps one per model used, so switching models
 //! and back rebuilds nothing. Every model's shader binds the atmosphere at binding 0 and
@@ -8,14 +8,13 @@
 
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM, check_wavelengths};
-use crate::frame::plan::FramePlan;
 use crate::frame::surface_buffer::SurfaceBuffer;
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::uniform_buffer;
-use crate::sky::steps::{NamedStep, PassStep, SkyPlan};
+use crate::sky::steps::{PassStep, SkyPlan};
 
 /// The frame's atmosphere in the GPU's layout, once the frame's wavelengths are checked
 /// to be the GPU's channels.
@@ -92,7 +91,7 @@ impl StandaloneInputs {
 
 /// A sky model on the GPU, its steps typed ([`PassStep`]); see the module documentation.
 /// The renderer holds it behind [`crate::sky::sky_pass::SkyPass`].
-pub trait GpuModel: std::fmt::Debug {
+pub trait ModelPass: std::fmt::Debug {
     /// The model's table builds and passes.
     type Step: PassStep;
 
@@ -107,7 +106,7 @@ pub trait GpuModel: std::fmt::Debug {
         plan: &mut SkyPlan<'_, Self::Step>,
     ) -> Result<(), RenderError>;
 
-    /// Records `step`, one that the last [`GpuModel::plan`] listed, timed by `timestamps`
+    /// Records `step`, one that the last [`ModelPass::plan`] listed, timed by `timestamps`
     /// when given.
     fn encode(
         &mut self,
@@ -125,69 +124,4 @@ pub trait GpuModel: std::fmt::Debug {
 
     /// Bytes of GPU memory held by the model's tables.
     fn table_bytes(&self) -> u64;
-}
-
-/// A sky model whose steps are named by strings: bruneton's, until it implements
-/// [`GpuModel`] (the renderer runs it as [`ByName`]). The methods are
-/// those of [`GpuModel`], the steps the names it adds to the frame's plan.
-pub trait ModelPass: std::fmt::Debug {
-    /// As [`GpuModel::plan`].
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut FramePlan,
-    ) -> Result<(), RenderError>;
-
-    /// Records the step named `step`, one that the last [`ModelPass::plan`] listed.
-    fn encode(
-        &mut self,
-        step: &'static str,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    );
-
-    /// As [`GpuModel::set_progressive`].
-    fn set_progressive(&mut self, _on: bool) {}
-
-    /// As [`GpuModel::table_bytes`].
-    fn table_bytes(&self) -> u64;
-}
-
-/// A [`ModelPass`] run as a [`GpuModel`] whose steps are their names.
-#[derive(Debug)]
-pub struct ByName<P>(pub P);
-
-impl<P: ModelPass> GpuModel for ByName<P> {
-    type Step = NamedStep;
-
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, NamedStep>,
-    ) -> Result<(), RenderError> {
-        plan.by_name(|plan| self.0.plan(gpu, frame, plan))
-    }
-
-    fn encode(
-        &mut self,
-        step: NamedStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
-        self.0.encode(step.name, gpu, io, encoder, timestamps);
-    }
-
-    fn set_progressive(&mut self, on: bool) {
-        self.0.set_progressive(on);
-    }
-
-    fn table_bytes(&self) -> u64 {
-        self.0.table_bytes()
-    }
 }

@@ -14,7 +14,7 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{texture_entry, uniform_buffer};
 use crate::sky::columns_table::ColumnsTable;
-use crate::sky::model_pass::{GpuModel, PassIo, frame_atmosphere};
+use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 
@@ -101,7 +101,7 @@ impl NishitaPass {
     }
 }
 
-impl GpuModel for NishitaPass {
+impl ModelPass for NishitaPass {
     type Step = NishitaStep;
 
     fn plan(

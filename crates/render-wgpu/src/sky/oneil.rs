@@ -16,7 +16,7 @@ use crate::gpu::pipeline::{
     ComputePipeline, storage_texture_entry, texel_groups, texture_2d, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
-use crate::sky::model_pass::{GpuModel, PassIo};
+use crate::sky::model_pass::{ModelPass, PassIo};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 use crate::sky::table_sampling::TableSampling;
@@ -224,7 +224,7 @@ impl OneilPass {
     }
 }
 
-impl GpuModel for OneilPass {
+impl ModelPass for OneilPass {
     type Step = OneilStep;
 
     fn plan(

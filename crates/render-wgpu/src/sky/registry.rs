@@ -7,7 +7,6 @@ use crate::gpu::error::RenderError;
 use crate::sky::bruneton::pass::BrunetonPass;
 use crate::sky::dobashi::DobashiPass;
 use crate::sky::hillaire::HillairePass;
-use crate::sky::model_pass::ByName;
 use crate::sky::nishita::NishitaPass;
 use crate::sky::oneil::OneilPass;
 use crate::sky::riley::RileyPass;
@@ -43,7 +42,7 @@ fn not_on_gpu(id: ModelId) -> RenderError {
 /// The GPU twin of model `id`, its pipelines compiled, no table built yet.
 pub fn create(id: ModelId, gpu: &GpuContext) -> Result<Box<dyn SkyPass>, RenderError> {
     Ok(match id {
-        ModelId::Bruneton => Box::new(Planned::new(ByName(BrunetonPass::new(gpu)?))),
+        ModelId::Bruneton => Box::new(Planned::new(BrunetonPass::new(gpu)?)),
         ModelId::Dobashi => Box::new(Planned::new(DobashiPass::new(gpu)?)),
         ModelId::Hillaire => Box::new(Planned::new(HillairePass::new(gpu)?)),
         ModelId::Nishita => Box::new(Planned::new(NishitaPass::new(gpu)?)),

@@ -14,7 +14,7 @@ use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::uniform_buffer;
-use crate::sky::model_pass::{GpuModel, PassIo};
+use crate::sky::model_pass::{ModelPass, PassIo};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 
@@ -100,7 +100,7 @@ impl RileyPass {
     }
 }
 
-impl GpuModel for RileyPass {
+impl ModelPass for RileyPass {
     type Step = RileyStep;
 
     fn plan(

@@ -1,6 +1,6 @@
 //! The sky model of a frame as the renderer sees it ([`SkyPass`]): it plans its steps into
 //! the frame's plan, then encodes the steps it planned, in order, each timed in the slot of
-//! its index in the frame's plan. [`Planned`] runs a [`GpuModel`].
+//! its index in the frame's plan. [`Planned`] runs a [`ModelPass`].
 
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
@@ -8,12 +8,12 @@ use crate::frame::plan::{FramePlan, StepKind};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::timer::GpuTimer;
-use crate::sky::model_pass::{GpuModel, PassIo, StandaloneInputs};
+use crate::sky::model_pass::{ModelPass, PassIo, StandaloneInputs};
 use crate::sky::steps::{PassStep, PlannedStep, SkyPlan};
 
 /// A sky model behind one object-safe interface; see the module documentation.
 pub trait SkyPass: std::fmt::Debug {
-    /// Adds the model's steps for `frame` to `plan` ([`GpuModel::plan`]).
+    /// Adds the model's steps for `frame` to `plan` ([`ModelPass::plan`]).
     fn plan(
         &mut self,
         gpu: &GpuContext,
@@ -31,21 +31,21 @@ pub trait SkyPass: std::fmt::Debug {
         timer: Option<&GpuTimer>,
     );
 
-    /// [`GpuModel::set_progressive`].
+    /// [`ModelPass::set_progressive`].
     fn set_progressive(&mut self, on: bool);
 
-    /// [`GpuModel::table_bytes`].
+    /// [`ModelPass::table_bytes`].
     fn table_bytes(&self) -> u64;
 }
 
-/// A [`GpuModel`] and the steps it planned for the frame.
+/// A [`ModelPass`] and the steps it planned for the frame.
 #[derive(Debug)]
-pub struct Planned<M: GpuModel> {
+pub struct Planned<M: ModelPass> {
     model: M,
     steps: Vec<PlannedStep<M::Step>>,
 }
 
-impl<M: GpuModel> Planned<M> {
+impl<M: ModelPass> Planned<M> {
     pub fn new(model: M) -> Planned<M> {
         Planned {
             model,
@@ -54,7 +54,7 @@ impl<M: GpuModel> Planned<M> {
     }
 }
 
-impl<M: GpuModel> SkyPass for Planned<M> {
+impl<M: ModelPass> SkyPass for Planned<M> {
     fn plan(
         &mut self,
         gpu: &GpuContext,
@@ -91,7 +91,7 @@ impl<M: GpuModel> SkyPass for Planned<M> {
 /// Plans `frame` with `model` and builds the tables its plan lists, without rendering
 /// (to have them ready before a first frame, or to read them back); returns that plan,
 /// less the passes.
-pub fn build_tables<M: GpuModel>(
+pub fn build_tables<M: ModelPass>(
     model: &mut M,
     gpu: &GpuContext,
     frame: &Frame,

@@ -14,24 +14,6 @@ pub trait PassStep: Copy + std::fmt::Debug + Eq + 'static {
     fn kind(self) -> StepKind;
 }
 
-/// A step known by its name only: one of a model whose steps are strings
-/// (`crate::sky::model_pass::ModelPass`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct NamedStep {
-    pub name: &'static str,
-    pub kind: StepKind,
-}
-
-impl PassStep for NamedStep {
-    fn name(self) -> &'static str {
-        self.name
-    }
-
-    fn kind(self) -> StepKind {
-        self.kind
-    }
-}
-
 /// A step a frame runs, and its index in the frame's plan.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PlannedStep<S> {
@@ -82,23 +64,5 @@ impl<'a, S: PassStep> SkyPlan<'a, S> {
     /// What a progressive table build is doing this frame ([`FramePlan::building`]).
     pub fn set_building(&mut self, building: Option<String>) {
         self.frame.building = building;
-    }
-}
-
-impl SkyPlan<'_, NamedStep> {
-    /// Lets `plan_by_name` add steps to the frame's plan by name, and lists those it
-    /// added to be encoded.
-    pub fn by_name<R>(&mut self, plan_by_name: impl FnOnce(&mut FramePlan) -> R) -> R {
-        let first = self.frame.steps.len();
-        let result = plan_by_name(self.frame);
-        let added = self.frame.steps[first..].iter().zip(first..);
-        self.steps.extend(added.map(|(step, index)| PlannedStep {
-            index: index as u32,
-            step: NamedStep {
-                name: step.name,
-                kind: step.kind,
-            },
-        }));
-        result
     }
 }

@@ -3,14 +3,14 @@
 //! recording of each step.
 
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::presets::earth;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::models::bruneton::BrunetonSettings;
 
 use crate::frame::Frame;
-use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM, check_wavelengths};
-use crate::frame::plan::{FramePlan, StepKind};
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::gpu::context::GpuContext;
-use crate::gpu::error::{GpuError, RenderError};
+use crate::gpu::error::RenderError;
 use crate::sky::bruneton::encode::StepEncoder;
 use crate::sky::bruneton::order_state::OrderState;
 use crate::sky::bruneton::orders::encode_orders;
@@ -19,7 +19,8 @@ use crate::sky::bruneton::progressive::{Recording, Share};
 use crate::sky::bruneton::step::BrunetonStep;
 use crate::sky::bruneton::tables::Tables;
 use crate::sky::bruneton::uniform::BrunetonUniform;
-use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
+use crate::sky::steps::SkyPlan;
 use crate::sky::table_sampling::TableSampling;
 
 /// What the last plan decided for the frame whose steps are encoded.
@@ -45,39 +46,34 @@ pub struct BrunetonPass {
     pub(super) pipelines: Pipelines,
     /// How the pass reads its tables.
     pub(super) sampling: TableSampling,
-    /// The tables of the last plan's sizes.
-    pub(super) tables: Option<Tables>,
-    pub(super) frame: Option<PlannedFrame>,
+    /// The tables at the last plan's sizes (the defaults' before the first plan).
+    pub(super) tables: Tables,
+    /// What the last plan decided (an Earth frame before the first plan).
+    pub(super) frame: PlannedFrame,
     /// Whether the loop over orders is spread over frames ([`ModelPass::set_progressive`]).
     progressive: bool,
 }
 
 impl BrunetonPass {
-    pub fn new(gpu: &GpuContext) -> Result<BrunetonPass, GpuError> {
+    /// The pass with its tables at the default settings' sizes, none built yet.
+    pub fn new(gpu: &GpuContext) -> Result<BrunetonPass, RenderError> {
         // The pass may sample the columns table, the view slice and E.
         let sampling = TableSampling::new(gpu);
+        let settings = BrunetonSettings::default();
+        let atmosphere = earth();
         Ok(BrunetonPass {
             pipelines: Pipelines::new(gpu, &sampling)?,
             sampling,
-            tables: None,
-            frame: None,
+            tables: Tables::new(gpu, &settings, settings.order_limit)?,
+            frame: PlannedFrame {
+                atmosphere_uniform: AtmosphereUniform::new(&atmosphere, RGB_WAVELENGTHS_NM)?,
+                atmosphere,
+                mie: true,
+                recording: Recording::All,
+                inside: true,
+            },
             progressive: false,
         })
-    }
-
-    /// The tables as last built, or an error before the first plan.
-    pub(super) fn tables(&self) -> Result<&Tables, RenderError> {
-        self.tables
-            .as_ref()
-            .ok_or_else(|| RenderError::Frame("the bruneton tables are not built yet".into()))
-    }
-
-    /// The frame the last plan decided on, with its tables.
-    pub(super) fn planned(&self) -> Result<(&Tables, &PlannedFrame), RenderError> {
-        match (self.tables()?, self.frame.as_ref()) {
-            (tables, Some(frame)) => Ok((tables, frame)),
-            (_, None) => Err(RenderError::Frame("no bruneton frame is planned".into())),
-        }
     }
 
     /// Records `step` of the last plan, timed by `timestamps` when given, and notes what
@@ -90,9 +86,7 @@ impl BrunetonPass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let (Some(tables), Some(frame)) = (self.tables.as_mut(), self.frame.as_ref()) else {
-            unreachable!("the plan makes the tables before its steps are encoded");
-        };
+        let (tables, frame) = (&mut self.tables, &self.frame);
         let steps = StepEncoder {
             gpu,
             io,
@@ -144,20 +138,21 @@ impl BrunetonPass {
 }
 
 impl ModelPass for BrunetonPass {
+    type Step = BrunetonStep;
+
     fn plan(
         &mut self,
         gpu: &GpuContext,
         frame: &Frame,
-        plan: &mut FramePlan,
+        plan: &mut SkyPlan<'_, BrunetonStep>,
     ) -> Result<(), RenderError> {
-        check_wavelengths(&frame.settings.wavelengths_nm)?;
+        let atmosphere_uniform = frame_atmosphere(frame)?;
         let settings = BrunetonSettings::from_options(&frame.settings.options)?;
         let max_orders = frame.settings.max_orders.unwrap_or(settings.order_limit);
-        let atmosphere_uniform = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
-        let tables = match &mut self.tables {
-            Some(t) if t.settings == settings && t.max_orders == max_orders => t,
-            slot => slot.insert(Tables::new(gpu, &settings, max_orders)?),
-        };
+        if self.tables.settings != settings || self.tables.max_orders != max_orders {
+            self.tables = Tables::new(gpu, &settings, max_orders)?;
+        }
+        let tables = &mut self.tables;
         let atmosphere = &frame.atmosphere;
         let stale = tables.built.stale(atmosphere);
         // The loop over orders starts again when its inputs changed, and a progressive
@@ -177,23 +172,23 @@ impl ModelPass for BrunetonPass {
         };
         let (slices, max_orders) = (tables.slices, tables.max_orders);
         let refresh = recording.is_some_and(|r| r.ends_order(slices));
-        plan.build_if(BrunetonStep::Transmittance.name(), stale.columns);
-        plan.build_if(BrunetonStep::Density.name(), stale.columns);
-        plan.build_if(BrunetonStep::SunTransmittance.name(), stale.sun);
-        plan.build_if(BrunetonStep::SingleScattering.name(), stale.single);
-        plan.build_if(BrunetonStep::ScatteringOrders.name(), recording.is_some());
-        plan.build_if(BrunetonStep::ScatteringTexture.name(), refresh);
+        plan.build_if(BrunetonStep::Transmittance, stale.columns);
+        plan.build_if(BrunetonStep::Density, stale.columns);
+        plan.build_if(BrunetonStep::SunTransmittance, stale.sun);
+        plan.build_if(BrunetonStep::SingleScattering, stale.single);
+        plan.build_if(BrunetonStep::ScatteringOrders, recording.is_some());
+        plan.build_if(BrunetonStep::ScatteringTexture, refresh);
         let inside = frame.camera_position_m.length() <= atmosphere.top_radius_m;
         if inside {
-            plan.run(BrunetonStep::ViewSlice.name(), StepKind::Pass);
+            plan.run(BrunetonStep::ViewSlice);
         }
-        plan.run(BrunetonStep::Render.name(), StepKind::Pass);
-        plan.building = match recording {
+        plan.run(BrunetonStep::Render);
+        plan.set_building(match recording {
             Some(Recording::Share(s)) if s.after(slices, max_orders).is_some() => {
                 Some(s.describe(slices, max_orders))
             }
             _ => None,
-        };
+        });
         // Mie pruning as built (a frame that rebuilds nothing renders what was built).
         let mie = if orders {
             Spectra::new(atmosphere, RGB_WAVELENGTHS_NM.as_slice()).needs_mie(frame.settings.prune)
@@ -214,27 +209,24 @@ impl ModelPass for BrunetonPass {
             gpu.queue
                 .write_buffer(&tables.state, 0, bytemuck::bytes_of(&state));
         }
-        self.frame = Some(PlannedFrame {
+        self.frame = PlannedFrame {
             atmosphere: atmosphere.clone(),
             atmosphere_uniform,
             mie,
             recording: recording.unwrap_or(Recording::All),
             inside,
-        });
+        };
         Ok(())
     }
 
     fn encode(
         &mut self,
-        step: &'static str,
+        step: BrunetonStep,
         gpu: &GpuContext,
         io: &PassIo<'_>,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        let Some(step) = BrunetonStep::from_name(step) else {
-            unreachable!("the bruneton plan has no step {step}");
-        };
         self.encode_step(step, gpu, io, encoder, timestamps);
     }
 
@@ -249,6 +241,6 @@ impl ModelPass for BrunetonPass {
     }
 
     fn table_bytes(&self) -> u64 {
-        self.tables.as_ref().map_or(0, Tables::bytes)
+        self.tables.bytes()
     }
 }

@@ -45,7 +45,7 @@ impl BrunetonPass {
         gpu: &GpuContext,
         table: StoreTable,
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        let tables = self.tables()?;
+        let tables = &self.tables;
         let (offset, size) = tables.layout.range(table);
         let bytes = read_buffer(gpu, &tables.store, offset, size)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
@@ -58,13 +58,13 @@ impl BrunetonPass {
         gpu: &GpuContext,
         k: usize,
     ) -> Result<Vec<[f32; 4]>, RenderError> {
-        let bytes = read_texture(gpu, &self.tables()?.textures[k], 16)?;
+        let bytes = read_texture(gpu, &self.tables.textures[k], 16)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 
     /// The state of the last loop over orders: the highest order added and each order's
     /// share.
     pub fn read_orders(&self, gpu: &GpuContext) -> Result<OrderState, RenderError> {
-        self.tables()?.read_state(gpu)
+        self.tables.read_state(gpu)
     }
 }

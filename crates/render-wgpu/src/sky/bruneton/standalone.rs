@@ -10,15 +10,7 @@ use crate::sky::bruneton::orders::{clear_orders, order_dispatches};
 use crate::sky::bruneton::pass::BrunetonPass;
 use crate::sky::bruneton::step::BrunetonStep;
 use crate::sky::model_pass::{ModelPass, StandaloneInputs};
-
-/// The table builds of `plan`, in its order.
-fn table_builds(plan: &FramePlan) -> Vec<BrunetonStep> {
-    plan.steps
-        .iter()
-        .filter(|s| s.kind == StepKind::TableBuild)
-        .filter_map(|s| BrunetonStep::from_name(s.name))
-        .collect()
-}
+use crate::sky::steps::{PassStep, PlannedStep, SkyPlan};
 
 /// Waits for the GPU to finish its work.
 fn wait(gpu: &GpuContext) -> Result<(), RenderError> {
@@ -50,15 +42,8 @@ impl BrunetonPass {
         gpu: &GpuContext,
         frame: &Frame,
     ) -> Result<FramePlan, RenderError> {
-        let mut plan = FramePlan::default();
-        self.plan(gpu, frame, &mut plan)?;
-        let inputs = StandaloneInputs::new(gpu, &self.planned()?.1.atmosphere_uniform, frame);
-        let io = inputs.io();
-        timed(gpu, |encoder| {
-            for step in table_builds(&plan) {
-                self.encode_step(step, gpu, &io, encoder, None);
-            }
-        })?;
+        let plan = crate::sky::sky_pass::build_tables(self, gpu, frame)?;
+        wait(gpu)?;
         Ok(plan)
     }
 
@@ -72,16 +57,19 @@ impl BrunetonPass {
         gpu: &GpuContext,
         frame: &Frame,
     ) -> Result<Vec<(String, f64)>, RenderError> {
-        if let Some(t) = self.tables.as_mut() {
-            t.built = Built::default();
-        }
+        self.tables.built = Built::default();
         let mut plan = FramePlan::default();
-        self.plan(gpu, frame, &mut plan)?;
-        let inputs = StandaloneInputs::new(gpu, &self.planned()?.1.atmosphere_uniform, frame);
+        let mut steps = Vec::new();
+        self.plan(gpu, frame, &mut SkyPlan::new(&mut plan, &mut steps))?;
+        let inputs = StandaloneInputs::new(gpu, &self.frame.atmosphere_uniform, frame);
         let io = inputs.io();
         let mut times = Vec::new();
         wait(gpu)?;
-        for step in table_builds(&plan) {
+        let table_builds = steps
+            .into_iter()
+            .map(|PlannedStep { step, .. }| step)
+            .filter(|step| step.kind() == StepKind::TableBuild);
+        for step in table_builds {
             if step != BrunetonStep::ScatteringOrders {
                 let ms = timed(gpu, |encoder| {
                     self.encode_step(step, gpu, &io, encoder, None);
@@ -89,7 +77,7 @@ impl BrunetonPass {
                 times.push((step.name().to_string(), ms));
                 continue;
             }
-            let (tables, planned) = self.planned()?;
+            let (tables, planned) = (&self.tables, &self.frame);
             timed(gpu, |encoder| clear_orders(tables, encoder))?;
             for d in order_dispatches(gpu, &io, tables, &self.pipelines) {
                 let ms = timed(gpu, |encoder| {
@@ -98,10 +86,7 @@ impl BrunetonPass {
                 let name = format!("{} order {} {}", step.name(), d.share.order, d.name);
                 times.push((name, ms));
             }
-            let orders = Some((planned.atmosphere.clone(), planned.mie));
-            if let Some(tables) = self.tables.as_mut() {
-                tables.built.orders = orders;
-            }
+            self.tables.built.orders = Some((planned.atmosphere.clone(), planned.mie));
         }
         Ok(times)
     }

@@ -2,6 +2,7 @@
 //! passes of each frame.
 
 use crate::frame::plan::StepKind;
+use crate::sky::steps::PassStep;
 
 /// One step of the bruneton model's frame plan.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -26,21 +27,8 @@ pub enum BrunetonStep {
     Render,
 }
 
-impl BrunetonStep {
-    /// Every step, in the order of the plan.
-    pub const ALL: [BrunetonStep; 8] = [
-        BrunetonStep::Transmittance,
-        BrunetonStep::Density,
-        BrunetonStep::SunTransmittance,
-        BrunetonStep::SingleScattering,
-        BrunetonStep::ScatteringOrders,
-        BrunetonStep::ScatteringTexture,
-        BrunetonStep::ViewSlice,
-        BrunetonStep::Render,
-    ];
-
-    /// The step's name in the frame plan.
-    pub fn name(self) -> &'static str {
+impl PassStep for BrunetonStep {
+    fn name(self) -> &'static str {
         match self {
             BrunetonStep::Transmittance => "transmittance",
             BrunetonStep::Density => "density",
@@ -53,16 +41,15 @@ impl BrunetonStep {
         }
     }
 
-    /// The step named `name` in the frame plan, if any.
-    pub fn from_name(name: &str) -> Option<BrunetonStep> {
-        BrunetonStep::ALL.into_iter().find(|s| s.name() == name)
-    }
-
-    /// Whether the step builds a table or renders.
-    pub fn kind(self) -> StepKind {
+    fn kind(self) -> StepKind {
         match self {
             BrunetonStep::ViewSlice | BrunetonStep::Render => StepKind::Pass,
-            _ => StepKind::TableBuild,
+            BrunetonStep::Transmittance
+            | BrunetonStep::Density
+            | BrunetonStep::SunTransmittance
+            | BrunetonStep::SingleScattering
+            | BrunetonStep::ScatteringOrders
+            | BrunetonStep::ScatteringTexture => StepKind::TableBuild,
         }
     }
 }

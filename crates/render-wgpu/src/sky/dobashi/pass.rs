@@ -20,7 +20,7 @@ use crate::sky::dobashi::ambient::{
 };
 use crate::sky::dobashi::step::DobashiStep;
 use crate::sky::dobashi::tables::{DobashiTables, plane_interval_m, sphere_rows, table_key};
-use crate::sky::model_pass::{GpuModel, PassIo, frame_atmosphere};
+use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::SkyPlan;
 use crate::sky::table_sampling::TableSampling;
@@ -206,7 +206,7 @@ impl DobashiPass {
     }
 }
 
-impl GpuModel for DobashiPass {
+impl ModelPass for DobashiPass {
     type Step = DobashiStep;
 
     fn plan(

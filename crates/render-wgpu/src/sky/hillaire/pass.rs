@@ -19,7 +19,7 @@ use crate::gpu::readback::read_texture;
 use crate::sky::hillaire::step::HillaireStep;
 use crate::sky::hillaire::tables::{Source, Table, Tables};
 use crate::sky::hillaire::uniform::HillaireUniform;
-use crate::sky::model_pass::{GpuModel, PassIo, frame_atmosphere};
+use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::sky_pass::build_tables;
 use crate::sky::steps::SkyPlan;
@@ -223,7 +223,7 @@ fn read_texels(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]
     Ok(bytemuck::pod_collect_to_vec(&bytes))
 }
 
-impl GpuModel for HillairePass {
+impl ModelPass for HillairePass {
     type Step = HillaireStep;
 
     fn plan(
