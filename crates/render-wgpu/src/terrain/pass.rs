@@ -26,11 +26,15 @@ use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::texture_2d;
 use crate::gpu::shaders;
 use crate::terrain::chunk_key::ChunkKey;
+use crate::terrain::chunk_mesh::ChunkMesh;
+use crate::terrain::colour_map::ColourMap;
 use crate::terrain::colour_mips::colour_mips;
 use crate::terrain::frustum::Frustum;
+use crate::terrain::height_map::HeightMap;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
+use crate::terrain::map_image::earth_assets_dir;
 use crate::terrain::stitching::stitched_indices;
-use crate::terrain::{ChunkMesh, ColourMap, HeightMap, TerrainSurface, earth_assets_dir};
+use crate::terrain::surface::TerrainSurface;
 
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
