@@ -79,8 +79,8 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
 }
 
 /// The bruneton scenes' table sizes (`--set` options): S at 16 x 64 x 16 x 8, an eighth
-/// of the paper's texels, since the paper's sizes take minutes to build on lavapipe
-/// (docs/rendering.md, "Cost").
+/// of the paper's texels, since the paper's sizes are slow to build on a software
+/// rasteriser (docs/rendering.md, "Cost").
 const BRUNETON_SIZES: [(&str, &str); 4] = [("r", "16"), ("mu", "64"), ("mu_s", "16"), ("nu", "8")];
 
 fn render(

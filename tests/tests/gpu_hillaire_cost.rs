@@ -11,8 +11,7 @@
 //! target, asserted) and with the per-view tables rebuilt (the sun moved, as in an
 //! animation: printed only). Compared: the sum of the plan's GPU times and the
 //! wall-clock time of `Renderer::render`, which waits for the GPU (lavapipe's timestamps
-//! read too little for table builds, docs/rendering.md). Measured on lavapipe, 2 shared
-//! cores: same view 0.24 of nishita (GPU and wall), sun moved 0.45 (wall).
+//! read too little for table builds, docs/rendering.md).
 
 use std::time::Instant;
 
