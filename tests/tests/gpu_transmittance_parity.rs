@@ -5,13 +5,15 @@
 //! `NoAdapter` message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when
 //! they print that they skipped.
 
+mod support;
+
 use std::time::Instant;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use render_wgpu::sky::transmittance::TransmittancePass;
-use render_wgpu::{GpuContext, GpuError};
+use support::gpu_or_skip;
 
 /// Largest allowed |T_gpu - T_cpu|: the f32 rounding of a transmittance near 1 plus that
 /// of its optical depth, with a margin for GPUs with a less accurate `exp` (Vulkan allows
@@ -24,21 +26,6 @@ const MAX_ABS_ERROR: f64 = 5e-6;
 /// transmittances near the horizon (tau up to 11 on both planets): some tens of f32 ulps
 /// from summing 320 samples, with a margin that the naive altitude still exceeds.
 const MAX_OPTICAL_DEPTH_ERROR: f64 = 2e-5;
-
-/// The context, or `None` after printing why when there is no adapter and
-/// `ATMOS_SKIP_GPU_TESTS=1`.
-fn gpu_or_skip(test: &str) -> Option<GpuContext> {
-    match GpuContext::headless() {
-        Ok(gpu) => Some(gpu),
-        Err(e @ GpuError::NoAdapter { .. })
-            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
-        {
-            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e}"),
-    }
-}
 
 fn check_parity(preset: &str) {
     let Some(gpu) = gpu_or_skip(preset) else {
