@@ -14,14 +14,16 @@
 //!
 //! Needs a GPU adapter (lavapipe will do), with the skip policy of the other GPU tests.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
-use atmosphere_core::models::sky_model::ModelSettings;
-use render_wgpu::frame::{Frame, LocalView};
+use render_wgpu::Renderer;
+use render_wgpu::frame::LocalView;
 use render_wgpu::sky::registry::GPU_MODELS;
-use render_wgpu::{GpuError, RenderError, Renderer};
+use support::{frame_in, renderer_or_skip};
 
 /// Largest allowed difference of one channel, 8-bit levels.
 const MAX_LEVELS: i32 = 6;
@@ -79,8 +81,8 @@ fn scenes() -> Vec<(&'static str, LocalView, f64, &'static str, f64)> {
 }
 
 /// The bruneton scenes' table sizes (`--set` options): S at 16 x 64 x 16 x 8, an eighth
-/// of the paper's texels, since the paper's sizes take minutes to build on lavapipe
-/// (docs/rendering.md, "Cost").
+/// of the paper's texels, since the paper's sizes are slow to build on a software
+/// rasteriser (docs/rendering.md, "Cost").
 const BRUNETON_SIZES: [(&str, &str); 4] = [("r", "16"), ("mu", "64"), ("mu_s", "16"), ("nu", "8")];
 
 fn render(
@@ -89,25 +91,13 @@ fn render(
     (view, fov, preset, ev): (LocalView, f64, &str, f64),
 ) -> Vec<u8> {
     let atmosphere = Atmosphere::preset(preset).unwrap();
-    let mut settings = ModelSettings::default();
+    let mut frame = frame_in(atmosphere, model, view, fov, WIDTH, HEIGHT);
+    frame.exposure_ev100 = ev;
     if model == ModelId::Bruneton {
         for (key, value) in BRUNETON_SIZES {
-            settings.options.set(key, value);
+            frame.settings.options.set(key, value);
         }
     }
-    let frame = Frame {
-        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
-        orientation: view.orientation(),
-        vertical_fov_deg: fov,
-        sun_direction: view.sun_direction(),
-        atmosphere,
-        model,
-        settings,
-        exposure_ev100: ev,
-        width: WIDTH,
-        height: HEIGHT,
-        terrain: None,
-    };
     renderer.render(&frame).unwrap();
     renderer
         .read_ldr()
@@ -119,15 +109,8 @@ fn render(
 
 #[test]
 fn renders_match_the_golden_images() {
-    let mut renderer = match Renderer::headless() {
-        Ok(r) => r,
-        Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
-            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
-        {
-            println!("golden images: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-            return;
-        }
-        Err(e) => panic!("{e}"),
+    let Some(mut renderer) = renderer_or_skip("golden images") else {
+        return;
     };
     let update = std::env::var("ATMOS_UPDATE_GOLDEN").as_deref() == Ok("1");
     let mut failures = Vec::new();

@@ -11,22 +11,21 @@
 //! target, asserted) and with the per-view tables rebuilt (the sun moved, as in an
 //! animation: printed only). Compared: the sum of the plan's GPU times and the
 //! wall-clock time of `Renderer::render`, which waits for the GPU (lavapipe's timestamps
-//! read too little for table builds, docs/rendering.md). Measured on lavapipe, 2 shared
-//! cores: same view 0.24 of nishita (GPU and wall), sun moved 0.45 (wall).
+//! read too little for table builds, docs/rendering.md).
+
+mod support;
 
 use std::time::Instant;
 
-use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
-use atmosphere_core::models::sky_model::ModelSettings;
+use render_wgpu::Renderer;
 use render_wgpu::frame::{Frame, LocalView};
-use render_wgpu::{GpuError, RenderError, Renderer};
+use support::{frame, renderer_or_skip};
 
 /// The target: hillaire at most this share of the nishita frame.
 const TARGET_SHARE: f64 = 0.25;
 
 fn ground_view(model: ModelId, sun_zenith_deg: f64) -> Frame {
-    let atmosphere = Atmosphere::preset("earth").unwrap();
     let view = LocalView {
         altitude_m: 2.0,
         view_zenith_deg: 80.0,
@@ -34,23 +33,11 @@ fn ground_view(model: ModelId, sun_zenith_deg: f64) -> Frame {
         sun_zenith_deg,
         sun_azimuth_deg: 20.0,
     };
-    let mut settings = ModelSettings::default();
+    let mut frame = frame(model, view, 70.0, 1280, 720);
     if model == ModelId::Nishita {
-        settings.options.set("samples", 16);
+        frame.settings.options.set("samples", 16);
     }
-    Frame {
-        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
-        orientation: view.orientation(),
-        vertical_fov_deg: 70.0,
-        sun_direction: view.sun_direction(),
-        atmosphere,
-        model,
-        settings,
-        exposure_ev100: 14.0,
-        width: 1280,
-        height: 720,
-        terrain: None,
-    }
+    frame
 }
 
 /// Renders `frame`; prints and returns (sum of GPU times, wall-clock), ms.
@@ -66,15 +53,8 @@ fn timed(renderer: &mut Renderer, name: &str, frame: &Frame) -> (f64, f64) {
 #[test]
 #[ignore = "seconds of software rendering at 1280x720; run with --ignored"]
 fn a_hillaire_ground_view_costs_at_most_a_quarter_of_nishita_16() {
-    let mut renderer = match Renderer::headless() {
-        Ok(r) => r,
-        Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
-            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
-        {
-            println!("hillaire cost: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-            return;
-        }
-        Err(e) => panic!("{e}"),
+    let Some(mut renderer) = renderer_or_skip("hillaire cost") else {
+        return;
     };
     println!("on {}", renderer.gpu().adapter_summary());
     timed(

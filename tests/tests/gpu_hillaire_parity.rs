@@ -1,4 +1,4 @@
-//! The GPU hillaire model (`render_wgpu::sky::hillaire`, `shaders/hillaire*.wgsl`) against
+//! The GPU hillaire model (`render_wgpu::sky::hillaire`, `shaders/sky/hillaire/`) against
 //! its CPU twin (`atmosphere_core::models::hillaire`): every table read back and compared texel by
 //! texel, rendered pixels against `Hillaire::radiance` on `Frame::pixel_ray` rays (plus
 //! the transmitted sun disk), and the frame planner's choices.
@@ -9,16 +9,17 @@
 
 mod support;
 
-use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::hillaire::view_cache::view_key;
 use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
 use atmosphere_core::models::id::ModelId;
-use atmosphere_core::models::sky_model::ModelSettings;
+use render_wgpu::Renderer;
 use render_wgpu::frame::plan::FramePlan;
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::sky::hillaire::{HillairePass, Table};
-use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{check, check_surface, check_texel_reads, standard_frames, view};
+use support::{
+    check_each, check_standard_surfaces, check_sun_disk, check_texel_reads, gpu_or_skip,
+    renderer_or_skip, standard_frames, view,
+};
 
 /// Largest relative error of a table's texel, |gpu - cpu| / max(|cpu|, 1e-3 of the
 /// table's largest value). Both sides march in the same order with the same samples;
@@ -35,38 +36,9 @@ const MAX_TRANSMITTANCE_ERROR: f64 = 1e-5;
 /// move steeply near the horizon where the latitude mapping is a square root.
 const MAX_RELATIVE_ERROR: f64 = 2e-3;
 
-fn skip_gpu(test: &str, e: &GpuError) -> bool {
-    let skip = matches!(e, GpuError::NoAdapter { .. })
-        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1");
-    if skip {
-        println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-    }
-    skip
-}
-
-fn renderer_or_skip(test: &str) -> Option<Renderer> {
-    match Renderer::headless() {
-        Ok(r) => Some(r),
-        Err(RenderError::Gpu(e)) if skip_gpu(test, &e) => None,
-        Err(e) => panic!("{e}"),
-    }
-}
-
+/// A hillaire frame on the earth preset ([`support::frame`]).
 fn frame(view: LocalView, fov_deg: f64, width: u32, height: u32) -> Frame {
-    let atmosphere = Atmosphere::preset("earth").unwrap();
-    Frame {
-        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
-        orientation: view.orientation(),
-        vertical_fov_deg: fov_deg,
-        sun_direction: view.sun_direction(),
-        atmosphere,
-        model: ModelId::Hillaire,
-        settings: ModelSettings::default(),
-        exposure_ev100: 14.0,
-        width,
-        height,
-        terrain: None,
-    }
+    support::frame(ModelId::Hillaire, view, fov_deg, width, height)
 }
 
 fn cpu_model(frame: &Frame) -> Hillaire {
@@ -101,10 +73,8 @@ fn table_error(gpu: &[[f32; 4]], cpu: &[f32], stride: usize, offset: usize) -> f
 /// CPU's. Measured on lavapipe: see the printed worst errors.
 #[test]
 fn tables_match_the_cpu() {
-    let gpu = match GpuContext::headless() {
-        Ok(gpu) => gpu,
-        Err(e) if skip_gpu("hillaire tables", &e) => return,
-        Err(e) => panic!("{e}"),
+    let Some(gpu) = gpu_or_skip("hillaire tables") else {
+        return;
     };
     let f = frame(view(1_000.0, 120.0, 60.0), 60.0, 16, 9);
     let mut pass = HillairePass::new(&gpu).unwrap();
@@ -198,43 +168,22 @@ fn hillaire_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("hillaire parity") else {
         return;
     };
-    // 1 m above the ground at noon, looking at the horizon: sky view, volume, ground.
-    check(
-        &mut renderer,
-        "ground, noon",
-        &frame(view(1.0, 85.0, 10.0), 70.0, 64, 36),
-        MAX_RELATIVE_ERROR,
-    );
-    // Sunset from 2 km, looking towards the sun.
     let mut sunset = view(2_000.0, 88.0, 89.0);
     sunset.sun_azimuth_deg = 5.0;
-    check(
-        &mut renderer,
-        "sunset",
-        &frame(sunset, 60.0, 64, 36),
-        MAX_RELATIVE_ERROR,
-    );
-    // 10 km, looking down past the horizon: ground within and beyond the volume's range.
-    check(
-        &mut renderer,
-        "10 km",
-        &frame(view(10_000.0, 100.0, 50.0), 60.0, 64, 36),
-        MAX_RELATIVE_ERROR,
-    );
-    // The limb from 100 km: marched from where the rays enter the atmosphere.
-    check(
-        &mut renderer,
-        "100 km",
-        &frame(view(100_000.0, 100.0, 60.0), 40.0, 64, 36),
-        MAX_RELATIVE_ERROR,
-    );
-    // The whole planet from 1e8 m, the terminator in view.
-    check(
-        &mut renderer,
-        "1e8 m",
-        &frame(view(1e8, 180.0, 80.0), 9.0, 64, 36),
-        MAX_RELATIVE_ERROR,
-    );
+    let frames = [
+        // 1 m above the ground at noon, looking at the horizon: sky view, volume, ground.
+        ("ground, noon", frame(view(1.0, 85.0, 10.0), 70.0, 64, 36)),
+        // Sunset from 2 km, looking towards the sun.
+        ("sunset", frame(sunset, 60.0, 64, 36)),
+        // 10 km, looking down past the horizon: ground within and beyond the volume's
+        // range.
+        ("10 km", frame(view(10_000.0, 100.0, 50.0), 60.0, 64, 36)),
+        // The limb from 100 km: marched from where the rays enter the atmosphere.
+        ("100 km", frame(view(100_000.0, 100.0, 60.0), 40.0, 64, 36)),
+        // The whole planet from 1e8 m, the terminator in view.
+        ("1e8 m", frame(view(1e8, 180.0, 80.0), 9.0, 64, 36)),
+    ];
+    check_each(&mut renderer, &frames, MAX_RELATIVE_ERROR);
 }
 
 /// The texel-by-texel reads, which a device without `FLOAT32_FILTERABLE` runs, against
@@ -259,31 +208,16 @@ fn texel_reads_match_the_cpu_and_the_filtered_reads() {
 
 #[test]
 fn hillaire_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
-    let Some(mut renderer) = renderer_or_skip("hillaire surfaces") else {
-        return;
-    };
     // Surfaces within the volume's range read it, those beyond are marched (the planner
     // picks the entry point that does both), and from space every ray is marched.
-    for (name, f) in standard_frames(ModelId::Hillaire).iter().take(4) {
-        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
-    }
+    check_standard_surfaces("hillaire surfaces", ModelId::Hillaire, MAX_RELATIVE_ERROR);
 }
 
 #[test]
 fn the_sun_disk_is_added_through_the_sky_view_transmittance() {
-    let Some(mut renderer) = renderer_or_skip("hillaire sun disk") else {
-        return;
-    };
     // A sun 60 deg from the zenith seen from 500 m with 1 deg of field: about 10 pixels
     // across.
-    let mut v = view(500.0, 60.0, 60.0);
-    v.sun_azimuth_deg = 0.0;
-    let f = frame(v, 1.0, 33, 19);
-    check(&mut renderer, "sun disk", &f, MAX_RELATIVE_ERROR);
-    let hdr = renderer.read_hdr().unwrap();
-    let centre = hdr[(9 * 33 + 16) as usize][1];
-    let near_limb = hdr[(9 * 33 + 20) as usize][1];
-    assert!(centre > 1e4 && near_limb < centre, "{centre} {near_limb}");
+    check_sun_disk("hillaire sun disk", ModelId::Hillaire, MAX_RELATIVE_ERROR);
 }
 
 /// The HDR image of `frame` rendered by `renderer`, and its plan.

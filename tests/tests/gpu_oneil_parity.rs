@@ -14,8 +14,8 @@ use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_
 use render_wgpu::gpu::pipeline::uniform_buffer;
 use render_wgpu::sky::oneil::OneilTablePass;
 use support::{
-    check, check_surface, check_texel_reads, frame, frame_in, renderer_or_skip, standard_frames,
-    view,
+    check, check_each, check_standard_surfaces, check_texel_reads, frame, other_atmosphere_frames,
+    renderer_or_skip, standard_frames, view,
 };
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
@@ -115,9 +115,11 @@ fn oneil_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("oneil parity") else {
         return;
     };
-    for (name, f) in &standard_frames(ModelId::Oneil) {
-        check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
-    }
+    check_each(
+        &mut renderer,
+        &standard_frames(ModelId::Oneil),
+        MAX_RELATIVE_ERROR,
+    );
     // A camera just inside the top looking through the limb, where the two-lookup
     // subtraction changes form along the ray; the paper's settings replaced by finer ones.
     let mut f = frame(ModelId::Oneil, view(59_000.0, 95.0, 70.0), 30.0, 64, 36);
@@ -125,28 +127,16 @@ fn oneil_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     f.settings.options =
         ModelOptions::parse(&["samples=16", "table_heights=128", "table_angles=256"]).unwrap();
     check(&mut renderer, "finer settings", &f, MAX_RELATIVE_ERROR);
-    for name in ["hazy", "mars"] {
-        let atmosphere = Atmosphere::preset(name).unwrap();
-        let f = frame_in(
-            atmosphere,
-            ModelId::Oneil,
-            view(1.0, 85.0, 50.0),
-            70.0,
-            64,
-            36,
-        );
-        check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
-    }
+    check_each(
+        &mut renderer,
+        &other_atmosphere_frames(ModelId::Oneil),
+        MAX_RELATIVE_ERROR,
+    );
 }
 
 #[test]
 fn oneil_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
-    let Some(mut renderer) = renderer_or_skip("oneil surfaces") else {
-        return;
-    };
-    for (name, f) in standard_frames(ModelId::Oneil).iter().take(4) {
-        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
-    }
+    check_standard_surfaces("oneil surfaces", ModelId::Oneil, MAX_RELATIVE_ERROR);
 }
 
 /// Whether rendering `f` builds the table.

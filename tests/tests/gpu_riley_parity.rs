@@ -9,7 +9,8 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use render_wgpu::frame::{Frame, LocalView};
 use support::{
-    FLOOR, check, check_surface, frame, frame_in, renderer_or_skip, standard_frames, view,
+    FLOOR, check, check_each, check_standard_surfaces, frame, ground_frame_in,
+    other_atmosphere_frames, renderer_or_skip, standard_frames, view,
 };
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
@@ -22,39 +23,22 @@ fn riley_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("riley parity") else {
         return;
     };
-    for (name, f) in &standard_frames(ModelId::Riley) {
-        check(&mut renderer, name, f, MAX_RELATIVE_ERROR);
-    }
+    check_each(
+        &mut renderer,
+        &standard_frames(ModelId::Riley),
+        MAX_RELATIVE_ERROR,
+    );
     // The ground frame in other atmospheres: the fit is redone on the CPU and the uniform
     // uploaded again; at zero aerosol the Mie terms are pruned.
-    for (name, atmosphere) in [
-        ("hazy", Atmosphere::preset("hazy").unwrap()),
-        ("mars", Atmosphere::preset("mars").unwrap()),
-        (
-            "no aerosol",
-            Atmosphere::preset("earth").unwrap().with_aerosol_scale(0.0),
-        ),
-    ] {
-        let f = frame_in(
-            atmosphere,
-            ModelId::Riley,
-            view(1.0, 85.0, 50.0),
-            70.0,
-            64,
-            36,
-        );
-        check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
-    }
+    let mut others = other_atmosphere_frames(ModelId::Riley);
+    let no_aerosol = Atmosphere::preset("earth").unwrap().with_aerosol_scale(0.0);
+    others.push(("no aerosol", ground_frame_in(no_aerosol, ModelId::Riley)));
+    check_each(&mut renderer, &others, MAX_RELATIVE_ERROR);
 }
 
 #[test]
 fn riley_lights_surfaces_and_sees_them_through_the_air_as_on_the_cpu() {
-    let Some(mut renderer) = renderer_or_skip("riley surfaces") else {
-        return;
-    };
-    for (name, f) in standard_frames(ModelId::Riley).iter().take(4) {
-        check_surface(&mut renderer, name, f, MAX_RELATIVE_ERROR);
-    }
+    check_standard_surfaces("riley surfaces", ModelId::Riley, MAX_RELATIVE_ERROR);
 }
 
 /// A 33 x 33 frame 0.01 deg high around `view`: the centre row is the view direction

@@ -1,4 +1,4 @@
-//! The terrain pass on the GPU (`terrain_pass.rs`, `shaders/terrain/terrain.wgsl`) against its
+//! The terrain pass on the GPU (`render_wgpu::terrain::pass`, `shaders/terrain/terrain.wgsl`) against its
 //! CPU twin: the surface buffer's distance, normal and albedo at each pixel equal the
 //! nearest hit of the pixel's ray (`Frame::pixel_ray`) on the chunk meshes the CPU
 //! selects for the same camera (`select_chunks`, `ChunkMesh`), the normal interpolated

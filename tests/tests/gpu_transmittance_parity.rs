@@ -5,42 +5,27 @@
 //! `NoAdapter` message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when
 //! they print that they skipped.
 
+mod support;
+
 use std::time::Instant;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use render_wgpu::sky::transmittance::TransmittancePass;
-use render_wgpu::{GpuContext, GpuError};
+use support::gpu_or_skip;
 
-/// Largest allowed |T_gpu - T_cpu|. Measured on lavapipe: 4.4e-7 (earth), 5.5e-7 (mars),
-/// the f32 rounding of a transmittance near 1 plus that of its optical depth; 5e-6 leaves
-/// a tenfold margin for GPUs with a less accurate `exp` (Vulkan allows 3 + 2|x| ulp),
-/// and still catches the naive f32 altitude `radius_at(r, mu, t) - bottom`, which loses
-/// half a metre to the radius's rounding and measured 1.4e-5.
+/// Largest allowed |T_gpu - T_cpu|: the f32 rounding of a transmittance near 1 plus that
+/// of its optical depth, with a margin for GPUs with a less accurate `exp` (Vulkan allows
+/// 3 + 2|x| ulp); it still catches the naive f32 altitude `radius_at(r, mu, t) - bottom`,
+/// which loses half a metre to the radius's rounding.
 const MAX_ABS_ERROR: f64 = 5e-6;
 
 /// Largest allowed |tau_gpu - tau_cpu| / max(tau_cpu, 1) with tau = -ln T: the relative
 /// error of the optical depth, which bounds the relative error of the small
-/// transmittances near the horizon (tau up to 11 on both planets). Measured on lavapipe:
-/// 1.8e-6 (earth), 1.7e-6 (mars), some tens of f32 ulps from summing 320 samples;
-/// tenfold margin. The naive altitude measured 6.5e-5.
+/// transmittances near the horizon (tau up to 11 on both planets): some tens of f32 ulps
+/// from summing 320 samples, with a margin that the naive altitude still exceeds.
 const MAX_OPTICAL_DEPTH_ERROR: f64 = 2e-5;
-
-/// The context, or `None` after printing why when there is no adapter and
-/// `ATMOS_SKIP_GPU_TESTS=1`.
-fn gpu_or_skip(test: &str) -> Option<GpuContext> {
-    match GpuContext::headless() {
-        Ok(gpu) => Some(gpu),
-        Err(e @ GpuError::NoAdapter { .. })
-            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
-        {
-            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e}"),
-    }
-}
 
 fn check_parity(preset: &str) {
     let Some(gpu) = gpu_or_skip(preset) else {

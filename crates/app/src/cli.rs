@@ -183,7 +183,7 @@ pub struct RenderArgs {
 #[derive(Debug, Args)]
 pub struct ReportArgs {
     /// Directory of README.md, error_vs_time.png and the reference cache reference.csv.
-    #[arg(long, value_name = "DIR", default_value = crate::report::DEFAULT_OUT)]
+    #[arg(long, value_name = "DIR", default_value = crate::report::variants::DEFAULT_OUT)]
     pub out: PathBuf,
     /// Rays per view as COLUMNSxROWS.
     #[arg(long, value_name = "COLUMNSxROWS", default_value = "16x9", value_parser = parse_grid)]
@@ -222,7 +222,7 @@ fn gpu_model(text: &str) -> Result<ModelId, String> {
 /// A model the report has settings for (`atmos report --model`).
 fn report_model(text: &str) -> Result<ModelId, String> {
     let id: ModelId = text.parse().map_err(|e: UnknownModel| e.to_string())?;
-    let known = crate::report::report_models();
+    let known = crate::report::variants::report_models();
     if known.contains(&id) {
         Ok(id)
     } else {

@@ -1,5 +1,6 @@
-//! `atmos stability`: the stiff and extreme cases of DESIGN.md through every model (or
-//! the chosen ones), as a table of pass or fail and the worst value seen.
+//! `atmos stability`: the stiff and extreme cases of `atmosphere_core::analysis::stability`
+//! through every model (or the chosen ones), as a table of pass or fail and the worst
+//! value seen.
 
 use anyhow::{Context, bail};
 use atmosphere_core::analysis::stability;

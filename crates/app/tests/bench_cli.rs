@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{atmos, stderr};
+use common::{atmos, skipped_without_adapter, stderr};
 
 #[test]
 fn bench_tables_cover_every_view_with_the_baseline_as_unit() {
@@ -17,14 +17,10 @@ fn bench_tables_cover_every_view_with_the_baseline_as_unit() {
     let mut args = args.to_vec();
     args.push(out.to_str().unwrap());
     let output = atmos(&args);
-    let err = stderr(&output);
-    if !output.status.success()
-        && err.contains("no GPU adapter")
-        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
-    {
-        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+    if skipped_without_adapter(&output) {
         return;
     }
+    let err = stderr(&output);
     assert!(output.status.success(), "{err}");
     let printed = String::from_utf8(output.stdout).unwrap();
     assert_eq!(std::fs::read_to_string(&out).unwrap(), printed);

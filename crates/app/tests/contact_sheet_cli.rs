@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{atmos, stderr};
+use common::{atmos, skipped_without_adapter, stderr};
 
 #[test]
 fn the_sheet_lays_out_labelled_views() {
@@ -20,14 +20,10 @@ fn the_sheet_lays_out_labelled_views() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    let err = stderr(&output);
-    if !output.status.success()
-        && err.contains("no GPU adapter")
-        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
-    {
-        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+    if skipped_without_adapter(&output) {
         return;
     }
+    let err = stderr(&output);
     assert!(output.status.success(), "{err}");
     let sheet = image::open(&out).unwrap().to_rgb8();
     // 110 px of model names, six 32 px columns; 26 px of view names, one 18 px row.

@@ -77,7 +77,7 @@ fn probe_writes_csv_to_stdout() {
         );
         assert!(numbers[9] > 0.0, "luminance: {row:?}");
     }
-    // The irradiance at the top of the atmosphere is the ASTM G-173 one (DESIGN.md).
+    // The irradiance at the top of the atmosphere is the ASTM G-173 one.
     let e_sun_550: f64 = rows[0][5 + 7].parse().unwrap();
     assert!((e_sun_550 - 1.8504).abs() < 1e-3, "{e_sun_550}");
 }

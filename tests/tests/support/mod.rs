@@ -43,36 +43,46 @@ pub const FLOOR: f64 = 1e-4;
 /// differently; they are left out (and counted).
 const LIMB_ANGLE_RAD: f64 = 2e-6;
 
-/// The renderer, or `None` after printing why when there is no adapter and
+/// Whether `test` skips for `error`: there is no adapter and `ATMOS_SKIP_GPU_TESTS=1`
+/// (then it prints that it skipped).
+fn skips_for(test: &str, error: &GpuError) -> bool {
+    let skip = matches!(error, GpuError::NoAdapter { .. })
+        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1");
+    if skip {
+        println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {error}");
+    }
+    skip
+}
+
+/// The GPU context, or `None` after printing why when there is no adapter and
 /// `ATMOS_SKIP_GPU_TESTS=1`.
+pub fn gpu_or_skip(test: &str) -> Option<GpuContext> {
+    match GpuContext::headless() {
+        Ok(gpu) => Some(gpu),
+        Err(e) if skips_for(test, &e) => None,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// The renderer, or `None` as [`gpu_or_skip`].
 pub fn renderer_or_skip(test: &str) -> Option<Renderer> {
     match Renderer::headless() {
         Ok(r) => Some(r),
-        Err(RenderError::Gpu(e @ GpuError::NoAdapter { .. }))
-            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
-        {
-            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-            None
-        }
+        Err(RenderError::Gpu(e)) if skips_for(test, &e) => None,
         Err(e) => panic!("{e}"),
     }
 }
 
 /// A renderer whose device lacks `FLOAT32_FILTERABLE` even where the adapter has it, so
 /// that the passes read their tables texel by texel (`render_wgpu::sky::table_sampling`), or
-/// `None` as [`renderer_or_skip`].
+/// `None` as [`gpu_or_skip`].
 pub fn texel_read_renderer_or_skip(test: &str) -> Option<Renderer> {
     match GpuContext::headless_without(wgpu::Features::FLOAT32_FILTERABLE) {
         Ok(gpu) => {
             assert!(!TableSampling::device_filters(&gpu));
             Some(Renderer::new(gpu).unwrap())
         }
-        Err(e @ GpuError::NoAdapter { .. })
-            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
-        {
-            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-            None
-        }
+        Err(e) if skips_for(test, &e) => None,
         Err(e) => panic!("{e}"),
     }
 }
@@ -151,6 +161,25 @@ pub fn frame_in(
         height,
         terrain: None,
     }
+}
+
+/// The standard frames' ground frame of `model` in `atmosphere`: 1 m above the ground
+/// at the horizon in the afternoon.
+pub fn ground_frame_in(atmosphere: Atmosphere, model: ModelId) -> Frame {
+    frame_in(atmosphere, model, view(1.0, 85.0, 50.0), 70.0, 64, 36)
+}
+
+/// The ground frame of `model` in the hazy and the Mars presets.
+pub fn other_atmosphere_frames(model: ModelId) -> Vec<(&'static str, Frame)> {
+    ["hazy", "mars"]
+        .into_iter()
+        .map(|name| {
+            (
+                name,
+                ground_frame_in(Atmosphere::preset(name).unwrap(), model),
+            )
+        })
+        .collect()
 }
 
 /// A view at `altitude_m`, looking `view_zenith_deg` from the zenith at azimuth 0, the
@@ -233,6 +262,38 @@ fn cpu_pixel(
 /// fails above `max_relative_error`. Returns the worst relative error.
 pub fn check(renderer: &mut Renderer, name: &str, frame: &Frame, max_relative_error: f64) -> f64 {
     check_over(renderer, name, frame, None, max_relative_error)
+}
+
+/// [`check`] of each of `frames`.
+pub fn check_each(renderer: &mut Renderer, frames: &[(&str, Frame)], max_relative_error: f64) {
+    for (name, frame) in frames {
+        check(renderer, name, frame, max_relative_error);
+    }
+}
+
+/// The first four of `model`'s [`standard_frames`] over [`synthetic_surface`] against the
+/// CPU ([`check_surface`]), on a renderer of its own.
+pub fn check_standard_surfaces(test: &str, model: ModelId, max_relative_error: f64) {
+    let Some(mut renderer) = renderer_or_skip(test) else {
+        return;
+    };
+    for (name, frame) in standard_frames(model).iter().take(4) {
+        check_surface(&mut renderer, name, frame, max_relative_error);
+    }
+}
+
+/// `model`'s sun-disk frame (the last of [`standard_frames`]) against the CPU, and the
+/// disk limb-darkened: its centre brighter than a pixel near its edge.
+pub fn check_sun_disk(test: &str, model: ModelId, max_relative_error: f64) {
+    let Some(mut renderer) = renderer_or_skip(test) else {
+        return;
+    };
+    let (name, frame) = &standard_frames(model)[4];
+    check(&mut renderer, name, frame, max_relative_error);
+    let hdr = renderer.read_hdr().unwrap();
+    let middle = (frame.height / 2 * frame.width + frame.width / 2) as usize;
+    let (centre, near_limb) = (hdr[middle][1], hdr[middle + 4][1]);
+    assert!(centre > 1e4 && near_limb < centre, "{centre} {near_limb}");
 }
 
 /// As [`check`], the frame's rays ending on [`synthetic_surface`].
@@ -333,7 +394,10 @@ pub fn standard_frames(model: ModelId) -> Vec<(&'static str, Frame)> {
         sun_azimuth_deg: 0.0,
     };
     vec![
-        ("ground", frame(model, view(1.0, 85.0, 50.0), 70.0, 64, 36)),
+        (
+            "ground",
+            ground_frame_in(Atmosphere::preset("earth").unwrap(), model),
+        ),
         ("sunset", frame(model, sunset, 60.0, 64, 36)),
         (
             "100 km",

@@ -7,6 +7,8 @@ use anyhow::{Context, anyhow};
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
+use atmosphere_core::models::id::ModelId;
+
 use crate::report::measure::VariantResult;
 
 const FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
@@ -15,7 +17,7 @@ const FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
 #[derive(Clone, Debug, PartialEq)]
 pub struct Point {
     pub label: String,
-    pub model: String,
+    pub model: ModelId,
     pub frame_seconds: f64,
     pub error_percent: f64,
 }
@@ -24,7 +26,7 @@ impl Point {
     pub fn of(result: &VariantResult) -> Point {
         Point {
             label: result.variant.label(),
-            model: result.variant.model.to_string(),
+            model: result.variant.model,
             frame_seconds: result.frame_seconds(),
             error_percent: 100.0 * result.daytime.rms,
         }
@@ -68,15 +70,16 @@ fn staircase(front: &[Point], x_end: f64) -> Vec<(f64, f64)> {
     line
 }
 
-fn model_color(model: &str) -> RGBColor {
+/// The colour of a model's points.
+fn model_color(model: ModelId) -> RGBColor {
     match model {
-        "nishita" => RGBColor(31, 119, 180),
-        "oneil" => RGBColor(255, 127, 14),
-        "dobashi" => RGBColor(44, 160, 44),
-        "riley" => RGBColor(214, 39, 40),
-        "bruneton" => RGBColor(148, 103, 189),
-        "hillaire" => RGBColor(140, 86, 75),
-        _ => RGBColor(90, 90, 90),
+        ModelId::Nishita => RGBColor(31, 119, 180),
+        ModelId::Oneil => RGBColor(255, 127, 14),
+        ModelId::Dobashi => RGBColor(44, 160, 44),
+        ModelId::Riley => RGBColor(214, 39, 40),
+        ModelId::Bruneton => RGBColor(148, 103, 189),
+        ModelId::Hillaire => RGBColor(140, 86, 75),
+        ModelId::Reference => RGBColor(90, 90, 90),
     }
 }
 
@@ -197,7 +200,7 @@ fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Erro
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
     let mut placer = LabelPlacer::default();
     for p in points {
-        let color = model_color(&p.model);
+        let color = model_color(p.model);
         let at = (p.frame_seconds, p.error_percent);
         let offset = placer.place(chart.backend_coord(&at), p.label.chars().count());
         chart.draw_series(std::iter::once(
@@ -223,7 +226,7 @@ mod tests {
     fn point(label: &str, t: f64, e: f64) -> Point {
         Point {
             label: label.into(),
-            model: "nishita".into(),
+            model: ModelId::Nishita,
             frame_seconds: t,
             error_percent: e,
         }

@@ -222,32 +222,22 @@ fn camera(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         let (mut latitude, mut longitude) = settings.camera_lat_lon_deg();
         let jumped = ui
             .horizontal(|ui| {
-                let lat = ui
-                    .add(
-                        egui::DragValue::new(&mut latitude)
-                            .range(-90.0..=90.0)
-                            .speed(0.01)
-                            .fixed_decimals(4)
-                            .suffix("° N"),
-                    )
-                    .on_hover_text(
-                        "Latitude of the point below the camera, degrees north (south \
-                         negative); edit to jump there at the same altitude",
-                    )
-                    .changed();
-                let lon = ui
-                    .add(
-                        egui::DragValue::new(&mut longitude)
-                            .range(-180.0..=180.0)
-                            .speed(0.01)
-                            .fixed_decimals(4)
-                            .suffix("° E"),
-                    )
-                    .on_hover_text(
-                        "Longitude of the point below the camera, degrees east of Greenwich \
-                         (west negative); edit to jump there at the same altitude",
-                    )
-                    .changed();
+                let lat = degrees_field(
+                    ui,
+                    &mut latitude,
+                    -90.0..=90.0,
+                    "° N",
+                    "Latitude of the point below the camera, degrees north (south negative); \
+                     edit to jump there at the same altitude",
+                );
+                let lon = degrees_field(
+                    ui,
+                    &mut longitude,
+                    -180.0..=180.0,
+                    "° E",
+                    "Longitude of the point below the camera, degrees east of Greenwich (west \
+                     negative); edit to jump there at the same altitude",
+                );
                 lat | lon
             })
             .inner;
@@ -277,6 +267,25 @@ fn camera(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
             settings.reset_view();
         }
     });
+}
+
+/// A coordinate in degrees, dragged or typed to four decimals; true when it changed.
+fn degrees_field(
+    ui: &mut egui::Ui,
+    degrees: &mut f64,
+    range: std::ops::RangeInclusive<f64>,
+    suffix: &str,
+    tip: &str,
+) -> bool {
+    ui.add(
+        egui::DragValue::new(degrees)
+            .range(range)
+            .speed(0.01)
+            .fixed_decimals(4)
+            .suffix(suffix),
+    )
+    .on_hover_text(tip)
+    .changed()
 }
 
 fn terrain(ui: &mut egui::Ui, settings: &mut ViewerSettings) {

@@ -14,3 +14,17 @@ pub fn atmos(args: &[&str]) -> Output {
 pub fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
 }
+
+/// Whether a GPU run failed for want of an adapter where `ATMOS_SKIP_GPU_TESTS=1` allows
+/// that (then it prints that it skipped). Any other failure is the caller's to assert.
+#[allow(dead_code)] // Not every test binary runs the GPU.
+pub fn skipped_without_adapter(output: &Output) -> bool {
+    let err = stderr(output);
+    let skipped = !output.status.success()
+        && err.contains("no GPU adapter")
+        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1");
+    if skipped {
+        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+    }
+    skipped
+}

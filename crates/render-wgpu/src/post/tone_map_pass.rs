@@ -5,6 +5,7 @@
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
 use crate::gpu::formats::LDR_FORMAT;
+use crate::gpu::pipeline::{texture_entry, uniform_buffer, uniform_entry};
 use crate::gpu::shaders;
 use crate::post::tone_map::ToneMapUniform;
 
@@ -25,29 +26,16 @@ impl ToneMapPass {
             label: Some("post/tone_map.wgsl"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
+        // The compute passes' entries, seen by the fragment stage.
+        let in_fragment = |entry| wgpu::BindGroupLayoutEntry {
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ..entry
+        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tone map"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(size_of::<ToneMapUniform>() as u64),
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                in_fragment(uniform_entry(0, size_of::<ToneMapUniform>())),
+                in_fragment(texture_entry(1, wgpu::TextureViewDimension::D2)),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -76,12 +64,7 @@ impl ToneMapPass {
             multiview_mask: None,
             cache: None,
         });
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("tone map"),
-            size: size_of::<ToneMapUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let params = uniform_buffer(device, "tone map", size_of::<ToneMapUniform>());
         if let Some(source) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Validation {
                 what: "the tone-map pipeline",

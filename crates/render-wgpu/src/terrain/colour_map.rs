@@ -21,7 +21,7 @@ impl ColourMap {
     /// Loads a colour image (JPEG or PNG) with a 2:1 aspect. A missing file, a file that
     /// does not decode, or a grey one is an error naming it.
     pub fn load(path: &Path) -> Result<ColourMap, MapError> {
-        let image = super::load_image(path)?;
+        let image = super::map_image::load_image(path)?;
         if !image.color().has_color() {
             return Err(MapError::Format {
                 path: path.to_owned(),
@@ -31,7 +31,7 @@ impl ColourMap {
         }
         let rgb = image.into_rgb8();
         let (width, height) = (rgb.width() as usize, rgb.height() as usize);
-        super::check_aspect(path, width, height)?;
+        super::map_image::check_aspect(path, width, height)?;
         let texels = rgb.pixels().map(|p| p.0).collect();
         Ok(ColourMap {
             width,
@@ -56,8 +56,8 @@ impl ColourMap {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{MapError, earth_assets_dir};
     use super::*;
+    use crate::terrain::map_image::earth_assets_dir;
 
     /// The shipped Blue Marble: the Sahara sandy (red over blue), the open Pacific dark
     /// blue, Antarctica and Greenland's ice bright.

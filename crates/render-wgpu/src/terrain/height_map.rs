@@ -30,7 +30,7 @@ impl HeightMap {
     /// Loads a 16-bit grey PNG in the offset encoding. A missing file, a file that does
     /// not decode, or one that is not 16-bit grey with a 2:1 aspect is an error naming it.
     pub fn load(path: &Path) -> Result<HeightMap, MapError> {
-        let image = super::load_image(path)?;
+        let image = super::map_image::load_image(path)?;
         let DynamicImage::ImageLuma16(grey) = image else {
             return Err(MapError::Format {
                 path: path.to_owned(),
@@ -39,7 +39,7 @@ impl HeightMap {
             });
         };
         let (width, height) = (grey.width() as usize, grey.height() as usize);
-        super::check_aspect(path, width, height)?;
+        super::map_image::check_aspect(path, width, height)?;
         let metres: Vec<f32> = grey
             .into_raw()
             .into_iter()
@@ -86,8 +86,8 @@ impl HeightField for HeightMap {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{MapError, earth_assets_dir};
     use super::*;
+    use crate::terrain::map_image::earth_assets_dir;
 
     /// Known places of the shipped map (10' texels, so peaks and trenches are averaged):
     /// the Challenger Deep area deep, the Himalaya and Tibet high, the open oceans below 0,

@@ -330,10 +330,9 @@ mod tests {
         }
     }
 
-    /// The chunk count stays bounded from 1 m to 10^9 m (measured with the defaults and a
-    /// 1080-pixel, 60-degree view: 3210 chunks at 1 m and 100 m, about 200 per level;
-    /// 2319 at 10 km, 717 at 1,000 km, 96 at 10,000 km, 6 beyond), and neighbours differ
-    /// by at most one level, with the coarser flags saying where.
+    /// The chunk count stays bounded from 1 m to 10^9 m (with the defaults and a
+    /// 1080-pixel, 60-degree view), and neighbours differ by at most one level, with the
+    /// coarser flags saying where.
     #[test]
     fn counts_are_bounded_and_neighbours_restricted() {
         let s = settings();

@@ -23,14 +23,20 @@ use crate::frame::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT, SurfaceBuffer
 use crate::frame::{Frame, TerrainOptions};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
-use crate::gpu::pipeline::texture_2d;
+use crate::gpu::pipeline::{
+    float_texture_entry, read_only_storage_buffer_entry, texture_2d, uniform_buffer, uniform_entry,
+};
 use crate::gpu::shaders;
 use crate::terrain::chunk_key::ChunkKey;
+use crate::terrain::chunk_mesh::ChunkMesh;
+use crate::terrain::colour_map::ColourMap;
 use crate::terrain::colour_mips::colour_mips;
 use crate::terrain::frustum::Frustum;
+use crate::terrain::height_map::HeightMap;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
+use crate::terrain::map_image::earth_assets_dir;
 use crate::terrain::stitching::stitched_indices;
-use crate::terrain::{ChunkMesh, ColourMap, HeightMap, TerrainSurface, earth_assets_dir};
+use crate::terrain::surface::TerrainSurface;
 
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -120,48 +126,30 @@ impl TerrainPass {
             label: Some("terrain/terrain.wgsl"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
-        let entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
-            binding,
+        // The compute passes' entries, seen by the vertex or the fragment stage.
+        let in_stage = |visibility, entry| wgpu::BindGroupLayoutEntry {
             visibility,
-            ty,
-            count: None,
+            ..entry
         };
         use wgpu::ShaderStages as S;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("terrain"),
             entries: &[
-                entry(
-                    0,
+                in_stage(S::VERTEX, uniform_entry(0, size_of::<TerrainUniform>())),
+                in_stage(
                     S::VERTEX,
-                    wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(size_of::<TerrainUniform>() as u64),
-                    },
+                    read_only_storage_buffer_entry(1, size_of::<ChunkUniform>()),
                 ),
-                entry(
-                    1,
-                    S::VERTEX,
-                    wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(size_of::<ChunkUniform>() as u64),
-                    },
-                ),
-                entry(
-                    2,
+                in_stage(
                     S::FRAGMENT,
-                    wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
+                    float_texture_entry(2, wgpu::TextureViewDimension::D2, true),
                 ),
-                entry(
-                    3,
-                    S::FRAGMENT,
-                    wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                ),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: S::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -213,8 +201,7 @@ impl TerrainPass {
             mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
-        let params =
-            crate::gpu::pipeline::uniform_buffer(device, "terrain", size_of::<TerrainUniform>());
+        let params = uniform_buffer(device, "terrain", size_of::<TerrainUniform>());
         let chunk_buffer = chunk_buffer(gpu, 1);
         if let Some(source) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Validation {

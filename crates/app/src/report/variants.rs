@@ -1,0 +1,58 @@
+//! What `atmos report` compares: the model settings, the models they cover and where the
+//! committed report lives.
+
+use atmosphere_core::models::id::ModelId;
+
+use crate::report::measure::Variant;
+
+/// Where the committed report lives.
+pub const DEFAULT_OUT: &str = "docs/report";
+
+/// Models the report knows; `--model` accepts these.
+pub fn report_models() -> Vec<ModelId> {
+    ModelId::ALL
+        .into_iter()
+        .filter(|m| report_variants().iter().any(|v| v.model == *m))
+        .collect()
+}
+
+/// The settings the report compares: each model at its paper's values, and the settings
+/// that trade accuracy for time around them.
+pub fn report_variants() -> Vec<Variant> {
+    vec![
+        Variant::new(ModelId::Riley, None, &[]),
+        Variant::new(ModelId::Nishita, None, &["samples=4"]),
+        Variant::new(ModelId::Nishita, None, &["samples=16"]),
+        Variant::new(ModelId::Nishita, None, &["samples=64"]),
+        Variant::new(ModelId::Nishita, None, &[]),
+        Variant::new(ModelId::Oneil, None, &["samples=2"]),
+        Variant::new(ModelId::Oneil, None, &[]),
+        Variant::new(ModelId::Oneil, None, &["samples=16"]),
+        Variant::new(ModelId::Dobashi, Some(1), &[]),
+        Variant::new(ModelId::Dobashi, None, &["planes=30"]),
+        Variant::new(ModelId::Dobashi, None, &[]),
+        Variant::new(ModelId::Dobashi, None, &["planes=400"]),
+        Variant::new(ModelId::Hillaire, Some(1), &[]),
+        Variant::new(
+            ModelId::Hillaire,
+            None,
+            &["sky_view_samples=10", "ms_samples=4"],
+        ),
+        Variant::new(ModelId::Hillaire, None, &[]),
+        Variant::new(
+            ModelId::Hillaire,
+            None,
+            &["ms_samples=32", "sky_view_samples=60"],
+        ),
+        Variant::new(ModelId::Bruneton, Some(1), &[]),
+        Variant::new(ModelId::Bruneton, Some(2), &[]),
+        Variant::new(ModelId::Bruneton, None, &[]),
+        Variant::new(ModelId::Bruneton, None, &["view_samples=30"]),
+        Variant::new(ModelId::Bruneton, None, &["view_samples=100"]),
+        Variant::new(
+            ModelId::Bruneton,
+            None,
+            &["r=16", "mu=64", "mu_s=16", "nu=4"],
+        ),
+    ]
+}
