@@ -1,7 +1,11 @@
-//! Every shader of `shaders/`, composed, must pass naga's WGSL front end and validator,
-//! without a GPU; and the WGSL uniform layout must match its Rust twin.
+//! Every entry pass of `shaders/` (a file with `@compute`, `@vertex` or `@fragment`
+//! functions), composed, must pass naga's WGSL front end and validator, without a GPU;
+//! every library is validated inside the passes that import it, and must have one (a
+//! library may call a function its importer defines, as `common/shade_pixel.wgsl` does);
+//! and the WGSL uniform layouts must match their Rust twins.
 
-use std::path::Path;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use render_wgpu::frame::atmosphere_uniform::{
@@ -24,28 +28,88 @@ fn validate(name: &str, source: &str) -> Result<naga::Module, String> {
     Ok(module)
 }
 
-#[test]
-fn every_shader_file_is_embedded() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders");
-    let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|name| name.ends_with(".wgsl"))
-        .collect();
-    on_disk.sort();
-    let mut embedded: Vec<String> = shaders::shader_names().map(String::from).collect();
-    embedded.sort();
-    assert_eq!(on_disk, embedded, "shaders/ and shader_source.rs disagree");
+/// The folder `shaders/` of the workspace.
+fn shader_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders")
+}
+
+/// The paths below `dir` of the `.wgsl` files in it and its subfolders, with `/`.
+fn wgsl_paths(dir: &Path, prefix: &str, out: &mut Vec<String>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let entry = entry.unwrap();
+        let name = format!("{prefix}{}", entry.file_name().to_string_lossy());
+        if entry.file_type().unwrap().is_dir() {
+            wgsl_paths(&entry.path(), &format!("{name}/"), out);
+        } else if name.ends_with(".wgsl") {
+            out.push(name);
+        }
+    }
+}
+
+/// The text of shader `name` as it is on disk, imports unresolved.
+fn raw_source(name: &str) -> String {
+    std::fs::read_to_string(shader_dir().join(name)).unwrap()
+}
+
+/// Whether shader `name` is an entry pass: a line of it (comments aside) starts with a
+/// stage attribute.
+fn is_entry_pass(name: &str) -> bool {
+    raw_source(name).lines().any(|line| {
+        let line = line.trim_start();
+        ["@compute", "@vertex", "@fragment"]
+            .iter()
+            .any(|stage| line.starts_with(stage))
+    })
+}
+
+/// The files shader `name` imports, directly or through other imports.
+fn imported_files(name: &str, found: &mut BTreeSet<String>) {
+    for line in raw_source(name).lines() {
+        if let Some(import) = line.trim().strip_prefix("#import") {
+            let import = import.trim().to_string();
+            if found.insert(import.clone()) {
+                imported_files(&import, found);
+            }
+        }
+    }
 }
 
 #[test]
-fn every_shader_validates() {
+fn every_shader_file_is_embedded() {
+    let mut on_disk = Vec::new();
+    wgsl_paths(&shader_dir(), "", &mut on_disk);
+    on_disk.sort();
+    let mut embedded: Vec<String> = shaders::shader_names().map(String::from).collect();
+    embedded.sort();
+    assert_eq!(on_disk, embedded, "shaders/ and the embedded table disagree");
+}
+
+#[test]
+fn every_entry_pass_validates() {
     let shaders = shaders::all_composed().unwrap();
     let failures: Vec<String> = shaders
         .iter()
+        .filter(|(name, _)| is_entry_pass(name))
         .filter_map(|(name, source)| validate(name, source).err())
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn every_library_is_imported_by_an_entry_pass() {
+    let names: Vec<&str> = shaders::shader_names().collect();
+    let mut imported = BTreeSet::new();
+    for name in names.iter().filter(|name| is_entry_pass(name)) {
+        imported_files(name, &mut imported);
+    }
+    let orphans: Vec<&&str> = names
+        .iter()
+        .filter(|name| !is_entry_pass(name) && !imported.contains(**name))
+        .collect();
+    assert!(
+        orphans.is_empty(),
+        "libraries no entry pass imports (so never validated): {orphans:?}"
+    );
 }
 
 #[test]
