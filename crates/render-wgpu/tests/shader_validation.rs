@@ -81,7 +81,7 @@ fn every_shader_file_is_embedded() {
     on_disk.sort();
     let mut embedded: Vec<String> = shaders::shader_names().map(String::from).collect();
     embedded.sort();
-    assert_eq!(on_disk, embedded, "shaders/ and the embedded table disagree");
+    assert_eq!(on_disk, embedded, "shaders/ and build.rs disagree");
 }
 
 #[test]
