@@ -124,24 +124,7 @@ fn broken_shaders_are_rejected() {
 
 #[test]
 fn atmosphere_uniform_matches_its_wgsl_layout() {
-    let source = shaders::composed("common/atmosphere_params.wgsl").unwrap();
-    let module = validate("common/atmosphere_params.wgsl", &source).unwrap();
-    let layout = |struct_name: &str| {
-        module
-            .types
-            .iter()
-            .find_map(|(_, ty)| match (&ty.name, &ty.inner) {
-                (Some(n), naga::TypeInner::Struct { members, span }) if n == struct_name => Some((
-                    *span as usize,
-                    members
-                        .iter()
-                        .map(|m| (m.name.clone().unwrap(), m.offset as usize))
-                        .collect::<Vec<_>>(),
-                )),
-                _ => None,
-            })
-            .unwrap_or_else(|| panic!("no struct {struct_name}"))
-    };
+    let layout = |name: &str| wgsl_layout("common/atmosphere_params.wgsl", name);
     let (span, members) = layout("AtmosphereParams");
     assert_eq!(span, size_of::<AtmosphereUniform>());
     let rust = [
@@ -358,39 +341,22 @@ fn dobashi_uniforms_match_their_wgsl_layouts() {
         DobashiTableUniform,
         [interval_m, plane_panels, sphere_panels, pad0]
     );
-    for shader in ["sky/dobashi/pixel.wgsl", "sky/dobashi/ambient.wgsl"] {
-        let (span, members) = wgsl_layout(shader, "DobashiParams");
-        assert_eq!(span, size_of::<DobashiUniform>(), "{shader}");
-        let rust = [
-            (
-                "interval_m",
-                std::mem::offset_of!(DobashiUniform, interval_m),
-            ),
-            (
-                "use_spheres",
-                std::mem::offset_of!(DobashiUniform, use_spheres),
-            ),
-            (
-                "ambient_on",
-                std::mem::offset_of!(DobashiUniform, ambient_on),
-            ),
-            (
-                "max_orders",
-                std::mem::offset_of!(DobashiUniform, max_orders),
-            ),
-            (
-                "ambient_directions",
-                std::mem::offset_of!(DobashiUniform, ambient_directions),
-            ),
-            ("spheres", std::mem::offset_of!(DobashiUniform, spheres)),
-        ];
-        for (name, offset) in rust {
-            assert!(
-                members.contains(&(name.to_string(), offset)),
-                "{shader}: {name} at {offset}: WGSL has {members:?}"
-            );
-        }
-    }
+    // Declared once for the per-pixel pass and the ambient table's build.
+    assert_layout!(
+        "sky/dobashi/bindings.wgsl",
+        "DobashiParams",
+        DobashiUniform,
+        [
+            interval_m,
+            use_spheres,
+            ambient_on,
+            max_orders,
+            ambient_directions,
+            spheres,
+            pad0,
+            pad1
+        ]
+    );
 }
 
 #[test]
