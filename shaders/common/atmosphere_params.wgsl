@@ -1,8 +1,10 @@
-// The parameters of an atmosphere and the functions every pass shares: relative densities
-// and ray geometry, written as in atmosphere-core (`density.rs`, `column.rs`,
-// `geometry.rs`). Lengths in metres, coefficients in m^-1. The Rust twin of the uniform
-// is `render-wgpu/src/atmosphere_uniform.rs`; every struct keeps 16-byte alignment by
-// explicit padding so both sides agree byte for byte.
+// Library: the parameters of an atmosphere (bound at 0 by every sky pass) and the
+// functions every pass shares: relative densities and ray geometry in (r, mu). Rust twin
+// of the uniform: render-wgpu's `frame/atmosphere_uniform.rs`; every struct keeps 16-byte
+// alignment by explicit padding so both sides agree byte for byte. CPU twins:
+// atmosphere-core's `atmosphere/density.rs`, `optics/column.rs` and `optics/geometry.rs`.
+// Paper: the density profiles and ray geometry of Bruneton 2017 (`DensityProfileLayer`,
+// `DistanceToTopAtmosphereBoundary`). Lengths in metres, coefficients in m^-1.
 
 // One layer of a density profile: `exp_term * exp(exp_scale_per_m * h)
 // + linear_term_per_m * h + constant_term`, clamped to [0, 1] (Bruneton 2017,
@@ -57,7 +59,7 @@ struct AtmosphereParams {
 // `exp` is evaluated whichever layer it is (branches by altitude diverge between
 // neighbouring pixels and cost both layers on SIMD hardware). The layers are passed
 // one by one, not as the profile's array: an array passed by value becomes a copy in
-// memory per call on some drivers (lavapipe: twice the time of the whole ray march).
+// memory per call on some drivers, a cost larger than the whole ray march's.
 fn profile_density(lower: DensityLayer, upper: DensityLayer, altitude_m: f32) -> f32 {
     let up = altitude_m >= lower.width_m;
     let exp_term = select(lower.exp_term, upper.exp_term, up);

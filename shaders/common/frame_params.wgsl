@@ -1,7 +1,8 @@
-// The camera and sun of a frame, and the view ray of a pixel clipped to the atmosphere,
-// relative to the camera (docs/rendering.md, "Camera-relative rendering"). The Rust twin
-// of the uniform is `render-wgpu/src/frame_uniform.rs`; the CPU twin of the clipping is
-// atmosphere-core's `view_segment.rs`.
+// Library: the camera and sun of a frame (bound at 1 by every pixel pass), and the view
+// ray of a pixel clipped to the atmosphere, relative to the camera (docs/rendering.md,
+// "Camera-relative rendering"). Rust twin of the uniform: render-wgpu's
+// `frame/uniform.rs`. CPU twins: atmosphere-core's `optics/view_segment.rs` (the
+// clipping) and `models/sky_model.rs` (`ViewRay`). No paper: every model's view ray.
 
 #import common/atmosphere_params.wgsl
 #import common/sun_disk.wgsl

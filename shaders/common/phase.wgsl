@@ -1,4 +1,7 @@
-// The phase functions of atmosphere-core's `phase.rs`, per steradian.
+// Library: the phase functions, per steradian. CPU twin: atmosphere-core's
+// `optics/phase.rs`. Papers: Rayleigh's; for Mie, Cornette and Shanks 1992 (Bruneton and
+// Neyret 2008, Eq. 4), Henyey and Greenstein 1941, or Nishita's hazy-atmosphere function
+// (Dobashi et al. 2000, Eq. 4) (`PhaseFunction`).
 
 #import common/atmosphere_params.wgsl
 

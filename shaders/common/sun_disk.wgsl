@@ -1,5 +1,5 @@
-// The solar disk with limb darkening: the GPU twin of atmosphere-core's `sun_disk.rs`
-// (Hestroffer and Magnan 1998, I(mu) / I(1) = mu^alpha(lambda)).
+// Library: the solar disk with limb darkening. CPU twin: atmosphere-core's
+// `optics/sun_disk.rs`. Paper: Hestroffer and Magnan 1998, I(mu) / I(1) = mu^alpha(lambda).
 
 // Radiance of the disk seen along `direction`, per channel, before the atmosphere:
 // `centre` is the radiance at the disk's centre and `exponent` alpha, per channel;

@@ -1,8 +1,10 @@
-// The surface a frame's rays end on, per pixel (`surface_buffer.rs`): drawn by the
-// terrain pass, or given by the caller. Every model's pixel pass binds it at bindings
-// 30 and 31, ends its rays there (`view_segment`'s object) and adds the surface's
-// Lambertian reflection T a / pi E(x, n) with the model's own irradiance E: the GPU twin
-// of atmosphere-core's `surface_lighting.rs`.
+// Library: the surface a frame's rays end on, per pixel, drawn by the terrain pass or
+// given by the caller (render-wgpu's `frame/surface_buffer.rs` binds it at 30 and 31), and
+// the surface element the models light. Every model's pixel pass ends its rays there
+// (`view_segment`'s object) and adds the surface's Lambertian reflection T a / pi E(x, n)
+// with the model's own irradiance E. CPU twin: atmosphere-core's
+// `optics/surface_lighting.rs` (`SurfaceElement`, `radiance_with_surface`). No paper: the
+// papers light only the ground sphere, the case n = up.
 
 #import common/atmosphere_params.wgsl
 #import common/frame_params.wgsl
@@ -47,6 +49,8 @@ fn frame_surface(px: vec2<u32>) -> Surface {
 // A surface element in the variables the models look up (`SurfaceElement::new`).
 struct SurfaceElement {
     r: f32,
+    // r^2 - bottom^2, the accurate variable of the tables (`common/frame_params.wgsl`).
+    q: f32,
     mu_s: f32,
     sun_cosine: f32,
     sky_view_factor: f32,
@@ -59,11 +63,19 @@ fn surface_element(point: vec3<f32>, normal: vec3<f32>) -> SurfaceElement {
     let r = length(point);
     let up = point / r;
     var e: SurfaceElement;
-    e.r = clamp(r, atmosphere.bottom_radius_m, atmosphere.top_radius_m);
+    let bottom = atmosphere.bottom_radius_m;
+    e.r = clamp(r, bottom, atmosphere.top_radius_m);
+    e.q = (e.r - bottom) * (e.r + bottom);
     e.mu_s = clamp(dot(up, sun), -1.0, 1.0);
     e.sun_cosine = max(dot(normal, sun), 0.0);
     e.sky_view_factor = 0.5 * (1.0 + clamp(dot(normal, up), -1.0, 1.0));
     return e;
+}
+
+// Whether the planet hides the sun's centre from the element (`ray_hits_ground` towards
+// the sun).
+fn planet_hides_sun(e: SurfaceElement) -> bool {
+    return e.mu_s < 0.0 && (e.r * e.mu_s) * (e.r * e.mu_s) - e.q >= 0.0;
 }
 
 // E_sun T_sun max(n . s, 0) + E_sky (1 + n . up) / 2 (`SurfaceElement::irradiance`).
@@ -72,7 +84,6 @@ fn element_irradiance(e: SurfaceElement, sun_transmittance: vec3<f32>, sky: vec3
         + sky * e.sky_view_factor;
 }
 
-
 // `r` with the surface's reflection added for the model's `irradiance` at its end
 // (`radiance_with_surface`); the surface hides the sun disk.
 fn add_surface(r: Radiance, surface: Surface, irradiance: vec3<f32>) -> Radiance {
@@ -80,4 +91,12 @@ fn add_surface(r: Radiance, surface: Surface, irradiance: vec3<f32>) -> Radiance
     out.radiance += r.transmittance * surface.albedo / PI * irradiance;
     out.reaches_space = false;
     return out;
+}
+
+// The ground's Lambertian reflection of the sun, seen through the view ray's
+// `transmittance`: the sun at cosine `sun_cosine` from the vertical, transmitted by
+// `sun_transmittance` (Dobashi, Yamamoto and Nishita 2002, Eq. 11).
+fn sunlit_ground(transmittance: vec3<f32>, sun_cosine: f32, sun_transmittance: vec3<f32>) -> vec3<f32> {
+    return transmittance * atmosphere.ground_albedo / PI * atmosphere.solar_irradiance.xyz
+        * sun_cosine * sun_transmittance;
 }

@@ -1,9 +1,10 @@
-// Reading Rgba32Float tables through the texture unit's linear filter where the device
-// filters that format, else texel by texel: render-wgpu's `table_sampling.rs` sets
-// `FILTERED_TABLES` when it makes the pipeline (so the other way is compiled out) and
-// binds `table_sampler`. Texel i of n lies at coordinate (i + 0.5) / n, so a fractional
-// texel position f reads at (f + 0.5) / n: the same weights as interpolating by hand,
-// up to the filter's precision.
+// Library: reading Rgba32Float tables through the texture unit's linear filter where the
+// device filters that format, else texel by texel. render-wgpu's
+// `sky/table_sampling.rs` sets `FILTERED_TABLES` when it makes the pipeline (so the other
+// way is compiled out) and binds `table_sampler` at 29. CPU twin: the bilinear lookups of
+// atmosphere-core's tables, which the unfiltered way repeats. No paper: numerics. Texel i
+// of n lies at coordinate (i + 0.5) / n, so a fractional texel position f reads at
+// (f + 0.5) / n: the same weights as interpolating by hand, up to the filter's precision.
 
 #import common/transmittance_lookup.wgsl
 

@@ -1,10 +1,14 @@
-// Reading the table of `sky/transmittance_table.wgsl` built with its `columns` entry point:
-// the columns of matter (Rayleigh, Mie, ozone) from (r, mu) to the top of the
-// atmosphere, bilinearly interpolated by hand (Rgba32Float need not be filterable). The
-// CPU twin is `TransmittanceTable::column` (and `nishita::sun_column`), in the accurate
-// variables of `common/frame_params.wgsl`: q = r^2 - bottom^2 and mu.
+// Library: reading the columns table that `sky/transmittance_table.wgsl` builds with its
+// `columns` entry point: the columns of matter (Rayleigh, Mie, ozone) from (r, mu) to the
+// top of the atmosphere, bilinearly interpolated by hand (Rgba32Float need not be
+// filterable), in the accurate variables of `common/frame_params.wgsl`: q = r^2 - bottom^2
+// and mu. CPU twin: atmosphere-core's `optics/transmittance_table.rs`
+// (`TransmittanceTable::column`) and `models/nishita.rs` (`sun_column`). Paper: the
+// table g_l of Nishita et al. 1993 (Dobashi, Yamamoto and Nishita 2002, section 5,
+// Eq. 11), in the parameterization of Bruneton 2017 (`GetTransmittanceTextureUvFromRMu`).
 
 #import common/atmosphere_params.wgsl
+#import common/texel_bilinear.wgsl
 
 // Unit coordinates (x_mu, x_r) of the ray from r (with r^2 - bottom^2 = q) with cosine
 // mu (`TransmittanceMapping::unit_from_r_mu`).
@@ -34,16 +38,7 @@ fn table_columns(table: texture_2d<f32>, q: f32, mu: f32) -> vec3<f32> {
     let r = sqrt(bottom * bottom + q);
     let unit = table_unit_from_q_mu(q, r, mu);
     let size = vec2<f32>(textureDimensions(table));
-    let f = unit * (size - 1.0);
-    let i0 = min(vec2<u32>(f), vec2<u32>(size) - 2u);
-    let a = f - vec2<f32>(i0);
-    let c00 = textureLoad(table, i0, 0).xyz;
-    let c10 = textureLoad(table, i0 + vec2<u32>(1u, 0u), 0).xyz;
-    let c01 = textureLoad(table, i0 + vec2<u32>(0u, 1u), 0).xyz;
-    let c11 = textureLoad(table, i0 + vec2<u32>(1u, 1u), 0).xyz;
-    let lower = c00 + a.x * (c10 - c00);
-    let upper = c01 + a.x * (c11 - c01);
-    return lower + a.y * (upper - lower);
+    return texel_bilinear(table, unit * (size - 1.0));
 }
 
 // `table_columns` on the ground (q = 0, mu >= 0): the table's first row, the only one

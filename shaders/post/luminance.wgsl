@@ -1,17 +1,19 @@
-// The frame's log-average luminance, for automatic exposure: each of GRID x GRID
-// workgroups of 8 x 8 invocations strides over the HDR target (spectral radiance at the
-// three wavelengths), converts each pixel to luminance in cd/m^2 with the CIE weights of
-// the uniform, and sums ln(L) and the count over the pixels brighter than the floor
-// (black space and night do not count); the workgroup's sums go to one pair of the
-// output. The CPU adds the pairs and takes exp(sum / count). The CPU twin is
-// `render-wgpu/src/luminance_pass.rs` (`log_average_luminance`).
+// Entry pass: the frame's log-average luminance for automatic exposure, `main`
+// (render-wgpu's `post/luminance.rs`, which is also its CPU twin,
+// `log_average_luminance`). Paper: Reinhard et al. 2002, Eq. 1 (the log-average).
+// Each of GRID x GRID workgroups of 8 x 8 invocations strides over the HDR target
+// (spectral radiance at the three wavelengths), converts each pixel to luminance in
+// cd/m^2 with the CIE weights of the uniform, and sums ln(L) and the count over the
+// pixels brighter than the floor (black space and night do not count); the workgroup's
+// sums go to one pair of the output. The CPU adds the pairs and takes
+// exp(sum / count).
 
 struct LuminanceParams {
     // Luminance (cd/m^2) per unit of radiance at each wavelength (xyz; w = the floor).
     weights: vec4<f32>,
 }
 
-// Workgroups along each side; must match GRID in luminance_pass.rs.
+// Workgroups along each side; must match GRID in render-wgpu's `post/luminance.rs`.
 const GRID: u32 = 16u;
 const SIDE: u32 = 8u;
 

@@ -1,8 +1,10 @@
-// From the HDR target (spectral radiance at the three wavelengths) to the display: the
-// radiance is converted to linear sRGB in cd/m^2 and scaled by the exposure in one 3x3
-// matrix, negative (out-of-gamut) values are clipped, and Narkowicz's fit of the ACES
-// filmic curve maps each channel to [0, 1]; the Rgba8UnormSrgb target applies the sRGB
-// transfer function. The CPU twin is `render-wgpu/src/tone_map.rs`.
+// Entry pass: from the HDR target (spectral radiance at the three wavelengths) to the
+// display, `vertex` and `fragment` (render-wgpu's `post/tone_map_pass.rs`). CPU twin:
+// render-wgpu's `post/tone_map.rs`. Paper: Narkowicz 2016, "ACES filmic tone mapping
+// curve". The radiance is converted to linear sRGB in cd/m^2 and scaled by the exposure
+// in one 3x3 matrix, negative (out-of-gamut) values are clipped, and Narkowicz's fit of
+// the ACES filmic curve maps each channel to [0, 1]; the Rgba8UnormSrgb target applies
+// the sRGB transfer function.
 
 struct ToneMapParams {
     // Rows of the matrix from radiance to exposed linear sRGB (xyz; w = 0).

@@ -1,10 +1,14 @@
-// The transmittance table T(r, mu) to the top of the atmosphere in Bruneton 2017's
-// parameterization: the GPU twin of atmosphere-core's `transmittance_table.rs`, with the
-// same texel centres, unit mapping and quadrature (64 equal panels of 5-point
-// Gauss-Legendre), in f32. Entry point `main`: rgb = transmittance in the three channels
-// of the uniform, a = 1. Entry point `columns`: rgb = the columns of matter (Rayleigh,
-// Mie, ozone) in metres, a = 1, as the CPU table stores them: the g_l table of the
-// nishita model (read by `common/transmittance_lookup.wgsl`).
+// Entry passes: the transmittance table T(r, mu) to the top of the atmosphere, `main`,
+// and the table of columns, `columns` (render-wgpu's `sky/transmittance.rs`). CPU twin:
+// atmosphere-core's `optics/transmittance_table.rs`, with the same texel centres, unit
+// mapping and quadrature (64 equal panels of 5-point Gauss-Legendre), in f32. Paper: the
+// transmittance table of Bruneton 2017 (its parameterization,
+// `GetTransmittanceTextureUvFromRMu`), which Hillaire 2020 (section 5.1) shares; the
+// columns are the table g_l of Nishita et al. 1993 (Dobashi, Yamamoto and Nishita 2002,
+// section 5). Entry point `main`: rgb = transmittance in the three channels of the
+// uniform, a = 1. Entry point `columns`: rgb = the columns of matter (Rayleigh, Mie,
+// ozone) in metres, a = 1, as the CPU table stores them (read by
+// `common/transmittance_lookup.wgsl`).
 
 #import common/atmosphere_params.wgsl
 

@@ -1,7 +1,9 @@
-// The terrain pass: the chunks of the cube-sphere quadtree (`terrain_pass.rs`) drawn
-// into the surface buffer that every model's pixel pass reads (`common/surface.wgsl`): per
-// pixel the outward normal and the distance from the camera along the pixel's ray, and
-// the albedo from the Earth's colour map.
+// Entry pass: the terrain, `vertex_main` and `fragment_main` (render-wgpu's
+// `terrain/pass.rs`): the chunks of the cube-sphere quadtree drawn into the surface buffer
+// that every model's pixel pass reads (`common/surface.wgsl`): per pixel the outward
+// normal and the distance from the camera along the pixel's ray, and the albedo from the
+// Earth's colour map. CPU twin: none in atmosphere-core (the meshes are built by
+// render-wgpu's `terrain/`); the projection is `Frame::pixel_ray`'s. No paper.
 //
 // Camera-relative: a vertex is its chunk's offset `origin - camera` (f64 on the CPU,
 // rounded to f32) plus its f32 offset from the origin, so positions near the camera are

@@ -1,7 +1,11 @@
-//! Every shader of `shaders/`, composed, must pass naga's WGSL front end and validator,
-//! without a GPU; and the WGSL uniform layout must match its Rust twin.
+//! Every entry pass of `shaders/` (a file with `@compute`, `@vertex` or `@fragment`
+//! functions), composed, must pass naga's WGSL front end and validator, without a GPU;
+//! every library is validated inside the passes that import it, and must have one (a
+//! library may call a function its importer defines, as `common/shade_pixel.wgsl` does);
+//! and the WGSL uniform layouts must match their Rust twins.
 
-use std::path::Path;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use render_wgpu::frame::atmosphere_uniform::{
@@ -24,28 +28,88 @@ fn validate(name: &str, source: &str) -> Result<naga::Module, String> {
     Ok(module)
 }
 
-#[test]
-fn every_shader_file_is_embedded() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders");
-    let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|name| name.ends_with(".wgsl"))
-        .collect();
-    on_disk.sort();
-    let mut embedded: Vec<String> = shaders::shader_names().map(String::from).collect();
-    embedded.sort();
-    assert_eq!(on_disk, embedded, "shaders/ and shader_source.rs disagree");
+/// The folder `shaders/` of the workspace.
+fn shader_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shaders")
+}
+
+/// The paths below `dir` of the `.wgsl` files in it and its subfolders, with `/`.
+fn wgsl_paths(dir: &Path, prefix: &str, out: &mut Vec<String>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let entry = entry.unwrap();
+        let name = format!("{prefix}{}", entry.file_name().to_string_lossy());
+        if entry.file_type().unwrap().is_dir() {
+            wgsl_paths(&entry.path(), &format!("{name}/"), out);
+        } else if name.ends_with(".wgsl") {
+            out.push(name);
+        }
+    }
+}
+
+/// The text of shader `name` as it is on disk, imports unresolved.
+fn raw_source(name: &str) -> String {
+    std::fs::read_to_string(shader_dir().join(name)).unwrap()
+}
+
+/// Whether shader `name` is an entry pass: a line of it (comments aside) starts with a
+/// stage attribute.
+fn is_entry_pass(name: &str) -> bool {
+    raw_source(name).lines().any(|line| {
+        let line = line.trim_start();
+        ["@compute", "@vertex", "@fragment"]
+            .iter()
+            .any(|stage| line.starts_with(stage))
+    })
+}
+
+/// The files shader `name` imports, directly or through other imports.
+fn imported_files(name: &str, found: &mut BTreeSet<String>) {
+    for line in raw_source(name).lines() {
+        if let Some(import) = line.trim().strip_prefix("#import") {
+            let import = import.trim().to_string();
+            if found.insert(import.clone()) {
+                imported_files(&import, found);
+            }
+        }
+    }
 }
 
 #[test]
-fn every_shader_validates() {
+fn every_shader_file_is_embedded() {
+    let mut on_disk = Vec::new();
+    wgsl_paths(&shader_dir(), "", &mut on_disk);
+    on_disk.sort();
+    let mut embedded: Vec<String> = shaders::shader_names().map(String::from).collect();
+    embedded.sort();
+    assert_eq!(on_disk, embedded, "shaders/ and build.rs disagree");
+}
+
+#[test]
+fn every_entry_pass_validates() {
     let shaders = shaders::all_composed().unwrap();
     let failures: Vec<String> = shaders
         .iter()
+        .filter(|(name, _)| is_entry_pass(name))
         .filter_map(|(name, source)| validate(name, source).err())
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn every_library_is_imported_by_an_entry_pass() {
+    let names: Vec<&str> = shaders::shader_names().collect();
+    let mut imported = BTreeSet::new();
+    for name in names.iter().filter(|name| is_entry_pass(name)) {
+        imported_files(name, &mut imported);
+    }
+    let orphans: Vec<&&str> = names
+        .iter()
+        .filter(|name| !is_entry_pass(name) && !imported.contains(**name))
+        .collect();
+    assert!(
+        orphans.is_empty(),
+        "libraries no entry pass imports (so never validated): {orphans:?}"
+    );
 }
 
 #[test]
@@ -60,24 +124,7 @@ fn broken_shaders_are_rejected() {
 
 #[test]
 fn atmosphere_uniform_matches_its_wgsl_layout() {
-    let source = shaders::composed("common/atmosphere_params.wgsl").unwrap();
-    let module = validate("common/atmosphere_params.wgsl", &source).unwrap();
-    let layout = |struct_name: &str| {
-        module
-            .types
-            .iter()
-            .find_map(|(_, ty)| match (&ty.name, &ty.inner) {
-                (Some(n), naga::TypeInner::Struct { members, span }) if n == struct_name => Some((
-                    *span as usize,
-                    members
-                        .iter()
-                        .map(|m| (m.name.clone().unwrap(), m.offset as usize))
-                        .collect::<Vec<_>>(),
-                )),
-                _ => None,
-            })
-            .unwrap_or_else(|| panic!("no struct {struct_name}"))
-    };
+    let layout = |name: &str| wgsl_layout("common/atmosphere_params.wgsl", name);
     let (span, members) = layout("AtmosphereParams");
     assert_eq!(span, size_of::<AtmosphereUniform>());
     let rust = [
@@ -294,39 +341,22 @@ fn dobashi_uniforms_match_their_wgsl_layouts() {
         DobashiTableUniform,
         [interval_m, plane_panels, sphere_panels, pad0]
     );
-    for shader in ["sky/dobashi/pixel.wgsl", "sky/dobashi/ambient.wgsl"] {
-        let (span, members) = wgsl_layout(shader, "DobashiParams");
-        assert_eq!(span, size_of::<DobashiUniform>(), "{shader}");
-        let rust = [
-            (
-                "interval_m",
-                std::mem::offset_of!(DobashiUniform, interval_m),
-            ),
-            (
-                "use_spheres",
-                std::mem::offset_of!(DobashiUniform, use_spheres),
-            ),
-            (
-                "ambient_on",
-                std::mem::offset_of!(DobashiUniform, ambient_on),
-            ),
-            (
-                "max_orders",
-                std::mem::offset_of!(DobashiUniform, max_orders),
-            ),
-            (
-                "ambient_directions",
-                std::mem::offset_of!(DobashiUniform, ambient_directions),
-            ),
-            ("spheres", std::mem::offset_of!(DobashiUniform, spheres)),
-        ];
-        for (name, offset) in rust {
-            assert!(
-                members.contains(&(name.to_string(), offset)),
-                "{shader}: {name} at {offset}: WGSL has {members:?}"
-            );
-        }
-    }
+    // Declared once for the per-pixel pass and the ambient table's build.
+    assert_layout!(
+        "sky/dobashi/bindings.wgsl",
+        "DobashiParams",
+        DobashiUniform,
+        [
+            interval_m,
+            use_spheres,
+            ambient_on,
+            max_orders,
+            ambient_directions,
+            spheres,
+            pad0,
+            pad1
+        ]
+    );
 }
 
 #[test]

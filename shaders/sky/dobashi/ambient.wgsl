@@ -1,10 +1,14 @@
-// The ambient term of the dobashi model (not in the paper; see docs/models/dobashi.md):
-// the GPU twin of atmosphere-core's `AmbientTable::build`. Invocation i takes the sun at
-// cosine -1 + 2 i / (n - 1) and traces `ambient_directions`^2 rays from the ground (equal
-// steps of the zenith cosine times equal steps of azimuth) with a unit ambient radiance:
-// psi_1, the mean single-scattered and sunlit-ground radiance, and f, the mean transfer
-// of a unit isotropic radiance; psi = psi_1 (1 + f + ... + f^(N-2)) for N orders, or
-// psi_1 / (1 - f) for all. Writes psi per unit solar irradiance into `ambient_out`.
+// Entry pass: the ambient table of the dobashi model, `main` (render-wgpu's
+// `sky/dobashi.rs`). CPU twin: atmosphere-core's `models/dobashi/ambient.rs`
+// (`AmbientTable::build`). Paper: none for the term itself (Dobashi, Yamamoto and Nishita
+// 2002 has no multiple scattering; docs/models/dobashi.md), estimated as Hillaire 2020,
+// section 5.5, does with the model's own Eq. 12 (`sky/dobashi/trace.wgsl`). Invocation i
+// takes the sun at cosine -1 + 2 i / (n - 1) and traces `ambient_directions`^2 rays from
+// the ground (equal steps of the zenith cosine times equal steps of azimuth) with a unit
+// ambient radiance: psi_1, the mean single-scattered and sunlit-ground radiance, and f,
+// the mean transfer of a unit isotropic radiance; psi = psi_1 (1 + f + ... + f^(N-2)) for
+// N orders, or psi_1 / (1 - f) for all. Writes psi per unit solar irradiance into
+// `ambient_out`.
 
 #import sky/dobashi/trace.wgsl
 

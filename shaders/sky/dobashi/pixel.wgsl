@@ -1,51 +1,47 @@
-// Dobashi et al. 2002 per pixel (seed 000 sections 5.2-5.3): the GPU twin of
-// atmosphere-core's `Dobashi::radiance`. Eq. 12 along the pixel's ray through the
-// sampling planes, or the sample spheres for a camera far out (`sky/dobashi/trace.wgsl`),
-// with the ambient term, ending on the frame's surface where it has one (lit by the
-// transmitted sun and the ambient sky, `Dobashi::surface_irradiance`); the transmitted
-// sun disk where the ray reaches space. Writes spectral radiance (W m^-2 sr^-1 nm^-1)
-// to the HDR target.
+// Entry pass: the dobashi model per pixel, `main` (render-wgpu's `sky/dobashi.rs`). CPU
+// twin: atmosphere-core's `models/dobashi/mod.rs` (`Dobashi::radiance`,
+// `Dobashi::surface_irradiance`). Paper: Dobashi, Yamamoto and Nishita 2002, sections
+// 5.2-5.3: Eq. 12 along the pixel's ray through the sampling planes, or the sample spheres
+// for a camera far out (`sky/dobashi/trace.wgsl`), with the ambient term, ending on the
+// frame's surface where it has one (lit by the transmitted sun and the ambient sky). The
+// frame around it (surface, sun disk, HDR target) is `common/shade_pixel.wgsl`. Writes
+// spectral radiance (W m^-2 sr^-1 nm^-1).
 
 #import sky/dobashi/trace.wgsl
 #import common/surface.wgsl
+#import common/surface_columns.wgsl
+#import common/shade_pixel.wgsl
 
 @group(0) @binding(12) var hdr: texture_storage_2d<rgba16float, write>;
 
-// `Dobashi::surface_irradiance` (`Tracer::element_light`): the transmitted sun g_l
-// (Eq. 11) and the ambient sky, pi psi on a horizontal element, psi at the element's sun
-// angle, times the share of the ground's vertical optical depth above the element.
-fn dobashi_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
-    let e = surface_element(point, normal);
-    let bottom = atmosphere.bottom_radius_m;
-    let q = (e.r - bottom) * (e.r + bottom);
-    var t = vec3<f32>(0.0);
-    if e.sun_cosine > 0.0 {
-        t = sunlight_at(q, e.mu_s);
-    }
-    let whole = optical_depth(read_table_columns(g_l, 0.0, 1.0));
-    let share = select(vec3<f32>(1.0), optical_depth(read_table_columns(g_l, q, 1.0)) / whole,
-        whole > vec3<f32>(0.0));
-    let sky = PI * ambient_at(e.mu_s) * share * atmosphere.solar_irradiance.xyz;
-    return element_irradiance(e, t, sky);
-}
-
-@compute @workgroup_size(8, 8)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size_px.xy) {
-        return;
-    }
-    let direction = pixel_direction(id.xy);
-    let surface = frame_surface(id.xy);
-    let s = view_segment(direction, surface.distance);
+// `Dobashi::radiance` for the view ray with unit `direction` from the camera, ending on
+// an object at `object_m` (0: none): Eq. 12 per unit solar irradiance, times it.
+fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+    let s = view_segment(direction, object_m);
     var r = radiance_of_empty(s, direction);
     if s.hit {
         let terms = trace(make_ray(s, direction, frame.sun_direction.xyz), dobashi.use_spheres != 0u);
         r.radiance = atmosphere.solar_irradiance.xyz * (terms.single + terms.ambient);
         r.transmittance = terms.transmittance;
     }
-    if surface.present {
-        let e = dobashi_surface_irradiance(r.end, surface.normal);
-        r = add_surface(r, surface, e);
+    return r;
+}
+
+// `Dobashi::surface_irradiance` (`Tracer::element_light`): the transmitted sun g_l
+// (Eq. 11) and the ambient sky, pi psi on a horizontal element, psi at the element's sun
+// angle, times the share of the ground's vertical optical depth above the element.
+fn model_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let e = surface_element(point, normal);
+    var t = vec3<f32>(0.0);
+    if e.sun_cosine > 0.0 {
+        t = sunlight_at(e.q, e.mu_s);
     }
-    textureStore(hdr, id.xy, hdr_pixel(direction, r));
+    let share = vertical_depth_share_above(g_l, e.q);
+    let sky = PI * ambient_at(e.mu_s) * share * atmosphere.solar_irradiance.xyz;
+    return element_irradiance(e, t, sky);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    shade_pixel(id.xy);
 }

@@ -1,9 +1,11 @@
-// The pre-integrated segment tables of Dobashi et al. 2002 (seed 000 sections 5.2-5.3,
-// appendix A.2): the GPU twins of atmosphere-core's `dobashi::plane_tables` (entry point
-// `planes`) and `dobashi::sphere_tables` (entry point `spheres`). Each texel holds, for
-// one segment, dI_r = int K_r rho_r exp(-tau(0 -> t)) dt, dI_m likewise with Mie, and
+// Entry passes: the pre-integrated segment tables of the dobashi model, `planes` and
+// `spheres` (render-wgpu's `sky/dobashi.rs`). CPU twins: atmosphere-core's
+// `models/dobashi/plane_tables.rs` and `models/dobashi/sphere_tables.rs`, each segment by
+// `models/dobashi/segment.rs` (`integrate`). Paper: Dobashi, Yamamoto and Nishita 2002,
+// sections 5.2-5.3 and appendix A.2, Eq. A.5-A.6. Each texel holds, for one segment,
+// dI_r = int K_r rho_r exp(-tau(0 -> t)) dt, dI_m likewise with Mie, and
 // dg_v = exp(-tau(0 -> L)), rgb = the three channels of the uniform, tau counting every
-// species (ozone included) (`dobashi::segment::integrate`).
+// species (ozone included).
 //
 // The integrals are composite 5-point Gauss-Legendre over equal panels, the column to
 // each node by a nested 5-point rule over its panel: converged f32 quadrature, against
@@ -13,6 +15,7 @@
 // radii near 6.4e6 m, a few centimetres of rounding on the longest chords.
 
 #import common/atmosphere_params.wgsl
+#import sky/dobashi/plane_mapping.wgsl
 
 struct DobashiTableParams {
     // Delta_t, the interval between sampling planes, m.
@@ -111,16 +114,8 @@ fn planes(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = sqrt(bottom * bottom + q0);
     let ground = id.x < half;
     let x = f32(id.x % half) / f32(half - 1u);
-    var d_min: f32;
-    var d_max: f32;
-    if ground {
-        d_min = q0 / (r + bottom);
-        d_max = rho;
-    } else {
-        d_min = (horizon - rho) * (horizon + rho) / (top + r);
-        d_max = rho + horizon;
-    }
-    let d = d_min + x * max(d_max - d_min, 0.0);
+    let range = plane_distance_range(q0, r, rho, ground);
+    let d = range.x + x * max(range.y - range.x, 0.0);
     var v: SegmentValues;
     if d <= 0.0 {
         v = integrate_segment(q0, 0.0, 0.0, 1u);

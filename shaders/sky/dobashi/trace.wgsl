@@ -1,10 +1,11 @@
-// Seed 000 Eq. 12 along one view ray on the GPU, shared by the per-pixel pass
-// (`sky/dobashi/pixel.wgsl`) and the ambient table (`sky/dobashi/ambient.wgsl`): the GPU twin of
-// atmosphere-core's `dobashi::trace`. The ray is cut by sampling planes at t_k = k Delta_t
-// from where it starts in the atmosphere (section 5.2) or, for a camera far out, by the
-// sample spheres (section 5.3); each segment's dI_r, dI_m, dg_v come from the tables of
-// `sky/dobashi/tables.wgsl`, g_l from the columns table (`common/transmittance_lookup.wgsl`) at the
-// segment's start, as Eq. 12 does:
+// Library: Eq. 12 of Dobashi, Yamamoto and Nishita 2002 along one view ray, shared by the
+// per-pixel pass (`sky/dobashi/pixel.wgsl`) and the ambient table's build
+// (`sky/dobashi/ambient.wgsl`). CPU twin: atmosphere-core's `models/dobashi/trace.rs`.
+// Paper: Dobashi, Yamamoto and Nishita 2002, sections 5.2-5.3, Eq. 12. The ray is cut by
+// sampling planes at t_k = k Delta_t from where it starts in the atmosphere (section 5.2)
+// or, for a camera far out, by the sample spheres (section 5.3); each segment's dI_r,
+// dI_m, dg_v come from the tables of `sky/dobashi/tables.wgsl`, g_l from the columns
+// table (`common/transmittance_lookup.wgsl`) at the segment's start, as Eq. 12 does:
 //
 // I_v = I_sun (r/pi) g_l(0, theta_g) cos theta_g prod_j dg_v(t_j)
 //     + I_sun sum_k g_l(h_k, theta_k) [F_r dI_r(t_k) + F_m dI_m(t_k)] prod_{j<k} dg_v(t_j),
@@ -18,40 +19,8 @@
 #import common/frame_params.wgsl
 #import common/table_sampling.wgsl
 #import common/phase.wgsl
-
-struct DobashiParams {
-    // Delta_t, m.
-    interval_m: f32,
-    // 1: the frame's camera is far enough out to use the sample spheres (decided in f64
-    // on the CPU, `Tracer::uses_spheres`).
-    use_spheres: u32,
-    // 1: the ambient term is on (every `max_orders` but 1).
-    ambient_on: u32,
-    // Scattering orders of the ambient term, 0 for all (`AmbientTable::build`).
-    max_orders: u32,
-    // The ambient table's sphere integral: this many zenith steps times this many
-    // azimuths.
-    ambient_directions: u32,
-    spheres: u32,
-    pad0: u32,
-    pad1: u32,
-}
-
-@group(0) @binding(2) var<uniform> dobashi: DobashiParams;
-@group(0) @binding(3) var g_l: texture_2d<f32>;
-@group(0) @binding(4) var plane_scatter_r: texture_2d<f32>;
-@group(0) @binding(5) var plane_scatter_m: texture_2d<f32>;
-@group(0) @binding(6) var plane_transmittance: texture_2d<f32>;
-@group(0) @binding(7) var sphere_scatter_r: texture_2d<f32>;
-@group(0) @binding(8) var sphere_scatter_m: texture_2d<f32>;
-@group(0) @binding(9) var sphere_transmittance: texture_2d<f32>;
-// Per sphere and kind (down, chord, up): q0 of the sphere, q of the end sphere minus q0,
-// shortest and longest segment (negative: no such segment) (`sphere_rows`).
-@group(0) @binding(10) var<storage, read> sphere_rows: array<vec4<f32>>;
-// psi per unit solar irradiance (rgb) at equal steps of the sun's cosine from -1 to 1,
-// an n x 1 texture: in the pass the table `sky/dobashi/ambient.wgsl` wrote; while that table
-// is built, a table of ones, the unit ambient radiance its rays see.
-@group(0) @binding(11) var ambient_table: texture_2d<f32>;
+#import sky/dobashi/bindings.wgsl
+#import sky/dobashi/plane_mapping.wgsl
 
 // dI_r, dI_m, dg_v of one segment.
 struct Segment3 {
@@ -123,16 +92,9 @@ fn plane_lookup(q: f32, r_mu: f32) -> Segment3 {
     let rho = sqrt(q);
     let ground = r_mu < 0.0 && r_mu * r_mu - q >= 0.0;
     let d = distance_out(q, r_mu);
-    var d_min: f32;
-    var d_max: f32;
-    if ground {
-        d_min = q / (r + bottom);
-        d_max = rho;
-    } else {
-        d_min = (horizon - rho) * (horizon + rho) / (top + r);
-        d_max = rho + horizon;
-    }
-    let unit = select(0.0, clamp((d - d_min) / (d_max - d_min), 0.0, 1.0), d_max > d_min);
+    let range = plane_distance_range(q, r, rho, ground);
+    let unit = select(0.0, clamp((d - range.x) / (range.y - range.x), 0.0, 1.0),
+        range.y > range.x);
     let x = unit * f32(half - 1u) + select(f32(half), 0.0, ground);
     return sample_planes(x, clamp(rho / horizon, 0.0, 1.0) * f32(size.y - 1u));
 }
@@ -168,6 +130,11 @@ struct Terms {
     single: vec3<f32>,
     ambient: vec3<f32>,
     transmittance: vec3<f32>,
+}
+
+// The sums before the first segment: nothing scattered, transmittance 1.
+fn no_terms() -> Terms {
+    return Terms(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
 // What `Accumulator::add` and `add_ground` need of a ray.
@@ -245,10 +212,7 @@ fn cut_segment(v: Segment3, fraction: f32) -> Segment3 {
 
 // Section 5.2: segments of Delta_t from the start of the ray.
 fn through_planes(ray: Ray) -> Terms {
-    var terms: Terms;
-    terms.single = vec3<f32>(0.0);
-    terms.ambient = vec3<f32>(0.0);
-    terms.transmittance = vec3<f32>(1.0);
+    var terms = no_terms();
     let s = ray.segment;
     let dt = dobashi.interval_m;
     let n = u32(ceil(s.length / dt));
@@ -274,10 +238,7 @@ fn through_planes(ray: Ray) -> Terms {
 // where the ray enters (`Tracer::through_spheres`, `SphereTables::step`), following the
 // sphere index and r mu at each crossing.
 fn through_spheres(ray: Ray) -> Terms {
-    var terms: Terms;
-    terms.single = vec3<f32>(0.0);
-    terms.ambient = vec3<f32>(0.0);
-    terms.transmittance = vec3<f32>(1.0);
+    var terms = no_terms();
     let s = ray.segment;
     let n = dobashi.spheres;
     var k = n - 1u;

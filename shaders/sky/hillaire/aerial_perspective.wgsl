@@ -1,12 +1,13 @@
-// The aerial-perspective volume of Hillaire 2020 (section 5.4): the GPU twin of
-// atmosphere-core's `hillaire/aerial_perspective.rs`. As on the CPU the slices are laid
-// over directions around the camera in the latitude-longitude mapping (96 x 96 by
-// default) rather than the frustum, so the volume depends only on the view (camera
-// radius, sun zenith cosine) and is kept while the view stays. Each direction is marched
-// once through all slices, `ap_samples_per_slice` segments each, as a straight line past
-// the ground (through the ground-level medium); slice k holds depth (k + 1) range /
-// slices. Two 3D textures: radiance per unit solar irradiance and transmittance from
-// the camera to the slice, rgb per channel, a = 1.
+// Entry pass: the aerial-perspective volume of the hillaire model, `main` (render-wgpu's
+// `sky/hillaire.rs`). CPU twin: atmosphere-core's `models/hillaire/aerial_perspective.rs`.
+// Paper: Hillaire 2020, section 5.4. As on the CPU the slices are laid over directions
+// around the camera in the latitude-longitude mapping rather than the frustum, so the
+// volume depends only on the view (camera radius, sun zenith cosine) and is kept while
+// the view stays. Each direction is marched once through all slices,
+// `ap_samples_per_slice` segments each, as a straight line past the ground (through the
+// ground-level medium); slice k holds depth (k + 1) range / slices. Two 3D textures:
+// radiance per unit solar irradiance and transmittance from the camera to the slice, rgb
+// per channel, a = 1.
 
 #import sky/hillaire/march.wgsl
 #import sky/hillaire/directions.wgsl

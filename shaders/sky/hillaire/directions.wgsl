@@ -1,10 +1,12 @@
-// The latitude-longitude mapping of directions around a camera inside the atmosphere
-// (Hillaire 2020 section 5.3): the GPU twin of atmosphere-core's `hillaire/directions.rs`.
-// Longitude is the azimuth from the sun's vertical plane, 0 to pi in equal steps;
-// latitude is measured from the geometric horizon of the camera's altitude and mapped by
-// a square root, v = sqrt(|l| / l_max); the rows are two halves (ground first, nadir at
-// row 0, then sky, zenith last), each starting on the horizon, so that no texel mixes
-// rays ending in space with rays ending on the ground.
+// Library: the latitude-longitude mapping of directions around a camera inside the
+// atmosphere, shared by the sky view, the aerial-perspective volume and the per-pixel
+// pass of the hillaire model. CPU twin: atmosphere-core's `models/hillaire/directions.rs`.
+// Paper: Hillaire 2020, section 5.3 (the sky-view LUT's mapping). Longitude is the
+// azimuth from the sun's vertical plane, 0 to pi in equal steps; latitude is measured
+// from the geometric horizon of the camera's altitude and mapped by a square root,
+// v = sqrt(|l| / l_max); the rows are two halves (ground first, nadir at row 0, then sky,
+// zenith last), each starting on the horizon, so that no texel mixes rays ending in space
+// with rays ending on the ground.
 
 #import common/phase.wgsl
 

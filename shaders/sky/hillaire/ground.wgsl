@@ -1,11 +1,13 @@
-// The sky's irradiance at the ground E_sky(mu_s) / E_sun of the hillaire model: the GPU
-// twin of atmosphere-core's `hillaire/ground.rs` (`sky_irradiance`,
-// `GroundIrradiance::build`). Value i of n lies at x = -1 + 2 i / (n - 1), mu_s = x |x|;
-// each is the cosine-weighted integral of the view march's radiance (single scattering
-// plus Psi_ms) over the upper hemisphere: panels of 8-point Gauss-Legendre in the zenith
-// cosine times azimuths over half the circle, counted twice (the sky is symmetric about
-// the sun's vertical plane). One workgroup per value; its 64 threads share the rays and
-// sum them in workgroup memory. rgb per channel, a = 1, in an n x 1 texture.
+// Entry pass: the sky's irradiance at the ground E_sky(mu_s) / E_sun of the hillaire
+// model, `main` (render-wgpu's `sky/hillaire.rs`). CPU twin: atmosphere-core's
+// `models/hillaire/ground.rs` (`sky_irradiance`, `GroundIrradiance::build`). Paper:
+// Hillaire 2020, section 5 (the lit planet surface). Value i of n lies at
+// x = -1 + 2 i / (n - 1), mu_s = x |x|; each is the cosine-weighted integral of the view
+// march's radiance (single scattering plus Psi_ms) over the upper hemisphere: panels of
+// 8-point Gauss-Legendre in the zenith cosine times azimuths over half the circle,
+// counted twice (the sky is symmetric about the sun's vertical plane). One workgroup per
+// value; its 64 threads share the rays and sum them in workgroup memory. rgb per
+// channel, a = 1, in an n x 1 texture.
 
 #import sky/hillaire/march.wgsl
 #import sky/hillaire/directions.wgsl

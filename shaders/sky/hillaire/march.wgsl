@@ -1,30 +1,17 @@
-// The view ray march of Hillaire 2020 (section 5, "Ray marching"): the GPU twin of
-// atmosphere-core's `hillaire/march.rs`, with the read of the Psi_ms LUT
-// (`MultipleScattering::lookup`, section 5.5) it needs. Along a view ray the light
-// scattered towards the camera at each segment's midpoint is
+// Library: the view ray march of the hillaire model, with the read of the Psi_ms LUT it
+// needs, shared by the sky view, the aerial-perspective volume, the ground irradiance and
+// the per-pixel pass. CPU twin: atmosphere-core's `models/hillaire/march.rs` and
+// `MultipleScattering::lookup` (`models/hillaire/multiple_scattering.rs`). Paper:
+// Hillaire 2020, section 5 ("Ray marching") and section 5.5 (Psi_ms): along a view ray
+// the light scattered towards the camera at each segment's midpoint is
 // sigma_s (T_sun p(nu) + Psi_ms), integrated with `segment_weight`; per unit solar
 // irradiance. The Psi_ms LUT is bound at 4 in every shader that marches view rays, and
 // read as `common/table_sampling.wgsl` says.
 
 #import sky/hillaire/medium.wgsl
+#import common/texel_bilinear.wgsl
 
 @group(0) @binding(4) var psi_ms: texture_2d<f32>;
-
-// Bilinear interpolation of `table` at texel coordinates `f` (texel centres on whole
-// numbers, already within the table), as the CPU's lookups: the cell below, clamped to
-// the last full cell.
-fn texel_bilinear(table: texture_2d<f32>, f: vec2<f32>) -> vec3<f32> {
-    let size = textureDimensions(table);
-    let i0 = min(vec2<u32>(f), size - 2u);
-    let a = f - vec2<f32>(i0);
-    let c00 = textureLoad(table, i0, 0).xyz;
-    let c10 = textureLoad(table, i0 + vec2<u32>(1u, 0u), 0).xyz;
-    let c01 = textureLoad(table, i0 + vec2<u32>(0u, 1u), 0).xyz;
-    let c11 = textureLoad(table, i0 + vec2<u32>(1u, 1u), 0).xyz;
-    let low = c00 + a.x * (c10 - c00);
-    let high = c01 + a.x * (c11 - c01);
-    return low + a.y * (high - low);
-}
 
 // `MultipleScattering::lookup`: Psi_ms at a point of radius `r` (r^2 - bottom^2 = q) with
 // the sun at zenith cosine `mu_s`, clamped to the table.

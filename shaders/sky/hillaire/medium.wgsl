@@ -1,49 +1,16 @@
-// The medium along a ray and the segment integral of Hillaire 2020, shared by every
-// hillaire table and the per-pixel pass: the GPU twin of atmosphere-core's
-// `hillaire/medium.rs`. Radii enter as q = r^2 - bottom^2 and r mu, r mu_s (see
-// `common/frame_params.wgsl`), so that no planet-sized f32 numbers are subtracted. Also the
-// model's uniform (`HillaireParams`, Rust twin `hillaire_pass.rs`) and the transmittance
-// table (the columns of `sky/transmittance_table.wgsl`, as the CPU's shared table), which
-// every hillaire shader binds at 2 and 3 and reads as `common/table_sampling.wgsl` says.
+// Library: the medium along a ray and the segment integral of the hillaire model, shared
+// by every hillaire table and the per-pixel pass. CPU twin: atmosphere-core's
+// `models/hillaire/medium.rs`. Paper: Hillaire 2020, section 5 (the medium's coefficients
+// and the sun's transmittance from the transmittance LUT, section 5.1) with the
+// energy-conserving segment integral of Hillaire 2015. Radii enter as
+// q = r^2 - bottom^2 and r mu, r mu_s (see `common/frame_params.wgsl`), so that no
+// planet-sized f32 numbers are subtracted.
 
 #import common/atmosphere_params.wgsl
 #import common/table_sampling.wgsl
 #import common/phase.wgsl
-
-struct HillaireParams {
-    // The view of the per-view tables (`view_cache::view_key`): camera radius, its
-    // r^2 - bottom^2 (from f64) and the sun's zenith cosine there.
-    view_r: f32,
-    view_q: f32,
-    view_mu_s: f32,
-    // Depth covered by the aerial-perspective volume, m.
-    aerial_range_m: f32,
-    // `HillaireSettings`' sample counts.
-    ms_sqrt_directions: u32,
-    ms_samples: u32,
-    sky_view_samples: u32,
-    ap_samples_per_slice: u32,
-    march_samples: u32,
-    ground_zenith_panels: u32,
-    ground_azimuths: u32,
-    // 1: orders two and up (Psi_ms and the sky's light on the ground); 0: single
-    // scattering (`max_orders = 1`).
-    multiple_on: u32,
-    // Zenith angle of the geometric horizon at the view's radius (`horizon_zenith`, f64).
-    view_theta_h: f32,
-    pad0: f32,
-    pad1: f32,
-    pad2: f32,
-    // The camera's zenith, and two horizontal unit vectors there: towards the sun's
-    // azimuth and 90 degrees from it (any horizontal pair when the sun is at the zenith
-    // or nadir); xyz, w = 0. The pass measures view angles in this frame.
-    view_up: vec4<f32>,
-    view_sun_side: vec4<f32>,
-    view_across: vec4<f32>,
-}
-
-@group(0) @binding(2) var<uniform> hillaire: HillaireParams;
-@group(0) @binding(3) var transmittance_columns: texture_2d<f32>;
+#import common/ground_ray.wgsl
+#import sky/hillaire/bindings.wgsl
 
 // top^2 - bottom^2: q at the top of the atmosphere.
 fn top_q() -> f32 {
@@ -122,13 +89,6 @@ fn sun_transmittance(q: f32, mu_s: f32) -> vec3<f32> {
     return exp(-optical_depth(read_table_columns(transmittance_columns, qc, mu)));
 }
 
-// `ground_distance`: from (q, r mu) to the ground for a ray at or below the horizon; a
-// tangent ray gives the distance to the tangent point.
-fn ground_distance(q: f32, r_mu: f32) -> f32 {
-    let denom = -r_mu + safe_sqrt(r_mu * r_mu - q);
-    return select(0.0, max(q / denom, 0.0), denom > 0.0);
-}
-
 // `distance_to_exit` to the top from (q, r mu) inside the atmosphere, by the product of
 // the roots for rising rays.
 fn exit_distance(q: f32, r_mu: f32) -> f32 {
@@ -138,11 +98,6 @@ fn exit_distance(q: f32, r_mu: f32) -> f32 {
         return max((h2 - q) / (r_mu + root), 0.0);
     }
     return max(-r_mu + root, 0.0);
-}
-
-// Whether the ray from (q, r mu) meets the ground (`ray_hits_ground`).
-fn hits_ground(q: f32, r_mu: f32) -> bool {
-    return r_mu < 0.0 && r_mu * r_mu - q >= 0.0;
 }
 
 // The centre of texel i of n mapped to [0, 1], first and last centres on the bounds

@@ -1,8 +1,10 @@
-// The multiple-scattering LUT Psi_ms(mu_s, h) of Hillaire 2020 (section 5.5): the GPU
-// twin of atmosphere-core's `hillaire/multiple_scattering.rs` (`transfer` and
-// `MultipleScattering::build`). One workgroup per texel; its 64 threads share the sphere's
-// directions (8 x 8 strata of equal solid angle by default, each stratum's centre), as
-// the paper's implementation does, and sum them in workgroup memory:
+// Entry pass: the multiple-scattering LUT Psi_ms(mu_s, h) of the hillaire model, `main`
+// (render-wgpu's `sky/hillaire.rs`). CPU twin: atmosphere-core's
+// `models/hillaire/multiple_scattering.rs` (`transfer`, `MultipleScattering::build`).
+// Paper: Hillaire 2020, section 5.5. One workgroup per texel; its 64 threads
+// share the sphere's directions (`ms_sqrt_directions`^2 strata of equal solid angle, each
+// stratum's centre), as the paper's implementation does, and sum them in workgroup
+// memory:
 // - L_2nd order = (1 / N) sum over directions of the single scattering (isotropic phase,
 //   P_u = 1 / (4 pi)) along the direction plus the ground's Lambertian reflection of the
 //   sun where the ray meets it;

@@ -1,7 +1,9 @@
-// Hillaire 2020 per pixel: the GPU twin of `Hillaire::radiance` in atmosphere-core's
-// `hillaire/mod.rs`, with the look-ups of its tables (`SkyView::lookup`,
-// `AerialPerspective::lookup`, `GroundIrradiance::lookup`). For the view segment of each
-// pixel (`view_segment`, camera-relative):
+// Entry passes: the hillaire model per pixel, `main`, `tables_only` and `from_space`
+// (render-wgpu's `sky/hillaire.rs`). CPU twin: atmosphere-core's `models/hillaire/mod.rs`
+// (`Hillaire::radiance`), with the look-ups of its tables (`SkyView::lookup`,
+// `AerialPerspective::lookup`, `GroundIrradiance::lookup`). Paper: Hillaire 2020, sections
+// 5.3-5.4 (sky-view LUT, aerial-perspective volume) and section 5 (the view march). For
+// the view segment of each pixel (`view_segment`, camera-relative):
 // - camera inside the atmosphere, ray to space: the sky-view LUT (bilinear), the
 //   transmittance from the table;
 // - camera inside, ray to the ground or to the frame's surface within the volume's
@@ -15,7 +17,7 @@
 // Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three channels to the HDR target,
 // clamped to the largest finite f16. The transmittance table, the sky view and the volume
 // are read through the texture unit's linear filter where the device filters Rgba32Float
-// (`FILTERED_TABLES`; render-wgpu's `table_sampling.rs`), else texel by texel with the
+// (`FILTERED_TABLES`; render-wgpu's `sky/table_sampling.rs`), else texel by texel with the
 // interpolation written out: the same weights from the same coordinates.
 
 #import sky/hillaire/march.wgsl
@@ -23,6 +25,7 @@
 #import common/frame_params.wgsl
 #import common/surface.wgsl
 #import common/table_sampling.wgsl
+#import common/surface_columns.wgsl
 
 @group(0) @binding(5) var ground_irradiance: texture_2d<f32>;
 @group(0) @binding(6) var sky_view: texture_2d<f32>;
@@ -189,18 +192,10 @@ fn hillaire_radiance(direction: vec3<f32>, object_m: f32, tables: bool, march: b
 // times the share of the ground's vertical optical depth above the element.
 fn hillaire_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let e = surface_element(point, normal);
-    let bottom = atmosphere.bottom_radius_m;
-    let q = (e.r - bottom) * (e.r + bottom);
-    var t = vec3<f32>(0.0);
-    if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
-        t = exp(-optical_depth(read_table_columns(transmittance_columns, q, e.mu_s)));
-    }
+    let t = element_sun_transmittance(e, transmittance_columns);
     var sky = vec3<f32>(0.0);
     if hillaire.multiple_on != 0u {
-        let whole = optical_depth(read_table_columns(transmittance_columns, 0.0, 1.0));
-        let above = optical_depth(read_table_columns(transmittance_columns, q, 1.0));
-        sky = ground_irradiance_lookup(e.mu_s)
-            * select(vec3<f32>(1.0), above / whole, whole > vec3<f32>(0.0));
+        sky = ground_irradiance_lookup(e.mu_s) * vertical_depth_share_above(transmittance_columns, e.q);
     }
     return element_irradiance(e, t, atmosphere.solar_irradiance.xyz * sky);
 }

@@ -1,8 +1,9 @@
-// The sky-view LUT of Hillaire 2020 (section 5.3): the GPU twin of atmosphere-core's
-// `hillaire/sky_view.rs`. For the frame's view (camera radius and sun zenith cosine of
-// `HillaireParams`) each texel's direction in the latitude-longitude mapping
-// (`sky/hillaire/directions.wgsl`) is marched with the sky view's segment count to where it
-// leaves the atmosphere or meets the ground (the ground's own light is added by the
+// Entry pass: the sky-view LUT of the hillaire model, `main` (render-wgpu's
+// `sky/hillaire.rs`). CPU twin: atmosphere-core's `models/hillaire/sky_view.rs`. Paper:
+// Hillaire 2020, section 5.3. For the frame's view (camera radius and sun zenith cosine
+// of `HillaireParams`) each texel's direction in the latitude-longitude mapping
+// (`sky/hillaire/directions.wgsl`) is marched with the sky view's segment count to where
+// it leaves the atmosphere or meets the ground (the ground's own light is added by the
 // pass). rgb = radiance per unit solar irradiance (sr^-1) per channel, a = 1.
 
 #import sky/hillaire/march.wgsl

@@ -1,16 +1,19 @@
-// Nishita 1993 per pixel: the GPU twin of atmosphere-core's `nishita.rs`. Single
-// scattering integrated along each view ray with N equal sub-segments, one sample at
-// each midpoint (seed 000 Eq. 12); the sun's optical depth from the table g_l (the
-// `columns` of `sky/transmittance_table.wgsl`); the ground's Lambertian reflection of the
-// transmitted sun (seed 000 Eq. 11); the sun disk with limb darkening where the ray
-// reaches space. Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three wavelengths
-// of the uniform to the HDR target, clamped to the largest finite f16.
+// Entry pass: the nishita model per pixel, `main` (render-wgpu's `sky/nishita.rs`). CPU
+// twin: atmosphere-core's `models/nishita.rs`. Paper: Nishita et al. 1993, as Dobashi,
+// Yamamoto and Nishita 2002 (section 5, Eq. 11 and 12) write it: single scattering
+// integrated along each view ray with N equal sub-segments, one sample at each midpoint
+// (Eq. 12); the sun's optical depth from the table g_l (the `columns` of
+// `sky/transmittance_table.wgsl`); the ground's Lambertian reflection of the transmitted
+// sun (Eq. 11). The frame around it (surface, sun disk, HDR target) is
+// `common/shade_pixel.wgsl`. Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three
+// wavelengths of the uniform.
 
 #import common/atmosphere_params.wgsl
 #import common/frame_params.wgsl
 #import common/transmittance_lookup.wgsl
 #import common/phase.wgsl
 #import common/surface.wgsl
+#import common/shade_pixel.wgsl
 
 struct NishitaParams {
     view_samples: u32,
@@ -25,7 +28,7 @@ struct NishitaParams {
 
 // `Nishita::radiance` for the view ray with unit `direction` from the camera, ending on
 // an object at `object_m` (0: none).
-fn nishita_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
     let s = view_segment(direction, object_m);
     var out = radiance_of_empty(s, direction);
     if !s.hit {
@@ -62,37 +65,23 @@ fn nishita_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
         let cos_g = (s.start_dot_sun + s.length * nu) / bottom;
         if cos_g > 0.0 {
             let sun_column = table_columns(g_l, 0.0, min(cos_g, 1.0));
-            out.radiance += out.transmittance * atmosphere.ground_albedo / PI
-                * atmosphere.solar_irradiance.xyz * cos_g * exp(-optical_depth(sun_column));
+            out.radiance += sunlit_ground(out.transmittance, cos_g, exp(-optical_depth(sun_column)));
         }
     }
     return out;
 }
 
 // `Nishita::surface_irradiance`: the transmitted sun only.
-fn nishita_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+fn model_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let e = surface_element(point, normal);
-    let bottom = atmosphere.bottom_radius_m;
-    let q = (e.r - bottom) * (e.r + bottom);
     var t = vec3<f32>(0.0);
-    let behind_planet = e.mu_s < 0.0 && (e.r * e.mu_s) * (e.r * e.mu_s) - q >= 0.0;
-    if e.sun_cosine > 0.0 && !behind_planet {
-        t = exp(-optical_depth(table_columns(g_l, q, e.mu_s)));
+    if e.sun_cosine > 0.0 && !planet_hides_sun(e) {
+        t = exp(-optical_depth(table_columns(g_l, e.q, e.mu_s)));
     }
     return element_irradiance(e, t, vec3<f32>(0.0));
 }
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size_px.xy) {
-        return;
-    }
-    let direction = pixel_direction(id.xy);
-    let surface = frame_surface(id.xy);
-    var r = nishita_radiance(direction, surface.distance);
-    if surface.present {
-        let e = nishita_surface_irradiance(r.end, surface.normal);
-        r = add_surface(r, surface, e);
-    }
-    textureStore(hdr, id.xy, hdr_pixel(direction, r));
+    shade_pixel(id.xy);
 }

@@ -1,10 +1,12 @@
-// O'Neil 2004's optical-depth table (seed 002): the GPU twin of atmosphere-core's
-// `OpticalDepthTable::build`. Texel (i, j) is the node at height thickness i / (w - 1)
-// above the ground and angle 180 deg j / (h - 1) from the vertical (w x h = the texture's
-// size): r = Rayleigh density, or 0 where the ray meets the planet; g = Rayleigh column
-// (m) along the whole line to the top sphere, through the planet if it meets it, with
-// the density held at its ground value inside; b, a = the same for Mie. Each column is
-// the midpoint rule with `ray_samples` samples (`oneil::line_column`).
+// Entry pass: the optical-depth table of the oneil model, `main` (render-wgpu's
+// `sky/oneil.rs`). CPU twin: atmosphere-core's `models/oneil.rs`
+// (`OpticalDepthTable::build`). Paper: O'Neil 2004, "Real-time atmospheric scattering".
+// Texel (i, j) is the node at height thickness i / (w - 1) above the ground and angle
+// 180 deg j / (h - 1) from the vertical (w x h = the texture's size): r = Rayleigh
+// density, or 0 where the ray meets the planet; g = Rayleigh column (m) along the whole
+// line to the top sphere, through the planet if it meets it, with the density held at
+// its ground value inside; b, a = the same for Mie. Each column is the midpoint rule with
+// `ray_samples` samples (`oneil::line_column`).
 //
 // f32: a radius near 6.4e6 m carries 0.5 m of rounding, too much for a 1.2 km scale
 // height, so no altitude is a difference of radii. With q = r^2 - bottom^2, d the

@@ -1,13 +1,14 @@
-// O'Neil 2004 per pixel (seed 002): the GPU twin of atmosphere-core's `Oneil::radiance`.
-// `samples` equal sample rays along the view segment; at the centre of each, the sun's
-// lookup in the optical-depth table (`sky/oneil/optical_depth_table.wgsl`) gives the densities (0 in the
-// planet's shadow: the sample is skipped) and the sun's columns; the columns back to the
-// camera are the difference of two lookups, sample point and camera in the same
-// direction, reversed when the point is above the camera (a camera in space stands at
-// the entry point). The ground's Lambertian reflection of the transmitted sun, the sun
-// disk where the ray reaches space. Ozone is not in the table, so not in the optical
-// depths, as on the CPU. Writes spectral radiance (W m^-2 sr^-1 nm^-1) to the HDR
-// target.
+// Entry pass: the oneil model per pixel, `main` (render-wgpu's `sky/oneil.rs`). CPU twin:
+// atmosphere-core's `models/oneil.rs` (`Oneil::radiance`). Paper: O'Neil 2004,
+// "Real-time atmospheric scattering": `samples` equal sample rays along the view segment;
+// at the centre of each, the sun's lookup in the optical-depth table
+// (`sky/oneil/optical_depth_table.wgsl`) gives the densities (0 in the planet's shadow:
+// the sample is skipped) and the sun's columns; the columns back to the camera are the
+// difference of two lookups, sample point and camera in the same direction, reversed when
+// the point is above the camera (a camera in space stands at the entry point). The
+// ground's Lambertian reflection of the transmitted sun; the frame around it (surface, sun
+// disk, HDR target) is `common/shade_pixel.wgsl`. Ozone is not in the table, so not in
+// the optical depths, as on the CPU. Writes spectral radiance (W m^-2 sr^-1 nm^-1).
 //
 // Angles from the local vertical are atan2(|p x v|, p . v), accurate at every angle in
 // f32 (acos of a cosine loses half the digits near 0 and 180 deg); along the view ray
@@ -18,6 +19,7 @@
 #import common/phase.wgsl
 #import common/surface.wgsl
 #import common/table_sampling.wgsl
+#import common/shade_pixel.wgsl
 
 struct OneilParams {
     samples: u32,
@@ -59,7 +61,7 @@ fn depth(column: vec2<f32>) -> vec3<f32> {
 
 // `Oneil::radiance` for the view ray with unit `direction` from the camera, ending on
 // an object at `object_m` (0: none).
-fn oneil_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
     let s = view_segment(direction, object_m);
     var out = radiance_of_empty(s, direction);
     if !s.hit {
@@ -115,8 +117,7 @@ fn oneil_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
         let cos_sun = (s.start_dot_sun + s.length * nu) / atmosphere.bottom_radius_m;
         if cos_sun > 0.0 {
             let light = table_lookup(0.0, atan2(length(cross(end, sun)), dot(end, sun)));
-            out.radiance += out.transmittance * atmosphere.ground_albedo / PI
-                * atmosphere.solar_irradiance.xyz * min(cos_sun, 1.0) * exp(-depth(light.yw));
+            out.radiance += sunlit_ground(out.transmittance, min(cos_sun, 1.0), exp(-depth(light.yw)));
         }
     }
     return out;
@@ -124,15 +125,13 @@ fn oneil_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
 
 // `Oneil::surface_irradiance`: the transmitted sun only, its columns from the table at
 // the element's height and sun angle, none where the planet hides the sun's centre.
-fn oneil_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+fn model_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let e = surface_element(point, normal);
-    let bottom = atmosphere.bottom_radius_m;
-    let q = (e.r - bottom) * (e.r + bottom);
     var t = vec3<f32>(0.0);
-    let behind_planet = e.mu_s < 0.0 && (e.r * e.mu_s) * (e.r * e.mu_s) - q >= 0.0;
-    if e.sun_cosine > 0.0 && !behind_planet {
+    if e.sun_cosine > 0.0 && !planet_hides_sun(e) {
         let sun = frame.sun_direction.xyz;
-        let light = table_lookup(e.r - bottom, atan2(length(cross(point, sun)), dot(point, sun)));
+        let altitude = e.r - atmosphere.bottom_radius_m;
+        let light = table_lookup(altitude, atan2(length(cross(point, sun)), dot(point, sun)));
         t = exp(-depth(light.yw));
     }
     return element_irradiance(e, t, vec3<f32>(0.0));
@@ -140,15 +139,5 @@ fn oneil_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size_px.xy) {
-        return;
-    }
-    let direction = pixel_direction(id.xy);
-    let surface = frame_surface(id.xy);
-    var r = oneil_radiance(direction, surface.distance);
-    if surface.present {
-        let e = oneil_surface_irradiance(r.end, surface.normal);
-        r = add_surface(r, surface, e);
-    }
-    textureStore(hdr, id.xy, hdr_pixel(direction, r));
+    shade_pixel(id.xy);
 }

@@ -1,13 +1,13 @@
-// Riley et al. 2004, section 4.1, per pixel: the GPU twin of atmosphere-core's
-// `riley.rs`. Single scattering in closed form (Eq. 11, 12, 15, with the factor the
-// printed Eq. 15 lacks restored) in a flat atmosphere per species, Rayleigh and Mie each
-// one exponential (`RileyParams`, fitted on the CPU), in the tangent frame at the start
-// of the view segment; the flattened ray is one leg (to the ground, or up to space) or
-// two (down past the limb to the real ray's lowest altitude, then up), cut where an
-// object (the frame's surface) ends the ray; the Lambertian ground and surfaces lit
-// through Eq. (12) in their own tangent frame; the transmitted sun disk where the ray
-// reaches space.
-// Writes spectral radiance (W m^-2 sr^-1 nm^-1) to the HDR target.
+// Entry pass: the riley model per pixel, `main` (render-wgpu's `sky/riley.rs`). CPU twin:
+// atmosphere-core's `models/riley.rs`. Paper: Riley et al. 2004, section 4.1: single
+// scattering in closed form (Eq. 11, 12, 15, with the factor the printed Eq. 15 lacks
+// restored) in a flat atmosphere per species, Rayleigh and Mie each one exponential
+// (`RileyParams`, fitted on the CPU), in the tangent frame at the start of the view
+// segment; the flattened ray is one leg (to the ground, or up to space) or two (down past
+// the limb to the real ray's lowest altitude, then up), cut where an object (the frame's
+// surface) ends the ray; the Lambertian ground and surfaces lit through Eq. (12) in their
+// own tangent frame. The frame around it (surface, sun disk, HDR target) is
+// `common/shade_pixel.wgsl`. Writes spectral radiance (W m^-2 sr^-1 nm^-1).
 //
 // Everything stays finite in f32 at the stiff directions (view parallel to the sun's
 // elevation, p_y = l_y; horizontal rays, p_y = 0), as on the CPU, because nothing divides
@@ -24,6 +24,7 @@
 #import common/frame_params.wgsl
 #import common/phase.wgsl
 #import common/surface.wgsl
+#import common/shade_pixel.wgsl
 
 struct RileyParams {
     // x: Rayleigh scale height, y: Mie scale height, m; zw: 0.
@@ -122,7 +123,7 @@ fn add_leg(light: Light, y0: f32, p: f32, k: f32, l: f32, phase_r: vec3<f32>,
 
 // `Riley::surface_irradiance`: the transmitted sun only, its optical depth by Eq. (12)
 // in the element's tangent frame, none where the sun is below its flat horizon.
-fn riley_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+fn model_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let e = surface_element(point, normal);
     let y = e.r - atmosphere.bottom_radius_m;
     var t = vec3<f32>(0.0);
@@ -141,7 +142,7 @@ fn riley_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
 
 // `Riley::radiance` for the view ray with unit `direction` from the camera, ending on an
 // object at `object_m` (0: none): the legs are cut at the object, as on the CPU.
-fn riley_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
+fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
     let s = view_segment(direction, object_m);
     var out = radiance_of_empty(s, direction);
     if !s.hit {
@@ -165,7 +166,7 @@ fn riley_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
             // The Lambertian ground, lit as a surface facing up at the ray's end.
             let end = s.start + s.length * direction;
             light.radiance += light.transmittance * atmosphere.ground_albedo / PI
-                * riley_surface_irradiance(end, normalize(end));
+                * model_surface_irradiance(end, normalize(end));
         }
     } else if p >= 0.0 {
         light = add_leg(light, y0, p, s.length, l, phase_r, phase_m);
@@ -189,15 +190,5 @@ fn riley_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size_px.xy) {
-        return;
-    }
-    let direction = pixel_direction(id.xy);
-    let surface = frame_surface(id.xy);
-    var r = riley_radiance(direction, surface.distance);
-    if surface.present {
-        let e = riley_surface_irradiance(r.end, surface.normal);
-        r = add_surface(r, surface, e);
-    }
-    textureStore(hdr, id.xy, hdr_pixel(direction, r));
+    shade_pixel(id.xy);
 }

@@ -1,0 +1,35 @@
+// Library: the body of the per-pixel pass of the nishita, oneil, riley and dobashi models
+// (each model's `sky/<model>/pixel.wgsl` has the `@compute main` that calls
+// `shade_pixel`). CPU twin: atmosphere-core's `optics/surface_lighting.rs`
+// (`radiance_with_surface`): the model's radiance along the pixel's view ray, ended on
+// the frame's surface where it has one, plus that surface's Lambertian reflection; then
+// the transmitted sun disk where the ray reaches space (`hdr_pixel`). No paper: the
+// frame's bookkeeping around each model's equations.
+//
+// The importing pass defines what differs per model:
+// - `fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance`: the model's
+//   answer for the view ray with unit `direction` from the camera, ending on an object at
+//   `object_m` (0: none);
+// - `fn model_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32>`: the
+//   model's irradiance E(x, n) on a surface element (`SkyModel::surface_irradiance`);
+// - `hdr`: the HDR target, a `texture_storage_2d<rgba16float, write>`.
+// So this file is validated only inside those passes (`shader_validation.rs` validates
+// every entry pass).
+
+#import common/frame_params.wgsl
+#import common/surface.wgsl
+
+// Pixel `px`: the model's radiance, the surface's reflection and the sun disk into the
+// HDR target, clamped to the largest finite f16.
+fn shade_pixel(px: vec2<u32>) {
+    if any(px >= frame.size_px.xy) {
+        return;
+    }
+    let direction = pixel_direction(px);
+    let surface = frame_surface(px);
+    var r = model_radiance(direction, surface.distance);
+    if surface.present {
+        r = add_surface(r, surface, model_surface_irradiance(r.end, surface.normal));
+    }
+    textureStore(hdr, px, hdr_pixel(direction, r));
+}

@@ -1,0 +1,42 @@
+// Library: the bindings every pass of the hillaire model shares: its uniform at 2 and the
+// columns table at 3 (the `columns` of `sky/transmittance_table.wgsl`, the CPU's shared
+// table), read as `common/table_sampling.wgsl` says; each pass adds its own from 4 on.
+// Rust twin: render-wgpu's `sky/hillaire.rs` (`HillaireUniform`, the bind group
+// layouts). CPU twin of the settings: atmosphere-core's `models/hillaire/mod.rs`
+// (`HillaireSettings`) and `models/hillaire/view_cache.rs`. Paper: Hillaire 2020,
+// section 5 (the LUTs and their sample counts).
+
+struct HillaireParams {
+    // The view of the per-view tables (`view_cache::view_key`): camera radius, its
+    // r^2 - bottom^2 (from f64) and the sun's zenith cosine there.
+    view_r: f32,
+    view_q: f32,
+    view_mu_s: f32,
+    // Depth covered by the aerial-perspective volume, m.
+    aerial_range_m: f32,
+    // `HillaireSettings`' sample counts.
+    ms_sqrt_directions: u32,
+    ms_samples: u32,
+    sky_view_samples: u32,
+    ap_samples_per_slice: u32,
+    march_samples: u32,
+    ground_zenith_panels: u32,
+    ground_azimuths: u32,
+    // 1: orders two and up (Psi_ms and the sky's light on the ground); 0: single
+    // scattering (`max_orders = 1`).
+    multiple_on: u32,
+    // Zenith angle of the geometric horizon at the view's radius (`horizon_zenith`, f64).
+    view_theta_h: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+    // The camera's zenith, and two horizontal unit vectors there: towards the sun's
+    // azimuth and 90 degrees from it (any horizontal pair when the sun is at the zenith
+    // or nadir); xyz, w = 0. The pass measures view angles in this frame.
+    view_up: vec4<f32>,
+    view_sun_side: vec4<f32>,
+    view_across: vec4<f32>,
+}
+
+@group(0) @binding(2) var<uniform> hillaire: HillaireParams;
+@group(0) @binding(3) var transmittance_columns: texture_2d<f32>;
