@@ -5,27 +5,26 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-lavapipe=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
-if [ ! -f "$lavapipe" ] && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
-  packages="mesa-vulkan-drivers libvulkan1"
+# Installs the Debian `packages` for `what` (as root, or through sudo); with neither, says
+# that `missing` is missing and stops.
+install_for_tests() {
+  local what=$1 missing=$2 packages=$3 sudo
   if [ "$(id -u)" = 0 ]; then sudo=""; elif command -v sudo >/dev/null; then sudo="sudo"; else
-    echo "Software Vulkan is missing: install $packages (Debian), or set ATMOS_SKIP_GPU_TESTS=1" >&2
+    echo "$missing is missing: install $packages (Debian), or set ATMOS_SKIP_GPU_TESTS=1" >&2
     exit 1
   fi
-  echo "Installing software Vulkan for the GPU tests: $packages" >&2
+  echo "Installing $what: $packages" >&2
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $packages >/dev/null
+}
+
+lavapipe=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
+if [ ! -f "$lavapipe" ] && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
+  install_for_tests "software Vulkan for the GPU tests" "Software Vulkan" "mesa-vulkan-drivers libvulkan1"
 fi
 # The viewer's test opens its window on a virtual X server (xvfb-run).
 if ! command -v xvfb-run >/dev/null && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
-  packages="xvfb xauth"
-  if [ "$(id -u)" = 0 ]; then sudo=""; elif command -v sudo >/dev/null; then sudo="sudo"; else
-    echo "Xvfb is missing: install $packages (Debian), or set ATMOS_SKIP_GPU_TESTS=1" >&2
-    exit 1
-  fi
-  echo "Installing a virtual X server for the viewer test: $packages" >&2
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $packages >/dev/null
+  install_for_tests "a virtual X server for the viewer test" "Xvfb" "xvfb xauth"
 fi
 # Without a real GPU, fail loudly if lavapipe is missing rather than fall back to GL.
 if [ -f "$lavapipe" ] && ! ls /usr/share/vulkan/icd.d/ | grep -qv lvp_icd; then

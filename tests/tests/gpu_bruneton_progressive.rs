@@ -37,6 +37,14 @@ fn small_frame(albedo: f64, max_orders: Option<u32>) -> Frame {
     f
 }
 
+/// A renderer that builds tables progressively, or `None` (skip the test) without an
+/// adapter.
+fn progressive_renderer_or_skip(test: &str) -> Option<Renderer> {
+    let mut renderer = renderer_or_skip(test)?;
+    renderer.set_progressive(true);
+    Some(renderer)
+}
+
 /// The HDR image of `f` built in one frame by a fresh renderer.
 fn one_shot(f: &Frame) -> Vec<[f32; 4]> {
     let mut renderer = Renderer::headless().unwrap();
@@ -65,10 +73,9 @@ fn finish(renderer: &mut Renderer, f: &Frame) -> Vec<FramePlan> {
 
 #[test]
 fn a_finished_progressive_build_renders_the_one_shot_image() {
-    let Some(mut renderer) = renderer_or_skip("bruneton progressive") else {
+    let Some(mut renderer) = progressive_renderer_or_skip("bruneton progressive") else {
         return;
     };
-    renderer.set_progressive(true);
     let f = small_frame(0.1, None);
     let plans = finish(&mut renderer, &f);
     let start = std::time::Instant::now();
@@ -90,10 +97,9 @@ fn a_finished_progressive_build_renders_the_one_shot_image() {
 
 #[test]
 fn progressive_frames_show_single_scattering_then_one_more_order_each() {
-    let Some(mut renderer) = renderer_or_skip("bruneton progressive orders") else {
+    let Some(mut renderer) = progressive_renderer_or_skip("bruneton progressive orders") else {
         return;
     };
-    renderer.set_progressive(true);
     let f = small_frame(0.1, None);
     // The first frame builds every table up to single scattering and says more follows.
     let first = renderer.render(&f).unwrap();
@@ -137,10 +143,9 @@ fn progressive_frames_show_single_scattering_then_one_more_order_each() {
 
 #[test]
 fn a_parameter_change_mid_build_starts_again_and_ends_at_the_fresh_result() {
-    let Some(mut renderer) = renderer_or_skip("bruneton progressive restart") else {
+    let Some(mut renderer) = progressive_renderer_or_skip("bruneton progressive restart") else {
         return;
     };
-    renderer.set_progressive(true);
     let mut f = small_frame(0.1, None);
     for _ in 0..3 {
         assert!(renderer.render(&f).unwrap().building.is_some());

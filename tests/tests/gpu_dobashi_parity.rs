@@ -16,8 +16,8 @@ use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_
 use render_wgpu::gpu::pipeline::uniform_buffer;
 use render_wgpu::sky::dobashi::{DobashiTables, plane_interval_m, sphere_rows};
 use support::{
-    check, check_each, check_standard_surfaces, check_texel_reads, frame, ground_frame_in,
-    other_atmosphere_frames, renderer_or_skip, standard_frames, view,
+    check, check_other_atmospheres, check_standard_frames, check_standard_surfaces,
+    check_texel_reads, frame, ground_frame_in, renderer_or_skip, standard_frames, view,
 };
 
 /// Largest allowed difference of a table value between GPU and CPU, relative to the
@@ -133,19 +133,14 @@ fn dobashi_frames_match_the_cpu_from_the_ground_to_far_orbit() {
         return;
     };
     // The standard frames: planes up to 100 km, spheres from 1e8 m.
-    let frames = standard_frames(ModelId::Dobashi);
-    check_each(&mut renderer, &frames, MAX_RELATIVE_ERROR);
+    check_standard_frames(&mut renderer, ModelId::Dobashi, MAX_RELATIVE_ERROR);
     // Single scattering (no ambient term), a hazy atmosphere, Mars.
-    let mut f = frames[0].1.clone();
+    let mut f = standard_frames(ModelId::Dobashi)[0].1.clone();
     f.settings.max_orders = Some(1);
     check(&mut renderer, "single scattering", &f, MAX_RELATIVE_ERROR);
     f.settings.max_orders = Some(3);
     check(&mut renderer, "three orders", &f, MAX_RELATIVE_ERROR);
-    check_each(
-        &mut renderer,
-        &other_atmosphere_frames(ModelId::Dobashi),
-        MAX_RELATIVE_ERROR,
-    );
+    check_other_atmospheres(&mut renderer, ModelId::Dobashi, MAX_RELATIVE_ERROR);
     // Spheres from 30,000 km looking down, and planes from there when allowed more.
     let mut f = frame(ModelId::Dobashi, view(3e7, 180.0, 40.0), 30.0, 48, 27);
     check(&mut renderer, "30,000 km, spheres", &f, MAX_RELATIVE_ERROR);

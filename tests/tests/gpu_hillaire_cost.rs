@@ -40,10 +40,12 @@ fn ground_view(model: ModelId, sun_zenith_deg: f64) -> Frame {
     frame
 }
 
-/// Renders `frame`; prints and returns (sum of GPU times, wall-clock), ms.
-fn timed(renderer: &mut Renderer, name: &str, frame: &Frame) -> (f64, f64) {
+/// Renders the ground view of `model` with the sun at `sun_zenith_deg`; prints and
+/// returns (sum of GPU times, wall-clock), ms.
+fn timed(renderer: &mut Renderer, name: &str, model: ModelId, sun_zenith_deg: f64) -> (f64, f64) {
+    let frame = ground_view(model, sun_zenith_deg);
     let start = Instant::now();
-    let plan = renderer.render(frame).unwrap();
+    let plan = renderer.render(&frame).unwrap();
     let wall = start.elapsed().as_secs_f64() * 1e3;
     let gpu = plan.total_gpu_ms().unwrap_or(f64::NAN);
     println!("{name}: GPU {gpu:.1} ms, wall {wall:.1} ms; plan: {plan}");
@@ -57,30 +59,20 @@ fn a_hillaire_ground_view_costs_at_most_a_quarter_of_nishita_16() {
         return;
     };
     println!("on {}", renderer.gpu().adapter_summary());
-    timed(
-        &mut renderer,
-        "nishita, first",
-        &ground_view(ModelId::Nishita, 50.0),
-    );
-    let nishita = timed(
-        &mut renderer,
-        "nishita 16",
-        &ground_view(ModelId::Nishita, 50.0),
-    );
-    timed(
-        &mut renderer,
-        "hillaire, first",
-        &ground_view(ModelId::Hillaire, 60.0),
-    );
+    timed(&mut renderer, "nishita, first", ModelId::Nishita, 50.0);
+    let nishita = timed(&mut renderer, "nishita 16", ModelId::Nishita, 50.0);
+    timed(&mut renderer, "hillaire, first", ModelId::Hillaire, 60.0);
     let pass_only = timed(
         &mut renderer,
         "hillaire, same view",
-        &ground_view(ModelId::Hillaire, 60.0),
+        ModelId::Hillaire,
+        60.0,
     );
     let per_view = timed(
         &mut renderer,
         "hillaire, sun moved",
-        &ground_view(ModelId::Hillaire, 50.0),
+        ModelId::Hillaire,
+        50.0,
     );
     for (name, (gpu, wall)) in [("same view", pass_only), ("sun moved", per_view)] {
         println!(

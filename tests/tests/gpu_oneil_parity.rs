@@ -14,8 +14,8 @@ use render_wgpu::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_
 use render_wgpu::gpu::pipeline::uniform_buffer;
 use render_wgpu::sky::oneil::OneilTablePass;
 use support::{
-    check, check_each, check_standard_surfaces, check_texel_reads, frame, other_atmosphere_frames,
-    renderer_or_skip, standard_frames, view,
+    check, check_other_atmospheres, check_standard_frames, check_standard_surfaces,
+    check_texel_reads, frame, renderer_or_skip, standard_frames, view,
 };
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
@@ -115,11 +115,7 @@ fn oneil_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("oneil parity") else {
         return;
     };
-    check_each(
-        &mut renderer,
-        &standard_frames(ModelId::Oneil),
-        MAX_RELATIVE_ERROR,
-    );
+    check_standard_frames(&mut renderer, ModelId::Oneil, MAX_RELATIVE_ERROR);
     // A camera just inside the top looking through the limb, where the two-lookup
     // subtraction changes form along the ray; the paper's settings replaced by finer ones.
     let mut f = frame(ModelId::Oneil, view(59_000.0, 95.0, 70.0), 30.0, 64, 36);
@@ -127,11 +123,7 @@ fn oneil_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     f.settings.options =
         ModelOptions::parse(&["samples=16", "table_heights=128", "table_angles=256"]).unwrap();
     check(&mut renderer, "finer settings", &f, MAX_RELATIVE_ERROR);
-    check_each(
-        &mut renderer,
-        &other_atmosphere_frames(ModelId::Oneil),
-        MAX_RELATIVE_ERROR,
-    );
+    check_other_atmospheres(&mut renderer, ModelId::Oneil, MAX_RELATIVE_ERROR);
 }
 
 #[test]

@@ -9,8 +9,8 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use render_wgpu::frame::{Frame, LocalView};
 use support::{
-    FLOOR, check, check_each, check_standard_surfaces, frame, ground_frame_in,
-    other_atmosphere_frames, renderer_or_skip, standard_frames, view,
+    FLOOR, check, check_each, check_standard_frames, check_standard_surfaces, frame,
+    ground_frame_in, other_atmosphere_frames, renderer_or_skip, view,
 };
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
@@ -23,11 +23,7 @@ fn riley_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     let Some(mut renderer) = renderer_or_skip("riley parity") else {
         return;
     };
-    check_each(
-        &mut renderer,
-        &standard_frames(ModelId::Riley),
-        MAX_RELATIVE_ERROR,
-    );
+    check_standard_frames(&mut renderer, ModelId::Riley, MAX_RELATIVE_ERROR);
     // The ground frame in other atmospheres: the fit is redone on the CPU and the uniform
     // uploaded again; at zero aerosol the Mie terms are pruned.
     let mut others = other_atmosphere_frames(ModelId::Riley);

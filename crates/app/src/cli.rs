@@ -8,6 +8,8 @@ use atmosphere_core::models::sky_model::ModelSettings;
 use atmosphere_core::sun_position::UtcDateTime;
 use clap::{Args, Parser, Subcommand};
 
+use crate::location_flags::LocationFlags;
+
 /// Physically based atmospheric scattering.
 #[derive(Debug, Parser)]
 #[command(name = "atmos", version)]
@@ -58,22 +60,9 @@ pub struct StartView {
     /// Scattering model.
     #[arg(long, value_parser = gpu_model)]
     pub model: Option<ModelId>,
-    /// Camera latitude, degrees north.
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_negative_numbers = true,
-        requires = "longitude_deg"
-    )]
-    pub latitude_deg: Option<f64>,
-    /// Camera longitude, degrees east.
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_negative_numbers = true,
-        requires = "latitude_deg"
-    )]
-    pub longitude_deg: Option<f64>,
+    /// Where the camera stands.
+    #[command(flatten)]
+    pub location: LocationFlags,
     /// Camera altitude above sea level, m (kept at least 1 m above the terrain).
     #[arg(long, value_name = "M")]
     pub altitude_m: Option<f64>,
@@ -173,6 +162,9 @@ pub struct RenderArgs {
     pub scene: Option<PathBuf>,
     #[command(flatten)]
     pub fields: crate::render::scene::Scene,
+    /// The flags of the scene's `latitude_deg` and `longitude_deg`.
+    #[command(flatten)]
+    pub location: LocationFlags,
     /// Output image: FILE.exr (linear HDR radiance) or FILE.png (tone-mapped), written
     /// atomically.
     #[arg(long, value_name = "FILE.exr|FILE.png")]

@@ -5,6 +5,7 @@ pub mod bench;
 pub mod cli;
 pub mod contact_sheet;
 pub mod files;
+pub mod location_flags;
 pub mod probe;
 pub mod progress;
 pub mod render;

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{atmos, skipped_without_adapter, stderr};
+use common::{atmos, atmos_fails_with, skipped_without_adapter, stderr};
 
 #[test]
 fn bench_tables_cover_every_view_with_the_baseline_as_unit() {
@@ -49,23 +49,15 @@ fn bench_tables_cover_every_view_with_the_baseline_as_unit() {
 
 #[test]
 fn bad_bench_flags_are_named() {
-    let output = atmos(&["bench", "--frames", "0"]);
-    assert!(!output.status.success());
-    assert!(stderr(&output).contains("--frames"), "{}", stderr(&output));
-    let output = atmos(&["bench", "--model", "nonesuch"]);
+    atmos_fails_with(&["bench", "--frames", "0"], "--frames");
+    let output = atmos_fails_with(&["bench", "--model", "nonesuch"], "nonesuch");
     assert_eq!(output.status.code(), Some(2));
-    assert!(stderr(&output).contains("nonesuch"), "{}", stderr(&output));
-    let output = atmos(&[
+    let no_file = [
         "bench",
         "--atmosphere",
         "nowhere.toml",
         "--model",
         "nishita",
-    ]);
-    assert!(!output.status.success());
-    assert!(
-        stderr(&output).contains("nowhere.toml"),
-        "{}",
-        stderr(&output)
-    );
+    ];
+    atmos_fails_with(&no_file, "nowhere.toml");
 }

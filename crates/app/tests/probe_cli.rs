@@ -5,7 +5,7 @@ mod common;
 
 use std::process::Output;
 
-use common::{atmos, stderr};
+use common::{atmos, atmos_fails_with, stderr};
 
 const HEADER: &str = "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,distance_m";
 
@@ -33,6 +33,15 @@ fn probe(input: &Path, extra: &[&str]) -> Output {
     ];
     args.extend(extra);
     atmos(&args)
+}
+
+/// The stderr of a probe run that must fail with exit code 1 (an error in the run, not
+/// in the flags) and write nothing to stdout.
+fn probe_error(input: &Path, extra: &[&str]) -> String {
+    let output = probe(input, extra);
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    assert!(output.stdout.is_empty());
+    stderr(&output)
 }
 
 fn files_in(dir: &Path) -> Vec<String> {
@@ -127,14 +136,11 @@ fn malformed_line_is_named_and_leaves_no_output() {
 #[test]
 fn rejected_ray_is_named() {
     let (_dir, path) = input(&format!("{HEADER}\n0,0,30,0,\n-10,0,30,0,\n"));
-    let output = probe(&path, &[]);
-    assert_eq!(output.status.code(), Some(1));
-    let message = stderr(&output);
+    let message = probe_error(&path, &[]);
     assert!(
         message.contains("rays.csv line 3: ") && message.contains("altitude_m"),
         "{message}"
     );
-    assert!(output.stdout.is_empty());
 }
 
 #[test]
@@ -160,10 +166,7 @@ fn bad_flags_get_clear_messages() {
             args.extend(["--model", "reference"]);
         }
         args.extend(flags);
-        let output = atmos(&args);
-        let message = stderr(&output);
-        assert!(!output.status.success(), "{flags:?}");
-        assert!(message.contains(expected), "{flags:?}: {message}");
+        let output = atmos_fails_with(&args, expected);
         assert!(output.stdout.is_empty(), "{flags:?}");
     }
 }
@@ -172,9 +175,7 @@ fn bad_flags_get_clear_messages() {
 fn missing_input_file_is_named() {
     let dir = tempfile::tempdir().unwrap();
     let missing = dir.path().join("nowhere.csv");
-    let output = probe(&missing, &[]);
-    assert_eq!(output.status.code(), Some(1));
-    let message = stderr(&output);
+    let message = probe_error(&missing, &[]);
     assert!(
         message.starts_with("error: cannot read ") && message.contains("nowhere.csv"),
         "{message}"

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{atmos, stderr};
+use common::{atmos, atmos_fails_with, stderr};
 
 #[test]
 fn writes_the_report_and_reuses_the_reference() {
@@ -57,10 +57,6 @@ fn writes_the_report_and_reuses_the_reference() {
 
 #[test]
 fn bad_flags_are_named() {
-    let grid = atmos(&["report", "--rays", "0x3"]);
-    assert!(!grid.status.success());
-    assert!(stderr(&grid).contains("'0x3'"), "{}", stderr(&grid));
-    let model = atmos(&["report", "--model", "nosuch"]);
-    assert!(!model.status.success());
-    assert!(stderr(&model).contains("nosuch"), "{}", stderr(&model));
+    atmos_fails_with(&["report", "--rays", "0x3"], "'0x3'");
+    atmos_fails_with(&["report", "--model", "nosuch"], "nosuch");
 }

@@ -271,6 +271,20 @@ pub fn check_each(renderer: &mut Renderer, frames: &[(&str, Frame)], max_relativ
     }
 }
 
+/// [`check_each`] of `model`'s [`standard_frames`].
+pub fn check_standard_frames(renderer: &mut Renderer, model: ModelId, max_relative_error: f64) {
+    check_each(renderer, &standard_frames(model), max_relative_error);
+}
+
+/// [`check_each`] of `model`'s [`other_atmosphere_frames`].
+pub fn check_other_atmospheres(renderer: &mut Renderer, model: ModelId, max_relative_error: f64) {
+    check_each(
+        renderer,
+        &other_atmosphere_frames(model),
+        max_relative_error,
+    );
+}
+
 /// The first four of `model`'s [`standard_frames`] over [`synthetic_surface`] against the
 /// CPU ([`check_surface`]), on a renderer of its own.
 pub fn check_standard_surfaces(test: &str, model: ModelId, max_relative_error: f64) {

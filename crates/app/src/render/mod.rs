@@ -16,9 +16,10 @@ use scene::{Output, Scene};
 /// times on stderr.
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let output = Output::from_path(&args.out)?;
+    let flags = args.fields.clone().at(&args.location);
     let scene = match &args.scene {
-        Some(path) => Scene::load(path)?.overridden_by(args.fields.clone()),
-        None => args.fields.clone(),
+        Some(path) => Scene::load(path)?.overridden_by(flags),
+        None => flags,
     }
     .resolved()?;
     let frame = scene.frame()?;

@@ -17,6 +17,8 @@ use render_wgpu::frame::{
 };
 use serde::{Deserialize, Serialize};
 
+use crate::location_flags::LocationFlags;
+
 /// The fields of a scene; every one optional here, the required ones checked by
 /// [`Scene::frame`].
 #[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
@@ -31,7 +33,9 @@ pub struct Scene {
     /// Sun zenith angle, degrees (90 = on the horizon).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub sun_zenith_deg: Option<f64>,
-    /// Sun azimuth, degrees [default: 0].
+    /// Sun azimuth, degrees [default: 0]. With a location (--latitude-deg, --longitude-deg)
+    /// the azimuths are geographic (from north towards east); without one the camera is
+    /// above the north pole and azimuths are measured from longitude 0 towards 90 deg east.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub sun_azimuth_deg: Option<f64>,
     /// View zenith angle of the image's centre, degrees [default: 90, the horizon].
@@ -56,23 +60,11 @@ pub struct Scene {
     /// filmic curve [default: 14].
     #[arg(long, value_name = "EV100", allow_negative_numbers = true)]
     pub exposure: Option<f64>,
-    /// Latitude of the camera, degrees north. With a location the azimuths are
-    /// geographic (from north towards east); without one the camera is above the north
-    /// pole and azimuths are measured from longitude 0 towards 90 deg east.
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_negative_numbers = true,
-        requires = "longitude_deg"
-    )]
+    /// Latitude of the camera, degrees north (the flag: [`LocationFlags`]).
+    #[arg(skip)]
     pub latitude_deg: Option<f64>,
-    /// Longitude of the camera, degrees east.
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_negative_numbers = true,
-        requires = "latitude_deg"
-    )]
+    /// Longitude of the camera, degrees east (the flag: [`LocationFlags`]).
+    #[arg(skip)]
     pub longitude_deg: Option<f64>,
     /// Draw the Earth's terrain (assets/earth) over the planet; the altitude is then
     /// above sea level and must clear the terrain [default: false].
@@ -101,6 +93,16 @@ impl Scene {
             scene.atmosphere = Some(dir.join(a).display().to_string());
         }
         Ok(scene)
+    }
+
+    /// This scene with the latitude and longitude of `location`: clap fills the other
+    /// fields of the command line's scene, these two come from the shared place flags.
+    pub fn at(self, location: &LocationFlags) -> Scene {
+        Scene {
+            latitude_deg: location.latitude_deg,
+            longitude_deg: location.longitude_deg,
+            ..self
+        }
     }
 
     /// This scene with every field that `flags` sets replaced; settings are appended.

@@ -21,7 +21,7 @@ pub fn apply(start: &StartView, settings: &mut ViewerSettings) -> anyhow::Result
     if let Some(model) = &start.model {
         settings.model = *model;
     }
-    if let (Some(lat), Some(lon)) = (start.latitude_deg, start.longitude_deg) {
+    if let (Some(lat), Some(lon)) = (start.location.latitude_deg, start.location.longitude_deg) {
         let lat = finite(lat, "latitude-deg")?;
         let lon = finite(lon, "longitude-deg")?;
         if !(-90.0..=90.0).contains(&lat) || !(-180.0..=360.0).contains(&lon) {
@@ -78,13 +78,17 @@ mod tests {
     use atmosphere_core::models::id::ModelId;
     use atmosphere_core::sun_position::UtcDateTime;
 
+    use crate::location_flags::LocationFlags;
+
     #[test]
     fn flags_set_the_place_view_sun_and_terrain() {
         let mut s = ViewerSettings::default();
         let start = StartView {
             model: Some(ModelId::Hillaire),
-            latitude_deg: Some(-33.9),
-            longitude_deg: Some(200.0),
+            location: LocationFlags {
+                latitude_deg: Some(-33.9),
+                longitude_deg: Some(200.0),
+            },
             altitude_m: Some(20_000.0),
             heading_deg: Some(90.0),
             pitch_deg: Some(-10.0),
@@ -123,8 +127,10 @@ mod tests {
         });
         assert!(e.contains("--altitude-m"), "{e}");
         let e = err(StartView {
-            latitude_deg: Some(95.0),
-            longitude_deg: Some(0.0),
+            location: LocationFlags {
+                latitude_deg: Some(95.0),
+                longitude_deg: Some(0.0),
+            },
             ..StartView::default()
         });
         assert!(e.contains("--latitude-deg"), "{e}");

@@ -15,6 +15,17 @@ pub fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
 }
 
+/// Runs `atmos` with these arguments and asserts that it fails with `expected` in its
+/// stderr; returns the run for the caller's further checks (exit code, stdout).
+#[allow(dead_code)] // Not every test binary checks failures.
+pub fn atmos_fails_with(args: &[&str], expected: &str) -> Output {
+    let output = atmos(args);
+    let message = stderr(&output);
+    assert!(!output.status.success(), "{args:?} succeeded");
+    assert!(message.contains(expected), "{args:?}: {message}");
+    output
+}
+
 /// Whether a GPU run failed for want of an adapter where `ATMOS_SKIP_GPU_TESTS=1` allows
 /// that (then it prints that it skipped). Any other failure is the caller's to assert.
 #[allow(dead_code)] // Not every test binary runs the GPU.
