@@ -21,8 +21,6 @@ pub mod rows;
 pub mod sky_view;
 pub mod view_cache;
 
-use glam::DVec3;
-
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
@@ -37,7 +35,7 @@ use crate::models::hillaire::sky_view::SkyView;
 use crate::models::hillaire::view_cache::ViewCache;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::models::table_update::TableUpdate;
 use crate::optics::column::optical_depth;
 use crate::optics::geometry::ray_hits_ground;
@@ -491,13 +489,8 @@ impl SkyModel for Hillaire {
     /// the ground only, over mu_s: an element higher up reads it at its own mu_s, times
     /// the share of the ground's vertical optical depth that lies above the element (the
     /// sky over a peak is thinner; at the top there is none).
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, surface)?;
         let n = self.spectra.wavelengths_nm.len();
         let mut sun = vec![0.0; n];
         self.medium().sun_transmittance(e.r, e.mu_s, &mut sun);
