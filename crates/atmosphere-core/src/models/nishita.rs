@@ -54,16 +54,13 @@ impl NishitaSettings {
     /// The settings from `key=value` options: `samples`, `table_heights`,
     /// `table_angles`; the defaults where absent.
     pub fn from_options(options: &ModelOptions) -> Result<NishitaSettings, ModelError> {
-        let d = NishitaSettings::default();
-        let mut o = options.reader("nishita");
-        let settings = NishitaSettings {
-            view_samples: o.count("samples", d.view_samples)?,
-            table_heights: o.count("table_heights", d.table_heights)?,
-            table_angles: o.count("table_angles", d.table_angles)?,
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("nishita", NishitaSettings::validate, |o, d| {
+            Ok(NishitaSettings {
+                view_samples: o.count("samples", d.view_samples)?,
+                table_heights: o.count("table_heights", d.table_heights)?,
+                table_angles: o.count("table_angles", d.table_angles)?,
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.

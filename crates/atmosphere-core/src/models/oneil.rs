@@ -64,17 +64,14 @@ impl OneilSettings {
     /// The settings from `key=value` options: `samples`, `table_heights`,
     /// `table_angles`, `table_ray_samples`; the paper's where absent.
     pub fn from_options(options: &ModelOptions) -> Result<OneilSettings, ModelError> {
-        let d = OneilSettings::default();
-        let mut o = options.reader("oneil");
-        let settings = OneilSettings {
-            samples: o.count("samples", d.samples)?,
-            table_heights: o.count("table_heights", d.table_heights)?,
-            table_angles: o.count("table_angles", d.table_angles)?,
-            table_ray_samples: o.count("table_ray_samples", d.table_ray_samples)?,
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("oneil", OneilSettings::validate, |o, d| {
+            Ok(OneilSettings {
+                samples: o.count("samples", d.samples)?,
+                table_heights: o.count("table_heights", d.table_heights)?,
+                table_angles: o.count("table_angles", d.table_angles)?,
+                table_ray_samples: o.count("table_ray_samples", d.table_ray_samples)?,
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.

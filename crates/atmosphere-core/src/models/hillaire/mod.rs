@@ -109,42 +109,40 @@ impl HillaireSettings {
     /// The settings from `key=value` options (keys in docs/models/hillaire.md); the
     /// defaults where absent.
     pub fn from_options(options: &ModelOptions) -> Result<HillaireSettings, ModelError> {
-        let d = HillaireSettings::default();
-        let mut o = options.reader("hillaire");
-        let settings = HillaireSettings {
-            transmittance_size: (
-                o.count("transmittance_width", d.transmittance_size.0)?,
-                o.count("transmittance_height", d.transmittance_size.1)?,
-            ),
-            multiple_scattering_size: (
-                o.count("ms_width", d.multiple_scattering_size.0)?,
-                o.count("ms_height", d.multiple_scattering_size.1)?,
-            ),
-            multiple_scattering_directions: o
-                .count("ms_directions", d.multiple_scattering_directions)?,
-            multiple_scattering_samples: o.count("ms_samples", d.multiple_scattering_samples)?,
-            sky_view_size: (
-                o.count("sky_view_width", d.sky_view_size.0)?,
-                o.count("sky_view_height", d.sky_view_size.1)?,
-            ),
-            sky_view_samples: o.count("sky_view_samples", d.sky_view_samples)?,
-            aerial_size: (
-                o.count("ap_width", d.aerial_size.0)?,
-                o.count("ap_height", d.aerial_size.1)?,
-                o.count("ap_slices", d.aerial_size.2)?,
-            ),
-            aerial_range_m: o.number("ap_range_m", d.aerial_range_m)?,
-            aerial_samples_per_slice: o
-                .count("ap_samples_per_slice", d.aerial_samples_per_slice)?,
-            march_samples: o.count("march_samples", d.march_samples)?,
-            ground_size: o.count("ground_size", d.ground_size)?,
-            ground_zenith_panels: o.count("ground_zenith_panels", d.ground_zenith_panels)?,
-            ground_azimuths: o.count("ground_azimuths", d.ground_azimuths)?,
-            view_cache: o.count("view_cache", d.view_cache)?,
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("hillaire", HillaireSettings::validate, |o, d| {
+            Ok(HillaireSettings {
+                transmittance_size: (
+                    o.count("transmittance_width", d.transmittance_size.0)?,
+                    o.count("transmittance_height", d.transmittance_size.1)?,
+                ),
+                multiple_scattering_size: (
+                    o.count("ms_width", d.multiple_scattering_size.0)?,
+                    o.count("ms_height", d.multiple_scattering_size.1)?,
+                ),
+                multiple_scattering_directions: o
+                    .count("ms_directions", d.multiple_scattering_directions)?,
+                multiple_scattering_samples: o
+                    .count("ms_samples", d.multiple_scattering_samples)?,
+                sky_view_size: (
+                    o.count("sky_view_width", d.sky_view_size.0)?,
+                    o.count("sky_view_height", d.sky_view_size.1)?,
+                ),
+                sky_view_samples: o.count("sky_view_samples", d.sky_view_samples)?,
+                aerial_size: (
+                    o.count("ap_width", d.aerial_size.0)?,
+                    o.count("ap_height", d.aerial_size.1)?,
+                    o.count("ap_slices", d.aerial_size.2)?,
+                ),
+                aerial_range_m: o.number("ap_range_m", d.aerial_range_m)?,
+                aerial_samples_per_slice: o
+                    .count("ap_samples_per_slice", d.aerial_samples_per_slice)?,
+                march_samples: o.count("march_samples", d.march_samples)?,
+                ground_size: o.count("ground_size", d.ground_size)?,
+                ground_zenith_panels: o.count("ground_zenith_panels", d.ground_zenith_panels)?,
+                ground_azimuths: o.count("ground_azimuths", d.ground_azimuths)?,
+                view_cache: o.count("view_cache", d.view_cache)?,
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.
