@@ -12,7 +12,7 @@ use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
-use common::{ray, relative_radiance, single, worst};
+use common::{all_orders_reference, ray, relative_radiance, single, worst};
 
 fn dobashi(a: &Atmosphere, settings: &ModelSettings, d: DobashiSettings) -> Dobashi {
     Dobashi::prepare(a, settings, d).unwrap()
@@ -153,12 +153,8 @@ fn spheres_far_out_and_planes_near() {
 #[test]
 fn ambient_term_against_all_orders() {
     let a = Atmosphere::preset("earth").unwrap();
-    let settings = ModelSettings {
-        target_relative_error: 0.01,
-        ..ModelSettings::default()
-    };
-    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
-    let with = prepare(ModelId::Dobashi, &a, &settings).unwrap();
+    let reference = all_orders_reference(&a, 0.01);
+    let with = prepare(ModelId::Dobashi, &a, &ModelSettings::default()).unwrap();
     let without = prepare(ModelId::Dobashi, &a, &single()).unwrap();
     let views = daytime(&a);
     for ray in [&views[0], &views[1], &views[3], &views[5], &views[7]] {

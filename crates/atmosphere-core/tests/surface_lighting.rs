@@ -4,6 +4,8 @@
 //! facing the sun receives the solar irradiance; an element facing the ground and away
 //! from the sun receives nothing; and the reference says it does not light surfaces.
 
+mod common;
+
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::error::ModelError;
 use atmosphere_core::models::id::ModelId;
@@ -11,6 +13,7 @@ use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, SurfacePoint, ViewRay};
 use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
+use common::all_orders_reference;
 use glam::DVec3;
 
 /// The models that light surfaces.
@@ -107,11 +110,7 @@ fn outside_the_atmosphere_a_surface_facing_the_sun_receives_the_solar_irradiance
 #[test]
 fn the_reference_does_not_light_surfaces() {
     let a = Atmosphere::preset("earth").unwrap();
-    let settings = ModelSettings {
-        target_relative_error: 0.5,
-        ..ModelSettings::default()
-    };
-    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
+    let reference = all_orders_reference(&a, 0.5);
     let err = reference
         .surface_irradiance(&SurfacePoint::facing_up(
             DVec3::new(0.0, 0.0, a.bottom_radius_m),
