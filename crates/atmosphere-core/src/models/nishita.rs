@@ -120,10 +120,8 @@ impl Nishita {
         model_settings: &ModelSettings,
         settings: NishitaSettings,
     ) -> Result<Nishita, ModelError> {
-        atmosphere.validate()?;
-        model_settings.validate()?;
+        let spectra = model_settings.checked_spectra(atmosphere)?;
         settings.validate()?;
-        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
         Ok(Nishita {
             atmosphere: atmosphere.clone(),
             settings,

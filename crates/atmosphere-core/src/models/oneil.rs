@@ -252,10 +252,8 @@ impl Oneil {
         settings: &ModelSettings,
         oneil: OneilSettings,
     ) -> Result<Oneil, ModelError> {
-        atmosphere.validate()?;
-        settings.validate()?;
+        let spectra = settings.checked_spectra(atmosphere)?;
         oneil.validate()?;
-        let spectra = Spectra::new(atmosphere, &settings.wavelengths_nm);
         Ok(Oneil {
             atmosphere: atmosphere.clone(),
             settings: oneil,

@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
+use crate::atmosphere::spectra::Spectra;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
@@ -43,6 +44,14 @@ impl Default for ModelSettings {
 }
 
 impl ModelSettings {
+    /// What every model prepares from: checks `atmosphere` and these settings, then
+    /// samples the atmosphere's coefficients at the settings' wavelengths.
+    pub fn checked_spectra(&self, atmosphere: &Atmosphere) -> Result<Spectra, ModelError> {
+        atmosphere.validate()?;
+        self.validate()?;
+        Ok(Spectra::new(atmosphere, &self.wavelengths_nm))
+    }
+
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
         if self.wavelengths_nm.is_empty() {

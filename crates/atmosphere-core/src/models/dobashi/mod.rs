@@ -62,10 +62,8 @@ impl Dobashi {
         model_settings: &ModelSettings,
         settings: DobashiSettings,
     ) -> Result<Dobashi, ModelError> {
-        atmosphere.validate()?;
-        model_settings.validate()?;
+        let spectra = model_settings.checked_spectra(atmosphere)?;
         settings.validate()?;
-        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
         let with_mie = spectra.needs_mie(model_settings.prune);
         let mut model = Dobashi {
             atmosphere: atmosphere.clone(),

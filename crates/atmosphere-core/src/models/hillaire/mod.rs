@@ -254,10 +254,8 @@ impl Hillaire {
         model_settings: &ModelSettings,
         settings: HillaireSettings,
     ) -> Result<Hillaire, ModelError> {
-        atmosphere.validate()?;
-        model_settings.validate()?;
+        let spectra = model_settings.checked_spectra(atmosphere)?;
         settings.validate()?;
-        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
         let (w, h) = settings.transmittance_size;
         let mut model = Hillaire {
             atmosphere: atmosphere.clone(),
