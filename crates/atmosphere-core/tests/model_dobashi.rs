@@ -12,7 +12,7 @@ use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
-use common::{all_orders_reference, ray, relative_radiance, single, worst};
+use common::{all_orders_reference, ray, ray_to, relative_radiance, single, worst};
 
 fn dobashi(a: &Atmosphere, settings: &ModelSettings, d: DobashiSettings) -> Dobashi {
     Dobashi::prepare(a, settings, d).unwrap()
@@ -275,15 +275,7 @@ fn objects_and_extreme_rays_are_finite() {
             for view in [0.0, 60.0, 90.0, 93.0, 120.0, 180.0] {
                 for sun in [0.0, 80.0, 95.0, 110.0] {
                     for distance in [None, Some(1.0), Some(5e3), Some(3e5), Some(1e9)] {
-                        let ray = ViewRay::from_angles(
-                            a.bottom_radius_m,
-                            altitude,
-                            view,
-                            sun,
-                            40.0,
-                            distance,
-                        )
-                        .unwrap();
+                        let ray = ray_to(&a, altitude, view, sun, 40.0, distance);
                         let out = m.radiance(&ray).unwrap();
                         for w in 0..3 {
                             let (l, t) = (out.radiance[w], out.transmittance[w]);
