@@ -12,7 +12,10 @@ use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
-use common::{all_orders_reference, assert_sane, ray, ray_to, relative_radiance, single, worst};
+use common::{
+    all_orders_reference, assert_impossible_rays_are_errors, assert_sane, ray, ray_to,
+    relative_radiance, single, worst,
+};
 
 fn dobashi(a: &Atmosphere, settings: &ModelSettings, d: DobashiSettings) -> Dobashi {
     Dobashi::prepare(a, settings, d).unwrap()
@@ -312,10 +315,5 @@ fn objects_and_extreme_rays_are_finite() {
 fn impossible_rays_are_errors() {
     let a = Atmosphere::preset("earth").unwrap();
     let m = prepare(ModelId::Dobashi, &a, &single()).unwrap();
-    let mut below = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    below.origin_m.z -= 10.0;
-    assert!(m.radiance(&below).is_err());
-    let mut nan = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    nan.direction.x = f64::NAN;
-    assert!(m.radiance(&nan).is_err());
+    assert_impossible_rays_are_errors(m.as_ref(), &a);
 }

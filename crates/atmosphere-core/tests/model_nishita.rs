@@ -11,7 +11,9 @@ use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 use atmosphere_core::optics::geometry::horizon_mu;
-use common::{all_orders_reference, assert_sane, ray, ray_to, single};
+use common::{
+    all_orders_reference, assert_impossible_rays_are_errors, assert_sane, ray, ray_to, single,
+};
 
 fn nishita(a: &Atmosphere, view_samples: usize, heights: usize, angles: usize) -> Nishita {
     Nishita::prepare(
@@ -159,12 +161,7 @@ fn extreme_rays_are_finite_and_bounded() {
 fn impossible_rays_are_errors() {
     let a = Atmosphere::preset("earth").unwrap();
     let m = nishita(&a, 16, 8, 16);
-    let mut below = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    below.origin_m.z -= 10.0;
-    assert!(m.radiance(&below).is_err());
-    let mut nan = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    nan.direction.x = f64::NAN;
-    assert!(m.radiance(&nan).is_err());
+    assert_impossible_rays_are_errors(&m, &a);
 }
 
 /// With the default settings, against the reference with all orders on daytime views,

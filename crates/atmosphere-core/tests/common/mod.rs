@@ -116,6 +116,17 @@ pub fn assert_sane(what: &str, r: &RayRadiance) {
     }
 }
 
+/// Fails unless `model` answers a camera below the ground of `a`, and a ray with a
+/// non-finite direction, with an error rather than a number.
+pub fn assert_impossible_rays_are_errors(model: &dyn SkyModel, a: &Atmosphere) {
+    let mut below = ray(a, 0.0, 0.0, 0.0, 0.0);
+    below.origin_m.z -= 10.0;
+    assert!(model.radiance(&below).is_err());
+    let mut nan = ray(a, 0.0, 0.0, 0.0, 0.0);
+    nan.direction.x = f64::NAN;
+    assert!(model.radiance(&nan).is_err());
+}
+
 /// The default settings with single scattering only.
 pub fn single() -> ModelSettings {
     ModelSettings {
