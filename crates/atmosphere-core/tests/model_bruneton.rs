@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{all_orders_reference, earth, luminance_errors};
+use common::{all_orders_reference, earth, luminance_errors, single};
 use std::sync::OnceLock;
 
 use atmosphere_core::atmosphere::Atmosphere;
@@ -134,15 +134,7 @@ fn full_model() -> &'static Bruneton {
 #[test]
 fn single_scattering_matches_the_reference() {
     let a = earth();
-    let reference = prepare(
-        ModelId::Reference,
-        &a,
-        &ModelSettings {
-            max_orders: Some(1),
-            ..ModelSettings::default()
-        },
-    )
-    .unwrap();
+    let reference = prepare(ModelId::Reference, &a, &single()).unwrap();
     let (rms, worst) = relative_rms(single_model(), reference.as_ref(), &daytime_rays(&a));
     eprintln!("single scattering: relative RMS {rms:.4}, worst {worst:.4}");
     // Measured: RMS 0.0043, worst 0.0080 (ground, 45 degrees).

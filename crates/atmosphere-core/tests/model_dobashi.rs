@@ -12,7 +12,10 @@ use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
-use common::{ray, relative_radiance, single, worst};
+use common::{
+    all_orders_reference, assert_impossible_rays_are_errors, assert_sane, ray, ray_to,
+    relative_radiance, single, worst,
+};
 
 fn dobashi(a: &Atmosphere, settings: &ModelSettings, d: DobashiSettings) -> Dobashi {
     Dobashi::prepare(a, settings, d).unwrap()
@@ -153,12 +156,8 @@ fn spheres_far_out_and_planes_near() {
 #[test]
 fn ambient_term_against_all_orders() {
     let a = Atmosphere::preset("earth").unwrap();
-    let settings = ModelSettings {
-        target_relative_error: 0.01,
-        ..ModelSettings::default()
-    };
-    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
-    let with = prepare(ModelId::Dobashi, &a, &settings).unwrap();
+    let reference = all_orders_reference(&a, 0.01);
+    let with = prepare(ModelId::Dobashi, &a, &ModelSettings::default()).unwrap();
     let without = prepare(ModelId::Dobashi, &a, &single()).unwrap();
     let views = daytime(&a);
     for ray in [&views[0], &views[1], &views[3], &views[5], &views[7]] {
@@ -279,24 +278,9 @@ fn objects_and_extreme_rays_are_finite() {
             for view in [0.0, 60.0, 90.0, 93.0, 120.0, 180.0] {
                 for sun in [0.0, 80.0, 95.0, 110.0] {
                     for distance in [None, Some(1.0), Some(5e3), Some(3e5), Some(1e9)] {
-                        let ray = ViewRay::from_angles(
-                            a.bottom_radius_m,
-                            altitude,
-                            view,
-                            sun,
-                            40.0,
-                            distance,
-                        )
-                        .unwrap();
+                        let ray = ray_to(&a, altitude, view, sun, 40.0, distance);
                         let out = m.radiance(&ray).unwrap();
-                        for w in 0..3 {
-                            let (l, t) = (out.radiance[w], out.transmittance[w]);
-                            assert!(
-                                l.is_finite() && l >= 0.0 && (0.0..=1.0).contains(&t),
-                                "{}: {ray:?}: {l} {t}",
-                                a.name
-                            );
-                        }
+                        assert_sane(&format!("{}: {ray:?}", a.name), &out);
                         if distance == Some(1e9) {
                             // An object beyond everything answers as the open ray, except
                             // that one beyond the ground ends the ray there as an object:
@@ -331,10 +315,5 @@ fn objects_and_extreme_rays_are_finite() {
 fn impossible_rays_are_errors() {
     let a = Atmosphere::preset("earth").unwrap();
     let m = prepare(ModelId::Dobashi, &a, &single()).unwrap();
-    let mut below = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    below.origin_m.z -= 10.0;
-    assert!(m.radiance(&below).is_err());
-    let mut nan = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    nan.direction.x = f64::NAN;
-    assert!(m.radiance(&nan).is_err());
+    assert_impossible_rays_are_errors(m.as_ref(), &a);
 }

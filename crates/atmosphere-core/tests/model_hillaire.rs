@@ -225,16 +225,40 @@ fn pruning_changes_nothing() {
     assert!(hazy.medium().mie);
 }
 
+/// The paper's settings with small per-view tables: quick to rebuild, for the tests of
+/// updates and of the view cache.
+fn small_views() -> HillaireSettings {
+    HillaireSettings {
+        sky_view_size: (48, 28),
+        aerial_size: (24, 24, 8),
+        ..HillaireSettings::default()
+    }
+}
+
+/// Fails unless `model` answers each of `rays` exactly as a model prepared from scratch
+/// for `atmosphere` with `settings`.
+fn assert_answers_as_prepared(
+    model: &Hillaire,
+    atmosphere: &Atmosphere,
+    settings: HillaireSettings,
+    rays: &[(&str, ViewRay)],
+) {
+    let fresh = Hillaire::prepare(atmosphere, &ModelSettings::default(), settings).unwrap();
+    for (name, ray) in rays {
+        assert_eq!(
+            model.radiance(ray).unwrap(),
+            fresh.radiance(ray).unwrap(),
+            "{name}"
+        );
+    }
+}
+
 /// An update rebuilds the tables whose inputs changed, drops the per-view tables, and
 /// answers as a model prepared from scratch.
 #[test]
 fn update_rebuilds_what_changed() {
     let a = earth();
-    let settings = HillaireSettings {
-        sky_view_size: (48, 28),
-        aerial_size: (24, 24, 8),
-        ..HillaireSettings::default()
-    };
+    let settings = small_views();
     let mut model = Hillaire::prepare(&a, &ModelSettings::default(), settings).unwrap();
     let rays = daytime_rays(&a);
     for (_, ray) in &rays {
@@ -250,14 +274,7 @@ fn update_rebuilds_what_changed() {
     assert!(!rebuilt.contains(&"transmittance"), "{rebuilt:?}");
     assert!(rebuilt.contains(&"multiple scattering"), "{rebuilt:?}");
     assert_eq!(model.cached_views(), 0);
-    let fresh = Hillaire::prepare(&brighter, &ModelSettings::default(), settings).unwrap();
-    for (name, ray) in &rays {
-        assert_eq!(
-            model.radiance(ray).unwrap(),
-            fresh.radiance(ray).unwrap(),
-            "{name}"
-        );
-    }
+    assert_answers_as_prepared(&model, &brighter, settings, &rays);
 
     // The table of columns does not depend on coefficients, only on profiles.
     let hazy = brighter.with_aerosol_scale(3.0);
@@ -267,14 +284,7 @@ fn update_rebuilds_what_changed() {
     taller.rayleigh.density = DensityProfile::exponential(8_500.0);
     let rebuilt = model.update(&taller).unwrap();
     assert!(rebuilt.contains(&"transmittance"), "{rebuilt:?}");
-    let fresh = Hillaire::prepare(&taller, &ModelSettings::default(), settings).unwrap();
-    for (name, ray) in &rays {
-        assert_eq!(
-            model.radiance(ray).unwrap(),
-            fresh.radiance(ray).unwrap(),
-            "{name}"
-        );
-    }
+    assert_answers_as_prepared(&model, &taller, settings, &rays);
     // Psi_ms takes every scattering as isotropic: the Mie phase function is not its input.
     let mut rounder = taller.clone();
     rounder.mie.phase = PhaseFunction::CornetteShanks { g: 0.7 };
@@ -284,14 +294,7 @@ fn update_rebuilds_what_changed() {
         ["ground irradiance", "sky view and aerial perspective"],
         "{rebuilt:?}"
     );
-    let fresh = Hillaire::prepare(&rounder, &ModelSettings::default(), settings).unwrap();
-    for (name, ray) in &rays {
-        assert_eq!(
-            model.radiance(ray).unwrap(),
-            fresh.radiance(ray).unwrap(),
-            "{name}"
-        );
-    }
+    assert_answers_as_prepared(&model, &rounder, settings, &rays);
     let taller = rounder;
     // The solar spectrum scales the answers without a rebuild.
     let mut dimmer = taller.clone();
@@ -309,10 +312,8 @@ fn update_rebuilds_what_changed() {
 fn views_share_their_tables_in_a_bounded_cache() {
     let a = earth();
     let settings = HillaireSettings {
-        sky_view_size: (48, 28),
-        aerial_size: (24, 24, 8),
         view_cache: 2,
-        ..HillaireSettings::default()
+        ..small_views()
     };
     let model = Hillaire::prepare(&a, &ModelSettings::default(), settings).unwrap();
     for (view, azimuth) in directions() {

@@ -11,7 +11,9 @@ use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 use atmosphere_core::optics::geometry::horizon_mu;
-use common::{ray, single};
+use common::{
+    all_orders_reference, assert_impossible_rays_are_errors, assert_sane, ray, ray_to, single,
+};
 
 fn nishita(a: &Atmosphere, view_samples: usize, heights: usize, angles: usize) -> Nishita {
     Nishita::prepare(
@@ -141,25 +143,10 @@ fn extreme_rays_are_finite_and_bounded() {
                 for sun in [0.0, 60.0, 89.9, 90.0, 90.3, 95.0, 110.0] {
                     for azimuth in [0.0, 90.0, 180.0] {
                         for distance in [None, Some(1.0), Some(3e4), Some(1e9)] {
-                            let ray = ViewRay::from_angles(
-                                a.bottom_radius_m,
-                                altitude,
-                                view,
-                                sun,
-                                azimuth,
-                                distance,
-                            )
-                            .unwrap();
+                            let ray = ray_to(a, altitude, view, sun, azimuth, distance);
                             for m in &models {
-                                let out = m.radiance(&ray).unwrap();
-                                for w in 0..3 {
-                                    let (l, t) = (out.radiance[w], out.transmittance[w]);
-                                    assert!(
-                                        l.is_finite() && l >= 0.0 && (0.0..=1.0).contains(&t),
-                                        "{}: {ray:?}: radiance {l}, transmittance {t}",
-                                        a.name
-                                    );
-                                }
+                                let what = format!("{}: {ray:?}", a.name);
+                                assert_sane(&what, &m.radiance(&ray).unwrap());
                             }
                         }
                     }
@@ -174,12 +161,7 @@ fn extreme_rays_are_finite_and_bounded() {
 fn impossible_rays_are_errors() {
     let a = Atmosphere::preset("earth").unwrap();
     let m = nishita(&a, 16, 8, 16);
-    let mut below = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    below.origin_m.z -= 10.0;
-    assert!(m.radiance(&below).is_err());
-    let mut nan = ray(&a, 0.0, 0.0, 0.0, 0.0);
-    nan.direction.x = f64::NAN;
-    assert!(m.radiance(&nan).is_err());
+    assert_impossible_rays_are_errors(&m, &a);
 }
 
 /// With the default settings, against the reference with all orders on daytime views,
@@ -190,12 +172,8 @@ fn impossible_rays_are_errors() {
 #[test]
 fn error_against_all_orders_on_daytime_views() {
     let a = Atmosphere::preset("earth").unwrap();
-    let settings = ModelSettings {
-        target_relative_error: 0.01,
-        ..ModelSettings::default()
-    };
-    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
-    let model = prepare(ModelId::Nishita, &a, &settings).unwrap();
+    let reference = all_orders_reference(&a, 0.01);
+    let model = prepare(ModelId::Nishita, &a, &ModelSettings::default()).unwrap();
     let views = [
         ray(&a, 0.0, 0.0, 30.0, 0.0),
         ray(&a, 0.0, 60.0, 45.0, 90.0),

@@ -4,13 +4,16 @@
 //! facing the sun receives the solar irradiance; an element facing the ground and away
 //! from the sun receives nothing; and the reference says it does not light surfaces.
 
+mod common;
+
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::error::ModelError;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, SurfacePoint, ViewRay};
 use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
+use common::all_orders_reference;
 use glam::DVec3;
 
 /// The models that light surfaces.
@@ -28,6 +31,14 @@ fn models(a: &Atmosphere) -> Vec<Box<dyn SkyModel>> {
         .iter()
         .map(|&id| prepare(id, a, &ModelSettings::default()).unwrap())
         .collect()
+}
+
+fn element(point_m: DVec3, normal: DVec3, sun_direction: DVec3) -> SurfacePoint {
+    SurfacePoint {
+        point_m,
+        normal,
+        sun_direction,
+    }
 }
 
 /// Rays from 2 m to 30 km down to the ground, the sun high, low and just set.
@@ -78,9 +89,10 @@ fn outside_the_atmosphere_a_surface_facing_the_sun_receives_the_solar_irradiance
     let sun = DVec3::new(0.3, -0.2, 0.9).normalize();
     let top = DVec3::new(0.0, 0.0, a.top_radius_m + 1.0);
     for model in models(&a) {
-        let facing = model.surface_irradiance(top, sun, sun).unwrap();
+        let facing = model.surface_irradiance(&element(top, sun, sun)).unwrap();
+        let bottom = DVec3::new(0.0, 0.0, a.bottom_radius_m);
         let away = model
-            .surface_irradiance(DVec3::new(0.0, 0.0, a.bottom_radius_m), -DVec3::Z, sun)
+            .surface_irradiance(&element(bottom, -DVec3::Z, sun))
             .unwrap();
         for w in 0..3 {
             let e = model.solar_irradiance_w_m2_nm()[w];
@@ -98,13 +110,12 @@ fn outside_the_atmosphere_a_surface_facing_the_sun_receives_the_solar_irradiance
 #[test]
 fn the_reference_does_not_light_surfaces() {
     let a = Atmosphere::preset("earth").unwrap();
-    let settings = ModelSettings {
-        target_relative_error: 0.5,
-        ..ModelSettings::default()
-    };
-    let reference = prepare(ModelId::Reference, &a, &settings).unwrap();
+    let reference = all_orders_reference(&a, 0.5);
     let err = reference
-        .surface_irradiance(DVec3::new(0.0, 0.0, a.bottom_radius_m), DVec3::Z, DVec3::Z)
+        .surface_irradiance(&SurfacePoint::facing_up(
+            DVec3::new(0.0, 0.0, a.bottom_radius_m),
+            DVec3::Z,
+        ))
         .unwrap_err();
     assert!(matches!(err, ModelError::Unsupported { .. }), "{err}");
     assert!(err.to_string().contains("reference"), "{err}");

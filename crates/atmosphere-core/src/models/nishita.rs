@@ -7,15 +7,13 @@
 //! table serves every wavelength; optical depth at a wavelength is the sum of columns times
 //! the species' extinctions. See docs/models/nishita.md.
 
-use glam::DVec3;
-
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::models::table_update::TableUpdate;
 use crate::optics::column::{densities, optical_depth};
 use crate::optics::geometry::ray_hits_ground;
@@ -56,16 +54,13 @@ impl NishitaSettings {
     /// The settings from `key=value` options: `samples`, `table_heights`,
     /// `table_angles`; the defaults where absent.
     pub fn from_options(options: &ModelOptions) -> Result<NishitaSettings, ModelError> {
-        let d = NishitaSettings::default();
-        let mut o = options.reader("nishita");
-        let settings = NishitaSettings {
-            view_samples: o.count("samples", d.view_samples)?,
-            table_heights: o.count("table_heights", d.table_heights)?,
-            table_angles: o.count("table_angles", d.table_angles)?,
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("nishita", NishitaSettings::validate, |o, d| {
+            Ok(NishitaSettings {
+                view_samples: o.count("samples", d.view_samples)?,
+                table_heights: o.count("table_heights", d.table_heights)?,
+                table_angles: o.count("table_angles", d.table_angles)?,
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.
@@ -125,10 +120,8 @@ impl Nishita {
         model_settings: &ModelSettings,
         settings: NishitaSettings,
     ) -> Result<Nishita, ModelError> {
-        atmosphere.validate()?;
-        model_settings.validate()?;
+        let spectra = model_settings.checked_spectra(atmosphere)?;
         settings.validate()?;
-        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
         Ok(Nishita {
             atmosphere: atmosphere.clone(),
             settings,
@@ -182,13 +175,8 @@ impl SkyModel for Nishita {
     }
 
     /// The transmitted sun only (Dobashi, Yamamoto and Nishita 2002, Eq. 11): single scattering has no sky light.
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, surface)?;
         let s = &self.spectra;
         let column = (e.sun_cosine > 0.0)
             .then(|| sun_column(&self.table, e.r, e.mu_s))

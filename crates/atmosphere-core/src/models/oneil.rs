@@ -28,7 +28,7 @@ use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::models::table_update::TableUpdate;
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
@@ -64,17 +64,14 @@ impl OneilSettings {
     /// The settings from `key=value` options: `samples`, `table_heights`,
     /// `table_angles`, `table_ray_samples`; the paper's where absent.
     pub fn from_options(options: &ModelOptions) -> Result<OneilSettings, ModelError> {
-        let d = OneilSettings::default();
-        let mut o = options.reader("oneil");
-        let settings = OneilSettings {
-            samples: o.count("samples", d.samples)?,
-            table_heights: o.count("table_heights", d.table_heights)?,
-            table_angles: o.count("table_angles", d.table_angles)?,
-            table_ray_samples: o.count("table_ray_samples", d.table_ray_samples)?,
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("oneil", OneilSettings::validate, |o, d| {
+            Ok(OneilSettings {
+                samples: o.count("samples", d.samples)?,
+                table_heights: o.count("table_heights", d.table_heights)?,
+                table_angles: o.count("table_angles", d.table_angles)?,
+                table_ray_samples: o.count("table_ray_samples", d.table_ray_samples)?,
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.
@@ -255,10 +252,8 @@ impl Oneil {
         settings: &ModelSettings,
         oneil: OneilSettings,
     ) -> Result<Oneil, ModelError> {
-        atmosphere.validate()?;
-        settings.validate()?;
+        let spectra = settings.checked_spectra(atmosphere)?;
         oneil.validate()?;
-        let spectra = Spectra::new(atmosphere, &settings.wavelengths_nm);
         Ok(Oneil {
             atmosphere: atmosphere.clone(),
             settings: oneil,
@@ -326,13 +321,8 @@ impl SkyModel for Oneil {
     /// from the table at the element's height and sun angle (O'Neil 2004's ground
     /// shader reads the same lookup), zero where the planet hides the sun's centre, the table's
     /// own shadow test (its density channels are 0 where `ray_hits_ground`).
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, surface)?;
         let s = &self.spectra;
         let lit =
             e.sun_cosine > 0.0 && !ray_hits_ground(e.r, e.mu_s, self.atmosphere.bottom_radius_m);

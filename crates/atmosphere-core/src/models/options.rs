@@ -50,6 +50,22 @@ impl ModelOptions {
         self.values.iter().map(|(k, v)| (k.as_str(), v.as_str()))
     }
 
+    /// `model`'s settings in one go: `read` takes each key it knows from the reader, the
+    /// default settings giving the value of an absent key; a key left unread is an error,
+    /// and `validate` checks the settings read.
+    pub fn read_settings<S: Default>(
+        &self,
+        model: &'static str,
+        validate: impl FnOnce(&S) -> Result<(), ModelError>,
+        read: impl FnOnce(&mut OptionReader<'_>, S) -> Result<S, ModelError>,
+    ) -> Result<S, ModelError> {
+        let mut reader = self.reader(model);
+        let settings = read(&mut reader, S::default())?;
+        reader.finish()?;
+        validate(&settings)?;
+        Ok(settings)
+    }
+
     /// A reader for `model`'s settings, which records the keys read.
     pub fn reader(&self, model: &'static str) -> OptionReader<'_> {
         OptionReader {

@@ -28,13 +28,11 @@
 //! a series near 0), and the limits p_y = l_y, p_y = 0 and infinite horizontal rays come
 //! out of the same expression. See docs/models/riley.md.
 
-use glam::DVec3;
-
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::density::DensityProfile;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::phase::{PhaseFunction, rayleigh};
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
@@ -383,19 +381,8 @@ impl SkyModel for Riley {
     /// from height y at vertical component l = mu_s being sum over species of
     /// beta H exp(-y / H) / l; no sun where l <= 0, the flat ground's horizon (the rule
     /// of the view rays' sun, `FlatExponential::single_scattering`).
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let e = SurfaceElement::new_within(
-            self.bottom_radius_m,
-            self.top_radius_m,
-            point_m,
-            normal,
-            sun_direction,
-        )?;
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new_within(self.bottom_radius_m, self.top_radius_m, surface)?;
         let y = e.r - self.bottom_radius_m;
         let (rayleigh, mie) = self.species();
         Ok(e.sun_irradiances(&self.solar_irradiance, |w| {

@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
+use crate::atmosphere::spectra::Spectra;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
@@ -43,6 +44,14 @@ impl Default for ModelSettings {
 }
 
 impl ModelSettings {
+    /// What every model prepares from: checks `atmosphere` and these settings, then
+    /// samples the atmosphere's coefficients at the settings' wavelengths.
+    pub fn checked_spectra(&self, atmosphere: &Atmosphere) -> Result<Spectra, ModelError> {
+        atmosphere.validate()?;
+        self.validate()?;
+        Ok(Spectra::new(atmosphere, &self.wavelengths_nm))
+    }
+
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
         if self.wavelengths_nm.is_empty() {
@@ -129,6 +138,29 @@ impl ViewRay {
     }
 }
 
+/// A surface element to light: where it is, which way it faces, where the sun is.
+/// Positions are relative to the planet's centre, in metres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// On or above the ground.
+    pub point_m: DVec3,
+    /// Outward normal (made unit length where the element is built).
+    pub normal: DVec3,
+    /// Unit vector towards the sun's centre.
+    pub sun_direction: DVec3,
+}
+
+impl SurfacePoint {
+    /// The element at `point_m` facing up (its normal the local vertical): the ground.
+    pub fn facing_up(point_m: DVec3, sun_direction: DVec3) -> SurfacePoint {
+        SurfacePoint {
+            point_m,
+            normal: point_m,
+            sun_direction,
+        }
+    }
+}
+
 /// What a model answers for one view ray, at each of its wavelengths.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RayRadiance {
@@ -163,19 +195,13 @@ pub trait SkyModel: Send + Sync {
     fn solar_irradiance_w_m2_nm(&self) -> &[f64];
     /// Radiance and transmittance of one ray.
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError>;
-    /// Irradiance (W m^-2 nm^-1, per wavelength) on a surface element at `point_m`
-    /// (planet-centred, on or above the ground) with outward unit `normal`, the sun along
-    /// `sun_direction`: the model's own sun transmittance and sky irradiance combined as
-    /// in [`crate::optics::surface_lighting`]. A Lambertian element of albedo `a` ending a view
+    /// Irradiance (W m^-2 nm^-1, per wavelength) on the surface element `surface`: the
+    /// model's own sun transmittance and sky irradiance combined as in
+    /// [`crate::optics::surface_lighting`]. A Lambertian element of albedo `a` ending a view
     /// ray adds `transmittance a / pi` times this to the ray's radiance: the models'
     /// ground on the sphere, and terrain on the GPU.
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let _ = (point_m, normal, sun_direction);
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let _ = surface;
         Err(ModelError::Unsupported {
             model: self.id(),
             what: "light surface elements (it answers view rays only)",

@@ -16,7 +16,7 @@ use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
 use crate::models::error::ModelError;
-use crate::models::sky_model::{RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::view_segment::ViewSegment;
 
 /// A surface a view ray ends on.
@@ -64,7 +64,11 @@ pub fn radiance_with_surface(
         Some(segment) => segment.end_point(),
         None => ray.origin_m + ray.direction.normalize() * hit.distance_m,
     };
-    let irradiance = model.surface_irradiance(end, hit.normal, ray.sun_direction)?;
+    let irradiance = model.surface_irradiance(&SurfacePoint {
+        point_m: end,
+        normal: hit.normal,
+        sun_direction: ray.sun_direction,
+    })?;
     for (w, l) in answer.radiance.iter_mut().enumerate() {
         *l += answer.transmittance[w] * hit.albedo[w] / std::f64::consts::PI * irradiance[w];
     }
@@ -82,7 +86,7 @@ pub fn add_ground_light(
     transmittance: &[f64],
     radiance: &mut [f64],
 ) -> Result<(), ModelError> {
-    let irradiance = model.surface_irradiance(end_m, end_m, sun_direction)?;
+    let irradiance = model.surface_irradiance(&SurfacePoint::facing_up(end_m, sun_direction))?;
     for (w, l) in radiance.iter_mut().enumerate() {
         *l += transmittance[w] * albedo / std::f64::consts::PI * irradiance[w];
     }
@@ -104,39 +108,31 @@ pub struct SurfaceElement {
 }
 
 impl SurfaceElement {
-    /// The element at `point_m` (planet-centred) with outward unit `normal`, lit along
-    /// `sun_direction`; an error names a non-finite or zero vector or a point below the
-    /// ground. Points a rounding below the ground are lifted onto it.
+    /// The element `surface` in `atmosphere`; an error names a non-finite or zero vector
+    /// or a point below the ground. Points a rounding below the ground are lifted onto it.
     pub fn new(
         atmosphere: &Atmosphere,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
+        surface: &SurfacePoint,
     ) -> Result<SurfaceElement, ModelError> {
-        SurfaceElement::new_within(
-            atmosphere.bottom_radius_m,
-            atmosphere.top_radius_m,
-            point_m,
-            normal,
-            sun_direction,
-        )
+        SurfaceElement::new_within(atmosphere.bottom_radius_m, atmosphere.top_radius_m, surface)
     }
 
     /// As [`SurfaceElement::new`], for the shell between radii `bottom` and `top`.
     pub fn new_within(
         bottom: f64,
         top: f64,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
+        surface: &SurfacePoint,
     ) -> Result<SurfaceElement, ModelError> {
         let bad = |what: &str| ModelError::Ray(format!("surface element: {what}"));
-        let normal = normal
+        let normal = surface
+            .normal
             .try_normalize()
             .ok_or_else(|| bad("the normal must be a finite non-zero vector"))?;
-        let sun = sun_direction
+        let sun = surface
+            .sun_direction
             .try_normalize()
             .ok_or_else(|| bad("the sun direction must be a finite non-zero vector"))?;
+        let point_m = surface.point_m;
         if !point_m.is_finite() {
             return Err(bad("the point must be finite"));
         }
@@ -182,19 +178,27 @@ mod tests {
         Atmosphere::preset("earth").unwrap()
     }
 
+    fn element(point_m: DVec3, normal: DVec3, sun_direction: DVec3) -> SurfacePoint {
+        SurfacePoint {
+            point_m,
+            normal,
+            sun_direction,
+        }
+    }
+
     #[test]
     fn a_level_element_sees_the_whole_sky_and_the_sun_at_its_zenith_cosine() {
         let a = earth();
         let point = DVec3::new(0.0, 0.0, a.bottom_radius_m + 1000.0);
         let sun = DVec3::new(0.6, 0.0, 0.8);
-        let e = SurfaceElement::new(&a, point, DVec3::Z, sun).unwrap();
+        let e = SurfaceElement::new(&a, &element(point, DVec3::Z, sun)).unwrap();
         assert_eq!(e.r, a.bottom_radius_m + 1000.0);
         assert!((e.mu_s - 0.8).abs() < 1e-15);
         assert!((e.sun_cosine - 0.8).abs() < 1e-15);
         assert_eq!(e.sky_view_factor, 1.0);
         assert!((e.irradiance(2.0, 0.5, 0.3) - (2.0 * 0.5 * 0.8 + 0.3)).abs() < 1e-15);
         // Above the atmosphere, lit as at its top.
-        let high = SurfaceElement::new(&a, point * 2.0, DVec3::Z, sun).unwrap();
+        let high = SurfaceElement::new(&a, &element(point * 2.0, DVec3::Z, sun)).unwrap();
         assert_eq!(high.r, a.top_radius_m);
     }
 
@@ -205,12 +209,13 @@ mod tests {
         // A 60 degree slope facing the sun, which is 30 degrees above the horizon.
         let normal = DVec3::new(60f64.to_radians().sin(), 0.0, 60f64.to_radians().cos());
         let sun = DVec3::new(60f64.to_radians().sin(), 0.0, 60f64.to_radians().cos());
-        let e = SurfaceElement::new(&a, point, normal, sun).unwrap();
+        let e = SurfaceElement::new(&a, &element(point, normal, sun)).unwrap();
         assert!((e.sun_cosine - 1.0).abs() < 1e-12);
         assert!((e.mu_s - 0.5).abs() < 1e-12);
         assert!((e.sky_view_factor - 0.75).abs() < 1e-12);
         // Facing away from the sun: no direct light, whatever the sun's height.
-        let away = SurfaceElement::new(&a, point, -normal.reflect(DVec3::Z), sun).unwrap();
+        let away =
+            SurfaceElement::new(&a, &element(point, -normal.reflect(DVec3::Z), sun)).unwrap();
         assert_eq!(away.sun_cosine, 0.0);
     }
 
@@ -219,7 +224,9 @@ mod tests {
         let a = earth();
         let r = a.bottom_radius_m;
         let err = |p: DVec3, n: DVec3, s: DVec3| {
-            SurfaceElement::new(&a, p, n, s).unwrap_err().to_string()
+            SurfaceElement::new(&a, &element(p, n, s))
+                .unwrap_err()
+                .to_string()
         };
         let p = DVec3::new(0.0, 0.0, r);
         assert!(err(p, DVec3::ZERO, DVec3::Z).contains("normal"));
@@ -229,9 +236,7 @@ mod tests {
         // A rounding below the ground is on it.
         let e = SurfaceElement::new(
             &a,
-            DVec3::new(0.0, 0.0, r * (1.0 - 1e-12)),
-            DVec3::Z,
-            DVec3::Z,
+            &element(DVec3::new(0.0, 0.0, r * (1.0 - 1e-12)), DVec3::Z, DVec3::Z),
         );
         assert_eq!(e.unwrap().r, r);
     }

@@ -29,8 +29,6 @@ pub use settings::BrunetonSettings;
 
 use std::f64::consts::PI;
 
-use glam::DVec3;
-
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
@@ -42,7 +40,7 @@ use crate::models::bruneton::precompute::{OrderStats, Tables};
 use crate::models::bruneton::tables::{DensityTable, Table4};
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::models::table_update::TableUpdate;
 use crate::optics::geometry::ray_hits_ground;
 use crate::optics::phase::rayleigh;
@@ -281,13 +279,8 @@ impl SkyModel for Bruneton {
     /// table (section 4, Eq. 15: the irradiance on a horizontal element at radius r, from
     /// every order), at the element's radius and sun angle: the paper's ground term
     /// (Eq. 16) for any element.
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, surface)?;
         let n = self.wavelengths_nm.len();
         let column_sun = (!ray_hits_ground(e.r, e.mu_s, self.radii.bottom_m))
             .then(|| self.transmittance.column(e.r, e.mu_s));
@@ -340,7 +333,7 @@ impl SkyModel for Bruneton {
         let ground_light = match segment.end {
             SegmentEnd::Ground => {
                 let point = segment.end_point();
-                Some(self.surface_irradiance(point, point, sun)?)
+                Some(self.surface_irradiance(&SurfacePoint::facing_up(point, sun))?)
             }
             _ => None,
         };

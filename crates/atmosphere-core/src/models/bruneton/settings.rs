@@ -61,27 +61,24 @@ impl BrunetonSettings {
     /// `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
     /// `order_limit`; the paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
-        let d = BrunetonSettings::default();
-        let mut o = options.reader("bruneton");
-        let settings = BrunetonSettings {
-            scattering_size: ScatteringSize {
-                r: o.count("r", d.scattering_size.r)?,
-                mu: o.count("mu", d.scattering_size.mu)?,
-                mu_s: o.count("mu_s", d.scattering_size.mu_s)?,
-                nu: o.count("nu", d.scattering_size.nu)?,
-            },
-            view_samples: o.count("view_samples", d.view_samples)?,
-            sphere_samples: (
-                o.count("sphere_zenith", d.sphere_samples.0)?,
-                o.count("sphere_azimuth", d.sphere_samples.1)?,
-            ),
-            order_threshold: o.number("order_threshold", d.order_threshold)?,
-            order_limit: o.count("order_limit", d.order_limit as usize)? as u32,
-            ..d
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
+            Ok(BrunetonSettings {
+                scattering_size: ScatteringSize {
+                    r: o.count("r", d.scattering_size.r)?,
+                    mu: o.count("mu", d.scattering_size.mu)?,
+                    mu_s: o.count("mu_s", d.scattering_size.mu_s)?,
+                    nu: o.count("nu", d.scattering_size.nu)?,
+                },
+                view_samples: o.count("view_samples", d.view_samples)?,
+                sphere_samples: (
+                    o.count("sphere_zenith", d.sphere_samples.0)?,
+                    o.count("sphere_azimuth", d.sphere_samples.1)?,
+                ),
+                order_threshold: o.number("order_threshold", d.order_threshold)?,
+                order_limit: o.count("order_limit", d.order_limit as usize)? as u32,
+                ..d
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.

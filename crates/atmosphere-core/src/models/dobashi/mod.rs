@@ -23,14 +23,12 @@ pub mod settings;
 pub mod sphere_tables;
 pub mod trace;
 
-use glam::DVec3;
-
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::models::table_update::TableUpdate;
 use crate::optics::surface_lighting::SurfaceElement;
 use crate::optics::transmittance_table::TransmittanceTable;
@@ -64,10 +62,8 @@ impl Dobashi {
         model_settings: &ModelSettings,
         settings: DobashiSettings,
     ) -> Result<Dobashi, ModelError> {
-        atmosphere.validate()?;
-        model_settings.validate()?;
+        let spectra = model_settings.checked_spectra(atmosphere)?;
         settings.validate()?;
-        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
         let with_mie = spectra.needs_mie(model_settings.prune);
         let mut model = Dobashi {
             atmosphere: atmosphere.clone(),
@@ -204,13 +200,8 @@ impl SkyModel for Dobashi {
     /// The transmitted sun g_l (Eq. 11) and the ambient term's sky, pi psi on a
     /// horizontal element, psi read at the element's sun angle (`Tracer::element_light`);
     /// no sky for single scattering.
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, surface)?;
         let n_w = self.spectra.wavelengths_nm.len();
         let (mut sun, mut sky) = (vec![0.0; n_w], vec![0.0; n_w]);
         self.tracer()

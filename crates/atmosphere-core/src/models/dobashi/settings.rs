@@ -71,25 +71,22 @@ impl DobashiSettings {
     /// The settings from `key=value` options (keys as the field names); the defaults
     /// where absent.
     pub fn from_options(options: &ModelOptions) -> Result<DobashiSettings, ModelError> {
-        let d = DobashiSettings::default();
-        let mut o = options.reader("dobashi");
-        let settings = DobashiSettings {
-            planes: o.count("planes", d.planes)?,
-            interval_steps: o.count("interval_steps", d.interval_steps)?,
-            table_max: o.number("table_max", d.table_max)?,
-            max_planes: o.count("max_planes", d.max_planes)?,
-            spheres: o.count("spheres", d.spheres)?,
-            table_heights: o.count("table_heights", d.table_heights)?,
-            table_angles: o.count("table_angles", d.table_angles)?,
-            sphere_table_angles: o.count("sphere_table_angles", d.sphere_table_angles)?,
-            sun_table_heights: o.count("sun_table_heights", d.sun_table_heights)?,
-            sun_table_angles: o.count("sun_table_angles", d.sun_table_angles)?,
-            ambient_directions: o.count("ambient_directions", d.ambient_directions)?,
-            ambient_sun_angles: o.count("ambient_sun_angles", d.ambient_sun_angles)?,
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("dobashi", DobashiSettings::validate, |o, d| {
+            Ok(DobashiSettings {
+                planes: o.count("planes", d.planes)?,
+                interval_steps: o.count("interval_steps", d.interval_steps)?,
+                table_max: o.number("table_max", d.table_max)?,
+                max_planes: o.count("max_planes", d.max_planes)?,
+                spheres: o.count("spheres", d.spheres)?,
+                table_heights: o.count("table_heights", d.table_heights)?,
+                table_angles: o.count("table_angles", d.table_angles)?,
+                sphere_table_angles: o.count("sphere_table_angles", d.sphere_table_angles)?,
+                sun_table_heights: o.count("sun_table_heights", d.sun_table_heights)?,
+                sun_table_angles: o.count("sun_table_angles", d.sun_table_angles)?,
+                ambient_directions: o.count("ambient_directions", d.ambient_directions)?,
+                ambient_sun_angles: o.count("ambient_sun_angles", d.ambient_sun_angles)?,
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.

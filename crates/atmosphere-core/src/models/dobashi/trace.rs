@@ -26,7 +26,7 @@ use crate::models::dobashi::segment::SegmentValues;
 use crate::models::dobashi::sphere_tables::SphereTables;
 use crate::models::error::ModelError;
 use crate::models::nishita::sun_column;
-use crate::models::sky_model::ViewRay;
+use crate::models::sky_model::{SurfacePoint, ViewRay};
 use crate::optics::column::optical_depth;
 use crate::optics::geometry::safe_sqrt;
 use crate::optics::surface_lighting::SurfaceElement;
@@ -111,7 +111,8 @@ impl Tracer<'_> {
         }
         if segment.end == SegmentEnd::Ground {
             let end = segment.end_point();
-            let element = SurfaceElement::new(self.atmosphere, end, end, segment.sun_direction)?;
+            let ground = SurfacePoint::facing_up(end, segment.sun_direction);
+            let element = SurfaceElement::new(self.atmosphere, &ground)?;
             acc.add_ground(&element);
         }
         Ok(acc.terms)

@@ -21,8 +21,6 @@ pub mod rows;
 pub mod sky_view;
 pub mod view_cache;
 
-use glam::DVec3;
-
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
@@ -37,7 +35,7 @@ use crate::models::hillaire::sky_view::SkyView;
 use crate::models::hillaire::view_cache::ViewCache;
 use crate::models::id::ModelId;
 use crate::models::options::ModelOptions;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
+use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::models::table_update::TableUpdate;
 use crate::optics::column::optical_depth;
 use crate::optics::geometry::ray_hits_ground;
@@ -111,42 +109,40 @@ impl HillaireSettings {
     /// The settings from `key=value` options (keys in docs/models/hillaire.md); the
     /// defaults where absent.
     pub fn from_options(options: &ModelOptions) -> Result<HillaireSettings, ModelError> {
-        let d = HillaireSettings::default();
-        let mut o = options.reader("hillaire");
-        let settings = HillaireSettings {
-            transmittance_size: (
-                o.count("transmittance_width", d.transmittance_size.0)?,
-                o.count("transmittance_height", d.transmittance_size.1)?,
-            ),
-            multiple_scattering_size: (
-                o.count("ms_width", d.multiple_scattering_size.0)?,
-                o.count("ms_height", d.multiple_scattering_size.1)?,
-            ),
-            multiple_scattering_directions: o
-                .count("ms_directions", d.multiple_scattering_directions)?,
-            multiple_scattering_samples: o.count("ms_samples", d.multiple_scattering_samples)?,
-            sky_view_size: (
-                o.count("sky_view_width", d.sky_view_size.0)?,
-                o.count("sky_view_height", d.sky_view_size.1)?,
-            ),
-            sky_view_samples: o.count("sky_view_samples", d.sky_view_samples)?,
-            aerial_size: (
-                o.count("ap_width", d.aerial_size.0)?,
-                o.count("ap_height", d.aerial_size.1)?,
-                o.count("ap_slices", d.aerial_size.2)?,
-            ),
-            aerial_range_m: o.number("ap_range_m", d.aerial_range_m)?,
-            aerial_samples_per_slice: o
-                .count("ap_samples_per_slice", d.aerial_samples_per_slice)?,
-            march_samples: o.count("march_samples", d.march_samples)?,
-            ground_size: o.count("ground_size", d.ground_size)?,
-            ground_zenith_panels: o.count("ground_zenith_panels", d.ground_zenith_panels)?,
-            ground_azimuths: o.count("ground_azimuths", d.ground_azimuths)?,
-            view_cache: o.count("view_cache", d.view_cache)?,
-        };
-        o.finish()?;
-        settings.validate()?;
-        Ok(settings)
+        options.read_settings("hillaire", HillaireSettings::validate, |o, d| {
+            Ok(HillaireSettings {
+                transmittance_size: (
+                    o.count("transmittance_width", d.transmittance_size.0)?,
+                    o.count("transmittance_height", d.transmittance_size.1)?,
+                ),
+                multiple_scattering_size: (
+                    o.count("ms_width", d.multiple_scattering_size.0)?,
+                    o.count("ms_height", d.multiple_scattering_size.1)?,
+                ),
+                multiple_scattering_directions: o
+                    .count("ms_directions", d.multiple_scattering_directions)?,
+                multiple_scattering_samples: o
+                    .count("ms_samples", d.multiple_scattering_samples)?,
+                sky_view_size: (
+                    o.count("sky_view_width", d.sky_view_size.0)?,
+                    o.count("sky_view_height", d.sky_view_size.1)?,
+                ),
+                sky_view_samples: o.count("sky_view_samples", d.sky_view_samples)?,
+                aerial_size: (
+                    o.count("ap_width", d.aerial_size.0)?,
+                    o.count("ap_height", d.aerial_size.1)?,
+                    o.count("ap_slices", d.aerial_size.2)?,
+                ),
+                aerial_range_m: o.number("ap_range_m", d.aerial_range_m)?,
+                aerial_samples_per_slice: o
+                    .count("ap_samples_per_slice", d.aerial_samples_per_slice)?,
+                march_samples: o.count("march_samples", d.march_samples)?,
+                ground_size: o.count("ground_size", d.ground_size)?,
+                ground_zenith_panels: o.count("ground_zenith_panels", d.ground_zenith_panels)?,
+                ground_azimuths: o.count("ground_azimuths", d.ground_azimuths)?,
+                view_cache: o.count("view_cache", d.view_cache)?,
+            })
+        })
     }
 
     /// Why these settings cannot be used, if they cannot.
@@ -258,10 +254,8 @@ impl Hillaire {
         model_settings: &ModelSettings,
         settings: HillaireSettings,
     ) -> Result<Hillaire, ModelError> {
-        atmosphere.validate()?;
-        model_settings.validate()?;
+        let spectra = model_settings.checked_spectra(atmosphere)?;
         settings.validate()?;
-        let spectra = Spectra::new(atmosphere, &model_settings.wavelengths_nm);
         let (w, h) = settings.transmittance_size;
         let mut model = Hillaire {
             atmosphere: atmosphere.clone(),
@@ -491,13 +485,8 @@ impl SkyModel for Hillaire {
     /// the ground only, over mu_s: an element higher up reads it at its own mu_s, times
     /// the share of the ground's vertical optical depth that lies above the element (the
     /// sky over a peak is thinner; at the top there is none).
-    fn surface_irradiance(
-        &self,
-        point_m: DVec3,
-        normal: DVec3,
-        sun_direction: DVec3,
-    ) -> Result<Vec<f64>, ModelError> {
-        let e = SurfaceElement::new(&self.atmosphere, point_m, normal, sun_direction)?;
+    fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
+        let e = SurfaceElement::new(&self.atmosphere, surface)?;
         let n = self.spectra.wavelengths_nm.len();
         let mut sun = vec![0.0; n];
         self.medium().sun_transmittance(e.r, e.mu_s, &mut sun);
