@@ -150,8 +150,8 @@ impl SkyModel for Nishita {
         ModelId::Nishita
     }
 
-    fn wavelengths_nm(&self) -> &[f64] {
-        &self.spectra.wavelengths_nm
+    fn spectra(&self) -> &Spectra {
+        &self.spectra
     }
 
     fn table_bytes(&self) -> usize {
@@ -168,10 +168,6 @@ impl SkyModel for Nishita {
         self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
         Ok(update.rebuilt())
-    }
-
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
-        &self.spectra.solar_irradiance
     }
 
     /// The transmitted sun only (Dobashi, Yamamoto and Nishita 2002, Eq. 11): single scattering has no sky light.

@@ -283,8 +283,8 @@ impl SkyModel for Oneil {
         ModelId::Oneil
     }
 
-    fn wavelengths_nm(&self) -> &[f64] {
-        &self.spectra.wavelengths_nm
+    fn spectra(&self) -> &Spectra {
+        &self.spectra
     }
 
     fn table_bytes(&self) -> usize {
@@ -311,10 +311,6 @@ impl SkyModel for Oneil {
         self.with_mie = self.spectra.needs_mie(self.prune);
         self.atmosphere = atmosphere.clone();
         Ok(update.rebuilt())
-    }
-
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
-        &self.spectra.solar_irradiance
     }
 
     /// The transmitted sun only (single scattering has no sky light): the sun's columns

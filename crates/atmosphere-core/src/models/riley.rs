@@ -30,6 +30,7 @@
 
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::density::DensityProfile;
+use crate::atmosphere::spectra::Spectra;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
@@ -223,8 +224,7 @@ struct Leg {
 /// Riley et al.'s analytic single-scattering sky, prepared for one atmosphere.
 #[derive(Clone, Debug)]
 pub struct Riley {
-    wavelengths_nm: Vec<f64>,
-    solar_irradiance: Vec<f64>,
+    spectra: Spectra,
     bottom_radius_m: f64,
     top_radius_m: f64,
     ground_albedo: f64,
@@ -250,9 +250,10 @@ impl Riley {
         let rayleigh_s: Vec<f64> = c.iter().map(|c| c.rayleigh_scattering_per_m).collect();
         let mie_s: Vec<f64> = c.iter().map(|c| c.mie_scattering_per_m).collect();
         let mie_e: Vec<f64> = c.iter().map(|c| c.mie_extinction_per_m).collect();
+        let spectra = Spectra::new(atmosphere, &settings.wavelengths_nm);
         Riley {
-            wavelengths_nm: settings.wavelengths_nm.clone(),
-            solar_irradiance: c.iter().map(|c| c.solar_irradiance_w_m2_nm).collect(),
+            with_mie: spectra.needs_mie(settings.prune),
+            spectra,
             bottom_radius_m: atmosphere.bottom_radius_m,
             top_radius_m: atmosphere.top_radius_m,
             ground_albedo: atmosphere.ground_albedo,
@@ -265,11 +266,6 @@ impl Riley {
             mie: Species::new(&atmosphere.mie.density, thickness, &mie_s, &mie_e),
             mie_phase: atmosphere.mie.phase.clone(),
             prune: settings.prune,
-            with_mie: crate::atmosphere::spectra::Spectra::new(
-                atmosphere,
-                &settings.wavelengths_nm,
-            )
-            .needs_mie(settings.prune),
         }
     }
 
@@ -352,8 +348,8 @@ impl SkyModel for Riley {
         ModelId::Riley
     }
 
-    fn wavelengths_nm(&self) -> &[f64] {
-        &self.wavelengths_nm
+    fn spectra(&self) -> &Spectra {
+        &self.spectra
     }
 
     fn table_bytes(&self) -> usize {
@@ -364,16 +360,12 @@ impl SkyModel for Riley {
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
         atmosphere.validate()?;
         let settings = ModelSettings {
-            wavelengths_nm: self.wavelengths_nm.clone(),
+            wavelengths_nm: self.spectra.wavelengths_nm.clone(),
             prune: self.prune,
             ..ModelSettings::default()
         };
         *self = Riley::prepare(atmosphere, &settings);
         Ok(Vec::new())
-    }
-
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
-        &self.solar_irradiance
     }
 
     /// The transmitted sun only (single scattering has no sky light), through the flat
@@ -385,7 +377,7 @@ impl SkyModel for Riley {
         let e = SurfaceElement::new_within(self.bottom_radius_m, self.top_radius_m, surface)?;
         let y = e.r - self.bottom_radius_m;
         let (rayleigh, mie) = self.species();
-        Ok(e.sun_irradiances(&self.solar_irradiance, |w| {
+        Ok(e.sun_irradiances(&self.spectra.solar_irradiance, |w| {
             if e.sun_cosine > 0.0 && e.mu_s > 0.0 {
                 let tau: f64 = std::iter::once(rayleigh)
                     .chain(mie)
@@ -401,7 +393,7 @@ impl SkyModel for Riley {
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
-        let n = self.wavelengths_nm.len();
+        let n = self.spectra.wavelengths_nm.len();
         let (bottom, top) = (self.bottom_radius_m, self.top_radius_m);
         let Some(segment) = ViewSegment::new_within(bottom, top, ray)? else {
             return Ok(self.answer(vec![0.0; n], vec![1.0; n]));
@@ -432,7 +424,7 @@ impl SkyModel for Riley {
         let mut radiance = vec![0.0; n];
         let mut transmittance = vec![1.0; n];
         for w in 0..n {
-            let e = self.solar_irradiance[w];
+            let e = self.spectra.solar_irradiance[w];
             let both = [
                 (self.rayleigh.flat(w, e), self.rayleigh.albedo[w] * phase_r),
                 (self.mie.flat(w, e), self.mie.albedo[w] * phase_m),

@@ -189,10 +189,16 @@ impl RayRadiance {
 pub trait SkyModel: Send + Sync {
     /// The model's id, as on the command line.
     fn id(&self) -> ModelId;
+    /// The atmosphere's coefficients at the model's wavelengths.
+    fn spectra(&self) -> &Spectra;
     /// The wavelengths (nm) of every answer, in the order of the settings.
-    fn wavelengths_nm(&self) -> &[f64];
+    fn wavelengths_nm(&self) -> &[f64] {
+        &self.spectra().wavelengths_nm
+    }
     /// The solar irradiance at the top of the atmosphere used at each wavelength.
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64];
+    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
+        &self.spectra().solar_irradiance
+    }
     /// Radiance and transmittance of one ray.
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError>;
     /// Irradiance (W m^-2 nm^-1, per wavelength) on the surface element `surface`: the

@@ -204,8 +204,8 @@ impl SkyModel for Reference {
         ModelId::Reference
     }
 
-    fn wavelengths_nm(&self) -> &[f64] {
-        &self.spectra.wavelengths_nm
+    fn spectra(&self) -> &Spectra {
+        &self.spectra
     }
 
     fn table_bytes(&self) -> usize {
@@ -228,10 +228,6 @@ impl SkyModel for Reference {
         self.spectra = Spectra::new(atmosphere, &self.settings.wavelengths_nm);
         self.atmosphere = atmosphere.clone();
         Ok(update.rebuilt())
-    }
-
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
-        &self.spectra.solar_irradiance
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {

@@ -55,8 +55,7 @@ pub struct Bruneton {
     model_settings: ModelSettings,
     settings: BrunetonSettings,
     radii: Radii,
-    wavelengths_nm: Vec<f64>,
-    solar_irradiance: Vec<f64>,
+    spectra: Spectra,
     transmittance: TransmittanceTable,
     /// One set of tables per three wavelengths (the last set padded by repeating the last
     /// wavelength).
@@ -100,8 +99,7 @@ impl Bruneton {
                 bottom_m: atmosphere.bottom_radius_m,
                 top_m: atmosphere.top_radius_m,
             },
-            wavelengths_nm: settings.wavelengths_nm.clone(),
-            solar_irradiance: solar_irradiance(atmosphere, &settings.wavelengths_nm),
+            spectra: Spectra::new(atmosphere, &settings.wavelengths_nm),
             transmittance,
             groups: Vec::new(),
             build_seconds: 0.0,
@@ -119,7 +117,8 @@ impl Bruneton {
 
     /// The wavelengths of each group of three (the last padded by repeating the last).
     fn group_wavelengths(&self) -> Vec<[f64; 3]> {
-        self.wavelengths_nm
+        self.spectra
+            .wavelengths_nm
             .chunks(3)
             .map(|chunk| [0, 1, 2].map(|k| *chunk.get(k).unwrap_or(&chunk[chunk.len() - 1])))
             .collect()
@@ -128,7 +127,7 @@ impl Bruneton {
     /// True when Mie work is left out: pruning is on and the aerosol neither scatters
     /// nor absorbs at any of the model's wavelengths.
     pub fn mie_pruned(&self) -> bool {
-        !Spectra::new(&self.atmosphere, &self.wavelengths_nm).needs_mie(self.model_settings.prune)
+        !self.spectra.needs_mie(self.model_settings.prune)
     }
 
     /// The delta-M form of the Mie phase function for the order step; `None` when Mie
@@ -198,8 +197,8 @@ impl SkyModel for Bruneton {
         ModelId::Bruneton
     }
 
-    fn wavelengths_nm(&self) -> &[f64] {
-        &self.wavelengths_nm
+    fn spectra(&self) -> &Spectra {
+        &self.spectra
     }
 
     fn table_bytes(&self) -> usize {
@@ -228,7 +227,7 @@ impl SkyModel for Bruneton {
         let changed = update.changed;
         let was_pruned = self.mie_pruned();
         self.atmosphere = atmosphere.clone();
-        self.solar_irradiance = solar_irradiance(atmosphere, &self.wavelengths_nm);
+        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         self.radii = Radii {
             bottom_m: atmosphere.bottom_radius_m,
             top_m: atmosphere.top_radius_m,
@@ -270,10 +269,6 @@ impl SkyModel for Bruneton {
         Ok(update.rebuilt())
     }
 
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
-        &self.solar_irradiance
-    }
-
     /// The transmitted sun T(x, s) from the transmittance table (zero where the planet
     /// hides the sun's centre) and the sky's irradiance E[L](r, mu_s) from the irradiance
     /// table (section 4, Eq. 15: the irradiance on a horizontal element at radius r, from
@@ -281,7 +276,7 @@ impl SkyModel for Bruneton {
     /// (Eq. 16) for any element.
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
         let e = SurfaceElement::new(&self.atmosphere, surface)?;
-        let n = self.wavelengths_nm.len();
+        let n = self.spectra.wavelengths_nm.len();
         let column_sun = (!ray_hits_ground(e.r, e.mu_s, self.radii.bottom_m))
             .then(|| self.transmittance.column(e.r, e.mu_s));
         let mut out = Vec::with_capacity(n);
@@ -290,7 +285,7 @@ impl SkyModel for Bruneton {
             let sun_t = column_sun.map_or([0.0; 3], |c| tables.channels.transmittance(c));
             for k in 0..3 {
                 if 3 * g + k < n {
-                    let solar = self.solar_irradiance[3 * g + k];
+                    let solar = self.spectra.solar_irradiance[3 * g + k];
                     out.push(e.irradiance(solar, sun_t[k], solar * sky[k]));
                 }
             }
@@ -299,7 +294,7 @@ impl SkyModel for Bruneton {
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
-        let n = self.wavelengths_nm.len();
+        let n = self.spectra.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
             return Ok(RayRadiance::unattenuated(n));
         };
@@ -340,7 +335,7 @@ impl SkyModel for Bruneton {
         let mut radiance = Vec::with_capacity(n);
         let mut transmittance = Vec::with_capacity(n);
         for (g, tables) in self.groups.iter().enumerate() {
-            let solar = [0, 1, 2].map(|k| self.solar_irradiance[(3 * g + k).min(n - 1)]);
+            let solar = [0, 1, 2].map(|k| self.spectra.solar_irradiance[(3 * g + k).min(n - 1)]);
             let mut l = Self::scattered(tables, &p, nu, mie_phase);
             let t = tables.channels.transmittance(column);
             if let Some(q) = &end {
@@ -365,12 +360,4 @@ impl SkyModel for Bruneton {
             radiance_std_error: vec![0.0; n],
         })
     }
-}
-
-/// The solar irradiance at the top of the atmosphere at each wavelength.
-fn solar_irradiance(atmosphere: &Atmosphere, wavelengths_nm: &[f64]) -> Vec<f64> {
-    wavelengths_nm
-        .iter()
-        .map(|l| atmosphere.sun.irradiance_w_m2_nm.at(*l))
-        .collect()
 }

@@ -145,12 +145,8 @@ impl SkyModel for Dobashi {
         ModelId::Dobashi
     }
 
-    fn wavelengths_nm(&self) -> &[f64] {
-        &self.spectra.wavelengths_nm
-    }
-
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
-        &self.spectra.solar_irradiance
+    fn spectra(&self) -> &Spectra {
+        &self.spectra
     }
 
     fn table_bytes(&self) -> usize {

@@ -433,12 +433,8 @@ impl SkyModel for Hillaire {
         ModelId::Hillaire
     }
 
-    fn wavelengths_nm(&self) -> &[f64] {
-        &self.spectra.wavelengths_nm
-    }
-
-    fn solar_irradiance_w_m2_nm(&self) -> &[f64] {
-        &self.spectra.solar_irradiance
+    fn spectra(&self) -> &Spectra {
+        &self.spectra
     }
 
     /// The global tables plus the per-view tables of one view.
