@@ -23,7 +23,7 @@ use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
 use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
-use crate::sky::sky_pass::SkyPass;
+use crate::sky::sky_pass::{FrameRecorder, SkyPass};
 use crate::terrain::pass::TerrainPass;
 
 /// Most steps a frame runs (table builds and passes), for the timer.
@@ -256,7 +256,12 @@ impl Renderer {
                 timer.map(|t| t.render_writes(0)),
             );
         }
-        model.encode_planned(gpu, &io, &mut encoder, timer);
+        model.encode_planned(&mut FrameRecorder {
+            gpu,
+            io: &io,
+            encoder: &mut encoder,
+            timer,
+        });
         self.tone_map.encode(
             gpu,
             &tone_map,
