@@ -212,10 +212,8 @@ impl Renderer {
             targets.surface.upload(&self.gpu, texels);
         }
         let gpu = &self.gpu;
-        gpu.queue
-            .write_buffer(&self.atmosphere, 0, bytemuck::bytes_of(&atmosphere));
-        gpu.queue
-            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame_uniform));
+        gpu.write_uniform(&self.atmosphere, &atmosphere);
+        gpu.write_uniform(&self.frame, &frame_uniform);
 
         // The model's passes, made on first use.
         let model = {

@@ -81,11 +81,9 @@ impl StandaloneInputs {
             }),
             surface: SurfaceBuffer::new(gpu, 1, 1).views(),
         };
-        gpu.queue
-            .write_buffer(&inputs.atmosphere, 0, bytemuck::bytes_of(atmosphere));
+        gpu.write_uniform(&inputs.atmosphere, atmosphere);
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        gpu.queue
-            .write_buffer(&inputs.frame, 0, bytemuck::bytes_of(&frame_uniform));
+        gpu.write_uniform(&inputs.frame, &frame_uniform);
         inputs
     }
 

@@ -111,8 +111,7 @@ impl ModelPass for NishitaPass {
         self.g_l.fit(gpu, table_size(&settings))?;
         plan.build_if(NishitaStep::GL, self.g_l.plan(&frame.atmosphere));
         plan.run(NishitaStep::Pass);
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 

@@ -109,8 +109,7 @@ impl OneilTablePass {
             ray_samples,
             ..Default::default()
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         let view = self.texture.create_view(&Default::default());
         let bind_group = self.pipeline.bind_group(
             gpu,
@@ -246,8 +245,7 @@ impl ModelPass for OneilPass {
         self.table.pending = stale.then(|| (frame.atmosphere.clone(), settings.table_ray_samples));
         plan.build_if(OneilStep::OpticalDepth, stale);
         plan.run(OneilStep::Pass);
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 

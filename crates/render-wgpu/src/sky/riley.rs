@@ -114,8 +114,7 @@ impl ModelPass for RileyPass {
                 ..ModelSettings::default()
             };
             let uniform = RileyUniform::new(&Riley::prepare(&frame.atmosphere, &settings));
-            gpu.queue
-                .write_buffer(&self.params, 0, bytemuck::bytes_of(&uniform));
+            gpu.write_uniform(&self.params, &uniform);
             self.fitted_from = Some(key);
         }
         plan.run(RileyStep::Pass);

@@ -112,8 +112,7 @@ impl TransmittancePass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        gpu.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(atmosphere));
+        gpu.write_uniform(&self.uniform, atmosphere);
         let groups = texel_groups(&self.texture);
         self.pipeline.dispatch(
             encoder,

@@ -352,8 +352,7 @@ impl TerrainPass {
             forward: v4(forward),
             near: [near_plane_m(clearance) as f32, 0.0, 0.0, 0.0],
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         self.ensure_depth(gpu, frame.width, frame.height);
         Ok(self.draws.len())
     }

@@ -141,8 +141,7 @@ impl ModelPass for BrunetonPass {
         if orders {
             let irradiance_texels = uniform.irradiance_texels;
             let state = OrderState::initial(tables.settings.scattering_size, irradiance_texels);
-            gpu.queue
-                .write_buffer(&tables.state, 0, bytemuck::bytes_of(&state));
+            gpu.write_uniform(&tables.state, &state);
         }
         self.frame = PlannedFrame {
             atmosphere: atmosphere.clone(),

@@ -223,10 +223,8 @@ impl Tables {
             previous_is_single: 1,
             ..*uniform
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(uniform));
-        gpu.queue
-            .write_buffer(&self.params_first, 0, bytemuck::bytes_of(&first));
+        gpu.write_uniform(&self.params, uniform);
+        gpu.write_uniform(&self.params_first, &first);
     }
 
     /// Bytes of GPU memory the tables hold.

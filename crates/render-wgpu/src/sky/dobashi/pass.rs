@@ -274,8 +274,7 @@ impl ModelPass for DobashiPass {
             pad0: 0,
             pad1: 0,
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 

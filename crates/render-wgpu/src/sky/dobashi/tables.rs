@@ -238,8 +238,7 @@ impl DobashiTables {
             sphere_panels: SPHERE_PANELS,
             pad0: 0,
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         gpu.queue
             .write_buffer(&self.rows, 0, bytemuck::cast_slice(rows));
         let (pipeline, textures, label) = if spheres {

@@ -288,8 +288,7 @@ impl ModelPass for HillairePass {
         };
         plan.run(HillaireStep::Pass);
         self.pending = Some(source);
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 
