@@ -12,14 +12,14 @@ use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, texture_2d, uniform_buffer, uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
 use crate::sky::model_pass::{ModelPass, StepContext};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 use crate::sky::table_sampling::TableSampling;
-use crate::sky::transmittance::TABLE_FORMAT;
+use crate::sky::transmittance::{TABLE_FORMAT, table_texture};
 
 /// WGSL `OneilParams` (the per-pixel pass), 16 bytes.
 #[repr(C)]
@@ -69,15 +69,7 @@ impl OneilTablePass {
                 storage_texture_entry(2, TABLE_FORMAT, wgpu::TextureViewDimension::D2),
             ],
         )?;
-        let texture = texture_2d(
-            &gpu.device,
-            "oneil optical depth",
-            (heights, angles),
-            TABLE_FORMAT,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-        );
+        let texture = table_texture(gpu, "oneil optical depth", (heights, angles));
         Ok(OneilTablePass {
             pipeline,
             params: uniform_buffer(&gpu.device, "oneil table", size_of::<OneilTableUniform>()),

@@ -24,7 +24,8 @@ use crate::frame::{Frame, TerrainOptions};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    float_texture_entry, read_only_storage_buffer_entry, texture_2d, uniform_buffer, uniform_entry,
+    buffer, float_texture_entry, read_only_storage_buffer_entry, texture_2d, uniform_buffer,
+    uniform_entry,
 };
 use crate::gpu::shaders;
 use crate::terrain::chunk_key::ChunkKey;
@@ -480,12 +481,9 @@ fn buffer_with<T: Pod>(
 }
 
 fn chunk_buffer(gpu: &GpuContext, chunks: usize) -> wgpu::Buffer {
-    gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("terrain chunks"),
-        size: (chunks.max(1) * size_of::<ChunkUniform>()) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
+    let size = (chunks.max(1) * size_of::<ChunkUniform>()) as u64;
+    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+    buffer(&gpu.device, "terrain chunks", size, usage)
 }
 
 /// The colour map as an sRGB texture with its mip chain.
