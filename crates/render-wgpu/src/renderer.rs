@@ -23,7 +23,7 @@ use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
 use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
-use crate::sky::sky_pass::SkyPass;
+use crate::sky::sky_pass::{FrameRecorder, SkyPass};
 use crate::terrain::pass::TerrainPass;
 
 /// Most steps a frame runs (table builds and passes), for the timer.
@@ -212,10 +212,8 @@ impl Renderer {
             targets.surface.upload(&self.gpu, texels);
         }
         let gpu = &self.gpu;
-        gpu.queue
-            .write_buffer(&self.atmosphere, 0, bytemuck::bytes_of(&atmosphere));
-        gpu.queue
-            .write_buffer(&self.frame, 0, bytemuck::bytes_of(&frame_uniform));
+        gpu.write_uniform(&self.atmosphere, &atmosphere);
+        gpu.write_uniform(&self.frame, &frame_uniform);
 
         // The model's passes, made on first use.
         let model = {
@@ -256,7 +254,12 @@ impl Renderer {
                 timer.map(|t| t.render_writes(0)),
             );
         }
-        model.encode_planned(gpu, &io, &mut encoder, timer);
+        model.encode_planned(&mut FrameRecorder {
+            gpu,
+            io: &io,
+            encoder: &mut encoder,
+            timer,
+        });
         self.tone_map.encode(
             gpu,
             &tone_map,

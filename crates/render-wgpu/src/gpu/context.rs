@@ -69,6 +69,13 @@ impl GpuContext {
         }
     }
 
+    /// Queues the write of the plain data `value` at the start of `buffer` (a uniform's
+    /// upload, a state buffer's reset).
+    pub fn write_uniform<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer, value: &T) {
+        self.queue
+            .write_buffer(buffer, 0, bytemuck::bytes_of(value));
+    }
+
     /// Name, backend and device type of the adapter, for logs.
     pub fn adapter_summary(&self) -> String {
         summary(&self.adapter.get_info())

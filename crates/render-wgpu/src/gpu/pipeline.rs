@@ -120,14 +120,25 @@ pub fn texture_2d(
     })
 }
 
-/// A uniform buffer of `size` bytes that the CPU writes.
-pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: usize) -> wgpu::Buffer {
+/// A buffer of `size` bytes for `usage`, not mapped when made.
+pub fn buffer(
+    device: &wgpu::Device,
+    label: &str,
+    size: u64,
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
-        size: size as u64,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        size,
+        usage,
         mapped_at_creation: false,
     })
+}
+
+/// A uniform buffer of `size` bytes that the CPU writes.
+pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: usize) -> wgpu::Buffer {
+    let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+    buffer(device, label, size as u64, usage)
 }
 
 /// A compute pipeline and its one bind group layout.

@@ -3,6 +3,14 @@
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
+use crate::gpu::pipeline::buffer;
+
+/// A buffer of `size` bytes that the GPU copies results into and the CPU then maps
+/// ([`map_and_read`]).
+pub fn readable_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    let usage = wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ;
+    buffer(device, label, size, usage)
+}
 
 /// The raw bytes of `texture`'s texels, row-major without row padding (a 3D texture
 /// slice after slice); `texel_bytes` is the size of one texel of its format.
@@ -15,12 +23,8 @@ pub fn read_texture(
     let rows = height * texture.depth_or_array_layers();
     let row_bytes = width * texel_bytes;
     let padded_row_bytes = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read-back"),
-        size: u64::from(padded_row_bytes) * u64::from(rows),
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
+    let size = u64::from(padded_row_bytes) * u64::from(rows);
+    let buffer = readable_buffer(&gpu.device, "read-back", size);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     encoder.copy_texture_to_buffer(
         texture.as_image_copy(),

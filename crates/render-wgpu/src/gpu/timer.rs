@@ -4,7 +4,8 @@
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
-use crate::gpu::readback::map_and_read;
+use crate::gpu::pipeline::buffer;
+use crate::gpu::readback::{map_and_read, readable_buffer};
 
 /// A query set of two timestamps per pass and the buffers that bring them back.
 #[derive(Debug)]
@@ -32,24 +33,11 @@ impl GpuTimer {
             ty: wgpu::QueryType::Timestamp,
             count,
         });
-        let buffer = |label, usage| {
-            gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
+        let resolve_usage = wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC;
         Some(GpuTimer {
             queries,
-            resolved: buffer(
-                "timestamps",
-                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            ),
-            readable: buffer(
-                "timestamps read-back",
-                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            ),
+            resolved: buffer(&gpu.device, "timestamps", bytes, resolve_usage),
+            readable: readable_buffer(&gpu.device, "timestamps read-back", bytes),
             passes,
         })
     }

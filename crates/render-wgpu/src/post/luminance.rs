@@ -14,9 +14,9 @@ use atmosphere_core::color::SpectrumToColor;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::pipeline::{
-    ComputePipeline, storage_buffer_entry, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, buffer, storage_buffer_entry, texture_entry, uniform_buffer, uniform_entry,
 };
-use crate::gpu::readback::map_and_read;
+use crate::gpu::readback::{map_and_read, readable_buffer};
 
 /// Workgroups along each side of the dispatch (`GRID` in the shader).
 pub const GRID: u32 = 16;
@@ -81,27 +81,18 @@ impl LuminancePass {
         let params = uniform_buffer(&gpu.device, "luminance", 16);
         let [r, g, b] = luminance_weights(wavelengths_nm)?;
         let uniform = [r as f32, g as f32, b as f32, FLOOR_CD_M2 as f32];
-        gpu.queue
-            .write_buffer(&params, 0, bytemuck::cast_slice(&uniform));
-        let buffer = |label, usage| {
-            gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: SUMS_BYTES,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
+        gpu.write_uniform(&params, &uniform);
+        use wgpu::BufferUsages as U;
         Ok(LuminancePass {
             pipeline,
             params,
             sums: buffer(
+                &gpu.device,
                 "luminance sums",
-                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                SUMS_BYTES,
+                U::STORAGE | U::COPY_SRC,
             ),
-            read_back: buffer(
-                "luminance read-back",
-                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            ),
+            read_back: readable_buffer(&gpu.device, "luminance read-back", SUMS_BYTES),
         })
     }
 

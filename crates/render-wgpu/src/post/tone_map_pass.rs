@@ -89,8 +89,7 @@ impl ToneMapPass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(params));
+        gpu.write_uniform(&self.params, params);
         let hdr_view = hdr.create_view(&Default::default());
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("tone map"),

@@ -8,6 +8,7 @@ use atmosphere_core::atmosphere::table_inputs::Inputs;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
+use crate::sky::model_pass::StepContext;
 use crate::sky::transmittance::{TableOutput, TransmittancePass};
 
 /// The table, the atmosphere it was built from and the one the planned build is for.
@@ -45,16 +46,11 @@ impl ColumnsTable {
         stale
     }
 
-    /// Records the build planned by [`ColumnsTable::plan`], from `atmosphere` (the
-    /// planned atmosphere in the GPU's layout).
-    pub fn encode(
-        &mut self,
-        gpu: &GpuContext,
-        atmosphere: &AtmosphereUniform,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
-        self.pass.encode(gpu, atmosphere, encoder, timestamps);
+    /// Records into `cx` the build planned by [`ColumnsTable::plan`], from `atmosphere`
+    /// (the planned atmosphere in the GPU's layout).
+    pub fn encode(&mut self, atmosphere: &AtmosphereUniform, cx: StepContext<'_>) {
+        self.pass
+            .encode(cx.gpu, atmosphere, cx.encoder, cx.timestamps);
         if let Some(now) = self.pending.take() {
             self.built_from = Some(now);
         }

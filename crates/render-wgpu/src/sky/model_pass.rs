@@ -42,6 +42,17 @@ pub struct PassIo<'a> {
     pub has_surface: bool,
 }
 
+/// Where one step of a model records its work: the GPU, what the frame's steps read and
+/// write ([`PassIo`]), the frame's command encoder, and the timestamps to write around
+/// the step's compute pass when the frame is timed.
+#[derive(Debug)]
+pub struct StepContext<'a> {
+    pub gpu: &'a GpuContext,
+    pub io: &'a PassIo<'a>,
+    pub encoder: &'a mut wgpu::CommandEncoder,
+    pub timestamps: Option<wgpu::ComputePassTimestampWrites<'a>>,
+}
+
 /// What a model's table steps read when they run outside a `Renderer` frame (tests and
 /// profiling): the uniforms of a frame, and a 1x1 HDR target and surface, which they do
 /// not touch.
@@ -70,11 +81,9 @@ impl StandaloneInputs {
             }),
             surface: SurfaceBuffer::new(gpu, 1, 1).views(),
         };
-        gpu.queue
-            .write_buffer(&inputs.atmosphere, 0, bytemuck::bytes_of(atmosphere));
+        gpu.write_uniform(&inputs.atmosphere, atmosphere);
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
-        gpu.queue
-            .write_buffer(&inputs.frame, 0, bytemuck::bytes_of(&frame_uniform));
+        gpu.write_uniform(&inputs.frame, &frame_uniform);
         inputs
     }
 
@@ -95,27 +104,15 @@ pub trait ModelPass: std::fmt::Debug {
     /// The model's table builds and passes.
     type Step: PassStep;
 
-    /// Takes the frame's atmosphere and model settings: checks them (an error names what
-    /// the GPU cannot follow), remakes tables whose size changed, uploads the model's
-    /// uniforms, and adds to `plan` the table builds this frame needs (those never built
-    /// or whose inputs changed), those it skips with why, and the per-pixel pass.
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, Self::Step>,
-    ) -> Result<(), RenderError>;
+    /// Takes the atmosphere and model settings of the plan's frame ([`SkyPlan::frame`]):
+    /// checks them (an error names what the GPU cannot follow), remakes tables whose size
+    /// changed, uploads the model's uniforms, and adds to `plan` the table builds this
+    /// frame needs (those never built or whose inputs changed), those it skips with why,
+    /// and the per-pixel pass.
+    fn plan(&mut self, plan: &mut SkyPlan<'_, Self::Step>) -> Result<(), RenderError>;
 
-    /// Records `step`, one that the last [`ModelPass::plan`] listed, timed by `timestamps`
-    /// when given.
-    fn encode(
-        &mut self,
-        step: Self::Step,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    );
+    /// Records `step`, one that the last [`ModelPass::plan`] listed, into `cx`.
+    fn encode(&mut self, step: Self::Step, cx: StepContext<'_>);
 
     /// Whether the model may spread its table builds over frames
     /// ([`crate::Renderer::set_progressive`]); off until set. A model whose tables build

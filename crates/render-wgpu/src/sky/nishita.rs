@@ -7,14 +7,13 @@
 use atmosphere_core::models::nishita::NishitaSettings;
 use bytemuck::{Pod, Zeroable};
 
-use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{texture_entry, uniform_buffer};
 use crate::sky::columns_table::ColumnsTable;
-use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
+use crate::sky::model_pass::{ModelPass, StepContext, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 
@@ -104,38 +103,25 @@ impl NishitaPass {
 impl ModelPass for NishitaPass {
     type Step = NishitaStep;
 
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, NishitaStep>,
-    ) -> Result<(), RenderError> {
+    fn plan(&mut self, plan: &mut SkyPlan<'_, NishitaStep>) -> Result<(), RenderError> {
+        let (gpu, frame) = (plan.gpu, plan.frame);
         self.atmosphere = frame_atmosphere(frame)?;
         let settings = NishitaSettings::from_options(&frame.settings.options)?;
         let params = NishitaUniform::new(&settings)?;
         self.g_l.fit(gpu, table_size(&settings))?;
         plan.build_if(NishitaStep::GL, self.g_l.plan(&frame.atmosphere));
         plan.run(NishitaStep::Pass);
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 
-    fn encode(
-        &mut self,
-        step: NishitaStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    fn encode(&mut self, step: NishitaStep, cx: StepContext<'_>) {
         match step {
-            NishitaStep::GL => self.g_l.encode(gpu, &self.atmosphere, encoder, timestamps),
+            NishitaStep::GL => self.g_l.encode(&self.atmosphere, cx),
             NishitaStep::Pass => {
                 let table = self.g_l.texture().create_view(&Default::default());
                 let tables = [wgpu::BindingResource::TextureView(&table)];
-                self.pass
-                    .encode(gpu, io, &self.params, &tables, encoder, timestamps);
+                self.pass.encode(cx, &self.params, &tables);
             }
         }
     }

@@ -7,20 +7,19 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::oneil::{OneilSettings, OpticalDepthTable};
 use bytemuck::{Pod, Zeroable};
 
-use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, check_wavelengths};
 use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, texture_2d, uniform_buffer, uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
-use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::sky::model_pass::{ModelPass, StepContext};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 use crate::sky::table_sampling::TableSampling;
-use crate::sky::transmittance::TABLE_FORMAT;
+use crate::sky::transmittance::{TABLE_FORMAT, table_texture};
 
 /// WGSL `OneilParams` (the per-pixel pass), 16 bytes.
 #[repr(C)]
@@ -70,15 +69,7 @@ impl OneilTablePass {
                 storage_texture_entry(2, TABLE_FORMAT, wgpu::TextureViewDimension::D2),
             ],
         )?;
-        let texture = texture_2d(
-            &gpu.device,
-            "oneil optical depth",
-            (heights, angles),
-            TABLE_FORMAT,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-        );
+        let texture = table_texture(gpu, "oneil optical depth", (heights, angles));
         Ok(OneilTablePass {
             pipeline,
             params: uniform_buffer(&gpu.device, "oneil table", size_of::<OneilTableUniform>()),
@@ -110,8 +101,7 @@ impl OneilTablePass {
             ray_samples,
             ..Default::default()
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         let view = self.texture.create_view(&Default::default());
         let bind_group = self.pipeline.bind_group(
             gpu,
@@ -227,12 +217,8 @@ impl OneilPass {
 impl ModelPass for OneilPass {
     type Step = OneilStep;
 
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, OneilStep>,
-    ) -> Result<(), RenderError> {
+    fn plan(&mut self, plan: &mut SkyPlan<'_, OneilStep>) -> Result<(), RenderError> {
+        let (gpu, frame) = (plan.gpu, plan.frame);
         check_wavelengths(&frame.settings.wavelengths_nm)?;
         let settings = OneilSettings::from_options(&frame.settings.options)?;
         let params = OneilUniform {
@@ -251,27 +237,20 @@ impl ModelPass for OneilPass {
         self.table.pending = stale.then(|| (frame.atmosphere.clone(), settings.table_ray_samples));
         plan.build_if(OneilStep::OpticalDepth, stale);
         plan.run(OneilStep::Pass);
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 
-    fn encode(
-        &mut self,
-        step: OneilStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    fn encode(&mut self, step: OneilStep, cx: StepContext<'_>) {
         let table = &mut self.table;
         match step {
             OneilStep::OpticalDepth => {
                 // `plan` checked that the count fits in u32.
                 let ray_samples = self.settings.table_ray_samples as u32;
+                let atmosphere = cx.io.atmosphere;
                 table
                     .pass
-                    .encode(gpu, io.atmosphere, ray_samples, encoder, timestamps);
+                    .encode(cx.gpu, atmosphere, ray_samples, cx.encoder, cx.timestamps);
                 if let Some(key) = table.pending.take() {
                     table.built_from = Some(key);
                 }
@@ -279,8 +258,7 @@ impl ModelPass for OneilPass {
             OneilStep::Pass => {
                 let view = table.pass.texture().create_view(&Default::default());
                 let tables = [wgpu::BindingResource::TextureView(&view)];
-                self.pass
-                    .encode(gpu, io, &self.params, &tables, encoder, timestamps);
+                self.pass.encode(cx, &self.params, &tables);
             }
         }
     }

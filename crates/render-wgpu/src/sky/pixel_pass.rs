@@ -14,7 +14,7 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{PixelPipeline, storage_texture_entry, texel_groups, uniform_entry};
-use crate::sky::model_pass::PassIo;
+use crate::sky::model_pass::StepContext;
 use crate::sky::table_sampling::TableSampling;
 
 /// The entry point of a model's pass and what it binds besides the frame's; see the
@@ -75,17 +75,15 @@ impl PixelPass {
         })
     }
 
-    /// Records the pass over every pixel of `io`'s HDR target, with `params` at binding 2
-    /// and `tables` from binding 3 on, timed by `timestamps` when given.
+    /// Records into `cx` the pass over every pixel of its HDR target, with `params` at
+    /// binding 2 and `tables` from binding 3 on.
     pub fn encode(
         &self,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
+        cx: StepContext<'_>,
         params: &wgpu::Buffer,
         tables: &[wgpu::BindingResource<'_>],
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
+        let io = cx.io;
         let hdr = io.hdr.create_view(&Default::default());
         let [geometry, albedo] = io.surface;
         let mut resources: Vec<(u32, wgpu::BindingResource<'_>)> = (0..)
@@ -109,8 +107,8 @@ impl PixelPass {
             resources.push(sampling.sampler_binding());
         }
         let pipeline = self.pipeline.variant(io.has_surface);
-        let bind_group = pipeline.bind_group_numbered(gpu, &resources);
+        let bind_group = pipeline.bind_group_numbered(cx.gpu, &resources);
         let groups = texel_groups(io.hdr);
-        pipeline.dispatch(encoder, self.label, &bind_group, groups, timestamps);
+        pipeline.dispatch(cx.encoder, self.label, &bind_group, groups, cx.timestamps);
     }
 }

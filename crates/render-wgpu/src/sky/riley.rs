@@ -8,13 +8,12 @@ use atmosphere_core::models::riley::Riley;
 use atmosphere_core::models::sky_model::ModelSettings;
 use bytemuck::{Pod, Zeroable};
 
-use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{RGB_WAVELENGTHS_NM, check_wavelengths};
 use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::uniform_buffer;
-use crate::sky::model_pass::{ModelPass, PassIo};
+use crate::sky::model_pass::{ModelPass, StepContext};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 
@@ -103,12 +102,8 @@ impl RileyPass {
 impl ModelPass for RileyPass {
     type Step = RileyStep;
 
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, RileyStep>,
-    ) -> Result<(), RenderError> {
+    fn plan(&mut self, plan: &mut SkyPlan<'_, RileyStep>) -> Result<(), RenderError> {
+        let (gpu, frame) = (plan.gpu, plan.frame);
         check_wavelengths(&frame.settings.wavelengths_nm)?;
         frame.settings.options.reader("riley").finish()?;
         let key = (frame.atmosphere.clone(), frame.settings.prune);
@@ -119,26 +114,16 @@ impl ModelPass for RileyPass {
                 ..ModelSettings::default()
             };
             let uniform = RileyUniform::new(&Riley::prepare(&frame.atmosphere, &settings));
-            gpu.queue
-                .write_buffer(&self.params, 0, bytemuck::bytes_of(&uniform));
+            gpu.write_uniform(&self.params, &uniform);
             self.fitted_from = Some(key);
         }
         plan.run(RileyStep::Pass);
         Ok(())
     }
 
-    fn encode(
-        &mut self,
-        step: RileyStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    fn encode(&mut self, step: RileyStep, cx: StepContext<'_>) {
         match step {
-            RileyStep::Pass => self
-                .pass
-                .encode(gpu, io, &self.params, &[], encoder, timestamps),
+            RileyStep::Pass => self.pass.encode(cx, &self.params, &[]),
         }
     }
 

@@ -8,7 +8,7 @@ use crate::frame::plan::{FramePlan, StepKind};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::timer::GpuTimer;
-use crate::sky::model_pass::{ModelPass, PassIo, StandaloneInputs};
+use crate::sky::model_pass::{ModelPass, PassIo, StandaloneInputs, StepContext};
 use crate::sky::steps::{PassStep, PlannedStep, SkyPlan};
 
 /// A sky model behind one object-safe interface; see the module documentation.
@@ -21,21 +21,37 @@ pub trait SkyPass: std::fmt::Debug {
         plan: &mut FramePlan,
     ) -> Result<(), RenderError>;
 
-    /// Records the steps the last [`SkyPass::plan`] added, in order, each timed by
-    /// `timer` (when given) at its index in the frame's plan.
-    fn encode_planned(
-        &mut self,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timer: Option<&GpuTimer>,
-    );
+    /// Records the steps the last [`SkyPass::plan`] added, in order, into `frame`.
+    fn encode_planned(&mut self, frame: &mut FrameRecorder<'_>);
 
     /// [`ModelPass::set_progressive`].
     fn set_progressive(&mut self, on: bool);
 
     /// [`ModelPass::table_bytes`].
     fn table_bytes(&self) -> u64;
+}
+
+/// Where a frame's steps record their work: the GPU, what they read and write
+/// ([`PassIo`]), the frame's command encoder, and the timer of the frame's steps, when
+/// timed.
+#[derive(Debug)]
+pub struct FrameRecorder<'a> {
+    pub gpu: &'a GpuContext,
+    pub io: &'a PassIo<'a>,
+    pub encoder: &'a mut wgpu::CommandEncoder,
+    pub timer: Option<&'a GpuTimer>,
+}
+
+impl FrameRecorder<'_> {
+    /// Where the step at `index` in the frame's plan records, timed in that slot.
+    pub fn step(&mut self, index: u32) -> StepContext<'_> {
+        StepContext {
+            gpu: self.gpu,
+            io: self.io,
+            encoder: self.encoder,
+            timestamps: self.timer.map(|t| t.compute_writes(index)),
+        }
+    }
 }
 
 /// A [`ModelPass`] and the steps it planned for the frame.
@@ -63,19 +79,12 @@ impl<M: ModelPass> SkyPass for Planned<M> {
     ) -> Result<(), RenderError> {
         self.steps.clear();
         self.model
-            .plan(gpu, frame, &mut SkyPlan::new(plan, &mut self.steps))
+            .plan(&mut SkyPlan::new(gpu, frame, plan, &mut self.steps))
     }
 
-    fn encode_planned(
-        &mut self,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timer: Option<&GpuTimer>,
-    ) {
+    fn encode_planned(&mut self, frame: &mut FrameRecorder<'_>) {
         for &PlannedStep { index, step } in &self.steps {
-            let timestamps = timer.map(|t| t.compute_writes(index));
-            self.model.encode(step, gpu, io, encoder, timestamps);
+            self.model.encode(step, frame.step(index));
         }
     }
 
@@ -99,15 +108,21 @@ pub fn build_tables<M: ModelPass>(
     frame.validate()?;
     let mut plan = FramePlan::default();
     let mut steps = Vec::new();
-    model.plan(gpu, frame, &mut SkyPlan::new(&mut plan, &mut steps))?;
+    model.plan(&mut SkyPlan::new(gpu, frame, &mut plan, &mut steps))?;
     plan.steps.retain(|s| s.kind == StepKind::TableBuild);
     let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
     let inputs = StandaloneInputs::new(gpu, &atmosphere, frame);
     let io = inputs.io();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
-    for PlannedStep { step, .. } in steps {
+    let mut recorder = FrameRecorder {
+        gpu,
+        io: &io,
+        encoder: &mut encoder,
+        timer: None,
+    };
+    for PlannedStep { index, step } in steps {
         if step.kind() == StepKind::TableBuild {
-            model.encode(step, gpu, &io, &mut encoder, None);
+            model.encode(step, recorder.step(index));
         }
     }
     gpu.queue.submit([encoder.finish()]);

@@ -4,7 +4,9 @@
 //! [`FramePlan`] (what the viewer shows and tests query) and as the typed step, with its
 //! index in the frame's plan (its timer slot), in the list the model encodes.
 
+use crate::frame::Frame;
 use crate::frame::plan::{FramePlan, INPUTS_UNCHANGED, StepKind};
+use crate::gpu::context::GpuContext;
 
 /// One table build or pass of a model.
 pub trait PassStep: Copy + std::fmt::Debug + Eq + 'static {
@@ -21,23 +23,38 @@ pub struct PlannedStep<S> {
     pub step: S,
 }
 
-/// The steps one model plans for a frame; see the module documentation.
+/// The steps one model plans for a frame, and what it plans them with; see the module
+/// documentation.
 #[derive(Debug)]
 pub struct SkyPlan<'a, S> {
-    frame: &'a mut FramePlan,
+    /// The GPU, for the tables a plan remakes and the uniforms it uploads.
+    pub gpu: &'a GpuContext,
+    /// The frame planned.
+    pub frame: &'a Frame,
+    record: &'a mut FramePlan,
     steps: &'a mut Vec<PlannedStep<S>>,
 }
 
 impl<'a, S: PassStep> SkyPlan<'a, S> {
-    /// A plan adding to `frame` and to `steps`.
-    pub fn new(frame: &'a mut FramePlan, steps: &'a mut Vec<PlannedStep<S>>) -> Self {
-        SkyPlan { frame, steps }
+    /// A plan of `frame` on `gpu`, adding to `record` (the frame's plan) and to `steps`.
+    pub fn new(
+        gpu: &'a GpuContext,
+        frame: &'a Frame,
+        record: &'a mut FramePlan,
+        steps: &'a mut Vec<PlannedStep<S>>,
+    ) -> Self {
+        SkyPlan {
+            gpu,
+            frame,
+            record,
+            steps,
+        }
     }
 
     /// Adds a step that runs.
     pub fn run(&mut self, step: S) {
-        let index = self.frame.steps.len() as u32;
-        self.frame.run(step.name(), step.kind());
+        let index = self.record.steps.len() as u32;
+        self.record.run(step.name(), step.kind());
         self.steps.push(PlannedStep { index, step });
     }
 
@@ -53,16 +70,16 @@ impl<'a, S: PassStep> SkyPlan<'a, S> {
 
     /// Records a step left out and why.
     pub fn skip(&mut self, step: S, why: &'static str) {
-        self.frame.skip(step.name(), why);
+        self.record.skip(step.name(), why);
     }
 
     /// Whether the frame's rays may end on a surface ([`FramePlan::surface`]).
     pub fn surface(&self) -> bool {
-        self.frame.surface
+        self.record.surface
     }
 
     /// What a progressive table build is doing this frame ([`FramePlan::building`]).
     pub fn set_building(&mut self, building: Option<String>) {
-        self.frame.building = building;
+        self.record.building = building;
     }
 }

@@ -17,6 +17,15 @@ use crate::gpu::readback::read_texture;
 /// Texture format of the table.
 pub const TABLE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
+/// A 2D table of [`TABLE_FORMAT`], `width` x `height` texels, that a compute pass writes,
+/// later passes read, and tests copy back.
+pub fn table_texture(gpu: &GpuContext, label: &str, (width, height): (u32, u32)) -> wgpu::Texture {
+    let usage = wgpu::TextureUsages::STORAGE_BINDING
+        | wgpu::TextureUsages::TEXTURE_BINDING
+        | wgpu::TextureUsages::COPY_SRC;
+    texture_2d(&gpu.device, label, (width, height), TABLE_FORMAT, usage)
+}
+
 /// What the table's texels hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TableOutput {
@@ -66,15 +75,7 @@ impl TransmittancePass {
             ],
         )?;
         let uniform = uniform_buffer(&gpu.device, "atmosphere", size_of::<AtmosphereUniform>());
-        let texture = texture_2d(
-            &gpu.device,
-            "transmittance table",
-            (width, height),
-            TABLE_FORMAT,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-        );
+        let texture = table_texture(gpu, "transmittance table", (width, height));
         let view = texture.create_view(&Default::default());
         let bind_group = pipeline.bind_group(
             gpu,
@@ -112,8 +113,7 @@ impl TransmittancePass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        gpu.queue
-            .write_buffer(&self.uniform, 0, bytemuck::bytes_of(atmosphere));
+        gpu.write_uniform(&self.uniform, atmosphere);
         let groups = texel_groups(&self.texture);
         self.pipeline.dispatch(
             encoder,

@@ -24,7 +24,8 @@ use crate::frame::{Frame, TerrainOptions};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    float_texture_entry, read_only_storage_buffer_entry, texture_2d, uniform_buffer, uniform_entry,
+    buffer, float_texture_entry, read_only_storage_buffer_entry, texture_2d, uniform_buffer,
+    uniform_entry,
 };
 use crate::gpu::shaders;
 use crate::terrain::chunk_key::ChunkKey;
@@ -352,8 +353,7 @@ impl TerrainPass {
             forward: v4(forward),
             near: [near_plane_m(clearance) as f32, 0.0, 0.0, 0.0],
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         self.ensure_depth(gpu, frame.width, frame.height);
         Ok(self.draws.len())
     }
@@ -481,12 +481,9 @@ fn buffer_with<T: Pod>(
 }
 
 fn chunk_buffer(gpu: &GpuContext, chunks: usize) -> wgpu::Buffer {
-    gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("terrain chunks"),
-        size: (chunks.max(1) * size_of::<ChunkUniform>()) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
+    let size = (chunks.max(1) * size_of::<ChunkUniform>()) as u64;
+    let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+    buffer(&gpu.device, "terrain chunks", size, usage)
 }
 
 /// The colour map as an sRGB texture with its mip chain.

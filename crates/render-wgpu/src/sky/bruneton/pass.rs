@@ -7,7 +7,6 @@ use atmosphere_core::atmosphere::presets::earth;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::models::bruneton::BrunetonSettings;
 
-use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
@@ -19,7 +18,7 @@ use crate::sky::bruneton::progressive::{Recording, Share};
 use crate::sky::bruneton::step::BrunetonStep;
 use crate::sky::bruneton::tables::Tables;
 use crate::sky::bruneton::uniform::BrunetonUniform;
-use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
+use crate::sky::model_pass::{ModelPass, StepContext, frame_atmosphere};
 use crate::sky::steps::SkyPlan;
 use crate::sky::table_sampling::TableSampling;
 
@@ -75,77 +74,13 @@ impl BrunetonPass {
             progressive: false,
         })
     }
-
-    /// Records `step` of the last plan, timed by `timestamps` when given, and notes what
-    /// the tables it builds were built from.
-    pub(super) fn encode_step(
-        &mut self,
-        step: BrunetonStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
-        let (tables, frame) = (&mut self.tables, &self.frame);
-        let steps = StepEncoder {
-            gpu,
-            io,
-            tables,
-            pipelines: &self.pipelines,
-            sampling: &self.sampling,
-        };
-        let atmosphere = &frame.atmosphere_uniform;
-        match step {
-            BrunetonStep::Transmittance => {
-                tables.columns.encode(gpu, atmosphere, encoder, timestamps)
-            }
-            BrunetonStep::SunTransmittance => tables
-                .transmittance
-                .encode(gpu, atmosphere, encoder, timestamps),
-            BrunetonStep::Density => steps.density(encoder, timestamps),
-            BrunetonStep::SingleScattering => steps.single_scattering(encoder, timestamps),
-            BrunetonStep::ScatteringOrders => encode_orders(
-                gpu,
-                io,
-                tables,
-                &self.pipelines,
-                frame.recording,
-                encoder,
-                timestamps,
-            ),
-            BrunetonStep::ScatteringTexture => steps.scattering_texture(encoder, timestamps),
-            BrunetonStep::ViewSlice => steps.view_slice(encoder, timestamps),
-            BrunetonStep::Render => steps.render(frame.inside, encoder, timestamps),
-        }
-        let built = &mut tables.built;
-        let atmosphere = || Some(frame.atmosphere.clone());
-        match step {
-            BrunetonStep::Transmittance => built.columns = atmosphere(),
-            BrunetonStep::SunTransmittance => built.sun = atmosphere(),
-            BrunetonStep::SingleScattering => built.single = atmosphere(),
-            BrunetonStep::ScatteringOrders => {
-                if frame.recording.starts() {
-                    built.orders = Some((frame.atmosphere.clone(), frame.mie));
-                }
-                tables.next = frame.recording.next(tables.slices, tables.max_orders);
-            }
-            BrunetonStep::Density
-            | BrunetonStep::ScatteringTexture
-            | BrunetonStep::ViewSlice
-            | BrunetonStep::Render => {}
-        }
-    }
 }
 
 impl ModelPass for BrunetonPass {
     type Step = BrunetonStep;
 
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, BrunetonStep>,
-    ) -> Result<(), RenderError> {
+    fn plan(&mut self, plan: &mut SkyPlan<'_, BrunetonStep>) -> Result<(), RenderError> {
+        let (gpu, frame) = (plan.gpu, plan.frame);
         let atmosphere_uniform = frame_atmosphere(frame)?;
         let settings = BrunetonSettings::from_options(&frame.settings.options)?;
         let max_orders = frame.settings.max_orders.unwrap_or(settings.order_limit);
@@ -206,8 +141,7 @@ impl ModelPass for BrunetonPass {
         if orders {
             let irradiance_texels = uniform.irradiance_texels;
             let state = OrderState::initial(tables.settings.scattering_size, irradiance_texels);
-            gpu.queue
-                .write_buffer(&tables.state, 0, bytemuck::bytes_of(&state));
+            gpu.write_uniform(&tables.state, &state);
         }
         self.frame = PlannedFrame {
             atmosphere: atmosphere.clone(),
@@ -219,15 +153,63 @@ impl ModelPass for BrunetonPass {
         Ok(())
     }
 
-    fn encode(
-        &mut self,
-        step: BrunetonStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
-        self.encode_step(step, gpu, io, encoder, timestamps);
+    /// Records `step` of the last plan into `cx`, and notes what the tables it builds were
+    /// built from.
+    fn encode(&mut self, step: BrunetonStep, cx: StepContext<'_>) {
+        let StepContext {
+            gpu,
+            io,
+            encoder,
+            timestamps,
+        } = cx;
+        let (tables, frame) = (&mut self.tables, &self.frame);
+        let steps = StepEncoder {
+            gpu,
+            io,
+            tables,
+            pipelines: &self.pipelines,
+            sampling: &self.sampling,
+        };
+        let atmosphere = &frame.atmosphere_uniform;
+        match step {
+            BrunetonStep::Transmittance => {
+                tables.columns.encode(gpu, atmosphere, encoder, timestamps)
+            }
+            BrunetonStep::SunTransmittance => tables
+                .transmittance
+                .encode(gpu, atmosphere, encoder, timestamps),
+            BrunetonStep::Density => steps.density(encoder, timestamps),
+            BrunetonStep::SingleScattering => steps.single_scattering(encoder, timestamps),
+            BrunetonStep::ScatteringOrders => encode_orders(
+                gpu,
+                io,
+                tables,
+                &self.pipelines,
+                frame.recording,
+                encoder,
+                timestamps,
+            ),
+            BrunetonStep::ScatteringTexture => steps.scattering_texture(encoder, timestamps),
+            BrunetonStep::ViewSlice => steps.view_slice(encoder, timestamps),
+            BrunetonStep::Render => steps.render(frame.inside, encoder, timestamps),
+        }
+        let built = &mut tables.built;
+        let atmosphere = || Some(frame.atmosphere.clone());
+        match step {
+            BrunetonStep::Transmittance => built.columns = atmosphere(),
+            BrunetonStep::SunTransmittance => built.sun = atmosphere(),
+            BrunetonStep::SingleScattering => built.single = atmosphere(),
+            BrunetonStep::ScatteringOrders => {
+                if frame.recording.starts() {
+                    built.orders = Some((frame.atmosphere.clone(), frame.mie));
+                }
+                tables.next = frame.recording.next(tables.slices, tables.max_orders);
+            }
+            BrunetonStep::Density
+            | BrunetonStep::ScatteringTexture
+            | BrunetonStep::ViewSlice
+            | BrunetonStep::Render => {}
+        }
     }
 
     /// On: the loop over orders spreads over frames: the first frame builds every table

@@ -3,7 +3,7 @@
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
-use crate::gpu::readback::{map_and_read, read_texture};
+use crate::gpu::readback::{map_and_read, read_texture, readable_buffer};
 use crate::sky::bruneton::order_state::OrderState;
 use crate::sky::bruneton::pass::BrunetonPass;
 use crate::sky::bruneton::store::StoreTable;
@@ -16,12 +16,7 @@ fn read_buffer(
     offset: u64,
     size: u64,
 ) -> Result<Vec<u8>, RenderError> {
-    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("bruneton read-back"),
-        size,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
+    let buffer = readable_buffer(&gpu.device, "bruneton read-back", size);
     let mut encoder = gpu.device.create_command_encoder(&Default::default());
     encoder.copy_buffer_to_buffer(source, offset, &buffer, 0, size);
     gpu.queue.submit([encoder.finish()]);

@@ -9,7 +9,7 @@ use crate::sky::bruneton::built::Built;
 use crate::sky::bruneton::orders::{clear_orders, order_dispatches};
 use crate::sky::bruneton::pass::BrunetonPass;
 use crate::sky::bruneton::step::BrunetonStep;
-use crate::sky::model_pass::{ModelPass, StandaloneInputs};
+use crate::sky::model_pass::{ModelPass, StandaloneInputs, StepContext};
 use crate::sky::steps::{PassStep, PlannedStep, SkyPlan};
 
 /// Waits for the GPU to finish its work.
@@ -60,7 +60,7 @@ impl BrunetonPass {
         self.tables.built = Built::default();
         let mut plan = FramePlan::default();
         let mut steps = Vec::new();
-        self.plan(gpu, frame, &mut SkyPlan::new(&mut plan, &mut steps))?;
+        self.plan(&mut SkyPlan::new(gpu, frame, &mut plan, &mut steps))?;
         let inputs = StandaloneInputs::new(gpu, &self.frame.atmosphere_uniform, frame);
         let io = inputs.io();
         let mut times = Vec::new();
@@ -72,7 +72,13 @@ impl BrunetonPass {
         for step in table_builds {
             if step != BrunetonStep::ScatteringOrders {
                 let ms = timed(gpu, |encoder| {
-                    self.encode_step(step, gpu, &io, encoder, None);
+                    let cx = StepContext {
+                        gpu,
+                        io: &io,
+                        encoder,
+                        timestamps: None,
+                    };
+                    self.encode(step, cx);
                 })?;
                 times.push((step.name().to_string(), ms));
                 continue;

@@ -6,7 +6,7 @@ use atmosphere_core::models::bruneton::BrunetonSettings;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
-use crate::gpu::pipeline::{texture_2d, uniform_buffer};
+use crate::gpu::pipeline::{buffer, texture_2d, uniform_buffer};
 use crate::sky::bruneton::built::Built;
 use crate::sky::bruneton::order_state::{MAX_ORDERS, OrderState};
 use crate::sky::bruneton::progressive::Share;
@@ -144,6 +144,8 @@ impl Tables {
                 wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
             )
         };
+        use wgpu::BufferUsages as U;
+        let copies = U::COPY_SRC | U::COPY_DST;
         Ok(Tables {
             settings: settings.clone(),
             max_orders,
@@ -155,23 +157,18 @@ impl Tables {
                 t_width,
                 t_height,
             )?,
-            store: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("bruneton store"),
-                size: layout.bytes(),
-                usage: wgpu::BufferUsages::STORAGE
-                    | wgpu::BufferUsages::COPY_SRC
-                    | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
-            state: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("bruneton order state"),
-                size: size_of::<OrderState>() as u64,
-                usage: wgpu::BufferUsages::STORAGE
-                    | wgpu::BufferUsages::INDIRECT
-                    | wgpu::BufferUsages::COPY_SRC
-                    | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
+            store: buffer(
+                device,
+                "bruneton store",
+                layout.bytes(),
+                U::STORAGE | copies,
+            ),
+            state: buffer(
+                device,
+                "bruneton order state",
+                size_of::<OrderState>() as u64,
+                U::STORAGE | U::INDIRECT | copies,
+            ),
             params_first: uniform_buffer(device, "bruneton order 2", size_of::<BrunetonUniform>()),
             params: uniform_buffer(device, "bruneton", size_of::<BrunetonUniform>()),
             density: device.create_texture(&wgpu::TextureDescriptor {
@@ -223,10 +220,8 @@ impl Tables {
             previous_is_single: 1,
             ..*uniform
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(uniform));
-        gpu.queue
-            .write_buffer(&self.params_first, 0, bytemuck::bytes_of(&first));
+        gpu.write_uniform(&self.params, uniform);
+        gpu.write_uniform(&self.params_first, &first);
     }
 
     /// Bytes of GPU memory the tables hold.

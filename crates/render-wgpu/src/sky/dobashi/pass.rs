@@ -5,7 +5,6 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::dobashi::{AmbientTable, DobashiSettings, PlaneTables};
 use bytemuck::{Pod, Zeroable};
 
-use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
@@ -20,7 +19,7 @@ use crate::sky::dobashi::ambient::{
 };
 use crate::sky::dobashi::step::DobashiStep;
 use crate::sky::dobashi::tables::{DobashiTables, plane_interval_m, sphere_rows, table_key};
-use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
+use crate::sky::model_pass::{ModelPass, StepContext, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::SkyPlan;
 use crate::sky::table_sampling::TableSampling;
@@ -182,13 +181,8 @@ impl DobashiPass {
 
     /// Records the ambient build: it reads the unit table and writes the ambient table
     /// at binding 12.
-    fn encode_ambient(
-        &self,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    fn encode_ambient(&self, cx: StepContext<'_>) {
+        let io = cx.io;
         let views = self.table_views();
         let unit = self.unit_ambient.create_view(&Default::default());
         let out = self.ambient.create_view(&Default::default());
@@ -200,21 +194,18 @@ impl DobashiPass {
         resources.extend(self.inputs(&views, &unit));
         resources.push(wgpu::BindingResource::TextureView(&out));
         let pipeline = &self.ambient_pipeline;
-        let bind_group = self.sampling.bind_group(gpu, pipeline, &resources);
+        let bind_group = self.sampling.bind_group(cx.gpu, pipeline, &resources);
         let groups = [(self.settings.ambient_sun_angles as u32).div_ceil(8), 1, 1];
-        pipeline.dispatch(encoder, "dobashi ambient", &bind_group, groups, timestamps);
+        let label = "dobashi ambient";
+        pipeline.dispatch(cx.encoder, label, &bind_group, groups, cx.timestamps);
     }
 }
 
 impl ModelPass for DobashiPass {
     type Step = DobashiStep;
 
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, DobashiStep>,
-    ) -> Result<(), RenderError> {
+    fn plan(&mut self, plan: &mut SkyPlan<'_, DobashiStep>) -> Result<(), RenderError> {
+        let (gpu, frame) = (plan.gpu, plan.frame);
         self.atmosphere = frame_atmosphere(frame)?;
         let settings = DobashiSettings::from_options(&frame.settings.options)?;
         let atmosphere = &frame.atmosphere;
@@ -283,38 +274,30 @@ impl ModelPass for DobashiPass {
             pad0: 0,
             pad1: 0,
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 
-    fn encode(
-        &mut self,
-        step: DobashiStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    fn encode(&mut self, step: DobashiStep, cx: StepContext<'_>) {
         match step {
-            DobashiStep::GL => self.g_l.encode(gpu, &self.atmosphere, encoder, timestamps),
+            DobashiStep::GL => self.g_l.encode(&self.atmosphere, cx),
             DobashiStep::PlaneTables | DobashiStep::SphereTables => {
                 let spheres = step == DobashiStep::SphereTables;
                 self.tables.encode(
-                    gpu,
-                    io.atmosphere,
+                    cx.gpu,
+                    cx.io.atmosphere,
                     self.interval_m,
                     &self.rows,
                     spheres,
-                    encoder,
-                    timestamps,
+                    cx.encoder,
+                    cx.timestamps,
                 );
                 if spheres && let Some(key) = self.tables_pending.take() {
                     self.tables_from = Some(key);
                 }
             }
             DobashiStep::Ambient => {
-                self.encode_ambient(gpu, io, encoder, timestamps);
+                self.encode_ambient(cx);
                 if let Some(key) = self.ambient_pending.take() {
                     self.ambient_from = Some(key);
                 }
@@ -323,8 +306,7 @@ impl ModelPass for DobashiPass {
                 let views = self.table_views();
                 let ambient = self.ambient.create_view(&Default::default());
                 let tables = self.inputs(&views, &ambient);
-                self.pass
-                    .encode(gpu, io, &self.params, &tables, encoder, timestamps);
+                self.pass.encode(cx, &self.params, &tables);
             }
         }
     }

@@ -11,11 +11,11 @@ use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_2d, uniform_buffer, uniform_entry,
+    ComputePipeline, buffer, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
+    uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
-use crate::sky::transmittance::TABLE_FORMAT;
+use crate::sky::transmittance::{TABLE_FORMAT, table_texture};
 
 /// Panels of 5-point Gauss-Legendre per plane segment (at most Delta_t, 8.8 km for the
 /// earth at the defaults).
@@ -106,17 +106,8 @@ pub struct SegmentTextures {
 
 impl SegmentTextures {
     fn new(gpu: &GpuContext, label: &str, width: u32, height: u32) -> SegmentTextures {
-        let texture = |what: &str| {
-            texture_2d(
-                &gpu.device,
-                &format!("dobashi {label} {what}"),
-                (width, height),
-                TABLE_FORMAT,
-                wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-            )
-        };
+        let texture =
+            |what: &str| table_texture(gpu, &format!("dobashi {label} {what}"), (width, height));
         SegmentTextures {
             scatter_r: texture("dI_r"),
             scatter_m: texture("dI_m"),
@@ -185,12 +176,12 @@ impl DobashiTables {
                 "dobashi tables",
                 size_of::<DobashiTableUniform>(),
             ),
-            rows: gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("dobashi sphere rows"),
-                size: (16 * rows) as u64,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
+            rows: buffer(
+                &gpu.device,
+                "dobashi sphere rows",
+                (16 * rows) as u64,
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            ),
             planes: SegmentTextures::new(
                 gpu,
                 "planes",
@@ -238,8 +229,7 @@ impl DobashiTables {
             sphere_panels: SPHERE_PANELS,
             pad0: 0,
         };
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         gpu.queue
             .write_buffer(&self.rows, 0, bytemuck::cast_slice(rows));
         let (pipeline, textures, label) = if spheres {

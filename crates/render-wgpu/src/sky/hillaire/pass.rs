@@ -19,7 +19,7 @@ use crate::gpu::readback::read_texture;
 use crate::sky::hillaire::step::HillaireStep;
 use crate::sky::hillaire::tables::{Source, Table, Tables};
 use crate::sky::hillaire::uniform::HillaireUniform;
-use crate::sky::model_pass::{ModelPass, PassIo, frame_atmosphere};
+use crate::sky::model_pass::{ModelPass, StepContext, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::sky_pass::build_tables;
 use crate::sky::steps::SkyPlan;
@@ -159,19 +159,12 @@ impl HillairePass {
 
     /// Records the build of `table` (bindings 0-4 as in [`HillairePass::new`], the
     /// table's outputs after them).
-    fn encode_table(
-        &self,
-        table: Table,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    fn encode_table(&self, table: Table, cx: StepContext<'_>) {
         let tables = &self.tables;
         let (pipeline, outputs, groups) = match table {
             Table::Transmittance => {
                 let columns = &tables.transmittance;
-                columns.encode(gpu, &self.atmosphere, encoder, timestamps);
+                columns.encode(cx.gpu, &self.atmosphere, cx.encoder, cx.timestamps);
                 return;
             }
             Table::MultipleScattering => {
@@ -202,8 +195,8 @@ impl HillairePass {
         let inputs = [tables.transmittance.texture(), &tables.multiple_scattering].map(view);
         let outputs: Vec<_> = outputs.into_iter().map(view).collect();
         let mut resources = vec![
-            io.atmosphere.as_entire_binding(),
-            io.frame.as_entire_binding(),
+            cx.io.atmosphere.as_entire_binding(),
+            cx.io.frame.as_entire_binding(),
             self.params.as_entire_binding(),
         ];
         resources.extend(
@@ -212,8 +205,8 @@ impl HillairePass {
                 .chain(&outputs)
                 .map(wgpu::BindingResource::TextureView),
         );
-        let bind_group = self.sampling.bind_group(gpu, pipeline, &resources);
-        pipeline.dispatch(encoder, table.name(), &bind_group, groups, timestamps);
+        let bind_group = self.sampling.bind_group(cx.gpu, pipeline, &resources);
+        pipeline.dispatch(cx.encoder, table.name(), &bind_group, groups, cx.timestamps);
     }
 }
 
@@ -226,12 +219,8 @@ fn read_texels(gpu: &GpuContext, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]
 impl ModelPass for HillairePass {
     type Step = HillaireStep;
 
-    fn plan(
-        &mut self,
-        gpu: &GpuContext,
-        frame: &Frame,
-        plan: &mut SkyPlan<'_, HillaireStep>,
-    ) -> Result<(), RenderError> {
+    fn plan(&mut self, plan: &mut SkyPlan<'_, HillaireStep>) -> Result<(), RenderError> {
+        let (gpu, frame) = (plan.gpu, plan.frame);
         self.atmosphere = frame_atmosphere(frame)?;
         let settings = HillaireSettings::from_options(&frame.settings.options)?;
         let a = &frame.atmosphere;
@@ -299,22 +288,14 @@ impl ModelPass for HillairePass {
         };
         plan.run(HillaireStep::Pass);
         self.pending = Some(source);
-        gpu.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 
-    fn encode(
-        &mut self,
-        step: HillaireStep,
-        gpu: &GpuContext,
-        io: &PassIo<'_>,
-        encoder: &mut wgpu::CommandEncoder,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    fn encode(&mut self, step: HillaireStep, cx: StepContext<'_>) {
         match step {
             HillaireStep::Table(table) => {
-                self.encode_table(table, gpu, io, encoder, timestamps);
+                self.encode_table(table, cx);
                 self.tables.built[table as usize] = self.pending.clone();
             }
             HillaireStep::Pass => {
@@ -329,7 +310,7 @@ impl ModelPass for HillairePass {
                 ]
                 .map(|t| t.create_view(&Default::default()));
                 let tables = views.each_ref().map(wgpu::BindingResource::TextureView);
-                self.pass[self.variant].encode(gpu, io, &self.params, &tables, encoder, timestamps);
+                self.pass[self.variant].encode(cx, &self.params, &tables);
             }
         }
     }
