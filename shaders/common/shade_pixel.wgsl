@@ -7,9 +7,10 @@
 // frame's bookkeeping around each model's equations.
 //
 // The importing pass defines what differs per model:
-// - `fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance`: the model's
-//   answer for the view ray with unit `direction` from the camera, ending on an object at
-//   `object_m` (0: none);
+// - `fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance`:
+//   the model's answer for the view ray with unit `direction` from the camera whose
+//   segment `s` inside the atmosphere is not empty (`view_segment`, ended on the frame's
+//   surface where it has one), given `empty`, the answer before any light is added;
 // - `fn model_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32>`: the
 //   model's irradiance E(x, n) on a surface element (`SkyModel::surface_irradiance`);
 // - `hdr`: the HDR target, a `texture_storage_2d<rgba16float, write>`.
@@ -27,7 +28,11 @@ fn shade_pixel(px: vec2<u32>) {
     }
     let direction = pixel_direction(px);
     let surface = frame_surface(px);
-    var r = model_radiance(direction, surface.distance);
+    let s = view_segment(direction, surface.distance);
+    var r = radiance_of_empty(s, direction);
+    if s.hit {
+        r = model_radiance(direction, s, r);
+    }
     if surface.present {
         r = add_surface(r, surface, model_surface_irradiance(r.end, surface.normal));
     }

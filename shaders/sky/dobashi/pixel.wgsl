@@ -14,16 +14,14 @@
 
 @group(0) @binding(12) var hdr: texture_storage_2d<rgba16float, write>;
 
-// `Dobashi::radiance` for the view ray with unit `direction` from the camera, ending on
-// an object at `object_m` (0: none): Eq. 12 per unit solar irradiance, times it.
-fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
-    let s = view_segment(direction, object_m);
-    var r = radiance_of_empty(s, direction);
-    if s.hit {
-        let terms = trace(make_ray(s, direction, frame.sun_direction.xyz), dobashi.use_spheres != 0u);
-        r.radiance = atmosphere.solar_irradiance.xyz * (terms.single + terms.ambient);
-        r.transmittance = terms.transmittance;
-    }
+// `Dobashi::radiance` for the view ray with unit `direction` from the camera and its
+// segment `s` in the atmosphere (`common/shade_pixel.wgsl`): Eq. 12 per unit solar
+// irradiance, times it.
+fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance {
+    var r = empty;
+    let terms = trace(make_ray(s, direction, frame.sun_direction.xyz), dobashi.use_spheres != 0u);
+    r.radiance = atmosphere.solar_irradiance.xyz * (terms.single + terms.ambient);
+    r.transmittance = terms.transmittance;
     return r;
 }
 

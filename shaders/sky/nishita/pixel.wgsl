@@ -26,14 +26,10 @@ struct NishitaParams {
 @group(0) @binding(3) var g_l: texture_2d<f32>;
 @group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
 
-// `Nishita::radiance` for the view ray with unit `direction` from the camera, ending on
-// an object at `object_m` (0: none).
-fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
-    let s = view_segment(direction, object_m);
-    var out = radiance_of_empty(s, direction);
-    if !s.hit {
-        return out;
-    }
+// `Nishita::radiance` for the view ray with unit `direction` from the camera and its
+// segment `s` in the atmosphere (`common/shade_pixel.wgsl`).
+fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance {
+    var out = empty;
     let sun = frame.sun_direction.xyz;
     let bottom = atmosphere.bottom_radius_m;
     let n = nishita.view_samples;

@@ -59,14 +59,10 @@ fn depth(column: vec2<f32>) -> vec3<f32> {
         + column.y * atmosphere.mie_extinction_per_m.xyz;
 }
 
-// `Oneil::radiance` for the view ray with unit `direction` from the camera, ending on
-// an object at `object_m` (0: none).
-fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
-    let s = view_segment(direction, object_m);
-    var out = radiance_of_empty(s, direction);
-    if !s.hit {
-        return out;
-    }
+// `Oneil::radiance` for the view ray with unit `direction` from the camera and its
+// segment `s` in the atmosphere (`common/shade_pixel.wgsl`).
+fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance {
+    var out = empty;
     let sun = frame.sun_direction.xyz;
     let nu = dot(direction, sun);
     let phase_r = rayleigh_phase(nu);

@@ -140,14 +140,11 @@ fn model_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     return element_irradiance(e, t, vec3<f32>(0.0));
 }
 
-// `Riley::radiance` for the view ray with unit `direction` from the camera, ending on an
-// object at `object_m` (0: none): the legs are cut at the object, as on the CPU.
-fn model_radiance(direction: vec3<f32>, object_m: f32) -> Radiance {
-    let s = view_segment(direction, object_m);
-    var out = radiance_of_empty(s, direction);
-    if !s.hit {
-        return out;
-    }
+// `Riley::radiance` for the view ray with unit `direction` from the camera and its
+// segment `s` in the atmosphere (`common/shade_pixel.wgsl`): the legs are cut where the
+// segment ends on an object, as on the CPU.
+fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance {
+    var out = empty;
     let bottom = atmosphere.bottom_radius_m;
     let r = sqrt(bottom * bottom + s.q);
     let y0 = altitude_from_q(s.q);

@@ -141,6 +141,45 @@ pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: usize) -> wgpu::
     buffer(device, label, size as u64, usage)
 }
 
+/// The module of the embedded shader `shader` (imports resolved), made inside the
+/// caller's validation scope.
+pub fn shader_module(device: &wgpu::Device, shader: &str) -> Result<wgpu::ShaderModule, GpuError> {
+    let source = shaders::composed(shader)?;
+    Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(shader),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    }))
+}
+
+/// A bind group layout of `entries`, and a pipeline layout whose one group it is.
+pub fn one_group_layout(
+    device: &wgpu::Device,
+    label: &str,
+    entries: &[wgpu::BindGroupLayoutEntry],
+) -> (wgpu::BindGroupLayout, wgpu::PipelineLayout) {
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries,
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    (layout, pipeline_layout)
+}
+
+/// `entry` (made for compute passes) seen by the `visibility` stages of a render pass.
+pub fn in_stage(
+    visibility: wgpu::ShaderStages,
+    entry: wgpu::BindGroupLayoutEntry,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        visibility,
+        ..entry
+    }
+}
+
 /// A compute pipeline and its one bind group layout.
 #[derive(Debug)]
 pub struct ComputePipeline {
@@ -172,21 +211,9 @@ impl ComputePipeline {
         constants: &[(&str, f64)],
     ) -> Result<ComputePipeline, GpuError> {
         let device = &gpu.device;
-        let source = shaders::composed(shader)?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(shader),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(label),
-            entries,
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(label),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        let module = shader_module(device, shader)?;
+        let (layout, pipeline_layout) = one_group_layout(device, label, entries);
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(label),
             layout: Some(&pipeline_layout),

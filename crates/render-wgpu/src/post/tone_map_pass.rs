@@ -5,8 +5,9 @@
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
 use crate::gpu::formats::LDR_FORMAT;
-use crate::gpu::pipeline::{texture_entry, uniform_buffer, uniform_entry};
-use crate::gpu::shaders;
+use crate::gpu::pipeline::{
+    in_stage, one_group_layout, shader_module, texture_entry, uniform_buffer, uniform_entry,
+};
 use crate::post::tone_map::ToneMapUniform;
 
 /// Pipeline and uniform buffer, made once.
@@ -20,29 +21,17 @@ pub struct ToneMapPass {
 impl ToneMapPass {
     pub fn new(gpu: &GpuContext) -> Result<ToneMapPass, GpuError> {
         let device = &gpu.device;
-        let source = shaders::composed("post/tone_map.wgsl")?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("post/tone_map.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        // The compute passes' entries, seen by the fragment stage.
-        let in_fragment = |entry| wgpu::BindGroupLayoutEntry {
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ..entry
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("tone map"),
-            entries: &[
-                in_fragment(uniform_entry(0, size_of::<ToneMapUniform>())),
-                in_fragment(texture_entry(1, wgpu::TextureViewDimension::D2)),
+        let module = shader_module(device, "post/tone_map.wgsl")?;
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let (layout, pipeline_layout) = one_group_layout(
+            device,
+            "tone map",
+            &[
+                in_stage(fragment, uniform_entry(0, size_of::<ToneMapUniform>())),
+                in_stage(fragment, texture_entry(1, wgpu::TextureViewDimension::D2)),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("tone map"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        );
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("tone map"),
             layout: Some(&pipeline_layout),

@@ -24,10 +24,9 @@ use crate::frame::{Frame, TerrainOptions};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    buffer, float_texture_entry, read_only_storage_buffer_entry, texture_2d, uniform_buffer,
-    uniform_entry,
+    buffer, float_texture_entry, in_stage, one_group_layout, read_only_storage_buffer_entry,
+    shader_module, texture_2d, uniform_buffer, uniform_entry,
 };
-use crate::gpu::shaders;
 use crate::terrain::chunk_key::ChunkKey;
 use crate::terrain::chunk_mesh::ChunkMesh;
 use crate::terrain::colour_map::ColourMap;
@@ -122,20 +121,12 @@ impl TerrainPass {
         let device = &gpu.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let colour = upload_colour(gpu, &colours);
-        let source = shaders::composed("terrain/terrain.wgsl")?;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("terrain/terrain.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        // The compute passes' entries, seen by the vertex or the fragment stage.
-        let in_stage = |visibility, entry| wgpu::BindGroupLayoutEntry {
-            visibility,
-            ..entry
-        };
+        let module = shader_module(device, "terrain/terrain.wgsl")?;
         use wgpu::ShaderStages as S;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("terrain"),
-            entries: &[
+        let (layout, pipeline_layout) = one_group_layout(
+            device,
+            "terrain",
+            &[
                 in_stage(S::VERTEX, uniform_entry(0, size_of::<TerrainUniform>())),
                 in_stage(
                     S::VERTEX,
@@ -152,12 +143,7 @@ impl TerrainPass {
                     count: None,
                 },
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("terrain"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        );
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("terrain"),
             layout: Some(&pipeline_layout),
