@@ -12,7 +12,8 @@ use crate::atmosphere::spectral::Spectral;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::registry::prepare;
-use crate::models::sky_model::{ModelSettings, RayRadiance, ViewRay};
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, ViewRay};
 use crate::optics::geometry::horizon_mu;
 
 /// How close two rays that should agree must be: relative difference of radiance.

@@ -15,7 +15,7 @@ pub struct Spectra {
 
 impl Spectra {
     /// Whether a model must do Mie work: always without pruning
-    /// ([`crate::models::sky_model::ModelSettings::prune`]), else only when aerosols scatter or
+    /// ([`crate::models::settings::ModelSettings::prune`]), else only when aerosols scatter or
     /// absorb at some wavelength.
     pub fn needs_mie(&self, prune: bool) -> bool {
         !prune

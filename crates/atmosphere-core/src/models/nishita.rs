@@ -8,13 +8,12 @@
 //! the species' extinctions. See docs/models/nishita.md.
 
 use crate::atmosphere::Atmosphere;
-use crate::atmosphere::spectra::Spectra;
-use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
+use crate::models::model_base::ModelBase;
 use crate::models::options::ModelOptions;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
-use crate::models::table_update::TableUpdate;
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::column::{densities, optical_depth};
 use crate::optics::geometry::ray_hits_ground;
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
@@ -104,12 +103,10 @@ pub fn sun_column(table: &TransmittanceTable, r: f64, mu_sun: f64) -> Option<[f6
 #[derive(Debug)]
 pub struct Nishita {
     atmosphere: Atmosphere,
+    /// `with_mie` false when pruning at zero aerosol: no Mie density or phase is evaluated.
+    base: ModelBase,
     settings: NishitaSettings,
-    spectra: Spectra,
     table: TransmittanceTable,
-    prune: bool,
-    /// False when pruning at zero aerosol: no Mie density or phase is evaluated.
-    with_mie: bool,
 }
 
 impl Nishita {
@@ -120,14 +117,12 @@ impl Nishita {
         model_settings: &ModelSettings,
         settings: NishitaSettings,
     ) -> Result<Nishita, ModelError> {
-        let spectra = model_settings.checked_spectra(atmosphere)?;
+        let base = ModelBase::checked(ModelId::Nishita, atmosphere, model_settings)?;
         settings.validate()?;
         Ok(Nishita {
             atmosphere: atmosphere.clone(),
+            base,
             settings,
-            prune: model_settings.prune,
-            with_mie: spectra.needs_mie(model_settings.prune),
-            spectra,
             table: TransmittanceTable::build(
                 atmosphere,
                 settings.table_angles,
@@ -146,12 +141,8 @@ impl Nishita {
 }
 
 impl SkyModel for Nishita {
-    fn id(&self) -> ModelId {
-        ModelId::Nishita
-    }
-
-    fn spectra(&self) -> &Spectra {
-        &self.spectra
+    fn base(&self) -> &ModelBase {
+        &self.base
     }
 
     fn table_bytes(&self) -> usize {
@@ -159,21 +150,16 @@ impl SkyModel for Nishita {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
-        let (angles, heights) = (self.settings.table_angles, self.settings.table_heights);
-        update.rebuild(Inputs::COLUMNS, "g_l", &mut self.table, || {
-            TransmittanceTable::build(atmosphere, angles, heights)
-        });
-        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        self.with_mie = self.spectra.needs_mie(self.prune);
-        self.atmosphere = atmosphere.clone();
+        let mut update = self.base.adopt(&mut self.atmosphere, atmosphere)?;
+        let size = (self.settings.table_angles, self.settings.table_heights);
+        update.rebuild_columns("g_l", &mut self.table, atmosphere, size);
         Ok(update.rebuilt())
     }
 
     /// The transmitted sun only (Dobashi, Yamamoto and Nishita 2002, Eq. 11): single scattering has no sky light.
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
         let e = SurfaceElement::new(&self.atmosphere, surface)?;
-        let s = &self.spectra;
+        let s = &self.base.spectra;
         let column = (e.sun_cosine > 0.0)
             .then(|| sun_column(&self.table, e.r, e.mu_s))
             .flatten();
@@ -184,7 +170,7 @@ impl SkyModel for Nishita {
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let a = &self.atmosphere;
-        let s = &self.spectra;
+        let s = &self.base.spectra;
         let n_w = s.wavelengths_nm.len();
         let bottom = a.bottom_radius_m;
         let Some(segment) = ViewSegment::new(a, ray)? else {
@@ -200,7 +186,7 @@ impl SkyModel for Nishita {
         let dt = length / n as f64;
         let nu = direction.dot(sun);
         let phase_r = crate::optics::phase::rayleigh(nu);
-        let phase_m = if self.with_mie {
+        let phase_m = if self.base.with_mie {
             a.mie.phase.eval(nu)
         } else {
             0.0
@@ -211,7 +197,7 @@ impl SkyModel for Nishita {
             let position = start + direction * ((k as f64 + 0.5) * dt);
             let radius = position.length();
             let altitude = (radius - bottom).max(0.0);
-            let rho = if self.with_mie {
+            let rho = if self.base.with_mie {
                 densities(a, altitude)
             } else {
                 [

@@ -23,13 +23,13 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use crate::atmosphere::Atmosphere;
-use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
+use crate::models::model_base::ModelBase;
 use crate::models::options::ModelOptions;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
-use crate::models::table_update::TableUpdate;
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
@@ -235,13 +235,12 @@ pub fn line_column(atmosphere: &Atmosphere, r: f64, mu: f64, samples: usize) -> 
 #[derive(Debug)]
 pub struct Oneil {
     atmosphere: Atmosphere,
+    /// `with_mie` false when pruning at zero aerosol: the Mie terms are skipped (the
+    /// table's Mie channels are density integrals, built in the same pass as the
+    /// Rayleigh ones).
+    base: ModelBase,
     settings: OneilSettings,
-    spectra: Spectra,
     table: OpticalDepthTable,
-    prune: bool,
-    /// False when pruning at zero aerosol: the Mie terms are skipped (the table's Mie
-    /// channels are density integrals, built in the same pass as the Rayleigh ones).
-    with_mie: bool,
 }
 
 impl Oneil {
@@ -252,14 +251,12 @@ impl Oneil {
         settings: &ModelSettings,
         oneil: OneilSettings,
     ) -> Result<Oneil, ModelError> {
-        let spectra = settings.checked_spectra(atmosphere)?;
+        let base = ModelBase::checked(ModelId::Oneil, atmosphere, settings)?;
         oneil.validate()?;
         Ok(Oneil {
             atmosphere: atmosphere.clone(),
+            base,
             settings: oneil,
-            prune: settings.prune,
-            with_mie: spectra.needs_mie(settings.prune),
-            spectra,
             table: OpticalDepthTable::build(
                 atmosphere,
                 oneil.table_heights,
@@ -279,12 +276,8 @@ impl Oneil {
 }
 
 impl SkyModel for Oneil {
-    fn id(&self) -> ModelId {
-        ModelId::Oneil
-    }
-
-    fn spectra(&self) -> &Spectra {
-        &self.spectra
+    fn base(&self) -> &ModelBase {
+        &self.base
     }
 
     fn table_bytes(&self) -> usize {
@@ -292,7 +285,7 @@ impl SkyModel for Oneil {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let mut update = self.base.adopt(&mut self.atmosphere, atmosphere)?;
         let s = self.settings;
         update.rebuild(
             OpticalDepthTable::INPUTS,
@@ -307,9 +300,6 @@ impl SkyModel for Oneil {
                 )
             },
         );
-        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        self.with_mie = self.spectra.needs_mie(self.prune);
-        self.atmosphere = atmosphere.clone();
         Ok(update.rebuilt())
     }
 
@@ -319,7 +309,7 @@ impl SkyModel for Oneil {
     /// own shadow test (its density channels are 0 where `ray_hits_ground`).
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
         let e = SurfaceElement::new(&self.atmosphere, surface)?;
-        let s = &self.spectra;
+        let s = &self.base.spectra;
         let lit =
             e.sun_cosine > 0.0 && !ray_hits_ground(e.r, e.mu_s, self.atmosphere.bottom_radius_m);
         let column = lit.then(|| {
@@ -334,7 +324,7 @@ impl SkyModel for Oneil {
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         let Some(seg) = ViewSegment::new(&self.atmosphere, ray)? else {
             return Ok(RayRadiance::unattenuated(n));
         };
@@ -366,12 +356,12 @@ impl SkyModel for Oneil {
                 (a[MIE_LENGTH] - b[MIE_LENGTH]).max(0.0),
             ]
         };
-        let ext = &self.spectra.extinction;
+        let ext = &self.base.spectra.extinction;
         let depth = |w: usize, c: [f64; 2]| ext[w][0] * c[0] + ext[w][1] * c[1];
 
         let nu = dir.dot(sun);
         let phase_r = crate::optics::phase::rayleigh(nu);
-        let phase_m = if self.with_mie {
+        let phase_m = if self.base.with_mie {
             self.atmosphere.mie.phase.eval(nu)
         } else {
             0.0
@@ -392,12 +382,12 @@ impl SkyModel for Oneil {
                 light[MIE_LENGTH] + view[1],
             ];
             for w in 0..n {
-                let mut j = self.spectra.rayleigh_scattering[w] * rho_r * phase_r;
-                if self.with_mie {
-                    j += self.spectra.mie_scattering[w] * rho_m * phase_m;
+                let mut j = self.base.spectra.rayleigh_scattering[w] * rho_r * phase_r;
+                if self.base.with_mie {
+                    j += self.base.spectra.mie_scattering[w] * rho_m * phase_m;
                 }
                 radiance[w] +=
-                    ds * j * self.spectra.solar_irradiance[w] * (-depth(w, column)).exp();
+                    ds * j * self.base.spectra.solar_irradiance[w] * (-depth(w, column)).exp();
             }
         }
         let total = to_camera(end);

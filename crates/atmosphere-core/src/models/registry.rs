@@ -3,7 +3,8 @@
 use crate::atmosphere::Atmosphere;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, SkyModel};
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::SkyModel;
 
 /// Prepares the model `id` for an atmosphere.
 pub fn prepare(

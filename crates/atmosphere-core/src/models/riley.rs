@@ -30,10 +30,11 @@
 
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::density::DensityProfile;
-use crate::atmosphere::spectra::Spectra;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
+use crate::models::model_base::ModelBase;
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::phase::{PhaseFunction, rayleigh};
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
@@ -224,16 +225,14 @@ struct Leg {
 /// Riley et al.'s analytic single-scattering sky, prepared for one atmosphere.
 #[derive(Clone, Debug)]
 pub struct Riley {
-    spectra: Spectra,
+    /// `with_mie` false when pruning at zero aerosol: the Mie terms are skipped.
+    base: ModelBase,
     bottom_radius_m: f64,
     top_radius_m: f64,
     ground_albedo: f64,
     rayleigh: Species,
     mie: Species,
     mie_phase: PhaseFunction,
-    prune: bool,
-    /// False when pruning at zero aerosol: the Mie terms are skipped.
-    with_mie: bool,
 }
 
 impl Riley {
@@ -250,10 +249,8 @@ impl Riley {
         let rayleigh_s: Vec<f64> = c.iter().map(|c| c.rayleigh_scattering_per_m).collect();
         let mie_s: Vec<f64> = c.iter().map(|c| c.mie_scattering_per_m).collect();
         let mie_e: Vec<f64> = c.iter().map(|c| c.mie_extinction_per_m).collect();
-        let spectra = Spectra::new(atmosphere, &settings.wavelengths_nm);
         Riley {
-            with_mie: spectra.needs_mie(settings.prune),
-            spectra,
+            base: ModelBase::new(ModelId::Riley, atmosphere, settings),
             bottom_radius_m: atmosphere.bottom_radius_m,
             top_radius_m: atmosphere.top_radius_m,
             ground_albedo: atmosphere.ground_albedo,
@@ -265,7 +262,6 @@ impl Riley {
             ),
             mie: Species::new(&atmosphere.mie.density, thickness, &mie_s, &mie_e),
             mie_phase: atmosphere.mie.phase.clone(),
-            prune: settings.prune,
         }
     }
 
@@ -278,7 +274,7 @@ impl Riley {
     /// is `None` when its terms are skipped (pruned at zero aerosol). What the GPU twin,
     /// `shaders/sky/riley/pixel.wgsl`, is given.
     pub fn species(&self) -> (&Species, Option<&Species>) {
-        (&self.rayleigh, self.with_mie.then_some(&self.mie))
+        (&self.rayleigh, self.base.with_mie.then_some(&self.mie))
     }
 
     fn answer(&self, radiance: Vec<f64>, transmittance: Vec<f64>) -> RayRadiance {
@@ -344,12 +340,8 @@ fn flat_legs(y0: f64, r: f64, p: f64, bottom: f64, top: f64) -> (Vec<Leg>, bool)
 }
 
 impl SkyModel for Riley {
-    fn id(&self) -> ModelId {
-        ModelId::Riley
-    }
-
-    fn spectra(&self) -> &Spectra {
-        &self.spectra
+    fn base(&self) -> &ModelBase {
+        &self.base
     }
 
     fn table_bytes(&self) -> usize {
@@ -360,8 +352,8 @@ impl SkyModel for Riley {
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
         atmosphere.validate()?;
         let settings = ModelSettings {
-            wavelengths_nm: self.spectra.wavelengths_nm.clone(),
-            prune: self.prune,
+            wavelengths_nm: self.base.spectra.wavelengths_nm.clone(),
+            prune: self.base.prune,
             ..ModelSettings::default()
         };
         *self = Riley::prepare(atmosphere, &settings);
@@ -377,7 +369,7 @@ impl SkyModel for Riley {
         let e = SurfaceElement::new_within(self.bottom_radius_m, self.top_radius_m, surface)?;
         let y = e.r - self.bottom_radius_m;
         let (rayleigh, mie) = self.species();
-        Ok(e.sun_irradiances(&self.spectra.solar_irradiance, |w| {
+        Ok(e.sun_irradiances(&self.base.spectra.solar_irradiance, |w| {
             if e.sun_cosine > 0.0 && e.mu_s > 0.0 {
                 let tau: f64 = std::iter::once(rayleigh)
                     .chain(mie)
@@ -393,7 +385,7 @@ impl SkyModel for Riley {
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         let (bottom, top) = (self.bottom_radius_m, self.top_radius_m);
         let Some(segment) = ViewSegment::new_within(bottom, top, ray)? else {
             return Ok(self.answer(vec![0.0; n], vec![1.0; n]));
@@ -416,7 +408,7 @@ impl SkyModel for Riley {
         }
         let nu = direction.dot(sun);
         let phase_r = rayleigh(nu);
-        let phase_m = if self.with_mie {
+        let phase_m = if self.base.with_mie {
             self.mie_phase.eval(nu)
         } else {
             0.0
@@ -424,12 +416,12 @@ impl SkyModel for Riley {
         let mut radiance = vec![0.0; n];
         let mut transmittance = vec![1.0; n];
         for w in 0..n {
-            let e = self.spectra.solar_irradiance[w];
+            let e = self.base.spectra.solar_irradiance[w];
             let both = [
                 (self.rayleigh.flat(w, e), self.rayleigh.albedo[w] * phase_r),
                 (self.mie.flat(w, e), self.mie.albedo[w] * phase_m),
             ];
-            let species = &both[..if self.with_mie { 2 } else { 1 }];
+            let species = &both[..if self.base.with_mie { 2 } else { 1 }];
             for leg in &legs {
                 let mut tau = 0.0;
                 for (flat, weighted_phase) in species {

@@ -8,78 +8,10 @@ use crate::atmosphere::Atmosphere;
 use crate::atmosphere::spectra::Spectra;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::options::ModelOptions;
-
-/// Settings shared by the models.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ModelSettings {
-    /// Wavelengths (nm) at which radiance is computed.
-    pub wavelengths_nm: Vec<f64>,
-    /// Highest scattering order (1 = single scattering); `None` for all orders.
-    pub max_orders: Option<u32>,
-    /// For stochastic models: the relative standard error to reach per ray and wavelength.
-    pub target_relative_error: f64,
-    /// For stochastic models: the seed of the random sequence (results are reproducible).
-    pub seed: u64,
-    /// The model's own settings (samples, table sizes, ...) as `key=value`; the paper's
-    /// values where a key is absent. Each model's page in docs/models lists its keys.
-    pub options: ModelOptions,
-    /// Leave out work that adds nothing: at zero aerosol no Mie table or Mie term is
-    /// computed. Answers equal those with `prune = false` (the full path), which tests
-    /// compare against.
-    pub prune: bool,
-}
-
-impl Default for ModelSettings {
-    fn default() -> Self {
-        ModelSettings {
-            wavelengths_nm: vec![680.0, 550.0, 440.0],
-            max_orders: None,
-            target_relative_error: 0.0025,
-            seed: 1,
-            options: ModelOptions::default(),
-            prune: true,
-        }
-    }
-}
-
-impl ModelSettings {
-    /// What every model prepares from: checks `atmosphere` and these settings, then
-    /// samples the atmosphere's coefficients at the settings' wavelengths.
-    pub fn checked_spectra(&self, atmosphere: &Atmosphere) -> Result<Spectra, ModelError> {
-        atmosphere.validate()?;
-        self.validate()?;
-        Ok(Spectra::new(atmosphere, &self.wavelengths_nm))
-    }
-
-    /// Why these settings cannot be used, if they cannot.
-    pub fn validate(&self) -> Result<(), ModelError> {
-        if self.wavelengths_nm.is_empty() {
-            return Err(ModelError::Settings(
-                "at least one wavelength is needed".into(),
-            ));
-        }
-        if let Some(w) = self
-            .wavelengths_nm
-            .iter()
-            .find(|w| !(w.is_finite() && (360.0..=830.0).contains(*w)))
-        {
-            return Err(ModelError::Settings(format!(
-                "wavelength {w} nm is outside the visible range 360..830 nm"
-            )));
-        }
-        if self.max_orders == Some(0) {
-            return Err(ModelError::Settings("orders must be at least 1".into()));
-        }
-        if !(self.target_relative_error.is_finite() && self.target_relative_error > 0.0) {
-            return Err(ModelError::Settings(format!(
-                "target relative error {} must be > 0",
-                self.target_relative_error
-            )));
-        }
-        Ok(())
-    }
-}
+use crate::models::model_base::ModelBase;
+/// The settings moved to their own module; named here too for the callers outside the
+/// crate, which know them as `sky_model::ModelSettings`.
+pub use crate::models::settings::ModelSettings;
 
 /// A view ray: where the camera is, where it looks, where the sun is, and optionally an
 /// object ending the ray. Positions are relative to the planet's centre, in metres.
@@ -187,10 +119,16 @@ impl RayRadiance {
 
 /// A scattering model on the CPU.
 pub trait SkyModel: Send + Sync {
+    /// What every model keeps of its preparation: its id, spectra and Mie switch.
+    fn base(&self) -> &ModelBase;
     /// The model's id, as on the command line.
-    fn id(&self) -> ModelId;
+    fn id(&self) -> ModelId {
+        self.base().id
+    }
     /// The atmosphere's coefficients at the model's wavelengths.
-    fn spectra(&self) -> &Spectra;
+    fn spectra(&self) -> &Spectra {
+        &self.base().spectra
+    }
     /// The wavelengths (nm) of every answer, in the order of the settings.
     fn wavelengths_nm(&self) -> &[f64] {
         &self.spectra().wavelengths_nm

@@ -5,6 +5,7 @@
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
+use crate::optics::transmittance_table::TransmittanceTable;
 
 /// One update of a model's tables from `old` to `new`.
 #[derive(Debug)]
@@ -36,6 +37,20 @@ impl TableUpdate {
             *table = build();
             self.rebuilt.push(name);
         }
+    }
+
+    /// Replaces a table of columns of matter (`size` as in [`TransmittanceTable::build`])
+    /// by one built from `atmosphere` when the columns changed ([`Inputs::COLUMNS`]).
+    pub fn rebuild_columns(
+        &mut self,
+        name: &'static str,
+        table: &mut TransmittanceTable,
+        atmosphere: &Atmosphere,
+        (width, height): (usize, usize),
+    ) {
+        self.rebuild(Inputs::COLUMNS, name, table, || {
+            TransmittanceTable::build(atmosphere, width, height)
+        });
     }
 
     /// Names tables rebuilt by the model itself.

@@ -28,8 +28,9 @@ use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
-use crate::models::table_update::TableUpdate;
+use crate::models::model_base::ModelBase;
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, SkyModel, ViewRay};
 use crate::numerics::sampling::{Sampler, cosine_weighted, direction_around, mix_seed};
 use crate::optics::column::{Fineness, optical_depth};
 use crate::optics::phase_sampling::PhaseSampler;
@@ -51,8 +52,9 @@ const DARKNESS: f64 = 1e-10;
 #[derive(Debug)]
 pub struct Reference {
     atmosphere: Atmosphere,
+    /// Its `with_mie` is not read: the reference always computes every term.
+    base: ModelBase,
     settings: ModelSettings,
-    spectra: Spectra,
     table: TransmittanceTable,
     bounds: DensityBounds,
     mie_sampler: PhaseSampler,
@@ -71,8 +73,8 @@ impl Reference {
         let (w, h) = MC_TABLE_SIZE;
         Reference {
             atmosphere: atmosphere.clone(),
+            base: ModelBase::new(ModelId::Reference, atmosphere, settings),
             settings: settings.clone(),
-            spectra: Spectra::new(atmosphere, &settings.wavelengths_nm),
             table: TransmittanceTable::build(atmosphere, w, h),
             bounds: DensityBounds::new(atmosphere),
             mie_sampler: PhaseSampler::new(&atmosphere.mie.phase),
@@ -80,7 +82,7 @@ impl Reference {
     }
 
     pub fn spectra(&self) -> &Spectra {
-        &self.spectra
+        &self.base.spectra
     }
 
     /// The path tracer at wavelength index `w`.
@@ -90,10 +92,10 @@ impl Reference {
             table: &self.table,
             bounds: &self.bounds,
             mie_sampler: &self.mie_sampler,
-            extinction: self.spectra.extinction[w],
-            rayleigh_scattering: self.spectra.rayleigh_scattering[w],
-            mie_scattering: self.spectra.mie_scattering[w],
-            solar_irradiance: self.spectra.solar_irradiance[w],
+            extinction: self.base.spectra.extinction[w],
+            rayleigh_scattering: self.base.spectra.rayleigh_scattering[w],
+            mie_scattering: self.base.spectra.mie_scattering[w],
+            solar_irradiance: self.base.spectra.solar_irradiance[w],
             max_orders: self.settings.max_orders,
             sun_direction,
         }
@@ -117,10 +119,10 @@ impl Reference {
         if self.settings.max_orders == Some(1) {
             return none;
         }
-        let ext = self.spectra.extinction[w];
+        let ext = self.base.spectra.extinction[w];
         let (br, bm) = (
-            self.spectra.rayleigh_scattering[w],
-            self.spectra.mie_scattering[w],
+            self.base.spectra.rayleigh_scattering[w],
+            self.base.spectra.mie_scattering[w],
         );
         // Where the light of order two and up is scattered towards the camera for the
         // last time: a view node (mass = weight * T * sigma_s) or the ground
@@ -150,7 +152,7 @@ impl Reference {
             *m = acc / total;
         }
         let tracer = self.tracer(w, sun_direction);
-        let darkness = DARKNESS * self.spectra.solar_irradiance[w];
+        let darkness = DARKNESS * self.base.spectra.solar_irradiance[w];
         let (mut sum, mut sum_sq, mut n) = (0.0, 0.0, 0usize);
         loop {
             for _ in 0..BATCH {
@@ -200,12 +202,8 @@ impl Reference {
 }
 
 impl SkyModel for Reference {
-    fn id(&self) -> ModelId {
-        ModelId::Reference
-    }
-
-    fn spectra(&self) -> &Spectra {
-        &self.spectra
+    fn base(&self) -> &ModelBase {
+        &self.base
     }
 
     fn table_bytes(&self) -> usize {
@@ -213,11 +211,8 @@ impl SkyModel for Reference {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
-        let (w, h) = MC_TABLE_SIZE;
-        update.rebuild(Inputs::COLUMNS, "transmittance", &mut self.table, || {
-            TransmittanceTable::build(atmosphere, w, h)
-        });
+        let mut update = self.base.adopt(&mut self.atmosphere, atmosphere)?;
+        update.rebuild_columns("transmittance", &mut self.table, atmosphere, MC_TABLE_SIZE);
         update.rebuild(
             Inputs::MIE_PHASE,
             "mie phase sampler",
@@ -225,16 +220,15 @@ impl SkyModel for Reference {
             || PhaseSampler::new(&atmosphere.mie.phase),
         );
         self.bounds = DensityBounds::new(atmosphere);
-        self.spectra = Spectra::new(atmosphere, &self.settings.wavelengths_nm);
-        self.atmosphere = atmosphere.clone();
         Ok(update.rebuilt())
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
         let path = ViewPath::new(&self.atmosphere, ray, Fineness::VIEW)?;
         let sun = ray.sun_direction.normalize();
-        let single = single_scattering(&self.atmosphere, &self.spectra, &path, sun);
+        let single = single_scattering(&self.atmosphere, &self.base.spectra, &path, sun);
         let transmittance = self
+            .base
             .spectra
             .extinction
             .iter()

@@ -216,7 +216,8 @@ impl PathTracer<'_> {
 mod tests {
     use super::*;
     use crate::atmosphere::Atmosphere;
-    use crate::models::sky_model::{ModelSettings, ViewRay};
+    use crate::models::settings::ModelSettings;
+    use crate::models::sky_model::ViewRay;
     use crate::optics::column::Fineness;
     use crate::reference::{Reference, Spectra, ViewPath, single_scattering};
 

@@ -30,7 +30,6 @@ pub use settings::BrunetonSettings;
 use std::f64::consts::PI;
 
 use crate::atmosphere::Atmosphere;
-use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::bruneton::builder::Builder;
 use crate::models::bruneton::channels::Channels;
@@ -40,8 +39,9 @@ use crate::models::bruneton::precompute::{OrderStats, Tables};
 use crate::models::bruneton::tables::{DensityTable, Table4};
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
-use crate::models::table_update::TableUpdate;
+use crate::models::model_base::ModelBase;
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::geometry::ray_hits_ground;
 use crate::optics::phase::rayleigh;
 use crate::optics::surface_lighting::SurfaceElement;
@@ -52,10 +52,12 @@ use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 #[derive(Debug)]
 pub struct Bruneton {
     atmosphere: Atmosphere,
-    model_settings: ModelSettings,
+    /// `with_mie` false when Mie work is pruned (see [`Bruneton::mie_pruned`]).
+    base: ModelBase,
+    /// [`ModelSettings::max_orders`].
+    max_orders: Option<u32>,
     settings: BrunetonSettings,
     radii: Radii,
-    spectra: Spectra,
     transmittance: TransmittanceTable,
     /// One set of tables per three wavelengths (the last set padded by repeating the last
     /// wavelength).
@@ -82,8 +84,7 @@ impl Bruneton {
         settings: &ModelSettings,
         bruneton: &BrunetonSettings,
     ) -> Result<Bruneton, ModelError> {
-        atmosphere.validate()?;
-        settings.validate()?;
+        let base = ModelBase::checked(ModelId::Bruneton, atmosphere, settings)?;
         bruneton.validate()?;
         let start = std::time::Instant::now();
         let transmittance = TransmittanceTable::build(
@@ -93,13 +94,13 @@ impl Bruneton {
         );
         let mut model = Bruneton {
             atmosphere: atmosphere.clone(),
-            model_settings: settings.clone(),
+            base,
+            max_orders: settings.max_orders,
             settings: bruneton.clone(),
             radii: Radii {
                 bottom_m: atmosphere.bottom_radius_m,
                 top_m: atmosphere.top_radius_m,
             },
-            spectra: Spectra::new(atmosphere, &settings.wavelengths_nm),
             transmittance,
             groups: Vec::new(),
             build_seconds: 0.0,
@@ -117,7 +118,8 @@ impl Bruneton {
 
     /// The wavelengths of each group of three (the last padded by repeating the last).
     fn group_wavelengths(&self) -> Vec<[f64; 3]> {
-        self.spectra
+        self.base
+            .spectra
             .wavelengths_nm
             .chunks(3)
             .map(|chunk| [0, 1, 2].map(|k| *chunk.get(k).unwrap_or(&chunk[chunk.len() - 1])))
@@ -127,7 +129,7 @@ impl Bruneton {
     /// True when Mie work is left out: pruning is on and the aerosol neither scatters
     /// nor absorbs at any of the model's wavelengths.
     pub fn mie_pruned(&self) -> bool {
-        !self.spectra.needs_mie(self.model_settings.prune)
+        !self.base.with_mie
     }
 
     /// The delta-M form of the Mie phase function for the order step; `None` when Mie
@@ -153,10 +155,7 @@ impl Bruneton {
             channels,
             sun_transmittances: channels.transmittances(&self.transmittance),
             delta_m,
-            max_orders: self
-                .model_settings
-                .max_orders
-                .unwrap_or(self.settings.order_limit),
+            max_orders: self.max_orders.unwrap_or(self.settings.order_limit),
         }
     }
 
@@ -193,12 +192,8 @@ impl Bruneton {
 }
 
 impl SkyModel for Bruneton {
-    fn id(&self) -> ModelId {
-        ModelId::Bruneton
-    }
-
-    fn spectra(&self) -> &Spectra {
-        &self.spectra
+    fn base(&self) -> &ModelBase {
+        &self.base
     }
 
     fn table_bytes(&self) -> usize {
@@ -223,22 +218,15 @@ impl SkyModel for Bruneton {
     /// phase function (unless Mie is pruned). Tables are per unit solar irradiance, so
     /// the sun ([`Inputs::SUN`]) rebuilds nothing.
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
-        let changed = update.changed;
         let was_pruned = self.mie_pruned();
-        self.atmosphere = atmosphere.clone();
-        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
+        let mut update = self.base.adopt(&mut self.atmosphere, atmosphere)?;
+        let changed = update.changed;
         self.radii = Radii {
             bottom_m: atmosphere.bottom_radius_m,
             top_m: atmosphere.top_radius_m,
         };
-        let (w, h) = self.settings.transmittance_size;
-        update.rebuild(
-            Inputs::COLUMNS,
-            "transmittance",
-            &mut self.transmittance,
-            || TransmittanceTable::build(atmosphere, w, h),
-        );
+        let size = self.settings.transmittance_size;
+        update.rebuild_columns("transmittance", &mut self.transmittance, atmosphere, size);
         let single = changed.intersects(Inputs::EXTINCTION);
         let multiple = single
             || changed.intersects(Inputs::GROUND_ALBEDO)
@@ -276,7 +264,7 @@ impl SkyModel for Bruneton {
     /// (Eq. 16) for any element.
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
         let e = SurfaceElement::new(&self.atmosphere, surface)?;
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         let column_sun = (!ray_hits_ground(e.r, e.mu_s, self.radii.bottom_m))
             .then(|| self.transmittance.column(e.r, e.mu_s));
         let mut out = Vec::with_capacity(n);
@@ -285,7 +273,7 @@ impl SkyModel for Bruneton {
             let sun_t = column_sun.map_or([0.0; 3], |c| tables.channels.transmittance(c));
             for k in 0..3 {
                 if 3 * g + k < n {
-                    let solar = self.spectra.solar_irradiance[3 * g + k];
+                    let solar = self.base.spectra.solar_irradiance[3 * g + k];
                     out.push(e.irradiance(solar, sun_t[k], solar * sky[k]));
                 }
             }
@@ -294,7 +282,7 @@ impl SkyModel for Bruneton {
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
             return Ok(RayRadiance::unattenuated(n));
         };
@@ -335,7 +323,8 @@ impl SkyModel for Bruneton {
         let mut radiance = Vec::with_capacity(n);
         let mut transmittance = Vec::with_capacity(n);
         for (g, tables) in self.groups.iter().enumerate() {
-            let solar = [0, 1, 2].map(|k| self.spectra.solar_irradiance[(3 * g + k).min(n - 1)]);
+            let solar =
+                [0, 1, 2].map(|k| self.base.spectra.solar_irradiance[(3 * g + k).min(n - 1)]);
             let mut l = Self::scattered(tables, &p, nu, mie_phase);
             let t = tables.channels.transmittance(column);
             if let Some(q) = &end {

@@ -24,12 +24,11 @@ pub mod sphere_tables;
 pub mod trace;
 
 use crate::atmosphere::Atmosphere;
-use crate::atmosphere::spectra::Spectra;
-use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
-use crate::models::table_update::TableUpdate;
+use crate::models::model_base::ModelBase;
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::surface_lighting::SurfaceElement;
 use crate::optics::transmittance_table::TransmittanceTable;
 
@@ -43,10 +42,9 @@ pub use trace::{Ambient, Terms, Tracer};
 #[derive(Debug)]
 pub struct Dobashi {
     atmosphere: Atmosphere,
+    base: ModelBase,
     settings: DobashiSettings,
     max_orders: Option<u32>,
-    prune: bool,
-    spectra: Spectra,
     sun_table: TransmittanceTable,
     planes: PlaneTables,
     spheres: SphereTables,
@@ -62,28 +60,27 @@ impl Dobashi {
         model_settings: &ModelSettings,
         settings: DobashiSettings,
     ) -> Result<Dobashi, ModelError> {
-        let spectra = model_settings.checked_spectra(atmosphere)?;
+        let base = ModelBase::checked(ModelId::Dobashi, atmosphere, model_settings)?;
         settings.validate()?;
-        let with_mie = spectra.needs_mie(model_settings.prune);
+        let (spectra, with_mie) = (&base.spectra, base.with_mie);
         let mut model = Dobashi {
             atmosphere: atmosphere.clone(),
             settings,
             max_orders: model_settings.max_orders,
-            prune: model_settings.prune,
             sun_table: TransmittanceTable::build(
                 atmosphere,
                 settings.sun_table_angles,
                 settings.sun_table_heights,
             ),
-            planes: PlaneTables::build(atmosphere, &spectra, &settings, with_mie),
+            planes: PlaneTables::build(atmosphere, spectra, &settings, with_mie),
             spheres: SphereTables::build(
                 atmosphere,
-                &spectra,
+                spectra,
                 settings.spheres,
                 settings.sphere_table_angles,
                 with_mie,
             ),
-            spectra,
+            base,
             ambient: None,
         };
         model.ambient = model.build_ambient()?;
@@ -107,7 +104,7 @@ impl Dobashi {
     pub fn tracer(&self) -> Tracer<'_> {
         Tracer {
             atmosphere: &self.atmosphere,
-            spectra: &self.spectra,
+            spectra: &self.base.spectra,
             sun_table: &self.sun_table,
             planes: &self.planes,
             spheres: &self.spheres,
@@ -141,12 +138,8 @@ impl Dobashi {
 }
 
 impl SkyModel for Dobashi {
-    fn id(&self) -> ModelId {
-        ModelId::Dobashi
-    }
-
-    fn spectra(&self) -> &Spectra {
-        &self.spectra
+    fn base(&self) -> &ModelBase {
+        &self.base
     }
 
     fn table_bytes(&self) -> usize {
@@ -157,24 +150,21 @@ impl SkyModel for Dobashi {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let mut update = self.base.adopt(&mut self.atmosphere, atmosphere)?;
         let changed = update.changed;
-        let spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        let with_mie = spectra.needs_mie(self.prune);
+        let (spectra, with_mie) = (&self.base.spectra, self.base.with_mie);
         let mie_switched = with_mie != self.planes.scatter_m.is_some();
-        let (angles, heights) = (
+        let size = (
             self.settings.sun_table_angles,
             self.settings.sun_table_heights,
         );
-        update.rebuild(Inputs::COLUMNS, "g_l", &mut self.sun_table, || {
-            TransmittanceTable::build(atmosphere, angles, heights)
-        });
+        update.rebuild_columns("g_l", &mut self.sun_table, atmosphere, size);
         let segments = changed.intersects(PlaneTables::INPUTS) || mie_switched;
         if segments {
-            self.planes = PlaneTables::build(atmosphere, &spectra, &self.settings, with_mie);
+            self.planes = PlaneTables::build(atmosphere, spectra, &self.settings, with_mie);
             self.spheres = SphereTables::build(
                 atmosphere,
-                &spectra,
+                spectra,
                 self.settings.spheres,
                 self.settings.sphere_table_angles,
                 with_mie,
@@ -184,8 +174,6 @@ impl SkyModel for Dobashi {
                 update.mark(&["dI_m", "sphere dI_m"]);
             }
         }
-        self.spectra = spectra;
-        self.atmosphere = atmosphere.clone();
         if self.max_orders != Some(1) && (segments || changed.intersects(AmbientTable::INPUTS)) {
             self.ambient = self.build_ambient()?;
             update.mark(&["ambient"]);
@@ -198,13 +186,13 @@ impl SkyModel for Dobashi {
     /// no sky for single scattering.
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
         let e = SurfaceElement::new(&self.atmosphere, surface)?;
-        let n_w = self.spectra.wavelengths_nm.len();
+        let n_w = self.base.spectra.wavelengths_nm.len();
         let (mut sun, mut sky) = (vec![0.0; n_w], vec![0.0; n_w]);
         self.tracer()
             .element_light(&e, self.ambient_radiance(), &mut sun, &mut sky);
         Ok((0..n_w)
             .map(|w| {
-                let solar = self.spectra.solar_irradiance[w];
+                let solar = self.base.spectra.solar_irradiance[w];
                 e.irradiance(solar, sun[w], solar * sky[w])
             })
             .collect())
@@ -214,7 +202,7 @@ impl SkyModel for Dobashi {
         let ambient = self.ambient_radiance();
         let terms = self.tracer().trace(ray, ambient)?;
         let radiance = (0..terms.single.len())
-            .map(|w| self.spectra.solar_irradiance[w] * (terms.single[w] + terms.ambient[w]))
+            .map(|w| self.base.spectra.solar_irradiance[w] * (terms.single[w] + terms.ambient[w]))
             .collect();
         Ok(RayRadiance {
             radiance,

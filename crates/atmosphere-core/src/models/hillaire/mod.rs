@@ -22,7 +22,6 @@ pub mod sky_view;
 pub mod view_cache;
 
 use crate::atmosphere::Atmosphere;
-use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::hillaire::aerial_perspective::{AerialPerspective, VolumeShape};
@@ -34,9 +33,10 @@ use crate::models::hillaire::multiple_scattering::MultipleScattering;
 use crate::models::hillaire::sky_view::SkyView;
 use crate::models::hillaire::view_cache::ViewCache;
 use crate::models::id::ModelId;
+use crate::models::model_base::ModelBase;
 use crate::models::options::ModelOptions;
-use crate::models::sky_model::{ModelSettings, RayRadiance, SkyModel, SurfacePoint, ViewRay};
-use crate::models::table_update::TableUpdate;
+use crate::models::settings::ModelSettings;
+use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::column::optical_depth;
 use crate::optics::geometry::ray_hits_ground;
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
@@ -231,13 +231,11 @@ pub const VIEW_INPUTS: Inputs = MULTIPLE_SCATTERING_INPUTS.union(Inputs::MIE_PHA
 #[derive(Debug)]
 pub struct Hillaire {
     atmosphere: Atmosphere,
+    base: ModelBase,
     settings: HillaireSettings,
-    spectra: Spectra,
     /// Orders two and up (the Psi_ms term and the sky's light on the ground); off for
     /// `ModelSettings::max_orders == Some(1)`.
     multiple_on: bool,
-    prune: bool,
-    mie: bool,
     transmittance: TransmittanceTable,
     multiple: Option<MultipleScattering>,
     ground: Option<GroundIrradiance>,
@@ -254,16 +252,14 @@ impl Hillaire {
         model_settings: &ModelSettings,
         settings: HillaireSettings,
     ) -> Result<Hillaire, ModelError> {
-        let spectra = model_settings.checked_spectra(atmosphere)?;
+        let base = ModelBase::checked(ModelId::Hillaire, atmosphere, model_settings)?;
         settings.validate()?;
         let (w, h) = settings.transmittance_size;
         let mut model = Hillaire {
             atmosphere: atmosphere.clone(),
+            base,
             settings,
-            mie: spectra.needs_mie(model_settings.prune),
-            spectra,
             multiple_on: model_settings.max_orders != Some(1),
-            prune: model_settings.prune,
             transmittance: TransmittanceTable::build(atmosphere, w, h),
             multiple: None,
             ground: None,
@@ -282,9 +278,9 @@ impl Hillaire {
     pub fn medium(&self) -> Medium<'_> {
         Medium {
             atmosphere: &self.atmosphere,
-            spectra: &self.spectra,
+            spectra: &self.base.spectra,
             transmittance: &self.transmittance,
-            mie: self.mie,
+            mie: self.base.with_mie,
         }
     }
 
@@ -394,7 +390,7 @@ impl Hillaire {
     /// Radiance per unit solar irradiance and transmittance of a segment whose camera is
     /// inside the atmosphere.
     fn read_tables(&self, segment: &ViewSegment) -> (Vec<f64>, Vec<f64>) {
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         let up = segment.start / segment.start.length();
         let (r, mu_s) = self.view_key(segment.r, segment.sun_direction.dot(up));
         let (_, phi) = view_angles(up, segment.direction, segment.sun_direction);
@@ -406,6 +402,7 @@ impl Hillaire {
             });
             let column = self.transmittance.column(segment.r, segment.mu);
             let transmittance = self
+                .base
                 .spectra
                 .extinction
                 .iter()
@@ -429,17 +426,13 @@ impl Hillaire {
 }
 
 impl SkyModel for Hillaire {
-    fn id(&self) -> ModelId {
-        ModelId::Hillaire
-    }
-
-    fn spectra(&self) -> &Spectra {
-        &self.spectra
+    fn base(&self) -> &ModelBase {
+        &self.base
     }
 
     /// The global tables plus the per-view tables of one view.
     fn table_bytes(&self) -> usize {
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         std::mem::size_of_val(self.transmittance.columns.as_slice())
             + self.multiple.as_ref().map_or(0, MultipleScattering::bytes)
             + self.ground.as_ref().map_or(0, GroundIrradiance::bytes)
@@ -448,18 +441,10 @@ impl SkyModel for Hillaire {
     }
 
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
-        let mut update = TableUpdate::new(&self.atmosphere, atmosphere)?;
+        let mut update = self.base.adopt(&mut self.atmosphere, atmosphere)?;
         let changed = update.changed;
-        self.atmosphere = atmosphere.clone();
-        self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
-        self.mie = self.spectra.needs_mie(self.prune);
-        let (w, h) = self.settings.transmittance_size;
-        update.rebuild(
-            Inputs::COLUMNS,
-            "transmittance",
-            &mut self.transmittance,
-            || TransmittanceTable::build(atmosphere, w, h),
-        );
+        let size = self.settings.transmittance_size;
+        update.rebuild_columns("transmittance", &mut self.transmittance, atmosphere, size);
         if self.multiple_on && changed.intersects(MULTIPLE_SCATTERING_INPUTS) {
             self.build_multiple_scattering();
             update.mark(&["multiple scattering"]);
@@ -483,7 +468,7 @@ impl SkyModel for Hillaire {
     /// sky over a peak is thinner; at the top there is none).
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
         let e = SurfaceElement::new(&self.atmosphere, surface)?;
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         let mut sun = vec![0.0; n];
         self.medium().sun_transmittance(e.r, e.mu_s, &mut sun);
         let mut sky = vec![0.0; n];
@@ -496,21 +481,21 @@ impl SkyModel for Hillaire {
             .column(self.atmosphere.bottom_radius_m, 1.0);
         Ok((0..n)
             .map(|w| {
-                let extinction = self.spectra.extinction[w];
+                let extinction = self.base.spectra.extinction[w];
                 let total = optical_depth(whole, extinction);
                 let share = if total > 0.0 {
                     optical_depth(above, extinction) / total
                 } else {
                     1.0
                 };
-                let solar = self.spectra.solar_irradiance[w];
+                let solar = self.base.spectra.solar_irradiance[w];
                 e.irradiance(solar, sun[w], solar * sky[w] * share)
             })
             .collect())
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
-        let n = self.spectra.wavelengths_nm.len();
+        let n = self.base.spectra.wavelengths_nm.len();
         let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
             return Ok(RayRadiance::unattenuated(n));
         };
@@ -522,7 +507,7 @@ impl SkyModel for Hillaire {
         } else {
             self.march(&segment)
         };
-        for (l, e) in radiance.iter_mut().zip(&self.spectra.solar_irradiance) {
+        for (l, e) in radiance.iter_mut().zip(&self.base.spectra.solar_irradiance) {
             *l *= e;
         }
         // The ground lit as a surface element facing up at the ray's end.
