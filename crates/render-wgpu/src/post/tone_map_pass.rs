@@ -6,7 +6,8 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
 use crate::gpu::formats::LDR_FORMAT;
 use crate::gpu::pipeline::{
-    in_stage, one_group_layout, shader_module, texture_entry, uniform_buffer, uniform_entry,
+    in_stage, one_group_layout, ordered_bind_group, shader_module, texture_entry, uniform_buffer,
+    uniform_entry,
 };
 use crate::post::tone_map::ToneMapUniform;
 
@@ -80,20 +81,15 @@ impl ToneMapPass {
     ) {
         gpu.write_uniform(&self.params, params);
         let hdr_view = hdr.create_view(&Default::default());
-        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("tone map"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&hdr_view),
-                },
+        let bind_group = ordered_bind_group(
+            &gpu.device,
+            "tone map",
+            &self.layout,
+            &[
+                self.params.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&hdr_view),
             ],
-        });
+        );
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("tone map"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {

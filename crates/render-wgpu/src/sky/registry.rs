@@ -13,14 +13,11 @@ use crate::sky::riley::RileyPass;
 use crate::sky::sky_pass::{Planned, SkyPass};
 
 /// The models the GPU renders: every model but the reference.
-pub const GPU_MODELS: [ModelId; 6] = [
-    ModelId::Bruneton,
-    ModelId::Dobashi,
-    ModelId::Hillaire,
-    ModelId::Nishita,
-    ModelId::Oneil,
-    ModelId::Riley,
-];
+pub const GPU_MODELS: [ModelId; 6] = {
+    let [reference, on_gpu @ ..] = ModelId::ALL;
+    assert!(matches!(reference, ModelId::Reference));
+    on_gpu
+};
 
 /// Whether model `id` can be rendered: an error naming it when it is not on the GPU (no
 /// model silently stands in for another).

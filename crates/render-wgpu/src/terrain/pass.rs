@@ -24,8 +24,8 @@ use crate::frame::{Frame, TerrainOptions};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    buffer, float_texture_entry, in_stage, one_group_layout, read_only_storage_buffer_entry,
-    shader_module, texture_2d, uniform_buffer, uniform_entry,
+    buffer, float_texture_entry, in_stage, one_group_layout, ordered_bind_group,
+    read_only_storage_buffer_entry, shader_module, texture_2d, uniform_buffer, uniform_entry,
 };
 use crate::terrain::chunk_key::ChunkKey;
 use crate::terrain::chunk_mesh::ChunkMesh;
@@ -373,28 +373,17 @@ impl TerrainPass {
         let Some(depth) = self.depth.as_ref() else {
             unreachable!("prepare makes the depth buffer before a frame draws terrain");
         };
-        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("terrain"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.chunk_buffer.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&self.colour),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
+        let bind_group = ordered_bind_group(
+            &gpu.device,
+            "terrain",
+            &self.layout,
+            &[
+                self.params.as_entire_binding(),
+                self.chunk_buffer.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&self.colour),
+                wgpu::BindingResource::Sampler(&self.sampler),
             ],
-        });
+        );
         let [geometry, albedo] = surface.views();
         let colour = |view| {
             Some(wgpu::RenderPassColorAttachment {
