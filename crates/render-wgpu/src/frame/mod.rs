@@ -42,7 +42,7 @@ pub struct Frame {
     pub terrain: Option<TerrainOptions>,
 }
 
-/// Terrain drawn over the planet (`terrain_pass.rs`): the Earth's height and colour maps
+/// Terrain drawn over the planet (`terrain/pass.rs`): the Earth's height and colour maps
 /// of `assets/earth` on the atmosphere's bottom sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TerrainOptions {

@@ -20,9 +20,9 @@ pub enum GpuError {
         #[source]
         source: wgpu::RequestDeviceError,
     },
-    #[error("unknown shader '{0}' (not embedded in shader_source.rs)")]
+    #[error("unknown shader '{0}' (no such file below shaders/)")]
     UnknownShader(String),
-    #[error("shader {shader} imports '{import}', which is not embedded in shader_source.rs")]
+    #[error("shader {shader} imports '{import}', which is no file below shaders/")]
     UnknownImport { shader: String, import: String },
     #[error("{what} failed GPU validation: {source}")]
     Validation {

@@ -106,9 +106,21 @@ pub struct TerrainPass {
     /// Index buffers by coarser-edge pattern (the same for every chunk).
     indices: HashMap<[bool; 4], (wgpu::Buffer, u32)>,
     chunk_buffer: wgpu::Buffer,
-    depth: Option<wgpu::Texture>,
+    /// The depth buffer at the last prepared frame's size (1 x 1 before the first).
+    depth: wgpu::Texture,
     draws: Vec<Draw>,
     frame_number: u64,
+}
+
+/// A reversed-depth buffer of `width` x `height` pixels.
+fn depth_buffer(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
+    texture_2d(
+        &gpu.device,
+        "terrain depth",
+        (width, height),
+        DEPTH_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    )
 }
 
 impl TerrainPass {
@@ -208,7 +220,7 @@ impl TerrainPass {
             chunks: HashMap::new(),
             indices: HashMap::new(),
             chunk_buffer,
-            depth: None,
+            depth: depth_buffer(gpu, 1, 1),
             draws: Vec::new(),
             frame_number: 0,
         })
@@ -345,20 +357,9 @@ impl TerrainPass {
     }
 
     fn ensure_depth(&mut self, gpu: &GpuContext, width: u32, height: u32) {
-        if self
-            .depth
-            .as_ref()
-            .is_some_and(|d| (d.width(), d.height()) == (width, height))
-        {
-            return;
+        if (self.depth.width(), self.depth.height()) != (width, height) {
+            self.depth = depth_buffer(gpu, width, height);
         }
-        self.depth = Some(texture_2d(
-            &gpu.device,
-            "terrain depth",
-            (width, height),
-            DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
-        ));
     }
 
     /// Draws the chunks the last [`TerrainPass::prepare`] chose into `surface` (cleared
@@ -370,9 +371,7 @@ impl TerrainPass {
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        let Some(depth) = self.depth.as_ref() else {
-            unreachable!("prepare makes the depth buffer before a frame draws terrain");
-        };
+        let depth = &self.depth;
         let bind_group = ordered_bind_group(
             &gpu.device,
             "terrain",
