@@ -10,6 +10,10 @@ fn main() -> ExitCode {
         // Help and version to stdout with 0, usage errors to stderr with 2.
         usage.exit();
     }
+    if atmos::files::is_broken_pipe(&err) {
+        // The reader of stdout has gone (`atmos stability | head -1`): nothing to say.
+        return ExitCode::SUCCESS;
+    }
     // The chain of causes, each once: some errors already print their source.
     let mut message = err.to_string();
     for cause in err.chain().skip(1).map(ToString::to_string) {

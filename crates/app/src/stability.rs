@@ -2,6 +2,8 @@
 //! through every model (or the chosen ones), as a table of pass or fail and the worst
 //! value seen.
 
+use std::io::Write;
+
 use anyhow::{Context, bail};
 use atmosphere_core::analysis::stability;
 use atmosphere_core::models::id::ModelId;
@@ -15,8 +17,9 @@ pub fn run(args: &StabilityArgs) -> anyhow::Result<()> {
     } else {
         args.model.clone()
     };
-    println!("| model | case | result | worst | failure |");
-    println!("|---|---|---|---|---|");
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "| model | case | result | worst | failure |")?;
+    writeln!(out, "|---|---|---|---|---|")?;
     let mut failures = 0;
     for id in models {
         eprintln!("stability: running {id}...");
@@ -25,13 +28,14 @@ pub fn run(args: &StabilityArgs) -> anyhow::Result<()> {
             if !r.passed {
                 failures += 1;
             }
-            println!(
+            writeln!(
+                out,
                 "| {id} | {} | {} | {:.3e} | {} |",
                 r.case,
                 if r.passed { "pass" } else { "FAIL" },
                 r.worst,
                 r.failure.as_deref().unwrap_or("")
-            );
+            )?;
         }
     }
     if failures > 0 {

@@ -8,6 +8,7 @@ mod views;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
@@ -314,7 +315,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     }
     progress.finish();
     let text = markdown(&adapter, args, &results);
-    print!("{text}");
+    std::io::stdout().lock().write_all(text.as_bytes())?;
     if let Some(path) = &args.out {
         write_atomically(path, text.as_bytes())?;
     }
