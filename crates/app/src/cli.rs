@@ -122,10 +122,10 @@ pub struct ContactSheetArgs {
     /// Size of each image as WIDTHxHEIGHT.
     #[arg(long, value_name = "WIDTHxHEIGHT", default_value = "320x180", value_parser = parse_tile)]
     pub tile: (u32, u32),
-    /// The PNG to write (atomically).
+    /// The image to write (atomically): FILE.png or FILE.jpg.
     #[arg(
         long,
-        value_name = "FILE.png",
+        value_name = "FILE.png|FILE.jpg",
         default_value = "docs/images/contact_sheet.png"
     )]
     pub out: PathBuf,

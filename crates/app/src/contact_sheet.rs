@@ -3,8 +3,9 @@
 //! out with labels in one PNG, to compare the models at a glance (docs/images/).
 
 use std::io::Cursor;
+use std::path::Path;
 
-use anyhow::{Context, anyhow};
+use anyhow::{Context, anyhow, bail};
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::ModelSettings;
@@ -14,7 +15,7 @@ use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::sky::registry::GPU_MODELS;
 
 use crate::cli::ContactSheetArgs;
-use crate::files::write_atomically;
+use crate::files::{check_writable, write_atomically};
 use crate::progress::Progress;
 use crate::report::plot::register_sans_serif;
 
@@ -88,8 +89,21 @@ pub const SHEET_VIEWS: [SheetView; 6] = [
 const LEFT_PX: u32 = 110;
 const TOP_PX: u32 = 26;
 
+/// The image format of the sheet's file, from its extension: PNG or JPEG.
+fn sheet_format(out: &Path) -> anyhow::Result<image::ImageFormat> {
+    match image::ImageFormat::from_path(out) {
+        Ok(format @ (image::ImageFormat::Png | image::ImageFormat::Jpeg)) => Ok(format),
+        _ => bail!(
+            "--out {}: the contact sheet is written as .png or .jpg",
+            out.display()
+        ),
+    }
+}
+
 /// Renders the sheet of `args` and writes it atomically.
 pub fn run(args: &ContactSheetArgs) -> anyhow::Result<()> {
+    let format = sheet_format(&args.out)?;
+    check_writable(&args.out)?;
     let (tile_w, tile_h) = args.tile;
     for m in &args.model {
         Renderer::check_model(*m)?;
@@ -146,8 +160,8 @@ pub fn run(args: &ContactSheetArgs) -> anyhow::Result<()> {
     label(&mut sheet, &models, tile_w, tile_h)?;
     let mut bytes = Cursor::new(Vec::new());
     sheet
-        .write_to(&mut bytes, image::ImageFormat::Png)
-        .context("cannot encode the PNG")?;
+        .write_to(&mut bytes, format)
+        .with_context(|| format!("cannot encode {}", args.out.display()))?;
     write_atomically(&args.out, bytes.get_ref())?;
     eprintln!(
         "contact sheet of {} models x {} views on {}: wrote {}",

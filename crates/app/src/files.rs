@@ -17,11 +17,25 @@ pub fn is_broken_pipe(err: &anyhow::Error) -> bool {
     })
 }
 
-/// Writes `contents` to `path` through a `.partial` file renamed into place.
-pub fn write_atomically(path: &Path, contents: &[u8]) -> anyhow::Result<()> {
+/// The file an atomic write of `path` goes through before it is renamed into place.
+fn partial_path(path: &Path) -> PathBuf {
     let mut partial = path.as_os_str().to_owned();
     partial.push(".partial");
-    let partial = PathBuf::from(partial);
+    PathBuf::from(partial)
+}
+
+/// Checks, before any work, that `path` can be written: its `.partial` file is created in
+/// the output's folder and removed again, so a missing or read-only folder is named at
+/// once rather than after a long render.
+pub fn check_writable(path: &Path) -> anyhow::Result<()> {
+    let partial = partial_path(path);
+    fs::File::create(&partial).with_context(|| format!("cannot write {}", path.display()))?;
+    fs::remove_file(&partial).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Writes `contents` to `path` through a `.partial` file renamed into place.
+pub fn write_atomically(path: &Path, contents: &[u8]) -> anyhow::Result<()> {
+    let partial = partial_path(path);
     let result = fs::File::create(&partial)
         .and_then(|mut f| f.write_all(contents).and_then(|()| f.sync_all()))
         .and_then(|()| fs::rename(&partial, path));

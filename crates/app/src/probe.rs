@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::cli::ProbeArgs;
-use crate::files::write_atomically;
+use crate::files::{check_writable, write_atomically};
 use crate::progress::Progress;
 
 /// The columns every input needs, in the order of [`ViewRay::from_angles`].
@@ -238,6 +238,9 @@ pub fn read_rays(text: &str, file: &str, bottom_radius_m: f64) -> Result<ProbeIn
 
 /// Runs `atmos probe`.
 pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
+    if let Some(path) = &args.output {
+        check_writable(path)?;
+    }
     let settings = ModelSettings {
         wavelengths_nm: args.wavelengths.iter().map(|w| w.nm).collect(),
         max_orders: args.orders,

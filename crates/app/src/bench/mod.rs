@@ -22,7 +22,7 @@ use render_wgpu::frame::plan::{FramePlan, StepKind};
 use render_wgpu::sky::registry::GPU_MODELS;
 
 use crate::cli::BenchArgs;
-use crate::files::write_atomically;
+use crate::files::{check_writable, write_atomically};
 use crate::progress::Progress;
 pub use views::{BENCH_VIEWS, BenchView};
 
@@ -290,6 +290,9 @@ pub fn markdown(adapter: &str, args: &BenchArgs, results: &[VariantTimes]) -> St
 
 /// Runs `atmos bench`: measures, prints the tables, and writes them to `--out` if given.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    if let Some(path) = &args.out {
+        check_writable(path)?;
+    }
     if args.frames == 0 {
         bail!("--frames must be at least 1");
     }

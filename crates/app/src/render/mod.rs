@@ -10,12 +10,14 @@ use anyhow::Context;
 use render_wgpu::Renderer;
 
 use crate::cli::RenderArgs;
+use crate::files::check_writable;
 use scene::{Output, Scene};
 
 /// Renders the scene of `args` and writes it; prints the adapter, the plan and the
 /// times on stderr.
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let output = Output::from_path(&args.out)?;
+    check_writable(&args.out)?;
     let flags = args.fields.clone().at(&args.location);
     let scene = match &args.scene {
         Some(path) => Scene::load(path)?.overridden_by(flags),
