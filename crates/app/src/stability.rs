@@ -20,11 +20,12 @@ pub fn run(args: &StabilityArgs) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();
     writeln!(out, "| model | case | result | worst | failure |")?;
     writeln!(out, "|---|---|---|---|---|")?;
-    let mut failures = 0;
+    let (mut cases, mut failures) = (0, 0);
     for id in models {
         eprintln!("stability: running {id}...");
         let results = stability::run(id).with_context(|| format!("model {id}"))?;
         for r in results {
+            cases += 1;
             if !r.passed {
                 failures += 1;
             }
@@ -38,6 +39,11 @@ pub fn run(args: &StabilityArgs) -> anyhow::Result<()> {
             )?;
         }
     }
+    writeln!(
+        out,
+        "\n{cases} cases: {} passed, {failures} failed",
+        cases - failures
+    )?;
     if failures > 0 {
         bail!("{failures} stability case(s) failed");
     }

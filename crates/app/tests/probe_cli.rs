@@ -144,6 +144,35 @@ fn rejected_ray_is_named() {
 }
 
 #[test]
+fn an_infinite_distance_is_called_infinite() {
+    let (_dir, path) = input(&format!("{HEADER}\n0,80,30,0,inf\n"));
+    let message = probe_error(&path, &[]);
+    assert!(
+        message.contains("line 2: ") && message.contains("distance_m must be finite, got inf"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_setting_is_named_by_its_key() {
+    let (_dir, path) = input(&format!("{HEADER}\n{RAYS}"));
+    let input = path.to_str().unwrap();
+    let args = [
+        "probe",
+        "--model",
+        "nishita",
+        "--set",
+        "samples=0",
+        "--input",
+        input,
+    ];
+    atmos_fails_with(
+        &args,
+        "nishita samples (view samples per ray) must be at least 1",
+    );
+}
+
+#[test]
 fn bad_flags_get_clear_messages() {
     let (_dir, path) = input(&format!("{HEADER}\n{RAYS}"));
     let input = path.to_str().unwrap();

@@ -20,10 +20,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     check_writable(&args.out)?;
     let flags = args.fields.clone().at(&args.location);
     let scene = match &args.scene {
-        Some(path) => Scene::load(path)?.overridden_by(flags),
-        None => flags,
-    }
-    .resolved()?;
+        Some(path) => Scene::load(path)?
+            .overridden_by(flags)
+            .resolved()
+            .with_context(|| format!("scene {}", path.display()))?,
+        None => flags.resolved()?,
+    };
     let frame = scene.frame()?;
     Renderer::check_model(frame.model)?;
     let mut renderer = Renderer::headless()?;

@@ -132,12 +132,12 @@ impl Scene {
     /// The scene with every default filled in, as written into EXR headers.
     pub fn resolved(&self) -> anyhow::Result<Scene> {
         let required = |value: Option<f64>, flag: &str| {
-            value.with_context(|| format!("--{flag} is required (or give --scene FILE.toml)"))
+            value.with_context(|| format!("--{flag} is required (or its field in a --scene file)"))
         };
         Ok(Scene {
             model: Some(
                 self.model
-                    .context("--model is required (or give --scene FILE.toml)")?,
+                    .context("--model is required (or `model = ...` in a --scene file)")?,
             ),
             altitude_m: Some(required(self.altitude_m, "altitude-m")?),
             sun_zenith_deg: Some(required(self.sun_zenith_deg, "sun-zenith-deg")?),
@@ -228,7 +228,7 @@ impl Scene {
             atmosphere,
             model: s
                 .model
-                .context("--model is required (or give --scene FILE.toml)")?,
+                .context("--model is required (or `model = ...` in a --scene file)")?,
             settings: ModelSettings {
                 options: ModelOptions::parse(&s.set)?,
                 ..ModelSettings::default()

@@ -66,7 +66,7 @@ impl NishitaSettings {
     pub fn validate(&self) -> Result<(), ModelError> {
         if self.view_samples == 0 {
             return Err(ModelError::Settings(
-                "nishita view_samples must be at least 1".into(),
+                "nishita samples (view samples per ray) must be at least 1".into(),
             ));
         }
         if self.table_heights < 2 || self.table_angles < 2 {

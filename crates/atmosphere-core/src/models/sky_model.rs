@@ -56,10 +56,15 @@ impl ViewRay {
         let vz = check("view_zenith_deg", view_zenith_deg)?.to_radians();
         let sz = check("sun_zenith_deg", sun_zenith_deg)?.to_radians();
         let az = check("view_sun_azimuth_deg", view_sun_azimuth_deg)?.to_radians();
-        if let Some(d) = distance_m
-            && !(d.is_finite() && d > 0.0)
-        {
-            return Err(ModelError::Ray(format!("distance_m {d} must be > 0")));
+        if let Some(d) = distance_m {
+            if !d.is_finite() {
+                return Err(ModelError::Ray(format!(
+                    "distance_m must be finite, got {d}"
+                )));
+            }
+            if d <= 0.0 {
+                return Err(ModelError::Ray(format!("distance_m {d} must be > 0")));
+            }
         }
         Ok(ViewRay {
             origin_m: DVec3::new(0.0, 0.0, bottom_radius_m + altitude_m),

@@ -32,6 +32,11 @@ impl GpuContext {
     async fn headless_async(without: wgpu::Features) -> Result<GpuContext, GpuError> {
         let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         let backends = descriptor.backends;
+        if backends.is_empty() {
+            return Err(GpuError::UnknownBackend {
+                value: std::env::var("WGPU_BACKEND").unwrap_or_default(),
+            });
+        }
         let instance = wgpu::Instance::new(descriptor);
         let adapter = choose_adapter(instance.enumerate_adapters(backends).await, backends)?;
         let mut descriptor = device_descriptor(&adapter);

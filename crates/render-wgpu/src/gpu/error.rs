@@ -12,6 +12,11 @@ pub enum GpuError {
          `apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe)"
     )]
     NoAdapter { backends: String },
+    #[error(
+        "WGPU_BACKEND={value} names no backend (known: vulkan, metal, dx12, gl, webgpu; \
+         several separated by commas)"
+    )]
+    UnknownBackend { value: String },
     #[error("WGPU_ADAPTER_NAME={wanted} matches no adapter (available: {available})")]
     NoAdapterNamed { wanted: String, available: String },
     #[error("cannot create a device on {adapter}: {source}")]
