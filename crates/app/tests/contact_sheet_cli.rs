@@ -1,30 +1,41 @@
 //! `atmos contact-sheet` end to end on tiny tiles: the sheet has one labelled row per
-//! model and one column per view, the noon sky is blue over a reddish-grey ground, space in the
-//! 100 km view is black; a bad tile size is named. Without an adapter the GPU case fails
-//! with the message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`.
+//! model and one column per view, the noon sky is blue over a reddish-grey ground, space
+//! in the 100 km view is black; a bad tile size is named; the file's type follows its
+//! extension. Without an adapter the GPU cases fail with the message saying what to
+//! install, unless `ATMOS_SKIP_GPU_TESTS=1`.
 
 mod common;
 
-use common::{atmos, skipped_without_adapter, stderr};
+use std::path::Path;
+
+use common::{atmos, atmos_fails_with, skipped_without_adapter, stderr};
+
+/// Renders a sheet of `model` with tiles of `tile` into `out`; `false` when it skipped for
+/// want of an adapter.
+fn sheet(model: &str, tile: &str, out: &Path) -> bool {
+    let output = atmos(&[
+        "contact-sheet",
+        "--model",
+        model,
+        "--tile",
+        tile,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    if skipped_without_adapter(&output) {
+        return false;
+    }
+    assert!(output.status.success(), "{}", stderr(&output));
+    true
+}
 
 #[test]
 fn the_sheet_lays_out_labelled_views() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("sheet.png");
-    let output = atmos(&[
-        "contact-sheet",
-        "--model",
-        "nishita",
-        "--tile",
-        "32x18",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    if skipped_without_adapter(&output) {
+    if !sheet("nishita", "32x18", &out) {
         return;
     }
-    let err = stderr(&output);
-    assert!(output.status.success(), "{err}");
     let sheet = image::open(&out).unwrap().to_rgb8();
     // 110 px of model names, six 32 px columns; 26 px of view names, one 18 px row.
     assert_eq!(sheet.dimensions(), (110 + 6 * 32, 26 + 18));
@@ -49,4 +60,23 @@ fn a_bad_tile_is_named() {
     let output = atmos(&["contact-sheet", "--tile", "0x9"]);
     assert_eq!(output.status.code(), Some(2));
     assert!(stderr(&output).contains("0x9"), "{}", stderr(&output));
+}
+
+#[test]
+fn the_sheet_is_written_in_the_type_its_name_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let gif = dir.path().join("sheet.gif");
+    atmos_fails_with(
+        &["contact-sheet", "--out", gif.to_str().unwrap()],
+        "the contact sheet is written as .png or .jpg",
+    );
+    let jpg = dir.path().join("sheet.jpg");
+    if !sheet("riley", "16x9", &jpg) {
+        return;
+    }
+    let bytes = std::fs::read(&jpg).unwrap();
+    assert_eq!(
+        image::guess_format(&bytes).unwrap(),
+        image::ImageFormat::Jpeg
+    );
 }

@@ -134,38 +134,26 @@ fn malformed_line_is_named_and_leaves_no_output() {
 }
 
 #[test]
-fn rejected_ray_is_named() {
-    let (_dir, path) = input(&format!("{HEADER}\n0,0,30,0,\n-10,0,30,0,\n"));
-    let message = probe_error(&path, &[]);
-    assert!(
-        message.contains("rays.csv line 3: ") && message.contains("altitude_m"),
-        "{message}"
-    );
-}
-
-#[test]
-fn an_infinite_distance_is_called_infinite() {
-    let (_dir, path) = input(&format!("{HEADER}\n0,80,30,0,inf\n"));
-    let message = probe_error(&path, &[]);
-    assert!(
-        message.contains("line 2: ") && message.contains("distance_m must be finite, got inf"),
-        "{message}"
-    );
+fn rejected_rays_are_named() {
+    let cases = [
+        ("-10,0,30,0,", "altitude_m -10 is below the ground"),
+        ("0,80,30,0,inf", "distance_m must be finite, got inf"),
+    ];
+    for (ray, expected) in cases {
+        let (_dir, path) = input(&format!("{HEADER}\n0,0,30,0,\n{ray}\n"));
+        let message = probe_error(&path, &[]);
+        assert!(
+            message.contains("rays.csv line 3: ") && message.contains(expected),
+            "{message}"
+        );
+    }
 }
 
 #[test]
 fn a_setting_is_named_by_its_key() {
     let (_dir, path) = input(&format!("{HEADER}\n{RAYS}"));
-    let input = path.to_str().unwrap();
-    let args = [
-        "probe",
-        "--model",
-        "nishita",
-        "--set",
-        "samples=0",
-        "--input",
-        input,
-    ];
+    let settings = ["--model", "nishita", "--set", "samples=0"];
+    let args = [&["probe", "--input", path.to_str().unwrap()], &settings[..]].concat();
     atmos_fails_with(
         &args,
         "nishita samples (view samples per ray) must be at least 1",
