@@ -13,8 +13,10 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::ModelSettings;
 use render_wgpu::frame::{Frame, LocalView};
 use render_wgpu::sky::bruneton::{BrunetonPass, StoreTable};
-use render_wgpu::{GpuContext, GpuError, RenderError, Renderer};
-use support::{BRUNETON_TABLES, check, check_surface, check_texel_reads, standard_frames, view};
+use render_wgpu::{GpuContext, RenderError, Renderer};
+use support::{
+    BRUNETON_TABLES, check, check_surface, check_texel_reads, gpu_or_skip, standard_frames, view,
+};
 
 /// Reduced table sizes for the parity tests (S 8 x 32 x 16 x 8, the paper's sample
 /// counts), so that the CPU and lavapipe build them in seconds.
@@ -27,19 +29,6 @@ fn settings(options: &[&str]) -> ModelSettings {
         s.options.set(k, v);
     }
     s
-}
-
-fn gpu_or_skip(test: &str) -> Option<GpuContext> {
-    match GpuContext::headless() {
-        Ok(g) => Some(g),
-        Err(e @ GpuError::NoAdapter { .. })
-            if std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1") =>
-        {
-            println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {e}");
-            None
-        }
-        Err(e) => panic!("{e}"),
-    }
 }
 
 fn frame(preset: &str, settings: ModelSettings, v: LocalView, fov: f64, w: u32, h: u32) -> Frame {

@@ -203,7 +203,6 @@ fn parse_grid(text: &str) -> Result<(usize, usize), String> {
     Ok((c, r))
 }
 
-/// "320x180" -> (320, 180), each side 1 to the GPU's largest texture side.
 /// A model the GPU renders (`atmos view --model`).
 fn gpu_model(text: &str) -> Result<ModelId, String> {
     let id: ModelId = text.parse().map_err(|e: UnknownModel| e.to_string())?;
@@ -225,6 +224,7 @@ fn report_model(text: &str) -> Result<ModelId, String> {
     }
 }
 
+/// "320x180" -> (320, 180), each side 1 to the GPU's largest texture side.
 fn parse_tile(text: &str) -> Result<(u32, u32), String> {
     let (w, h) = parse_grid(text)?;
     let max = render_wgpu::frame::MAX_SIDE_PX as usize;

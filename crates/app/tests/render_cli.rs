@@ -7,7 +7,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{atmos, stderr};
+use common::{atmos, skipped_without_adapter, stderr};
 use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{FlatSamples, Levels};
 
@@ -38,14 +38,10 @@ fn render(extra: &[&str], out: &Path) -> bool {
     args.extend(extra);
     args.extend(["--out", out.to_str().unwrap()]);
     let output = atmos(&args);
-    let err = stderr(&output);
-    if !output.status.success()
-        && err.contains("no GPU adapter")
-        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
-    {
-        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+    if skipped_without_adapter(&output) {
         return false;
     }
+    let err = stderr(&output);
     assert!(output.status.success(), "{err}");
     assert!(err.contains("32x18 nishita frame"), "{err}");
     true

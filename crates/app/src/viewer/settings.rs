@@ -93,7 +93,7 @@ pub struct ViewerSettings {
     pub mie_g: f64,
     pub ozone: bool,
     pub ground_albedo: f64,
-    /// One of `render_wgpu::sky::model_pass::GPU_MODELS`.
+    /// One of `render_wgpu::sky::registry::GPU_MODELS`.
     pub model: ModelId,
     /// The model's quality settings as `key=value` items separated by spaces (e.g.
     /// `samples=32` for nishita; each model's keys are in docs/models/); empty: the

@@ -3,13 +3,11 @@
 use thiserror::Error;
 
 use crate::atmosphere::AtmosphereError;
-use crate::models::id::{ModelId, UnknownModel};
+use crate::models::id::ModelId;
 
 /// What goes wrong when a model is chosen, prepared or asked about a ray.
 #[derive(Debug, Error)]
 pub enum ModelError {
-    #[error(transparent)]
-    UnknownModel(#[from] UnknownModel),
     #[error(transparent)]
     Atmosphere(#[from] AtmosphereError),
     #[error("invalid model settings: {0}")]

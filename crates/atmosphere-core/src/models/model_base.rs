@@ -19,6 +19,7 @@ pub struct ModelBase {
     /// [`ModelSettings::prune`], kept to recompute `with_mie` on an update.
     pub prune: bool,
     /// False when pruning at zero aerosol: the model skips its Mie terms and tables.
+    /// `spectra.needs_mie(prune)`, kept because the models read it for every ray.
     pub with_mie: bool,
 }
 
@@ -46,7 +47,7 @@ impl ModelBase {
     }
 
     /// Samples a changed atmosphere at the same wavelengths, with the same pruning.
-    pub fn refresh(&mut self, atmosphere: &Atmosphere) {
+    fn refresh(&mut self, atmosphere: &Atmosphere) {
         self.spectra = Spectra::new(atmosphere, &self.spectra.wavelengths_nm);
         self.with_mie = self.spectra.needs_mie(self.prune);
     }

@@ -240,28 +240,25 @@ impl Riley {
     /// (Rayleigh, Mie) with one exponential. Ozone is ignored. `max_orders` and the
     /// stochastic settings do not apply: the model is single scattering, in closed form.
     pub fn prepare(atmosphere: &Atmosphere, settings: &ModelSettings) -> Riley {
-        let c: Vec<_> = settings
-            .wavelengths_nm
-            .iter()
-            .map(|l| atmosphere.coefficients(*l))
-            .collect();
+        let base = ModelBase::new(ModelId::Riley, atmosphere, settings);
         let thickness = atmosphere.thickness_m();
-        let rayleigh_s: Vec<f64> = c.iter().map(|c| c.rayleigh_scattering_per_m).collect();
-        let mie_s: Vec<f64> = c.iter().map(|c| c.mie_scattering_per_m).collect();
-        let mie_e: Vec<f64> = c.iter().map(|c| c.mie_extinction_per_m).collect();
+        let spectra = &base.spectra;
+        let rayleigh_s = &spectra.rayleigh_scattering;
+        let mie_s = &spectra.mie_scattering;
+        let mie_e: Vec<f64> = spectra.extinction.iter().map(|e| e[1]).collect();
         Riley {
-            base: ModelBase::new(ModelId::Riley, atmosphere, settings),
             bottom_radius_m: atmosphere.bottom_radius_m,
             top_radius_m: atmosphere.top_radius_m,
             ground_albedo: atmosphere.ground_albedo,
             rayleigh: Species::new(
                 &atmosphere.rayleigh.density,
                 thickness,
-                &rayleigh_s,
-                &rayleigh_s,
+                rayleigh_s,
+                rayleigh_s,
             ),
-            mie: Species::new(&atmosphere.mie.density, thickness, &mie_s, &mie_e),
+            mie: Species::new(&atmosphere.mie.density, thickness, mie_s, &mie_e),
             mie_phase: atmosphere.mie.phase.clone(),
+            base,
         }
     }
 

@@ -24,7 +24,6 @@ pub use sun::disk_mean_transmittance;
 pub use view_path::{RayEnd, ViewPath};
 
 use crate::atmosphere::Atmosphere;
-use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
@@ -79,10 +78,6 @@ impl Reference {
             bounds: DensityBounds::new(atmosphere),
             mie_sampler: PhaseSampler::new(&atmosphere.mie.phase),
         }
-    }
-
-    pub fn spectra(&self) -> &Spectra {
-        &self.base.spectra
     }
 
     /// The path tracer at wavelength index `w`.

@@ -216,10 +216,11 @@ impl PathTracer<'_> {
 mod tests {
     use super::*;
     use crate::atmosphere::Atmosphere;
+    use crate::atmosphere::spectra::Spectra;
     use crate::models::settings::ModelSettings;
     use crate::models::sky_model::ViewRay;
     use crate::optics::column::Fineness;
-    use crate::reference::{Reference, Spectra, ViewPath, single_scattering};
+    use crate::reference::{Reference, ViewPath, single_scattering};
 
     /// In twilight, the mean of the one-sample estimate is the single scattering along the
     /// same ray computed by converged quadrature (the estimate uses the columns table and
