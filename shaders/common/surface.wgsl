@@ -8,6 +8,7 @@
 
 #import common/atmosphere_params.wgsl
 #import common/frame_params.wgsl
+#import common/ground_ray.wgsl
 #import common/phase.wgsl
 
 // xyz: outward unit normal; w: distance from the camera along the pixel's ray, m
@@ -75,7 +76,7 @@ fn surface_element(point: vec3<f32>, normal: vec3<f32>) -> SurfaceElement {
 // Whether the planet hides the sun's centre from the element (`ray_hits_ground` towards
 // the sun).
 fn planet_hides_sun(e: SurfaceElement) -> bool {
-    return e.mu_s < 0.0 && (e.r * e.mu_s) * (e.r * e.mu_s) - e.q >= 0.0;
+    return hits_ground(e.q, e.r * e.mu_s);
 }
 
 // E_sun T_sun max(n . s, 0) + E_sky (1 + n . up) / 2 (`SurfaceElement::irradiance`).

@@ -98,8 +98,8 @@ impl Renderer {
         })
     }
 
-    /// Whether model `id` can be rendered: an error naming it when it is unknown or not
-    /// yet on the GPU (no model silently stands in for another).
+    /// Whether model `id` can be rendered: an error naming it when it is not on the GPU
+    /// (no model silently stands in for another).
     pub fn check_model(id: ModelId) -> Result<(), RenderError> {
         registry::check_model(id)
     }

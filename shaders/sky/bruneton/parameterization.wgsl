@@ -8,6 +8,7 @@
 // 6.4e6 m carries half a metre of rounding, and r - bottom is formed as q / (r + bottom)
 // (docs/rendering.md, "Camera-relative rendering").
 
+#import common/ground_ray.wgsl
 #import sky/bruneton/bindings.wgsl
 
 // A texel position along one axis: the lower texel and the weight of the next.
@@ -45,18 +46,6 @@ fn horizon_sq() -> f32 {
 fn radius_of_q(q: f32) -> f32 {
     let bottom = atmosphere.bottom_radius_m;
     return sqrt(bottom * bottom + q);
-}
-
-// `ray_hits_ground` from (q, r mu).
-fn hits_ground(q: f32, r_mu: f32) -> bool {
-    return r_mu < 0.0 && r_mu * r_mu - q >= 0.0;
-}
-
-// Distance to the ground along a ray that meets it, as the near root q / (-r mu + root);
-// the discriminant is clamped at 0 so that rays on the horizon reach their tangent point.
-fn ground_distance(q: f32, r_mu: f32) -> f32 {
-    let denom = -r_mu + safe_sqrt(r_mu * r_mu - q);
-    return select(0.0, max(q / denom, 0.0), denom > 0.0);
 }
 
 // Distance to the top boundary (`distance_to_exit`), with r^2 - top^2 = q - H^2.

@@ -1,5 +1,5 @@
 // Entry pass: the ambient table of the dobashi model, `main` (render-wgpu's
-// `sky/dobashi.rs`). CPU twin: atmosphere-core's `models/dobashi/ambient.rs`
+// `sky/dobashi/`). CPU twin: atmosphere-core's `models/dobashi/ambient.rs`
 // (`AmbientTable::build`). Paper: none for the term itself (Dobashi, Yamamoto and Nishita
 // 2002 has no multiple scattering; docs/models/dobashi.md), estimated as Hillaire 2020,
 // section 5.5, does with the model's own Eq. 12 (`sky/dobashi/trace.wgsl`). Invocation i

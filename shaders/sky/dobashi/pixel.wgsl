@@ -1,4 +1,4 @@
-// Entry pass: the dobashi model per pixel, `main` (render-wgpu's `sky/dobashi.rs`). CPU
+// Entry pass: the dobashi model per pixel, `main` (render-wgpu's `sky/dobashi/`). CPU
 // twin: atmosphere-core's `models/dobashi/mod.rs` (`Dobashi::radiance`,
 // `Dobashi::surface_irradiance`). Paper: Dobashi, Yamamoto and Nishita 2002, sections
 // 5.2-5.3: Eq. 12 along the pixel's ray through the sampling planes, or the sample spheres

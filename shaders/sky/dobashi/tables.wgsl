@@ -1,5 +1,5 @@
 // Entry passes: the pre-integrated segment tables of the dobashi model, `planes` and
-// `spheres` (render-wgpu's `sky/dobashi.rs`). CPU twins: atmosphere-core's
+// `spheres` (render-wgpu's `sky/dobashi/`). CPU twins: atmosphere-core's
 // `models/dobashi/plane_tables.rs` and `models/dobashi/sphere_tables.rs`, each segment by
 // `models/dobashi/segment.rs` (`integrate`). Paper: Dobashi, Yamamoto and Nishita 2002,
 // sections 5.2-5.3 and appendix A.2, Eq. A.5-A.6. Each texel holds, for one segment,

@@ -19,6 +19,7 @@
 #import common/frame_params.wgsl
 #import common/table_sampling.wgsl
 #import common/phase.wgsl
+#import common/ground_ray.wgsl
 #import sky/dobashi/bindings.wgsl
 #import sky/dobashi/plane_mapping.wgsl
 
@@ -90,7 +91,7 @@ fn plane_lookup(q: f32, r_mu: f32) -> Segment3 {
     let half = size.x / 2u;
     let r = sqrt(bottom * bottom + q);
     let rho = sqrt(q);
-    let ground = r_mu < 0.0 && r_mu * r_mu - q >= 0.0;
+    let ground = hits_ground(q, r_mu);
     let d = distance_out(q, r_mu);
     let range = plane_distance_range(q, r, rho, ground);
     let unit = select(0.0, clamp((d - range.x) / (range.y - range.x), 0.0, 1.0),

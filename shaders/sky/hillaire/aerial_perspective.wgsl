@@ -1,5 +1,5 @@
 // Entry pass: the aerial-perspective volume of the hillaire model, `main` (render-wgpu's
-// `sky/hillaire.rs`). CPU twin: atmosphere-core's `models/hillaire/aerial_perspective.rs`.
+// `sky/hillaire/`). CPU twin: atmosphere-core's `models/hillaire/aerial_perspective.rs`.
 // Paper: Hillaire 2020, section 5.4. As on the CPU the slices are laid over directions
 // around the camera in the latitude-longitude mapping rather than the frustum, so the
 // volume depends only on the view (camera radius, sun zenith cosine) and is kept while

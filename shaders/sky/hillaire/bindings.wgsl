@@ -1,7 +1,7 @@
 // Library: the bindings every pass of the hillaire model shares: its uniform at 2 and the
 // columns table at 3 (the `columns` of `sky/transmittance_table.wgsl`, the CPU's shared
 // table), read as `common/table_sampling.wgsl` says; each pass adds its own from 4 on.
-// Rust twin: render-wgpu's `sky/hillaire.rs` (`HillaireUniform`, the bind group
+// Rust twin: render-wgpu's `sky/hillaire/` (`HillaireUniform`, the bind group
 // layouts). CPU twin of the settings: atmosphere-core's `models/hillaire/mod.rs`
 // (`HillaireSettings`) and `models/hillaire/view_cache.rs`. Paper: Hillaire 2020,
 // section 5 (the LUTs and their sample counts).

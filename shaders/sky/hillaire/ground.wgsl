@@ -1,5 +1,5 @@
 // Entry pass: the sky's irradiance at the ground E_sky(mu_s) / E_sun of the hillaire
-// model, `main` (render-wgpu's `sky/hillaire.rs`). CPU twin: atmosphere-core's
+// model, `main` (render-wgpu's `sky/hillaire/`). CPU twin: atmosphere-core's
 // `models/hillaire/ground.rs` (`sky_irradiance`, `GroundIrradiance::build`). Paper:
 // Hillaire 2020, section 5 (the lit planet surface). Value i of n lies at
 // x = -1 + 2 i / (n - 1), mu_s = x |x|; each is the cosine-weighted integral of the view

@@ -83,7 +83,7 @@ fn sun_transmittance(q: f32, mu_s: f32) -> vec3<f32> {
     let qc = clamp(q, 0.0, top_q());
     let r = sqrt(bottom * bottom + qc);
     let mu = clamp(mu_s, -1.0, 1.0);
-    if mu < 0.0 && (r * mu) * (r * mu) - qc >= 0.0 {
+    if hits_ground(qc, r * mu) {
         return vec3<f32>(0.0);
     }
     return exp(-optical_depth(read_table_columns(transmittance_columns, qc, mu)));

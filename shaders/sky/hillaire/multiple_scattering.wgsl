@@ -1,5 +1,5 @@
 // Entry pass: the multiple-scattering LUT Psi_ms(mu_s, h) of the hillaire model, `main`
-// (render-wgpu's `sky/hillaire.rs`). CPU twin: atmosphere-core's
+// (render-wgpu's `sky/hillaire/`). CPU twin: atmosphere-core's
 // `models/hillaire/multiple_scattering.rs` (`transfer`, `MultipleScattering::build`).
 // Paper: Hillaire 2020, section 5.5. One workgroup per texel; its 64 threads
 // share the sphere's directions (`ms_sqrt_directions`^2 strata of equal solid angle, each

@@ -1,5 +1,5 @@
 // Entry passes: the hillaire model per pixel, `main`, `tables_only` and `from_space`
-// (render-wgpu's `sky/hillaire.rs`). CPU twin: atmosphere-core's `models/hillaire/mod.rs`
+// (render-wgpu's `sky/hillaire/`). CPU twin: atmosphere-core's `models/hillaire/mod.rs`
 // (`Hillaire::radiance`), with the look-ups of its tables (`SkyView::lookup`,
 // `AerialPerspective::lookup`, `GroundIrradiance::lookup`). Paper: Hillaire 2020, sections
 // 5.3-5.4 (sky-view LUT, aerial-perspective volume) and section 5 (the view march). For

@@ -1,5 +1,5 @@
 // Entry pass: the sky-view LUT of the hillaire model, `main` (render-wgpu's
-// `sky/hillaire.rs`). CPU twin: atmosphere-core's `models/hillaire/sky_view.rs`. Paper:
+// `sky/hillaire/`). CPU twin: atmosphere-core's `models/hillaire/sky_view.rs`. Paper:
 // Hillaire 2020, section 5.3. For the frame's view (camera radius and sun zenith cosine
 // of `HillaireParams`) each texel's direction in the latitude-longitude mapping
 // (`sky/hillaire/directions.wgsl`) is marched with the sky view's segment count to where

@@ -50,16 +50,6 @@ impl FramePlan {
         });
     }
 
-    /// Adds a table build when `stale`, else records it as skipped because its inputs did
-    /// not change.
-    pub fn build_if(&mut self, name: &'static str, stale: bool) {
-        if stale {
-            self.run(name, StepKind::TableBuild);
-        } else {
-            self.skip(name, INPUTS_UNCHANGED);
-        }
-    }
-
     /// Records a step left out and why.
     pub fn skip(&mut self, name: &'static str, why: &'static str) {
         self.skipped.push((name, why));
@@ -105,7 +95,7 @@ mod tests {
     #[test]
     fn stale_tables_run_and_fresh_ones_are_skipped_with_why() {
         let mut plan = FramePlan::default();
-        plan.build_if("g_l", false);
+        plan.skip("g_l", INPUTS_UNCHANGED);
         plan.run("nishita", StepKind::Pass);
         plan.run("tone_map", StepKind::Pass);
         assert!(!plan.runs("g_l") && plan.runs("nishita"));

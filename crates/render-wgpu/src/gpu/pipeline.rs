@@ -183,7 +183,7 @@ pub fn in_stage(
 /// A bind group of `layout` with `resources` bound in order from binding 0.
 pub fn ordered_bind_group(
     device: &wgpu::Device,
-    label: &str,
+    label: Option<&str>,
     layout: &wgpu::BindGroupLayout,
     resources: &[wgpu::BindingResource<'_>],
 ) -> wgpu::BindGroup {
@@ -196,7 +196,7 @@ pub fn ordered_bind_group(
         })
         .collect();
     device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
+        label,
         layout,
         entries: &entries,
     })
@@ -262,12 +262,7 @@ impl ComputePipeline {
         gpu: &GpuContext,
         resources: &[wgpu::BindingResource<'_>],
     ) -> wgpu::BindGroup {
-        let numbered: Vec<_> = resources
-            .iter()
-            .enumerate()
-            .map(|(binding, resource)| (binding as u32, resource.clone()))
-            .collect();
-        self.bind_group_numbered(gpu, &numbered)
+        ordered_bind_group(&gpu.device, None, &self.layout, resources)
     }
 
     /// A bind group of (binding, resource) pairs.

@@ -83,7 +83,7 @@ impl ToneMapPass {
         let hdr_view = hdr.create_view(&Default::default());
         let bind_group = ordered_bind_group(
             &gpu.device,
-            "tone map",
+            Some("tone map"),
             &self.layout,
             &[
                 self.params.as_entire_binding(),

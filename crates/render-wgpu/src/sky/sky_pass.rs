@@ -3,12 +3,11 @@
 //! its index in the frame's plan. [`Planned`] runs a [`ModelPass`].
 
 use crate::frame::Frame;
-use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::frame::plan::{FramePlan, StepKind};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::timer::GpuTimer;
-use crate::sky::model_pass::{ModelPass, PassIo, StandaloneInputs, StepContext};
+use crate::sky::model_pass::{ModelPass, PassIo, StandaloneInputs, StepContext, frame_atmosphere};
 use crate::sky::steps::{PassStep, PlannedStep, SkyPlan};
 
 /// A sky model behind one object-safe interface; see the module documentation.
@@ -110,7 +109,7 @@ pub fn build_tables<M: ModelPass>(
     let mut steps = Vec::new();
     model.plan(&mut SkyPlan::new(gpu, frame, &mut plan, &mut steps))?;
     plan.steps.retain(|s| s.kind == StepKind::TableBuild);
-    let atmosphere = AtmosphereUniform::new(&frame.atmosphere, RGB_WAVELENGTHS_NM)?;
+    let atmosphere = frame_atmosphere(frame)?;
     let inputs = StandaloneInputs::new(gpu, &atmosphere, frame);
     let io = inputs.io();
     let mut encoder = gpu.device.create_command_encoder(&Default::default());

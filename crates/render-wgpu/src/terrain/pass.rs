@@ -374,7 +374,7 @@ impl TerrainPass {
         let depth = &self.depth;
         let bind_group = ordered_bind_group(
             &gpu.device,
-            "terrain",
+            Some("terrain"),
             &self.layout,
             &[
                 self.params.as_entire_binding(),
