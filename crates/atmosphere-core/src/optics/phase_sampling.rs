@@ -128,8 +128,46 @@ mod tests {
     use super::*;
     use std::f64::consts::PI;
 
-    /// Histogram of sampled nu, weighted, against the phase function: every sampler
-    /// reproduces its phase function within Monte Carlo noise.
+    const BINS: usize = 40;
+    const SAMPLES: usize = 500_000;
+
+    /// Pearson's chi-square of `n` weighted draws of `sampler` against `phase`, over
+    /// `BINS` equal bins of nu, and the largest |z| of a bin: each bin's estimate
+    /// (1/n) sum of the weights falling in it, against its mass 2 pi \int phase d nu,
+    /// divided by the estimate's standard error from the draws' second moment.
+    fn chi_square(sampler: &PhaseSampler, phase: &PhaseFunction, n: usize) -> (f64, f64) {
+        let mut rng = Sampler::new(11);
+        let (mut sum, mut sum_sq) = (vec![0.0; BINS], vec![0.0; BINS]);
+        for _ in 0..n {
+            let (nu, w) = sampler.sample(&mut rng);
+            let b = (((nu + 1.0) / 2.0 * BINS as f64) as usize).min(BINS - 1);
+            sum[b] += w;
+            sum_sq[b] += w * w;
+        }
+        let (mut chi2, mut worst) = (0.0, 0.0f64);
+        for b in 0..BINS {
+            let lo = -1.0 + 2.0 * b as f64 / BINS as f64;
+            let width = 2.0 / BINS as f64;
+            let expected: f64 = (0..200)
+                .map(|k| 2.0 * PI * phase.eval(lo + width * (k as f64 + 0.5) / 200.0))
+                .sum::<f64>()
+                * width
+                / 200.0;
+            let mean = sum[b] / n as f64;
+            let variance = (sum_sq[b] / n as f64 - mean * mean) / n as f64;
+            assert!(variance > 0.0, "{phase:?}: bin {b} drew nothing");
+            let z = (mean - expected) / variance.sqrt();
+            chi2 += z * z;
+            worst = worst.max(z.abs());
+        }
+        (chi2, worst)
+    }
+
+    /// The 99.9th percentile of chi-square with `BINS` degrees of freedom.
+    const CHI2_999: f64 = 73.4;
+
+    /// Every sampler reproduces its phase function: chi-square over 40 bins of 500,000
+    /// draws below its 99.9th percentile, no bin beyond 4 standard errors.
     #[test]
     fn samplers_reproduce_their_phase_functions() {
         let phases = [
@@ -142,33 +180,30 @@ mod tests {
                 values: vec![4.0, 1.0, 0.2, 0.6],
             },
         ];
-        let bins = 20;
-        let n = 200_000;
         for phase in phases {
-            let sampler = PhaseSampler::new(&phase);
-            let mut rng = Sampler::new(11);
-            let mut hist = vec![0.0; bins];
-            for _ in 0..n {
-                let (nu, w) = sampler.sample(&mut rng);
-                let b = (((nu + 1.0) / 2.0 * bins as f64) as usize).min(bins - 1);
-                hist[b] += w / n as f64;
-            }
-            for (b, h) in hist.iter().enumerate() {
-                let lo = -1.0 + 2.0 * b as f64 / bins as f64;
-                let hi = lo + 2.0 / bins as f64;
-                // Expected mass of the bin: 2 pi * integral of the phase over nu.
-                let expected: f64 = (0..200)
-                    .map(|k| {
-                        let nu = lo + (hi - lo) * (k as f64 + 0.5) / 200.0;
-                        2.0 * PI * phase.eval(nu) * (hi - lo) / 200.0
-                    })
-                    .sum();
-                let sigma = (expected / n as f64).sqrt() * 3.0;
-                assert!(
-                    (h - expected).abs() < 5.0 * sigma + 1e-4,
-                    "{phase:?} bin {b}: {h} vs {expected}"
-                );
-            }
+            let (chi2, worst) = chi_square(&PhaseSampler::new(&phase), &phase, SAMPLES);
+            println!("{phase:?}: chi-square {chi2:.1}, worst bin {worst:.2} sigma");
+            assert!(chi2 < CHI2_999 && worst < 4.0, "{phase:?}: {chi2} {worst}");
+        }
+    }
+
+    /// The check sees a small error: draws of Henyey-Greenstein g = -0.4 against the
+    /// function of g = -0.38, and of Cornette-Shanks g = 0.8 against g = 0.79.
+    #[test]
+    fn a_slightly_wrong_sampler_fails_the_check() {
+        for (drawn, claimed) in [
+            (
+                PhaseFunction::HenyeyGreenstein { g: -0.4 },
+                PhaseFunction::HenyeyGreenstein { g: -0.38 },
+            ),
+            (
+                PhaseFunction::CornetteShanks { g: 0.8 },
+                PhaseFunction::CornetteShanks { g: 0.79 },
+            ),
+        ] {
+            let (chi2, worst) = chi_square(&PhaseSampler::new(&drawn), &claimed, SAMPLES);
+            println!("{drawn:?} as {claimed:?}: chi-square {chi2:.1}, worst {worst:.2} sigma");
+            assert!(chi2 > CHI2_999, "{drawn:?} passed as {claimed:?}: {chi2}");
         }
     }
 }
