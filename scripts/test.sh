@@ -38,12 +38,20 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
 fi
 
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+# Each test that skips at run time appends `binary::test: reason` here
+# (crates/app/tests/common/skip.rs).
+skipped=$(mktemp)
+trap 'rm -f "$log" "$skipped"' EXIT
+export ATMOS_SKIPPED_TESTS="$skipped"
 set +e
 cargo test --workspace "$@" 2>&1 | tee "$log"
 status=${PIPESTATUS[0]}
 set -e
-# One closing line for the whole suite.
-awk '/^test result:/ { for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i } }
-     END { printf "tests: %d passed, %d failed\n", p, f }' "$log"
+# The skipped tests, once each with their first reason, then one closing line for the
+# whole suite: a skipped test ends as passed for cargo, so it is counted out of those.
+awk -F': ' '!seen[$1]++ { print "skipped: " $0 }' "$skipped"
+skips=$(awk -F': ' '!seen[$1]++' "$skipped" | wc -l)
+awk -v skips="$skips" '
+  /^test result:/ { for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i } }
+  END { printf "tests: %d passed, %d failed, %d skipped\n", p - skips, f, skips }' "$log"
 exit "$status"

@@ -1,23 +1,36 @@
 //! `atmos view` end to end: the real binary opens its window under Xvfb (`xvfb-run -a`),
 //! shows three frames, saves the last one and exits 0; the sky in the PNG is blue-ish.
-//! Without Xvfb the test fails saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`,
-//! when it prints that it skipped. Without a display, `atmos view` fails with a hint.
+//! Without Xvfb or a GPU adapter the test fails saying what to install, unless
+//! `ATMOS_SKIP_GPU_TESTS=1`, when it records that it skipped and why. Without a display,
+//! `atmos view` fails with a hint.
 
-use std::process::{Command, Output};
+mod common;
 
-/// What the run wrote to stderr.
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
+use std::process::Command;
 
-fn skip_gpu() -> bool {
-    std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
+use common::skip::record_skip;
+use common::{gpu_tests_may_skip, stderr};
+use render_wgpu::{GpuContext, GpuError};
+
+/// What the viewer lacks here where `ATMOS_SKIP_GPU_TESTS=1` lets it skip: `xvfb-run`,
+/// or a GPU adapter. `None` where it must run (and pass).
+fn missing_for_the_viewer() -> Option<String> {
+    if !gpu_tests_may_skip() {
+        return None;
+    }
+    if Command::new("xvfb-run").arg("--help").output().is_err() {
+        return Some("xvfb-run is not installed (apt-get install xvfb xauth)".into());
+    }
+    match GpuContext::headless() {
+        Err(e @ GpuError::NoAdapter { .. }) => Some(e.to_string()),
+        _ => None,
+    }
 }
 
 #[test]
 fn shows_frames_under_xvfb_and_saves_a_blue_sky() {
-    if skip_gpu() {
-        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): the viewer needs Xvfb and a GPU adapter");
+    if let Some(missing) = missing_for_the_viewer() {
+        record_skip(&format!("ATMOS_SKIP_GPU_TESTS=1 and {missing}"));
         return;
     }
     let dir = tempfile::tempdir().unwrap();
@@ -31,6 +44,7 @@ fn shows_frames_under_xvfb_and_saves_a_blue_sky() {
         .expect("xvfb-run is missing: apt-get install -y xvfb xauth (or ATMOS_SKIP_GPU_TESTS=1)");
     let err = stderr(&output);
     assert!(output.status.success(), "atmos view failed: {err}");
+    assert!(err.contains("atmos view: saved"), "{err}");
     let image = image::open(&out).expect("a PNG").to_rgb8();
     // The default view (3 km above the Alps near sunset, the horizon a little above the
     // centre): the top rows are blue sky.

@@ -5,10 +5,13 @@
 //!
 //! Needs a GPU adapter (lavapipe will do). Without one the tests fail with the
 //! `NoAdapter` message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when
-//! they print that they skipped.
+//! they record that they skipped (the app tests' `record_skip`, shared by path).
 //!
 //! Each test file that declares `mod support;` uses only part of it.
 #![allow(dead_code)]
+
+#[path = "../../../crates/app/tests/common/skip.rs"]
+mod skip;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
@@ -44,17 +47,17 @@ pub const FLOOR: f64 = 1e-4;
 const LIMB_ANGLE_RAD: f64 = 2e-6;
 
 /// Whether `test` skips for `error`: there is no adapter and `ATMOS_SKIP_GPU_TESTS=1`
-/// (then it prints that it skipped).
+/// (then the skip is recorded).
 fn skips_for(test: &str, error: &GpuError) -> bool {
     let skip = matches!(error, GpuError::NoAdapter { .. })
         && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1");
     if skip {
-        println!("{test}: SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {error}");
+        skip::record_skip(&format!("{test}: ATMOS_SKIP_GPU_TESTS=1 and {error}"));
     }
     skip
 }
 
-/// The GPU context, or `None` after printing why when there is no adapter and
+/// The GPU context, or `None` after recording why when there is no adapter and
 /// `ATMOS_SKIP_GPU_TESTS=1`.
 pub fn gpu_or_skip(test: &str) -> Option<GpuContext> {
     match GpuContext::headless() {

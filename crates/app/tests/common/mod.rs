@@ -1,6 +1,10 @@
 //! Running the real `atmos` binary from the end-to-end tests.
 
+pub mod skip;
+
 use std::process::{Command, Output};
+
+use skip::record_skip;
 
 /// Runs `atmos` with these arguments and waits for it.
 pub fn atmos(args: &[&str]) -> Output {
@@ -27,15 +31,21 @@ pub fn atmos_fails_with(args: &[&str], expected: &str) -> Output {
 }
 
 /// Whether a GPU run failed for want of an adapter where `ATMOS_SKIP_GPU_TESTS=1` allows
-/// that (then it prints that it skipped). Any other failure is the caller's to assert.
+/// that (then the skip is recorded, [`record_skip`]). Any other failure is the caller's
+/// to assert.
 #[allow(dead_code)] // Not every test binary runs the GPU.
 pub fn skipped_without_adapter(output: &Output) -> bool {
     let err = stderr(output);
-    let skipped = !output.status.success()
-        && err.contains("no GPU adapter")
-        && std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1");
+    let skipped = !output.status.success() && err.contains("no GPU adapter") && gpu_tests_may_skip();
     if skipped {
-        println!("SKIPPED (ATMOS_SKIP_GPU_TESTS=1): {err}");
+        record_skip(&format!("ATMOS_SKIP_GPU_TESTS=1 and {}", err.trim()));
     }
     skipped
+}
+
+/// Whether `ATMOS_SKIP_GPU_TESTS=1` lets GPU tests skip where the machine lacks what they
+/// need (they fail otherwise).
+#[allow(dead_code)] // Not every test binary runs the GPU.
+pub fn gpu_tests_may_skip() -> bool {
+    std::env::var("ATMOS_SKIP_GPU_TESTS").as_deref() == Ok("1")
 }
