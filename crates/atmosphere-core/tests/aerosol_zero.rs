@@ -1,6 +1,7 @@
-//! At zero aerosol a pruning model does no Mie work (ModelSettings::prune), and its
-//! answers equal the full path's. Table models show it in their memory too (bruneton
-//! has its own test in model_bruneton.rs, the build being slow).
+//! At zero aerosol a pruning model does no Mie work (ModelSettings::prune): its
+//! `ModelBase::with_mie` is off, and its answers equal the full path's. Table models
+//! show it in their memory too (dobashi here; bruneton has its own test in
+//! model_bruneton.rs, the build being slow). With aerosol nothing is pruned.
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
@@ -23,13 +24,31 @@ fn rays(a: &Atmosphere) -> Vec<ViewRay> {
 #[test]
 fn pruned_models_equal_the_full_path_at_zero_aerosol() {
     let clean = Atmosphere::preset("earth").unwrap().with_aerosol_scale(0.0);
-    for id in [ModelId::Nishita, ModelId::Oneil, ModelId::Riley] {
+    for id in [
+        ModelId::Nishita,
+        ModelId::Oneil,
+        ModelId::Riley,
+        ModelId::Dobashi,
+    ] {
         let settings = |prune| ModelSettings {
             prune,
             ..ModelSettings::default()
         };
         let pruned = prepare(id, &clean, &settings(true)).unwrap();
         let full = prepare(id, &clean, &settings(false)).unwrap();
+        assert!(!pruned.base().with_mie, "{id}: not pruned");
+        assert!(full.base().with_mie, "{id}: pruned without prune");
+        if id == ModelId::Dobashi {
+            assert!(
+                pruned.table_bytes() < full.table_bytes(),
+                "{id}: {} bytes pruned, {} in full",
+                pruned.table_bytes(),
+                full.table_bytes()
+            );
+        }
+        let earth = Atmosphere::preset("earth").unwrap();
+        let kept = prepare(id, &earth, &settings(true)).unwrap();
+        assert!(kept.base().with_mie, "{id}: pruned with aerosol");
         for ray in rays(&clean) {
             let (a, b) = (pruned.radiance(&ray).unwrap(), full.radiance(&ray).unwrap());
             for (x, y) in a

@@ -1,10 +1,12 @@
 //! O'Neil 2004: the optical-depth table against converged columns, the model
-//! against the reference's single scattering, stability on extreme rays and continuity
-//! across the top of the atmosphere. Measured numbers are in docs/models/oneil.md.
+//! against the reference's single scattering, ozone left out as documented, stability on
+//! extreme rays and continuity across the top of the atmosphere. Measured numbers are in
+//! docs/models/oneil.md.
 
 mod common;
 
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::ozone::serdyuchenko_cross_section_m2;
 use atmosphere_core::atmosphere::spectral::Spectral;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::oneil::{
@@ -131,21 +133,11 @@ fn relative_errors(model: &RayRadiance, reference: &RayRadiance) -> (f64, f64) {
 
 #[test]
 fn many_samples_approach_the_reference_and_the_papers_few_samples_are_bounded() {
-    // Without ozone: the paper's table has no channel for it (checked separately below).
-    let mut air = Atmosphere::preset("earth").unwrap();
-    air.ozone.absorption_per_m = Spectral::Constant { value: 0.0 };
+    // Without ozone: the paper's table has no channel for it
+    // (`ozone_is_left_out_and_its_absorption_missing_by_beer_lambert`).
+    let air = without_ozone();
     let reference = prepare(ModelId::Reference, &air, &single()).unwrap();
-    let fine = Oneil::prepare(
-        &air,
-        &single(),
-        OneilSettings {
-            samples: 256,
-            table_heights: 256,
-            table_angles: 512,
-            table_ray_samples: 400,
-        },
-    )
-    .unwrap();
+    let fine = Oneil::prepare(&air, &single(), fine_settings()).unwrap();
     let paper = prepare(ModelId::Oneil, &air, &single()).unwrap();
     let (mut fine_l, mut fine_t, mut paper_l, mut paper_t) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     for (alt, view, sun, az) in VIEWS {
@@ -165,6 +157,71 @@ fn many_samples_approach_the_reference_and_the_papers_few_samples_are_bounded() 
     assert!(fine_t < TOL_FINE_T, "{fine_t:e}");
     assert!(paper_l < TOL_PAPER_L, "{paper_l:e}");
     assert!(paper_t < TOL_PAPER_T, "{paper_t:e}");
+}
+
+/// Settings fine enough that the paper's rule, not sampling, makes the error.
+fn fine_settings() -> OneilSettings {
+    OneilSettings {
+        samples: 256,
+        table_heights: 256,
+        table_angles: 512,
+        table_ray_samples: 400,
+    }
+}
+
+/// The earth preset without its ozone.
+fn without_ozone() -> Atmosphere {
+    let mut air = Atmosphere::preset("earth").unwrap();
+    air.ozone.absorption_per_m = Spectral::Constant { value: 0.0 };
+    air
+}
+
+/// One Dobson unit: molecules per square metre of a column 10 um thick at 0 C and 1 atm.
+const DOBSON_UNIT_PER_M2: f64 = 2.687e20;
+
+/// The model ignores ozone (docs/models/oneil.md): its answers on the earth preset are
+/// those without ozone, so against the reference its vertical transmittance from the
+/// ground is too high by exactly the ozone's Beer-Lambert factor exp(N sigma(lambda)),
+/// N the preset's 300 DU column and sigma the Serdyuchenko et al. 2014 cross-section;
+/// the reference's ozone itself is that factor.
+#[test]
+fn ozone_is_left_out_and_its_absorption_missing_by_beer_lambert() {
+    let earth = Atmosphere::preset("earth").unwrap();
+    let air = without_ozone();
+    let with = Oneil::prepare(&earth, &single(), fine_settings()).unwrap();
+    let without = Oneil::prepare(&air, &single(), fine_settings()).unwrap();
+    let reference = prepare(ModelId::Reference, &earth, &single()).unwrap();
+    let reference_air = prepare(ModelId::Reference, &air, &single()).unwrap();
+    let column = 300.0 * DOBSON_UNIT_PER_M2;
+    for (view, sun) in [(0.0, 30.0), (60.0, 85.0)] {
+        let r = ray(&earth, 0.0, view, sun, 0.0);
+        let (a, b) = (with.radiance(&r).unwrap(), without.radiance(&r).unwrap());
+        assert_eq!(
+            (&a.radiance, &a.transmittance),
+            (&b.radiance, &b.transmittance)
+        );
+    }
+    let zenith = ray(&earth, 0.0, 0.0, 30.0, 0.0);
+    let model = with.radiance(&zenith).unwrap().transmittance;
+    let truth = reference.radiance(&zenith).unwrap().transmittance;
+    let truth_air = reference_air.radiance(&zenith).unwrap().transmittance;
+    for (w, nm) in with.wavelengths_nm().iter().enumerate() {
+        let beer_lambert = (-column * serdyuchenko_cross_section_m2(*nm)).exp();
+        let ozone = truth[w] / truth_air[w];
+        let missing = truth[w] / model[w];
+        println!(
+            "{nm} nm: Beer-Lambert {beer_lambert:.6}, reference with/without ozone \
+             {ozone:.6}, reference/model {missing:.6}"
+        );
+        assert!(
+            (ozone / beer_lambert - 1.0).abs() < 1e-5,
+            "{nm} nm: {ozone}"
+        );
+        assert!(
+            (missing / beer_lambert - 1.0).abs() < 1e-4,
+            "{nm} nm: {missing}"
+        );
+    }
 }
 
 /// Measured 1.3e-2 (the twilight view: the model's sun is a point, the reference's a disk

@@ -1,7 +1,7 @@
 //! The `riley` model (Riley et al. 2004 section 4.1): its flat-earth limit against the
-//! reference's single scattering, its stiff directions against a direct integral of
-//! Eq. (14), its error on the earth preset against the reference with all orders, and the
-//! sun below the horizon.
+//! reference's single scattering, for Rayleigh and for aerosol, its stiff directions
+//! against a direct integral of Eq. (14), its error on the earth preset against the
+//! reference with all orders, and the sun below the horizon.
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::density::DensityProfile;
@@ -70,19 +70,30 @@ fn riley_is_registered() {
     assert_eq!(m.wavelengths_nm(), &[680.0, 550.0, 440.0]);
 }
 
-/// In the flat-earth limit (radius x1000, Rayleigh only, so exactly Riley's assumptions)
-/// the model is the reference's order one, ground reflection included, within 1e-4 (4e-5 measured): the
+/// A flat, aerosol-only atmosphere: the earth preset's Mie (exp(-h / 1.2 km), absorbing:
+/// single-scattering albedo 0.9, Cornette-Shanks g = 0.8), no Rayleigh, no ozone.
+fn flat_aerosol(albedo: f64) -> Atmosphere {
+    let mut a = flat_rayleigh(albedo);
+    a.rayleigh.scattering_per_m = Spectral::Constant { value: 0.0 };
+    a.mie = Atmosphere::preset("earth").unwrap().mie;
+    a.validate().unwrap();
+    a
+}
+
+/// In the flat-earth limit (radius x1000, one species, so exactly Riley's assumptions)
+/// the model is the reference's order one, ground reflection included, within 1e-4: the
 /// reference's planet still curves (1e-4 over 1300 km paths, tests/reference_physics.rs).
 /// Sun elevations stay above 15 degrees, where the reference's sun disk is its centre.
-#[test]
-fn flat_earth_limit_equals_the_reference_single_scattering() {
-    let flat = flat_rayleigh(0.3);
-    let riley = prepare(ModelId::Riley, &flat, &settings(None, 0.01)).unwrap();
-    let reference = prepare(ModelId::Reference, &flat, &settings(Some(1), 0.01)).unwrap();
+/// Returns the worst relative difference.
+fn assert_flat_limit(flat: &Atmosphere) -> f64 {
+    let riley = prepare(ModelId::Riley, flat, &settings(None, 0.01)).unwrap();
+    let reference = prepare(ModelId::Reference, flat, &settings(Some(1), 0.01)).unwrap();
     let top = flat.thickness_m();
     let cases: &[(f64, f64, f64, f64, Option<f64>)] = &[
         (0.0, 1.0, 0.6, 0.0, None),
         (0.0, 0.2, 0.9, 90.0, None),
+        // Near the sun, in the aerosol's forward peak.
+        (0.0, 0.3, 0.4, 0.0, None),
         (2000.0, 0.5, 0.3, 180.0, None),
         (5000.0, -0.3, 0.7, 30.0, None),
         (20_000.0, -0.8, 0.5, 120.0, None),
@@ -93,7 +104,7 @@ fn flat_earth_limit_equals_the_reference_single_scattering() {
     ];
     let mut worst: f64 = 0.0;
     for &(alt, mu, mu0, az, d) in cases {
-        let r = ray(&flat, alt, mu, mu0, az, d);
+        let r = ray(flat, alt, mu, mu0, az, d);
         let got = riley.radiance(&r).unwrap();
         let want = reference.radiance(&r).unwrap();
         for w in 0..3 {
@@ -110,7 +121,21 @@ fn flat_earth_limit_equals_the_reference_single_scattering() {
             );
         }
     }
-    eprintln!("flat-earth limit: worst relative difference {worst:.2e}");
+    worst
+}
+
+/// Rayleigh only: [`assert_flat_limit`].
+#[test]
+fn flat_earth_limit_equals_the_reference_single_scattering() {
+    let worst = assert_flat_limit(&flat_rayleigh(0.3));
+    eprintln!("flat-earth limit, Rayleigh: worst relative difference {worst:.2e}");
+}
+
+/// Aerosol only, absorbing and strongly forward-scattering: [`assert_flat_limit`].
+#[test]
+fn flat_earth_aerosol_equals_the_reference_single_scattering() {
+    let worst = assert_flat_limit(&flat_aerosol(0.3));
+    eprintln!("flat-earth limit, aerosol: worst relative difference {worst:.2e}");
 }
 
 /// Eq. (14) integrated directly: composite Simpson over the ray with the view's optical

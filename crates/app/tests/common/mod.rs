@@ -36,7 +36,8 @@ pub fn atmos_fails_with(args: &[&str], expected: &str) -> Output {
 #[allow(dead_code)] // Not every test binary runs the GPU.
 pub fn skipped_without_adapter(output: &Output) -> bool {
     let err = stderr(output);
-    let skipped = !output.status.success() && err.contains("no GPU adapter") && gpu_tests_may_skip();
+    let skipped =
+        !output.status.success() && err.contains("no GPU adapter") && gpu_tests_may_skip();
     if skipped {
         record_skip(&format!("ATMOS_SKIP_GPU_TESTS=1 and {}", err.trim()));
     }

@@ -25,7 +25,9 @@ pub fn record_skip_in(file: Option<&Path>, reason: &str) {
         .and_then(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
         .unwrap_or_default();
     // Cargo names test binaries `<file>-<hash>`.
-    let binary = binary.rsplit_once('-').map_or(binary.as_str(), |(name, _)| name);
+    let binary = binary
+        .rsplit_once('-')
+        .map_or(binary.as_str(), |(name, _)| name);
     // The test harness runs each test on a thread named after it.
     let thread = std::thread::current();
     let test = thread.name().unwrap_or("unnamed test");
