@@ -160,13 +160,17 @@ fn read_golden(name: &str) -> Vec<[u16; 3]> {
         .collect()
 }
 
+/// Writes the golden `name` whole (through a temporary file), so that the check of the
+/// committed goldens running beside never reads half a file.
 fn write_golden(name: &str, encoded: &[[u16; 3]]) {
     let path = golden_path(name);
+    let partial = path.with_extension("png.partial");
     let raw = encoded.iter().flatten().copied().collect();
     image::ImageBuffer::<image::Rgb<u16>, Vec<u16>>::from_raw(WIDTH, HEIGHT, raw)
         .unwrap()
-        .save(&path)
+        .save_with_format(&partial, image::ImageFormat::Png)
         .unwrap();
+    std::fs::rename(&partial, &path).unwrap();
     println!("wrote {}", path.display());
 }
 
