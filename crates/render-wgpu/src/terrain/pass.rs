@@ -32,9 +32,9 @@ use crate::terrain::chunk_mesh::ChunkMesh;
 use crate::terrain::colour_map::ColourMap;
 use crate::terrain::colour_mips::colour_mips;
 use crate::terrain::frustum::Frustum;
+use crate::terrain::earth_data::EarthData;
 use crate::terrain::height_map::HeightMap;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
-use crate::terrain::map_image::earth_assets_dir;
 use crate::terrain::stitching::stitched_indices;
 use crate::terrain::surface::TerrainSurface;
 
@@ -124,12 +124,15 @@ fn depth_buffer(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
 }
 
 impl TerrainPass {
-    /// Loads the shipped Earth maps (`assets/earth`) onto a planet of `radius_m` and
-    /// compiles the pass.
-    pub fn new(gpu: &GpuContext, radius_m: f64) -> Result<TerrainPass, RenderError> {
-        let dir = earth_assets_dir();
-        let heights = HeightMap::load(&dir.join("height.png"))?;
-        let colours = ColourMap::load(&dir.join("colour.jpg"))?;
+    /// Loads the Earth's maps from `earth` onto a planet of `radius_m` and compiles the
+    /// pass.
+    pub fn new(
+        gpu: &GpuContext,
+        radius_m: f64,
+        earth: &EarthData,
+    ) -> Result<TerrainPass, RenderError> {
+        let heights = earth.heights()?;
+        let colours = earth.colours()?;
         let device = &gpu.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let colour = upload_colour(gpu, &colours);
