@@ -189,7 +189,12 @@ mod tests {
         symlink("data/real.csv", &link).unwrap();
         check_writable(&link).unwrap();
         write_atomically(&link, b"new").unwrap();
-        assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert!(
+            fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
         assert_eq!(fs::read_to_string(&target).unwrap(), "new");
         // The partial file went beside the target and was renamed onto it.
         assert_eq!(fs::read_dir(dir.path().join("data")).unwrap().count(), 1);
@@ -221,7 +226,12 @@ mod tests {
             fs::read_to_string(dir.path().join("made.csv")).unwrap(),
             "new"
         );
-        assert!(fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert!(
+            fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
     }
 
     #[test]
@@ -251,11 +261,18 @@ mod tests {
     #[test]
     fn devices_folders_and_pipes_are_refused_untouched() {
         let dir = tempfile::tempdir().unwrap();
-        let device = "cannot write /dev/null: it is a character device, not a file atmos may replace";
+        let device =
+            "cannot write /dev/null: it is a character device, not a file atmos may replace";
         assert_eq!(error_of(check_writable(Path::new("/dev/null"))), device);
-        assert_eq!(error_of(write_atomically(Path::new("/dev/null"), b"x")), device);
+        assert_eq!(
+            error_of(write_atomically(Path::new("/dev/null"), b"x")),
+            device
+        );
         let e = error_of(write_atomically(dir.path(), b"x"));
-        assert!(e.ends_with("it is a folder, not a file atmos may replace"), "{e}");
+        assert!(
+            e.ends_with("it is a folder, not a file atmos may replace"),
+            "{e}"
+        );
         // A link to a device names both.
         let link = dir.path().join("null");
         symlink("/dev/null", &link).unwrap();

@@ -111,8 +111,12 @@ fn devices_pipes_and_folders_are_refused_before_any_work() {
     for (out, reason) in cases {
         let commands: [Vec<&str>; 4] = [
             vec!["bench", "--model", "riley", "--out", out],
-            vec!["probe", "--model", "riley", "--input", "rays.csv", "--output", out],
-            vec!["render", "--model", "riley", "--width", "32", "--height", "18", "--out", out],
+            vec![
+                "probe", "--model", "riley", "--input", "rays.csv", "--output", out,
+            ],
+            vec![
+                "render", "--model", "riley", "--width", "32", "--height", "18", "--out", out,
+            ],
             vec!["contact-sheet", "--model", "riley", "--out", out],
         ];
         let wanting_png = if out.ends_with(".png") { 4 } else { 2 };

@@ -34,7 +34,11 @@ const TERRAIN_SCENE: &[&str] = &[
 /// unless `env` sets it.
 fn render_command(bin: &Path, extra: &[&str], out: &Path, env: Option<&Path>) -> Command {
     let mut command = Command::new(bin);
-    command.args(TERRAIN_SCENE).args(extra).arg("--out").arg(out);
+    command
+        .args(TERRAIN_SCENE)
+        .args(extra)
+        .arg("--out")
+        .arg(out);
     match env {
         Some(dir) => command.env("ATMOS_EARTH_DATA", dir),
         None => command.env_remove("ATMOS_EARTH_DATA"),
@@ -79,7 +83,12 @@ fn without_workspace(command: &Command, empty: &Path) -> Command {
     }
     let mut hidden = Command::new("unshare");
     hidden
-        .args(["--mount", "sh", "-c", r#"mount --bind "$0" "$1" && shift && exec "$@""#])
+        .args([
+            "--mount",
+            "sh",
+            "-c",
+            r#"mount --bind "$0" "$1" && shift && exec "$@""#,
+        ])
         .arg(empty)
         .arg(workspace())
         .arg(command.get_program())
@@ -101,8 +110,10 @@ fn a_copied_binary_draws_the_built_in_terrain_from_anywhere() {
     std::fs::copy(env!("CARGO_BIN_EXE_atmos"), &bin).unwrap();
     let mut copied = render_command(&bin, &[], Path::new("alps.png"), None);
     copied.current_dir(&work);
-    let Some(from_copy) = rendered(&mut without_workspace(&copied, &empty), &work.join("alps.png"))
-    else {
+    let Some(from_copy) = rendered(
+        &mut without_workspace(&copied, &empty),
+        &work.join("alps.png"),
+    ) else {
         return;
     };
     // The same pixels as the built binary's in the source tree: the maps of assets/earth.
@@ -232,4 +243,31 @@ fn a_map_that_does_not_decode_is_named() {
     );
     assert!(err.contains(&expected), "{err}");
     assert!(!out.exists());
+}
+
+/// A colour map wider than the GPU's largest texture (8192 texels under WebGPU's default
+/// limits) is named, not left to the GPU's validation.
+#[test]
+fn a_colour_map_too_wide_for_a_texture_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let maps = dir.path().join("maps");
+    red_flat_maps(&maps);
+    // PNG inside colour.jpg: the format is read from the contents.
+    image::RgbImage::new(8194, 4097)
+        .save_with_format(maps.join("colour.jpg"), image::ImageFormat::Png)
+        .unwrap();
+    let out = dir.path().join("out.png");
+    let built = Path::new(env!("CARGO_BIN_EXE_atmos"));
+    let flag = ["--earth-data", maps.to_str().unwrap()];
+    let output = render_command(built, &flag, &out, None).output().unwrap();
+    if skipped_without_adapter(&output) {
+        return;
+    }
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{err}");
+    let expected = format!(
+        "terrain map {} is 8194 x 4097, wider than this GPU's largest texture (8192 texels)",
+        maps.join("colour.jpg").display()
+    );
+    assert!(err.contains(&expected), "{err}");
 }

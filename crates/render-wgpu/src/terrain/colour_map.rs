@@ -66,7 +66,9 @@ mod tests {
 
     /// A map of `assets/earth/` in the source tree.
     fn shipped(file: &str) -> std::path::PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/earth").join(file)
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../assets/earth")
+            .join(file)
     }
 
     /// The shipped Blue Marble: the Sahara sandy (red over blue), the open Pacific dark

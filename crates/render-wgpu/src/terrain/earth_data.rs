@@ -68,36 +68,31 @@ impl EarthData {
 
     /// Decodes the height map.
     pub fn heights(&self) -> Result<HeightMap, MapError> {
-        match self {
-            EarthData::BuiltIn => {
-                let name = built_in_name(HEIGHT_FILE);
-                HeightMap::from_image(decode_image(BUILT_IN_HEIGHTS, &name)?, &name)
-            }
-            EarthData::Folder(dir) => {
-                let path = dir.join(HEIGHT_FILE);
-                HeightMap::from_image(load_image(&path)?, &path)
-            }
-        }
+        let path = self.path_of(HEIGHT_FILE);
+        let image = match self {
+            EarthData::BuiltIn => decode_image(BUILT_IN_HEIGHTS, &path)?,
+            EarthData::Folder(_) => load_image(&path)?,
+        };
+        HeightMap::from_image(image, &path)
     }
 
     /// Decodes the colour map.
     pub fn colours(&self) -> Result<ColourMap, MapError> {
+        let path = self.path_of(COLOUR_FILE);
+        let image = match self {
+            EarthData::BuiltIn => decode_image(BUILT_IN_COLOURS, &path)?,
+            EarthData::Folder(_) => load_image(&path)?,
+        };
+        ColourMap::from_image(image, &path)
+    }
+
+    /// How errors name map `file` of this source.
+    pub fn path_of(&self, file: &str) -> PathBuf {
         match self {
-            EarthData::BuiltIn => {
-                let name = built_in_name(COLOUR_FILE);
-                ColourMap::from_image(decode_image(BUILT_IN_COLOURS, &name)?, &name)
-            }
-            EarthData::Folder(dir) => {
-                let path = dir.join(COLOUR_FILE);
-                ColourMap::from_image(load_image(&path)?, &path)
-            }
+            EarthData::BuiltIn => Path::new("assets/earth").join(format!("{file} (built in)")),
+            EarthData::Folder(dir) => dir.join(file),
         }
     }
-}
-
-/// How errors name a built-in map.
-fn built_in_name(file: &str) -> PathBuf {
-    Path::new("assets/earth").join(format!("{file} (built in)"))
 }
 
 #[cfg(test)]
@@ -135,10 +130,7 @@ mod tests {
         let empty = dir.path().join("empty");
         std::fs::create_dir(&empty).unwrap();
         let e = EarthData::folder(&empty).unwrap_err().to_string();
-        assert!(
-            e.contains(": height.png and colour.jpg are missing"),
-            "{e}"
-        );
+        assert!(e.contains(": height.png and colour.jpg are missing"), "{e}");
     }
 
     #[test]
@@ -152,7 +144,10 @@ mod tests {
             .unwrap();
         let data = EarthData::folder(dir.path()).unwrap();
         let heights = data.heights().unwrap();
-        assert_eq!((heights.width, heights.height, heights.max_abs_m), (8, 4, 500.0));
+        assert_eq!(
+            (heights.width, heights.height, heights.max_abs_m),
+            (8, 4, 500.0)
+        );
         let colours = data.colours().unwrap();
         assert!(colours.texels[0][0] > 150 && colours.texels[0][2] < 60);
 

@@ -94,7 +94,9 @@ mod tests {
 
     /// A map of `assets/earth/` in the source tree.
     fn shipped(file: &str) -> std::path::PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/earth").join(file)
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../assets/earth")
+            .join(file)
     }
 
     /// Known places of the shipped map (10' texels, so peaks and trenches are averaged):
