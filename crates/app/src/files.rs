@@ -258,32 +258,36 @@ mod tests {
         assert!(e.contains("Too many levels of symbolic links"), "{e}");
     }
 
+    /// Nothing here can replace a device even if the checks broke: only the check (which
+    /// at worst makes and removes `/dev/null.partial`) sees `/dev/null` itself, and the
+    /// writes go to links and pipes in a temporary folder.
     #[test]
     fn devices_folders_and_pipes_are_refused_untouched() {
         let dir = tempfile::tempdir().unwrap();
-        let device =
-            "cannot write /dev/null: it is a character device, not a file atmos may replace";
-        assert_eq!(error_of(check_writable(Path::new("/dev/null"))), device);
         assert_eq!(
-            error_of(write_atomically(Path::new("/dev/null"), b"x")),
-            device
+            error_of(check_writable(Path::new("/dev/null"))),
+            "cannot write /dev/null: it is a character device, not a file atmos may replace"
         );
         let e = error_of(write_atomically(dir.path(), b"x"));
         assert!(
             e.ends_with("it is a folder, not a file atmos may replace"),
             "{e}"
         );
-        // A link to a device names both.
+        // A link to a device names both, at the check and at the write.
         let link = dir.path().join("null");
         symlink("/dev/null", &link).unwrap();
-        let e = error_of(write_atomically(&link, b"x"));
-        assert_eq!(
-            e,
-            format!(
-                "cannot write {}: it links to /dev/null, which is a character device, \
-                 not a file atmos may replace",
-                link.display()
-            )
+        let expected = format!(
+            "cannot write {}: it links to /dev/null, which is a character device, \
+             not a file atmos may replace",
+            link.display()
+        );
+        assert_eq!(error_of(check_writable(&link)), expected);
+        assert_eq!(error_of(write_atomically(&link, b"x")), expected);
+        assert!(
+            fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
         );
         let fifo = dir.path().join("fifo");
         let made = std::process::Command::new("mkfifo")
@@ -291,9 +295,14 @@ mod tests {
             .status()
             .unwrap();
         assert!(made.success());
-        let e = error_of(check_writable(&fifo));
-        assert!(e.contains("is a named pipe"), "{e}");
-        assert!(!dir.path().join("fifo.partial").exists());
+        for e in [check_writable(&fifo), write_atomically(&fifo, b"x")] {
+            let e = error_of(e);
+            assert!(
+                e.ends_with("it is a named pipe, not a file atmos may replace"),
+                "{e}"
+            );
+        }
+        assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 2);
         assert!(!Path::new("/dev/null.partial").exists());
     }
 

@@ -91,8 +91,11 @@ fn a_link_into_a_missing_folder_names_the_link_and_its_target() {
 }
 
 /// Devices, pipes and folders are refused by every command that writes, before any work
-/// (no GPU adapter is looked for), and nothing is made beside them. (render and
-/// contact-sheet first want a file type, so only the paths ending in .png reach them.)
+/// (no GPU adapter is looked for), and nothing is made beside them. Nothing here can
+/// replace a device even if the checks broke: `/dev/null` and `/dev/stdout` themselves
+/// go only to a probe whose input is missing, the other commands get a link and a folder
+/// in a temporary folder (and render and contact-sheet want a file type first, hence
+/// the .png names).
 #[test]
 fn devices_pipes_and_folders_are_refused_before_any_work() {
     let dir = tempfile::tempdir().unwrap();
@@ -103,24 +106,33 @@ fn devices_pipes_and_folders_are_refused_before_any_work() {
     let folder = folder.to_str().unwrap();
     let link = link_to_null.to_str().unwrap();
     let cases = [
-        ("/dev/null", "it is a character device"),
-        ("/dev/stdout", "is a named pipe"),
-        (folder, "it is a folder"),
-        (link, "it links to /dev/null, which is a character device"),
+        ("/dev/null", "it is a character device", 1),
+        ("/dev/stdout", "is a named pipe", 1),
+        (folder, "it is a folder", 4),
+        (
+            link,
+            "it links to /dev/null, which is a character device",
+            4,
+        ),
     ];
-    for (out, reason) in cases {
+    for (out, reason, how_many) in cases {
         let commands: [Vec<&str>; 4] = [
-            vec!["bench", "--model", "riley", "--out", out],
             vec![
-                "probe", "--model", "riley", "--input", "rays.csv", "--output", out,
+                "probe",
+                "--model",
+                "riley",
+                "--input",
+                "missing.csv",
+                "--output",
+                out,
             ],
+            vec!["bench", "--model", "riley", "--out", out],
             vec![
                 "render", "--model", "riley", "--width", "32", "--height", "18", "--out", out,
             ],
             vec!["contact-sheet", "--model", "riley", "--out", out],
         ];
-        let wanting_png = if out.ends_with(".png") { 4 } else { 2 };
-        for args in &commands[..wanting_png] {
+        for args in &commands[..how_many] {
             let args = args.as_slice();
             let run = atmos_fails_with(args, &format!("cannot write {out}: "));
             let err = stderr(&run);
@@ -148,8 +160,9 @@ fn a_dash_is_not_taken_for_a_file() {
     assert!(!dir.path().join("-").exists() && !Path::new("-").exists());
 }
 
-/// `--output /dev/stdout` with standard output redirected to a file: replacing that file
-/// would lose what `>>` appended to it, so it is refused and the file kept.
+/// Standard output redirected to a file and named by a link to `/dev/stdout`: replacing
+/// that file would lose what `>>` appended to it, so it is refused and the file kept.
+/// (Through a link in a temporary folder, so that a broken check replaces only the link.)
 #[test]
 fn standard_output_redirected_to_a_file_is_not_replaced() {
     let dir = tempfile::tempdir().unwrap();
@@ -157,20 +170,22 @@ fn standard_output_redirected_to_a_file_is_not_replaced() {
     std::fs::write(&log, "earlier lines\n").unwrap();
     let input = dir.path().join("rays.csv");
     std::fs::write(&input, RAYS).unwrap();
+    let to_stdout = dir.path().join("out.csv");
+    symlink("/dev/stdout", &to_stdout).unwrap();
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_atmos"))
         .args(["probe", "--model", "reference", "--orders", "1", "--input"])
         .arg(&input)
-        .args(["--output", "/dev/stdout"])
+        .arg("--output")
+        .arg(&to_stdout)
         .stdout(std::fs::File::options().append(true).open(&log).unwrap())
         .output()
         .unwrap();
     assert_eq!(run.status.code(), Some(1));
-    assert!(
-        stderr(&run).contains(
-            "cannot write /dev/stdout: it leads to /proc/self/fd/1, a file a process has open"
-        ),
-        "{}",
-        stderr(&run)
+    let expected = format!(
+        "cannot write {}: it leads to /proc/self/fd/1, a file a process has open",
+        to_stdout.display()
     );
+    assert!(stderr(&run).contains(&expected), "{}", stderr(&run));
     assert_eq!(std::fs::read_to_string(&log).unwrap(), "earlier lines\n");
+    assert!(is_link(&to_stdout));
 }
