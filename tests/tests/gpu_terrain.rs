@@ -19,7 +19,7 @@ use render_wgpu::frame::{LocalView, TerrainOptions, location_rotation};
 use render_wgpu::terrain::chunk_key::ChunkKey;
 use render_wgpu::terrain::geo_grid::lat_lon;
 use render_wgpu::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
-use render_wgpu::terrain::{ChunkMesh, ColourMap, HeightMap, TerrainSurface, earth_assets_dir};
+use render_wgpu::terrain::{ChunkMesh, EarthData, HeightMap, TerrainSurface};
 use support::{frame, renderer_or_skip};
 
 /// A frame of nishita at a place, azimuths geographic, with terrain.
@@ -76,7 +76,7 @@ struct CpuTerrain {
 
 impl CpuTerrain {
     fn new(f: &Frame) -> CpuTerrain {
-        let heights = HeightMap::load(&earth_assets_dir().join("height.png")).unwrap();
+        let heights = EarthData::BuiltIn.heights().unwrap();
         let radius = f.atmosphere.bottom_radius_m;
         let surface = TerrainSurface {
             exaggeration: f.terrain.unwrap().exaggeration,
@@ -147,7 +147,7 @@ fn check_surface(name: &str, f: &Frame, step: u32, max_edge_fraction: f64, near_
     let plan = renderer.render(f).unwrap();
     assert!(plan.runs("terrain"), "{plan}");
     let texels = renderer.read_surface().unwrap();
-    let colours = ColourMap::load(&earth_assets_dir().join("colour.jpg")).unwrap();
+    let colours = EarthData::BuiltIn.colours().unwrap();
     let mut cpu = CpuTerrain::new(f);
     let (mut compared, mut edges, mut worst_distance, mut worst_normal, mut worst_albedo) =
         (0, 0, 0.0f64, 0.0f64, 0.0f64);

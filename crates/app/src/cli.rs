@@ -8,6 +8,7 @@ use atmosphere_core::models::sky_model::ModelSettings;
 use atmosphere_core::sun_position::UtcDateTime;
 use clap::{Args, Parser, Subcommand};
 
+use crate::earth_data_flag::EarthDataFlag;
 use crate::location_flags::LocationFlags;
 
 /// Physically based atmospheric scattering.
@@ -52,6 +53,9 @@ pub struct ViewArgs {
     /// Where and how to start, over the saved (or default) settings.
     #[command(flatten)]
     pub start: StartView,
+    /// Where the terrain's maps come from.
+    #[command(flatten)]
+    pub earth_data: EarthDataFlag,
 }
 
 /// The flags of `atmos view` that set the starting view (`viewer/start_view.rs`).
@@ -165,6 +169,9 @@ pub struct RenderArgs {
     /// The flags of the scene's `latitude_deg` and `longitude_deg`.
     #[command(flatten)]
     pub location: LocationFlags,
+    /// Where the terrain's maps come from.
+    #[command(flatten)]
+    pub earth_data: EarthDataFlag,
     /// Output image: FILE.exr (linear HDR radiance) or FILE.png (tone-mapped), written
     /// atomically.
     #[arg(long, value_name = "FILE.exr|FILE.png")]

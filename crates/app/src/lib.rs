@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod cli;
 pub mod contact_sheet;
+pub mod earth_data_flag;
 pub mod files;
 pub mod location_flags;
 pub mod probe;

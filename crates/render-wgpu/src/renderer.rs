@@ -24,6 +24,7 @@ use crate::post::tone_map_pass::ToneMapPass;
 use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
 use crate::sky::sky_pass::{FrameRecorder, SkyPass};
+use crate::terrain::earth_data::EarthData;
 use crate::terrain::pass::TerrainPass;
 
 /// Most steps a frame runs (table builds and passes), for the timer.
@@ -48,6 +49,8 @@ pub struct Renderer {
     tone_map: ToneMapPass,
     /// The terrain's maps and chunks, loaded when a frame first asks for terrain.
     terrain: Option<TerrainPass>,
+    /// Where the terrain's maps come from.
+    earth_data: EarthData,
     luminance: LuminancePass,
     targets: Option<Targets>,
     timer: Option<GpuTimer>,
@@ -90,6 +93,7 @@ impl Renderer {
             models: Vec::new(),
             tone_map: ToneMapPass::new(&gpu)?,
             terrain: None,
+            earth_data: EarthData::default(),
             luminance: LuminancePass::new(&gpu, RGB_WAVELENGTHS_NM)?,
             timer: GpuTimer::new(&gpu, MAX_STEPS),
             targets: None,
@@ -108,6 +112,15 @@ impl Renderer {
     /// the last frame with terrain drew it; `None` before any.
     pub fn terrain_elevation_m(&self, direction: glam::DVec3) -> Option<f64> {
         self.terrain.as_ref().map(|t| t.elevation_m(direction))
+    }
+
+    /// Takes the Earth's maps from `data` (the built-in ones by default): the next frame
+    /// with terrain loads them, and any error naming a map comes from that frame.
+    pub fn set_earth_data(&mut self, data: EarthData) {
+        if data != self.earth_data {
+            self.earth_data = data;
+            self.terrain = None;
+        }
     }
 
     /// The GPU context.
@@ -184,7 +197,11 @@ impl Renderer {
             (Some(options), None) => {
                 let terrain = match self.terrain.take() {
                     Some(terrain) => terrain,
-                    None => TerrainPass::new(&self.gpu, frame.atmosphere.bottom_radius_m)?,
+                    None => TerrainPass::new(
+                        &self.gpu,
+                        frame.atmosphere.bottom_radius_m,
+                        &self.earth_data,
+                    )?,
                 };
                 let terrain = self.terrain.insert(terrain);
                 let chunks = terrain.prepare(&self.gpu, frame, &options)?;

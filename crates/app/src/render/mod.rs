@@ -28,7 +28,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     };
     let frame = scene.frame()?;
     Renderer::check_model(frame.model)?;
+    let earth_data = args.earth_data.source()?;
     let mut renderer = Renderer::headless()?;
+    renderer.set_earth_data(earth_data);
     let start = Instant::now();
     let plan = renderer.render(&frame)?;
     let elapsed = start.elapsed();

@@ -97,6 +97,7 @@ impl ViewerApp {
             .unwrap_or_default();
         start_view::apply(&args.start, &mut settings)?;
         let mut renderer = Renderer::new(gpu)?;
+        renderer.set_earth_data(args.earth_data.source()?);
         // Batch screenshots (`--frames`) show complete tables in every frame.
         renderer.set_progressive(args.frames.is_none());
         Ok(ViewerApp {

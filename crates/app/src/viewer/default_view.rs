@@ -66,11 +66,11 @@ pub fn sun_clock() -> SunClock {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use render_wgpu::terrain::{HeightMap, earth_assets_dir};
+    use render_wgpu::terrain::EarthData;
 
     #[test]
     fn the_camera_is_above_the_terrain_near_sunset_facing_the_sun() {
-        let map = HeightMap::load(&earth_assets_dir().join("height.png")).unwrap();
+        let map = EarthData::BuiltIn.heights().unwrap();
         let (lat, lon) = (LATITUDE_DEG.to_radians(), LONGITUDE_DEG.to_radians());
         let ground = map.sample(lat, lon);
         assert!(ground <= GROUND_M && ground > GROUND_M - 100.0, "{ground}");

@@ -34,6 +34,7 @@ const HEADLESS_HINT: &str = "without a display, render images with:\n  \
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     // Bad flags are named before any window opens.
     start_view::apply(&args.start, &mut settings::ViewerSettings::default())?;
+    args.earth_data.source()?;
     let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
         .iter()
         .any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));

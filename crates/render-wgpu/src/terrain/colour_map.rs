@@ -4,6 +4,8 @@
 
 use std::path::Path;
 
+use image::DynamicImage;
+
 use super::geo_grid::bilinear_taps;
 use super::map_error::MapError;
 use atmosphere_core::color::srgb::srgb_decode;
@@ -21,7 +23,11 @@ impl ColourMap {
     /// Loads a colour image (JPEG or PNG) with a 2:1 aspect. A missing file, a file that
     /// does not decode, or a grey one is an error naming it.
     pub fn load(path: &Path) -> Result<ColourMap, MapError> {
-        let image = super::map_image::load_image(path)?;
+        ColourMap::from_image(super::map_image::load_image(path)?, path)
+    }
+
+    /// The map of a decoded image, with errors naming it `path`.
+    pub(super) fn from_image(image: DynamicImage, path: &Path) -> Result<ColourMap, MapError> {
         if !image.color().has_color() {
             return Err(MapError::Format {
                 path: path.to_owned(),
@@ -57,13 +63,19 @@ impl ColourMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::terrain::map_image::earth_assets_dir;
+
+    /// A map of `assets/earth/` in the source tree.
+    fn shipped(file: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../assets/earth")
+            .join(file)
+    }
 
     /// The shipped Blue Marble: the Sahara sandy (red over blue), the open Pacific dark
     /// blue, Antarctica and Greenland's ice bright.
     #[test]
     fn shipped_colours_at_known_places() {
-        let map = ColourMap::load(&earth_assets_dir().join("colour.jpg")).unwrap();
+        let map = ColourMap::load(&shipped("colour.jpg")).unwrap();
         assert_eq!((map.width, map.height), (4096, 2048));
         let at = |lat: f64, lon: f64| map.sample_linear(lat.to_radians(), lon.to_radians());
         let sahara = at(23.0, 10.0);

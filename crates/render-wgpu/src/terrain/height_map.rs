@@ -30,7 +30,11 @@ impl HeightMap {
     /// Loads a 16-bit grey PNG in the offset encoding. A missing file, a file that does
     /// not decode, or one that is not 16-bit grey with a 2:1 aspect is an error naming it.
     pub fn load(path: &Path) -> Result<HeightMap, MapError> {
-        let image = super::map_image::load_image(path)?;
+        HeightMap::from_image(super::map_image::load_image(path)?, path)
+    }
+
+    /// The map of a decoded image, with errors naming it `path`.
+    pub(super) fn from_image(image: DynamicImage, path: &Path) -> Result<HeightMap, MapError> {
         let DynamicImage::ImageLuma16(grey) = image else {
             return Err(MapError::Format {
                 path: path.to_owned(),
@@ -87,14 +91,20 @@ impl HeightField for HeightMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::terrain::map_image::earth_assets_dir;
+
+    /// A map of `assets/earth/` in the source tree.
+    fn shipped(file: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../assets/earth")
+            .join(file)
+    }
 
     /// Known places of the shipped map (10' texels, so peaks and trenches are averaged):
     /// the Challenger Deep area deep, the Himalaya and Tibet high, the open oceans below 0,
     /// the Sahara low land, the Dead Sea rift near sea level, Antarctica's ice high.
     #[test]
     fn shipped_heights_at_known_places() {
-        let map = HeightMap::load(&earth_assets_dir().join("height.png")).unwrap();
+        let map = HeightMap::load(&shipped("height.png")).unwrap();
         assert_eq!((map.width, map.height), (2160, 1080));
         let at = |lat: f64, lon: f64| map.sample(lat.to_radians(), lon.to_radians());
         let mariana = at(11.35, 142.2);
@@ -126,9 +136,8 @@ mod tests {
         let missing = dir.path().join("nothing.png");
         let e = HeightMap::load(&missing).unwrap_err();
         assert!(matches!(e, MapError::Missing { .. }));
-        assert!(
-            e.to_string().contains("nothing.png") && e.to_string().contains("fetch_earth_data")
-        );
+        let expected = format!("terrain map {} is missing", missing.display());
+        assert_eq!(e.to_string(), expected);
 
         let garbage = dir.path().join("garbage.png");
         std::fs::write(&garbage, b"\x89PNG\r\n\x1a\nnot really").unwrap();

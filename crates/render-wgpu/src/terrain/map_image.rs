@@ -1,16 +1,12 @@
-//! The Earth's map files: where they ship, decoding with errors naming the file, and the
-//! equirectangular shape every map must have.
+//! The Earth's map images: decoding a file or built-in bytes with errors naming it, and
+//! the equirectangular shape every map must have.
 
-use std::path::{Path, PathBuf};
+use std::io::Cursor;
+use std::path::Path;
 
 use image::DynamicImage;
 
 use super::map_error::MapError;
-
-/// The folder of the shipped Earth maps in the source tree (`assets/earth`).
-pub fn earth_assets_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/earth")
-}
 
 /// Decodes an image file, with errors naming it.
 pub(super) fn load_image(path: &Path) -> Result<DynamicImage, MapError> {
@@ -28,6 +24,18 @@ pub(super) fn load_image(path: &Path) -> Result<DynamicImage, MapError> {
         .decode()
         .map_err(|source| MapError::Read {
             path: path.to_owned(),
+            source,
+        })
+}
+
+/// Decodes an image held in memory (a built-in map), with errors naming it `name`.
+pub(super) fn decode_image(bytes: &[u8], name: &Path) -> Result<DynamicImage, MapError> {
+    image::ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(image::ImageError::IoError)
+        .and_then(|reader| reader.decode())
+        .map_err(|source| MapError::Read {
+            path: name.to_owned(),
             source,
         })
 }

@@ -1,15 +1,17 @@
 //! Planet terrain, CPU side: the Earth's maps, the cube sphere, the chunked level of
 //! detail and the chunk meshes (docs/terrain.md).
 //!
-//! Data flows one way: [`HeightMap`] and [`ColourMap`] (from `assets/earth/`) ->
-//! [`TerrainSurface`] (radius, exaggeration, sea surface) -> [`lod::select_chunks`] for a
-//! camera -> one [`ChunkMesh`] per chosen chunk, positions relative to its f64 origin.
+//! Data flows one way: [`HeightMap`] and [`ColourMap`] (from [`EarthData`]: built in, or
+//! a folder) -> [`TerrainSurface`] (radius, exaggeration, sea surface) ->
+//! [`lod::select_chunks`] for a camera -> one [`ChunkMesh`] per chosen chunk, positions
+//! relative to its f64 origin.
 
 pub mod chunk_key;
 pub mod chunk_mesh;
 pub mod colour_map;
 pub mod colour_mips;
 pub mod cube_sphere;
+pub mod earth_data;
 pub mod frustum;
 pub mod geo_grid;
 pub mod height_field;
@@ -23,8 +25,8 @@ pub mod surface;
 
 pub use chunk_mesh::ChunkMesh;
 pub use colour_map::ColourMap;
+pub use earth_data::EarthData;
 pub use height_field::HeightField;
 pub use height_map::HeightMap;
 pub use map_error::MapError;
-pub use map_image::earth_assets_dir;
 pub use surface::TerrainSurface;

@@ -31,10 +31,11 @@ use crate::terrain::chunk_key::ChunkKey;
 use crate::terrain::chunk_mesh::ChunkMesh;
 use crate::terrain::colour_map::ColourMap;
 use crate::terrain::colour_mips::colour_mips;
+use crate::terrain::earth_data::{COLOUR_FILE, EarthData};
 use crate::terrain::frustum::Frustum;
 use crate::terrain::height_map::HeightMap;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
-use crate::terrain::map_image::earth_assets_dir;
+use crate::terrain::map_error::MapError;
 use crate::terrain::stitching::stitched_indices;
 use crate::terrain::surface::TerrainSurface;
 
@@ -124,13 +125,28 @@ fn depth_buffer(gpu: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
 }
 
 impl TerrainPass {
-    /// Loads the shipped Earth maps (`assets/earth`) onto a planet of `radius_m` and
-    /// compiles the pass.
-    pub fn new(gpu: &GpuContext, radius_m: f64) -> Result<TerrainPass, RenderError> {
-        let dir = earth_assets_dir();
-        let heights = HeightMap::load(&dir.join("height.png"))?;
-        let colours = ColourMap::load(&dir.join("colour.jpg"))?;
+    /// Loads the Earth's maps from `earth` onto a planet of `radius_m` and compiles the
+    /// pass.
+    pub fn new(
+        gpu: &GpuContext,
+        radius_m: f64,
+        earth: &EarthData,
+    ) -> Result<TerrainPass, RenderError> {
+        let heights = earth.heights()?;
+        let colours = earth.colours()?;
         let device = &gpu.device;
+        let largest = device.limits().max_texture_dimension_2d;
+        if colours.width > largest as usize {
+            return Err(MapError::Format {
+                path: earth.path_of(COLOUR_FILE),
+                found: format!(
+                    "{} x {}, wider than this GPU's largest texture ({largest} texels)",
+                    colours.width, colours.height
+                ),
+                expected: "a colour map that fits one texture",
+            }
+            .into());
+        }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let colour = upload_colour(gpu, &colours);
         let module = shader_module(device, "terrain/terrain.wgsl")?;
