@@ -54,28 +54,53 @@ fn values_outside_a_range_name_the_key_and_the_range() {
 fn tables_over_the_budget_are_refused_before_they_are_built() {
     let big_s = ["r=256", "mu=1024", "mu_s=256", "nu=64"];
     let e = error(ModelId::Bruneton, &with_options(&big_s));
-    assert!(e.contains("bruneton tables of r=256 x mu=1024 x mu_s=256 x nu=64"), "{e}");
+    assert!(
+        e.contains("bruneton tables of r=256 x mu=1024 x mu_s=256 x nu=64"),
+        "{e}"
+    );
     assert!(e.contains("need 154619228160 bytes"), "{e}");
     assert!(e.contains("over the budget of 1073741824 bytes"), "{e}");
 
     let views = ["ap_width=1024", "ap_height=1024", "ap_slices=256"];
     let e = error(ModelId::Hillaire, &with_options(&views));
-    assert!(e.contains("hillaire tables of") && e.contains("ap 1024 x 1024 x 256"), "{e}");
+    assert!(
+        e.contains("hillaire tables of") && e.contains("ap 1024 x 1024 x 256"),
+        "{e}"
+    );
 
     let mut many = with_options(&["table_heights=2048", "table_angles=2048"]);
     many.wavelengths_nm = (0..100).map(|i| 400.0 + 3.0 * f64::from(i)).collect();
     let e = error(ModelId::Dobashi, &many);
-    assert!(e.contains("table_heights=2048 x table_angles=2048") && e.contains("100 wavelengths"), "{e}");
+    assert!(
+        e.contains("table_heights=2048 x table_angles=2048") && e.contains("100 wavelengths"),
+        "{e}"
+    );
 }
 
 #[test]
 fn gpu_loop_bounds_across_settings_are_checked() {
-    let e = error(ModelId::Dobashi, &with_options(&["planes=4096", "interval_steps=64"]));
-    assert!(e.contains("2 x planes=4096 x interval_steps=64 = 524288 loop trips"), "{e}");
+    let e = error(
+        ModelId::Dobashi,
+        &with_options(&["planes=4096", "interval_steps=64"]),
+    );
+    assert!(
+        e.contains("2 x planes=4096 x interval_steps=64 = 524288 loop trips"),
+        "{e}"
+    );
     assert!(e.contains("over 32768"), "{e}");
-    let e = error(ModelId::Dobashi, &with_options(&["ambient_directions=16", "planes=1000"]));
-    assert!(e.contains("ambient_directions=16^2 / 64 lanes x planes=1000"), "{e}");
-    let ground = ["ground_zenith_panels=16", "ground_azimuths=256", "sky_view_samples=100"];
+    let e = error(
+        ModelId::Dobashi,
+        &with_options(&["ambient_directions=16", "planes=1000"]),
+    );
+    assert!(
+        e.contains("ambient_directions=16^2 / 64 lanes x planes=1000"),
+        "{e}"
+    );
+    let ground = [
+        "ground_zenith_panels=16",
+        "ground_azimuths=256",
+        "sky_view_samples=100",
+    ];
     let e = error(ModelId::Hillaire, &with_options(&ground));
     assert!(e.contains("= 51200 loop trips"), "{e}");
 }
@@ -114,7 +139,12 @@ fn the_bytes_checked_are_the_bytes_the_tables_take() {
     .table_bytes(n);
     assert_eq!(model.table_bytes() as u64, expected);
 
-    let d = ["table_heights=8", "table_angles=16", "sphere_table_angles=8", "planes=10"];
+    let d = [
+        "table_heights=8",
+        "table_angles=16",
+        "sphere_table_angles=8",
+        "planes=10",
+    ];
     let model = prepare(ModelId::Dobashi, &earth, &settings(&d)).unwrap();
     let expected = atmosphere_core::models::dobashi::DobashiSettings::from_options(
         &ModelOptions::parse(&d).unwrap(),
@@ -123,7 +153,12 @@ fn the_bytes_checked_are_the_bytes_the_tables_take() {
     .table_bytes(n);
     assert_eq!(model.table_bytes() as u64, expected);
 
-    let h = ["view_cache=1", "ap_width=8", "ap_height=8", "sky_view_width=16"];
+    let h = [
+        "view_cache=1",
+        "ap_width=8",
+        "ap_height=8",
+        "sky_view_width=16",
+    ];
     let model = prepare(ModelId::Hillaire, &earth, &settings(&h)).unwrap();
     let expected = atmosphere_core::models::hillaire::HillaireSettings::from_options(
         &ModelOptions::parse(&h).unwrap(),

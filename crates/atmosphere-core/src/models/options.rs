@@ -226,12 +226,28 @@ mod tests {
     fn values_outside_the_range_name_the_key_and_the_range() {
         for (text, setting) in [("samples=1000000000", &SAMPLES), ("samples=0", &SAMPLES)] {
             let o = ModelOptions::parse(&[text]).unwrap();
-            let e = o.reader("nishita").count(setting, 1).unwrap_err().to_string();
-            assert!(e.contains(&format!("nishita setting {text} is outside 1..=4096")), "{e}");
+            let e = o
+                .reader("nishita")
+                .count(setting, 1)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains(&format!("nishita setting {text} is outside 1..=4096")),
+                "{e}"
+            );
         }
-        for text in ["threshold=NaN", "threshold=inf", "threshold=-0.1", "threshold=2"] {
+        for text in [
+            "threshold=NaN",
+            "threshold=inf",
+            "threshold=-0.1",
+            "threshold=2",
+        ] {
             let o = ModelOptions::parse(&[text]).unwrap();
-            let e = o.reader("nishita").number(&THRESHOLD, 0.5).unwrap_err().to_string();
+            let e = o
+                .reader("nishita")
+                .number(&THRESHOLD, 0.5)
+                .unwrap_err()
+                .to_string();
             assert!(e.contains("is outside 0..=1"), "{text}: {e}");
         }
         let edge = ModelOptions::parse(&["samples=4096"]).unwrap();

@@ -16,6 +16,7 @@ use crate::sky::columns_table::ColumnsTable;
 use crate::sky::model_pass::{ModelPass, StepContext, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
+use crate::sky::table_limits::table_extent;
 
 /// WGSL `NishitaParams`, 16 bytes.
 #[repr(C)]
@@ -108,7 +109,17 @@ impl ModelPass for NishitaPass {
         self.atmosphere = frame_atmosphere(frame)?;
         let settings = NishitaSettings::from_options(&frame.settings.options)?;
         let params = NishitaUniform::new(&settings)?;
-        self.g_l.fit(gpu, table_size(&settings))?;
+        let (w, h) = table_size(&settings);
+        let d2 = wgpu::TextureDimension::D2;
+        let settings_named = "table_angles x table_heights";
+        table_extent(
+            gpu,
+            "nishita g_l",
+            settings_named,
+            d2,
+            (w as usize, h as usize, 1),
+        )?;
+        self.g_l.fit(gpu, (w, h))?;
         plan.build_if(NishitaStep::GL, self.g_l.plan(&frame.atmosphere));
         plan.run(NishitaStep::Pass);
         gpu.write_uniform(&self.params, &params);

@@ -18,6 +18,7 @@ use crate::gpu::readback::read_texture;
 use crate::sky::model_pass::{ModelPass, StepContext};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
+use crate::sky::table_limits::table_extent;
 use crate::sky::table_sampling::TableSampling;
 use crate::sky::transmittance::{TABLE_FORMAT, table_texture};
 
@@ -162,6 +163,15 @@ impl Table {
     /// cannot index.
     fn new(gpu: &GpuContext, settings: &OneilSettings) -> Result<Table, RenderError> {
         let (heights, angles) = table_size(settings)?;
+        let size = (settings.table_heights, settings.table_angles, 1);
+        let named = "table_heights x table_angles";
+        table_extent(
+            gpu,
+            "oneil optical depth",
+            named,
+            wgpu::TextureDimension::D2,
+            size,
+        )?;
         Ok(Table {
             pass: OneilTablePass::new(gpu, heights, angles)?,
             built_from: None,

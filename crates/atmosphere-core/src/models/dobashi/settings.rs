@@ -176,7 +176,13 @@ impl DobashiSettings {
     pub fn table_bytes(&self, wavelengths: usize) -> u64 {
         product(&[self.sun_table_heights, self.sun_table_angles, 24])
             + product(&[3, self.table_heights, self.table_angles, wavelengths, 4])
-            + product(&[3, 3 * self.spheres, self.sphere_table_angles, wavelengths, 4])
+            + product(&[
+                3,
+                3 * self.spheres,
+                self.sphere_table_angles,
+                wavelengths,
+                4,
+            ])
             + product(&[self.ambient_sun_angles, wavelengths, 4])
     }
 
