@@ -9,6 +9,7 @@ mod support;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::models::dobashi::grid::Grid;
+use atmosphere_core::models::dobashi::settings::{AMBIENT_DIRECTIONS, PLANES};
 use atmosphere_core::models::dobashi::{DobashiSettings, PlaneTables, SphereTables};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
@@ -144,24 +145,23 @@ fn dobashi_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     // Spheres from 30,000 km looking down, and planes from there when allowed more.
     let mut f = frame(ModelId::Dobashi, view(3e7, 180.0, 40.0), 30.0, 48, 27);
     check(&mut renderer, "30,000 km, spheres", &f, MAX_RELATIVE_ERROR);
-    f.settings.options = ModelOptions::parse(&["max_planes=16384"]).unwrap();
+    f.settings.options = ModelOptions::parse(&["max_planes=100000"]).unwrap();
     check(&mut renderer, "30,000 km, planes", &f, MAX_RELATIVE_ERROR);
 }
 
-/// The most loop trips the settings allow in one GPU invocation: each of the ambient
-/// term's 64 lanes traces 16^2 / 64 rays through up to 819 x 10 planes (32760 trips, the
-/// most `gpu_loops::check_loop_trips` lets through), and the pixel rays up to twice as
-/// many. On lavapipe an invocation's loops end, silently, after 65535 trips in all.
+/// The most loop trips the settings' ranges allow in one GPU invocation: the ambient
+/// term's 16^2 rays through up to 4096 planes each, shared by 64 lanes (one lane tracing
+/// them all ran past 65535 trips, where lavapipe silently ends an invocation's loops),
+/// and pixel rays through up to 2 x 4096 planes.
 #[test]
 fn the_largest_loops_the_settings_allow_match_the_cpu() {
     let Some(mut renderer) = renderer_or_skip("dobashi largest loops") else {
         return;
     };
     let most = [
-        "ambient_directions=16",
-        "planes=819",
-        "interval_steps=10",
-        "ambient_sun_angles=4",
+        format!("ambient_directions={}", AMBIENT_DIRECTIONS.range.end()),
+        format!("planes={}", PLANES.range.end()),
+        "ambient_sun_angles=4".to_string(),
     ];
     let mut f = frame(ModelId::Dobashi, view(1.0, 80.0, 60.0), 60.0, 8, 6);
     f.settings.options = ModelOptions::parse(&most).unwrap();

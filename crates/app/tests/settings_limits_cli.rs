@@ -146,9 +146,18 @@ fn gpu_sample_counts_past_what_every_gpu_loops_are_refused() {
         let expected = format!("nishita setting {set} is outside 1..=4096");
         render_refused("nishita", &[&set], &expected);
     }
-    let loops = ["planes=4096", "interval_steps=64"];
-    let expected = "dobashi settings 2 x planes=4096 x interval_steps=64 = 524288 loop trips";
-    render_refused("dobashi", &loops, expected);
+    let ambient = "dobashi setting ambient_directions=64 is outside 1..=16";
+    render_refused("dobashi", &["ambient_directions=64"], ambient);
+    let ground = [
+        "ground_zenith_panels=16",
+        "ground_azimuths=256",
+        "sky_view_samples=100",
+    ];
+    render_refused(
+        "hillaire",
+        &ground,
+        "= 51200 loop trips in one GPU invocation",
+    );
 }
 
 #[test]
