@@ -106,8 +106,10 @@ fn gpu_loop_bounds_across_settings_are_checked() {
 
 #[test]
 fn shared_settings_have_ranges() {
-    let mut s = ModelSettings::default();
-    s.wavelengths_nm = vec![550.0; 101];
+    let s = ModelSettings {
+        wavelengths_nm: vec![550.0; 101],
+        ..ModelSettings::default()
+    };
     assert!(error(ModelId::Riley, &s).contains("101 wavelengths is outside 1..=100"));
     let s = ModelSettings {
         max_orders: Some(1001),

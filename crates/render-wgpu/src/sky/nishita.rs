@@ -109,17 +109,10 @@ impl ModelPass for NishitaPass {
         self.atmosphere = frame_atmosphere(frame)?;
         let settings = NishitaSettings::from_options(&frame.settings.options)?;
         let params = NishitaUniform::new(&settings)?;
-        let (w, h) = table_size(&settings);
-        let d2 = wgpu::TextureDimension::D2;
-        let settings_named = "table_angles x table_heights";
-        table_extent(
-            gpu,
-            "nishita g_l",
-            settings_named,
-            d2,
-            (w as usize, h as usize, 1),
-        )?;
-        self.g_l.fit(gpu, (w, h))?;
+        let size = (settings.table_angles, settings.table_heights, 1);
+        let sides = "table_angles x table_heights";
+        table_extent(gpu, "nishita g_l", sides, wgpu::TextureDimension::D2, size)?;
+        self.g_l.fit(gpu, table_size(&settings))?;
         plan.build_if(NishitaStep::GL, self.g_l.plan(&frame.atmosphere));
         plan.run(NishitaStep::Pass);
         gpu.write_uniform(&self.params, &params);

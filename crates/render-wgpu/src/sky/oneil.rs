@@ -164,14 +164,9 @@ impl Table {
     fn new(gpu: &GpuContext, settings: &OneilSettings) -> Result<Table, RenderError> {
         let (heights, angles) = table_size(settings)?;
         let size = (settings.table_heights, settings.table_angles, 1);
-        let named = "table_heights x table_angles";
-        table_extent(
-            gpu,
-            "oneil optical depth",
-            named,
-            wgpu::TextureDimension::D2,
-            size,
-        )?;
+        let sides = "table_heights x table_angles";
+        let d2 = wgpu::TextureDimension::D2;
+        table_extent(gpu, "oneil optical depth", sides, d2, size)?;
         Ok(Table {
             pass: OneilTablePass::new(gpu, heights, angles)?,
             built_from: None,
