@@ -9,6 +9,7 @@ mod support;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::models::dobashi::grid::Grid;
+use atmosphere_core::models::dobashi::settings::{AMBIENT_DIRECTIONS, PLANES};
 use atmosphere_core::models::dobashi::{DobashiSettings, PlaneTables, SphereTables};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
@@ -146,6 +147,25 @@ fn dobashi_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     check(&mut renderer, "30,000 km, spheres", &f, MAX_RELATIVE_ERROR);
     f.settings.options = ModelOptions::parse(&["max_planes=100000"]).unwrap();
     check(&mut renderer, "30,000 km, planes", &f, MAX_RELATIVE_ERROR);
+}
+
+/// The most loop trips the settings' ranges allow in one GPU invocation: the ambient
+/// term's 16^2 rays through up to 4096 planes each, shared by 64 lanes (one lane tracing
+/// them all ran past 65535 trips, where lavapipe silently ends an invocation's loops),
+/// and pixel rays through up to 2 x 4096 planes.
+#[test]
+fn the_largest_loops_the_settings_allow_match_the_cpu() {
+    let Some(mut renderer) = renderer_or_skip("dobashi largest loops") else {
+        return;
+    };
+    let most = [
+        format!("ambient_directions={}", AMBIENT_DIRECTIONS.range.end()),
+        format!("planes={}", PLANES.range.end()),
+        "ambient_sun_angles=4".to_string(),
+    ];
+    let mut f = frame(ModelId::Dobashi, view(1.0, 80.0, 60.0), 60.0, 8, 6);
+    f.settings.options = ModelOptions::parse(&most).unwrap();
+    check(&mut renderer, "loops at their most", &f, MAX_RELATIVE_ERROR);
 }
 
 /// The texel-by-texel reads, which a device without `FLOAT32_FILTERABLE` runs, against

@@ -6,9 +6,12 @@
 mod support;
 
 use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::nishita::SAMPLES;
+use atmosphere_core::models::options::ModelOptions;
 use render_wgpu::frame::LocalView;
 use support::{
-    check_each, check_standard_surfaces, check_sun_disk, frame, renderer_or_skip, standard_frames,
+    check, check_each, check_standard_surfaces, check_sun_disk, frame, renderer_or_skip,
+    standard_frames,
 };
 
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel. The HDR
@@ -23,6 +26,24 @@ fn nishita_frames_match_the_cpu_from_the_ground_to_far_orbit() {
     };
     let frames = standard_frames(ModelId::Nishita);
     check_each(&mut renderer, &frames[..4], MAX_RELATIVE_ERROR);
+}
+
+/// The most samples a setting allows: one GPU loop of that many trips runs in full (on
+/// lavapipe, loops past 65535 trips in all end early, silently).
+#[test]
+fn the_largest_sample_count_matches_the_cpu() {
+    let Some(mut renderer) = renderer_or_skip("nishita largest samples") else {
+        return;
+    };
+    let most = *SAMPLES.range.end();
+    let mut f = frame(ModelId::Nishita, support::view(1.0, 85.0, 50.0), 60.0, 8, 6);
+    f.settings.options = ModelOptions::parse(&[format!("samples={most}")]).unwrap();
+    check(
+        &mut renderer,
+        "samples at their most",
+        &f,
+        MAX_RELATIVE_ERROR,
+    );
 }
 
 #[test]

@@ -154,10 +154,7 @@ fn a_setting_is_named_by_its_key() {
     let (_dir, path) = input(&format!("{HEADER}\n{RAYS}"));
     let settings = ["--model", "nishita", "--set", "samples=0"];
     let args = [&["probe", "--input", path.to_str().unwrap()], &settings[..]].concat();
-    atmos_fails_with(
-        &args,
-        "nishita samples (view samples per ray) must be at least 1",
-    );
+    atmos_fails_with(&args, "nishita setting samples=0 is outside 1..=4096");
 }
 
 #[test]

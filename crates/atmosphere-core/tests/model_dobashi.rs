@@ -6,6 +6,7 @@
 mod common;
 
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::models::dobashi::settings::MAX_PLANES;
 use atmosphere_core::models::dobashi::{Dobashi, DobashiSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
@@ -131,7 +132,7 @@ fn spheres_far_out_and_planes_near() {
         &a,
         &single(),
         DobashiSettings {
-            max_planes: usize::MAX,
+            max_planes: *MAX_PLANES.range.end(),
             ..DobashiSettings::default()
         },
     );

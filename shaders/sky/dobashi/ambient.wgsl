@@ -2,10 +2,11 @@
 // `sky/dobashi/`). CPU twin: atmosphere-core's `models/dobashi/ambient.rs`
 // (`AmbientTable::build`). Paper: none for the term itself (Dobashi, Yamamoto and Nishita
 // 2002 has no multiple scattering; docs/models/dobashi.md), estimated as Hillaire 2020,
-// section 5.5, does with the model's own Eq. 12 (`sky/dobashi/trace.wgsl`). Invocation i
-// takes the sun at cosine -1 + 2 i / (n - 1) and traces `ambient_directions`^2 rays from
-// the ground (equal steps of the zenith cosine times equal steps of azimuth) with a unit
-// ambient radiance: psi_1, the mean single-scattered and sunlit-ground radiance, and f,
+// section 5.5, does with the model's own Eq. 12 (`sky/dobashi/trace.wgsl`). Workgroup i
+// takes the sun at cosine -1 + 2 i / (n - 1); its 64 lanes share `ambient_directions`^2
+// rays from the ground (equal steps of the zenith cosine times equal steps of azimuth),
+// so that no invocation runs more loop trips than every GPU allows, each traced with a
+// unit ambient radiance: psi_1, the mean single-scattered and sunlit-ground radiance, and f,
 // the mean transfer of a unit isotropic radiance; psi = psi_1 (1 + f + ... + f^(N-2)) for
 // N orders, or psi_1 / (1 - f) for all. Writes psi per unit solar irradiance into
 // `ambient_out`.
@@ -17,20 +18,22 @@
 // see a unit ambient radiance: `ambient_table` is a table of ones.
 @group(0) @binding(12) var ambient_out: texture_storage_2d<rgba32float, write>;
 
-@compute @workgroup_size(8, 1)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+const LANES: u32 = 64u;
+
+var<workgroup> psi_1_sum: array<vec3<f32>, 64>;
+var<workgroup> transfer_sum: array<vec3<f32>, 64>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let n_sun = textureDimensions(ambient_out).x;
-    if id.x >= n_sun {
-        return;
-    }
     let bottom = atmosphere.bottom_radius_m;
-    let mu_sun = -1.0 + 2.0 * f32(id.x) / f32(n_sun - 1u);
+    let mu_sun = -1.0 + 2.0 * f32(group.x) / f32(n_sun - 1u);
     let sun = vec3<f32>(sqrt(max(1.0 - mu_sun * mu_sun, 0.0)), 0.0, mu_sun);
     let n = dobashi.ambient_directions;
     let weight = 1.0 / f32(n * n);
     var psi_1 = vec3<f32>(0.0);
     var transfer = vec3<f32>(0.0);
-    for (var index = 0u; index < n * n; index++) {
+    for (var index = lane; index < n * n; index += LANES) {
         let mu = -1.0 + 2.0 * (f32(index / n) + 0.5) / f32(n);
         let phi = 2.0 * PI * (f32(index % n) + 0.5) / f32(n);
         let sin_zenith = sqrt(max(1.0 - mu * mu, 0.0));
@@ -52,7 +55,20 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         psi_1 += weight * terms.single;
         transfer += weight * terms.ambient;
     }
-    let f = clamp(transfer, vec3<f32>(0.0), vec3<f32>(1.0 - 1e-6));
+    psi_1_sum[lane] = psi_1;
+    transfer_sum[lane] = transfer;
+    workgroupBarrier();
+    for (var stride = LANES / 2u; stride > 0u; stride /= 2u) {
+        if lane < stride {
+            psi_1_sum[lane] += psi_1_sum[lane + stride];
+            transfer_sum[lane] += transfer_sum[lane + stride];
+        }
+        workgroupBarrier();
+    }
+    if lane != 0u {
+        return;
+    }
+    let f = clamp(transfer_sum[0], vec3<f32>(0.0), vec3<f32>(1.0 - 1e-6));
     var series = 1.0 / (1.0 - f);
     if dobashi.max_orders > 0u {
         series = vec3<f32>(0.0);
@@ -62,5 +78,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             power *= f;
         }
     }
-    textureStore(ambient_out, vec2<u32>(id.x, 0u), vec4<f32>(psi_1 * series, 1.0));
+    textureStore(ambient_out, vec2<u32>(group.x, 0u), vec4<f32>(psi_1_sum[0] * series, 1.0));
 }

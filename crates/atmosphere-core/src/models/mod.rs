@@ -6,6 +6,7 @@
 pub mod bruneton;
 pub mod dobashi;
 pub mod error;
+pub mod gpu_loops;
 pub mod hillaire;
 pub mod id;
 pub mod model_base;
@@ -16,4 +17,5 @@ pub mod registry;
 pub mod riley;
 pub mod settings;
 pub mod sky_model;
+pub mod table_budget;
 pub mod table_update;

@@ -11,7 +11,7 @@ use crate::atmosphere::Atmosphere;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::model_base::ModelBase;
-use crate::models::options::ModelOptions;
+use crate::models::options::{ModelOptions, Setting};
 use crate::models::settings::ModelSettings;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::column::{densities, optical_depth};
@@ -49,32 +49,42 @@ impl Default for NishitaSettings {
     }
 }
 
+/// `samples`: within what every GPU runs in one loop (well under 65535 trips).
+pub const SAMPLES: Setting<usize> = Setting {
+    model: "nishita",
+    key: "samples",
+    range: 1..=4096,
+};
+/// `table_heights`, `table_angles`: up to 2048 (100 MB of f64 columns at 2048 x 2048).
+pub const TABLE_HEIGHTS: Setting<usize> = Setting {
+    model: "nishita",
+    key: "table_heights",
+    range: 2..=2048,
+};
+pub const TABLE_ANGLES: Setting<usize> = Setting {
+    model: "nishita",
+    key: "table_angles",
+    range: 2..=2048,
+};
+
 impl NishitaSettings {
     /// The settings from `key=value` options: `samples`, `table_heights`,
     /// `table_angles`; the defaults where absent.
     pub fn from_options(options: &ModelOptions) -> Result<NishitaSettings, ModelError> {
         options.read_settings("nishita", NishitaSettings::validate, |o, d| {
             Ok(NishitaSettings {
-                view_samples: o.count("samples", d.view_samples)?,
-                table_heights: o.count("table_heights", d.table_heights)?,
-                table_angles: o.count("table_angles", d.table_angles)?,
+                view_samples: o.count(&SAMPLES, d.view_samples)?,
+                table_heights: o.count(&TABLE_HEIGHTS, d.table_heights)?,
+                table_angles: o.count(&TABLE_ANGLES, d.table_angles)?,
             })
         })
     }
 
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
-        if self.view_samples == 0 {
-            return Err(ModelError::Settings(
-                "nishita samples (view samples per ray) must be at least 1".into(),
-            ));
-        }
-        if self.table_heights < 2 || self.table_angles < 2 {
-            return Err(ModelError::Settings(format!(
-                "nishita table must be at least 2 x 2, got {} heights x {} angles",
-                self.table_heights, self.table_angles
-            )));
-        }
+        SAMPLES.check(self.view_samples)?;
+        TABLE_HEIGHTS.check(self.table_heights)?;
+        TABLE_ANGLES.check(self.table_angles)?;
         Ok(())
     }
 }

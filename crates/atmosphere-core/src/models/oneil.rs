@@ -27,7 +27,7 @@ use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
 use crate::models::model_base::ModelBase;
-use crate::models::options::ModelOptions;
+use crate::models::options::{ModelOptions, Setting};
 use crate::models::settings::ModelSettings;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
@@ -60,35 +60,50 @@ impl Default for OneilSettings {
     }
 }
 
+/// `samples` and `table_ray_samples`: within what every GPU runs in one loop (well under
+/// 65535 trips).
+pub const SAMPLES: Setting<usize> = Setting {
+    model: "oneil",
+    key: "samples",
+    range: 1..=4096,
+};
+pub const TABLE_RAY_SAMPLES: Setting<usize> = Setting {
+    model: "oneil",
+    key: "table_ray_samples",
+    range: 1..=4096,
+};
+/// `table_heights`, `table_angles`: up to 2048 (64 MB of f32 nodes at 2048 x 2048).
+pub const TABLE_HEIGHTS: Setting<usize> = Setting {
+    model: "oneil",
+    key: "table_heights",
+    range: 2..=2048,
+};
+pub const TABLE_ANGLES: Setting<usize> = Setting {
+    model: "oneil",
+    key: "table_angles",
+    range: 2..=2048,
+};
+
 impl OneilSettings {
     /// The settings from `key=value` options: `samples`, `table_heights`,
     /// `table_angles`, `table_ray_samples`; the paper's where absent.
     pub fn from_options(options: &ModelOptions) -> Result<OneilSettings, ModelError> {
         options.read_settings("oneil", OneilSettings::validate, |o, d| {
             Ok(OneilSettings {
-                samples: o.count("samples", d.samples)?,
-                table_heights: o.count("table_heights", d.table_heights)?,
-                table_angles: o.count("table_angles", d.table_angles)?,
-                table_ray_samples: o.count("table_ray_samples", d.table_ray_samples)?,
+                samples: o.count(&SAMPLES, d.samples)?,
+                table_heights: o.count(&TABLE_HEIGHTS, d.table_heights)?,
+                table_angles: o.count(&TABLE_ANGLES, d.table_angles)?,
+                table_ray_samples: o.count(&TABLE_RAY_SAMPLES, d.table_ray_samples)?,
             })
         })
     }
 
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
-        let bad = |m: String| Err(ModelError::Settings(m));
-        if self.samples == 0 {
-            return bad("oneil: samples must be at least 1".into());
-        }
-        if self.table_heights < 2 || self.table_angles < 2 {
-            return bad(format!(
-                "oneil: the table needs at least 2 x 2 nodes, got {} x {}",
-                self.table_heights, self.table_angles
-            ));
-        }
-        if self.table_ray_samples == 0 {
-            return bad("oneil: table_ray_samples must be at least 1".into());
-        }
+        SAMPLES.check(self.samples)?;
+        TABLE_HEIGHTS.check(self.table_heights)?;
+        TABLE_ANGLES.check(self.table_angles)?;
+        TABLE_RAY_SAMPLES.check(self.table_ray_samples)?;
         Ok(())
     }
 }

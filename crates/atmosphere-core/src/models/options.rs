@@ -1,8 +1,11 @@
 //! A model's own settings from text: `key=value` pairs (`atmos probe --set samples=16`,
 //! the report's variants). Each model reads the keys it knows with its paper's values as
-//! defaults; a key no model reads, or a value that does not parse, is an error naming it.
+//! defaults; a key no model reads, a value that does not parse, or one outside the key's
+//! range is an error naming it.
 
 use std::collections::BTreeMap;
+use std::fmt::Display;
+use std::ops::RangeInclusive;
 
 use crate::models::error::ModelError;
 
@@ -91,46 +94,75 @@ pub struct OptionReader<'a> {
     known: Vec<&'static str>,
 }
 
+/// One setting of a model: its key and the values it may take. Every setting is read and
+/// checked through one, so none is without a range.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Setting<T> {
+    pub model: &'static str,
+    pub key: &'static str,
+    pub range: RangeInclusive<T>,
+}
+
+impl<T: PartialOrd + Display> Setting<T> {
+    /// `value`, or an error naming the setting, the value and the range.
+    pub fn check(&self, value: T) -> Result<T, ModelError> {
+        if self.range.contains(&value) {
+            Ok(value)
+        } else {
+            Err(ModelError::Settings(format!(
+                "{} setting {}={value} is outside {}..={}",
+                self.model,
+                self.key,
+                self.range.start(),
+                self.range.end()
+            )))
+        }
+    }
+}
+
 impl OptionReader<'_> {
-    fn parse<T: std::str::FromStr>(
+    fn parse<T: std::str::FromStr + PartialOrd + Display + Copy>(
         &mut self,
-        key: &'static str,
+        setting: &Setting<T>,
         default: T,
         kind: &str,
     ) -> Result<T, ModelError> {
+        let key = setting.key;
         self.known.push(key);
-        match self.options.values.get(key) {
-            None => Ok(default),
+        let value = match self.options.values.get(key) {
+            None => default,
             Some(text) => text.parse().map_err(|_| {
                 ModelError::Settings(format!(
                     "{} setting {key}={text}: expected {kind}",
                     self.model
                 ))
-            }),
-        }
+            })?,
+        };
+        setting.check(value)
     }
 
-    /// A count (non-negative integer).
-    pub fn count(&mut self, key: &'static str, default: usize) -> Result<usize, ModelError> {
-        self.parse(key, default, "a whole number")
+    /// A count (non-negative integer) within the setting's range.
+    pub fn count(&mut self, setting: &Setting<usize>, default: usize) -> Result<usize, ModelError> {
+        self.parse(setting, default, "a whole number")
     }
 
-    /// A real number.
-    pub fn number(&mut self, key: &'static str, default: f64) -> Result<f64, ModelError> {
-        let v = self.parse(key, default, "a number")?;
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(ModelError::Settings(format!(
-                "{} setting {key} must be finite",
-                self.model
-            )))
-        }
+    /// A real number within the setting's range (which excludes NaN and infinities).
+    pub fn number(&mut self, setting: &Setting<f64>, default: f64) -> Result<f64, ModelError> {
+        self.parse(setting, default, "a number")
     }
 
     /// `true` or `false`.
     pub fn flag(&mut self, key: &'static str, default: bool) -> Result<bool, ModelError> {
-        self.parse(key, default, "true or false")
+        self.known.push(key);
+        match self.options.values.get(key) {
+            None => Ok(default),
+            Some(text) => text.parse().map_err(|_| {
+                ModelError::Settings(format!(
+                    "{} setting {key}={text}: expected true or false",
+                    self.model
+                ))
+            }),
+        }
     }
 
     /// Errors on any key that was not read, listing the keys the model knows.
@@ -162,22 +194,63 @@ impl OptionReader<'_> {
 mod tests {
     use super::*;
 
+    const SAMPLES: Setting<usize> = Setting {
+        model: "nishita",
+        key: "samples",
+        range: 1..=4096,
+    };
+    const THRESHOLD: Setting<f64> = Setting {
+        model: "nishita",
+        key: "threshold",
+        range: 0.0..=1.0,
+    };
+
     #[test]
     fn reads_known_keys_and_names_unknown_and_malformed_ones() {
         let o = ModelOptions::parse(&["samples=16", "orders = 2"]).unwrap();
         let mut r = o.reader("nishita");
-        assert_eq!(r.count("samples", 100).unwrap(), 16);
-        assert_eq!(r.number("threshold", 0.5).unwrap(), 0.5);
+        assert_eq!(r.count(&SAMPLES, 100).unwrap(), 16);
+        assert_eq!(r.number(&THRESHOLD, 0.5).unwrap(), 0.5);
         let e = r.finish().unwrap_err().to_string();
         assert!(e.contains("no setting orders"), "{e}");
         assert!(e.contains("samples, threshold"), "{e}");
 
         let bad = ModelOptions::parse(&["samples=many"]).unwrap();
-        let e = bad.reader("nishita").count("samples", 1).unwrap_err();
+        let e = bad.reader("nishita").count(&SAMPLES, 1).unwrap_err();
         assert!(e.to_string().contains("samples=many"), "{e}");
         assert!(ModelOptions::parse(&["samples"]).is_err());
         assert!(ModelOptions::parse(&["=3"]).is_err());
-        let nan = ModelOptions::parse(&["g=NaN"]).unwrap();
-        assert!(nan.reader("x").number("g", 0.0).is_err());
+    }
+
+    #[test]
+    fn values_outside_the_range_name_the_key_and_the_range() {
+        for (text, setting) in [("samples=1000000000", &SAMPLES), ("samples=0", &SAMPLES)] {
+            let o = ModelOptions::parse(&[text]).unwrap();
+            let e = o
+                .reader("nishita")
+                .count(setting, 1)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains(&format!("nishita setting {text} is outside 1..=4096")),
+                "{e}"
+            );
+        }
+        for text in [
+            "threshold=NaN",
+            "threshold=inf",
+            "threshold=-0.1",
+            "threshold=2",
+        ] {
+            let o = ModelOptions::parse(&[text]).unwrap();
+            let e = o
+                .reader("nishita")
+                .number(&THRESHOLD, 0.5)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("is outside 0..=1"), "{text}: {e}");
+        }
+        let edge = ModelOptions::parse(&["samples=4096"]).unwrap();
+        assert_eq!(edge.reader("nishita").count(&SAMPLES, 1).unwrap(), 4096);
     }
 }

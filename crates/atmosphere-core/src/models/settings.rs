@@ -37,13 +37,26 @@ impl Default for ModelSettings {
     }
 }
 
+/// How many wavelengths a model computes at: 1 to 100 (every 5 nm over the visible
+/// range is 95); the tables' memory budget may allow fewer for large tables.
+pub const WAVELENGTH_COUNT: std::ops::RangeInclusive<usize> = 1..=100;
+/// Scattering orders: 1 to 1000 (the loops over orders stop there whatever the model).
+pub const ORDERS: std::ops::RangeInclusive<u32> = 1..=1000;
+
+/// The stochastic models' target relative error: 1e-6 to 1 (below what a path cap
+/// reaches in time the cap stops first, and says so).
+pub const TARGET_RELATIVE_ERROR: std::ops::RangeInclusive<f64> = 1e-6..=1.0;
+
 impl ModelSettings {
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
-        if self.wavelengths_nm.is_empty() {
-            return Err(ModelError::Settings(
-                "at least one wavelength is needed".into(),
-            ));
+        let count = self.wavelengths_nm.len();
+        if !WAVELENGTH_COUNT.contains(&count) {
+            return Err(ModelError::Settings(format!(
+                "{count} wavelengths is outside {}..={}",
+                WAVELENGTH_COUNT.start(),
+                WAVELENGTH_COUNT.end()
+            )));
         }
         if let Some(w) = self
             .wavelengths_nm
@@ -54,13 +67,19 @@ impl ModelSettings {
                 "wavelength {w} nm is outside the visible range 360..830 nm"
             )));
         }
-        if self.max_orders == Some(0) {
-            return Err(ModelError::Settings("orders must be at least 1".into()));
-        }
-        if !(self.target_relative_error.is_finite() && self.target_relative_error > 0.0) {
+        if let Some(orders) = self.max_orders.filter(|o| !ORDERS.contains(o)) {
             return Err(ModelError::Settings(format!(
-                "target relative error {} must be > 0",
-                self.target_relative_error
+                "orders {orders} is outside {}..={}",
+                ORDERS.start(),
+                ORDERS.end()
+            )));
+        }
+        if !TARGET_RELATIVE_ERROR.contains(&self.target_relative_error) {
+            return Err(ModelError::Settings(format!(
+                "target relative error {} is outside {:e}..={}",
+                self.target_relative_error,
+                TARGET_RELATIVE_ERROR.start(),
+                TARGET_RELATIVE_ERROR.end()
             )));
         }
         Ok(())

@@ -16,5 +16,6 @@ pub mod registry;
 pub mod riley;
 pub mod sky_pass;
 pub mod steps;
+pub mod table_limits;
 pub mod table_sampling;
 pub mod transmittance;

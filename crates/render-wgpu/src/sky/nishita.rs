@@ -16,6 +16,7 @@ use crate::sky::columns_table::ColumnsTable;
 use crate::sky::model_pass::{ModelPass, StepContext, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
+use crate::sky::table_limits::table_extent;
 
 /// WGSL `NishitaParams`, 16 bytes.
 #[repr(C)]
@@ -108,6 +109,9 @@ impl ModelPass for NishitaPass {
         self.atmosphere = frame_atmosphere(frame)?;
         let settings = NishitaSettings::from_options(&frame.settings.options)?;
         let params = NishitaUniform::new(&settings)?;
+        let size = (settings.table_angles, settings.table_heights, 1);
+        let sides = "table_angles x table_heights";
+        table_extent(gpu, "nishita g_l", sides, wgpu::TextureDimension::D2, size)?;
         self.g_l.fit(gpu, table_size(&settings))?;
         plan.build_if(NishitaStep::GL, self.g_l.plan(&frame.atmosphere));
         plan.run(NishitaStep::Pass);

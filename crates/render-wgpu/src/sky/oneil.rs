@@ -18,6 +18,7 @@ use crate::gpu::readback::read_texture;
 use crate::sky::model_pass::{ModelPass, StepContext};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
+use crate::sky::table_limits::table_extent;
 use crate::sky::table_sampling::TableSampling;
 use crate::sky::transmittance::{TABLE_FORMAT, table_texture};
 
@@ -162,6 +163,10 @@ impl Table {
     /// cannot index.
     fn new(gpu: &GpuContext, settings: &OneilSettings) -> Result<Table, RenderError> {
         let (heights, angles) = table_size(settings)?;
+        let size = (settings.table_heights, settings.table_angles, 1);
+        let sides = "table_heights x table_angles";
+        let d2 = wgpu::TextureDimension::D2;
+        table_extent(gpu, "oneil optical depth", sides, d2, size)?;
         Ok(Table {
             pass: OneilTablePass::new(gpu, heights, angles)?,
             built_from: None,

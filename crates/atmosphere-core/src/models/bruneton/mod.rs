@@ -86,6 +86,7 @@ impl Bruneton {
     ) -> Result<Bruneton, ModelError> {
         let base = ModelBase::checked(ModelId::Bruneton, atmosphere, settings)?;
         bruneton.validate()?;
+        bruneton.check_table_bytes(settings.wavelengths_nm.len())?;
         let start = std::time::Instant::now();
         let transmittance = TransmittanceTable::build(
             atmosphere,

@@ -1,8 +1,11 @@
 //! The sizes and sample counts of the Bruneton tables, from the command line's options.
 
+use std::ops::RangeInclusive;
+
 use crate::models::bruneton::parameterization::ScatteringSize;
 use crate::models::error::ModelError;
-use crate::models::options::ModelOptions;
+use crate::models::options::{ModelOptions, Setting};
+use crate::models::table_budget::{check_table_bytes, product};
 use crate::optics::transmittance_table::BRUNETON_TABLE_SIZE;
 
 /// The model's settings. `Default` gives the paper's sizes (section 6) and the sample
@@ -56,6 +59,31 @@ impl Default for BrunetonSettings {
     }
 }
 
+/// A setting of bruneton's.
+const fn setting<T>(key: &'static str, range: RangeInclusive<T>) -> Setting<T> {
+    Setting {
+        model: "bruneton",
+        key,
+        range,
+    }
+}
+
+/// S's axes: up to 256 x 1024 x 256 x 64 texels (r, mu, mu_s, nu); the memory budget
+/// bounds their product, the GPU's row workgroup mu_s x nu.
+pub const R: Setting<usize> = setting("r", 2..=256);
+pub const MU: Setting<usize> = setting("mu", 4..=1024);
+pub const MU_S: Setting<usize> = setting("mu_s", 2..=256);
+pub const NU: Setting<usize> = setting("nu", 2..=64);
+/// Sample counts: one GPU invocation's loops run well under 65535 trips in all (the
+/// sphere integrals' 2 sides x 8 x ceil(sphere_zenith / 16) zenith nodes x
+/// sphere_azimuth / 2 azimuths at most 8192).
+pub const VIEW_SAMPLES: Setting<usize> = setting("view_samples", 1..=4096);
+pub const SPHERE_ZENITH: Setting<usize> = setting("sphere_zenith", 1..=128);
+pub const SPHERE_AZIMUTH: Setting<usize> = setting("sphere_azimuth", 2..=128);
+pub const ORDER_THRESHOLD: Setting<f64> = setting("order_threshold", 0.0..=1.0);
+/// Orders: 63 at most, as many as the GPU records.
+pub const ORDER_LIMIT: Setting<usize> = setting("order_limit", 1..=63);
+
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
@@ -64,18 +92,18 @@ impl BrunetonSettings {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
                 scattering_size: ScatteringSize {
-                    r: o.count("r", d.scattering_size.r)?,
-                    mu: o.count("mu", d.scattering_size.mu)?,
-                    mu_s: o.count("mu_s", d.scattering_size.mu_s)?,
-                    nu: o.count("nu", d.scattering_size.nu)?,
+                    r: o.count(&R, d.scattering_size.r)?,
+                    mu: o.count(&MU, d.scattering_size.mu)?,
+                    mu_s: o.count(&MU_S, d.scattering_size.mu_s)?,
+                    nu: o.count(&NU, d.scattering_size.nu)?,
                 },
-                view_samples: o.count("view_samples", d.view_samples)?,
+                view_samples: o.count(&VIEW_SAMPLES, d.view_samples)?,
                 sphere_samples: (
-                    o.count("sphere_zenith", d.sphere_samples.0)?,
-                    o.count("sphere_azimuth", d.sphere_samples.1)?,
+                    o.count(&SPHERE_ZENITH, d.sphere_samples.0)?,
+                    o.count(&SPHERE_AZIMUTH, d.sphere_samples.1)?,
                 ),
-                order_threshold: o.number("order_threshold", d.order_threshold)?,
-                order_limit: o.count("order_limit", d.order_limit as usize)? as u32,
+                order_threshold: o.number(&ORDER_THRESHOLD, d.order_threshold)?,
+                order_limit: o.count(&ORDER_LIMIT, d.order_limit as usize)? as u32,
                 ..d
             })
         })
@@ -84,34 +112,56 @@ impl BrunetonSettings {
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
         let s = self.scattering_size;
-        if s.r < 2 || s.mu < 4 || !s.mu.is_multiple_of(2) || s.mu_s < 2 || s.nu < 2 {
+        for (setting, value) in [
+            (R, s.r),
+            (MU, s.mu),
+            (MU_S, s.mu_s),
+            (NU, s.nu),
+            (VIEW_SAMPLES, self.view_samples),
+            (SPHERE_ZENITH, self.sphere_samples.0),
+            (SPHERE_AZIMUTH, self.sphere_samples.1),
+            (ORDER_LIMIT, self.order_limit as usize),
+        ] {
+            setting.check(value)?;
+        }
+        ORDER_THRESHOLD.check(self.order_threshold)?;
+        if !s.mu.is_multiple_of(2) {
             return Err(ModelError::Settings(format!(
-                "scattering table size {s:?}: each axis needs 2 texels, mu an even count of 4 or more"
+                "bruneton setting mu={} must be even (half the rays meet the ground)",
+                s.mu
             )));
         }
-        if self.irradiance_size.0 < 2 || self.irradiance_size.1 < 2 {
-            return Err(ModelError::Settings(
-                "irradiance table needs 2 x 2 texels".into(),
-            ));
-        }
-        if self.transmittance_size.0 < 2 || self.transmittance_size.1 < 2 {
-            return Err(ModelError::Settings(
-                "transmittance table needs 2 x 2 texels".into(),
-            ));
-        }
-        if self.view_samples == 0 || self.sphere_samples.0 == 0 || self.sphere_samples.1 < 2 {
-            return Err(ModelError::Settings(
-                "sample counts must be positive".into(),
-            ));
-        }
-        if !(self.order_threshold.is_finite() && self.order_threshold >= 0.0) {
-            return Err(ModelError::Settings("order threshold must be >= 0".into()));
-        }
-        if self.order_limit == 0 {
-            return Err(ModelError::Settings(
-                "order limit must be at least 1".into(),
-            ));
+        let two = |(a, b): (usize, usize)| (2..=2048).contains(&a) && (2..=2048).contains(&b);
+        if !two(self.irradiance_size) || !two(self.transmittance_size) {
+            return Err(ModelError::Settings(format!(
+                "bruneton irradiance table {:?} and transmittance table {:?}: each side 2..=2048",
+                self.irradiance_size, self.transmittance_size
+            )));
         }
         Ok(())
+    }
+
+    /// Bytes of the tables these settings make at `wavelengths` wavelengths: the
+    /// transmittance (f64 columns) and, per group of three wavelengths, single Rayleigh,
+    /// single Mie and multiple scattering and the irradiance, in f32.
+    pub fn table_bytes(&self, wavelengths: usize) -> u64 {
+        let (tw, th) = self.transmittance_size;
+        let (ew, eh) = self.irradiance_size;
+        let group = product(&[3, self.scattering_size.texels(), 12]) + product(&[ew, eh, 12]);
+        product(&[tw, th, 24]) + wavelengths.div_ceil(3) as u64 * group
+    }
+
+    /// Nothing, or an error when the tables at `wavelengths` wavelengths are over the
+    /// memory budget.
+    pub fn check_table_bytes(&self, wavelengths: usize) -> Result<(), ModelError> {
+        let s = self.scattering_size;
+        check_table_bytes(
+            "bruneton",
+            &format!(
+                "r={} x mu={} x mu_s={} x nu={} at {wavelengths} wavelengths",
+                s.r, s.mu, s.mu_s, s.nu
+            ),
+            self.table_bytes(wavelengths),
+        )
     }
 }

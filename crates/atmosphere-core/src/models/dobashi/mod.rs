@@ -62,6 +62,7 @@ impl Dobashi {
     ) -> Result<Dobashi, ModelError> {
         let base = ModelBase::checked(ModelId::Dobashi, atmosphere, model_settings)?;
         settings.validate()?;
+        settings.check_table_bytes(model_settings.wavelengths_nm.len())?;
         let (spectra, with_mie) = (&base.spectra, base.with_mie);
         let mut model = Dobashi {
             atmosphere: atmosphere.clone(),

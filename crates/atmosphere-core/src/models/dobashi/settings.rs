@@ -1,8 +1,11 @@
 //! The settings of the dobashi model that trade accuracy for time, as `key=value` options
 //! with the paper's values as defaults where it gives one (docs/models/dobashi.md).
 
+use std::ops::RangeInclusive;
+
 use crate::models::error::ModelError;
-use crate::models::options::ModelOptions;
+use crate::models::options::{ModelOptions, Setting};
+use crate::models::table_budget::{check_table_bytes, product};
 
 /// What trades accuracy for time in Dobashi, Yamamoto and Nishita 2002 (sections
 /// 4.2.1 and 5.2-5.3). `Default` is the paper's choice where it states one.
@@ -67,57 +70,118 @@ impl Default for DobashiSettings {
     }
 }
 
+/// A setting of dobashi's.
+const fn setting<T>(key: &'static str, range: RangeInclusive<T>) -> Setting<T> {
+    Setting {
+        model: "dobashi",
+        key,
+        range,
+    }
+}
+
+/// Planes and sample spheres, each crossing one trip of a GPU loop: on the GPU (which
+/// keeps I_max >= 1, so the interval is Delta_max) a ray inside the atmosphere crosses at
+/// most 2 x planes planes (from space too), or 3 x spheres segments between sample
+/// spheres; both well under the 65535 trips every GPU runs in one invocation.
+pub const PLANES: Setting<usize> = setting("planes", 1..=4096);
+pub const INTERVAL_STEPS: Setting<usize> = setting("interval_steps", 1..=64);
+/// max_planes only chooses between planes and spheres (it bounds no loop): up to 1e9,
+/// more than any view needs.
+pub const MAX_PLANES: Setting<usize> = setting("max_planes", 1..=1_000_000_000);
+pub const SPHERES: Setting<usize> = setting("spheres", 2..=1024);
+/// I_max: 1e-6 to 1e6.
+pub const TABLE_MAX: Setting<f64> = setting("table_max", 1e-6..=1e6);
+/// Table sides: 2048 at most (a texture side every GPU holds); the memory budget bounds
+/// their product at many wavelengths.
+pub const TABLE_HEIGHTS: Setting<usize> = setting("table_heights", 2..=2048);
+pub const TABLE_ANGLES: Setting<usize> = setting("table_angles", 4..=2048);
+pub const SPHERE_TABLE_ANGLES: Setting<usize> = setting("sphere_table_angles", 2..=2048);
+pub const SUN_TABLE_HEIGHTS: Setting<usize> = setting("sun_table_heights", 2..=2048);
+pub const SUN_TABLE_ANGLES: Setting<usize> = setting("sun_table_angles", 2..=2048);
+pub const AMBIENT_SUN_ANGLES: Setting<usize> = setting("ambient_sun_angles", 2..=2048);
+/// Ambient directions: ambient_directions^2 rays per sun angle, shared by 64 GPU lanes
+/// (`shaders/sky/dobashi/ambient.wgsl`), each lane's at most 4 rays of up to `planes`
+/// planes.
+pub const AMBIENT_DIRECTIONS: Setting<usize> = setting("ambient_directions", 1..=16);
+
 impl DobashiSettings {
     /// The settings from `key=value` options (keys as the field names); the defaults
     /// where absent.
     pub fn from_options(options: &ModelOptions) -> Result<DobashiSettings, ModelError> {
         options.read_settings("dobashi", DobashiSettings::validate, |o, d| {
             Ok(DobashiSettings {
-                planes: o.count("planes", d.planes)?,
-                interval_steps: o.count("interval_steps", d.interval_steps)?,
-                table_max: o.number("table_max", d.table_max)?,
-                max_planes: o.count("max_planes", d.max_planes)?,
-                spheres: o.count("spheres", d.spheres)?,
-                table_heights: o.count("table_heights", d.table_heights)?,
-                table_angles: o.count("table_angles", d.table_angles)?,
-                sphere_table_angles: o.count("sphere_table_angles", d.sphere_table_angles)?,
-                sun_table_heights: o.count("sun_table_heights", d.sun_table_heights)?,
-                sun_table_angles: o.count("sun_table_angles", d.sun_table_angles)?,
-                ambient_directions: o.count("ambient_directions", d.ambient_directions)?,
-                ambient_sun_angles: o.count("ambient_sun_angles", d.ambient_sun_angles)?,
+                planes: o.count(&PLANES, d.planes)?,
+                interval_steps: o.count(&INTERVAL_STEPS, d.interval_steps)?,
+                table_max: o.number(&TABLE_MAX, d.table_max)?,
+                max_planes: o.count(&MAX_PLANES, d.max_planes)?,
+                spheres: o.count(&SPHERES, d.spheres)?,
+                table_heights: o.count(&TABLE_HEIGHTS, d.table_heights)?,
+                table_angles: o.count(&TABLE_ANGLES, d.table_angles)?,
+                sphere_table_angles: o.count(&SPHERE_TABLE_ANGLES, d.sphere_table_angles)?,
+                sun_table_heights: o.count(&SUN_TABLE_HEIGHTS, d.sun_table_heights)?,
+                sun_table_angles: o.count(&SUN_TABLE_ANGLES, d.sun_table_angles)?,
+                ambient_directions: o.count(&AMBIENT_DIRECTIONS, d.ambient_directions)?,
+                ambient_sun_angles: o.count(&AMBIENT_SUN_ANGLES, d.ambient_sun_angles)?,
             })
         })
     }
 
     /// Why these settings cannot be used, if they cannot.
     pub fn validate(&self) -> Result<(), ModelError> {
+        for (setting, value) in [
+            (PLANES, self.planes),
+            (INTERVAL_STEPS, self.interval_steps),
+            (MAX_PLANES, self.max_planes),
+            (SPHERES, self.spheres),
+            (TABLE_HEIGHTS, self.table_heights),
+            (TABLE_ANGLES, self.table_angles),
+            (SPHERE_TABLE_ANGLES, self.sphere_table_angles),
+            (SUN_TABLE_HEIGHTS, self.sun_table_heights),
+            (SUN_TABLE_ANGLES, self.sun_table_angles),
+            (AMBIENT_DIRECTIONS, self.ambient_directions),
+            (AMBIENT_SUN_ANGLES, self.ambient_sun_angles),
+        ] {
+            setting.check(value)?;
+        }
+        TABLE_MAX.check(self.table_max)?;
         let bad = |m: String| Err(ModelError::Settings(format!("dobashi: {m}")));
-        if self.planes == 0 || self.interval_steps == 0 || self.max_planes == 0 {
-            return bad("planes, interval_steps and max_planes must be at least 1".into());
-        }
-        if !(self.table_max.is_finite() && self.table_max > 0.0) {
-            return bad(format!("table_max {} must be > 0", self.table_max));
-        }
-        if self.spheres < 2 {
-            return bad(format!("spheres must be at least 2, got {}", self.spheres));
-        }
-        if self.table_heights < 2 || self.table_angles < 4 || !self.table_angles.is_multiple_of(2) {
+        if !self.table_angles.is_multiple_of(2) {
             return bad(format!(
-                "plane tables need at least 2 heights and an even number (>= 4) of angles, \
-                 got {} x {}",
-                self.table_heights, self.table_angles
+                "table_angles {} must be even (half the rays meet the ground)",
+                self.table_angles
             ));
         }
-        if self.sphere_table_angles < 2 || self.ambient_sun_angles < 2 {
-            return bad("sphere_table_angles and ambient_sun_angles must be at least 2".into());
-        }
-        if self.sun_table_heights < 2 || self.sun_table_angles < 2 {
-            return bad("the g_l table must be at least 2 x 2".into());
-        }
-        if self.ambient_directions == 0 {
-            return bad("ambient_directions must be at least 1".into());
-        }
         Ok(())
+    }
+
+    /// Bytes of the tables these settings make at `wavelengths` wavelengths: g_l (f64
+    /// columns) and, in f32 per wavelength, the plane and sphere tables (dI_r, dI_m,
+    /// dg_v) and the ambient table.
+    pub fn table_bytes(&self, wavelengths: usize) -> u64 {
+        product(&[self.sun_table_heights, self.sun_table_angles, 24])
+            + product(&[3, self.table_heights, self.table_angles, wavelengths, 4])
+            + product(&[
+                3,
+                3 * self.spheres,
+                self.sphere_table_angles,
+                wavelengths,
+                4,
+            ])
+            + product(&[self.ambient_sun_angles, wavelengths, 4])
+    }
+
+    /// Nothing, or an error when the tables at `wavelengths` wavelengths are over the
+    /// memory budget.
+    pub fn check_table_bytes(&self, wavelengths: usize) -> Result<(), ModelError> {
+        check_table_bytes(
+            "dobashi",
+            &format!(
+                "table_heights={} x table_angles={}, spheres={} x sphere_table_angles={} at \
+                 {wavelengths} wavelengths",
+                self.table_heights, self.table_angles, self.spheres, self.sphere_table_angles
+            ),
+            self.table_bytes(wavelengths),
+        )
     }
 }
 

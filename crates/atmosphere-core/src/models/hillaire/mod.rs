@@ -18,15 +18,18 @@ pub mod march;
 pub mod medium;
 pub mod multiple_scattering;
 pub mod rows;
+pub mod settings;
 pub mod sky_view;
 pub mod view_cache;
+
+pub use settings::HillaireSettings;
 
 use crate::atmosphere::Atmosphere;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
-use crate::models::hillaire::aerial_perspective::{AerialPerspective, VolumeShape};
-use crate::models::hillaire::directions::{LatLong, view_angles};
-use crate::models::hillaire::ground::{GroundIrradiance, HemisphereQuadrature};
+use crate::models::hillaire::aerial_perspective::AerialPerspective;
+use crate::models::hillaire::directions::view_angles;
+use crate::models::hillaire::ground::GroundIrradiance;
 use crate::models::hillaire::march::ViewMarch;
 use crate::models::hillaire::medium::Medium;
 use crate::models::hillaire::multiple_scattering::MultipleScattering;
@@ -34,191 +37,13 @@ use crate::models::hillaire::sky_view::SkyView;
 use crate::models::hillaire::view_cache::ViewCache;
 use crate::models::id::ModelId;
 use crate::models::model_base::ModelBase;
-use crate::models::options::ModelOptions;
 use crate::models::settings::ModelSettings;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::column::optical_depth;
 use crate::optics::geometry::ray_hits_ground;
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
-use crate::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
+use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
-
-/// The settings that trade accuracy for time. `Default` gives the paper's sizes and
-/// sample counts (section 5 and its published implementation); docs/models/hillaire.md
-/// gives the source of each.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HillaireSettings {
-    /// Transmittance LUT (mu, r): 256 x 64.
-    pub transmittance_size: (usize, usize),
-    /// Psi_ms LUT (mu_s, altitude): 32 x 32.
-    pub multiple_scattering_size: (usize, usize),
-    /// Directions over the sphere per Psi_ms texel, a square number: 64 (8 x 8).
-    pub multiple_scattering_directions: usize,
-    /// Segments per Psi_ms ray: 20.
-    pub multiple_scattering_samples: usize,
-    /// Sky-view LUT (longitude, latitude): 192 x 108; the latitude count must be even.
-    pub sky_view_size: (usize, usize),
-    /// Segments per sky-view ray: 30.
-    pub sky_view_samples: usize,
-    /// Aerial-perspective volume (longitude, latitude, depth slices): 96 x 96 x 32. The
-    /// paper's 32 x 32 froxels per slice cover the camera's frustum; 96 x 96 over all
-    /// directions is the same angular spacing for a 60 degree field of view.
-    pub aerial_size: (usize, usize, usize),
-    /// Depth covered by the volume: 32 km.
-    pub aerial_range_m: f64,
-    /// Segments per slice and direction: 2.
-    pub aerial_samples_per_slice: usize,
-    /// Segments of the per-pixel march (cameras in space, surfaces beyond the volume):
-    /// 30, the sky-view's count (the paper's implementation varies it from 4 to 14 with
-    /// the ray's length, for speed on the GPU).
-    pub march_samples: usize,
-    /// Values of the ground's sky-irradiance table over mu_s: 32 (not in the paper; see
-    /// `ground.rs`).
-    pub ground_size: usize,
-    /// Its hemisphere quadrature: 8-point Gauss-Legendre panels in the zenith cosine (1)
-    /// and azimuths over half the circle (8).
-    pub ground_zenith_panels: usize,
-    pub ground_azimuths: usize,
-    /// Views whose per-view tables are kept: 8 (about 7.4 MB each at three wavelengths;
-    /// a frame needs one, the stability sweep cycles through five sun elevations).
-    pub view_cache: usize,
-}
-
-impl Default for HillaireSettings {
-    fn default() -> Self {
-        HillaireSettings {
-            transmittance_size: BRUNETON_TABLE_SIZE,
-            multiple_scattering_size: (32, 32),
-            multiple_scattering_directions: 64,
-            multiple_scattering_samples: 20,
-            sky_view_size: (192, 108),
-            sky_view_samples: 30,
-            aerial_size: (96, 96, 32),
-            aerial_range_m: 32_000.0,
-            aerial_samples_per_slice: 2,
-            march_samples: 30,
-            ground_size: 32,
-            ground_zenith_panels: 1,
-            ground_azimuths: 8,
-            view_cache: 8,
-        }
-    }
-}
-
-impl HillaireSettings {
-    /// The settings from `key=value` options (keys in docs/models/hillaire.md); the
-    /// defaults where absent.
-    pub fn from_options(options: &ModelOptions) -> Result<HillaireSettings, ModelError> {
-        options.read_settings("hillaire", HillaireSettings::validate, |o, d| {
-            Ok(HillaireSettings {
-                transmittance_size: (
-                    o.count("transmittance_width", d.transmittance_size.0)?,
-                    o.count("transmittance_height", d.transmittance_size.1)?,
-                ),
-                multiple_scattering_size: (
-                    o.count("ms_width", d.multiple_scattering_size.0)?,
-                    o.count("ms_height", d.multiple_scattering_size.1)?,
-                ),
-                multiple_scattering_directions: o
-                    .count("ms_directions", d.multiple_scattering_directions)?,
-                multiple_scattering_samples: o
-                    .count("ms_samples", d.multiple_scattering_samples)?,
-                sky_view_size: (
-                    o.count("sky_view_width", d.sky_view_size.0)?,
-                    o.count("sky_view_height", d.sky_view_size.1)?,
-                ),
-                sky_view_samples: o.count("sky_view_samples", d.sky_view_samples)?,
-                aerial_size: (
-                    o.count("ap_width", d.aerial_size.0)?,
-                    o.count("ap_height", d.aerial_size.1)?,
-                    o.count("ap_slices", d.aerial_size.2)?,
-                ),
-                aerial_range_m: o.number("ap_range_m", d.aerial_range_m)?,
-                aerial_samples_per_slice: o
-                    .count("ap_samples_per_slice", d.aerial_samples_per_slice)?,
-                march_samples: o.count("march_samples", d.march_samples)?,
-                ground_size: o.count("ground_size", d.ground_size)?,
-                ground_zenith_panels: o.count("ground_zenith_panels", d.ground_zenith_panels)?,
-                ground_azimuths: o.count("ground_azimuths", d.ground_azimuths)?,
-                view_cache: o.count("view_cache", d.view_cache)?,
-            })
-        })
-    }
-
-    /// Why these settings cannot be used, if they cannot.
-    pub fn validate(&self) -> Result<(), ModelError> {
-        let bad = |m: String| Err(ModelError::Settings(format!("hillaire: {m}")));
-        let two = |(a, b): (usize, usize)| a >= 2 && b >= 2;
-        if !two(self.transmittance_size) || !two(self.multiple_scattering_size) {
-            return bad("the transmittance and Psi_ms LUTs need 2 x 2 texels".into());
-        }
-        let root = self.multiple_scattering_directions.isqrt();
-        if root == 0 || root * root != self.multiple_scattering_directions {
-            return bad(format!(
-                "ms_directions {} must be a square number of at least 1",
-                self.multiple_scattering_directions
-            ));
-        }
-        let (aw, ah, slices) = self.aerial_size;
-        for (name, (w, h)) in [("sky view", self.sky_view_size), ("aerial", (aw, ah))] {
-            if w < 2 || h < 4 || !h.is_multiple_of(2) {
-                return bad(format!(
-                    "{name} grid {w} x {h}: at least 2 columns and an even count of 4 or more rows"
-                ));
-            }
-        }
-        if slices < 2 {
-            return bad(format!("ap_slices {slices} must be at least 2"));
-        }
-        if !(self.aerial_range_m.is_finite() && self.aerial_range_m > 0.0) {
-            return bad(format!("ap_range_m {} must be > 0", self.aerial_range_m));
-        }
-        if self.ground_size < 2 {
-            return bad("ground_size must be at least 2".into());
-        }
-        if [
-            self.multiple_scattering_samples,
-            self.sky_view_samples,
-            self.aerial_samples_per_slice,
-            self.march_samples,
-            self.ground_zenith_panels,
-            self.ground_azimuths,
-            self.view_cache,
-        ]
-        .contains(&0)
-        {
-            return bad("sample counts and the view cache must be at least 1".into());
-        }
-        Ok(())
-    }
-
-    fn sky_view_grid(&self) -> LatLong {
-        LatLong {
-            width: self.sky_view_size.0,
-            height: self.sky_view_size.1,
-        }
-    }
-
-    fn volume_shape(&self) -> VolumeShape {
-        VolumeShape {
-            grid: LatLong {
-                width: self.aerial_size.0,
-                height: self.aerial_size.1,
-            },
-            slices: self.aerial_size.2,
-            range_m: self.aerial_range_m,
-            samples_per_slice: self.aerial_samples_per_slice,
-        }
-    }
-
-    fn hemisphere(&self) -> HemisphereQuadrature {
-        HemisphereQuadrature {
-            zenith_panels: self.ground_zenith_panels,
-            azimuths: self.ground_azimuths,
-            samples: self.sky_view_samples,
-        }
-    }
-}
 
 /// The inputs of Psi_ms: extinction, scattering (part of the extinction inputs) and the
 /// ground's albedo; not the Mie phase function (isotropic there) nor the sun (the table
@@ -254,6 +79,7 @@ impl Hillaire {
     ) -> Result<Hillaire, ModelError> {
         let base = ModelBase::checked(ModelId::Hillaire, atmosphere, model_settings)?;
         settings.validate()?;
+        settings.check_table_bytes(model_settings.wavelengths_nm.len())?;
         let (w, h) = settings.transmittance_size;
         let mut model = Hillaire {
             atmosphere: atmosphere.clone(),

@@ -8,6 +8,7 @@ use atmosphere_core::models::dobashi::DobashiSettings;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::pipeline::texture_2d;
+use crate::sky::table_limits::table_extent;
 use crate::sky::transmittance::TABLE_FORMAT;
 
 /// The settings the ambient table depends on besides the tables'.
@@ -43,19 +44,17 @@ pub fn unit_ambient_texture(gpu: &GpuContext) -> wgpu::Texture {
 
 /// The ambient table's texture of `sun_angles` x 1 texels, or why this GPU cannot hold it.
 pub fn ambient_texture(gpu: &GpuContext, sun_angles: usize) -> Result<wgpu::Texture, RenderError> {
-    let largest = gpu.device.limits().max_texture_dimension_2d;
-    let width = u32::try_from(sun_angles)
-        .ok()
-        .filter(|&n| n <= largest)
-        .ok_or_else(|| {
-            RenderError::Unsupported(format!(
-                "dobashi ambient_sun_angles = {sun_angles} (this GPU's largest texture side is {largest})"
-            ))
-        })?;
+    let extent = table_extent(
+        gpu,
+        "dobashi ambient table",
+        "ambient_sun_angles",
+        wgpu::TextureDimension::D2,
+        (sun_angles, 1, 1),
+    )?;
     Ok(texture_2d(
         &gpu.device,
         "dobashi ambient",
-        (width, 1),
+        (extent.width, 1),
         TABLE_FORMAT,
         wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
     ))

@@ -195,7 +195,8 @@ impl DobashiPass {
         resources.push(wgpu::BindingResource::TextureView(&out));
         let pipeline = &self.ambient_pipeline;
         let bind_group = self.sampling.bind_group(cx.gpu, pipeline, &resources);
-        let groups = [(self.settings.ambient_sun_angles as u32).div_ceil(8), 1, 1];
+        // One workgroup per sun angle (`shaders/sky/dobashi/ambient.wgsl`).
+        let groups = [self.settings.ambient_sun_angles as u32, 1, 1];
         let label = "dobashi ambient";
         pipeline.dispatch(cx.encoder, label, &bind_group, groups, cx.timestamps);
     }

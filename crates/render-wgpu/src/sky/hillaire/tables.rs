@@ -11,6 +11,7 @@ use atmosphere_core::models::hillaire::{
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::sky::hillaire::uniform::count;
+use crate::sky::table_limits::table_extent;
 use crate::sky::transmittance::{TABLE_FORMAT, TableOutput, TransmittancePass};
 
 /// The model's tables, by step name.
@@ -80,35 +81,19 @@ impl Source {
     }
 }
 
-/// A texture for a table, written by one shader and read by the next.
+/// A texture for a table, written by one shader and read by the next, of `size` texels
+/// from `settings`, or why this GPU cannot hold it.
 fn table_texture(
     gpu: &GpuContext,
     label: &str,
+    settings: &str,
     dimension: wgpu::TextureDimension,
     size: (usize, usize, usize),
 ) -> Result<wgpu::Texture, RenderError> {
-    let limits = gpu.device.limits();
-    let largest = match dimension {
-        wgpu::TextureDimension::D3 => limits.max_texture_dimension_3d,
-        _ => limits.max_texture_dimension_2d,
-    };
-    let side = |n: usize| {
-        u32::try_from(n)
-            .ok()
-            .filter(|&n| n <= largest)
-            .ok_or_else(|| {
-                RenderError::Unsupported(format!(
-                    "hillaire {label} of {size:?} texels (this GPU's largest side is {largest})"
-                ))
-            })
-    };
+    let extent = table_extent(gpu, &format!("hillaire {label}"), settings, dimension, size)?;
     Ok(gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
-        size: wgpu::Extent3d {
-            width: side(size.0)?,
-            height: side(size.1)?,
-            depth_or_array_layers: side(size.2)?,
-        },
+        size: extent,
         mip_level_count: 1,
         sample_count: 1,
         dimension,
@@ -138,6 +123,9 @@ impl Tables {
     /// Unbuilt tables of the sizes of `settings`, or why this GPU cannot hold them.
     pub fn new(gpu: &GpuContext, settings: HillaireSettings) -> Result<Tables, RenderError> {
         use wgpu::TextureDimension::{D2, D3};
+        const MS: &str = "ms_width x ms_height";
+        const SKY_VIEW: &str = "sky_view_width x sky_view_height";
+        const AP: &str = "ap_width x ap_height x ap_slices";
         let (tw, th) = settings.transmittance_size;
         let (mw, mh) = settings.multiple_scattering_size;
         let (sw, sh) = settings.sky_view_size;
@@ -150,11 +138,23 @@ impl Tables {
                 count("transmittance_width", tw)?,
                 count("transmittance_height", th)?,
             )?,
-            multiple_scattering: table_texture(gpu, "Psi_ms", D2, (mw, mh, 1))?,
-            ground_irradiance: table_texture(gpu, "E_sky", D2, (settings.ground_size, 1, 1))?,
-            sky_view: table_texture(gpu, "sky view", D2, (sw, sh, 1))?,
-            aerial_radiance: table_texture(gpu, "aerial radiance", D3, (aw, ah, slices))?,
-            aerial_transmittance: table_texture(gpu, "aerial transmittance", D3, (aw, ah, slices))?,
+            multiple_scattering: table_texture(gpu, "Psi_ms", MS, D2, (mw, mh, 1))?,
+            ground_irradiance: table_texture(
+                gpu,
+                "E_sky",
+                "ground_size",
+                D2,
+                (settings.ground_size, 1, 1),
+            )?,
+            sky_view: table_texture(gpu, "sky view", SKY_VIEW, D2, (sw, sh, 1))?,
+            aerial_radiance: table_texture(gpu, "aerial radiance", AP, D3, (aw, ah, slices))?,
+            aerial_transmittance: table_texture(
+                gpu,
+                "aerial transmittance",
+                AP,
+                D3,
+                (aw, ah, slices),
+            )?,
             built: Default::default(),
         })
     }
