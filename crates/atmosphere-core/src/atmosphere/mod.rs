@@ -1,6 +1,7 @@
 //! The parameters of a planet's atmosphere, its presets, TOML files and validation.
 
 pub mod density;
+pub mod limits;
 pub mod ozone;
 pub mod presets;
 pub mod solar;
@@ -8,6 +9,7 @@ pub mod spectra;
 pub mod spectral;
 pub mod table_inputs;
 pub(crate) mod tabulated;
+pub mod text_file;
 
 use std::path::Path;
 
@@ -15,7 +17,9 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::atmosphere::density::DensityProfile;
+use crate::atmosphere::limits::{MIN_SUN_ANGULAR_RADIUS_RAD, check_model_ranges};
 use crate::atmosphere::spectral::Spectral;
+use crate::atmosphere::text_file::{TOML_LIMITS, TextFileError, read_text};
 use crate::optics::phase::PhaseFunction;
 
 /// What goes wrong when an atmosphere is read or checked. Each message names the field.
@@ -27,6 +31,8 @@ pub enum AtmosphereError {
         #[source]
         source: std::io::Error,
     },
+    #[error(transparent)]
+    File(#[from] TextFileError),
     #[error("atmosphere file {path} is not valid TOML for an atmosphere: {message}")]
     Parse { path: String, message: String },
     #[error("invalid atmosphere: {field}: {message}")]
@@ -121,10 +127,7 @@ const VALIDATION_WAVELENGTHS_NM: [f64; 6] = [360.0, 440.0, 550.0, 680.0, 780.0, 
 impl Atmosphere {
     /// Reads and validates a TOML file.
     pub fn load(path: &Path) -> Result<Atmosphere, AtmosphereError> {
-        let text = std::fs::read_to_string(path).map_err(|source| AtmosphereError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
+        let text = read_text(path, TOML_LIMITS)?;
         Atmosphere::from_toml(&text).map_err(|e| match e {
             AtmosphereError::Parse { message, .. } => AtmosphereError::Parse {
                 path: path.display().to_string(),
@@ -228,13 +231,13 @@ impl Atmosphere {
             );
         }
         let radius = self.sun.angular_radius_rad;
-        if !(radius.is_finite() && radius > 0.0 && radius < 0.5) {
+        if !(radius.is_finite() && (MIN_SUN_ANGULAR_RADIUS_RAD..0.5).contains(&radius)) {
             return invalid(
                 "sun.angular_radius_rad",
-                format!("{radius} must lie in (0, 0.5) radians"),
+                format!("{radius} must lie in [{MIN_SUN_ANGULAR_RADIUS_RAD:e}, 0.5) radians"),
             );
         }
-        Ok(())
+        check_model_ranges(self)
     }
 
     /// Thickness of the atmosphere, m.
