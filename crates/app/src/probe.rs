@@ -7,13 +7,13 @@
 //! are comments. Output: the input columns as given, then per wavelength `L_<nm>`, then
 //! `T_<nm>`, then `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
 
-use std::fs;
 use std::io::Write;
 
-use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::text_file::{TextLimits, read_text};
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::error::ModelError;
+use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
@@ -34,6 +34,20 @@ pub const REQUIRED_COLUMNS: [&str; 4] = [
 
 /// The optional column: the distance to an object ending the ray.
 pub const DISTANCE_COLUMN: &str = "distance_m";
+
+/// Input files: 64 MiB (about two million rays), lines of 4 KiB.
+pub const CSV_LIMITS: TextLimits = TextLimits {
+    max_bytes: 64 << 20,
+    max_line_bytes: 4 << 10,
+};
+
+/// The range of each angle column, degrees: zeniths are not wrapped, azimuths may turn
+/// once either way.
+const ANGLE_RANGES: [(&str, [f64; 2]); 3] = [
+    ("view_zenith_deg", [0.0, 180.0]),
+    ("sun_zenith_deg", [0.0, 180.0]),
+    ("view_sun_azimuth_deg", [-360.0, 360.0]),
+];
 
 /// What is wrong with an input file. Lines count from 1.
 #[derive(Debug, Error)]
@@ -80,6 +94,14 @@ pub enum InputError {
         line: u64,
         column: &'static str,
         value: String,
+    },
+    #[error("{file} line {line}, column {column}: {value} must lie in [{}, {}] degrees", .range[0], .range[1])]
+    OutOfRange {
+        file: String,
+        line: u64,
+        column: &'static str,
+        value: f64,
+        range: [f64; 2],
     },
     #[error("{file} line {line}: {reason}")]
     Ray {
@@ -214,6 +236,18 @@ pub fn read_rays(text: &str, file: &str, bottom_radius_m: f64) -> Result<ProbeIn
             Some(text) => Some(number(DISTANCE_COLUMN, text)?),
         };
         let [altitude, view_zenith, sun_zenith, azimuth] = values;
+        for ((column, range), value) in ANGLE_RANGES.iter().zip([view_zenith, sun_zenith, azimuth])
+        {
+            if value.is_finite() && !(range[0]..=range[1]).contains(&value) {
+                return Err(InputError::OutOfRange {
+                    file: file.to_string(),
+                    line,
+                    column,
+                    value,
+                    range: *range,
+                });
+            }
+        }
         let ray = ViewRay::from_angles(
             bottom_radius_m,
             altitude,
@@ -253,8 +287,11 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     // The model answers at the settings' wavelengths, in their order.
     let color = SpectrumToColor::new(&settings.wavelengths_nm)?;
     let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)?;
+    if args.model != ModelId::Reference {
+        atmosphere.check_real_time_range()?;
+    }
     let file = args.input.display().to_string();
-    let text = fs::read_to_string(&args.input).with_context(|| format!("cannot read {file}"))?;
+    let text = read_text(&args.input, CSV_LIMITS)?;
     let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
     let model = prepare(args.model, &atmosphere, &settings)?;
 
@@ -483,6 +520,29 @@ mod tests {
                 ..
             }
         ));
+    }
+
+    #[test]
+    fn angles_outside_their_ranges_name_line_and_column() {
+        let header = "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg\n";
+        let err = |row: &str| read(&format!("{header}{row}\n")).unwrap_err().to_string();
+        assert_eq!(
+            err("0,-5,0,0"),
+            "rays.csv line 2, column view_zenith_deg: -5 must lie in [0, 180] degrees"
+        );
+        assert_eq!(
+            err("0,1000,0,0"),
+            "rays.csv line 2, column view_zenith_deg: 1000 must lie in [0, 180] degrees"
+        );
+        assert_eq!(
+            err("0,0,180.5,0"),
+            "rays.csv line 2, column sun_zenith_deg: 180.5 must lie in [0, 180] degrees"
+        );
+        assert_eq!(
+            err("0,0,0,-400"),
+            "rays.csv line 2, column view_sun_azimuth_deg: -400 must lie in [-360, 360] degrees"
+        );
+        assert!(read(&format!("{header}0,180,0,-360\n")).is_ok());
     }
 
     #[test]
