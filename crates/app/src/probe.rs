@@ -9,6 +9,7 @@
 
 use std::io::Write;
 
+use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::text_file::{TextLimits, read_text};
 use atmosphere_core::color::SpectrumToColor;
@@ -286,10 +287,12 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     settings.validate()?;
     // The model answers at the settings' wavelengths, in their order.
     let color = SpectrumToColor::new(&settings.wavelengths_nm)?;
-    let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)?;
-    if args.model != ModelId::Reference {
-        atmosphere.check_real_time_range()?;
-    }
+    let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)
+        .and_then(|a| match args.model {
+            ModelId::Reference => Ok(a),
+            _ => a.check_real_time_range().map(|()| a),
+        })
+        .with_context(|| format!("--atmosphere {}", args.atmosphere))?;
     let file = args.input.display().to_string();
     let text = read_text(&args.input, CSV_LIMITS)?;
     let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
