@@ -82,11 +82,12 @@ fn a_planet_too_large_for_the_models_is_refused() {
         &["--atmosphere", &huge],
         &["bottom_radius_m", range],
     );
+    let named = format!("--atmosphere {huge}");
     probe(
         "reference",
         &rays,
         &["--atmosphere", &huge],
-        &["bottom_radius_m", range],
+        &[&named, "bottom_radius_m", range],
     );
     // The reference computes up to 1e10 m, the real-time models and the GPU to 1e8 m.
     let large = write(dir.path(), "large.toml", planet(1e9).as_bytes());

@@ -135,7 +135,7 @@ pub(crate) fn check_model_ranges(a: &Atmosphere) -> Result<(), AtmosphereError> 
         return invalid(
             "bottom_radius_m",
             format!(
-                "{:e} m must be at most {MAX_BOTTOM_RADIUS_M:e} m",
+                "{:e} m must be at most {MAX_BOTTOM_RADIUS_M:e} m, the largest planet the models are tested on",
                 a.bottom_radius_m
             ),
         );
