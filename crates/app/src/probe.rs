@@ -11,6 +11,7 @@ use std::io::Write;
 
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::limits::MAX_ALTITUDE_M;
 use atmosphere_core::atmosphere::text_file::{TextLimits, read_text};
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::error::ModelError;
@@ -42,12 +43,13 @@ pub const CSV_LIMITS: TextLimits = TextLimits {
     max_line_bytes: 4 << 10,
 };
 
-/// The range of each angle column, degrees: zeniths are not wrapped, azimuths may turn
-/// once either way.
-const ANGLE_RANGES: [(&str, [f64; 2]); 3] = [
-    ("view_zenith_deg", [0.0, 180.0]),
-    ("sun_zenith_deg", [0.0, 180.0]),
-    ("view_sun_azimuth_deg", [-360.0, 360.0]),
+/// The range and unit of each required column, in their order: zeniths are not wrapped,
+/// azimuths may turn once either way.
+const RANGES: [([f64; 2], &str); 4] = [
+    ([0.0, MAX_ALTITUDE_M], "[0, 1e10] m"),
+    ([0.0, 180.0], "[0, 180] degrees"),
+    ([0.0, 180.0], "[0, 180] degrees"),
+    ([-360.0, 360.0], "[-360, 360] degrees"),
 ];
 
 /// What is wrong with an input file. Lines count from 1.
@@ -96,13 +98,13 @@ pub enum InputError {
         column: &'static str,
         value: String,
     },
-    #[error("{file} line {line}, column {column}: {value} must lie in [{}, {}] degrees", .range[0], .range[1])]
+    #[error("{file} line {line}, column {column}: {value} must lie in {range}")]
     OutOfRange {
         file: String,
         line: u64,
         column: &'static str,
-        value: f64,
-        range: [f64; 2],
+        value: String,
+        range: &'static str,
     },
     #[error("{file} line {line}: {reason}")]
     Ray {
@@ -237,15 +239,19 @@ pub fn read_rays(text: &str, file: &str, bottom_radius_m: f64) -> Result<ProbeIn
             Some(text) => Some(number(DISTANCE_COLUMN, text)?),
         };
         let [altitude, view_zenith, sun_zenith, azimuth] = values;
-        for ((column, range), value) in ANGLE_RANGES.iter().zip([view_zenith, sun_zenith, azimuth])
-        {
-            if value.is_finite() && !(range[0]..=range[1]).contains(&value) {
+        let columns = REQUIRED_COLUMNS
+            .iter()
+            .zip(RANGES)
+            .zip(values)
+            .zip(required);
+        for (((column, ([low, high], range)), value), i) in columns {
+            if value.is_finite() && !(low..=high).contains(&value) {
                 return Err(InputError::OutOfRange {
                     file: file.to_string(),
                     line,
                     column,
-                    value,
-                    range: *range,
+                    value: record[i].clone(),
+                    range,
                 });
             }
         }
@@ -545,6 +551,10 @@ mod tests {
             err("0,0,0,-400"),
             "rays.csv line 2, column view_sun_azimuth_deg: -400 must lie in [-360, 360] degrees"
         );
+        assert_eq!(
+            err("1e11,0,0,0"),
+            "rays.csv line 2, column altitude_m: 1e11 must lie in [0, 1e10] m"
+        );
         assert!(read(&format!("{header}0,180,0,-360\n")).is_ok());
     }
 
@@ -552,12 +562,12 @@ mod tests {
     fn ray_the_model_rejects_names_the_line() {
         let err = read(
             "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,distance_m\n\
-             -5,0,0,0,\n",
+             5,0,0,0,-1\n",
         )
         .unwrap_err();
         assert!(matches!(err, InputError::Ray { line: 2, .. }));
         let message = err.to_string();
-        assert!(message.starts_with("rays.csv line 2: ") && message.contains("altitude_m"));
+        assert!(message.starts_with("rays.csv line 2: ") && message.contains("distance_m"));
     }
 
     #[test]

@@ -218,3 +218,29 @@ fn endless_and_oversized_files_end_quickly_with_their_bound() {
         &[&format!("{scene} is larger than 1048576 bytes")],
     );
 }
+
+#[test]
+fn a_camera_too_far_for_the_geometry_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    // Looking straight down from 1e200 m, rays missed the planet: radiance 0, T = 1.
+    let rays = write(
+        dir.path(),
+        "far.csv",
+        format!("{HEADER}1e200,180,30,0\n").as_bytes(),
+    );
+    let expected = format!("{rays} line 2, column altitude_m: 1e200 must lie in [0, 1e10] m");
+    probe("nishita", &rays, &[], &[&expected]);
+    let out = dir.path().join("sky.png").display().to_string();
+    let args = [
+        "render",
+        "--model",
+        "nishita",
+        "--altitude-m",
+        "1e11",
+        "--sun-zenith-deg",
+        "30",
+        "--out",
+        &out,
+    ];
+    fails_with(&args, &["--altitude-m 1e11 must be at most 1e10 m"]);
+}

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::limits::MAX_ALTITUDE_M;
 use atmosphere_core::atmosphere::presets;
 use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
 use atmosphere_core::models::id::ModelId;
@@ -35,7 +36,7 @@ pub struct Scene {
     /// Scattering model (every model but the reference is on the GPU).
     #[arg(long, value_enum)]
     pub model: Option<ModelId>,
-    /// Camera altitude above the ground, m (up to 1e8 and beyond).
+    /// Camera altitude above the ground, m, in [0, 1e10].
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub altitude_m: Option<f64>,
     /// Sun zenith angle, degrees, in [0, 180] (90 = on the horizon).
@@ -186,6 +187,9 @@ impl Scene {
         let altitude_m = finite(value(s.altitude_m), "altitude-m")?;
         if altitude_m < 0.0 {
             bail!("--altitude-m {altitude_m} is below the ground (must be >= 0)");
+        }
+        if altitude_m > MAX_ALTITUDE_M {
+            bail!("--altitude-m {altitude_m:e} must be at most {MAX_ALTITUDE_M:e} m");
         }
         let fov_deg = finite(value(s.fov_deg), "fov-deg")?;
         if !(fov_deg > 0.0 && fov_deg < 180.0) {
@@ -380,6 +384,13 @@ mod tests {
             .contains("venus")
         );
         for (field, flag) in [
+            (
+                Scene {
+                    altitude_m: Some(1.7e308),
+                    ..scene()
+                },
+                "--altitude-m 1.7e308 must be at most 1e10 m",
+            ),
             (
                 Scene {
                     view_zenith_deg: Some(-5.0),

@@ -3,6 +3,7 @@
 //! default settings; each bad value is an error naming its flag.
 
 use anyhow::bail;
+use atmosphere_core::atmosphere::limits::MAX_ALTITUDE_M;
 use render_wgpu::frame::MAX_EXAGGERATION;
 
 use crate::cli::StartView;
@@ -30,6 +31,9 @@ pub fn apply(start: &StartView, settings: &mut ViewerSettings) -> anyhow::Result
         let altitude = finite(altitude, "altitude-m")?;
         if altitude < 0.0 {
             bail!("--altitude-m {altitude} is below sea level");
+        }
+        if altitude > MAX_ALTITUDE_M {
+            bail!("--altitude-m {altitude:e} must be at most {MAX_ALTITUDE_M:e} m");
         }
         let radius = settings.atmosphere()?.bottom_radius_m;
         settings.set_altitude(altitude, radius);
@@ -121,6 +125,14 @@ mod tests {
             ..StartView::default()
         });
         assert!(e.contains("--altitude-m"), "{e}");
+        let e = err(StartView {
+            altitude_m: Some(1e300),
+            ..StartView::default()
+        });
+        assert!(
+            e.contains("--altitude-m 1e300 must be at most 1e10 m"),
+            "{e}"
+        );
         let e = err(StartView {
             location: LocationFlags {
                 latitude_deg: Some(95.0),

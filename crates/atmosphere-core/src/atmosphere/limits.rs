@@ -42,6 +42,11 @@ pub const REAL_TIME_BOTTOM_RADIUS_M: [f64; 2] = [1e5, 1e8];
 /// the atmosphere.
 pub const REAL_TIME_MIN_THICKNESS_RATIO: f64 = 1e-4;
 
+/// Highest camera altitude above the ground, m: at 1e10 m the Earth spans two pixels of
+/// a 60-degree, 1280-pixel view, and beyond about 1e14 m the square of the distance in
+/// f64 no longer holds the planet's radius squared, so rays miss the planet.
+pub const MAX_ALTITUDE_M: f64 = 1e10;
+
 /// The visible wavelengths every model samples within, nm.
 const VISIBLE_NM: [f64; 2] = [360.0, 830.0];
 

@@ -1,8 +1,12 @@
-//! The parsers of atmosphere-core never panic: arbitrary bytes and mutated valid text
-//! given to the atmosphere TOML reader, and arbitrary `key=value` settings given to every
-//! model's settings, end in a value or an error. What they accept lies in the documented
-//! ranges.
+//! Every parser of user input never panics: arbitrary bytes and mutated valid files given
+//! to the probe CSV, scene TOML and atmosphere TOML readers, and arbitrary `key=value`
+//! items given to every model's settings, end in a value or an error. What they accept
+//! lies in the documented ranges.
 
+use std::path::Path;
+
+use atmos::probe::{CSV_LIMITS, read_rays};
+use atmos::render::scene::Scene;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::limits::{MAX_COEFFICIENT_PER_M, MAX_IRRADIANCE_W_M2_NM};
 use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text_from};
@@ -14,6 +18,13 @@ use atmosphere_core::models::oneil::OneilSettings;
 use atmosphere_core::models::options::ModelOptions;
 use proptest::prelude::*;
 use proptest::sample::{Index, select};
+
+const EXAMPLE_RAYS: &str = include_str!("../../../assets/probe/example_rays.csv");
+
+const SCENES: [&str; 2] = [
+    include_str!("../../../assets/scenes/default.toml"),
+    include_str!("../../../assets/scenes/hazy_sunset.toml"),
+];
 
 /// Values that break careless number handling.
 const NASTY_NUMBERS: [&str; 14] = [
@@ -130,6 +141,32 @@ fn read_atmosphere(bytes: &[u8]) {
     }
 }
 
+/// Rays the probe reader accepted start on or above the ground and point somewhere.
+fn read_probe(bytes: &[u8]) {
+    let radius = 6.36e6;
+    if let Ok(text) = read_text_from(bytes, "fuzz.csv", CSV_LIMITS)
+        && let Ok(input) = read_rays(&text, "fuzz.csv", radius)
+    {
+        for row in input.rows {
+            let ray = row.ray;
+            assert!(ray.origin_m.is_finite() && ray.origin_m.length() >= radius);
+            assert!((ray.direction.length() - 1.0).abs() < 1e-9);
+            assert!((ray.sun_direction.length() - 1.0).abs() < 1e-9);
+            assert_eq!(row.fields.len(), input.header.len());
+        }
+    }
+}
+
+/// A scene the reader accepted and made a frame of is one the renderer takes.
+fn read_scene(bytes: &[u8]) {
+    if let Ok(text) = read_text_from(bytes, "fuzz.toml", TOML_LIMITS)
+        && let Ok(scene) = Scene::parse(&text, Path::new("fuzz.toml"))
+        && let Ok(frame) = scene.frame()
+    {
+        frame.validate().unwrap();
+    }
+}
+
 /// Keys every model reads, and some none does.
 const KEYS: [&str; 12] = [
     "samples",
@@ -170,6 +207,29 @@ proptest! {
     ) {
         let text = Atmosphere::preset(preset).unwrap().to_toml();
         read_atmosphere(mutate(&text, &edits).as_bytes());
+    }
+
+    #[test]
+    fn probe_csv_of_arbitrary_bytes(bytes in prop::collection::vec(any::<u8>(), 0..512)) {
+        read_probe(&bytes);
+    }
+
+    #[test]
+    fn probe_csv_mutated_from_the_example(edits in edits()) {
+        read_probe(mutate(EXAMPLE_RAYS, &edits).as_bytes());
+    }
+
+    #[test]
+    fn scene_toml_of_arbitrary_bytes(bytes in prop::collection::vec(any::<u8>(), 0..512)) {
+        read_scene(&bytes);
+    }
+
+    #[test]
+    fn scene_toml_mutated_from_the_shipped_scenes(
+        scene in select(&SCENES[..]),
+        edits in edits(),
+    ) {
+        read_scene(mutate(scene, &edits).as_bytes());
     }
 
     #[test]
