@@ -43,13 +43,13 @@ pub const CSV_LIMITS: TextLimits = TextLimits {
     max_line_bytes: 4 << 10,
 };
 
-/// The range and unit of each required column, in their order: zeniths are not wrapped,
-/// azimuths may turn once either way.
+/// The range of each required column, in their order: zeniths are not wrapped, azimuths
+/// may turn once either way (an altitude below the ground is the model's to refuse).
 const RANGES: [([f64; 2], &str); 4] = [
-    ([0.0, MAX_ALTITUDE_M], "[0, 1e10] m"),
-    ([0.0, 180.0], "[0, 180] degrees"),
-    ([0.0, 180.0], "[0, 180] degrees"),
-    ([-360.0, 360.0], "[-360, 360] degrees"),
+    ([f64::MIN, MAX_ALTITUDE_M], "at most 1e10 m"),
+    ([0.0, 180.0], "in [0, 180] degrees"),
+    ([0.0, 180.0], "in [0, 180] degrees"),
+    ([-360.0, 360.0], "in [-360, 360] degrees"),
 ];
 
 /// What is wrong with an input file. Lines count from 1.
@@ -98,7 +98,7 @@ pub enum InputError {
         column: &'static str,
         value: String,
     },
-    #[error("{file} line {line}, column {column}: {value} must lie in {range}")]
+    #[error("{file} line {line}, column {column}: {value} must be {range}")]
     OutOfRange {
         file: String,
         line: u64,
@@ -537,23 +537,23 @@ mod tests {
         let err = |row: &str| read(&format!("{header}{row}\n")).unwrap_err().to_string();
         assert_eq!(
             err("0,-5,0,0"),
-            "rays.csv line 2, column view_zenith_deg: -5 must lie in [0, 180] degrees"
+            "rays.csv line 2, column view_zenith_deg: -5 must be in [0, 180] degrees"
         );
         assert_eq!(
             err("0,1000,0,0"),
-            "rays.csv line 2, column view_zenith_deg: 1000 must lie in [0, 180] degrees"
+            "rays.csv line 2, column view_zenith_deg: 1000 must be in [0, 180] degrees"
         );
         assert_eq!(
             err("0,0,180.5,0"),
-            "rays.csv line 2, column sun_zenith_deg: 180.5 must lie in [0, 180] degrees"
+            "rays.csv line 2, column sun_zenith_deg: 180.5 must be in [0, 180] degrees"
         );
         assert_eq!(
             err("0,0,0,-400"),
-            "rays.csv line 2, column view_sun_azimuth_deg: -400 must lie in [-360, 360] degrees"
+            "rays.csv line 2, column view_sun_azimuth_deg: -400 must be in [-360, 360] degrees"
         );
         assert_eq!(
             err("1e11,0,0,0"),
-            "rays.csv line 2, column altitude_m: 1e11 must lie in [0, 1e10] m"
+            "rays.csv line 2, column altitude_m: 1e11 must be at most 1e10 m"
         );
         assert!(read(&format!("{header}0,180,0,-360\n")).is_ok());
     }
@@ -562,12 +562,12 @@ mod tests {
     fn ray_the_model_rejects_names_the_line() {
         let err = read(
             "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg,distance_m\n\
-             5,0,0,0,-1\n",
+             -5,0,0,0,\n",
         )
         .unwrap_err();
         assert!(matches!(err, InputError::Ray { line: 2, .. }));
         let message = err.to_string();
-        assert!(message.starts_with("rays.csv line 2: ") && message.contains("distance_m"));
+        assert!(message.starts_with("rays.csv line 2: ") && message.contains("altitude_m"));
     }
 
     #[test]

@@ -161,7 +161,7 @@ fn zeniths_are_not_wrapped() {
             "rays.csv",
             format!("{HEADER}0,60,30,90\n0,{zenith},30,90\n").as_bytes(),
         );
-        let expected = format!("line 3, column view_zenith_deg: {zenith} must lie in [0, 180]");
+        let expected = format!("line 3, column view_zenith_deg: {zenith} must be in [0, 180]");
         probe("nishita", &rays, &[], &[&rays, &expected]);
     }
 }
@@ -228,7 +228,7 @@ fn a_camera_too_far_for_the_geometry_is_refused() {
         "far.csv",
         format!("{HEADER}1e200,180,30,0\n").as_bytes(),
     );
-    let expected = format!("{rays} line 2, column altitude_m: 1e200 must lie in [0, 1e10] m");
+    let expected = format!("{rays} line 2, column altitude_m: 1e200 must be at most 1e10 m");
     probe("nishita", &rays, &[], &[&expected]);
     let out = dir.path().join("sky.png").display().to_string();
     let args = [
