@@ -1,10 +1,10 @@
 //! The ranges an atmosphere's values must lie in beyond being physically possible: those
-//! every model computes right (checked by [`Atmosphere::validate`]) and the narrower ones
-//! of the real-time models and the GPU's f32 ([`Atmosphere::check_real_time_range`]).
+//! every model computes right (checked by `Atmosphere::validate`) and the narrower ones
+//! of the real-time models and the GPU's f32 (`Atmosphere::check_real_time_range`). Each
+//! check here answers why a part is out of range, if it is.
 
 use crate::atmosphere::density::DensityProfile;
 use crate::atmosphere::spectral::Spectral;
-use crate::atmosphere::{Atmosphere, AtmosphereError};
 
 /// Largest ground radius, m, for every model: the flat-planet tests of the reference and
 /// of Riley's model run at 6.36e9 m.
@@ -50,13 +50,6 @@ pub const MAX_ALTITUDE_M: f64 = 1e10;
 /// The visible wavelengths every model samples within, nm.
 const VISIBLE_NM: [f64; 2] = [360.0, 830.0];
 
-fn invalid(field: &str, message: String) -> Result<(), AtmosphereError> {
-    Err(AtmosphereError::Invalid {
-        field: field.to_string(),
-        message,
-    })
-}
-
 /// The largest value of `spectrum` in the visible range and its wavelength, nm: it is
 /// linear between the table points and 1 nm apart suffices for the tabulated recipes
 /// (10 nm tables).
@@ -82,36 +75,22 @@ fn visible_maximum(spectrum: &Spectral) -> (f64, f64) {
         })
 }
 
-fn check_spectrum(
-    field: &str,
-    spectrum: &Spectral,
-    max: f64,
-    unit: &str,
-) -> Result<(), AtmosphereError> {
+/// Why `spectrum` (a valid recipe) passes `max`, in `unit`, somewhere in 360..830 nm.
+pub fn spectrum_above(spectrum: &Spectral, max: f64, unit: &str) -> Option<String> {
     let (value, nm) = visible_maximum(spectrum);
-    if value <= max {
-        return Ok(());
-    }
-    invalid(
-        field,
-        format!("reaches {value:e} {unit} at {nm} nm; at most {max:e} {unit} in 360..830 nm"),
-    )
+    (value > max || value.is_nan()).then(|| {
+        format!("reaches {value:e} {unit} at {nm} nm; at most {max:e} {unit} in 360..830 nm")
+    })
 }
 
-fn check_profile(
-    field: &str,
-    profile: &DensityProfile,
-    thickness_m: f64,
-) -> Result<(), AtmosphereError> {
+/// Why `profile` (a valid profile) leaves f32 over an atmosphere `thickness_m` thick.
+pub fn profile_past_f32(profile: &DensityProfile, thickness_m: f64) -> Option<String> {
     for (i, l) in profile.layers.iter().enumerate() {
         if l.exp_term != 0.0 && l.exp_scale_per_m * thickness_m > MAX_DENSITY_GROWTH {
-            return invalid(
-                field,
-                format!(
-                    "layer {i}: exp_scale_per_m {} times the thickness {thickness_m} m exceeds {MAX_DENSITY_GROWTH} (the density would grow past f32)",
-                    l.exp_scale_per_m
-                ),
-            );
+            return Some(format!(
+                "layer {i}: exp_scale_per_m {} times the thickness {thickness_m} m exceeds {MAX_DENSITY_GROWTH} (the density would grow past f32)",
+                l.exp_scale_per_m
+            ));
         }
         let terms = [
             ("exp_term", l.exp_term),
@@ -123,81 +102,36 @@ fn check_profile(
         ];
         for (name, v) in terms {
             if v.abs() > MAX_DENSITY_TERM {
-                return invalid(
-                    field,
-                    format!("layer {i}: {name} {v:e} must lie within +-{MAX_DENSITY_TERM:e}"),
-                );
+                return Some(format!(
+                    "layer {i}: {name} {v:e} must lie within +-{MAX_DENSITY_TERM:e}"
+                ));
             }
         }
     }
-    Ok(())
+    None
 }
 
-/// Checks the ranges every model computes right; called by [`Atmosphere::validate`] once
-/// the values are known to be finite and possible.
-pub(crate) fn check_model_ranges(a: &Atmosphere) -> Result<(), AtmosphereError> {
-    if a.bottom_radius_m > MAX_BOTTOM_RADIUS_M {
-        return invalid(
+/// The field and why, if a planet of this ground radius and atmosphere thickness (m) is
+/// outside the range of the real-time models and the GPU.
+pub fn real_time_problem(bottom_radius_m: f64, thickness_m: f64) -> Option<(&'static str, String)> {
+    let [low, high] = REAL_TIME_BOTTOM_RADIUS_M;
+    if !(low..=high).contains(&bottom_radius_m) {
+        return Some((
             "bottom_radius_m",
             format!(
-                "{:e} m must be at most {MAX_BOTTOM_RADIUS_M:e} m, the largest planet the models are tested on",
-                a.bottom_radius_m
+                "{bottom_radius_m:e} m is outside [{low:e}, {high:e}] m, the range of the real-time models and the GPU (only the reference computes beyond it)"
             ),
-        );
+        ));
     }
-    let coefficients = [
-        ("rayleigh.scattering_per_m", &a.rayleigh.scattering_per_m),
-        ("mie.scattering_per_m", &a.mie.scattering_per_m),
-        ("mie.extinction_per_m", &a.mie.extinction_per_m),
-        ("ozone.absorption_per_m", &a.ozone.absorption_per_m),
-    ];
-    for (field, spectrum) in coefficients {
-        check_spectrum(field, spectrum, MAX_COEFFICIENT_PER_M, "m^-1")?;
-    }
-    check_spectrum(
-        "sun.irradiance_w_m2_nm",
-        &a.sun.irradiance_w_m2_nm,
-        MAX_IRRADIANCE_W_M2_NM,
-        "W m^-2 nm^-1",
-    )?;
-    let profiles = [
-        ("rayleigh.density", &a.rayleigh.density),
-        ("mie.density", &a.mie.density),
-        ("ozone.density", &a.ozone.density),
-    ];
-    for (field, profile) in profiles {
-        check_profile(field, profile, a.thickness_m())?;
-    }
-    Ok(())
-}
-
-impl Atmosphere {
-    /// Checks that this (valid) atmosphere lies in the range of the real-time models and
-    /// the GPU ([`REAL_TIME_BOTTOM_RADIUS_M`], [`REAL_TIME_MIN_THICKNESS_RATIO`]); the
-    /// reference alone computes beyond it.
-    pub fn check_real_time_range(&self) -> Result<(), AtmosphereError> {
-        let [low, high] = REAL_TIME_BOTTOM_RADIUS_M;
-        let radius = self.bottom_radius_m;
-        if !(low..=high).contains(&radius) {
-            return invalid(
-                "bottom_radius_m",
-                format!(
-                    "{radius:e} m is outside [{low:e}, {high:e}] m, the range of the real-time models and the GPU (only the reference computes beyond it)"
-                ),
-            );
-        }
-        let least = REAL_TIME_MIN_THICKNESS_RATIO * radius;
-        if self.thickness_m() < least {
-            return invalid(
-                "top_radius_m",
-                format!(
-                    "the atmosphere is {} m thick; the real-time models and the GPU need at least {REAL_TIME_MIN_THICKNESS_RATIO:e} of bottom_radius_m ({least} m)",
-                    self.thickness_m()
-                ),
-            );
-        }
-        Ok(())
-    }
+    let least = REAL_TIME_MIN_THICKNESS_RATIO * bottom_radius_m;
+    (thickness_m < least).then(|| {
+        (
+            "top_radius_m",
+            format!(
+                "the atmosphere is {thickness_m} m thick; the real-time models and the GPU need at least {REAL_TIME_MIN_THICKNESS_RATIO:e} of bottom_radius_m ({least} m)"
+            ),
+        )
+    })
 }
 
 #[cfg(test)]
@@ -205,69 +139,57 @@ mod tests {
     use super::*;
     use crate::atmosphere::density::DensityLayer;
 
-    fn field_of(result: Result<(), AtmosphereError>) -> String {
-        match result {
-            Err(AtmosphereError::Invalid { field, .. }) => field,
-            other => panic!("expected an invalid field, got {other:?}"),
-        }
-    }
-
     #[test]
-    fn presets_lie_in_every_range() {
-        for name in ["earth", "clear", "hazy", "mars"] {
-            let a = Atmosphere::preset(name).unwrap();
-            a.validate().unwrap();
-            a.check_real_time_range().unwrap();
-        }
-    }
-
-    #[test]
-    fn a_sun_past_f32_is_refused() {
-        let mut a = Atmosphere::preset("earth").unwrap();
-        a.sun.irradiance_w_m2_nm = Spectral::SolarAstmG173 { scale: 1e300 };
-        assert_eq!(field_of(a.validate()), "sun.irradiance_w_m2_nm");
-        a.sun.irradiance_w_m2_nm = Spectral::SolarAstmG173 { scale: 400.0 };
-        a.validate().unwrap();
+    fn a_spectrum_is_caught_where_it_peaks() {
+        let sun = Spectral::SolarAstmG173 { scale: 1e300 };
+        assert!(spectrum_above(&sun, MAX_IRRADIANCE_W_M2_NM, "W").is_some());
+        let sun = Spectral::SolarAstmG173 { scale: 400.0 };
+        assert!(spectrum_above(&sun, MAX_IRRADIANCE_W_M2_NM, "W").is_none());
         // A power law that explodes in the blue is caught at 360 nm.
-        a.sun.irradiance_w_m2_nm = Spectral::PowerLaw {
+        let blue = Spectral::PowerLaw {
             value_at_1um: 1.0,
             exponent: 100.0,
         };
-        let message = a.validate().unwrap_err().to_string();
+        let message = spectrum_above(&blue, 1.0, "m^-1").unwrap();
         assert!(message.contains("at 360 nm"), "{message}");
+        // A table's peak between whole nanometres is found.
+        let peak = Spectral::Table {
+            wavelengths_nm: vec![500.0, 500.5, 501.0],
+            values: vec![0.0, 2.0, 0.0],
+        };
+        let message = spectrum_above(&peak, 1.0, "m^-1").unwrap();
+        assert!(message.contains("at 500.5 nm"), "{message}");
     }
 
     #[test]
-    fn coefficients_and_profiles_past_f32_are_refused() {
-        let earth = Atmosphere::preset("earth").unwrap();
-        let mut a = earth.clone();
-        a.mie.scattering_per_m = Spectral::Constant { value: 2.0 };
-        a.mie.extinction_per_m = Spectral::Constant { value: 2.0 };
-        assert_eq!(field_of(a.validate()), "mie.scattering_per_m");
-        let mut a = earth.clone();
-        a.rayleigh.density.layers[0].exp_scale_per_m = 0.01;
-        assert_eq!(field_of(a.validate()), "rayleigh.density");
-        let mut a = earth;
-        a.ozone.density.layers.push(DensityLayer {
-            constant_term: -1e300,
-            ..DensityLayer::default()
-        });
-        assert_eq!(field_of(a.validate()), "ozone.density");
+    fn profiles_past_f32_are_caught() {
+        let earth = DensityProfile::exponential(8_000.0);
+        assert!(profile_past_f32(&earth, 60e3).is_none());
+        let growing = DensityProfile::exponential(-100.0);
+        assert!(
+            profile_past_f32(&growing, 60e3)
+                .unwrap()
+                .contains("exp_scale_per_m")
+        );
+        let huge = DensityProfile {
+            layers: vec![DensityLayer {
+                constant_term: -1e300,
+                ..DensityLayer::default()
+            }],
+        };
+        assert!(
+            profile_past_f32(&huge, 60e3)
+                .unwrap()
+                .contains("constant_term")
+        );
     }
 
     #[test]
-    fn radii_outside_the_models_ranges_are_named() {
-        let mut a = Atmosphere::preset("earth").unwrap();
-        a.bottom_radius_m = 1e12;
-        a.top_radius_m = 1e12 + 60e3;
-        assert_eq!(field_of(a.validate()), "bottom_radius_m");
-        a.bottom_radius_m = 1e9;
-        a.top_radius_m = 1e9 + 60e3;
-        a.validate().unwrap();
-        let message = a.check_real_time_range().unwrap_err().to_string();
+    fn the_real_time_range_names_its_field() {
+        assert!(real_time_problem(6.36e6, 60e3).is_none());
+        let (field, message) = real_time_problem(1e9, 60e3).unwrap();
+        assert_eq!(field, "bottom_radius_m");
         assert!(message.contains("[1e5, 1e8] m"), "{message}");
-        a.bottom_radius_m = 6.36e6;
-        a.top_radius_m = 6.36e6 + 100.0;
-        assert_eq!(field_of(a.check_real_time_range()), "top_radius_m");
+        assert_eq!(real_time_problem(6.36e6, 100.0).unwrap().0, "top_radius_m");
     }
 }
