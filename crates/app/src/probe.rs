@@ -4,7 +4,8 @@
 //! Input: a header naming the columns `altitude_m`, `view_zenith_deg`, `sun_zenith_deg`,
 //! `view_sun_azimuth_deg` and optionally `distance_m` (any order; an empty distance: the
 //! ray runs to the ground or to space), then one ray per line. Lines starting with `#`
-//! are comments. Output: the input columns as given, then per wavelength `L_<nm>`, then
+//! are comments. Altitudes are at most 1e10 m, zeniths in [0, 180] and azimuths in
+//! [-360, 360] degrees; the file at most 64 MiB of UTF-8 in lines of at most 4 KiB. Output: the input columns as given, then per wavelength `L_<nm>`, then
 //! `T_<nm>`, then `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
 
 use std::io::Write;
