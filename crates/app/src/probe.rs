@@ -5,8 +5,9 @@
 //! `view_sun_azimuth_deg` and optionally `distance_m` (any order; an empty distance: the
 //! ray runs to the ground or to space), then one ray per line. Lines starting with `#`
 //! are comments. Altitudes are at most 1e10 m, zeniths in [0, 180] and azimuths in
-//! [-360, 360] degrees; the file at most 64 MiB of UTF-8 in lines of at most 4 KiB. Output: the input columns as given, then per wavelength `L_<nm>`, then
-//! `T_<nm>`, then `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
+//! [-360, 360] degrees; the file at most 64 MiB of UTF-8 in lines of at most 4 KiB.
+//! Output: the input columns as given, then per wavelength `L_<nm>`, then `T_<nm>`, then
+//! `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
 
 use std::io::Write;
 
