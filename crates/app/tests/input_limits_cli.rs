@@ -244,3 +244,35 @@ fn a_camera_too_far_for_the_geometry_is_refused() {
     ];
     fails_with(&args, &["--altitude-m 1e11 must be at most 1e10 m"]);
 }
+
+#[test]
+fn a_sun_disk_past_the_hdr_image_is_warned_of() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = Atmosphere::preset("earth").unwrap();
+    a.sun.angular_radius_rad = 1e-3;
+    let small = write(dir.path(), "small_sun.toml", a.to_toml().as_bytes());
+    let out = dir.path().join("sky.png").display().to_string();
+    let args = [
+        "render",
+        "--model",
+        "nishita",
+        "--altitude-m",
+        "10",
+        "--sun-zenith-deg",
+        "30",
+        "--width",
+        "16",
+        "--height",
+        "9",
+        "--atmosphere",
+        &small,
+        "--out",
+        &out,
+    ];
+    // Warned of before the GPU is needed, so with or without an adapter.
+    let err = common::stderr(&atmos(&args));
+    assert!(
+        err.contains("warning: the sun's disk (") && err.contains("it is drawn clipped"),
+        "{err}"
+    );
+}

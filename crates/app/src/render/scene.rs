@@ -28,6 +28,10 @@ const ZENITH_DEG: [f64; 2] = [0.0, 180.0];
 /// Azimuths (view and sun), degrees: one turn either way.
 const AZIMUTH_DEG: [f64; 2] = [-360.0, 360.0];
 
+/// Exposure values: from starlight (about -10) past the sun's disk (about 30), with the
+/// scale 1 / (1.2 * 2^EV) well within f32 (1e-45 to 3e38).
+const EXPOSURE_EV100: [f64; 2] = [-60.0, 100.0];
+
 /// The fields of a scene; every one optional here, the required ones checked by
 /// [`Scene::frame`].
 #[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
@@ -66,8 +70,8 @@ pub struct Scene {
     /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file [default: earth].
     #[arg(long, value_name = "PRESET|FILE.toml")]
     pub atmosphere: Option<String>,
-    /// Exposure value at ISO 100: luminance is scaled by 1 / (1.2 * 2^EV) before the
-    /// filmic curve [default: 14].
+    /// Exposure value at ISO 100, in [-60, 100]: luminance is scaled by 1 / (1.2 * 2^EV)
+    /// before the filmic curve [default: 14].
     #[arg(long, value_name = "EV100", allow_negative_numbers = true)]
     pub exposure: Option<f64>,
     /// Latitude of the camera, degrees north (the flag: [`LocationFlags`]).
@@ -195,13 +199,14 @@ impl Scene {
         if !(fov_deg > 0.0 && fov_deg < 180.0) {
             bail!("--fov-deg {fov_deg} must lie strictly between 0 and 180");
         }
-        let angle = |v: Option<f64>, flag: &str, [low, high]: [f64; 2]| {
+        let within = |v: Option<f64>, flag: &str, [low, high]: [f64; 2], unit: &str| {
             let v = finite(value(v), flag)?;
             if !(low..=high).contains(&v) {
-                bail!("--{flag} {v} must lie in [{low}, {high}] degrees");
+                bail!("--{flag} {v} must lie in [{low}, {high}]{unit}");
             }
             Ok(v)
         };
+        let angle = |v, flag, range| within(v, flag, range, " degrees");
         let view = LocalView {
             altitude_m,
             view_zenith_deg: angle(s.view_zenith_deg, "view-zenith-deg", ZENITH_DEG)?,
@@ -264,7 +269,7 @@ impl Scene {
                 options: ModelOptions::parse(&s.set)?,
                 ..ModelSettings::default()
             },
-            exposure_ev100: finite(value(s.exposure), "exposure")?,
+            exposure_ev100: within(s.exposure, "exposure", EXPOSURE_EV100, "")?,
             width,
             height,
             terrain,
@@ -384,6 +389,13 @@ mod tests {
             .contains("venus")
         );
         for (field, flag) in [
+            (
+                Scene {
+                    exposure: Some(200.0),
+                    ..scene()
+                },
+                "--exposure 200 must lie in [-60, 100]",
+            ),
             (
                 Scene {
                     altitude_m: Some(1.7e308),
