@@ -255,9 +255,15 @@ impl Scene {
             }
             _ => None,
         };
+        // The rotation to a place may round a camera on the ground a hair below it.
+        let mut camera_m = place * view.position_m(atmosphere.bottom_radius_m);
+        let radius_m = atmosphere.bottom_radius_m + altitude_m;
+        if camera_m.length() < radius_m {
+            camera_m *= radius_m / camera_m.length() * (1.0 + 4.0 * f64::EPSILON);
+        }
         // A camera inside the terrain is refused by the renderer, which has the heights.
         Ok(Frame {
-            camera_position_m: place * view.position_m(atmosphere.bottom_radius_m),
+            camera_position_m: camera_m,
             orientation: place * view.orientation(),
             vertical_fov_deg: fov_deg,
             sun_direction: place * view.sun_direction(),
@@ -468,6 +474,18 @@ mod tests {
             .is_ok()
         );
         assert!(scene().frame().is_ok());
+        // On the ground at a place: the rotation must not put the camera below it.
+        for (lat, lon) in [(46.0, 7.8), (-33.9, -160.0), (0.1, 179.9)] {
+            let frame = Scene {
+                altitude_m: Some(0.0),
+                latitude_deg: Some(lat),
+                longitude_deg: Some(lon),
+                ..scene()
+            }
+            .frame()
+            .unwrap();
+            frame.validate().unwrap();
+        }
         assert!(
             Output::from_path(Path::new("a.jpg"))
                 .unwrap_err()

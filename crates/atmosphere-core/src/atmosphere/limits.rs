@@ -86,7 +86,8 @@ pub fn spectrum_above(spectrum: &Spectral, max: f64, unit: &str) -> Option<Strin
 /// Why `profile` (a valid profile) leaves f32 over an atmosphere `thickness_m` thick.
 pub fn profile_past_f32(profile: &DensityProfile, thickness_m: f64) -> Option<String> {
     for (i, l) in profile.layers.iter().enumerate() {
-        if l.exp_term != 0.0 && l.exp_scale_per_m * thickness_m > MAX_DENSITY_GROWTH {
+        // Checked even where exp_term is 0: 0 times an overflowed exponential is NaN.
+        if l.exp_scale_per_m * thickness_m > MAX_DENSITY_GROWTH {
             return Some(format!(
                 "layer {i}: exp_scale_per_m {} times the thickness {thickness_m} m exceeds {MAX_DENSITY_GROWTH} (the density would grow past f32)",
                 l.exp_scale_per_m
@@ -171,6 +172,10 @@ mod tests {
                 .unwrap()
                 .contains("exp_scale_per_m")
         );
+        // The ozone tent's layers have exp_term 0; their exponential must not overflow.
+        let mut tent = DensityProfile::tent(10e3, 25e3, 40e3);
+        tent.layers[0].exp_scale_per_m = 1e12;
+        assert!(profile_past_f32(&tent, 60e3).is_some());
         let huge = DensityProfile {
             layers: vec![DensityLayer {
                 constant_term: -1e300,
