@@ -67,7 +67,7 @@ pub struct StartView {
     /// Where the camera stands.
     #[command(flatten)]
     pub location: LocationFlags,
-    /// Camera altitude above sea level, m (kept at least 1 m above the terrain).
+    /// Camera altitude above sea level, m, up to 1e10 (kept at least 1 m above the terrain).
     #[arg(long, value_name = "M")]
     pub altitude_m: Option<f64>,
     /// View heading, degrees from north towards east.

@@ -4,16 +4,20 @@
 //! Input: a header naming the columns `altitude_m`, `view_zenith_deg`, `sun_zenith_deg`,
 //! `view_sun_azimuth_deg` and optionally `distance_m` (any order; an empty distance: the
 //! ray runs to the ground or to space), then one ray per line. Lines starting with `#`
-//! are comments. Output: the input columns as given, then per wavelength `L_<nm>`, then
-//! `T_<nm>`, then `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
+//! are comments. Altitudes are at most 1e10 m, zeniths in [0, 180] and azimuths in
+//! [-360, 360] degrees; the file at most 64 MiB of UTF-8 in lines of at most 4 KiB.
+//! Output: the input columns as given, then per wavelength `L_<nm>`, then `T_<nm>`, then
+//! `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
 
-use std::fs;
 use std::io::Write;
 
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::limits::MAX_ALTITUDE_M;
+use atmosphere_core::atmosphere::text_file::{TextLimits, read_text};
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::error::ModelError;
+use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
@@ -34,6 +38,21 @@ pub const REQUIRED_COLUMNS: [&str; 4] = [
 
 /// The optional column: the distance to an object ending the ray.
 pub const DISTANCE_COLUMN: &str = "distance_m";
+
+/// Input files: 64 MiB (about two million rays), lines of 4 KiB.
+pub const CSV_LIMITS: TextLimits = TextLimits {
+    max_bytes: 64 << 20,
+    max_line_bytes: 4 << 10,
+};
+
+/// The range of each required column, in their order: zeniths are not wrapped, azimuths
+/// may turn once either way (an altitude below the ground is the model's to refuse).
+const RANGES: [([f64; 2], &str); 4] = [
+    ([f64::MIN, MAX_ALTITUDE_M], "at most 1e10 m"),
+    ([0.0, 180.0], "in [0, 180] degrees"),
+    ([0.0, 180.0], "in [0, 180] degrees"),
+    ([-360.0, 360.0], "in [-360, 360] degrees"),
+];
 
 /// What is wrong with an input file. Lines count from 1.
 #[derive(Debug, Error)]
@@ -80,6 +99,14 @@ pub enum InputError {
         line: u64,
         column: &'static str,
         value: String,
+    },
+    #[error("{file} line {line}, column {column}: {value} must be {range}")]
+    OutOfRange {
+        file: String,
+        line: u64,
+        column: &'static str,
+        value: String,
+        range: &'static str,
     },
     #[error("{file} line {line}: {reason}")]
     Ray {
@@ -214,6 +241,22 @@ pub fn read_rays(text: &str, file: &str, bottom_radius_m: f64) -> Result<ProbeIn
             Some(text) => Some(number(DISTANCE_COLUMN, text)?),
         };
         let [altitude, view_zenith, sun_zenith, azimuth] = values;
+        let columns = REQUIRED_COLUMNS
+            .iter()
+            .zip(RANGES)
+            .zip(values)
+            .zip(required);
+        for (((column, ([low, high], range)), value), i) in columns {
+            if value.is_finite() && !(low..=high).contains(&value) {
+                return Err(InputError::OutOfRange {
+                    file: file.to_string(),
+                    line,
+                    column,
+                    value: record[i].clone(),
+                    range,
+                });
+            }
+        }
         let ray = ViewRay::from_angles(
             bottom_radius_m,
             altitude,
@@ -252,9 +295,14 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     settings.validate()?;
     // The model answers at the settings' wavelengths, in their order.
     let color = SpectrumToColor::new(&settings.wavelengths_nm)?;
-    let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)?;
+    let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)
+        .and_then(|a| match args.model {
+            ModelId::Reference => Ok(a),
+            _ => a.check_real_time_range().map(|()| a),
+        })
+        .with_context(|| format!("--atmosphere {}", args.atmosphere))?;
     let file = args.input.display().to_string();
-    let text = fs::read_to_string(&args.input).with_context(|| format!("cannot read {file}"))?;
+    let text = read_text(&args.input, CSV_LIMITS)?;
     let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
     let model = prepare(args.model, &atmosphere, &settings)?;
 
@@ -483,6 +531,33 @@ mod tests {
                 ..
             }
         ));
+    }
+
+    #[test]
+    fn angles_outside_their_ranges_name_line_and_column() {
+        let header = "altitude_m,view_zenith_deg,sun_zenith_deg,view_sun_azimuth_deg\n";
+        let err = |row: &str| read(&format!("{header}{row}\n")).unwrap_err().to_string();
+        assert_eq!(
+            err("0,-5,0,0"),
+            "rays.csv line 2, column view_zenith_deg: -5 must be in [0, 180] degrees"
+        );
+        assert_eq!(
+            err("0,1000,0,0"),
+            "rays.csv line 2, column view_zenith_deg: 1000 must be in [0, 180] degrees"
+        );
+        assert_eq!(
+            err("0,0,180.5,0"),
+            "rays.csv line 2, column sun_zenith_deg: 180.5 must be in [0, 180] degrees"
+        );
+        assert_eq!(
+            err("0,0,0,-400"),
+            "rays.csv line 2, column view_sun_azimuth_deg: -400 must be in [-360, 360] degrees"
+        );
+        assert_eq!(
+            err("1e11,0,0,0"),
+            "rays.csv line 2, column altitude_m: 1e11 must be at most 1e10 m"
+        );
+        assert!(read(&format!("{header}0,180,0,-360\n")).is_ok());
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 pub mod image_files;
 pub mod scene;
+pub mod sun_disk_clip;
 
 use std::time::Instant;
 
@@ -12,6 +13,7 @@ use render_wgpu::Renderer;
 use crate::cli::RenderArgs;
 use crate::files::check_writable;
 use scene::{Output, Scene};
+use sun_disk_clip::sun_disk_clip_warning;
 
 /// Renders the scene of `args` and writes it; prints the adapter, the plan and the
 /// times on stderr.
@@ -29,6 +31,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let frame = scene.frame()?;
     Renderer::check_model(frame.model)?;
     let earth_data = args.earth_data.source()?;
+    if let Some(warning) = sun_disk_clip_warning(&frame.atmosphere) {
+        eprintln!("warning: {warning}");
+    }
     let mut renderer = Renderer::headless()?;
     renderer.set_earth_data(earth_data);
     let start = Instant::now();

@@ -6,6 +6,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::limits::MAX_ALTITUDE_M;
+use atmosphere_core::atmosphere::presets;
+use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::sky_model::ModelSettings;
@@ -17,7 +20,17 @@ use render_wgpu::frame::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::location_flags::LocationFlags;
+use crate::location_flags::{LocationFlags, check_lat_lon};
+
+/// Zenith angles (view and sun), degrees: beyond them an angle would be wrapped.
+const ZENITH_DEG: [f64; 2] = [0.0, 180.0];
+
+/// Azimuths (view and sun), degrees: one turn either way.
+const AZIMUTH_DEG: [f64; 2] = [-360.0, 360.0];
+
+/// Exposure values: from starlight (about -10) past the sun's disk (about 30), with the
+/// scale 1 / (1.2 * 2^EV) well within f32 (1e-45 to 3e38).
+const EXPOSURE_EV100: [f64; 2] = [-60.0, 100.0];
 
 /// The fields of a scene; every one optional here, the required ones checked by
 /// [`Scene::frame`].
@@ -27,21 +40,22 @@ pub struct Scene {
     /// Scattering model (every model but the reference is on the GPU).
     #[arg(long, value_enum)]
     pub model: Option<ModelId>,
-    /// Camera altitude above the ground, m (up to 1e8 and beyond).
+    /// Camera altitude above the ground, m, in [0, 1e10].
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub altitude_m: Option<f64>,
-    /// Sun zenith angle, degrees (90 = on the horizon).
+    /// Sun zenith angle, degrees, in [0, 180] (90 = on the horizon).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub sun_zenith_deg: Option<f64>,
-    /// Sun azimuth, degrees [default: 0]. With a location (--latitude-deg, --longitude-deg)
+    /// Sun azimuth, degrees, in [-360, 360] [default: 0]. With a location (--latitude-deg, --longitude-deg)
     /// the azimuths are geographic (from north towards east); without one the camera is
     /// above the north pole and azimuths are measured from longitude 0 towards 90 deg east.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub sun_azimuth_deg: Option<f64>,
-    /// View zenith angle of the image's centre, degrees [default: 90, the horizon].
+    /// View zenith angle of the image's centre, degrees, in [0, 180] [default: 90, the
+    /// horizon].
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub view_zenith_deg: Option<f64>,
-    /// View azimuth of the image's centre, degrees [default: 0].
+    /// View azimuth of the image's centre, degrees, in [-360, 360] [default: 0].
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub view_azimuth_deg: Option<f64>,
     /// Vertical field of view, degrees, in (0, 180) [default: 60].
@@ -56,8 +70,8 @@ pub struct Scene {
     /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file [default: earth].
     #[arg(long, value_name = "PRESET|FILE.toml")]
     pub atmosphere: Option<String>,
-    /// Exposure value at ISO 100: luminance is scaled by 1 / (1.2 * 2^EV) before the
-    /// filmic curve [default: 14].
+    /// Exposure value at ISO 100, in [-60, 100]: luminance is scaled by 1 / (1.2 * 2^EV)
+    /// before the filmic curve [default: 14].
     #[arg(long, value_name = "EV100", allow_negative_numbers = true)]
     pub exposure: Option<f64>,
     /// Latitude of the camera, degrees north (the flag: [`LocationFlags`]).
@@ -66,8 +80,9 @@ pub struct Scene {
     /// Longitude of the camera, degrees east (the flag: [`LocationFlags`]).
     #[arg(skip)]
     pub longitude_deg: Option<f64>,
-    /// Draw the Earth's terrain (assets/earth) over the planet; the altitude is then
-    /// above sea level and must clear the terrain [default: false].
+    /// Draw the Earth's terrain (assets/earth) over the planet, which must then be the
+    /// Earth's size; the altitude is then above sea level and must clear the terrain
+    /// [default: false].
     #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
     pub terrain: Option<bool>,
     /// Vertical exaggeration of the terrain, in (0, 100] [default: 1].
@@ -82,10 +97,15 @@ pub struct Scene {
 impl Scene {
     /// The scene of a TOML file; a relative atmosphere file is looked up next to it.
     pub fn load(path: &Path) -> anyhow::Result<Scene> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read scene {}", path.display()))?;
+        let text = read_text(path, TOML_LIMITS).context("--scene")?;
+        Scene::parse(&text, path)
+    }
+
+    /// The scene of the TOML text of the file at `path` (named in errors; a relative
+    /// atmosphere file is looked up next to it).
+    pub fn parse(text: &str, path: &Path) -> anyhow::Result<Scene> {
         let mut scene: Scene =
-            toml::from_str(&text).with_context(|| format!("scene {}", path.display()))?;
+            toml::from_str(text).with_context(|| format!("scene {}", path.display()))?;
         if let (Some(a), Some(dir)) = (&scene.atmosphere, path.parent())
             && Atmosphere::preset(a).is_err()
             && Path::new(a).is_relative()
@@ -172,16 +192,27 @@ impl Scene {
         if altitude_m < 0.0 {
             bail!("--altitude-m {altitude_m} is below the ground (must be >= 0)");
         }
+        if altitude_m > MAX_ALTITUDE_M {
+            bail!("--altitude-m {altitude_m:e} must be at most {MAX_ALTITUDE_M:e} m");
+        }
         let fov_deg = finite(value(s.fov_deg), "fov-deg")?;
         if !(fov_deg > 0.0 && fov_deg < 180.0) {
             bail!("--fov-deg {fov_deg} must lie strictly between 0 and 180");
         }
+        let within = |v: Option<f64>, flag: &str, [low, high]: [f64; 2], unit: &str| {
+            let v = finite(value(v), flag)?;
+            if !(low..=high).contains(&v) {
+                bail!("--{flag} {v} must lie in [{low}, {high}]{unit}");
+            }
+            Ok(v)
+        };
+        let angle = |v, flag, range| within(v, flag, range, " degrees");
         let view = LocalView {
             altitude_m,
-            view_zenith_deg: finite(value(s.view_zenith_deg), "view-zenith-deg")?,
-            view_azimuth_deg: finite(value(s.view_azimuth_deg), "view-azimuth-deg")?,
-            sun_zenith_deg: finite(value(s.sun_zenith_deg), "sun-zenith-deg")?,
-            sun_azimuth_deg: finite(value(s.sun_azimuth_deg), "sun-azimuth-deg")?,
+            view_zenith_deg: angle(s.view_zenith_deg, "view-zenith-deg", ZENITH_DEG)?,
+            view_azimuth_deg: angle(s.view_azimuth_deg, "view-azimuth-deg", AZIMUTH_DEG)?,
+            sun_zenith_deg: angle(s.sun_zenith_deg, "sun-zenith-deg", ZENITH_DEG)?,
+            sun_azimuth_deg: angle(s.sun_azimuth_deg, "sun-azimuth-deg", AZIMUTH_DEG)?,
         };
         let (width, height) = (s.width.unwrap_or(0), s.height.unwrap_or(0));
         for (side, flag) in [(width, "width"), (height, "height")] {
@@ -191,15 +222,13 @@ impl Scene {
         }
         let name = s.atmosphere.unwrap_or_default();
         let atmosphere = Atmosphere::from_preset_or_file(&name)
+            .and_then(|a| a.check_real_time_range().map(|()| a))
             .with_context(|| format!("--atmosphere {name}"))?;
         // Geographic azimuths turn the other way (`location_rotation`): `turn`.
         let (place, turn) = match (s.latitude_deg, s.longitude_deg) {
             (Some(lat), Some(lon)) => {
-                let lat = finite(lat, "latitude-deg")?;
-                if !(-90.0..=90.0).contains(&lat) {
-                    bail!("--latitude-deg {lat} must lie in [-90, 90]");
-                }
-                (location_rotation(lat, finite(lon, "longitude-deg")?), -1.0)
+                let (lat, lon) = check_lat_lon(lat, lon)?;
+                (location_rotation(lat, lon), -1.0)
             }
             (None, None) => (DQuat::IDENTITY, 1.0),
             _ => bail!("--latitude-deg and --longitude-deg go together"),
@@ -211,6 +240,13 @@ impl Scene {
         };
         let terrain = match s.terrain {
             Some(true) => {
+                let earth_m = presets::earth().bottom_radius_m;
+                if atmosphere.bottom_radius_m != earth_m {
+                    bail!(
+                        "--terrain draws the Earth's relief, but --atmosphere {name} has a ground radius of {} m, not the Earth's {earth_m} m: leave out --terrain",
+                        atmosphere.bottom_radius_m
+                    );
+                }
                 let exaggeration = finite(value(s.exaggeration), "exaggeration")?;
                 if !(exaggeration > 0.0 && exaggeration <= MAX_EXAGGERATION) {
                     bail!("--exaggeration {exaggeration} must lie in (0, {MAX_EXAGGERATION}]");
@@ -219,9 +255,15 @@ impl Scene {
             }
             _ => None,
         };
+        // The rotation to a place may round a camera on the ground a hair below it.
+        let mut camera_m = place * view.position_m(atmosphere.bottom_radius_m);
+        let radius_m = atmosphere.bottom_radius_m + altitude_m;
+        if camera_m.length() < radius_m {
+            camera_m *= radius_m / camera_m.length() * (1.0 + 4.0 * f64::EPSILON);
+        }
         // A camera inside the terrain is refused by the renderer, which has the heights.
         Ok(Frame {
-            camera_position_m: place * view.position_m(atmosphere.bottom_radius_m),
+            camera_position_m: camera_m,
             orientation: place * view.orientation(),
             vertical_fov_deg: fov_deg,
             sun_direction: place * view.sun_direction(),
@@ -233,7 +275,7 @@ impl Scene {
                 options: ModelOptions::parse(&s.set)?,
                 ..ModelSettings::default()
             },
-            exposure_ev100: finite(value(s.exposure), "exposure")?,
+            exposure_ev100: within(s.exposure, "exposure", EXPOSURE_EV100, "")?,
             width,
             height,
             terrain,
@@ -352,7 +394,98 @@ mod tests {
             })
             .contains("venus")
         );
+        for (field, flag) in [
+            (
+                Scene {
+                    exposure: Some(200.0),
+                    ..scene()
+                },
+                "--exposure 200 must lie in [-60, 100]",
+            ),
+            (
+                Scene {
+                    altitude_m: Some(1.7e308),
+                    ..scene()
+                },
+                "--altitude-m 1.7e308 must be at most 1e10 m",
+            ),
+            (
+                Scene {
+                    view_zenith_deg: Some(-5.0),
+                    ..scene()
+                },
+                "--view-zenith-deg -5 must lie in [0, 180]",
+            ),
+            (
+                Scene {
+                    view_zenith_deg: Some(1000.0),
+                    ..scene()
+                },
+                "--view-zenith-deg 1000 must lie in [0, 180]",
+            ),
+            (
+                Scene {
+                    sun_zenith_deg: Some(181.0),
+                    ..scene()
+                },
+                "--sun-zenith-deg 181 must lie in [0, 180]",
+            ),
+            (
+                Scene {
+                    sun_azimuth_deg: Some(720.0),
+                    ..scene()
+                },
+                "--sun-azimuth-deg 720 must lie in [-360, 360]",
+            ),
+            (
+                Scene {
+                    view_azimuth_deg: Some(-361.0),
+                    ..scene()
+                },
+                "--view-azimuth-deg -361 must lie in [-360, 360]",
+            ),
+            (
+                Scene {
+                    latitude_deg: Some(0.0),
+                    longitude_deg: Some(1000.0),
+                    ..scene()
+                },
+                "--longitude-deg 1000 must lie in [-180, 180]",
+            ),
+            (
+                Scene {
+                    terrain: Some(true),
+                    atmosphere: Some("mars".into()),
+                    ..scene()
+                },
+                "--terrain draws the Earth's relief, but --atmosphere mars has a ground radius of 3389500 m",
+            ),
+        ] {
+            let e = err(field);
+            assert!(e.contains(flag), "{e}");
+        }
+        assert!(
+            Scene {
+                terrain: Some(true),
+                atmosphere: Some("hazy".into()),
+                ..scene()
+            }
+            .frame()
+            .is_ok()
+        );
         assert!(scene().frame().is_ok());
+        // On the ground at a place: the rotation must not put the camera below it.
+        for (lat, lon) in [(46.0, 7.8), (-33.9, -160.0), (0.1, 179.9)] {
+            let frame = Scene {
+                altitude_m: Some(0.0),
+                latitude_deg: Some(lat),
+                longitude_deg: Some(lon),
+                ..scene()
+            }
+            .frame()
+            .unwrap();
+            frame.validate().unwrap();
+        }
         assert!(
             Output::from_path(Path::new("a.jpg"))
                 .unwrap_err()

@@ -3,9 +3,11 @@
 //! default settings; each bad value is an error naming its flag.
 
 use anyhow::bail;
+use atmosphere_core::atmosphere::limits::MAX_ALTITUDE_M;
 use render_wgpu::frame::MAX_EXAGGERATION;
 
 use crate::cli::StartView;
+use crate::location_flags::check_lat_lon;
 use crate::viewer::settings::ViewerSettings;
 use crate::viewer::sun_clock::SunMode;
 
@@ -22,19 +24,16 @@ pub fn apply(start: &StartView, settings: &mut ViewerSettings) -> anyhow::Result
         settings.model = *model;
     }
     if let (Some(lat), Some(lon)) = (start.location.latitude_deg, start.location.longitude_deg) {
-        let lat = finite(lat, "latitude-deg")?;
-        let lon = finite(lon, "longitude-deg")?;
-        if !(-90.0..=90.0).contains(&lat) || !(-180.0..=360.0).contains(&lon) {
-            bail!(
-                "--latitude-deg {lat} / --longitude-deg {lon}: latitude in [-90, 90], longitude in [-180, 360]"
-            );
-        }
-        settings.set_lat_lon_deg(lat, (lon + 180.0).rem_euclid(360.0) - 180.0);
+        let (lat, lon) = check_lat_lon(lat, lon)?;
+        settings.set_lat_lon_deg(lat, lon);
     }
     if let Some(altitude) = start.altitude_m {
         let altitude = finite(altitude, "altitude-m")?;
         if altitude < 0.0 {
             bail!("--altitude-m {altitude} is below sea level");
+        }
+        if altitude > MAX_ALTITUDE_M {
+            bail!("--altitude-m {altitude:e} must be at most {MAX_ALTITUDE_M:e} m");
         }
         let radius = settings.atmosphere()?.bottom_radius_m;
         settings.set_altitude(altitude, radius);
@@ -87,7 +86,7 @@ mod tests {
             model: Some(ModelId::Hillaire),
             location: LocationFlags {
                 latitude_deg: Some(-33.9),
-                longitude_deg: Some(200.0),
+                longitude_deg: Some(-160.0),
             },
             altitude_m: Some(20_000.0),
             heading_deg: Some(90.0),
@@ -127,6 +126,14 @@ mod tests {
         });
         assert!(e.contains("--altitude-m"), "{e}");
         let e = err(StartView {
+            altitude_m: Some(1e300),
+            ..StartView::default()
+        });
+        assert!(
+            e.contains("--altitude-m 1e300 must be at most 1e10 m"),
+            "{e}"
+        );
+        let e = err(StartView {
             location: LocationFlags {
                 latitude_deg: Some(95.0),
                 longitude_deg: Some(0.0),
@@ -134,6 +141,17 @@ mod tests {
             ..StartView::default()
         });
         assert!(e.contains("--latitude-deg"), "{e}");
+        let e = err(StartView {
+            location: LocationFlags {
+                latitude_deg: Some(0.0),
+                longitude_deg: Some(200.0),
+            },
+            ..StartView::default()
+        });
+        assert!(
+            e.contains("--longitude-deg 200 must lie in [-180, 180]"),
+            "{e}"
+        );
         let e = err(StartView {
             pitch_deg: Some(f64::NAN),
             ..StartView::default()

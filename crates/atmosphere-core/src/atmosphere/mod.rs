@@ -1,6 +1,7 @@
 //! The parameters of a planet's atmosphere, its presets, TOML files and validation.
 
 pub mod density;
+pub mod limits;
 pub mod ozone;
 pub mod presets;
 pub mod solar;
@@ -8,6 +9,7 @@ pub mod spectra;
 pub mod spectral;
 pub mod table_inputs;
 pub(crate) mod tabulated;
+pub mod text_file;
 
 use std::path::Path;
 
@@ -15,7 +17,12 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::atmosphere::density::DensityProfile;
+use crate::atmosphere::limits::{
+    MAX_BOTTOM_RADIUS_M, MAX_COEFFICIENT_PER_M, MAX_IRRADIANCE_W_M2_NM, MIN_SUN_ANGULAR_RADIUS_RAD,
+    profile_past_f32, real_time_problem, spectrum_above,
+};
 use crate::atmosphere::spectral::Spectral;
+use crate::atmosphere::text_file::{TOML_LIMITS, TextFileError, read_text};
 use crate::optics::phase::PhaseFunction;
 
 /// What goes wrong when an atmosphere is read or checked. Each message names the field.
@@ -27,6 +34,8 @@ pub enum AtmosphereError {
         #[source]
         source: std::io::Error,
     },
+    #[error(transparent)]
+    File(#[from] TextFileError),
     #[error("atmosphere file {path} is not valid TOML for an atmosphere: {message}")]
     Parse { path: String, message: String },
     #[error("invalid atmosphere: {field}: {message}")]
@@ -121,10 +130,7 @@ const VALIDATION_WAVELENGTHS_NM: [f64; 6] = [360.0, 440.0, 550.0, 680.0, 780.0, 
 impl Atmosphere {
     /// Reads and validates a TOML file.
     pub fn load(path: &Path) -> Result<Atmosphere, AtmosphereError> {
-        let text = std::fs::read_to_string(path).map_err(|source| AtmosphereError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
+        let text = read_text(path, TOML_LIMITS)?;
         Atmosphere::from_toml(&text).map_err(|e| match e {
             AtmosphereError::Parse { message, .. } => AtmosphereError::Parse {
                 path: path.display().to_string(),
@@ -175,6 +181,15 @@ impl Atmosphere {
                 format!("{} must be finite and > 0", self.bottom_radius_m),
             );
         }
+        if self.bottom_radius_m > MAX_BOTTOM_RADIUS_M {
+            return invalid(
+                "bottom_radius_m",
+                format!(
+                    "{:e} m must be at most {MAX_BOTTOM_RADIUS_M:e} m, the largest planet the models are tested on",
+                    self.bottom_radius_m
+                ),
+            );
+        }
         if !(self.top_radius_m.is_finite() && self.top_radius_m > self.bottom_radius_m) {
             return invalid(
                 "top_radius_m",
@@ -192,7 +207,12 @@ impl Atmosphere {
             ("sun.irradiance_w_m2_nm", &self.sun.irradiance_w_m2_nm),
         ];
         for (field, spectrum) in spectra {
-            if let Some(message) = spectrum.problem() {
+            let max = match field {
+                "sun.irradiance_w_m2_nm" => (MAX_IRRADIANCE_W_M2_NM, "W m^-2 nm^-1"),
+                _ => (MAX_COEFFICIENT_PER_M, "m^-1"),
+            };
+            let problem = spectrum.problem();
+            if let Some(message) = problem.or_else(|| spectrum_above(spectrum, max.0, max.1)) {
                 return invalid(field, message);
             }
         }
@@ -202,7 +222,9 @@ impl Atmosphere {
             ("ozone.density", &self.ozone.density),
         ];
         for (field, profile) in profiles {
-            if let Some(message) = profile.problem() {
+            let problem = profile.problem();
+            if let Some(message) = problem.or_else(|| profile_past_f32(profile, self.thickness_m()))
+            {
                 return invalid(field, message);
             }
         }
@@ -228,13 +250,26 @@ impl Atmosphere {
             );
         }
         let radius = self.sun.angular_radius_rad;
-        if !(radius.is_finite() && radius > 0.0 && radius < 0.5) {
+        if !(radius.is_finite() && (MIN_SUN_ANGULAR_RADIUS_RAD..0.5).contains(&radius)) {
             return invalid(
                 "sun.angular_radius_rad",
-                format!("{radius} must lie in (0, 0.5) radians"),
+                format!("{radius} must lie in [{MIN_SUN_ANGULAR_RADIUS_RAD:e}, 0.5) radians"),
             );
         }
         Ok(())
+    }
+
+    /// Checks that this (valid) atmosphere lies in the range of the real-time models and
+    /// the GPU ([`limits::REAL_TIME_BOTTOM_RADIUS_M`],
+    /// [`limits::REAL_TIME_MIN_THICKNESS_RATIO`]); the reference alone computes beyond it.
+    pub fn check_real_time_range(&self) -> Result<(), AtmosphereError> {
+        match real_time_problem(self.bottom_radius_m, self.thickness_m()) {
+            Some((field, message)) => Err(AtmosphereError::Invalid {
+                field: field.to_string(),
+                message,
+            }),
+            None => Ok(()),
+        }
     }
 
     /// Thickness of the atmosphere, m.
@@ -306,6 +341,48 @@ mod tests {
         let mut a = earth;
         a.sun.angular_radius_rad = 0.0;
         assert_eq!(field_of(a), "sun.angular_radius_rad");
+    }
+
+    #[test]
+    fn values_past_the_models_or_f32_are_rejected_naming_the_field() {
+        let earth = Atmosphere::preset("earth").unwrap();
+        let field_of = |a: Atmosphere| match a.validate() {
+            Err(AtmosphereError::Invalid { field, .. }) => field,
+            other => panic!("expected an invalid field, got {other:?}"),
+        };
+        let mut a = earth.clone();
+        a.sun.irradiance_w_m2_nm = Spectral::SolarAstmG173 { scale: 1e300 };
+        assert_eq!(field_of(a), "sun.irradiance_w_m2_nm");
+        let mut a = earth.clone();
+        a.mie.scattering_per_m = Spectral::Constant { value: 2.0 };
+        a.mie.extinction_per_m = Spectral::Constant { value: 2.0 };
+        assert_eq!(field_of(a), "mie.scattering_per_m");
+        let mut a = earth.clone();
+        a.rayleigh.density.layers[0].exp_scale_per_m = 0.01;
+        assert_eq!(field_of(a), "rayleigh.density");
+        let mut a = earth.clone();
+        a.sun.angular_radius_rad = 1e-6;
+        assert_eq!(field_of(a), "sun.angular_radius_rad");
+        let mut a = earth.clone();
+        a.bottom_radius_m = 1e12;
+        a.top_radius_m = 1e12 + 60e3;
+        assert_eq!(field_of(a), "bottom_radius_m");
+        // The reference computes up to 1e10 m, the real-time models to 1e8 m.
+        let mut a = earth;
+        a.bottom_radius_m = 1e9;
+        a.top_radius_m = 1e9 + 60e3;
+        a.validate().unwrap();
+        let message = a.check_real_time_range().unwrap_err().to_string();
+        assert!(
+            message.contains("bottom_radius_m: 1e9 m is outside"),
+            "{message}"
+        );
+        for name in ["earth", "clear", "hazy", "mars"] {
+            Atmosphere::preset(name)
+                .unwrap()
+                .check_real_time_range()
+                .unwrap();
+        }
     }
 
     #[test]
