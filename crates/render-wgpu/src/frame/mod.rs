@@ -11,6 +11,7 @@ pub mod uniform;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::check_settings;
 use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use glam::{DMat3, DQuat, DVec3};
 
@@ -125,7 +126,7 @@ pub fn location_rotation(lat_deg: f64, lon_deg: f64) -> DQuat {
 impl Frame {
     /// Why this frame cannot be rendered, if it cannot: non-finite or zero vectors, a
     /// camera below the ground, a field of view outside (0, 180) degrees, an empty or too
-    /// large image.
+    /// large image, model settings out of range or over the memory budget.
     pub fn validate(&self) -> Result<(), RenderError> {
         let bad = |message: String| Err(RenderError::Frame(message));
         if !self.camera_position_m.is_finite() {
@@ -164,6 +165,7 @@ impl Frame {
                 self.width, self.height
             ));
         }
+        check_settings(self.model, &self.settings)?;
         Ok(())
     }
 
