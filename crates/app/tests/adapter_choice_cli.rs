@@ -120,3 +120,38 @@ fn the_viewer_on_the_gl_backend_opens_or_is_refused_with_its_reasons() {
     // The display is there: rendering headless instead would not help.
     assert!(!err.contains("without a display"), "{err}");
 }
+
+#[test]
+fn after_the_first_commands_set_up_atmos_prints_only_what_it_wrote() {
+    // The set-up of scripts/render.sh (less the installation) on a shell without a
+    // runtime directory or a chosen backend, then the built binary.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sky.png");
+    let output = Command::new("bash")
+        .arg("-c")
+        .arg(
+            "set -eu; source scripts/gpu_setup.sh; use_lavapipe_without_gpu; \
+             give_runtime_dir; exec \"$0\" render --scene assets/scenes/default.toml \
+             --width 64 --height 36 --out \"$1\"",
+        )
+        .arg(env!("CARGO_BIN_EXE_atmos"))
+        .arg(&out)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("WGPU_BACKEND")
+        .output()
+        .expect("bash runs");
+    let err = String::from_utf8_lossy(&output.stderr);
+    if !output.status.success() && err.contains("mesa-vulkan-drivers libvulkan1") {
+        renders_or_says_what_to_install(dir.path(), &output);
+        return;
+    }
+    assert!(output.status.success(), "{err}");
+    assert!(output.stdout.is_empty());
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "{err}");
+    assert!(
+        lines[0].ends_with(&format!("; wrote {}", out.display())),
+        "{err}"
+    );
+}
