@@ -1,17 +1,17 @@
 //! What atmos needs of an adapter, and why a given adapter falls short.
 //!
-//! Every pass is checked here before a device is made, so that an adapter that cannot
-//! run them (wgpu's GL backend cannot render to `Rgba32Float`, a GLES device has no
-//! storage buffers in vertex shaders) is passed over with its reasons rather than failing
-//! in the middle of a frame. No optional feature is required: filtering `Rgba32Float`
-//! and timestamp queries are used where present (`device_descriptor`).
+//! What the passes use is checked before a device is made, so that an adapter that
+//! cannot run them (wgpu's GL backend on llvmpipe cannot render to `Rgba32Float`) is
+//! passed over with its reasons rather than failing in the middle of a frame. No
+//! optional feature is required: filtering `Rgba32Float` and timestamp queries are used
+//! where present (`device_descriptor`).
 
 use wgpu::{DownlevelFlags as Down, TextureFormat, TextureFormatFeatureFlags, TextureUsages};
 
 use crate::gpu::formats::{HDR_FORMAT, LDR_FORMAT};
 
-/// The capabilities beyond WebGPU's downlevel minimum that the passes use, each with
-/// what uses it.
+/// The downlevel capabilities (parts of WebGPU that some adapters lack) the passes use,
+/// each with what uses it.
 pub const DOWNLEVEL: &[(Down, &str)] = &[
     (
         Down::COMPUTE_SHADERS,
