@@ -5,37 +5,18 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# Installs the Debian `packages` for `what` (as root, or through sudo); with neither, says
-# that `missing` is missing and stops.
-install_for_tests() {
-  local what=$1 missing=$2 packages=$3 sudo
-  if [ "$(id -u)" = 0 ]; then sudo=""; elif command -v sudo >/dev/null; then sudo="sudo"; else
-    echo "$missing is missing: install $packages (Debian), or set ATMOS_SKIP_GPU_TESTS=1" >&2
-    exit 1
-  fi
-  echo "Installing $what: $packages" >&2
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends $packages >/dev/null
-}
+source scripts/gpu_setup.sh
 
-lavapipe=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
-if [ ! -f "$lavapipe" ] && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
-  install_for_tests "software Vulkan for the GPU tests" "Software Vulkan" "mesa-vulkan-drivers libvulkan1"
+if [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
+  ensure_lavapipe "or set ATMOS_SKIP_GPU_TESTS=1"
+  # The viewer's test opens its window on a virtual X server (xvfb-run).
+  if ! command -v xvfb-run >/dev/null; then
+    install_packages "a virtual X server for the viewer test" "xvfb xauth" \
+      "or set ATMOS_SKIP_GPU_TESTS=1"
+  fi
 fi
-# The viewer's test opens its window on a virtual X server (xvfb-run).
-if ! command -v xvfb-run >/dev/null && [ -z "${ATMOS_SKIP_GPU_TESTS:-}" ]; then
-  install_for_tests "a virtual X server for the viewer test" "Xvfb" "xvfb xauth"
-fi
-# Without a real GPU, fail loudly if lavapipe is missing rather than fall back to GL.
-if [ -f "$lavapipe" ] && ! ls /usr/share/vulkan/icd.d/ | grep -qv lvp_icd; then
-  export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
-  export VK_ICD_FILENAMES="${VK_ICD_FILENAMES:-$lavapipe}"
-fi
-# lavapipe asks for a runtime directory; give it a private one rather than print errors.
-if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
-  export XDG_RUNTIME_DIR="${TMPDIR:-/tmp}/atmos-runtime-$(id -u)"
-  mkdir -p -m 700 "$XDG_RUNTIME_DIR"
-fi
+use_lavapipe_without_gpu
+give_runtime_dir
 
 log=$(mktemp)
 # Each test that skips at run time appends `binary::test: reason` here

@@ -22,6 +22,7 @@ pub mod sun_clock;
 use std::sync::{Arc, Mutex};
 
 use anyhow::bail;
+use render_wgpu::gpu::adapter_choice::choose_adapter;
 
 use crate::cli::ViewArgs;
 
@@ -45,9 +46,16 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         );
     }
     let batch = args.frames.is_some();
+    let defaults = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    let backends = defaults.instance_descriptor.backends;
+    // The adapter as headless rendering chooses it: one that can run every pass.
+    let choose = move |adapters: &[wgpu::Adapter], surface: Option<&wgpu::Surface<'_>>| {
+        choose_adapter(adapters, backends, surface).map_err(|e| e.to_string())
+    };
     let wgpu_setup = egui_wgpu::WgpuSetupCreateNew {
+        native_adapter_selector: Some(Arc::new(choose)),
         device_descriptor: Arc::new(render_wgpu::gpu::context::device_descriptor),
-        ..egui_wgpu::WgpuSetupCreateNew::without_display_handle()
+        ..defaults
     };
     let options = eframe::NativeOptions {
         viewport: eframe::egui::ViewportBuilder::default()
@@ -70,8 +78,13 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         options,
         Box::new(move |cc| Ok(Box::new(app::ViewerApp::new(cc, args, app_failure)?))),
     );
-    if let Err(e) = result {
-        bail!("cannot open the viewer window ({e}); {HEADLESS_HINT}");
+    match result {
+        // No adapter can run atmos: headless rendering would not help either.
+        Err(eframe::Error::Wgpu(egui_wgpu::WgpuError::CustomNativeAdapterSelectionError(e))) => {
+            bail!("cannot open the viewer window: {e}")
+        }
+        Err(e) => bail!("cannot open the viewer window ({e}); {HEADLESS_HINT}"),
+        Ok(()) => {}
     }
     match failure.lock().map(|mut f| f.take()) {
         Ok(Some(e)) => Err(e),

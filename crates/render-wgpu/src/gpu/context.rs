@@ -1,11 +1,10 @@
 //! The GPU context that lives for the whole program: instance, adapter, device, queue.
-//!
-//! The adapter is chosen from the environment as wgpu's own tools do: `WGPU_BACKEND`
-//! limits the backends, `WGPU_ADAPTER_NAME` picks an adapter by name, `WGPU_POWER_PREF`
-//! (`low`) prefers an integrated GPU. Otherwise a real GPU wins over a software adapter
-//! (lavapipe, llvmpipe), which is used when it is all there is.
+//! The adapter is the best that can run atmos ([`adapter_choice`](super::adapter_choice));
+//! where its device cannot be made, the next is tried.
 
+use crate::gpu::adapter_choice::{no_adapter, refusal, summary, usable_adapters};
 use crate::gpu::error::GpuError;
+use crate::gpu::requirements::required_limits;
 
 /// Instance, adapter, device and queue.
 #[derive(Debug)]
@@ -38,22 +37,24 @@ impl GpuContext {
             });
         }
         let instance = wgpu::Instance::new(descriptor);
-        let adapter = choose_adapter(instance.enumerate_adapters(backends).await, backends)?;
-        let mut descriptor = device_descriptor(&adapter);
-        descriptor.required_features.remove(without);
-        let (device, queue) = adapter
-            .request_device(&descriptor)
-            .await
-            .map_err(|source| GpuError::RequestDevice {
-                adapter: summary(&adapter.get_info()),
-                source,
-            })?;
-        Ok(GpuContext {
-            instance,
-            adapter,
-            device,
-            queue,
-        })
+        let (usable, mut refused) =
+            usable_adapters(instance.enumerate_adapters(backends).await, None)?;
+        for adapter in usable {
+            let mut descriptor = device_descriptor(&adapter);
+            descriptor.required_features.remove(without);
+            match adapter.request_device(&descriptor).await {
+                Ok((device, queue)) => {
+                    return Ok(GpuContext {
+                        instance,
+                        adapter,
+                        device,
+                        queue,
+                    });
+                }
+                Err(e) => refused.push(refusal(&adapter, &format!("no device: {e}"))),
+            }
+        }
+        Err(no_adapter(backends, &refused))
     }
 
     /// A context on a device made elsewhere, e.g. by a window's renderer (eframe's
@@ -95,64 +96,7 @@ pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'sta
         label: Some("atmos"),
         required_features: adapter.features()
             & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TIMESTAMP_QUERY),
-        required_limits: wgpu::Limits::default(),
+        required_limits: required_limits(),
         ..Default::default()
     }
-}
-
-fn summary(info: &wgpu::AdapterInfo) -> String {
-    format!("{} ({}, {:?})", info.name, info.backend, info.device_type)
-}
-
-/// The adapter named by `WGPU_ADAPTER_NAME` if set, else the best by device type; only
-/// adapters with compute shaders count.
-fn choose_adapter(
-    adapters: Vec<wgpu::Adapter>,
-    backends: wgpu::Backends,
-) -> Result<wgpu::Adapter, GpuError> {
-    let mut usable: Vec<wgpu::Adapter> = adapters
-        .into_iter()
-        .filter(|a| {
-            a.get_downlevel_capabilities()
-                .flags
-                .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS)
-        })
-        .collect();
-    if let Ok(wanted) = std::env::var("WGPU_ADAPTER_NAME") {
-        let available = usable
-            .iter()
-            .map(|a| summary(&a.get_info()))
-            .collect::<Vec<_>>()
-            .join(", ");
-        let lower = wanted.to_lowercase();
-        usable.retain(|a| a.get_info().name.to_lowercase().contains(&lower));
-        if usable.is_empty() {
-            return Err(GpuError::NoAdapterNamed { wanted, available });
-        }
-    }
-    let low_power = wgpu::PowerPreference::from_env() == Some(wgpu::PowerPreference::LowPower);
-    usable
-        .into_iter()
-        .min_by_key(|a| rank(&a.get_info(), low_power))
-        .ok_or_else(|| GpuError::NoAdapter {
-            backends: backends
-                .iter_names()
-                .map(|(name, _)| name.to_lowercase())
-                .collect::<Vec<_>>()
-                .join(", "),
-        })
-}
-
-/// Lower is better: real GPUs before virtual and software ones, native backends before GL.
-fn rank(info: &wgpu::AdapterInfo, low_power: bool) -> (u8, bool) {
-    let device = match info.device_type {
-        wgpu::DeviceType::DiscreteGpu if low_power => 1,
-        wgpu::DeviceType::DiscreteGpu => 0,
-        wgpu::DeviceType::IntegratedGpu if low_power => 0,
-        wgpu::DeviceType::IntegratedGpu => 1,
-        wgpu::DeviceType::VirtualGpu => 2,
-        wgpu::DeviceType::Other => 3,
-        wgpu::DeviceType::Cpu => 4,
-    };
-    (device, info.backend == wgpu::Backend::Gl)
 }

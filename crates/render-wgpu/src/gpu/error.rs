@@ -7,11 +7,16 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum GpuError {
     #[error(
-        "no GPU adapter with compute shaders found (backends tried: {backends}). \
-         Install a Vulkan driver; without a GPU, the software one: \
-         `apt-get install mesa-vulkan-drivers libvulkan1` (lavapipe)"
+        "no GPU adapter atmos can use (backends tried: {backends}):\n{refused}\n\
+         Install a Vulkan driver; without a GPU, Mesa's software Vulkan (lavapipe): \
+         `apt-get install mesa-vulkan-drivers libvulkan1` (Debian). WGPU_BACKEND limits \
+         the backends tried: leave it unset, or set WGPU_BACKEND=vulkan"
     )]
-    NoAdapter { backends: String },
+    NoAdapter {
+        backends: String,
+        /// One line per adapter found, with why it was passed over.
+        refused: String,
+    },
     #[error(
         "WGPU_BACKEND={value} names no backend (known: vulkan, metal, dx12, gl, webgpu; \
          several separated by commas)"
@@ -19,12 +24,6 @@ pub enum GpuError {
     UnknownBackend { value: String },
     #[error("WGPU_ADAPTER_NAME={wanted} matches no adapter (available: {available})")]
     NoAdapterNamed { wanted: String, available: String },
-    #[error("cannot create a device on {adapter}: {source}")]
-    RequestDevice {
-        adapter: String,
-        #[source]
-        source: wgpu::RequestDeviceError,
-    },
     #[error("unknown shader '{0}' (no such file below shaders/)")]
     UnknownShader(String),
     #[error("shader {shader} imports '{import}', which is no file below shaders/")]
