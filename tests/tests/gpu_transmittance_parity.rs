@@ -3,7 +3,7 @@
 //!
 //! Needs a GPU adapter (lavapipe will do). Without one the tests fail with the
 //! `NoAdapter` message saying what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when
-//! they print that they skipped.
+//! they record that they skipped (counted in the suite's summary line).
 
 mod support;
 

@@ -1,7 +1,7 @@
 //! `atmos bench` end to end on tiny frames: the tables name every view of every variant,
 //! the baseline's ratio to itself is 1, the file written equals what was printed; bad
 //! flags are named. Without an adapter the GPU case fails with the message saying what
-//! to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when it prints that it skipped.
+//! to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when it records that it skipped.
 
 mod common;
 

@@ -18,6 +18,7 @@ use atmosphere_core::models::oneil::OneilSettings;
 use atmosphere_core::models::options::ModelOptions;
 use proptest::prelude::*;
 use proptest::sample::{Index, select};
+use proptest::test_runner::FileFailurePersistence;
 
 const EXAMPLE_RAYS: &str = include_str!("../../../assets/probe/example_rays.csv");
 
@@ -193,7 +194,13 @@ fn settings_items() -> impl Strategy<Value = Vec<String>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    // The cases that once failed, kept beside this file, run first every time.
+    #![proptest_config(ProptestConfig {
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "tests/parsers_never_panic.proptest-regressions",
+        ))),
+        ..ProptestConfig::with_cases(256)
+    })]
 
     #[test]
     fn atmosphere_toml_of_arbitrary_bytes(bytes in prop::collection::vec(any::<u8>(), 0..512)) {

@@ -3,7 +3,7 @@
 //! `ATMOS_EARTH_DATA` take them from a folder instead, and a missing folder or map is
 //! named with every path looked for. Renders are tiny (32 x 18) and run on any adapter
 //! (lavapipe will do); without one they fail, unless `ATMOS_SKIP_GPU_TESTS=1`, when
-//! they print that they skipped.
+//! they record that they skipped (counted in the suite's summary line).
 
 mod common;
 

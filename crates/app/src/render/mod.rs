@@ -29,8 +29,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         None => flags.resolved()?,
     };
     let frame = scene.frame()?;
-    Renderer::check_model(frame.model)?;
-    frame.validate()?;
     let earth_data = args.earth_data.source()?;
     if let Some(warning) = sun_disk_clip_warning(&frame.atmosphere) {
         eprintln!("warning: {warning}");

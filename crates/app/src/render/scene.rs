@@ -11,13 +11,14 @@ use atmosphere_core::atmosphere::presets;
 use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::registry::check_settings;
 use atmosphere_core::models::sky_model::ModelSettings;
 use clap::Args;
 use glam::DQuat;
-use render_wgpu::Frame;
 use render_wgpu::frame::{
     LocalView, MAX_EXAGGERATION, MAX_SIDE_PX, TerrainOptions, location_rotation,
 };
+use render_wgpu::{Frame, Renderer};
 use serde::{Deserialize, Serialize};
 
 use crate::location_flags::{LocationFlags, check_lat_lon};
@@ -261,6 +262,15 @@ impl Scene {
         if camera_m.length() < radius_m {
             camera_m *= radius_m / camera_m.length() * (1.0 + 4.0 * f64::EPSILON);
         }
+        let model = s
+            .model
+            .context("--model is required (or `model = ...` in a --scene file)")?;
+        let settings = ModelSettings {
+            options: ModelOptions::parse(&s.set)?,
+            ..ModelSettings::default()
+        };
+        Renderer::check_model(model)?;
+        check_settings(model, &settings)?;
         // A camera inside the terrain is refused by the renderer, which has the heights.
         Ok(Frame {
             camera_position_m: camera_m,
@@ -268,13 +278,8 @@ impl Scene {
             vertical_fov_deg: fov_deg,
             sun_direction: place * view.sun_direction(),
             atmosphere,
-            model: s
-                .model
-                .context("--model is required (or `model = ...` in a --scene file)")?,
-            settings: ModelSettings {
-                options: ModelOptions::parse(&s.set)?,
-                ..ModelSettings::default()
-            },
+            model,
+            settings,
             exposure_ev100: within(s.exposure, "exposure", EXPOSURE_EV100, "")?,
             width,
             height,

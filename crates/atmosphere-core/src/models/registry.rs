@@ -7,23 +7,17 @@ use crate::models::settings::ModelSettings;
 use crate::models::sky_model::SkyModel;
 
 /// Checks `settings` for model `id` without building anything: every key known and in
-/// its range, and the tables within the memory budget. [`prepare`] checks the same.
+/// its range. [`prepare`] checks the same, then the CPU tables' memory budget (the GPU
+/// checks its own tables against the device).
 pub fn check_settings(id: ModelId, settings: &ModelSettings) -> Result<(), ModelError> {
     use crate::models::{bruneton, dobashi, hillaire, nishita, oneil};
     settings.validate()?;
-    let wavelengths = settings.wavelengths_nm.len();
     let options = &settings.options;
     match id {
         ModelId::Reference | ModelId::Riley => options.reader(id.as_str()).finish(),
-        ModelId::Bruneton => {
-            bruneton::BrunetonSettings::from_options(options)?.check_table_bytes(wavelengths)
-        }
-        ModelId::Hillaire => {
-            hillaire::HillaireSettings::from_options(options)?.check_table_bytes(wavelengths)
-        }
-        ModelId::Dobashi => {
-            dobashi::DobashiSettings::from_options(options)?.check_table_bytes(wavelengths)
-        }
+        ModelId::Bruneton => bruneton::BrunetonSettings::from_options(options).map(drop),
+        ModelId::Hillaire => hillaire::HillaireSettings::from_options(options).map(drop),
+        ModelId::Dobashi => dobashi::DobashiSettings::from_options(options).map(drop),
         ModelId::Nishita => nishita::NishitaSettings::from_options(options).map(drop),
         ModelId::Oneil => oneil::OneilSettings::from_options(options).map(drop),
     }

@@ -126,7 +126,7 @@ pub fn location_rotation(lat_deg: f64, lon_deg: f64) -> DQuat {
 impl Frame {
     /// Why this frame cannot be rendered, if it cannot: non-finite or zero vectors, a
     /// camera below the ground, a field of view outside (0, 180) degrees, an empty or too
-    /// large image, model settings out of range or over the memory budget.
+    /// large image, a model setting unknown or out of its range.
     pub fn validate(&self) -> Result<(), RenderError> {
         let bad = |message: String| Err(RenderError::Frame(message));
         if !self.camera_position_m.is_finite() {
