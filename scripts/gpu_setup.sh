@@ -22,9 +22,18 @@ install_packages() {
     sudo=sudo
   fi
   echo "Installing $what: $packages" >&2
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
-    $packages >/dev/null
+  # apt's own chatter (debconf's notes among it) is shown only when the install fails.
+  local log status=0
+  log=$(mktemp)
+  { $sudo apt-get update -qq &&
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+      $packages; } >"$log" 2>&1 || status=$?
+  if [ "$status" != 0 ]; then
+    cat "$log" >&2
+    echo "installing $packages failed" >&2
+  fi
+  rm -f "$log"
+  return "$status"
 }
 
 # Whether this machine has a real GPU: a render node (Mesa, AMD, Intel, NVIDIA), NVIDIA's
