@@ -3,10 +3,11 @@
 //! the app for what it cannot do itself (a screenshot).
 
 use eframe::egui;
-use render_wgpu::frame::MAX_EXAGGERATION;
 use render_wgpu::frame::plan::FramePlan;
+use render_wgpu::frame::{MAX_EXAGGERATION, terrain_fits};
 use render_wgpu::sky::registry::GPU_MODELS;
 
+use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::sun_position::days_in_month;
 
 use crate::viewer::exposure::ExposureMode;
@@ -289,13 +290,21 @@ fn degrees_field(
 }
 
 fn terrain(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
+    let fits = Atmosphere::preset(&settings.preset).is_ok_and(|a| terrain_fits(&a));
     ui.collapsing("Terrain", |ui| {
-        ui.checkbox(&mut settings.terrain, "Earth terrain")
-            .on_hover_text(
-                "The Earth's relief (NOAA ETOPO5) and colour (NASA Blue Marble) from assets/earth, \
+        ui.add_enabled(
+            fits,
+            egui::Checkbox::new(&mut settings.terrain, "Earth terrain"),
+        )
+        .on_disabled_hover_text(
+            "The Earth's relief fits an Earth-sized planet only: this preset's planet is \
+             drawn as a smooth sphere",
+        )
+        .on_hover_text(
+            "The Earth's relief (NOAA ETOPO5) and colour (NASA Blue Marble) from assets/earth, \
              lit by the sun and sky of the current model and seen through its air; off: a \
              smooth sphere with the atmosphere's ground albedo",
-            );
+        );
         ui.add_enabled(
             settings.terrain,
             egui::Slider::new(&mut settings.exaggeration, 1.0..=MAX_EXAGGERATION)

@@ -10,7 +10,7 @@ use atmosphere_core::models::sky_model::ModelSettings;
 use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Frame;
-use render_wgpu::frame::{TerrainOptions, look_orientation};
+use render_wgpu::frame::{TerrainOptions, look_orientation, terrain_fits};
 use render_wgpu::terrain::geo_grid;
 use serde::{Deserialize, Serialize};
 
@@ -102,7 +102,7 @@ pub struct ViewerSettings {
     /// The exposure; in automatic mode the last adapted value.
     pub exposure_ev100: f64,
     pub exposure_mode: ExposureMode,
-    /// Draw the Earth's terrain (assets/earth) over the planet.
+    /// Draw the Earth's terrain over the planet (an Earth-sized one only).
     pub terrain: bool,
     /// Vertical exaggeration of the terrain (1 = true scale).
     pub exaggeration: f64,
@@ -339,7 +339,6 @@ impl ViewerSettings {
             orientation,
             vertical_fov_deg: self.vertical_fov_deg,
             sun_direction,
-            atmosphere,
             model: self.model,
             settings: ModelSettings {
                 options: self.parsed_model_options()?,
@@ -348,9 +347,10 @@ impl ViewerSettings {
             exposure_ev100: self.exposure_ev100,
             width,
             height,
-            terrain: self.terrain.then_some(TerrainOptions {
+            terrain: (self.terrain && terrain_fits(&atmosphere)).then_some(TerrainOptions {
                 exaggeration: self.exaggeration,
             }),
+            atmosphere,
         })
     }
 }
@@ -440,6 +440,10 @@ mod tests {
             );
             let altitude = settings.altitude_m(preset.bottom_radius_m);
             assert!((altitude - 1e4).abs() < 1e-6, "{name}: {altitude}");
+            // The Earth's relief is drawn on Earth-sized planets only, never on Mars.
+            let frame = settings.frame(8, 4).unwrap();
+            assert_eq!(frame.terrain.is_some(), name != "mars", "{name}");
+            frame.validate().unwrap();
         }
     }
 

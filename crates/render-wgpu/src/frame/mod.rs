@@ -9,7 +9,7 @@ pub mod plan;
 pub mod surface_buffer;
 pub mod uniform;
 
-use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::{Atmosphere, presets};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::check_settings;
 use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
@@ -60,6 +60,12 @@ impl Default for TerrainOptions {
     fn default() -> Self {
         TerrainOptions { exaggeration: 1.0 }
     }
+}
+
+/// Whether the Earth's terrain may be drawn on `atmosphere`'s planet: the maps are the
+/// Earth's relief, so only on a ground sphere of the Earth's radius.
+pub fn terrain_fits(atmosphere: &Atmosphere) -> bool {
+    atmosphere.bottom_radius_m == presets::earth().bottom_radius_m
 }
 
 /// The orientation of a camera looking along `forward` with `up` as near its up axis as
@@ -126,7 +132,8 @@ pub fn location_rotation(lat_deg: f64, lon_deg: f64) -> DQuat {
 impl Frame {
     /// Why this frame cannot be rendered, if it cannot: non-finite or zero vectors, a
     /// camera below the ground, a field of view outside (0, 180) degrees, an empty or too
-    /// large image, a model setting unknown or out of its range.
+    /// large image, terrain on a planet that is not the Earth's size, a model setting
+    /// unknown or out of its range.
     pub fn validate(&self) -> Result<(), RenderError> {
         let bad = |message: String| Err(RenderError::Frame(message));
         if !self.camera_position_m.is_finite() {
@@ -150,6 +157,14 @@ impl Frame {
         }
         if !self.exposure_ev100.is_finite() {
             return bad("exposure must be finite".into());
+        }
+        if self.terrain.is_some() && !terrain_fits(&self.atmosphere) {
+            return bad(format!(
+                "the terrain is the Earth's relief, drawn on a ground radius of {} m only \
+                 (this planet's is {} m)",
+                presets::earth().bottom_radius_m,
+                self.atmosphere.bottom_radius_m
+            ));
         }
         if let Some(t) = self.terrain
             && !(t.exaggeration > 0.0 && t.exaggeration <= MAX_EXAGGERATION)
@@ -309,6 +324,17 @@ mod tests {
                 .to_string()
                 .contains("exaggeration")
         );
+        let mut f = frame();
+        f.terrain = Some(TerrainOptions::default());
+        assert!(f.validate().is_ok());
+        f.atmosphere = Atmosphere::preset("mars").unwrap();
+        f.camera_position_m.z = 3_400_000.0;
+        let e = f.validate().unwrap_err().to_string();
+        assert!(e.contains("Earth's relief") && e.contains("3389500"), "{e}");
+        let mut f = frame();
+        f.settings.options.set("samples", 0);
+        let e = f.validate().unwrap_err().to_string();
+        assert!(e.contains("samples=0 is outside"), "{e}");
         assert!(look_orientation(DVec3::Z, DVec3::Z).is_none());
     }
 }
