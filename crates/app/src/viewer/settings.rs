@@ -442,7 +442,7 @@ mod tests {
             assert!((altitude - 1e4).abs() < 1e-6, "{name}: {altitude}");
             // The Earth's relief is drawn on Earth-sized planets only, never on Mars.
             let frame = settings.frame(8, 4).unwrap();
-            assert_eq!(frame.terrain.is_some(), name != "mars", "{name}");
+            assert_eq!(frame.terrain.is_some(), *name != "mars", "{name}");
             frame.validate().unwrap();
         }
     }
