@@ -167,7 +167,7 @@ fn aim_at(up: DVec3, camera_m: DVec3, target_m: DVec3) -> anyhow::Result<(f64, f
         .try_normalize()
         .context("the look-at target is the camera's own position")?;
     let local = place_rotation(up).inverse() * forward;
-    let pitch = local.z.clamp(-1.0, 1.0).asin().to_degrees();
+    let pitch = local.z.atan2(local.x.hypot(local.y)).to_degrees();
     let heading = if local.x.hypot(local.y) < 1e-12 {
         0.0
     } else {
