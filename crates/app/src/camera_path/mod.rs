@@ -115,7 +115,7 @@ impl CameraPath {
             [0.0, MAX_ALTITUDE_M],
         )
         .map_err(|e| anyhow!("camera path {}: {e}", origin.display()))?;
-        if let Some(k) = keys.iter().position(|k| !(k.altitude_m >= base_m)) {
+        if let Some(k) = keys.iter().position(|k| k.altitude_m < base_m) {
             bail!(
                 "camera path {}: keyframe {}'s altitude_m {} is below log_altitude_base_m {base_m}",
                 location(origin, text, file.keyframe[k].span().start),
