@@ -349,6 +349,15 @@ model = "hillaire"
 [[keyframe]]
 time_s = 1
 look_at = { latitude_deg = 0.0, longitude_deg = 5.0 }
+[[keyframe]]
+time_s = 3
+latitude_deg = 3
+longitude_deg = 1
+altitude_m = 900000
+roll_deg = 20
+[[keyframe]]
+time_s = 4
+pitch_deg = -30
 "#;
     let path = CameraPath::parse(text, Path::new("look.toml")).unwrap();
     let frame = path.frame_at(0.0, 32, 18).unwrap();
@@ -359,4 +368,40 @@ look_at = { latitude_deg = 0.0, longitude_deg = 5.0 }
     let target = DVec3::new(lon.cos(), lon.sin(), 0.0) * radius;
     let towards = (target - frame.camera_position_m).normalize();
     assert!(frame.axes()[2].angle_between(towards) < 1e-9);
+    // The target carries over, and the camera tracks it between keyframes that share it.
+    assert_eq!(path.keys()[2].target_m, Some(target));
+    for t in [1.5, 2.0, 2.7, 3.0] {
+        let frame = path.frame_at(t, 32, 18).unwrap();
+        let towards = (target - frame.camera_position_m).normalize();
+        assert!(frame.axes()[2].angle_between(towards) < 1e-9, "{t}");
+    }
+    // Heading or pitch drops it; the heading carries over from the target's.
+    let last = &path.keys()[3];
+    assert_eq!(last.target_m, None);
+    assert_eq!(last.heading_deg, path.keys()[2].heading_deg);
+}
+
+#[test]
+fn utc_offsets_are_converted_and_mixed_suns_turn_between() {
+    let text = |utc: &str| {
+        format!(
+            "version = 1\n[[keyframe]]\ntime_s = 0\nlatitude_deg = 46\nlongitude_deg = 7.8\naltitude_m = 10\nutc = {utc}\nmodel = \"riley\"\n[[keyframe]]\ntime_s = 10\nsun_elevation_deg = 30\nsun_azimuth_deg = 180\n"
+        )
+    };
+    let a = CameraPath::parse(&text("2024-06-21T05:15:00+02:00"), Path::new("a.toml")).unwrap();
+    let b = CameraPath::parse(&text("2024-06-21T03:15:00Z"), Path::new("b.toml")).unwrap();
+    let c = CameraPath::parse(&text("2024-06-21T03:15:00"), Path::new("c.toml")).unwrap();
+    assert_eq!(a.keys()[0].sun, b.keys()[0].sun);
+    assert_eq!(c.keys()[0].sun, b.keys()[0].sun);
+    // From the clock's sun to angles: the end is the angles' sun exactly.
+    let end = b.frame_at(10.0, 16, 9).unwrap();
+    let up = end.camera_position_m.normalize();
+    assert!((end.sun_direction.dot(up).asin().to_degrees() - 30.0).abs() < 1e-9);
+    let mid = b.frame_at(5.0, 16, 9).unwrap();
+    let start = b.frame_at(0.0, 16, 9).unwrap();
+    let (whole, half) = (
+        start.sun_direction.angle_between(end.sun_direction),
+        start.sun_direction.angle_between(mid.sun_direction),
+    );
+    assert!((half - whole / 2.0).abs() < 1e-9, "{half} {whole}");
 }

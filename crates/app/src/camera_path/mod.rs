@@ -19,7 +19,9 @@ use render_wgpu::Frame;
 use render_wgpu::frame::{MAX_SIDE_PX, TerrainOptions};
 
 use crate::camera_path::file::{KeyframeFile, PathFileOut, location, parse_file};
-use crate::camera_path::keyframe::{Key, place_rotation, resolve, within};
+use crate::camera_path::keyframe::{
+    Key, aim_at, local_orientation, place_rotation, resolve, within,
+};
 use crate::camera_path::orientation::OrientationSpline;
 use crate::camera_path::position::PositionSpline;
 
@@ -215,10 +217,26 @@ impl CameraPath {
                     i + 2
                 )
             })?;
+            let local_orientation = match (key.target_m, next.target_m) {
+                // Both ends look at one target: track it all the way.
+                (Some(a), Some(b)) if a == b => {
+                    let radius_m = self.atmospheres[&key.atmosphere].bottom_radius_m;
+                    let (heading, pitch) = aim_at(up, up * (radius_m + altitude_m), a)
+                        .with_context(|| {
+                            format!(
+                                "camera path {}: at {t} s the camera is at its look-at target",
+                                self.origin.display()
+                            )
+                        })?;
+                    let roll = key.roll_deg + (next.roll_deg - key.roll_deg) * e;
+                    local_orientation(heading, pitch, roll)
+                }
+                _ => self.orientation.at(i, h),
+            };
             let camera = Camera {
                 up,
                 altitude_m,
-                local_orientation: self.orientation.at(i, h),
+                local_orientation,
             };
             let sun = sun::between(
                 (key.sun, place_rotation(key.up)),
