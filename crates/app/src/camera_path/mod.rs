@@ -149,7 +149,7 @@ impl CameraPath {
                 })
                 .collect(),
             position: PositionSpline::new(&times, &ups, &altitudes, base_m),
-            orientation: OrientationSpline::new(&rotations),
+            orientation: OrientationSpline::new(&times, &rotations),
             keys,
             atmospheres,
         })
