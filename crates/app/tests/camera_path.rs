@@ -405,3 +405,13 @@ fn utc_offsets_are_converted_and_mixed_suns_turn_between() {
     );
     assert!((half - whole / 2.0).abs() < 1e-9, "{half} {whole}");
 }
+
+#[test]
+fn the_documented_example_reads() {
+    let doc = include_str!("../../../docs/camera-paths.md");
+    let start = doc.find("```toml\n").unwrap() + "```toml\n".len();
+    let text = &doc[start..start + doc[start..].find("```").unwrap()];
+    let path = CameraPath::parse(text, Path::new("example.toml")).unwrap();
+    assert_eq!(path.keys().len(), 2);
+    path.frame_at(5.0, 32, 18).unwrap();
+}
