@@ -2,6 +2,7 @@
 //! and other tools can run them in-process.
 
 pub mod bench;
+pub mod camera_path;
 pub mod cli;
 pub mod contact_sheet;
 pub mod earth_data_flag;

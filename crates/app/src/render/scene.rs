@@ -24,14 +24,14 @@ use serde::{Deserialize, Serialize};
 use crate::location_flags::{LocationFlags, check_lat_lon};
 
 /// Zenith angles (view and sun), degrees: beyond them an angle would be wrapped.
-const ZENITH_DEG: [f64; 2] = [0.0, 180.0];
+pub const ZENITH_DEG: [f64; 2] = [0.0, 180.0];
 
 /// Azimuths (view and sun), degrees: one turn either way.
-const AZIMUTH_DEG: [f64; 2] = [-360.0, 360.0];
+pub const AZIMUTH_DEG: [f64; 2] = [-360.0, 360.0];
 
 /// Exposure values: from starlight (about -10) past the sun's disk (about 30), with the
 /// scale 1 / (1.2 * 2^EV) well within f32 (1e-45 to 3e38).
-const EXPOSURE_EV100: [f64; 2] = [-60.0, 100.0];
+pub const EXPOSURE_EV100: [f64; 2] = [-60.0, 100.0];
 
 /// The fields of a scene; every one optional here, the required ones checked by
 /// [`Scene::frame`].

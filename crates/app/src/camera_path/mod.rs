@@ -1,0 +1,302 @@
+//! Scripted camera paths (docs/camera-paths.md): a TOML file of keyframes, and the frame
+//! at any time between them, every field interpolated.
+
+pub mod file;
+pub mod keyframe;
+pub mod orientation;
+pub mod position;
+pub mod spline;
+pub mod sun;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, anyhow, bail};
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
+use render_wgpu::Frame;
+use render_wgpu::frame::{MAX_SIDE_PX, TerrainOptions};
+
+use crate::camera_path::file::{KeyframeFile, PathFileOut, location, parse_file};
+use crate::camera_path::keyframe::{Key, place_rotation, resolve, within};
+use crate::camera_path::orientation::OrientationSpline;
+use crate::camera_path::position::PositionSpline;
+
+/// Frame rates a path may ask for, frames per second.
+pub const FPS: [f64; 2] = [0.001, 1000.0];
+/// The most keyframes in one path.
+pub const MAX_KEYFRAMES: usize = 10_000;
+/// The default frame rate and image size.
+pub const DEFAULT_FPS: f64 = 30.0;
+pub const DEFAULT_SIZE_PX: (u32, u32) = (1280, 720);
+
+/// A checked camera path; see the module documentation.
+#[derive(Clone, Debug)]
+pub struct CameraPath {
+    origin: PathBuf,
+    fps: f64,
+    size_px: (u32, u32),
+    written: Vec<KeyframeFile>,
+    keys: Vec<Key>,
+    atmospheres: BTreeMap<String, Atmosphere>,
+    position: PositionSpline,
+    orientation: OrientationSpline,
+}
+
+/// A keyframe's camera, in the form frames are built from.
+struct Camera {
+    up: glam::DVec3,
+    altitude_m: f64,
+    local_orientation: glam::DQuat,
+}
+
+impl CameraPath {
+    /// Reads and checks a path file; errors name the file, line and column, the field.
+    pub fn load(path: &Path) -> anyhow::Result<CameraPath> {
+        let text = read_text(path, TOML_LIMITS)
+            .with_context(|| format!("camera path {}", path.display()))?;
+        CameraPath::parse(&text, path)
+    }
+
+    /// The same from text (`origin` names it in errors and resolves relative files).
+    pub fn parse(text: &str, origin: &Path) -> anyhow::Result<CameraPath> {
+        let file = parse_file(text, origin)?;
+        let fps = within("fps", file.fps.unwrap_or(DEFAULT_FPS), FPS)
+            .map_err(|e| anyhow!("camera path {}: {e}", origin.display()))?;
+        let size_px = (
+            file.width.unwrap_or(DEFAULT_SIZE_PX.0),
+            file.height.unwrap_or(DEFAULT_SIZE_PX.1),
+        );
+        for (side, field) in [(size_px.0, "width"), (size_px.1, "height")] {
+            if !(1..=MAX_SIDE_PX).contains(&side) {
+                bail!(
+                    "camera path {}: {field} {side} must be 1 to {MAX_SIDE_PX} px",
+                    origin.display()
+                );
+            }
+        }
+        if file.keyframe.is_empty() || file.keyframe.len() > MAX_KEYFRAMES {
+            bail!(
+                "camera path {}: {} keyframes; a path has 1 to {MAX_KEYFRAMES} [[keyframe]] tables",
+                origin.display(),
+                file.keyframe.len()
+            );
+        }
+        let mut atmospheres = BTreeMap::new();
+        let mut keys: Vec<Key> = Vec::with_capacity(file.keyframe.len());
+        for (n, spanned) in file.keyframe.iter().enumerate() {
+            let key =
+                resolve(spanned.get_ref(), keys.last(), origin, &mut atmospheres).map_err(|e| {
+                    anyhow!(
+                        "camera path {}: keyframe {} (time_s {}): {e:#}",
+                        location(origin, text, spanned.span().start),
+                        n + 1,
+                        spanned.get_ref().time_s
+                    )
+                })?;
+            keys.push(key);
+        }
+        for (n, pair) in keys.windows(2).enumerate() {
+            let degrees = pair[0].up.angle_between(pair[1].up).to_degrees();
+            if degrees > MAX_ARC_DEG {
+                bail!(
+                    "camera path {}: keyframes {} and {} are {degrees:.1} degrees apart round the planet; at most {MAX_ARC_DEG} (add a keyframe between them)",
+                    location(origin, text, file.keyframe[n + 1].span().start),
+                    n + 1,
+                    n + 2
+                );
+            }
+        }
+        let times: Vec<f64> = keys.iter().map(|k| k.time_s).collect();
+        let ups: Vec<_> = keys.iter().map(|k| k.up).collect();
+        let altitudes: Vec<f64> = keys.iter().map(|k| k.altitude_m).collect();
+        let rotations: Vec<_> = keys.iter().map(|k| k.local_orientation).collect();
+        Ok(CameraPath {
+            origin: origin.to_path_buf(),
+            fps,
+            size_px,
+            written: file.keyframe.iter().map(|s| s.get_ref().clone()).collect(),
+            position: PositionSpline::new(&times, &ups, &altitudes),
+            orientation: OrientationSpline::new(&rotations),
+            keys,
+            atmospheres,
+        })
+    }
+
+    /// Time of the last keyframe, s (the first is at 0 or later; frames start at time 0).
+    pub fn duration_s(&self) -> f64 {
+        self.keys.last().map_or(0.0, |k| k.time_s)
+    }
+
+    /// The path file's frame rate (default 30 fps).
+    pub fn fps(&self) -> f64 {
+        self.fps
+    }
+
+    /// The path file's image size (default 1280x720).
+    pub fn size_px(&self) -> (u32, u32) {
+        self.size_px
+    }
+
+    /// Frames at `fps` from time 0 to the last keyframe inclusive: floor(duration * fps +
+    /// 1e-9) + 1.
+    pub fn frame_count(&self, fps: f64) -> usize {
+        (self.duration_s() * fps + 1e-9).floor() as usize + 1
+    }
+
+    /// The keyframes with every field known.
+    pub fn keys(&self) -> &[Key] {
+        &self.keys
+    }
+
+    /// The frame at `time_s` (clamped to [0, duration]) at `width` x `height`: camera,
+    /// sun, atmosphere, model and settings, exposure, terrain, all interpolated.
+    pub fn frame_at(&self, time_s: f64, width: u32, height: u32) -> anyhow::Result<Frame> {
+        if !time_s.is_finite() {
+            bail!(
+                "camera path {}: time {time_s} s must be finite",
+                self.origin.display()
+            );
+        }
+        let t = time_s.clamp(self.keys[0].time_s, self.duration_s());
+        // The segment [keys[i], keys[i + 1]] holding t, or the keyframe t falls on.
+        let i = self
+            .keys
+            .partition_point(|k| k.time_s <= t)
+            .saturating_sub(1);
+        let key = &self.keys[i];
+        let frame = if i + 1 == self.keys.len() || key.time_s == t {
+            let camera = Camera {
+                up: key.up,
+                altitude_m: key.altitude_m,
+                local_orientation: key.local_orientation,
+            };
+            let sun = sun::direction(key.sun, place_rotation(key.up))?;
+            self.build(key, &camera, sun, Blend::none(key), width, height)?
+        } else {
+            let next = &self.keys[i + 1];
+            let h = (t - key.time_s) / (next.time_s - key.time_s);
+            let e = next.easing.apply(h);
+            let (up, altitude_m) = self.position.at(i, h).with_context(|| {
+                format!(
+                    "camera path {}: between keyframes {} and {} the camera passes the planet's centre",
+                    self.origin.display(),
+                    i + 1,
+                    i + 2
+                )
+            })?;
+            let camera = Camera {
+                up,
+                altitude_m,
+                local_orientation: self.orientation.at(i, h),
+            };
+            let sun = sun::between(
+                (key.sun, place_rotation(key.up)),
+                (next.sun, place_rotation(next.up)),
+                e,
+                place_rotation(up),
+            )?;
+            self.build(
+                key,
+                &camera,
+                sun,
+                Blend::between(key, next, e),
+                width,
+                height,
+            )?
+        };
+        frame
+            .validate()
+            .with_context(|| format!("camera path {} at {t} s", self.origin.display()))?;
+        Ok(frame)
+    }
+
+    /// The frame of a camera, a sun and blended parameters; the discrete fields
+    /// (atmosphere, model, settings, terrain) are `key`'s.
+    fn build(
+        &self,
+        key: &Key,
+        camera: &Camera,
+        sun_direction: glam::DVec3,
+        blend: Blend,
+        width: u32,
+        height: u32,
+    ) -> anyhow::Result<Frame> {
+        let mut atmosphere =
+            self.atmospheres[&key.atmosphere].with_aerosol_scale(blend.aerosol_scale);
+        if let Some(albedo) = blend.ground_albedo {
+            atmosphere.ground_albedo = albedo;
+        }
+        let radius_m = atmosphere.bottom_radius_m + camera.altitude_m;
+        let mut camera_m = camera.up * radius_m;
+        // Rounding may put a camera on the ground a hair below it.
+        if camera_m.length() < radius_m {
+            camera_m *= radius_m / camera_m.length() * (1.0 + 4.0 * f64::EPSILON);
+        }
+        Ok(Frame {
+            camera_position_m: camera_m,
+            orientation: place_rotation(camera.up) * camera.local_orientation,
+            vertical_fov_deg: blend.fov_deg,
+            sun_direction,
+            atmosphere,
+            model: key.model,
+            settings: key.settings.clone(),
+            exposure_ev100: blend.exposure_ev100,
+            width,
+            height,
+            terrain: key.terrain.then_some(TerrainOptions {
+                exaggeration: blend.exaggeration,
+            }),
+        })
+    }
+
+    /// The path as TOML (for the EXR header of each frame, so a frame says what made it).
+    pub fn to_toml(&self) -> String {
+        let out = PathFileOut {
+            version: file::VERSION,
+            fps: self.fps,
+            width: self.size_px.0,
+            height: self.size_px.1,
+            keyframe: &self.written,
+        };
+        toml::to_string(&out).unwrap_or_else(|e| format!("# camera path not written: {e}\n"))
+    }
+}
+
+/// The largest arc round the planet between two keyframes' places, degrees.
+pub const MAX_ARC_DEG: f64 = 150.0;
+
+/// The continuous parameters of a frame.
+struct Blend {
+    fov_deg: f64,
+    exposure_ev100: f64,
+    aerosol_scale: f64,
+    ground_albedo: Option<f64>,
+    exaggeration: f64,
+}
+
+impl Blend {
+    fn none(k: &Key) -> Blend {
+        Blend {
+            fov_deg: k.fov_deg,
+            exposure_ev100: k.exposure_ev100,
+            aerosol_scale: k.aerosol_scale,
+            ground_albedo: k.ground_albedo,
+            exaggeration: k.exaggeration,
+        }
+    }
+
+    fn between(a: &Key, b: &Key, e: f64) -> Blend {
+        let lerp = |x: f64, y: f64| x + (y - x) * e;
+        Blend {
+            fov_deg: lerp(a.fov_deg, b.fov_deg),
+            exposure_ev100: lerp(a.exposure_ev100, b.exposure_ev100),
+            aerosol_scale: lerp(a.aerosol_scale, b.aerosol_scale),
+            ground_albedo: match (a.ground_albedo, b.ground_albedo) {
+                (Some(x), Some(y)) => Some(lerp(x, y)),
+                (x, _) => x,
+            },
+            exaggeration: lerp(a.exaggeration, b.exaggeration),
+        }
+    }
+}
