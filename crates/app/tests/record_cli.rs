@@ -107,7 +107,10 @@ fn shards_resume_and_redone_frames_equal_a_full_run() {
     assert_eq!(names[9], "frame_000004.png");
 
     // A second run finds every frame complete and renders nothing.
-    let line = summary(&record(&[s(&path), "--out", s(&full), "--format", "both"], &[]));
+    let line = summary(&record(
+        &[s(&path), "--out", s(&full), "--format", "both"],
+        &[],
+    ));
     assert!(
         line.starts_with("record: 0 rendered (0 redone") && line.contains("5 skipped as complete"),
         "{line}"
@@ -116,11 +119,22 @@ fn shards_resume_and_redone_frames_equal_a_full_run() {
     // Shards 0/2 and 1/2 together are the full run, byte for byte.
     let sharded = dir.path().join("sharded");
     for shard in ["0/2", "1/2"] {
-        let args = [s(&path), "--out", s(&sharded), "--format", "both", "--shard", shard];
+        let args = [
+            s(&path),
+            "--out",
+            s(&sharded),
+            "--format",
+            "both",
+            "--shard",
+            shard,
+        ];
         let line = summary(&record(&args, &[]));
         assert!(line.contains(&format!("(shard {shard})")), "{line}");
     }
-    assert!(files(&sharded) == files(&full), "shards differ from the full run");
+    assert!(
+        files(&sharded) == files(&full),
+        "shards differ from the full run"
+    );
 
     // A run stopped after two frames, resumed, equals the uninterrupted run; a truncated
     // frame and a frame of another path are redone.
@@ -128,7 +142,15 @@ fn shards_resume_and_redone_frames_equal_a_full_run() {
     let args = [s(&path), "--out", s(&resumed), "--format", "both"];
     summary(&record(&[&args[..], &["--frames", "0..2"]].concat(), &[]));
     let other = write_path(dir.path(), "other.toml", &other_path());
-    let args_other = [s(&other), "--out", s(&resumed), "--format", "both", "--frames", "3"];
+    let args_other = [
+        s(&other),
+        "--out",
+        s(&resumed),
+        "--format",
+        "both",
+        "--frames",
+        "3",
+    ];
     summary(&record(&args_other, &[]));
     let truncated = resumed.join("frame_000001.png");
     let bytes = fs::read(&truncated).unwrap();
@@ -142,7 +164,10 @@ fn shards_resume_and_redone_frames_equal_a_full_run() {
 
     // The shard from a Slurm array task's environment.
     let slurm = dir.path().join("slurm");
-    let env = [("SLURM_ARRAY_TASK_ID", "1"), ("SLURM_ARRAY_TASK_COUNT", "2")];
+    let env = [
+        ("SLURM_ARRAY_TASK_ID", "1"),
+        ("SLURM_ARRAY_TASK_COUNT", "2"),
+    ];
     let line = summary(&record(&[s(&path), "--out", s(&slurm)], &env));
     assert!(line.contains("frames 2..5 of 0..5 (shard 1/2)"), "{line}");
     let slurm_names: Vec<String> = files(&slurm).into_iter().map(|(n, _)| n).collect();
@@ -150,7 +175,10 @@ fn shards_resume_and_redone_frames_equal_a_full_run() {
         slurm_names,
         ["frame_000002.png", "frame_000003.png", "frame_000004.png"]
     );
-    assert_eq!(files(&slurm)[0].1, fs::read(full.join("frame_000002.png")).unwrap());
+    assert_eq!(
+        files(&slurm)[0].1,
+        fs::read(full.join("frame_000002.png")).unwrap()
+    );
 
     check_exr_metadata(&full.join("frame_000002.exr"));
 }
@@ -167,7 +195,11 @@ fn check_exr_metadata(exr_path: &Path) {
         .unwrap();
     let layer = &image.layer_data;
     assert_eq!((layer.size.x(), layer.size.y()), (32, 18));
-    let text = |name: &str| match layer.attributes.other.get(&name.into()) {
+    let text = |name: &str| match layer
+        .attributes
+        .other
+        .get(&exr::meta::attribute::Text::from(name))
+    {
         Some(AttributeValue::Text(t)) => t.to_string(),
         other => panic!("{name}: {other:?}"),
     };
@@ -191,24 +223,47 @@ fn bad_flags_and_folders_are_named() {
         let args = [&["record", s(&path), "--out", s(&out)], extra].concat();
         atmos_fails_with(&args, expected);
     };
-    run(&["--shard", "2/2"], "--shard 2/2: shard 2 of 2 does not exist; shards count from 0 to 1");
+    run(
+        &["--shard", "2/2"],
+        "--shard 2/2: shard 2 of 2 does not exist; shards count from 0 to 1",
+    );
     run(&["--shard", "1"], "--shard 1: expected I/N");
     run(&["--frames", "5..2"], "--frames 5..2 selects no frame");
-    run(&["--frames", "0..9"], "--frames 0..9 runs past the path's 5 frames (indices 0 to 4)");
-    run(&["--fps", "0"], "--fps 0 must lie in (0, 1000] frames per second");
+    run(
+        &["--frames", "0..9"],
+        "--frames 0..9 runs past the path's 5 frames (indices 0 to 4)",
+    );
+    run(
+        &["--fps", "0"],
+        "--fps 0 must lie in (0, 1000] frames per second",
+    );
     run(&["--width", "0"], "--width 0 must be 1 to 8192 px");
-    run(&["--format", "gif"], "invalid value 'gif' for '--format <FORMAT>'");
-    run(&["--shard-count", "2"], "--shard-count 2 needs JOB_COMPLETION_INDEX");
+    run(
+        &["--format", "gif"],
+        "invalid value 'gif' for '--format <FORMAT>'",
+    );
+    run(
+        &["--shard-count", "2"],
+        "--shard-count 2 needs JOB_COMPLETION_INDEX",
+    );
     assert!(!out.exists(), "a refused run made its folder");
     let file = write_path(dir.path(), "file", "x");
     atmos_fails_with(
         &["record", s(&path), "--out", s(&file)],
         "it is a file, not a folder",
     );
-    let bad = write_path(dir.path(), "bad.toml", "version = 1\n[[keyframe]]\ntime_s = \"x\"\n");
+    let bad = write_path(
+        dir.path(),
+        "bad.toml",
+        "version = 1\n[[keyframe]]\ntime_s = \"x\"\n",
+    );
     let output = atmos(&["record", s(&bad), "--out", s(&out)]);
     assert!(!output.status.success());
-    assert!(stderr(&output).contains("bad.toml:3:"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("bad.toml:3:"),
+        "{}",
+        stderr(&output)
+    );
 }
 
 #[test]
@@ -216,7 +271,10 @@ fn the_shard_of_a_kubernetes_job_needs_its_count() {
     let dir = tempfile::tempdir().unwrap();
     let path = write_path(dir.path(), "path.toml", PATH);
     let out = dir.path().join("out");
-    let output = record(&[s(&path), "--out", s(&out)], &[("JOB_COMPLETION_INDEX", "0")]);
+    let output = record(
+        &[s(&path), "--out", s(&out)],
+        &[("JOB_COMPLETION_INDEX", "0")],
+    );
     assert!(!output.status.success());
     assert!(
         stderr(&output).contains("JOB_COMPLETION_INDEX=0 needs the number of shards: --shard-count N or ATMOS_SHARD_COUNT=N"),

@@ -65,7 +65,11 @@ mod tests {
         assert_eq!(print, base.fingerprint(FileKind::Png));
         let others = [
             base.fingerprint(FileKind::Exr),
-            FrameInputs { path_toml: "version = 2\n", ..base }.fingerprint(FileKind::Png),
+            FrameInputs {
+                path_toml: "version = 2\n",
+                ..base
+            }
+            .fingerprint(FileKind::Png),
             FrameInputs { index: 4, ..base }.fingerprint(FileKind::Png),
             FrameInputs { fps: 24.0, ..base }.fingerprint(FileKind::Png),
             FrameInputs { width: 33, ..base }.fingerprint(FileKind::Png),

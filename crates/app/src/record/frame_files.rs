@@ -4,6 +4,7 @@
 
 use render_wgpu::Frame;
 
+use crate::record::exr_order::sort_header_attributes;
 use crate::record::fingerprint::FrameInputs;
 use crate::record::naming::FileKind;
 use crate::record::verify::FINGERPRINT_KEY;
@@ -37,7 +38,8 @@ pub fn png_file(
 }
 
 /// A frame's HDR radiance as EXR bytes: the metadata, the frame's camera, sun, model and
-/// atmosphere, and the path's TOML (`atmos:camera_path`) in header attributes.
+/// atmosphere, and the path's TOML (`atmos:camera_path`) in header attributes, sorted
+/// by name so that the same frame always gives the same bytes.
 pub fn exr_file(
     frame: &Frame,
     radiance: &[[f32; 4]],
@@ -52,7 +54,9 @@ pub fn exr_file(
         })
         .collect();
     attributes.extend(metadata(inputs, time_s, FileKind::Exr));
-    exr_bytes(frame, &attributes, radiance)
+    let mut bytes = exr_bytes(frame, &attributes, radiance)?;
+    sort_header_attributes(&mut bytes)?;
+    Ok(bytes)
 }
 
 #[cfg(test)]
@@ -98,12 +102,16 @@ mod tests {
         let frame = frame();
         let png = png_file(&frame, &[[10, 20, 30, 255]; 12], &INPUTS, 1.0 / 15.0).unwrap();
         let exr = exr_file(&frame, &[[0.1, 0.2, 0.3, 1.0]; 12], &INPUTS, 1.0 / 15.0).unwrap();
-        let other = FrameInputs {
-            index: 3,
-            ..INPUTS
-        };
+        for _ in 0..4 {
+            let again = exr_file(&frame, &[[0.1, 0.2, 0.3, 1.0]; 12], &INPUTS, 1.0 / 15.0);
+            assert!(again.unwrap() == exr, "the same frame gave other EXR bytes");
+        }
+        let other = FrameInputs { index: 3, ..INPUTS };
         for (bytes, kind) in [(png, FileKind::Png), (exr, FileKind::Exr)] {
-            assert_eq!(verdict(dir.path(), &bytes, kind, &INPUTS), Verdict::Complete);
+            assert_eq!(
+                verdict(dir.path(), &bytes, kind, &INPUTS),
+                Verdict::Complete
+            );
             let foreign = verdict(dir.path(), &bytes, kind, &other);
             assert_eq!(
                 foreign,

@@ -31,7 +31,11 @@ impl FrameRange {
             Some((a, b)) => {
                 let start = if a.trim().is_empty() { 0 } else { number(a)? };
                 let end = match b.strip_prefix('=') {
-                    Some(last) => Some(number(last)?.checked_add(1).context("--frames: too large")?),
+                    Some(last) => Some(
+                        number(last)?
+                            .checked_add(1)
+                            .context("--frames: too large")?,
+                    ),
                     None if b.trim().is_empty() => None,
                     None => Some(number(b)?),
                 };

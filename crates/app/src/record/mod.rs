@@ -4,6 +4,7 @@
 //! whose files are already whole and from the same inputs is skipped, so a run that was
 //! stopped at any moment resumes where it stopped.
 
+pub mod exr_order;
 pub mod fingerprint;
 pub mod frame_files;
 pub mod frame_range;
@@ -105,8 +106,14 @@ pub fn run(args: &RecordArgs) -> anyhow::Result<()> {
     }
     eprintln!(
         "{}",
-        summary(&jobs, skipped, start.elapsed().as_secs_f64(), &selected, frames, shard)
-            + &format!(" into {}", args.out.display())
+        summary(
+            &jobs,
+            skipped,
+            start.elapsed().as_secs_f64(),
+            &selected,
+            frames,
+            shard
+        ) + &format!(" into {}", args.out.display())
     );
     Ok(())
 }
@@ -167,7 +174,8 @@ fn render_job(
             FileKind::Exr => frame_files::exr_file(&frame, &renderer.read_hdr()?, inputs, time_s),
         }
         .with_context(|| name.clone())?;
-        write_atomically(&frame_path(dir, job.index, kind), &bytes).with_context(|| name.clone())?;
+        write_atomically(&frame_path(dir, job.index, kind), &bytes)
+            .with_context(|| name.clone())?;
     }
     Ok(())
 }

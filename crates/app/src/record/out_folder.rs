@@ -35,6 +35,11 @@ mod tests {
         let file = dir.path().join("file");
         std::fs::write(&file, "x").unwrap();
         let e = format!("{:#}", prepare(&file, &file.join("f.png")).unwrap_err());
-        assert!(e.ends_with("it is a file, not a folder (record writes one file per frame into a folder)"), "{e}");
+        assert!(
+            e.ends_with(
+                "it is a file, not a folder (record writes one file per frame into a folder)"
+            ),
+            "{e}"
+        );
     }
 }

@@ -81,7 +81,9 @@ impl Shard {
             return Ok(None);
         };
         let min = env_number(env, "SLURM_ARRAY_TASK_MIN")?.unwrap_or(0);
-        let step = env_number(env, "SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
+        let step = env_number(env, "SLURM_ARRAY_TASK_STEP")?
+            .unwrap_or(1)
+            .max(1);
         if id < min || (id - min) % step != 0 {
             bail!(
                 "SLURM_ARRAY_TASK_ID={id} is not one of the array's tasks (from SLURM_ARRAY_TASK_MIN={min} in steps of {step})"
@@ -135,10 +137,7 @@ impl std::fmt::Display for Shard {
 }
 
 /// A whole number from the environment variable `name`, if it is set.
-fn env_number(
-    env: &impl Fn(&str) -> Option<String>,
-    name: &str,
-) -> anyhow::Result<Option<u64>> {
+fn env_number(env: &impl Fn(&str) -> Option<String>, name: &str) -> anyhow::Result<Option<u64>> {
     env(name)
         .map(|v| {
             v.trim()
@@ -171,10 +170,7 @@ mod tests {
 
     #[test]
     fn the_flag_parses_and_is_checked() {
-        assert_eq!(
-            Shard::parse("1/2").unwrap(),
-            Shard { index: 1, count: 2 }
-        );
+        assert_eq!(Shard::parse("1/2").unwrap(), Shard { index: 1, count: 2 });
         assert!(err(Shard::parse("2/2")).contains("shard 2 of 2 does not exist"));
         assert!(err(Shard::parse("0/0")).contains("shard count 0 must be 1 to"));
         assert!(err(Shard::parse("1")).contains("expected I/N"));
@@ -200,7 +196,10 @@ mod tests {
 
     #[test]
     fn the_flag_wins_over_the_environment() {
-        let env = env_of(&[("SLURM_ARRAY_TASK_ID", "3"), ("SLURM_ARRAY_TASK_COUNT", "4")]);
+        let env = env_of(&[
+            ("SLURM_ARRAY_TASK_ID", "3"),
+            ("SLURM_ARRAY_TASK_COUNT", "4"),
+        ]);
         let flag = Some(Shard { index: 0, count: 2 });
         assert_eq!(Shard::choose(flag, None, &env).unwrap(), flag.unwrap());
         assert_eq!(Shard::choose(None, None, env_of(&[])).unwrap(), Shard::ALL);
@@ -209,7 +208,10 @@ mod tests {
     #[test]
     fn slurm_arrays_give_the_shard() {
         let shard = |pairs: &[(&str, &str)]| Shard::choose(None, None, env_of(pairs));
-        let count = shard(&[("SLURM_ARRAY_TASK_ID", "3"), ("SLURM_ARRAY_TASK_COUNT", "4")]);
+        let count = shard(&[
+            ("SLURM_ARRAY_TASK_ID", "3"),
+            ("SLURM_ARRAY_TASK_COUNT", "4"),
+        ]);
         assert_eq!(count.unwrap(), Shard { index: 3, count: 4 });
         let min_max = shard(&[
             ("SLURM_ARRAY_TASK_ID", "12"),
@@ -230,8 +232,11 @@ mod tests {
                 .contains("SLURM_ARRAY_TASK_ID='x' is not a whole number")
         );
         assert!(
-            err(shard(&[("SLURM_ARRAY_TASK_ID", "4"), ("SLURM_ARRAY_TASK_COUNT", "4")]))
-                .contains("the Slurm array task: shard 4 of 4 does not exist")
+            err(shard(&[
+                ("SLURM_ARRAY_TASK_ID", "4"),
+                ("SLURM_ARRAY_TASK_COUNT", "4")
+            ]))
+            .contains("the Slurm array task: shard 4 of 4 does not exist")
         );
     }
 
@@ -248,6 +253,8 @@ mod tests {
         );
         let no_count = Shard::choose(None, None, env_of(&[("JOB_COMPLETION_INDEX", "1")]));
         assert!(err(no_count).contains("--shard-count N or ATMOS_SHARD_COUNT=N"));
-        assert!(err(Shard::choose(None, Some(2), env_of(&[]))).contains("needs JOB_COMPLETION_INDEX"));
+        assert!(
+            err(Shard::choose(None, Some(2), env_of(&[]))).contains("needs JOB_COMPLETION_INDEX")
+        );
     }
 }

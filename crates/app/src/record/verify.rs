@@ -38,10 +38,9 @@ pub fn verify(path: &Path, kind: FileKind, width: u32, height: u32, fingerprint:
     };
     match found {
         Err(why) => Verdict::Redo(why),
-        Ok((size, _)) if size != (width, height) => Verdict::Redo(format!(
-            "{}x{} px, not {width}x{height}",
-            size.0, size.1
-        )),
+        Ok((size, _)) if size != (width, height) => {
+            Verdict::Redo(format!("{}x{} px, not {width}x{height}", size.0, size.1))
+        }
         Ok((_, print)) if print.as_deref() != Some(fingerprint) => {
             Verdict::Redo("made by another path or other flags".into())
         }
