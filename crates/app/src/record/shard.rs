@@ -200,8 +200,8 @@ mod tests {
             ("SLURM_ARRAY_TASK_ID", "3"),
             ("SLURM_ARRAY_TASK_COUNT", "4"),
         ]);
-        let flag = Some(Shard { index: 0, count: 2 });
-        assert_eq!(Shard::choose(flag, None, &env).unwrap(), flag.unwrap());
+        let flag = Shard { index: 0, count: 2 };
+        assert_eq!(Shard::choose(Some(flag), None, &env).unwrap(), flag);
         assert_eq!(Shard::choose(None, None, env_of(&[])).unwrap(), Shard::ALL);
     }
 

@@ -5,7 +5,7 @@
 use std::io::{Cursor, ErrorKind};
 use std::path::Path;
 
-use exr::meta::attribute::AttributeValue;
+use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{ReadChannels, ReadLayers};
 
 use crate::record::naming::FileKind;
@@ -90,9 +90,8 @@ fn exr_size_and_fingerprint(bytes: &[u8]) -> Result<((u32, u32), Option<String>)
     let print = layer
         .attributes
         .other
-        .iter()
-        .find(|(name, _)| name.to_string() == FINGERPRINT_KEY)
-        .and_then(|(_, value)| match value {
+        .get(&Text::from(FINGERPRINT_KEY))
+        .and_then(|value| match value {
             AttributeValue::Text(text) => Some(text.to_string()),
             _ => None,
         });
