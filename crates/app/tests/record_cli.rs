@@ -57,11 +57,12 @@ fn record(args: &[&str], env: &[(&str, &str)]) -> Output {
         .expect("the atmos binary runs")
 }
 
-/// Asserts the run succeeded; returns its summary line.
+/// Asserts the run succeeded; returns its summary line (the last of the command's).
 fn summary(output: &Output) -> String {
     let err = stderr(output);
     assert!(output.status.success(), "{err}");
     err.lines()
+        .rev()
         .find(|l| l.starts_with("record: "))
         .unwrap_or_else(|| panic!("no summary in {err}"))
         .to_string()

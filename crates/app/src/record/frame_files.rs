@@ -69,7 +69,7 @@ mod tests {
     use crate::record::verify::{Verdict, verify};
     use crate::render::scene::Scene;
 
-    fn frame() -> Frame {
+    fn scene() -> Scene {
         Scene {
             model: Some(ModelId::Nishita),
             altitude_m: Some(10.0),
@@ -78,8 +78,10 @@ mod tests {
             height: Some(3),
             ..Scene::default()
         }
-        .frame()
-        .unwrap()
+    }
+
+    fn frame() -> Frame {
+        scene().frame().unwrap()
     }
 
     const INPUTS: FrameInputs = FrameInputs {
@@ -94,6 +96,30 @@ mod tests {
         let path = dir.join(format!("f.{}", kind.extension()));
         std::fs::write(&path, bytes).unwrap();
         verify(&path, kind, 4, 3, &inputs.fingerprint(kind))
+    }
+
+    /// Many tiles, written in parallel, still land in one order.
+    #[test]
+    fn the_same_frame_gives_the_same_exr_bytes() {
+        let scene = Scene {
+            width: Some(300),
+            height: Some(200),
+            ..scene()
+        };
+        let frame = scene.frame().unwrap();
+        let radiance: Vec<[f32; 4]> = (0..300 * 200)
+            .map(|i| [i as f32 * 1e-3, (i % 7) as f32, (i % 300) as f32, 1.0])
+            .collect();
+        let inputs = FrameInputs {
+            width: 300,
+            height: 200,
+            ..INPUTS
+        };
+        let first = exr_file(&frame, &radiance, &inputs, 0.0).unwrap();
+        for _ in 0..4 {
+            let again = exr_file(&frame, &radiance, &inputs, 0.0).unwrap();
+            assert!(again == first, "the same frame gave other EXR bytes");
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@ use anyhow::{Context, bail};
 use atmosphere_core::color::SpectrumToColor;
 use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{
-    Encoding, Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
+    Encoding, Image, Layer, LayerAttributes, LineOrder, SpecificChannels, Vec2, WritableImage,
 };
 use render_wgpu::Frame;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
@@ -135,7 +135,11 @@ pub fn exr_bytes(
     let layer = Layer::new(
         (width, frame.height as usize),
         layer_attributes,
-        Encoding::FAST_LOSSLESS,
+        // Tiles in increasing order: the same image always gives the same bytes.
+        Encoding {
+            line_order: LineOrder::Increasing,
+            ..Encoding::FAST_LOSSLESS
+        },
         SpecificChannels::rgb(|p: Vec2<usize>| {
             let [r, g, b] = srgb[p.y() * width + p.x()];
             (r, g, b)
