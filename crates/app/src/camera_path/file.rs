@@ -121,6 +121,7 @@ pub struct PathFile {
     pub fps: Option<f64>,
     pub width: Option<u32>,
     pub height: Option<u32>,
+    pub log_altitude_base_m: Option<f64>,
     #[serde(default)]
     pub keyframe: Vec<Spanned<KeyframeFile>>,
 }
@@ -132,6 +133,7 @@ pub struct PathFileOut<'a> {
     pub fps: f64,
     pub width: u32,
     pub height: u32,
+    pub log_altitude_base_m: f64,
     pub keyframe: &'a [KeyframeFile],
 }
 

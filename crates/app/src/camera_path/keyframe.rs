@@ -56,6 +56,8 @@ pub struct Key {
     pub heading_deg: f64,
     pub pitch_deg: f64,
     pub roll_deg: f64,
+    /// The planet-fixed point the camera looks at, m, if it looks at one.
+    pub target_m: Option<DVec3>,
     /// The camera's rotation in the local frame of its place (`location_rotation`).
     pub local_orientation: DQuat,
     pub fov_deg: f64,
@@ -162,12 +164,12 @@ pub fn local_orientation(heading_deg: f64, pitch_deg: f64, roll_deg: f64) -> DQu
 }
 
 /// Heading and pitch, degrees, of the direction from `camera_m` to `target_m`.
-fn aim_at(up: DVec3, camera_m: DVec3, target_m: DVec3) -> anyhow::Result<(f64, f64)> {
+pub fn aim_at(up: DVec3, camera_m: DVec3, target_m: DVec3) -> anyhow::Result<(f64, f64)> {
     let forward = (target_m - camera_m)
         .try_normalize()
         .context("the look-at target is the camera's own position")?;
     let local = place_rotation(up).inverse() * forward;
-    let pitch = local.z.clamp(-1.0, 1.0).asin().to_degrees();
+    let pitch = local.z.atan2(local.x.hypot(local.y)).to_degrees();
     let heading = if local.x.hypot(local.y) < 1e-12 {
         0.0
     } else {
@@ -232,6 +234,10 @@ pub fn resolve(
                 bail!("look_at_m must be finite and within {MAX_ALTITUDE_M:e} m of the ground");
             }
             Some(p)
+        }
+        // A target carries over until heading or pitch is given.
+        (None, None) if f.heading_deg.is_none() && f.pitch_deg.is_none() => {
+            before.and_then(|k| k.target_m)
         }
         (None, None) => None,
     };
@@ -332,6 +338,7 @@ pub fn resolve(
         heading_deg,
         pitch_deg,
         roll_deg,
+        target_m: target,
         local_orientation: local_orientation(heading_deg, pitch_deg, roll_deg),
         fov_deg,
         sun,

@@ -13,12 +13,15 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, anyhow, bail};
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::limits::MAX_ALTITUDE_M;
 use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
 use render_wgpu::Frame;
 use render_wgpu::frame::{MAX_SIDE_PX, TerrainOptions};
 
 use crate::camera_path::file::{KeyframeFile, PathFileOut, location, parse_file};
-use crate::camera_path::keyframe::{Key, place_rotation, resolve, within};
+use crate::camera_path::keyframe::{
+    Key, aim_at, local_orientation, place_rotation, resolve, within,
+};
 use crate::camera_path::orientation::OrientationSpline;
 use crate::camera_path::position::PositionSpline;
 
@@ -35,6 +38,7 @@ pub const DEFAULT_SIZE_PX: (u32, u32) = (1280, 720);
 pub struct CameraPath {
     origin: PathBuf,
     fps: f64,
+    log_altitude_base_m: f64,
     size_px: (u32, u32),
     written: Vec<KeyframeFile>,
     keys: Vec<Key>,
@@ -107,6 +111,20 @@ impl CameraPath {
                 );
             }
         }
+        let base_m = within(
+            "log_altitude_base_m",
+            file.log_altitude_base_m.unwrap_or(0.0),
+            [0.0, MAX_ALTITUDE_M],
+        )
+        .map_err(|e| anyhow!("camera path {}: {e}", origin.display()))?;
+        if let Some(k) = keys.iter().position(|k| k.altitude_m < base_m) {
+            bail!(
+                "camera path {}: keyframe {}'s altitude_m {} is below log_altitude_base_m {base_m}",
+                location(origin, text, file.keyframe[k].span().start),
+                k + 1,
+                keys[k].altitude_m
+            );
+        }
         let times: Vec<f64> = keys.iter().map(|k| k.time_s).collect();
         let ups: Vec<_> = keys.iter().map(|k| k.up).collect();
         let altitudes: Vec<f64> = keys.iter().map(|k| k.altitude_m).collect();
@@ -114,9 +132,23 @@ impl CameraPath {
         Ok(CameraPath {
             origin: origin.to_path_buf(),
             fps,
+            log_altitude_base_m: base_m,
             size_px,
-            written: file.keyframe.iter().map(|s| s.get_ref().clone()).collect(),
-            position: PositionSpline::new(&times, &ups, &altitudes),
+            // Written back with atmosphere files as resolved, so the text stands alone.
+            written: file
+                .keyframe
+                .iter()
+                .zip(&keys)
+                .map(|(s, k)| KeyframeFile {
+                    atmosphere: s
+                        .get_ref()
+                        .atmosphere
+                        .as_ref()
+                        .map(|_| k.atmosphere.clone()),
+                    ..s.get_ref().clone()
+                })
+                .collect(),
+            position: PositionSpline::new(&times, &ups, &altitudes, base_m),
             orientation: OrientationSpline::new(&rotations),
             keys,
             atmospheres,
@@ -185,15 +217,31 @@ impl CameraPath {
                     i + 2
                 )
             })?;
+            let local_orientation = match (key.target_m, next.target_m) {
+                // Both ends look at one target: track it all the way.
+                (Some(a), Some(b)) if a == b => {
+                    let radius_m = self.atmospheres[&key.atmosphere].bottom_radius_m;
+                    let (heading, pitch) = aim_at(up, up * (radius_m + altitude_m), a)
+                        .with_context(|| {
+                            format!(
+                                "camera path {}: at {t} s the camera is at its look-at target",
+                                self.origin.display()
+                            )
+                        })?;
+                    let roll = key.roll_deg + (next.roll_deg - key.roll_deg) * e;
+                    local_orientation(heading, pitch, roll)
+                }
+                _ => self.orientation.at(i, h),
+            };
             let camera = Camera {
                 up,
                 altitude_m,
-                local_orientation: self.orientation.at(i, h),
+                local_orientation,
             };
             let sun = sun::between(
                 (key.sun, place_rotation(key.up)),
                 (next.sun, place_rotation(next.up)),
-                e,
+                (h, e),
                 place_rotation(up),
             )?;
             self.build(
@@ -227,11 +275,11 @@ impl CameraPath {
         if let Some(albedo) = blend.ground_albedo {
             atmosphere.ground_albedo = albedo;
         }
-        let radius_m = atmosphere.bottom_radius_m + camera.altitude_m;
-        let mut camera_m = camera.up * radius_m;
+        let ground_m = atmosphere.bottom_radius_m;
+        let mut camera_m = camera.up * (ground_m + camera.altitude_m);
         // Rounding may put a camera on the ground a hair below it.
-        if camera_m.length() < radius_m {
-            camera_m *= radius_m / camera_m.length() * (1.0 + 4.0 * f64::EPSILON);
+        if camera_m.length() < ground_m {
+            camera_m *= ground_m / camera_m.length() * (1.0 + 4.0 * f64::EPSILON);
         }
         Ok(Frame {
             camera_position_m: camera_m,
@@ -257,6 +305,7 @@ impl CameraPath {
             fps: self.fps,
             width: self.size_px.0,
             height: self.size_px.1,
+            log_altitude_base_m: self.log_altitude_base_m,
             keyframe: &self.written,
         };
         toml::to_string(&out).unwrap_or_else(|e| format!("# camera path not written: {e}\n"))

@@ -1,7 +1,9 @@
 //! The camera's place between keyframes: the direction from the planet's centre by a
 //! monotone cubic per component, normalised back onto the sphere, and the altitude by a
-//! monotone cubic through `ln(altitude + 1 m)`, so a climb from the ground to orbit
-//! spends as long on each factor of ten and never dips or leaps between keyframes.
+//! monotone cubic through `ln(altitude - base + 1 m)` (`base`: the path's
+//! `log_altitude_base_m`, the ground under a climb that starts on a mountain), so a climb
+//! from the ground to orbit spends as long on each factor of ten and never dips or leaps
+//! between keyframes.
 
 use glam::DVec3;
 
@@ -10,14 +12,16 @@ use crate::camera_path::spline::{hermite, slopes};
 /// Added to altitudes before their logarithm, m: the ground itself stays finite.
 pub const LOG_OFFSET_M: f64 = 1.0;
 
-/// The logarithmic altitude of the interpolation.
-pub fn log_altitude(altitude_m: f64) -> f64 {
-    (altitude_m + LOG_OFFSET_M).ln()
+/// The logarithmic altitude of the interpolation above `base_m`.
+pub fn log_altitude(altitude_m: f64, base_m: f64) -> f64 {
+    (altitude_m - base_m + LOG_OFFSET_M).ln()
 }
 
-/// The altitude of a logarithmic altitude.
-pub fn altitude_of_log(log_altitude: f64) -> f64 {
-    (log_altitude.exp() - LOG_OFFSET_M).max(0.0)
+/// The altitude of a logarithmic altitude above `base_m`.
+pub fn altitude_of_log(log_altitude: f64, base_m: f64) -> f64 {
+    (log_altitude.exp() - LOG_OFFSET_M + base_m)
+        .max(base_m)
+        .max(0.0)
 }
 
 /// The place splines through every keyframe.
@@ -28,19 +32,25 @@ pub struct PositionSpline {
     up_slopes: [Vec<f64>; 3],
     logs: Vec<f64>,
     log_slopes: Vec<f64>,
+    base_m: f64,
 }
 
 impl PositionSpline {
-    /// The splines through `(times[i], ups[i], altitudes[i])`; times strictly increasing.
-    pub fn new(times: &[f64], ups: &[DVec3], altitudes_m: &[f64]) -> PositionSpline {
+    /// The splines through `(times[i], ups[i], altitudes[i])`; times strictly increasing,
+    /// altitudes at least `base_m`.
+    pub fn new(times: &[f64], ups: &[DVec3], altitudes_m: &[f64], base_m: f64) -> PositionSpline {
         let component = |k: usize| slopes(times, &ups.iter().map(|u| u[k]).collect::<Vec<_>>());
-        let logs: Vec<f64> = altitudes_m.iter().map(|&a| log_altitude(a)).collect();
+        let logs: Vec<f64> = altitudes_m
+            .iter()
+            .map(|&a| log_altitude(a, base_m))
+            .collect();
         PositionSpline {
             times: times.to_vec(),
             ups: ups.to_vec(),
             up_slopes: [component(0), component(1), component(2)],
             log_slopes: slopes(times, &logs),
             logs,
+            base_m,
         }
     }
 
@@ -61,6 +71,6 @@ impl PositionSpline {
             dt,
             h,
         );
-        Some((up.try_normalize()?, altitude_of_log(log)))
+        Some((up.try_normalize()?, altitude_of_log(log, self.base_m)))
     }
 }

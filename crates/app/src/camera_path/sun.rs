@@ -1,7 +1,7 @@
 //! The sun between keyframes: angles at the camera eased from one keyframe to the next,
-//! a UTC time eased the same way and turned into the sun's planet-fixed direction as the
-//! viewer's sun clock does, or, between a keyframe of each kind, the arc between the two
-//! directions.
+//! a UTC time running at a steady rate (a clock is never eased) and turned into the sun's
+//! planet-fixed direction as the viewer's sun clock does, or, between a keyframe of each
+//! kind, the eased arc between the two directions.
 
 use anyhow::Context;
 use glam::{DQuat, DVec3};
@@ -44,12 +44,12 @@ pub fn direction(sun: SunKey, place: DQuat) -> anyhow::Result<DVec3> {
     }
 }
 
-/// The sun at eased fraction `e` from `a` (seen from `place_a`) to `b` (from `place_b`),
-/// seen from `place`.
+/// The sun at fraction `h` (eased: `e`) from `a` (seen from `place_a`) to `b` (from
+/// `place_b`), seen from `place`.
 pub fn between(
     (a, place_a): (SunKey, DQuat),
     (b, place_b): (SunKey, DQuat),
-    e: f64,
+    (h, e): (f64, f64),
     place: DQuat,
 ) -> anyhow::Result<DVec3> {
     let lerp = |x: f64, y: f64| x + (y - x) * e;
@@ -68,7 +68,7 @@ pub fn between(
             let a1 = a0 + (a1 - a0 + 180.0).rem_euclid(360.0) - 180.0;
             Ok(place * local_direction(lerp(e0, e1), lerp(a0, a1)))
         }
-        (SunKey::Utc(s0), SunKey::Utc(s1)) => utc_direction(lerp(s0, s1)),
+        (SunKey::Utc(s0), SunKey::Utc(s1)) => utc_direction(s0 + (s1 - s0) * h),
         _ => {
             let (d0, d1) = (direction(a, place_a)?, direction(b, place_b)?);
             let arc = DQuat::from_rotation_arc(d0, d1);
