@@ -113,7 +113,7 @@ pub fn run(args: &RecordArgs) -> anyhow::Result<()> {
             &selected,
             frames,
             shard
-        ) + &format!(" into {}", args.out.display())
+        ) + &format!("; the path has {count}; into {}", args.out.display())
     );
     Ok(())
 }
