@@ -38,6 +38,9 @@ pub enum Command {
     /// Every GPU model in six views (noon, sunset, twilight, 10 km, 100 km, orbit) in one
     /// labelled PNG.
     ContactSheet(ContactSheetArgs),
+    /// A camera path's frames, headless, to numbered PNG or EXR files; resumable and
+    /// shardable (docs/recording.md).
+    Record(RecordArgs),
 }
 
 /// The flags of `atmos view`.
@@ -155,6 +158,44 @@ pub struct BenchArgs {
     /// Also write the tables to this Markdown file (atomically).
     #[arg(long, value_name = "FILE.md")]
     pub out: Option<PathBuf>,
+}
+
+/// The flags of `atmos record` (docs/recording.md).
+#[derive(Debug, Args)]
+pub struct RecordArgs {
+    /// The camera path file (TOML).
+    #[arg(value_name = "PATH.toml")]
+    pub path: PathBuf,
+    /// The folder the frames go to (created if missing): frame_000000.png, ...
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Frames per second, in (0, 1000] [default: the path's, else 30].
+    #[arg(long, value_name = "N")]
+    pub fps: Option<f64>,
+    /// Image width, px, 1 to 8192 [default: the path's, else 1280].
+    #[arg(long, value_name = "PX")]
+    pub width: Option<u32>,
+    /// Image height, px, 1 to 8192 [default: the path's, else 720].
+    #[arg(long, value_name = "PX")]
+    pub height: Option<u32>,
+    /// The files of each frame: png (tone-mapped), exr (linear HDR) or both.
+    #[arg(long, value_enum, default_value_t)]
+    pub format: crate::record::naming::FrameFormat,
+    /// Only these frames, by index from 0: A..B (A to B-1), A..=B, A.., ..B or A
+    /// [default: all].
+    #[arg(long, value_name = "A..B")]
+    pub frames: Option<String>,
+    /// Render shard I of N (from 0) of the selected frames [default: from
+    /// SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX, else all].
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<String>,
+    /// The number of shards of a Kubernetes indexed Job (JOB_COMPLETION_INDEX)
+    /// [default: ATMOS_SHARD_COUNT].
+    #[arg(long, value_name = "N")]
+    pub shard_count: Option<u64>,
+    /// Where the terrain's maps come from.
+    #[command(flatten)]
+    pub earth_data: EarthDataFlag,
 }
 
 /// The flags of `atmos render`.

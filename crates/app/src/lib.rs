@@ -10,6 +10,7 @@ pub mod files;
 pub mod location_flags;
 pub mod probe;
 pub mod progress;
+pub mod record;
 pub mod render;
 pub mod report;
 pub mod stability;
@@ -31,6 +32,7 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Bench(args)) => bench::run(&args),
         Some(Command::ContactSheet(args)) => contact_sheet::run(&args),
+        Some(Command::Record(args)) => record::run(&args),
         Some(Command::View(args)) => viewer::run(&args),
         None => viewer::run(&cli::ViewArgs::default()),
     }

@@ -1,15 +1,15 @@
-//! The image files of `atmos render`, written atomically: PNG (the tone-mapped 8-bit
+//! The image files of `atmos render` and `atmos record`, written atomically: PNG (the tone-mapped 8-bit
 //! sRGB image) and OpenEXR (linear HDR: linear sRGB in cd/m^2, f32, with the scene, the
 //! model, the atmosphere and the camera in header attributes).
 
 use std::io::Cursor;
 use std::path::Path;
 
-use anyhow::Context;
+use anyhow::{Context, bail};
 use atmosphere_core::color::SpectrumToColor;
 use exr::meta::attribute::{AttributeValue, Text};
 use exr::prelude::{
-    Encoding, Image, Layer, LayerAttributes, SpecificChannels, Vec2, WritableImage,
+    Encoding, Image, Layer, LayerAttributes, LineOrder, SpecificChannels, Vec2, WritableImage,
 };
 use render_wgpu::Frame;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
@@ -18,14 +18,42 @@ use crate::files::write_atomically;
 
 /// Writes the 8-bit sRGB pixels (row-major, RGBA) as an RGB PNG.
 pub fn write_png(path: &Path, frame: &Frame, pixels: &[[u8; 4]]) -> anyhow::Result<()> {
+    write_atomically(path, &png_bytes(frame, pixels, &[], &[])?)
+}
+
+/// The 8-bit sRGB pixels (row-major, RGBA) as an RGB PNG with `text` in tEXt chunks
+/// (keyword, Latin-1 text) and `utf8_text` in compressed iTXt chunks, before the image.
+pub fn png_bytes(
+    frame: &Frame,
+    pixels: &[[u8; 4]],
+    text: &[(&str, String)],
+    utf8_text: &[(&str, String)],
+) -> anyhow::Result<Vec<u8>> {
+    if pixels.len() != frame.width as usize * frame.height as usize {
+        bail!("pixel count does not match the image size");
+    }
     let rgb: Vec<u8> = pixels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
-    let image = image::RgbImage::from_raw(frame.width, frame.height, rgb)
-        .context("pixel count does not match the image size")?;
-    let mut bytes = Cursor::new(Vec::new());
-    image
-        .write_to(&mut bytes, image::ImageFormat::Png)
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, frame.width, frame.height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+    for (keyword, value) in text {
+        encoder
+            .add_text_chunk(keyword.to_string(), value.clone())
+            .with_context(|| format!("PNG text {keyword}"))?;
+    }
+    for (keyword, value) in utf8_text {
+        encoder
+            .add_itxt_chunk(keyword.to_string(), value.clone())
+            .with_context(|| format!("PNG text {keyword}"))?;
+    }
+    let mut writer = encoder.write_header().context("cannot encode the PNG")?;
+    writer
+        .write_image_data(&rgb)
+        .and_then(|()| writer.finish())
         .context("cannot encode the PNG")?;
-    write_atomically(path, bytes.get_ref())
+    Ok(bytes)
 }
 
 /// The header attributes (name, text) of an EXR of `frame` rendered from `scene_toml`.
@@ -71,8 +99,22 @@ pub fn write_exr(
     scene_toml: &str,
     radiance: &[[f32; 4]],
 ) -> anyhow::Result<()> {
+    let attributes = header_attributes(frame, scene_toml);
+    write_atomically(path, &exr_bytes(frame, &attributes, radiance)?)
+}
+
+/// The HDR pixels as an EXR file's bytes: linear sRGB in cd/m^2 with `attributes`
+/// (name, text) in the header.
+pub fn exr_bytes(
+    frame: &Frame,
+    attributes: &[(&str, String)],
+    radiance: &[[f32; 4]],
+) -> anyhow::Result<Vec<u8>> {
     let to_srgb = SpectrumToColor::new(&RGB_WAVELENGTHS_NM)?;
     let width = frame.width as usize;
+    if radiance.len() != width * frame.height as usize {
+        bail!("pixel count does not match the image size");
+    }
     let srgb: Vec<[f32; 3]> = radiance
         .iter()
         .map(|p| {
@@ -81,19 +123,23 @@ pub fn write_exr(
                 .map(|v| v as f32)
         })
         .collect();
-    let mut attributes = LayerAttributes::named("atmos");
-    attributes.software_name = Some(Text::from("atmos"));
-    for (name, value) in header_attributes(frame, scene_toml) {
-        let text = Text::new_or_none(&value)
+    let mut layer_attributes = LayerAttributes::named("atmos");
+    layer_attributes.software_name = Some(Text::from("atmos"));
+    for (name, value) in attributes {
+        let text = Text::new_or_none(value)
             .with_context(|| format!("header attribute {name} has characters EXR cannot hold"))?;
-        attributes
+        layer_attributes
             .other
-            .insert(Text::from(name), AttributeValue::Text(text));
+            .insert(Text::from(*name), AttributeValue::Text(text));
     }
     let layer = Layer::new(
         (width, frame.height as usize),
-        attributes,
-        Encoding::FAST_LOSSLESS,
+        layer_attributes,
+        // Tiles in increasing order: the same image always gives the same bytes.
+        Encoding {
+            line_order: LineOrder::Increasing,
+            ..Encoding::FAST_LOSSLESS
+        },
         SpecificChannels::rgb(|p: Vec2<usize>| {
             let [r, g, b] = srgb[p.y() * width + p.x()];
             (r, g, b)
@@ -104,5 +150,5 @@ pub fn write_exr(
         .write()
         .to_buffered(&mut bytes)
         .context("cannot encode the EXR")?;
-    write_atomically(path, bytes.get_ref())
+    Ok(bytes.into_inner())
 }
