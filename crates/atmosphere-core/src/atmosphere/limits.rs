@@ -10,6 +10,11 @@ use crate::atmosphere::spectral::Spectral;
 /// of Riley's model run at 6.36e9 m.
 pub const MAX_BOTTOM_RADIUS_M: f64 = 1e10;
 
+/// Largest thickness of the atmosphere as a fraction of the ground radius, for every
+/// model: a shell no thicker than the planet's radius (Venus's air is 4 % of it); far
+/// beyond, a density profile's terms overflow over the thickness.
+pub const MAX_THICKNESS_RATIO: f64 = 1.0;
+
 /// Largest solar irradiance, W m^-2 nm^-1 at any visible wavelength: about 500 times the
 /// Earth's, the sun at 0.045 au. With the smallest sun disk the disk's luminance stays
 /// below 1e18 cd/m^2, and its square within f32 on the GPU.

@@ -18,8 +18,8 @@ use thiserror::Error;
 
 use crate::atmosphere::density::DensityProfile;
 use crate::atmosphere::limits::{
-    MAX_BOTTOM_RADIUS_M, MAX_COEFFICIENT_PER_M, MAX_IRRADIANCE_W_M2_NM, MIN_SUN_ANGULAR_RADIUS_RAD,
-    profile_past_f32, real_time_problem, spectrum_above,
+    MAX_BOTTOM_RADIUS_M, MAX_COEFFICIENT_PER_M, MAX_IRRADIANCE_W_M2_NM, MAX_THICKNESS_RATIO,
+    MIN_SUN_ANGULAR_RADIUS_RAD, profile_past_f32, real_time_problem, spectrum_above,
 };
 use crate::atmosphere::spectral::Spectral;
 use crate::atmosphere::text_file::{TOML_LIMITS, TextFileError, read_text};
@@ -199,6 +199,17 @@ impl Atmosphere {
                 ),
             );
         }
+        if self.thickness_m() > MAX_THICKNESS_RATIO * self.bottom_radius_m {
+            return invalid(
+                "top_radius_m",
+                format!(
+                    "{:e} m makes the atmosphere {:e} m thick, more than {MAX_THICKNESS_RATIO} x bottom_radius_m ({:e} m)",
+                    self.top_radius_m,
+                    self.thickness_m(),
+                    self.bottom_radius_m
+                ),
+            );
+        }
         let spectra = [
             ("rayleigh.scattering_per_m", &self.rayleigh.scattering_per_m),
             ("mie.scattering_per_m", &self.mie.scattering_per_m),
@@ -322,6 +333,9 @@ mod tests {
         };
         let mut a = earth.clone();
         a.top_radius_m = a.bottom_radius_m;
+        assert_eq!(field_of(a), "top_radius_m");
+        let mut a = earth.clone();
+        a.top_radius_m = f64::MAX;
         assert_eq!(field_of(a), "top_radius_m");
         let mut a = earth.clone();
         a.bottom_radius_m = f64::NAN;
