@@ -53,6 +53,10 @@ pub struct ViewArgs {
     /// With --frames: save the last displayed image to this PNG.
     #[arg(long, value_name = "FILE.png", requires = "frames")]
     pub screenshot: Option<PathBuf>,
+    /// Load this camera path (docs/camera-paths.md) into the "Camera path" section and
+    /// play it.
+    #[arg(long, value_name = "PATH.toml")]
+    pub path: Option<PathBuf>,
     /// Where and how to start, over the saved (or default) settings.
     #[command(flatten)]
     pub start: StartView,

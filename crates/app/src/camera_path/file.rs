@@ -137,6 +137,40 @@ pub struct PathFileOut<'a> {
     pub keyframe: &'a [KeyframeFile],
 }
 
+/// The top-level fields of a path file other than its keyframes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathHeader {
+    /// Frames per second.
+    pub fps: f64,
+    /// Image width and height, px.
+    pub size_px: (u32, u32),
+    pub log_altitude_base_m: f64,
+}
+
+impl Default for PathHeader {
+    /// 30 fps, 1280x720, base 0 m.
+    fn default() -> PathHeader {
+        PathHeader {
+            fps: 30.0,
+            size_px: (1280, 720),
+            log_altitude_base_m: 0.0,
+        }
+    }
+}
+
+/// A version-1 path file of `keyframes` as TOML text (read back by [`parse_file`]).
+pub fn write_file(header: &PathHeader, keyframes: &[KeyframeFile]) -> anyhow::Result<String> {
+    let out = PathFileOut {
+        version: VERSION,
+        fps: header.fps,
+        width: header.size_px.0,
+        height: header.size_px.1,
+        log_altitude_base_m: header.log_altitude_base_m,
+        keyframe: keyframes,
+    };
+    toml::to_string(&out).map_err(|e| anyhow!("camera path not written: {e}"))
+}
+
 /// `file:line:column` of byte `offset` of `text` (both counted from 1, columns in
 /// characters).
 pub fn location(origin: &Path, text: &str, offset: usize) -> String {
@@ -188,6 +222,42 @@ mod tests {
         let e = err("version = 1\n[[keyframe]]\ntime_s = 0\nmodel = \"venus\"\n");
         assert!(e.contains("p.toml:4:9") && e.contains("venus"), "{e}");
         assert!(err("").contains("version"));
+    }
+
+    #[test]
+    fn written_files_read_back_the_same() {
+        let header = PathHeader {
+            fps: 24.0,
+            size_px: (320, 200),
+            log_altitude_base_m: 2577.2,
+        };
+        let keyframes = vec![
+            KeyframeFile {
+                time_s: 0.0,
+                latitude_deg: Some(46.0),
+                longitude_deg: Some(7.8),
+                altitude_m: Some(5600.0),
+                utc: Some("2024-06-21T03:15:00.25Z".parse().unwrap()),
+                model: Some(ModelId::Hillaire),
+                set: Some(vec!["samples=32".into()]),
+                ..KeyframeFile::default()
+            },
+            KeyframeFile {
+                time_s: 0.1 + 0.2,
+                heading_deg: Some(1.0 / 3.0),
+                easing: Some(Easing::Smooth),
+                ..KeyframeFile::default()
+            },
+        ];
+        let text = write_file(&header, &keyframes).unwrap();
+        let file = parse_file(&text, Path::new("p.toml")).unwrap();
+        assert_eq!(file.version, VERSION);
+        assert_eq!(
+            (file.fps, file.width, file.height, file.log_altitude_base_m),
+            (Some(24.0), Some(320), Some(200), Some(2577.2))
+        );
+        let back: Vec<KeyframeFile> = file.keyframe.into_iter().map(|k| k.into_inner()).collect();
+        assert_eq!(back, keyframes);
     }
 
     #[test]

@@ -18,7 +18,7 @@ use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
 use render_wgpu::Frame;
 use render_wgpu::frame::{MAX_SIDE_PX, TerrainOptions};
 
-use crate::camera_path::file::{KeyframeFile, PathFileOut, location, parse_file};
+use crate::camera_path::file::{KeyframeFile, PathHeader, location, parse_file, write_file};
 use crate::camera_path::keyframe::{
     Key, aim_at, local_orientation, place_rotation, resolve, within,
 };
@@ -153,6 +153,32 @@ impl CameraPath {
             keys,
             atmospheres,
         })
+    }
+
+    /// A path of keyframes as written in a file with `header` (each checked as [`parse`]
+    /// checks a file; `origin` names it in errors and resolves relative atmosphere files).
+    ///
+    /// [`parse`]: CameraPath::parse
+    pub fn from_keyframes(
+        header: &PathHeader,
+        keyframes: &[KeyframeFile],
+        origin: &Path,
+    ) -> anyhow::Result<CameraPath> {
+        CameraPath::parse(&write_file(header, keyframes)?, origin)
+    }
+
+    /// The keyframes as written (atmosphere files as resolved).
+    pub fn keyframes(&self) -> &[KeyframeFile] {
+        &self.written
+    }
+
+    /// The frame rate, image size and log altitude base.
+    pub fn header(&self) -> PathHeader {
+        PathHeader {
+            fps: self.fps,
+            size_px: self.size_px,
+            log_altitude_base_m: self.log_altitude_base_m,
+        }
     }
 
     /// Time of the last keyframe, s (the first is at 0 or later; frames start at time 0).
@@ -300,15 +326,7 @@ impl CameraPath {
 
     /// The path as TOML (for the EXR header of each frame, so a frame says what made it).
     pub fn to_toml(&self) -> String {
-        let out = PathFileOut {
-            version: file::VERSION,
-            fps: self.fps,
-            width: self.size_px.0,
-            height: self.size_px.1,
-            log_altitude_base_m: self.log_altitude_base_m,
-            keyframe: &self.written,
-        };
-        toml::to_string(&out).unwrap_or_else(|e| format!("# camera path not written: {e}\n"))
+        write_file(&self.header(), &self.written).unwrap_or_else(|e| format!("# {e}\n"))
     }
 }
 

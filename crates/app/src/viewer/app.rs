@@ -18,6 +18,7 @@ use crate::cli::ViewArgs;
 use crate::viewer::exposure::{AutoExposure, ExposureMode};
 use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
 use crate::viewer::panel::{self, Stats};
+use crate::viewer::path_editor::PathEditor;
 use crate::viewer::screenshot;
 use crate::viewer::settings::ViewerSettings;
 use crate::viewer::start_view;
@@ -43,6 +44,8 @@ pub struct ViewerApp {
     settings: ViewerSettings,
     /// The live camera (with its velocity); `settings` holds its position and view.
     flight: FlightState,
+    /// The camera path being edited or previewed.
+    path: PathEditor,
     renderer: Renderer,
     render_state: egui_wgpu::RenderState,
     texture: Option<egui::TextureId>,
@@ -100,7 +103,14 @@ impl ViewerApp {
         renderer.set_earth_data(args.earth_data.source()?);
         // Batch screenshots (`--frames`) show complete tables in every frame.
         renderer.set_progressive(args.frames.is_none());
+        let mut path = PathEditor::default();
+        if let Some(file) = &args.path {
+            path.load(file)?;
+            path.file = file.display().to_string();
+            path.play_pause();
+        }
         Ok(ViewerApp {
+            path,
             flight: settings.flight(),
             settings,
             renderer,
@@ -266,7 +276,13 @@ impl eframe::App for ViewerApp {
         let actions = egui::Panel::left("settings")
             .default_size(320.0)
             .show(ui, |ui| {
-                panel::show(ui, &mut self.settings, &stats, &self.message)
+                panel::show(
+                    ui,
+                    &mut self.settings,
+                    &mut self.path,
+                    &stats,
+                    &self.message,
+                )
             })
             .inner;
         if self.settings.camera_position_m != before.camera_position_m
@@ -298,16 +314,18 @@ impl eframe::App for ViewerApp {
             self.settings.set_flight(&self.flight);
             let moving = self.flight.velocity_m_s.length() > 1e-3 || response.dragged();
             // The time-lapse and the exposure's adaptation animate while they change.
-            let mut animating = self.settings.sun_clock.tick(dt);
+            let mut animating = self.settings.sun_clock.tick(dt) | self.path.tick(dt);
             if self.settings.exposure_mode == ExposureMode::Auto {
                 animating |= self
                     .auto_exposure
                     .apply(dt, &mut self.settings.exposure_ev100);
             }
             let (width, height) = render_size(size, ctx.pixels_per_point(), moving);
+            // A camera path's frame replaces the live view's while it plays or is scrubbed.
             let rendered = self
-                .settings
-                .frame(width, height)
+                .path
+                .preview_frame(width, height)
+                .unwrap_or_else(|| self.settings.frame(width, height))
                 .and_then(|frame| self.render(frame));
             if let Err(e) = rendered {
                 self.message = format!("cannot render: {e:#}");

@@ -7,13 +7,18 @@
 //! rendering, the image), [`screenshot`] (PNG and EXR files of the view), [`flight`]
 //! (the flight controller), [`sun_clock`] (the sun by angles or by UTC date and time, and
 //! the time-lapse), [`exposure`] (manual and automatic exposure) and [`default_view`]
-//! (the view a first start and "reset view" show).
+//! (the view a first start and "reset view" show); [`path_capture`] (a camera-path
+//! keyframe of the view), [`path_editor`] (the keyframes, path files and playback) and
+//! [`path_panel`] (the panel's "Camera path" section).
 
 pub mod app;
 pub mod default_view;
 pub mod exposure;
 pub mod flight;
 pub mod panel;
+pub mod path_capture;
+pub mod path_editor;
+pub mod path_panel;
 pub mod screenshot;
 pub mod settings;
 pub mod start_view;
@@ -36,6 +41,9 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     // Bad flags are named before any window opens.
     start_view::apply(&args.start, &mut settings::ViewerSettings::default())?;
     args.earth_data.source()?;
+    if let Some(path) = &args.path {
+        crate::camera_path::CameraPath::load(path)?;
+    }
     let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
         .iter()
         .any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));

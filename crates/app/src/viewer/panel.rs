@@ -1,5 +1,5 @@
-//! The side panel: Sun, Camera, Atmosphere, Model, Image and Stats, every control with a
-//! tooltip. It edits [`ViewerSettings`] (whose ranges keep every value valid) and asks
+//! The side panel: Sun, Camera, Atmosphere, Model, Image, Camera path and Stats, every
+//! control with a tooltip. It edits [`ViewerSettings`] (whose ranges keep every value valid) and asks
 //! the app for what it cannot do itself (a screenshot).
 
 use eframe::egui;
@@ -11,6 +11,8 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::sun_position::days_in_month;
 
 use crate::viewer::exposure::ExposureMode;
+use crate::viewer::path_editor::PathEditor;
+use crate::viewer::path_panel;
 use crate::viewer::settings::{
     ALTITUDE_RANGE_M, GO_TO, PRESETS, ViewerSettings, altitude_to_slider, slider_to_altitude,
 };
@@ -38,6 +40,7 @@ pub struct Actions {
 pub fn show(
     ui: &mut egui::Ui,
     settings: &mut ViewerSettings,
+    path: &mut PathEditor,
     stats: &Stats,
     message: &str,
 ) -> Actions {
@@ -49,6 +52,7 @@ pub fn show(
         terrain(ui, settings);
         model(ui, settings);
         actions.screenshot = image(ui, settings);
+        path_panel::show(ui, path, settings);
         stats_section(ui, stats);
         if !message.is_empty() {
             ui.separator();
