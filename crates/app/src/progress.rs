@@ -1,8 +1,9 @@
 //! Progress of long work on stderr: a bar on a terminal, else a line per tenth of the
-//! work when there is more than a little of it.
+//! work, with the time left at the pace so far, when there is more than a little of it.
 
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -18,6 +19,7 @@ pub enum Progress {
         unit: &'static str,
         done: AtomicU64,
         total: u64,
+        start: Instant,
     },
     Quiet,
 }
@@ -38,6 +40,7 @@ impl Progress {
                 unit,
                 done: AtomicU64::new(0),
                 total,
+                start: Instant::now(),
             }
         } else {
             Progress::Quiet
@@ -53,19 +56,40 @@ impl Progress {
                 unit,
                 done,
                 total,
+                start,
             } => {
                 let done = done.fetch_add(1, Ordering::Relaxed) + 1;
                 if done * 10 / total != (done - 1) * 10 / total {
-                    eprintln!("{task}: {done}/{total} {unit}");
+                    let left = time_left(start.elapsed(), done, *total);
+                    eprintln!("{task}: {done}/{total} {unit}, {left:.0?} left");
                 }
             }
             Progress::Quiet => {}
         }
     }
 
+    /// Ends the bar (lines need no ending).
     pub fn finish(&self) {
         if let Progress::Bar(bar) = self {
             bar.finish();
         }
+    }
+}
+
+/// The time the remaining `total - done` items take at the pace of the first `done`.
+fn time_left(elapsed: Duration, done: u64, total: u64) -> Duration {
+    let per_item = elapsed.as_secs_f64() / done.max(1) as f64;
+    Duration::from_secs_f64(per_item * total.saturating_sub(done) as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_time_left_follows_the_pace_so_far() {
+        let left = time_left(Duration::from_secs(30), 10, 40);
+        assert_eq!(left, Duration::from_secs(90));
+        assert_eq!(time_left(Duration::from_secs(5), 4, 4), Duration::ZERO);
     }
 }
