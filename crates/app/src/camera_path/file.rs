@@ -113,6 +113,30 @@ pub struct KeyframeFile {
     pub easing: Option<Easing>,
 }
 
+/// The `[gltf]` table: the camera from a glTF file's animated camera node, its scene
+/// placed on the planet (docs/camera-paths.md, "glTF camera").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GltfFile {
+    /// The .gltf or .glb file, relative to the path file.
+    pub file: String,
+    /// The camera node's name (default: the file's only camera node).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub camera: Option<String>,
+    /// The animation's name (default: the only one that moves the camera).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub animation: Option<String>,
+    /// The frame rate the animation was made at (the path's, unless it gives its own).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fps: Option<f64>,
+    /// Where the scene's origin is on the planet, and where its -z points.
+    pub latitude_deg: f64,
+    pub longitude_deg: f64,
+    pub altitude_m: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heading_deg: Option<f64>,
+}
+
 /// The whole file as written, each keyframe with where it stands in the text.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -122,6 +146,7 @@ pub struct PathFile {
     pub width: Option<u32>,
     pub height: Option<u32>,
     pub log_altitude_base_m: Option<f64>,
+    pub gltf: Option<Spanned<GltfFile>>,
     #[serde(default)]
     pub keyframe: Vec<Spanned<KeyframeFile>>,
 }
@@ -134,6 +159,8 @@ pub struct PathFileOut<'a> {
     pub width: u32,
     pub height: u32,
     pub log_altitude_base_m: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gltf: Option<&'a GltfFile>,
     pub keyframe: &'a [KeyframeFile],
 }
 
