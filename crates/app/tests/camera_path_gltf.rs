@@ -216,6 +216,10 @@ fn a_gltf_camera_moves_and_turns_as_its_keyframes_say() {
     let again = CameraPath::parse(&path.to_toml(), Path::new("again.toml")).unwrap();
     assert!(path.to_toml().contains("[gltf]"), "{}", path.to_toml());
     check_flyby(&again, 45.0);
+    // A changed glTF file changes the path's TOML, and so the frames' fingerprints.
+    std::fs::write(dir.path().join("cam.gltf"), data_uri_gltf("STEP")).unwrap();
+    let changed = CameraPath::load(&file).unwrap().to_toml();
+    assert_ne!(changed, path.to_toml());
 }
 
 #[test]

@@ -124,6 +124,8 @@ pub struct GltfCamera {
     pub up: DVec3,
     /// The placement's altitude above the ground sphere, m.
     pub altitude_m: f64,
+    /// FNV-1a 64 of the file and its buffers: what the frames' fingerprints see of it.
+    pub digest: u64,
     /// The rotation from glTF scene axes to planet axes.
     scene_to_planet: DQuat,
     /// From the scene's root to the camera node.
@@ -150,13 +152,14 @@ impl GltfCamera {
             _ => PathBuf::from(&table.file),
         };
         let named = || format!("glTF {}", file.display());
-        let (fov_deg, duration_s, chain) = read(&file, table).with_context(named)?;
+        let (fov_deg, duration_s, chain, digest) = read(&file, table).with_context(named)?;
         Ok(GltfCamera {
             fov_deg,
             duration_s,
             fps: table.fps,
             up: geo_grid::direction(lat.to_radians(), lon.to_radians()),
             altitude_m,
+            digest,
             scene_to_planet: location_rotation(lat, lon) * scene_to_local(heading),
             chain,
             file,
@@ -185,8 +188,18 @@ impl GltfCamera {
     }
 }
 
-/// The camera's field of view, the animation's duration and the node chain of `file`.
-fn read(file: &Path, table: &GltfFile) -> anyhow::Result<(f64, f64, Vec<NodeMotion>)> {
+/// FNV-1a 64 of byte slices one after another.
+fn fnv1a(parts: &[&[u8]]) -> u64 {
+    let mut hash = 0xcbf2_9ce4_8422_2325u64;
+    for &byte in parts.iter().flat_map(|p| p.iter()) {
+        hash = (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
+    }
+    hash
+}
+
+/// The camera's field of view, the animation's duration, the node chain of `file` and
+/// the digest of its bytes.
+fn read(file: &Path, table: &GltfFile) -> anyhow::Result<(f64, f64, Vec<NodeMotion>, u64)> {
     let size = std::fs::metadata(file)?.len();
     if size > MAX_FILE_BYTES {
         bail!("{size} bytes; at most {MAX_FILE_BYTES}");
@@ -200,6 +213,9 @@ fn read(file: &Path, table: &GltfFile) -> anyhow::Result<(f64, f64, Vec<NodeMoti
     })?;
     let document = &gltf.document;
     let buffers = gltf::import_buffers(document, file.parent(), gltf.blob.clone())?;
+    let mut parts: Vec<&[u8]> = vec![&bytes];
+    parts.extend(buffers.iter().map(|b| b.0.as_slice()));
+    let digest = fnv1a(&parts);
     let node_name = |n: &gltf::Node| {
         n.name()
             .map_or_else(|| format!("node {}", n.index()), |s| format!("node {s:?}"))
@@ -336,7 +352,7 @@ fn read(file: &Path, table: &GltfFile) -> anyhow::Result<(f64, f64, Vec<NodeMoti
         duration_s = duration_s.max(*track.times.last().unwrap_or(&0.0));
         motions[at].tracks[slot] = Some(track);
     }
-    Ok((fov_deg, duration_s, motions))
+    Ok((fov_deg, duration_s, motions, digest))
 }
 
 /// A channel's sampler read and checked.

@@ -351,7 +351,16 @@ impl CameraPath {
             gltf: self.gltf.as_ref().map(|(table, _)| table),
             keyframe: &self.written,
         };
-        toml::to_string(&out).unwrap_or_else(|e| format!("# camera path not written: {e}\n"))
+        let text =
+            toml::to_string(&out).unwrap_or_else(|e| format!("# camera path not written: {e}\n"));
+        // The glTF file's contents, so that frames of a changed file differ in fingerprint.
+        match &self.gltf {
+            Some((_, g)) => format!(
+                "{text}# [gltf] file and buffers: FNV-1a 64 {:016x}\n",
+                g.digest
+            ),
+            None => text,
+        }
     }
 }
 
