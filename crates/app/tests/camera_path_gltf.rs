@@ -357,3 +357,40 @@ fn the_shipped_gltf_flyby_reads() {
         last = Some(frame.camera_position_m);
     }
 }
+
+#[test]
+fn a_cubic_spline_follows_its_tangents() {
+    // Times 0 and 2 s; in-tangent, value, out-tangent per time: 0 to 100 m east, at rest
+    // at both ends, so the camera follows smoothstep: 15.625 m at 0.5 s, 50 m at 1 s.
+    let mut floats: Vec<f32> = vec![0.0, 2.0];
+    for value in [0.0, 100.0] {
+        floats.extend([0.0, 0.0, 0.0, value, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    }
+    let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    let gltf = format!(
+        r#"{{"asset": {{"version": "2.0"}},
+  "nodes": [{{"name": "cam", "camera": 0}}],
+  "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.8, "znear": 0.1}}}}],
+  "buffers": [{{"byteLength": 80, "uri": "data:application/octet-stream;base64,{}"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": 8}}, {{"buffer": 0, "byteOffset": 8, "byteLength": 72}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [2]}},
+    {{"bufferView": 1, "componentType": 5126, "count": 6, "type": "VEC3"}}
+  ],
+  "animations": [{{"channels": [{{"sampler": 0, "target": {{"node": 0, "path": "translation"}}}}],
+    "samplers": [{{"input": 0, "output": 1, "interpolation": "CUBICSPLINE"}}]}}]}}"#,
+        base64(&bytes)
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = CameraPath::load(&write(dir.path(), "cam.gltf", gltf.as_bytes(), "")).unwrap();
+    let (east, _, up) = enu();
+    let origin = up * (6_360_000.0 + ALTITUDE_M);
+    for (t, moved_m) in [(0.0, 0.0), (0.5, 15.625), (1.0, 50.0), (2.0, 100.0)] {
+        let frame = path.frame_at(t, 32, 18).unwrap();
+        near(
+            frame.camera_position_m - origin,
+            east * moved_m,
+            &format!("at {t} s"),
+        );
+    }
+}
