@@ -113,6 +113,30 @@ pub struct KeyframeFile {
     pub easing: Option<Easing>,
 }
 
+/// The `[gltf]` table: the camera from a glTF file's animated camera node, its scene
+/// placed on the planet (docs/camera-paths.md, "glTF camera").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GltfFile {
+    /// The .gltf or .glb file, relative to the path file.
+    pub file: String,
+    /// The camera node's name (default: the file's only camera node).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub camera: Option<String>,
+    /// The animation's name (default: the only one that moves the camera).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub animation: Option<String>,
+    /// The frame rate the animation was made at (the path's, unless it gives its own).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fps: Option<f64>,
+    /// Where the scene's origin is on the planet, and where its -z points.
+    pub latitude_deg: f64,
+    pub longitude_deg: f64,
+    pub altitude_m: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heading_deg: Option<f64>,
+}
+
 /// The whole file as written, each keyframe with where it stands in the text.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -122,6 +146,7 @@ pub struct PathFile {
     pub width: Option<u32>,
     pub height: Option<u32>,
     pub log_altitude_base_m: Option<f64>,
+    pub gltf: Option<Spanned<GltfFile>>,
     #[serde(default)]
     pub keyframe: Vec<Spanned<KeyframeFile>>,
 }
@@ -134,6 +159,8 @@ pub struct PathFileOut<'a> {
     pub width: u32,
     pub height: u32,
     pub log_altitude_base_m: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gltf: Option<&'a GltfFile>,
     pub keyframe: &'a [KeyframeFile],
 }
 
@@ -158,14 +185,20 @@ impl Default for PathHeader {
     }
 }
 
-/// A version-1 path file of `keyframes` as TOML text (read back by [`parse_file`]).
-pub fn write_file(header: &PathHeader, keyframes: &[KeyframeFile]) -> anyhow::Result<String> {
+/// A version-1 path file of `keyframes` (and the camera from `gltf`, if any) as TOML
+/// text (read back by [`parse_file`]).
+pub fn write_file(
+    header: &PathHeader,
+    gltf: Option<&GltfFile>,
+    keyframes: &[KeyframeFile],
+) -> anyhow::Result<String> {
     let out = PathFileOut {
         version: VERSION,
         fps: header.fps,
         width: header.size_px.0,
         height: header.size_px.1,
         log_altitude_base_m: header.log_altitude_base_m,
+        gltf,
         keyframe: keyframes,
     };
     toml::to_string(&out).map_err(|e| anyhow!("camera path not written: {e}"))
@@ -249,7 +282,7 @@ mod tests {
                 ..KeyframeFile::default()
             },
         ];
-        let text = write_file(&header, &keyframes).unwrap();
+        let text = write_file(&header, None, &keyframes).unwrap();
         let file = parse_file(&text, Path::new("p.toml")).unwrap();
         assert_eq!(file.version, VERSION);
         assert_eq!(

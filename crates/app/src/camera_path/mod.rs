@@ -2,6 +2,7 @@
 //! at any time between them, every field interpolated.
 
 pub mod file;
+pub mod gltf_camera;
 pub mod keyframe;
 pub mod orientation;
 pub mod position;
@@ -18,7 +19,10 @@ use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
 use render_wgpu::Frame;
 use render_wgpu::frame::{MAX_SIDE_PX, TerrainOptions};
 
-use crate::camera_path::file::{KeyframeFile, PathHeader, location, parse_file, write_file};
+use crate::camera_path::file::{
+    GltfFile, KeyframeFile, PathHeader, location, parse_file, write_file,
+};
+use crate::camera_path::gltf_camera::GltfCamera;
 use crate::camera_path::keyframe::{
     Key, aim_at, local_orientation, place_rotation, resolve, within,
 };
@@ -45,6 +49,8 @@ pub struct CameraPath {
     atmospheres: BTreeMap<String, Atmosphere>,
     position: PositionSpline,
     orientation: OrientationSpline,
+    /// The camera from a glTF animation, if the path has a `[gltf]` table.
+    gltf: Option<(GltfFile, GltfCamera)>,
 }
 
 /// A keyframe's camera, in the form frames are built from.
@@ -65,7 +71,12 @@ impl CameraPath {
     /// The same from text (`origin` names it in errors and resolves relative files).
     pub fn parse(text: &str, origin: &Path) -> anyhow::Result<CameraPath> {
         let file = parse_file(text, origin)?;
-        let fps = within("fps", file.fps.unwrap_or(DEFAULT_FPS), FPS)
+        let gltf = match &file.gltf {
+            Some(table) => Some(gltf_camera(table, &file.keyframe, origin, text)?),
+            None => None,
+        };
+        let gltf_fps = gltf.as_ref().and_then(|(_, g)| g.fps);
+        let fps = within("fps", file.fps.or(gltf_fps).unwrap_or(DEFAULT_FPS), FPS)
             .map_err(|e| anyhow!("camera path {}: {e}", origin.display()))?;
         let size_px = (
             file.width.unwrap_or(DEFAULT_SIZE_PX.0),
@@ -89,15 +100,26 @@ impl CameraPath {
         let mut atmospheres = BTreeMap::new();
         let mut keys: Vec<Key> = Vec::with_capacity(file.keyframe.len());
         for (n, spanned) in file.keyframe.iter().enumerate() {
-            let key =
-                resolve(spanned.get_ref(), keys.last(), origin, &mut atmospheres).map_err(|e| {
-                    anyhow!(
-                        "camera path {}: keyframe {} (time_s {}): {e:#}",
-                        location(origin, text, spanned.span().start),
-                        n + 1,
-                        spanned.get_ref().time_s
-                    )
-                })?;
+            // With a glTF camera the first keyframe is placed at the scene's origin.
+            let placed = match &gltf {
+                Some((table, camera)) if n == 0 => Some(KeyframeFile {
+                    latitude_deg: Some(table.latitude_deg),
+                    longitude_deg: Some(table.longitude_deg),
+                    altitude_m: Some(table.altitude_m),
+                    fov_deg: Some(camera.fov_deg),
+                    ..spanned.get_ref().clone()
+                }),
+                _ => None,
+            };
+            let written = placed.as_ref().unwrap_or(spanned.get_ref());
+            let key = resolve(written, keys.last(), origin, &mut atmospheres).map_err(|e| {
+                anyhow!(
+                    "camera path {}: keyframe {} (time_s {}): {e:#}",
+                    location(origin, text, spanned.span().start),
+                    n + 1,
+                    spanned.get_ref().time_s
+                )
+            })?;
             keys.push(key);
         }
         for (n, pair) in keys.windows(2).enumerate() {
@@ -152,6 +174,11 @@ impl CameraPath {
             orientation: OrientationSpline::new(&times, &rotations),
             keys,
             atmospheres,
+            // Written back with the glTF file as resolved, as atmosphere files are.
+            gltf: gltf.map(|(table, g)| {
+                let file = g.file.display().to_string();
+                (GltfFile { file, ..table }, g)
+            }),
         })
     }
 
@@ -164,7 +191,7 @@ impl CameraPath {
         keyframes: &[KeyframeFile],
         origin: &Path,
     ) -> anyhow::Result<CameraPath> {
-        CameraPath::parse(&write_file(header, keyframes)?, origin)
+        CameraPath::parse(&write_file(header, None, keyframes)?, origin)
     }
 
     /// The keyframes as written (atmosphere files as resolved).
@@ -183,7 +210,10 @@ impl CameraPath {
 
     /// Time of the last keyframe, s (the first is at 0 or later; frames start at time 0).
     pub fn duration_s(&self) -> f64 {
-        self.keys.last().map_or(0.0, |k| k.time_s)
+        let keys = self.keys.last().map_or(0.0, |k| k.time_s);
+        self.gltf
+            .as_ref()
+            .map_or(keys, |(_, g)| keys.max(g.duration_s))
     }
 
     /// The path file's frame rate (default 30 fps).
@@ -223,13 +253,23 @@ impl CameraPath {
             .partition_point(|k| k.time_s <= t)
             .saturating_sub(1);
         let key = &self.keys[i];
-        let frame = if i + 1 == self.keys.len() || key.time_s == t {
+        let pose = self.gltf.as_ref().map(|(_, g)| {
+            g.pose(
+                time_s.clamp(0.0, self.duration_s()),
+                self.atmospheres[&key.atmosphere].bottom_radius_m,
+            )
+        });
+        // The sun by angles is at the camera: the glTF camera's place when it has one.
+        let sun_place = |up: glam::DVec3| {
+            place_rotation(pose.and_then(|(p, _)| p.try_normalize()).unwrap_or(up))
+        };
+        let mut frame = if i + 1 == self.keys.len() || key.time_s == t {
             let camera = Camera {
                 up: key.up,
                 altitude_m: key.altitude_m,
                 local_orientation: key.local_orientation,
             };
-            let sun = sun::direction(key.sun, place_rotation(key.up))?;
+            let sun = sun::direction(key.sun, sun_place(key.up))?;
             self.build(key, &camera, sun, Blend::none(key), width, height)?
         } else {
             let next = &self.keys[i + 1];
@@ -268,7 +308,7 @@ impl CameraPath {
                 (key.sun, place_rotation(key.up)),
                 (next.sun, place_rotation(next.up)),
                 (h, e),
-                place_rotation(up),
+                sun_place(up),
             )?;
             self.build(
                 key,
@@ -279,6 +319,10 @@ impl CameraPath {
                 height,
             )?
         };
+        if let Some((position_m, orientation)) = pose {
+            frame.camera_position_m = position_m;
+            frame.orientation = orientation;
+        }
         frame
             .validate()
             .with_context(|| format!("camera path {} at {t} s", self.origin.display()))?;
@@ -326,7 +370,17 @@ impl CameraPath {
 
     /// The path as TOML (for the EXR header of each frame, so a frame says what made it).
     pub fn to_toml(&self) -> String {
-        write_file(&self.header(), &self.written).unwrap_or_else(|e| format!("# {e}\n"))
+        let gltf = self.gltf.as_ref().map(|(table, _)| table);
+        let text =
+            write_file(&self.header(), gltf, &self.written).unwrap_or_else(|e| format!("# {e}\n"));
+        // The glTF file's contents, so that frames of a changed file differ in fingerprint.
+        match &self.gltf {
+            Some((_, g)) => format!(
+                "{text}# [gltf] file and buffers: FNV-1a 64 {:016x}\n",
+                g.digest
+            ),
+            None => text,
+        }
     }
 }
 
@@ -366,4 +420,59 @@ impl Blend {
             exaggeration: lerp(a.exaggeration, b.exaggeration),
         }
     }
+}
+
+/// Keyframe fields that place or aim the camera: a glTF camera gives them all.
+const CAMERA_FIELDS: [&str; 10] = [
+    "latitude_deg",
+    "longitude_deg",
+    "altitude_m",
+    "position_m",
+    "heading_deg",
+    "pitch_deg",
+    "roll_deg",
+    "look_at",
+    "look_at_m",
+    "fov_deg",
+];
+
+/// The `[gltf]` table's camera, read and checked, and no keyframe placing or aiming the
+/// camera besides it; errors name the path file's line and the glTF file.
+fn gltf_camera(
+    table: &toml::Spanned<GltfFile>,
+    keyframes: &[toml::Spanned<KeyframeFile>],
+    origin: &Path,
+    text: &str,
+) -> anyhow::Result<(GltfFile, GltfCamera)> {
+    let at = location(origin, text, table.span().start);
+    let camera = GltfCamera::load(table.get_ref(), origin)
+        .map_err(|e| anyhow!("camera path {at}: [gltf]: {e:#}"))?;
+    if let Some(fps) = camera.fps {
+        within("[gltf] fps", fps, FPS).map_err(|e| anyhow!("camera path {at}: {e}"))?;
+    }
+    for (n, spanned) in keyframes.iter().enumerate() {
+        let k = spanned.get_ref();
+        let given = [
+            k.latitude_deg.is_some(),
+            k.longitude_deg.is_some(),
+            k.altitude_m.is_some(),
+            k.position_m.is_some(),
+            k.heading_deg.is_some(),
+            k.pitch_deg.is_some(),
+            k.roll_deg.is_some(),
+            k.look_at.is_some(),
+            k.look_at_m.is_some(),
+            k.fov_deg.is_some(),
+        ];
+        if let Some(field) = given.iter().position(|&g| g) {
+            bail!(
+                "camera path {}: keyframe {} (time_s {}): {} is given by the [gltf] camera; a keyframe of a glTF path sets the sun, atmosphere, model, exposure and terrain",
+                location(origin, text, spanned.span().start),
+                n + 1,
+                k.time_s,
+                CAMERA_FIELDS[field]
+            );
+        }
+    }
+    Ok((table.get_ref().clone(), camera))
 }
