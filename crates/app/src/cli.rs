@@ -197,6 +197,10 @@ pub struct RecordArgs {
     /// [default: ATMOS_SHARD_COUNT].
     #[arg(long, value_name = "N")]
     pub shard_count: Option<u64>,
+    /// Also a video of the whole path from the PNG frames, by ffmpeg (.mp4, .mov, .mkv
+    /// or .webm), once every frame is recorded.
+    #[arg(long, value_name = "FILE")]
+    pub video: Option<PathBuf>,
     /// Where the terrain's maps come from.
     #[command(flatten)]
     pub earth_data: EarthDataFlag,

@@ -283,3 +283,78 @@ fn the_shard_of_a_kubernetes_job_needs_its_count() {
         stderr(&output)
     );
 }
+
+/// `--video`: refused before any frame for a file type ffmpeg is not asked for, for
+/// EXR-only frames and where ffmpeg is missing; with ffmpeg, the run that completes the
+/// frames (here the second shard) makes the video, of every frame at the path's size.
+#[test]
+fn a_video_is_made_once_every_frame_is_recorded() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write_path(dir.path(), "path.toml", PATH);
+    let out = dir.path().join("out");
+    let video = dir.path().join("path.mp4");
+    let run = |extra: &[&str]| {
+        let args = [&[s(&path), "--out", s(&out), "--video", s(&video)], extra].concat();
+        record(&args, &[])
+    };
+    let gif = dir.path().join("path.gif");
+    atmos_fails_with(
+        &["record", s(&path), "--out", s(&out), "--video", s(&gif)],
+        "the file must end in .mp4, .mov, .mkv, .webm",
+    );
+    let output = run(&["--format", "exr"]);
+    assert!(
+        stderr(&output).contains("--format png or both"),
+        "{}",
+        stderr(&output)
+    );
+    let ffmpeg = Command::new("ffmpeg")
+        .arg("-version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ffmpeg {
+        let output = run(&[]);
+        assert!(!output.status.success());
+        assert!(
+            stderr(&output).contains("--video needs ffmpeg on the PATH"),
+            "{}",
+            stderr(&output)
+        );
+        assert!(
+            !out.exists(),
+            "frames were rendered for a video that cannot be made"
+        );
+        return;
+    }
+    let first = run(&["--shard", "0/2"]);
+    if skipped_without_adapter(&first) {
+        return;
+    }
+    summary(&first);
+    assert!(
+        stderr(&first)
+            .contains("video: not made yet, 3 of 5 frames are not whole (the first is 2)"),
+        "{}",
+        stderr(&first)
+    );
+    assert!(!video.exists());
+    let second = run(&["--shard", "1/2"]);
+    summary(&second);
+    assert!(
+        stderr(&second).contains("video: wrote"),
+        "{}",
+        stderr(&second)
+    );
+    let probe = Command::new("ffprobe")
+        .args(["-v", "error", "-count_frames", "-select_streams", "v:0"])
+        .args([
+            "-show_entries",
+            "stream=width,height,nb_read_frames",
+            "-of",
+            "csv=p=0",
+        ])
+        .arg(&video)
+        .output()
+        .expect("ffprobe comes with ffmpeg");
+    assert_eq!(String::from_utf8_lossy(&probe.stdout).trim(), "32,18,5");
+}

@@ -12,6 +12,7 @@ pub mod naming;
 pub mod out_folder;
 pub mod shard;
 pub mod verify;
+pub mod video;
 
 use std::ops::Range;
 use std::time::Instant;
@@ -76,6 +77,9 @@ pub fn run(args: &RecordArgs) -> anyhow::Result<()> {
     let shard = Shard::choose(flag, args.shard_count, |name| std::env::var(name).ok())?;
     let frames = shard.part(selected.clone());
     let kinds = args.format.kinds();
+    if let Some(video) = &args.video {
+        video::check(video, args.format)?;
+    }
     out_folder::prepare(&args.out, &frame_path(&args.out, frames.start, kinds[0]))?;
     let path_toml = path.to_toml();
     let inputs = |index| FrameInputs {
@@ -104,6 +108,10 @@ pub fn run(args: &RecordArgs) -> anyhow::Result<()> {
         }
         progress.finish();
     }
+    let video = match &args.video {
+        Some(video) => Some(make_video(&args.out, count, &inputs, video)?),
+        None => None,
+    };
     eprintln!(
         "{}",
         summary(
@@ -115,7 +123,37 @@ pub fn run(args: &RecordArgs) -> anyhow::Result<()> {
             shard
         ) + &format!("; the path has {count}; into {}", args.out.display())
     );
+    if let Some(line) = video {
+        eprintln!("{line}");
+    }
     Ok(())
+}
+
+/// Assembles `video` when all `count` PNG frames of the path are whole in `dir`; says
+/// what it wrote, or which frames it still waits for (another shard's, say).
+fn make_video<'a>(
+    dir: &std::path::Path,
+    count: u64,
+    inputs: &impl Fn(u64) -> FrameInputs<'a>,
+    video: &std::path::Path,
+) -> anyhow::Result<String> {
+    let (width, height) = (inputs(0).width, inputs(0).height);
+    let missing: Vec<u64> = (0..count)
+        .filter(|&index| {
+            let print = inputs(index).fingerprint(FileKind::Png);
+            let file = frame_path(dir, index, FileKind::Png);
+            verify(&file, FileKind::Png, width, height, &print) != Verdict::Complete
+        })
+        .collect();
+    if let Some(first) = missing.first() {
+        return Ok(format!(
+            "video: not made yet, {} of {count} frames are not whole (the first is {first}); \
+             run again with --video once every shard is done",
+            missing.len()
+        ));
+    }
+    video::assemble(dir, inputs(0).fps, video)?;
+    Ok(format!("video: wrote {}", video.display()))
 }
 
 /// The frames of `frames` whose files in `dir` are not all complete, with the kinds to
