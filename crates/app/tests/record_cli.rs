@@ -358,3 +358,44 @@ fn a_video_is_made_once_every_frame_is_recorded() {
         .expect("ffprobe comes with ffmpeg");
     assert_eq!(String::from_utf8_lossy(&probe.stdout).trim(), "32,18,5");
 }
+
+/// `kill -9` in the middle of a run loses at most the frame in progress: the run resumed
+/// keeps every frame written before the kill and ends equal to an uninterrupted run.
+#[test]
+fn a_run_killed_mid_way_resumes_to_the_uninterrupted_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write_path(dir.path(), "path.toml", PATH);
+    let (full, killed) = (dir.path().join("full"), dir.path().join("killed"));
+    // 21 frames, so that the kill falls mid-way.
+    let args = |out: &Path| [s(&path), "--out", s(out), "--fps", "20"].map(String::from);
+    let output = record(&args(&full).each_ref().map(String::as_str), &[]);
+    if skipped_without_adapter(&output) {
+        return;
+    }
+    summary(&output);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_atmos"))
+        .arg("record")
+        .args(args(&killed))
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("the atmos binary runs");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while !killed.join("frame_000003.png").exists() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    // Frames are renamed into place whole: every PNG there is complete.
+    let kept = files(&killed)
+        .iter()
+        .filter(|(name, _)| name.ends_with(".png"))
+        .count();
+    assert!((4..21).contains(&kept), "{kept} frames when killed");
+    let line = summary(&record(&args(&killed).each_ref().map(String::as_str), &[]));
+    assert!(
+        line.contains(&format!("{} rendered (0 redone", 21 - kept))
+            && line.contains(&format!("{kept} skipped as complete")),
+        "{line}"
+    );
+    assert!(files(&killed) == files(&full), "the resumed run differs");
+}
