@@ -6,6 +6,7 @@ pub mod camera_path;
 pub mod cli;
 pub mod contact_sheet;
 pub mod earth_data_flag;
+pub mod exposure_meter;
 pub mod files;
 pub mod location_flags;
 pub mod probe;

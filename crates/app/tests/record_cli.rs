@@ -399,3 +399,36 @@ fn a_run_killed_mid_way_resumes_to_the_uninterrupted_frames() {
     );
     assert!(files(&killed) == files(&full), "the resumed run differs");
 }
+
+/// `auto_exposure = true` meters each frame on its own: a path's badly chosen `exposure`
+/// (the sky blown out to white) no longer matters, and every frame comes out mid-grey.
+#[test]
+fn auto_exposure_meters_each_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let blown = PATH.replace("terrain = false", "terrain = false\nexposure = 2.0");
+    let metered = blown.replace("exposure = 2.0", "exposure = 2.0\nauto_exposure = true");
+    let mean_level = |text: &str, name: &str| -> Option<f64> {
+        let path = write_path(dir.path(), &format!("{name}.toml"), text);
+        let out = dir.path().join(name);
+        let output = record(&[s(&path), "--out", s(&out), "--frames", "2"], &[]);
+        if skipped_without_adapter(&output) {
+            return None;
+        }
+        summary(&output);
+        let image = image::open(out.join("frame_000002.png")).unwrap().to_rgb8();
+        let sum: u64 = image.pixels().flat_map(|p| p.0).map(u64::from).sum();
+        Some(sum as f64 / (3 * image.width() * image.height()) as f64)
+    };
+    let Some(fixed) = mean_level(&blown, "fixed") else {
+        return;
+    };
+    let auto = mean_level(&metered, "auto").unwrap();
+    assert!(
+        fixed > 240.0,
+        "EV100 2 should blow the sky out: mean level {fixed}"
+    );
+    assert!(
+        (60.0..200.0).contains(&auto),
+        "metered frame's mean level {auto}"
+    );
+}

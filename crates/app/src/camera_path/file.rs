@@ -106,6 +106,8 @@ pub struct KeyframeFile {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub exposure: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    pub auto_exposure: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub terrain: Option<bool>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub exaggeration: Option<f64>,

@@ -71,6 +71,8 @@ pub struct Key {
     pub set: Vec<String>,
     pub settings: ModelSettings,
     pub exposure_ev100: f64,
+    /// Metered from each frame instead of `exposure_ev100` (`atmos record`).
+    pub auto_exposure: bool,
     pub terrain: bool,
     pub exaggeration: f64,
     /// How parameters move from the keyframe before to this one.
@@ -320,6 +322,10 @@ pub fn resolve(
         Some(v) => within("exposure", v, EXPOSURE_EV100)?,
         None => before.map_or(14.0, |k| k.exposure_ev100),
     };
+    let auto_exposure = f
+        .auto_exposure
+        .or(before.map(|k| k.auto_exposure))
+        .unwrap_or(false);
     let terrain = f.terrain.or(before.map(|k| k.terrain)).unwrap_or(false);
     if terrain && !terrain_fits(planet) {
         bail!(
@@ -349,6 +355,7 @@ pub fn resolve(
         set,
         settings,
         exposure_ev100,
+        auto_exposure,
         terrain,
         exaggeration,
         easing: f.easing.or(before.map(|k| k.easing)).unwrap_or_default(),

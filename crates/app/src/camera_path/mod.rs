@@ -237,6 +237,17 @@ impl CameraPath {
         &self.keys
     }
 
+    /// Whether the exposure at `time_s` is metered from the frame (`auto_exposure`, a
+    /// discrete field: the keyframe's in effect) rather than the path's `exposure`.
+    pub fn auto_exposure_at(&self, time_s: f64) -> bool {
+        let t = time_s.clamp(self.keys[0].time_s, self.duration_s());
+        let i = self
+            .keys
+            .partition_point(|k| k.time_s <= t)
+            .saturating_sub(1);
+        self.keys[i].auto_exposure
+    }
+
     /// The frame at `time_s` (clamped to [0, duration]) at `width` x `height`: camera,
     /// sun, atmosphere, model and settings, exposure, terrain, all interpolated.
     pub fn frame_at(&self, time_s: f64, width: u32, height: u32) -> anyhow::Result<Frame> {

@@ -23,6 +23,7 @@ use render_wgpu::frame::MAX_SIDE_PX;
 
 use crate::camera_path::CameraPath;
 use crate::cli::RecordArgs;
+use crate::exposure_meter::metered_ev100;
 use crate::files::write_atomically;
 use crate::progress::Progress;
 use fingerprint::FrameInputs;
@@ -198,10 +199,16 @@ fn render_job(
 ) -> anyhow::Result<()> {
     let name = frame_name(job.index, inputs.fps);
     let time_s = job.index as f64 / inputs.fps;
-    let frame = path
+    let mut frame = path
         .frame_at(time_s, inputs.width, inputs.height)
         .with_context(|| name.clone())?;
-    let plan = renderer.render(&frame).with_context(|| name.clone())?;
+    let mut plan = renderer.render(&frame).with_context(|| name.clone())?;
+    // Metered from this frame alone, so that shards and resumed runs agree.
+    if path.auto_exposure_at(time_s) {
+        let luminance = renderer.average_luminance().with_context(|| name.clone())?;
+        frame.exposure_ev100 = metered_ev100(luminance);
+        plan = renderer.render(&frame).with_context(|| name.clone())?;
+    }
     // Progressive builds are off in a headless renderer: every table is whole.
     if let Some(building) = &plan.building {
         bail!("{name}: the tables were still building ({building})");

@@ -1,30 +1,16 @@
 //! Exposure: manual (the panel's EV100) or automatic, from the rendered frame.
 //!
-//! Automatic exposure meters the frame like a reflected-light meter: the renderer returns
-//! the frame's log-average (geometric mean) luminance `L` in cd/m^2 over the pixels that
-//! are not black (`Renderer::average_luminance`, a small compute pass; space and the
-//! night side do not count, and the sun's disk cannot swamp the mean as it would an
-//! arithmetic one), and the exposure is the meter's
-//!
-//! `EV100 = log2(L S / K)` with `S = 100` (ISO) and `K = 12.5` (the meter's calibration),
-//!
-//! as in Lagarde and de Rousiers 2014 ("Moving Frostbite to PBR", section 4.4), whose
-//! saturation-based exposure the tone map applies: the average then maps to about 0.1
-//! before the filmic curve, a mid grey. The EV100 follows the metered one exponentially
-//! with a time constant of [`TIME_CONSTANT_S`] (`ev += (target - ev)(1 - exp(-dt /
-//! tau))`, the same for any frame rate), starting at the first metering without delay,
-//! and is held within [`AUTO_EV_RANGE`].
+//! Automatic exposure follows the meter (`exposure_meter`: the EV100 the frame's
+//! log-average luminance asks for) exponentially with a time constant of
+//! [`TIME_CONSTANT_S`] (`ev += (target - ev)(1 - exp(-dt / tau))`, the same for any frame
+//! rate), starting at the first metering without delay, within [`AUTO_EV_RANGE`].
 
 use serde::{Deserialize, Serialize};
 
-/// The meter's ISO speed over its calibration constant, `S / K = 100 / 12.5`.
-const ISO_OVER_K: f64 = 100.0 / 12.5;
+pub use crate::exposure_meter::{AUTO_EV_RANGE, metered_ev100};
 
 /// Time constant of the adaptation, seconds.
 pub const TIME_CONSTANT_S: f64 = 0.5;
-
-/// The automatic EV100's range: moonlit night to snow in full sun.
-pub const AUTO_EV_RANGE: (f64, f64) = (-4.0, 20.0);
 
 /// Changes of the EV100 smaller than this are not applied (each change re-renders).
 pub const SETTLED_EV: f64 = 0.02;
@@ -37,13 +23,6 @@ pub enum ExposureMode {
     /// Metered from the frame.
     #[default]
     Auto,
-}
-
-/// The metered EV100 of a log-average luminance, cd/m^2, within [`AUTO_EV_RANGE`].
-pub fn metered_ev100(luminance_cd_m2: f64) -> f64 {
-    (luminance_cd_m2.max(1e-9) * ISO_OVER_K)
-        .log2()
-        .clamp(AUTO_EV_RANGE.0, AUTO_EV_RANGE.1)
 }
 
 /// The adaptation state; see the module documentation.
@@ -101,15 +80,6 @@ impl AutoExposure {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_meter_key() {
-        // 1 cd/m^2 is EV 3 (2^3 = 100 / 12.5); a clear sky of about 5,000 cd/m^2 15.3.
-        assert!((metered_ev100(1.0) - 3.0).abs() < 1e-12);
-        assert!((metered_ev100(5000.0) - 15.29).abs() < 0.01);
-        assert_eq!(metered_ev100(0.0), AUTO_EV_RANGE.0);
-        assert_eq!(metered_ev100(1e12), AUTO_EV_RANGE.1);
-    }
 
     /// On a constant image the EV100 starts at the metered value; after a jump in
     /// brightness it covers 63 % of the way in one time constant, whatever the frame

@@ -10,6 +10,7 @@ use render_wgpu::frame::terrain_fits;
 use toml::value::{Date, Datetime, Offset, Time};
 
 use crate::camera_path::file::KeyframeFile;
+use crate::viewer::exposure::ExposureMode;
 use crate::viewer::settings::ViewerSettings;
 use crate::viewer::sun_clock::{SunMode, date_time_of};
 
@@ -55,6 +56,7 @@ pub fn keyframe_of(settings: &ViewerSettings, time_s: f64) -> anyhow::Result<Key
         model: Some(settings.model),
         set: Some(set),
         exposure: Some(settings.exposure_ev100),
+        auto_exposure: Some(settings.exposure_mode == ExposureMode::Auto),
         terrain: Some(settings.terrain && terrain_fits(&atmosphere)),
         exaggeration: Some(settings.exaggeration),
         ..KeyframeFile::default()
