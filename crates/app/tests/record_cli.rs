@@ -213,6 +213,23 @@ fn check_exr_metadata(exr_path: &Path) {
     assert!(path_toml.contains("version = 1"), "{path_toml}");
     assert!(path_toml.contains("nishita"), "{path_toml}");
     assert!(text("atmos:camera").contains("position_m"));
+    // OpenEXR's standard attributes of the place: the path's 46 N 7.5 E, half-way up.
+    let a = &layer.attributes;
+    assert!(
+        (a.latitude.unwrap() - 46.0).abs() < 1e-3,
+        "{:?}",
+        a.latitude
+    );
+    assert!(
+        (a.longitude.unwrap() - 7.5).abs() < 1e-3,
+        "{:?}",
+        a.longitude
+    );
+    assert!(
+        (500.0..3000.0).contains(&a.altitude.unwrap()),
+        "{:?}",
+        a.altitude
+    );
 }
 
 #[test]

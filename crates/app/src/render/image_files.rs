@@ -125,6 +125,13 @@ pub fn exr_bytes(
         .collect();
     let mut layer_attributes = LayerAttributes::named("atmos");
     layer_attributes.software_name = Some(Text::from("atmos"));
+    // OpenEXR's standard place of the image: the camera's planetocentric latitude and
+    // longitude, degrees, and its altitude above the ground sphere, m.
+    let camera = frame.camera_position_m;
+    let radius_m = camera.length();
+    layer_attributes.latitude = Some((camera.z / radius_m).asin().to_degrees() as f32);
+    layer_attributes.longitude = Some(camera.y.atan2(camera.x).to_degrees() as f32);
+    layer_attributes.altitude = Some((radius_m - frame.atmosphere.bottom_radius_m) as f32);
     for (name, value) in attributes {
         let text = Text::new_or_none(value)
             .with_context(|| format!("header attribute {name} has characters EXR cannot hold"))?;
