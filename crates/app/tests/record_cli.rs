@@ -418,7 +418,8 @@ fn a_run_killed_mid_way_resumes_to_the_uninterrupted_frames() {
 }
 
 /// `auto_exposure = true` meters each frame on its own: a path's badly chosen `exposure`
-/// (the sky blown out to white) no longer matters, and every frame comes out mid-grey.
+/// (the sky blown out to white) no longer matters, every frame comes out mid-grey, and a
+/// frame rendered alone equals the same frame of a longer run.
 #[test]
 fn auto_exposure_meters_each_frame() {
     let dir = tempfile::tempdir().unwrap();
@@ -448,4 +449,13 @@ fn auto_exposure_meters_each_frame() {
         (60.0..200.0).contains(&auto),
         "metered frame's mean level {auto}"
     );
+    // Metered alone or in a run of frames, frame 2 is the same, byte for byte.
+    let path = dir.path().join("auto.toml");
+    let run = dir.path().join("auto_run");
+    summary(&record(
+        &[s(&path), "--out", s(&run), "--frames", "0..4"],
+        &[],
+    ));
+    let alone = fs::read(dir.path().join("auto/frame_000002.png")).unwrap();
+    assert!(fs::read(run.join("frame_000002.png")).unwrap() == alone);
 }
