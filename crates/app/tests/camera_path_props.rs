@@ -52,7 +52,9 @@ fn numbers(text: &str) -> Vec<std::ops::Range<usize>> {
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 96,
-        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource("proptest-regressions"))),
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "tests/camera_path_props.proptest-regressions",
+        ))),
         ..ProptestConfig::default()
     })]
 

@@ -241,11 +241,14 @@ impl CameraPath {
     /// discrete field: the keyframe's in effect) rather than the path's `exposure`.
     pub fn auto_exposure_at(&self, time_s: f64) -> bool {
         let t = time_s.clamp(self.keys[0].time_s, self.duration_s());
-        let i = self
-            .keys
+        self.keys[self.segment(t)].auto_exposure
+    }
+
+    /// The index of the keyframe that starts the segment holding `t`, or that `t` falls on.
+    fn segment(&self, t: f64) -> usize {
+        self.keys
             .partition_point(|k| k.time_s <= t)
-            .saturating_sub(1);
-        self.keys[i].auto_exposure
+            .saturating_sub(1)
     }
 
     /// The frame at `time_s` (clamped to [0, duration]) at `width` x `height`: camera,
@@ -259,10 +262,7 @@ impl CameraPath {
         }
         let t = time_s.clamp(self.keys[0].time_s, self.duration_s());
         // The segment [keys[i], keys[i + 1]] holding t, or the keyframe t falls on.
-        let i = self
-            .keys
-            .partition_point(|k| k.time_s <= t)
-            .saturating_sub(1);
+        let i = self.segment(t);
         let key = &self.keys[i];
         let pose = self.gltf.as_ref().map(|(_, g)| {
             g.pose(
