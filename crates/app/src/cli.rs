@@ -41,6 +41,9 @@ pub enum Command {
     /// A camera path's frames, headless, to numbered PNG or EXR files; resumable and
     /// shardable (docs/recording.md).
     Record(RecordArgs),
+    /// Phase functions of particles (water drops by Lorenz-Mie) as CSV, with Q_ext, Q_sca
+    /// and g per wavelength (docs/particles.md).
+    Phase(PhaseArgs),
 }
 
 /// The flags of `atmos view`.
@@ -333,6 +336,45 @@ pub struct ProbeArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub input: PathBuf,
     /// Where to write the CSV of results (atomically) [default: stdout].
+    #[arg(long, value_name = "FILE.csv")]
+    pub output: Option<PathBuf>,
+}
+
+/// The flags of `atmos phase` (docs/particles.md).
+#[derive(Debug, Args)]
+pub struct PhaseArgs {
+    /// The particle.
+    #[arg(long, value_enum)]
+    pub particle: crate::phase::flags::Particle,
+    /// Radius in um, in (0, 10000]; with --distribution, the effective radius
+    /// <r^3> / <r^2>.
+    #[arg(long, value_name = "UM", allow_negative_numbers = true,
+          value_parser = crate::phase::flags::parse_radius_um)]
+    pub radius_um: f64,
+    /// Size distribution: lognormal:SIGMA (sigma of ln r, in [0.01, 1]) or
+    /// modified-gamma:ALPHA,GAMMA (alpha in [0.5, 100], gamma in [0.1, 10]) [default: one
+    /// radius].
+    #[arg(long, value_name = "KIND:PARAMS", value_parser = crate::phase::flags::parse_distribution)]
+    pub distribution: Option<crate::phase::flags::DistributionFlag>,
+    /// Relative refractive index N or N+Ki (K >= 0 absorbs), at every wavelength
+    /// [default: the particle's table].
+    #[arg(long, value_name = "N+Ki", allow_hyphen_values = true,
+          value_parser = crate::phase::flags::parse_refractive_index)]
+    pub refractive_index: Option<num_complex::Complex64>,
+    /// Vacuum wavelengths in nm, comma-separated (at most 64).
+    #[arg(
+        long,
+        value_name = "NM,...",
+        value_delimiter = ',',
+        default_value = "680,550,440",
+        allow_negative_numbers = true
+    )]
+    pub wavelengths: Vec<Wavelength>,
+    /// Scattering angles START:END:STEP in degrees, within [0, 180].
+    #[arg(long, value_name = "START:END:STEP", default_value = "0:180:0.1",
+          value_parser = crate::phase::flags::parse_angles)]
+    pub angles_deg: crate::phase::flags::AngleRange,
+    /// Where to write the CSV (atomically) [default: stdout].
     #[arg(long, value_name = "FILE.csv")]
     pub output: Option<PathBuf>,
 }

@@ -9,6 +9,7 @@ pub mod earth_data_flag;
 pub mod exposure_meter;
 pub mod files;
 pub mod location_flags;
+pub mod phase;
 pub mod probe;
 pub mod progress;
 pub mod record;
@@ -35,6 +36,7 @@ pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
         Some(Command::ContactSheet(args)) => contact_sheet::run(&args),
         Some(Command::Record(args)) => record::run(&args),
         Some(Command::View(args)) => viewer::run(&args),
+        Some(Command::Phase(args)) => phase::run(&args),
         None => viewer::run(&cli::ViewArgs::default()),
     }
 }

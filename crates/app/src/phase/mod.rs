@@ -1,0 +1,139 @@
+//! `atmos phase`: phase functions of particles as CSV (docs/particles.md). Water drops
+//! by Lorenz-Mie, of one radius or averaged over a size distribution, at each
+//! wavelength, with Q_ext, Q_sca and g in the header.
+
+pub mod flags;
+pub mod table;
+
+use std::io::Write;
+
+use anyhow::{Context, bail};
+use atmosphere_core::optics::mie::coefficients::wiscombe_terms;
+use atmosphere_core::optics::mie::polydisperse::particle_optics;
+use atmosphere_core::optics::mie::size_distribution::SizeDistribution;
+use atmosphere_core::optics::refractive_index::water::water_refractive_index;
+use rayon::prelude::*;
+
+use crate::cli::PhaseArgs;
+use crate::files::{check_writable, write_atomically};
+use flags::{MAX_WAVELENGTHS, Particle};
+use table::{WavelengthResult, write_csv};
+
+/// How closely a size-distribution average must settle (relative, every value).
+pub const DISTRIBUTION_TOLERANCE: f64 = 1e-4;
+
+/// The most work one run takes on, in Mie terms times angles times radii (about a
+/// minute on two cores): more is refused before it starts rather than left to run.
+const MAX_WORK: f64 = 2e11;
+
+/// Runs `atmos phase`.
+pub fn run(args: &PhaseArgs) -> anyhow::Result<()> {
+    if let Some(path) = &args.output {
+        check_writable(path)?;
+    }
+    if args.wavelengths.len() > MAX_WAVELENGTHS {
+        bail!(
+            "--wavelengths: {} wavelengths; at most {MAX_WAVELENGTHS}",
+            args.wavelengths.len()
+        );
+    }
+    let radius_m = args.radius_um * 1e-6;
+    let distribution = match &args.distribution {
+        None => SizeDistribution::Monodisperse { radius_m },
+        Some(flag) => flag
+            .with_effective_radius(radius_m)
+            .context("--distribution")?,
+    };
+    let indices = args
+        .wavelengths
+        .iter()
+        .map(|w| {
+            if !(w.nm.is_finite() && w.nm > 0.0) {
+                bail!("--wavelengths: {} nm is not a positive wavelength", w.label);
+            }
+            match (args.refractive_index, args.particle) {
+                (Some(m), _) => Ok(m),
+                (None, Particle::Water) => Ok(water_refractive_index(w.nm)?),
+            }
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    check_work(args, &distribution)?;
+
+    let angles = &args.angles_deg;
+    let cosines: Vec<f64> = angles.angles_deg().map(|a| a.to_radians().cos()).collect();
+    let results = args
+        .wavelengths
+        .par_iter()
+        .zip(&indices)
+        .map(|(w, &m)| {
+            let optics = particle_optics(
+                m,
+                w.nm * 1e-9,
+                &distribution,
+                &cosines,
+                DISTRIBUTION_TOLERANCE,
+            )
+            .with_context(|| format!("at {} nm", w.label))?;
+            Ok(WavelengthResult {
+                label: w.label.clone(),
+                refractive_index: m,
+                optics,
+            })
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+
+    let text = write_csv(&describe(args), angles, &results);
+    match &args.output {
+        Some(path) => write_atomically(path, text.as_bytes()),
+        None => Ok(std::io::stdout().lock().write_all(text.as_bytes())?),
+    }
+}
+
+/// The first header line: what was computed.
+fn describe(args: &PhaseArgs) -> String {
+    let particle = match args.particle {
+        Particle::Water => "water",
+    };
+    let index = match args.refractive_index {
+        Some(m) => format!("refractive index {}{:+e}i", m.re, m.im),
+        None => "refractive index of Hale and Querry 1973".to_string(),
+    };
+    match &args.distribution {
+        None => format!("particle {particle}, radius {} um, {index}", args.radius_um),
+        Some(d) => format!(
+            "particle {particle}, effective radius {} um, distribution {}, {index}",
+            args.radius_um,
+            d.describe()
+        ),
+    }
+}
+
+/// Refuses a run whose estimated work (terms at the largest radius, times angles, times
+/// radii: about one per half unit of size parameter across a distribution) is past
+/// [`MAX_WORK`].
+fn check_work(args: &PhaseArgs, distribution: &SizeDistribution) -> anyhow::Result<()> {
+    let [lo, hi] = distribution.log_radius_range();
+    let angles = args.angles_deg.count as f64;
+    let work: f64 = args
+        .wavelengths
+        .iter()
+        .map(|w| {
+            let k = 2.0 * std::f64::consts::PI / (w.nm * 1e-9);
+            let (x_lo, x_hi) = (k * lo.exp(), k * hi.exp());
+            let radii = if lo == hi {
+                1.0
+            } else {
+                (2.0 * (x_hi - x_lo)).max(64.0)
+            };
+            wiscombe_terms(x_hi.min(1e6)) as f64 * angles * radii
+        })
+        .sum();
+    if work > MAX_WORK {
+        bail!(
+            "this asks for about {work:.1e} term evaluations (Mie terms x angles x radii), \
+             more than {MAX_WORK:.0e}: use fewer angles, wavelengths, a smaller radius or a \
+             narrower distribution"
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,4 @@
+//! Complex refractive indices of the materials particles are made of, m = n + i k
+//! (k >= 0 absorbs), at a vacuum wavelength.
+
+pub mod water;
