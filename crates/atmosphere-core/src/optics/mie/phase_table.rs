@@ -1,6 +1,6 @@
 //! Mie phase functions tabulated in scattering angle, with steps that resolve the
 //! forward diffraction peak and the glory: a uniform step of at most 0.1 degree and
-//! pi / (20 x) (a twentieth of the period of the interference structure of spheres of
+//! pi / (40 x) (a fortieth of the period of the interference structure of spheres of
 //! size parameter x), refined towards 0 and 180 degrees down to a tenth of it, each step
 //! 1.1 times the one before.
 
@@ -20,7 +20,7 @@ pub struct PhaseTable {
 
 /// The angles of a table for spheres of size parameter up to `max_size_parameter`.
 pub fn table_angles_deg(max_size_parameter: f64) -> Vec<f64> {
-    let step = 0.1f64.min((180.0 / 20.0) / max_size_parameter.max(1e-3));
+    let step = 0.1f64.min((180.0 / 40.0) / max_size_parameter.max(1e-3));
     // Steps from step / 10 growing by 1.1 until they reach `step`, from 0 outwards.
     let mut graded = vec![0.0];
     let mut h = step / 10.0;
