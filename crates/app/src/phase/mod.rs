@@ -19,8 +19,9 @@ use crate::files::{check_writable, write_atomically};
 use flags::{MAX_WAVELENGTHS, Particle};
 use table::{WavelengthResult, write_csv};
 
-/// How closely a size-distribution average must settle (relative, every value).
-pub const DISTRIBUTION_TOLERANCE: f64 = 1e-4;
+/// How closely a size-distribution average must settle: cross-sections and g to 1e-3,
+/// the phase function to 1e-2 (relative to the larger of it and 1 / (4 pi)).
+pub const DISTRIBUTION_TOLERANCE: f64 = 1e-3;
 
 /// The most work one run takes on, in Mie terms times angles times radii (about a
 /// minute on two cores): more is refused before it starts rather than left to run.
