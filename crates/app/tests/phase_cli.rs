@@ -270,3 +270,52 @@ fn an_output_folder_is_refused() {
         "is a folder",
     );
 }
+
+mod parsers {
+    use atmos::phase::flags::{
+        MAX_ANGLES, parse_angles, parse_distribution, parse_radius_um, parse_refractive_index,
+    };
+    use proptest::prelude::*;
+
+    /// Text made of the characters these flags are written with, and numbers that break
+    /// careless handling.
+    fn flag_text() -> impl Strategy<Value = String> {
+        prop_oneof![
+            "[-+0-9.eEij:,a-z]{0,24}",
+            prop::sample::select(vec![
+                "nan",
+                "inf",
+                "-inf",
+                "1e309",
+                "-0",
+                "0:180:1e-300",
+                "0:nan:1",
+                "lognormal:nan",
+                "modified-gamma:inf,1",
+                "1e308+1e308i",
+                "+i",
+                "-i",
+                "e-5i",
+            ])
+            .prop_map(str::to_string),
+        ]
+    }
+
+    proptest! {
+        /// No phase flag parser panics; what they accept lies in the documented ranges.
+        #[test]
+        fn phase_flag_parsers_never_panic(text in flag_text()) {
+            if let Ok(r) = parse_radius_um(&text) {
+                prop_assert!(r > 0.0 && r <= 10_000.0);
+            }
+            if let Ok(a) = parse_angles(&text) {
+                prop_assert!(a.count >= 1 && a.count <= MAX_ANGLES);
+                prop_assert!(a.angles_deg().all(|x| (0.0..=180.0 + 1e-9).contains(&x)));
+            }
+            if let Ok(m) = parse_refractive_index(&text) {
+                prop_assert!(m.re > 0.0 && m.re <= 10.0 && (0.0..=10.0).contains(&m.im));
+            }
+            let _ = parse_distribution(&text);
+        }
+    }
+}
