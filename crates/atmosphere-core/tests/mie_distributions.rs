@@ -87,7 +87,7 @@ fn averaged_phase_functions_are_normalised_with_mean_cosine_g() {
 }
 
 /// A table's steps reach a tenth of its uniform step at 0 and 180 degrees, and the
-/// table of cloud droplets (effective radius 5 um) integrates to 1 by the trapezoid rule on its own angles.
+/// table of cloud droplets (effective radius 3 um) integrates to 1 by the trapezoid rule on its own angles.
 #[test]
 fn phase_tables_resolve_both_ends_and_integrate_to_one() {
     for x in [1.0, 100.0, 2e4] {
@@ -99,7 +99,7 @@ fn phase_tables_resolve_both_ends_and_integrate_to_one() {
         assert!(angles.windows(2).all(|w| w[1] - w[0] <= step * 1.0001));
     }
     let m = water_refractive_index(550.0).unwrap();
-    let cloud = SizeDistribution::lognormal(5e-6, 0.2).unwrap();
+    let cloud = SizeDistribution::lognormal(3e-6, 0.2).unwrap();
     let (table, optics) = PhaseTable::new(m, 550e-9, &cloud, 1e-3).unwrap();
     let integral = table.integral();
     assert!((integral - 1.0).abs() < 5e-5, "{integral}");
