@@ -378,8 +378,8 @@ fn daytime_errors(
 /// error) the model lacks multiple scattering, most of its error, in the blue above all.
 /// Measured per view zenith angle (0, 45, 70, 85 deg; suns at 30 and 60 deg, azimuths 0
 /// and 180, 680/550/440 nm): worst 35, 43, 46, 44 % (440 nm, away from the sun), means
-/// -23, -24, -25, -29 %. Against the reference's order one: worst 0.5, 0.3, 1.1, 4.1 %,
-/// means +0.1, 0.0, -0.4, -1.8 % (the paper's form: 6.5-25 % too bright). Bounds: all
+/// -23, -23, -25, -29 %. Against the reference's order one: worst 1.0, 0.8, 0.8, 3.8 %,
+/// means +0.3, +0.2, -0.2, -1.6 % (the paper's form: 6.5-25 % too bright). Bounds: all
 /// orders, worst 50 %, means between -32 % and -18 %; order one, worst 6 %, means between
 /// -3 % and +1 %.
 #[test]
@@ -418,7 +418,7 @@ fn earth_daytime_error_against_the_reference_is_bounded() {
 /// sun 2 degrees above the horizon. The paper's form leaves the aerosol's forward peak
 /// undimmed by the air (and the air's light by the aerosol) on a flat ray that stays in
 /// the densest air for ever: 7, 32 and 640 times too bright at 680, 550 and 440 nm. The
-/// default is 6, 16 and 9 % too dark (ozone's fitted exponential puts too much of it in
+/// default is 5, 14 and 9 % too dark (ozone's fitted exponential puts too much of it in
 /// the low air this ray crosses); bound 25 %.
 #[test]
 fn a_level_ray_towards_a_low_sun_is_dimmed_by_every_species() {

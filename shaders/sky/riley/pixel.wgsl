@@ -11,7 +11,8 @@
 // which is Eq. (15) itself for one species on a flat earth. Two geometries
 // (`options.x`):
 // - sphere (`sphere_path.rs`): columns along the real ray and towards the sun by the
-//   Chapman function's parabolic closed form (`chapman.rs`), over the ray's lit parts only
+//   Chapman function's parabolic closed form (`chapman.rs`; the sun's up to the top),
+//   over the ray's lit parts only
 //   (the planet's shadow, `shadow.rs`), each monotone part in `options.z` pieces at equal
 //   steps of the air's density;
 // - flat (`flat_path.rs`, the paper's): the flattened legs in the tangent frame at the
@@ -106,6 +107,17 @@ fn column_to_space(h: f32, r_mu: f32, q_low: f32) -> vec3<f32> {
     return 2.0 * column_upwards(perigee, 0.0) - column_upwards(h, -mu);
 }
 
+// `chapman::column_to_top`: `column_to_space` less the column beyond the atmosphere's
+// top, where the ray leaves with r_top mu_exit = sqrt(q_top - q_low).
+fn column_to_top(h: f32, r_mu: f32, q_low: f32) -> vec3<f32> {
+    let bottom = atmosphere.bottom_radius_m;
+    let top = atmosphere.top_radius_m;
+    let q_top = (top - bottom) * (top + bottom);
+    let mu_exit = sqrt(max(q_top - q_low, 0.0)) / top;
+    let beyond = column_upwards(top - bottom, mu_exit);
+    return max(column_to_space(h, r_mu, q_low) - beyond, vec3<f32>(0.0));
+}
+
 // Columns at one point of the ray (`pieces::PointColumns`): x Rayleigh, y Mie, z ozone.
 struct Columns {
     view: vec3<f32>,
@@ -179,7 +191,7 @@ fn sphere_columns(ray: SphereRay, t: f32) -> Columns {
     c.view = max(c.view, vec3<f32>(0.0));
     // The sun ray's own perigee: q - (r mu_s)^2.
     let r_mu_s = ray.start_dot_sun + t * ray.nu;
-    c.sun = column_to_space(h, r_mu_s, q - r_mu_s * r_mu_s);
+    c.sun = column_to_top(h, r_mu_s, q - r_mu_s * r_mu_s);
     return c;
 }
 
@@ -385,7 +397,7 @@ fn sun_transmittance(q: f32, r_mu_s: f32, mu_s: f32) -> vec3<f32> {
         if r_mu_s < 0.0 && r_mu_s * r_mu_s >= q {
             return vec3<f32>(0.0);
         }
-        columns = column_to_space(y, r_mu_s, q - r_mu_s * r_mu_s);
+        columns = column_to_top(y, r_mu_s, q - r_mu_s * r_mu_s);
     } else {
         if mu_s <= 0.0 {
             return vec3<f32>(0.0);

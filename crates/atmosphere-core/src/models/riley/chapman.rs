@@ -59,6 +59,28 @@ pub fn column_to_space(height_m: f64, mu: f64, scale_height_m: f64, bottom_m: f6
         - column_upwards(height_m, -mu, scale_height_m, bottom_m)
 }
 
+/// Column (m) of exp(-h / H) from height `height_m` along direction cosine `mu` to where
+/// the ray leaves the atmosphere's top at height `top_m` (the ray must miss the ground):
+/// [`column_to_space`] less the column beyond the top, so that a layer fitted by an
+/// exponential (ozone) has none above it. The ray leaves the top with cosine
+/// sqrt(r_top^2 - r_p^2) / r_top, r_p its perigee's radius.
+pub fn column_to_top(
+    height_m: f64,
+    mu: f64,
+    scale_height_m: f64,
+    bottom_m: f64,
+    top_m: f64,
+) -> f64 {
+    let r = bottom_m + height_m;
+    let r_top = bottom_m + top_m;
+    // r_p^2 - R^2 and r_top^2 - R^2, without differences of squared radii.
+    let q_perigee = height_m * (r + bottom_m) - (r * mu) * (r * mu);
+    let q_top = top_m * (r_top + bottom_m);
+    let mu_exit = (q_top - q_perigee).max(0.0).sqrt() / r_top;
+    let beyond = column_upwards(top_m, mu_exit, scale_height_m, bottom_m);
+    (column_to_space(height_m, mu, scale_height_m, bottom_m) - beyond).max(0.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -108,6 +130,35 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Up to the top: quadrature truncated there, and nothing from the top itself.
+    #[test]
+    fn columns_to_the_top_leave_out_what_lies_above_it() {
+        let (bottom, top) = (6.36e6, 60_000.0);
+        let h_scale = 25_000.0;
+        for (height, mu) in [(0.0, 1.0), (20_000.0, 0.3), (30_000.0, -0.05)] {
+            let r = bottom + height;
+            let n = 400_000;
+            let ds = 4.0e6 / n as f64;
+            let want: f64 = (0..n)
+                .map(|i| {
+                    let s = (i as f64 + 0.5) * ds;
+                    let radius = (r * r + 2.0 * r * mu * s + s * s).sqrt();
+                    if radius - bottom < top {
+                        (-(radius - bottom) / h_scale).exp() * ds
+                    } else {
+                        0.0
+                    }
+                })
+                .sum();
+            let got = column_to_top(height, mu, h_scale, bottom, top);
+            assert!(
+                (got / want - 1.0).abs() < 5e-3,
+                "{height} {mu}: {got} vs {want}"
+            );
+        }
+        assert_eq!(column_to_top(top, 0.5, h_scale, bottom, top), 0.0);
     }
 
     #[test]

@@ -33,7 +33,7 @@ use crate::optics::phase::{PhaseFunction, rayleigh};
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
-use chapman::column_to_space;
+use chapman::column_to_top;
 use flat::flat_legs;
 use flat_path::flat_pieces;
 use pieces::{OZONE, SCATTERING, SPECIES, piece_integrals};
@@ -167,7 +167,8 @@ impl SkyModel for Riley {
 
     /// The transmitted sun only (single scattering has no sky light): the sun's optical
     /// depth from the element, summed over the species, is on the sphere the Chapman
-    /// column ([`chapman::column_to_space`], none where the ground hides the sun) and on
+    /// column up to the top ([`chapman::column_to_top`], none where the ground hides the
+    /// sun) and on
     /// the flat earth Eq. (12) in the element's own tangent frame, beta H exp(-y / H) / l
     /// with l = mu_s (none for l <= 0, the flat ground's horizon).
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
@@ -184,7 +185,7 @@ impl SkyModel for Riley {
             if !lit {
                 0.0
             } else if self.settings.sphere {
-                column_to_space(y, e.mu_s, heights[k], bottom)
+                column_to_top(y, e.mu_s, heights[k], bottom, top - bottom)
             } else {
                 heights[k] * (-y / heights[k]).exp() / e.mu_s
             }
@@ -210,7 +211,7 @@ impl SkyModel for Riley {
         let heights = self.scale_heights();
         let pieces = self.settings.pieces;
         let ray_pieces = if self.settings.sphere {
-            sphere_pieces(&segment, bottom, heights, pieces)
+            sphere_pieces(&segment, (bottom, top), heights, pieces)
         } else {
             let zenith = segment.start / segment.start.length();
             let (y0, p) = (segment.r - bottom, segment.mu);

@@ -3,22 +3,24 @@
 //! closed form ([`super::chapman`]), only over the parts of the ray the sun lights
 //! ([`super::shadow`]), each part split where the ray turns from descending to climbing.
 
-use crate::models::riley::chapman::{column_to_space, perigee_height_m};
+use crate::models::riley::chapman::{column_to_space, column_to_top, perigee_height_m};
 use crate::models::riley::pieces::{PointColumns, RayPieces, SPECIES};
 use crate::models::riley::shadow::shadowed_interval;
 use crate::optics::geometry::{mu_at, radius_at};
 use crate::optics::view_segment::ViewSegment;
 
 /// The segment's columns at the ends of `pieces` pieces per lit, monotone part, for
-/// species of scale heights `scale_heights_m` over a ground of radius `bottom_m`. The
+/// species of scale heights `scale_heights_m` between the radii `bottom_m` and `top_m`
+/// (the sun's columns end at the top). The
 /// pieces of a part are equal steps of the first species' (the air's) density between
 /// its ends, which for a flat earth are equal steps of its optical depth.
 pub fn sphere_pieces(
     segment: &ViewSegment,
-    bottom_m: f64,
+    (bottom_m, top_m): (f64, f64),
     scale_heights_m: [f64; SPECIES],
     pieces: usize,
 ) -> RayPieces {
+    let top_height = top_m - bottom_m;
     let (r0, mu0, length) = (segment.r, segment.mu, segment.length);
     let h0 = r0 - bottom_m;
     let columns_from_start = |mu: f64| -> [f64; SPECIES] {
@@ -42,7 +44,9 @@ pub fn sphere_pieces(
                 };
                 column.max(0.0)
             }),
-            sun: std::array::from_fn(|k| column_to_space(h, mu_sun, scale_heights_m[k], bottom_m)),
+            sun: std::array::from_fn(|k| {
+                column_to_top(h, mu_sun, scale_heights_m[k], bottom_m, top_height)
+            }),
         }
     };
     // Where the ray passes its perigee, and its lit parts.
