@@ -176,22 +176,28 @@ struct SphereRay {
     backward: vec3<f32>,
 }
 
+// The view's columns from the start to distance `t` along the ray.
+fn sphere_view(ray: SphereRay, t: f32) -> vec3<f32> {
+    let q = max(ray.q + t * (t + 2.0 * ray.r_mu), 0.0);
+    let h = altitude_from_q(q);
+    let r_mu = ray.r_mu + t;
+    var view: vec3<f32>;
+    if r_mu >= 0.0 {
+        view = ray.forward - column_to_space(h, r_mu, ray.q_low);
+    } else {
+        view = column_to_space(h, -r_mu, ray.q_low) - ray.backward;
+    }
+    return max(view, vec3<f32>(0.0));
+}
+
 // `sphere_path::sphere_pieces`'s `at`: the columns at distance `t` along the ray.
 fn sphere_columns(ray: SphereRay, t: f32) -> Columns {
     let q = max(ray.q + t * (t + 2.0 * ray.r_mu), 0.0);
-    let h = altitude_from_q(q);
-    let r = atmosphere.bottom_radius_m + h;
-    let r_mu = ray.r_mu + t;
     var c: Columns;
-    if r_mu >= 0.0 {
-        c.view = ray.forward - column_to_space(h, r_mu, ray.q_low);
-    } else {
-        c.view = column_to_space(h, -r_mu, ray.q_low) - ray.backward;
-    }
-    c.view = max(c.view, vec3<f32>(0.0));
+    c.view = sphere_view(ray, t);
     // The sun ray's own perigee: q - (r mu_s)^2.
     let r_mu_s = ray.start_dot_sun + t * ray.nu;
-    c.sun = column_to_top(h, r_mu_s, q - r_mu_s * r_mu_s);
+    c.sun = column_to_top(altitude_from_q(q), r_mu_s, q - r_mu_s * r_mu_s);
     return c;
 }
 
@@ -245,9 +251,10 @@ fn shadowed_interval(start: vec3<f32>, direction: vec3<f32>, segment_length: f32
     return vec2<f32>(max(t1, 0.0), min(t2, segment_length));
 }
 
-// The sphere's pieces over the lit, monotone parts of the segment `s`.
+// The sphere's pieces over the lit, monotone parts of the segment `s`: their light, and
+// the view's columns to the segment's end in `previous.view`.
 fn sphere_light(direction: vec3<f32>, s: Segment, phase_r: vec3<f32>,
-                phase_m: vec3<f32>) -> vec3<f32> {
+                phase_m: vec3<f32>) -> Light {
     let bottom = atmosphere.bottom_radius_m;
     var ray: SphereRay;
     ray.q = s.q;
@@ -317,7 +324,8 @@ fn sphere_light(direction: vec3<f32>, s: Segment, phase_r: vec3<f32>,
             light = add_piece(light, sphere_columns(ray, t), phase_r, phase_m);
         }
     }
-    return light.radiance;
+    light.previous.view = sphere_view(ray, s.length);
+    return light;
 }
 
 // `FlatExponential::optical_depth` per unit ground extinction for the three species: the
@@ -428,25 +436,14 @@ fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance
     let nu = dot(direction, frame.sun_direction.xyz);
     let phase_r = riley.rayleigh_albedo.xyz * rayleigh_phase(nu);
     let phase_m = riley.mie_albedo.xyz * mie_phase(nu);
-    var radiance: vec3<f32>;
-    var view: vec3<f32>;
+    var light: Light;
     if riley.options.x == 1u {
-        radiance = sphere_light(direction, s, phase_r, phase_m);
-        let h0 = altitude_from_q(s.q);
-        var ray: SphereRay;
-        ray.q = s.q;
-        ray.r_mu = s.r_mu;
-        ray.q_low = s.q - s.r_mu * s.r_mu;
-        ray.start_dot_sun = s.start_dot_sun;
-        ray.nu = nu;
-        ray.forward = column_to_space(h0, s.r_mu, ray.q_low);
-        ray.backward = column_to_space(h0, -s.r_mu, ray.q_low);
-        view = sphere_columns(ray, s.length).view;
+        light = sphere_light(direction, s, phase_r, phase_m);
     } else {
-        let light = flat_light(s, phase_r, phase_m);
-        radiance = light.radiance;
-        view = light.previous.view;
+        light = flat_light(s, phase_r, phase_m);
     }
+    var radiance = light.radiance;
+    let view = light.previous.view;
     let transmittance = exp(-(riley.rayleigh_extinction_per_m.xyz * view.x
         + riley.mie_extinction_per_m.xyz * view.y
         + riley.ozone_extinction_per_m.xyz * view.z));
