@@ -314,8 +314,10 @@ fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
             scale_heights_m,
             rayleigh_extinction_per_m,
             mie_extinction_per_m,
+            ozone_extinction_per_m,
             rayleigh_albedo,
-            mie_albedo
+            mie_albedo,
+            options
         ]
     );
     assert_layout!(

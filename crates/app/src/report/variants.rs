@@ -20,6 +20,18 @@ pub fn report_models() -> Vec<ModelId> {
 /// that trade accuracy for time around them.
 pub fn report_variants() -> Vec<Variant> {
     vec![
+        Variant::new(
+            ModelId::Riley,
+            None,
+            &[
+                "sphere=false",
+                "shared_extinction=false",
+                "ozone=false",
+                "pieces=1",
+            ],
+        ),
+        Variant::new(ModelId::Riley, None, &["pieces=1"]),
+        Variant::new(ModelId::Riley, None, &["pieces=2"]),
         Variant::new(ModelId::Riley, None, &[]),
         Variant::new(ModelId::Nishita, None, &["samples=4"]),
         Variant::new(ModelId::Nishita, None, &["samples=16"]),

@@ -10,11 +10,12 @@ use crate::models::sky_model::SkyModel;
 /// its range. [`prepare`] checks the same, then the CPU tables' memory budget (the GPU
 /// checks its own tables against the device).
 pub fn check_settings(id: ModelId, settings: &ModelSettings) -> Result<(), ModelError> {
-    use crate::models::{bruneton, dobashi, hillaire, nishita, oneil};
+    use crate::models::{bruneton, dobashi, hillaire, nishita, oneil, riley};
     settings.validate()?;
     let options = &settings.options;
     match id {
-        ModelId::Reference | ModelId::Riley => options.reader(id.as_str()).finish(),
+        ModelId::Reference => options.reader(id.as_str()).finish(),
+        ModelId::Riley => riley::RileySettings::from_options(options).map(drop),
         ModelId::Bruneton => bruneton::BrunetonSettings::from_options(options).map(drop),
         ModelId::Hillaire => hillaire::HillaireSettings::from_options(options).map(drop),
         ModelId::Dobashi => dobashi::DobashiSettings::from_options(options).map(drop),
@@ -56,12 +57,11 @@ pub fn prepare(
             settings,
             crate::models::oneil::OneilSettings::from_options(&settings.options)?,
         )?)),
-        ModelId::Riley => {
-            settings.options.reader("riley").finish()?;
-            Ok(Box::new(crate::models::riley::Riley::prepare(
-                atmosphere, settings,
-            )))
-        }
+        ModelId::Riley => Ok(Box::new(crate::models::riley::Riley::prepare(
+            atmosphere,
+            settings,
+            crate::models::riley::RileySettings::from_options(&settings.options)?,
+        ))),
         ModelId::Dobashi => Ok(Box::new(crate::models::dobashi::Dobashi::prepare(
             atmosphere,
             settings,

@@ -1,10 +1,11 @@
 //! The riley model on the GPU: no table, one per-pixel pass
 //! (`shaders/sky/riley/pixel.wgsl`) that evaluates the closed form of Riley et al. 2004
-//! with the species atmosphere-core's `riley.rs` fits (one exponential each for Rayleigh
-//! and Mie), given in [`RileyUniform`].
+//! over the pieces of each ray, with the species atmosphere-core's `models/riley/` fits
+//! (one exponential each for Rayleigh, Mie and ozone) and the model's settings, given in
+//! [`RileyUniform`].
 
 use atmosphere_core::atmosphere::Atmosphere;
-use atmosphere_core::models::riley::Riley;
+use atmosphere_core::models::riley::{Riley, RileySettings, Species};
 use atmosphere_core::models::sky_model::ModelSettings;
 use bytemuck::{Pod, Zeroable};
 
@@ -17,37 +18,51 @@ use crate::sky::model_pass::{ModelPass, StepContext};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
 
-/// WGSL `RileyParams`, 80 bytes: the fitted species.
+/// WGSL `RileyParams`, 112 bytes: the fitted species and the settings.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct RileyUniform {
-    /// x: Rayleigh, y: Mie scale height, m; zw: 0.
+    /// x: Rayleigh, y: Mie, z: ozone scale height, m; w: 0.
     pub scale_heights_m: [f32; 4],
-    /// Extinction at the ground per channel (xyz), m^-1; Mie's is zero when pruned.
+    /// Extinction at the ground per channel (xyz), m^-1; Mie's is zero when pruned,
+    /// ozone's when left out (`ozone=false`).
     pub rayleigh_extinction_per_m: [f32; 4],
     pub mie_extinction_per_m: [f32; 4],
+    pub ozone_extinction_per_m: [f32; 4],
     /// Scattering / extinction per channel (xyz).
     pub rayleigh_albedo: [f32; 4],
     pub mie_albedo: [f32; 4],
+    /// x: `sphere`, y: `shared_extinction` (1 true, 0 false), z: `pieces`, w: 0.
+    pub options: [u32; 4],
 }
 
 impl RileyUniform {
-    /// The species of the CPU model `riley`, prepared at the GPU's wavelengths.
+    /// The species and settings of the CPU model `riley`, prepared at the GPU's
+    /// wavelengths.
     pub fn new(riley: &Riley) -> RileyUniform {
-        let (rayleigh, mie) = riley.species();
+        let (rayleigh, mie, ozone) = riley.species();
+        let settings = riley.settings();
         let v4 = |v: &[f64]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
         let zero = [0.0; 4];
+        let height = |s: Option<&Species>| s.map_or(0.0, |s| s.scale_height_m as f32);
         RileyUniform {
             scale_heights_m: [
                 rayleigh.scale_height_m as f32,
-                mie.map_or(0.0, |m| m.scale_height_m as f32),
-                0.0,
+                height(mie),
+                height(ozone),
                 0.0,
             ],
             rayleigh_extinction_per_m: v4(&rayleigh.extinction),
             mie_extinction_per_m: mie.map_or(zero, |m| v4(&m.extinction)),
+            ozone_extinction_per_m: ozone.map_or(zero, |o| v4(&o.extinction)),
             rayleigh_albedo: v4(&rayleigh.albedo),
             mie_albedo: mie.map_or(zero, |m| v4(&m.albedo)),
+            options: [
+                u32::from(settings.sphere),
+                u32::from(settings.shared_extinction),
+                settings.pieces as u32,
+                0,
+            ],
         }
     }
 }
@@ -68,14 +83,14 @@ impl PassStep for RileyStep {
     }
 }
 
-/// Pipeline and uniform, made once; the fit is redone only when the atmosphere or the
-/// pruning changes.
+/// Pipeline and uniform, made once; the fit is redone only when the atmosphere, the
+/// pruning or the model's settings change.
 #[derive(Debug)]
 pub struct RileyPass {
     pass: PixelPass,
     params: wgpu::Buffer,
     /// What the uploaded uniform was fitted from.
-    fitted_from: Option<(Atmosphere, bool)>,
+    fitted_from: Option<(Atmosphere, bool, RileySettings)>,
 }
 
 impl RileyPass {
@@ -105,15 +120,15 @@ impl ModelPass for RileyPass {
     fn plan(&mut self, plan: &mut SkyPlan<'_, RileyStep>) -> Result<(), RenderError> {
         let (gpu, frame) = (plan.gpu, plan.frame);
         check_wavelengths(&frame.settings.wavelengths_nm)?;
-        frame.settings.options.reader("riley").finish()?;
-        let key = (frame.atmosphere.clone(), frame.settings.prune);
+        let riley = RileySettings::from_options(&frame.settings.options)?;
+        let key = (frame.atmosphere.clone(), frame.settings.prune, riley);
         if self.fitted_from.as_ref() != Some(&key) {
             let settings = ModelSettings {
                 wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
                 prune: frame.settings.prune,
                 ..ModelSettings::default()
             };
-            let uniform = RileyUniform::new(&Riley::prepare(&frame.atmosphere, &settings));
+            let uniform = RileyUniform::new(&Riley::prepare(&frame.atmosphere, &settings, riley));
             gpu.write_uniform(&self.params, &uniform);
             self.fitted_from = Some(key);
         }
