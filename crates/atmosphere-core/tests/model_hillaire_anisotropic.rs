@@ -172,3 +172,18 @@ fn the_anisotropic_term_stays_close_on_clear_skies() {
     assert!(day_errors[1] < 0.045, "{day_errors:?}");
     assert!(sunset_errors[1] < 0.06, "{sunset_errors:?}");
 }
+
+/// The stability sweep (extreme rays and atmospheres, the sun crossing the horizon, the
+/// top boundary) with the anisotropic term on.
+#[test]
+fn the_anisotropic_term_passes_the_stability_sweep() {
+    let mut settings = ModelSettings::default();
+    settings.options.set("ms_order", 2);
+    let results = atmosphere_core::analysis::stability::run_with(
+        atmosphere_core::models::id::ModelId::Hillaire,
+        &settings,
+    )
+    .unwrap();
+    let failed: Vec<_> = results.iter().filter(|r| !r.passed).collect();
+    assert!(failed.is_empty(), "{failed:#?}");
+}
