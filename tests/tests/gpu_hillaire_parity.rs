@@ -161,7 +161,7 @@ fn tables_match_the_cpu() {
     );
 }
 
-/// The anisotropic multiple-scattering term (`ms_order=2`): Psi_ms's three blocks of
+/// The anisotropic multiple-scattering term (`ms_order=2`): Psi_ms's four blocks of
 /// moments and the sky view of a hazy 1 km view against the CPU's, texel by texel, then
 /// pixels of hazy views towards and away from the sun and a clear sunset. Measured on
 /// lavapipe: see the printed worst errors.
@@ -200,7 +200,7 @@ fn the_anisotropic_term_matches_the_cpu() {
     let sky = pass.read_table(&gpu, Table::SkyView).unwrap();
     let sky_error = cpu.with_sky_view(view_r, view_mu_s, |s| table_error(&sky, &s.values, 3, 0));
     println!(
-        "hillaire ms_order=2 tables on {}: worst relative error: Psi_0..2 {psi_error:.2e}, \
+        "hillaire ms_order=2 tables on {}: worst relative error: Psi_ms blocks {psi_error:.2e}, \
          sky view {sky_error:.2e}",
         gpu.adapter_summary()
     );

@@ -108,8 +108,8 @@ fn rms_error(model: &dyn SkyModel, reference: &dyn SkyModel, rays: &[ViewRay]) -
 /// In haze (the `hazy` preset: aerosol optical depth about 0.4, Cornette-Shanks
 /// g = 0.7) light scattered more than once stays near the sun. Ground, sun 45 degrees
 /// from the zenith: rays 15 to 135 degrees from the sun. Measured (reference to 1 %):
-/// RMS 15.3 % (paper), 13.3 % (ms_order=1), 10.9 % (ms_order=2); what is left is low
-/// near the horizon (docs/models/hillaire.md).
+/// RMS 15.3 % (paper), 11.1 % (ms_order=1), 8.1 % (ms_order=2, with the zenith's
+/// moment); what is left is low near the horizon (docs/models/hillaire.md).
 #[test]
 fn the_anisotropic_term_follows_the_reference_in_haze() {
     let a = Atmosphere::preset("hazy").unwrap();
@@ -131,13 +131,13 @@ fn the_anisotropic_term_follows_the_reference_in_haze() {
         .map(|order| rms_error(&model(&a, order), reference.as_ref(), &rays))
         .collect();
     eprintln!("hazy RMS by ms_order 0, 1, 2: {errors:.4?}");
-    assert!(errors[2] < 0.8 * errors[0], "{errors:?}");
-    assert!(errors[2] < 0.13, "{errors:?}");
+    assert!(errors[2] < 0.6 * errors[0], "{errors:?}");
+    assert!(errors[2] < 0.1, "{errors:?}");
 }
 
 /// On the clear Earth, daytime rays from the ground, 10 km and 100 km, and sunset.
-/// Measured: daytime RMS 2.4 % (paper) and 3.6 % (ms_order=2, 64 directions: its Psi_0
-/// is lower, see docs/models/hillaire.md), sunset 4.2 % and 4.9 %.
+/// Measured: daytime RMS 2.4 % (paper) and 3.4 % (ms_order=2, 64 directions: its Psi_0
+/// is lower, see docs/models/hillaire.md), sunset 4.2 % and 4.8 %.
 #[test]
 fn the_anisotropic_term_stays_close_on_clear_skies() {
     let a = earth();

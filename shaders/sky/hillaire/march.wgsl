@@ -16,11 +16,11 @@
 
 // `MultipleScattering::lookup`: moment `block` of Psi_ms (0: Psi_ms itself) at a point of
 // radius `r` (r^2 - bottom^2 = q) with the sun at zenith cosine `mu_s`, clamped to the
-// table; the texture stacks `hillaire.ms_order + 1` blocks of rows.
+// table; the texture stacks `psi_blocks()` blocks of rows.
 fn psi_ms_lookup(q: f32, r: f32, mu_s: f32, block: u32) -> vec3<f32> {
     let a = atmosphere;
     let dims = textureDimensions(psi_ms);
-    let rows = dims.y / (hillaire.ms_order + 1u);
+    let rows = dims.y / psi_blocks();
     let size = vec2<f32>(f32(dims.x), f32(rows));
     let x = (clamp(mu_s, -1.0, 1.0) + 1.0) * 0.5;
     let y = clamp((q / (r + a.bottom_radius_m)) / (a.top_radius_m - a.bottom_radius_m), 0.0, 1.0);
@@ -51,14 +51,20 @@ fn view_ray(q: f32, r_mu: f32, r_mu_s: f32, nu: f32) -> ViewRay {
 // `moments::MAX_LOBE_G`.
 const MAX_LOBE_G: f32 = 0.99;
 
-// `moments::source`: the multiple-scattering source of Psi_0..Psi_ms_order, Rayleigh's
-// two-moment sum plus Mie's lobe (`moments::lobe`), per channel.
-fn anisotropic_source(ray: ViewRay, p: RayPoint, psi_0: vec3<f32>, s_r: vec3<f32>, s_m: vec3<f32>) -> vec3<f32> {
+// `moments::source`: the multiple-scattering source of the Psi_ms blocks at a sample whose
+// view direction has zenith cosine `mu`: Rayleigh's two-moment sum plus Mie's lobe
+// (`moments::lobe`) and, with ms_order 2, the zenith's second moment less the sun's
+// share of it, per channel; Mie's part clamped at 0.
+fn anisotropic_source(ray: ViewRay, p: RayPoint, mu: f32, psi_0: vec3<f32>, s_r: vec3<f32>, s_m: vec3<f32>) -> vec3<f32> {
     let zero = vec3<f32>(0.0);
     let psi_1 = psi_ms_lookup(p.q, p.r, p.mu_s, 1u);
     var psi_2 = zero;
+    var zenith = zero;
     if hillaire.ms_order >= 2u {
         psi_2 = psi_ms_lookup(p.q, p.r, p.mu_s, 2u);
+        let psi_2z = psi_ms_lookup(p.q, p.r, p.mu_s, 3u);
+        let p2_s = 0.5 * (3.0 * p.mu_s * p.mu_s - 1.0);
+        zenith = 5.0 * (psi_2z - psi_2 * p2_s) * (0.5 * (3.0 * mu * mu - 1.0));
     }
     let dark = psi_0 <= zero;
     let r1 = select(clamp(psi_1 / psi_0, vec3<f32>(-MAX_LOBE_G), vec3<f32>(MAX_LOBE_G)), zero, dark);
@@ -68,8 +74,9 @@ fn anisotropic_source(ray: ViewRay, p: RayPoint, psi_0: vec3<f32>, s_r: vec3<f32
     let g = g_f * hillaire.mie_g1;
     let d = 1.0 + g * g - 2.0 * g * ray.nu;
     let lobe = (1.0 - g * g) / (d * sqrt(d));
-    let rayleigh = psi_0 + ray.rayleigh_2 * psi_2;
-    return s_r * rayleigh + s_m * psi_0 * ((1.0 - a) + a * lobe);
+    let rayleigh = psi_0 + ray.rayleigh_2 * psi_2 + 0.1 * zenith;
+    let mie = psi_0 * ((1.0 - a) + a * lobe) + hillaire.mie_g2 * zenith;
+    return s_r * rayleigh + s_m * max(mie, zero);
 }
 
 // Radiance so far per unit solar irradiance, and the throughput from the start.
@@ -99,7 +106,8 @@ fn march_segment(ray: ViewRay, m: ptr<function, ViewMarch>, t_mid: f32, dt: f32)
         if hillaire.ms_order == 0u {
             multiple = psi_0 * (s_r + s_m);
         } else {
-            multiple = anisotropic_source(ray, p, psi_0, s_r, s_m);
+            let mu = clamp((ray.r_mu + t_mid) / p.r, -1.0, 1.0);
+            multiple = anisotropic_source(ray, p, mu, psi_0, s_r, s_m);
         }
     }
     let source = sun * (s_r * ray.phase_rayleigh + s_m * ray.phase_mie) + multiple;

@@ -13,7 +13,9 @@
 // rgb = Psi_ms (sr^-1, per unit solar irradiance) in the three channels, a = 1.
 // With `ms_order` above 0 (CPU twin: `models/hillaire/moments.rs`, `psi_moments`) the
 // directions crowd around the sun, the first scattering has the medium's phase functions,
-// and block l of rows (l = 0..ms_order) holds Psi_l = mean of L P_l(c) / (1 - f_l).
+// and block l of rows (l = 0..ms_order) holds Psi_l = mean of L P_l(c) / (1 - f_l); with
+// ms_order 2 a fourth block holds the second moment about the zenith, mean of L P_2(mu)
+// / (1 - f_2).
 
 #import sky/hillaire/medium.wgsl
 
@@ -22,8 +24,8 @@
 const THREADS: u32 = 64u;
 // `MAX_F_MS`.
 const MAX_F_MS: f32 = 0.999999;
-// `moments::MAX_ORDER` + 1.
-const BLOCKS: u32 = 3u;
+// `moments::blocks(MAX_ORDER)`.
+const BLOCKS: u32 = 4u;
 
 // Per lane, per moment block: the sum over its directions of L P_l (the paper's
 // L_2nd order in block 0) and of the transfer f_l.
@@ -67,6 +69,7 @@ fn direction_light(t: Texel, mu: f32, nu: f32, phase_r: f32, phase_m: f32) -> Di
         light.returned[0] += (s_r + s_m) * reach;
         light.returned[1] += s_m * hillaire.mie_g1 * reach;
         light.returned[2] += (0.1 * s_r + s_m * hillaire.mie_g2) * reach;
+        light.returned[3] = light.returned[2];
         throughput *= w.transmittance;
     }
     if ground {
@@ -102,7 +105,7 @@ fn isotropic_lane(t: Texel, lane: u32) {
 // phase functions at the first scattering; this lane's sums in blocks 0..=ms_order.
 fn moments_lane(t: Texel, lane: u32) {
     let n = hillaire.ms_sqrt_directions;
-    let blocks = hillaire.ms_order + 1u;
+    let blocks = psi_blocks();
     let sin_s = safe_sqrt(1.0 - t.mu_s * t.mu_s);
     var mean = array<vec3<f32>, BLOCKS>();
     var transfer = array<vec3<f32>, BLOCKS>();
@@ -113,7 +116,7 @@ fn moments_lane(t: Texel, lane: u32) {
         let mu = clamp(c * t.mu_s - safe_sqrt(1.0 - c * c) * cos(psi) * sin_s, -1.0, 1.0);
         let weight = 2.0 * u / f32(n * n);
         let light = direction_light(t, mu, c, rayleigh_phase(c), mie_phase(c));
-        let p = array<f32, BLOCKS>(1.0, c, 0.5 * (3.0 * c * c - 1.0));
+        let p = array<f32, BLOCKS>(1.0, c, 0.5 * (3.0 * c * c - 1.0), 0.5 * (3.0 * mu * mu - 1.0));
         for (var l = 0u; l < blocks; l++) {
             mean[l] += weight * light.radiance * p[l];
             transfer[l] += weight * light.returned[l];
@@ -126,7 +129,7 @@ fn moments_lane(t: Texel, lane: u32) {
 @compute @workgroup_size(64)
 fn main(@builtin(workgroup_id) texel: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let a = atmosphere;
-    let blocks = hillaire.ms_order + 1u;
+    let blocks = psi_blocks();
     let size = vec2<u32>(textureDimensions(psi_out).x, textureDimensions(psi_out).y / blocks);
     // `MultipleScattering::texel_r_mu_s`, the altitude kept apart from the radius.
     let altitude = (a.top_radius_m - a.bottom_radius_m) * unit_from_texel(texel.y, size.y);

@@ -44,7 +44,7 @@ impl<'a> ViewMarch<'a> {
         nu: f64,
     ) -> ViewMarch<'a> {
         let n = medium.wavelengths();
-        let blocks = multiple.map_or(1, |m| m.order + 1);
+        let blocks = multiple.map_or(1, |m| moments::blocks(m.order));
         let phase_mie = if medium.mie {
             medium.atmosphere.mie.phase.eval(nu)
         } else {
@@ -69,6 +69,7 @@ impl<'a> ViewMarch<'a> {
     /// Integrates the segment [t_mid - dt/2, t_mid + dt/2] with the medium of its midpoint.
     pub fn segment(&mut self, t_mid: f64, dt: f64) {
         let (r_t, mu_s_t) = point_along(self.r, self.mu, self.mu_s, self.nu, t_mid);
+        let mu_t = ((self.r * self.mu + t_mid) / r_t).clamp(-1.0, 1.0);
         let rho = self.medium.densities(r_t);
         if rho == [0.0; 3] {
             return;
@@ -85,13 +86,14 @@ impl<'a> ViewMarch<'a> {
                 Some(ms) if ms.order == 0 => self.psi[w] * (s_r + s_m),
                 Some(ms) => {
                     let psi = std::array::from_fn(|l| {
-                        if l <= ms.order {
+                        if l < moments::blocks(ms.order) {
                             self.psi[l * n + w]
                         } else {
                             0.0
                         }
                     });
-                    moments::source(psi, ms.order, self.nu, &ms.phase_moments, s_r, s_m)
+                    let angles = (self.nu, mu_t, mu_s_t);
+                    moments::source(psi, ms.order, angles, &ms.phase_moments, s_r, s_m)
                 }
             };
             let source =

@@ -21,6 +21,13 @@
 //!   (their Legendre moments multiply), so J_M = Psi_0 ((1 - a) + a 4 pi HG(g_f g_1, nu)):
 //!   never negative, and as peaked as the aureole it comes from.
 //!
+//! - Near the ground the field is also brightest from near-horizontal directions (long
+//!   paths), a structure symmetric about the zenith: with order 2 a fourth moment
+//!   Psi_2z = (1/4 pi) integral of L P_2(mu) is kept, less the sun-symmetric part's
+//!   share of it, Psi_2 P_2(mu_s) (addition theorem); the rest adds
+//!   5 g_2 (Psi_2z - Psi_2 P_2(mu_s)) P_2(mu) to each scatterer's J, mu the view
+//!   direction's zenith cosine at the sample (Mie's J clamped at 0).
+//!
 //! Psi_l at a texel: the once-scattered light with the medium's own phase functions (the
 //! paper takes the first scattering as isotropic too), its moments over directions
 //! crowded around the sun, divided by 1 - f_l: the paper's geometric series of orders,
@@ -38,6 +45,12 @@ use crate::optics::phase::{PhaseFunction, rayleigh};
 
 /// Highest Legendre order of the anisotropic term.
 pub const MAX_ORDER: usize = 2;
+
+/// Blocks of Psi held for `order`: Psi_0..Psi_order about the sun and, with order 2, the
+/// second moment about the local zenith.
+pub fn blocks(order: usize) -> usize {
+    if order >= 2 { order + 2 } else { order + 1 }
+}
 
 /// Legendre polynomials P_0, P_1, P_2 at `t`.
 pub fn legendre(t: f64) -> [f64; MAX_ORDER + 1] {
@@ -109,23 +122,30 @@ pub fn lobe(psi: [f64; MAX_ORDER + 1], order: usize) -> (f64, f64) {
     (a, g)
 }
 
-/// The multiple-scattering source per unit solar irradiance at view-sun cosine `nu`, for
-/// scattering coefficients `s_r` (Rayleigh) and `s_m` (Mie), from Psi_0..Psi_`order`
-/// (`psi`, zero above `order`): Rayleigh's two-moment sum plus Mie's lobe.
+/// The multiple-scattering source per unit solar irradiance at a sample whose view
+/// direction has cosines `nu` to the sun and `mu` to the zenith, the sun `mu_s` to the
+/// zenith, for scattering coefficients `s_r` (Rayleigh) and `s_m` (Mie), from the
+/// [`blocks`] of Psi (`psi`, zero beyond them): Rayleigh's two-moment sum plus Mie's
+/// lobe, and with order 2 the zenith's second moment less the sun-symmetric part's share
+/// of it, Psi_2z - Psi_2 P_2(mu_s) (addition theorem), scattered as 5 g_2 (.) P_2(mu);
+/// Mie's part clamped at 0.
 pub fn source(
-    psi: [f64; MAX_ORDER + 1],
+    psi: [f64; MAX_ORDER + 2],
     order: usize,
-    nu: f64,
+    (nu, mu, mu_s): (f64, f64, f64),
     moments: &PhaseMoments,
     s_r: f64,
     s_m: f64,
 ) -> f64 {
-    let (a, g_f) = lobe(psi, order);
+    let (a, g_f) = lobe([psi[0], psi[1], psi[2]], order);
     let g = g_f * moments.mie[1];
     let d = 1.0 + g * g - 2.0 * g * nu;
     let lobe = (1.0 - g * g) / (d * d.sqrt());
-    let rayleigh = psi[0] + 5.0 * moments.rayleigh[2] * legendre(nu)[2] * psi[2];
-    s_r * rayleigh + s_m * psi[0] * ((1.0 - a) + a * lobe)
+    let zenith = 5.0 * (psi[3] - psi[2] * legendre(mu_s)[2]) * legendre(mu)[2];
+    let rayleigh = psi[0]
+        + 5.0 * moments.rayleigh[2] * legendre(nu)[2] * psi[2]
+        + moments.rayleigh[2] * zenith;
+    s_r * rayleigh + s_m * (psi[0] * ((1.0 - a) + a * lobe) + moments.mie[2] * zenith).max(0.0)
 }
 
 /// The unit direction i, j of `sqrt_directions`^2 about the sun, in the frame whose z is
@@ -162,7 +182,7 @@ pub fn psi_moments(
     let mie_phase = |c: f64| {
         if medium.mie { a.mie.phase.eval(c) } else { 0.0 }
     };
-    let blocks = order + 1;
+    let blocks = blocks(order);
     // Mean over the sphere of L P_l (= Psi_l before the series) and of the transfer f_l.
     let mut mean = vec![0.0; blocks * n];
     let mut transfer = vec![0.0; blocks * n];
@@ -194,8 +214,9 @@ pub fn psi_moments(
                     let reach = throughput[w] * integral;
                     radiance[w] += (s_r * p_r + s_m * p_m) * sun[w] * reach;
                     for l in 0..blocks {
+                        let k = l.min(2);
                         returned[l * n + w] +=
-                            (s_r * moments.rayleigh[l] + s_m * moments.mie[l]) * reach;
+                            (s_r * moments.rayleigh[k] + s_m * moments.mie[k]) * reach;
                     }
                     throughput[w] *= t_seg;
                 }
@@ -207,7 +228,8 @@ pub fn psi_moments(
                     radiance[w] += throughput[w] * sun[w] * mu_s_g.max(0.0) * a.ground_albedo / PI;
                 }
             }
-            let p = legendre(c);
+            let sun_p = legendre(c);
+            let p = [sun_p[0], sun_p[1], sun_p[2], legendre(mu)[2]];
             for l in 0..blocks {
                 for w in 0..n {
                     mean[l * n + w] += weight * radiance[w] * p[l];

@@ -24,7 +24,7 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 
 use crate::models::hillaire::medium::{Medium, ground_distance, point_along, segment_weight};
-use crate::models::hillaire::moments::{PhaseMoments, psi_moments};
+use crate::models::hillaire::moments::{PhaseMoments, blocks, psi_moments};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::transmittance_table::{coord_from_unit, unit_from_coord};
 
@@ -167,7 +167,7 @@ impl MultipleScattering {
                 }
             })
             .collect();
-        table.values = (0..=order)
+        table.values = (0..blocks(order))
             .flat_map(|l| {
                 texels
                     .iter()
@@ -200,7 +200,7 @@ impl MultipleScattering {
         let (i0, ax) = cell(x, self.width);
         let (j0, ay) = cell(y, self.height);
         let n = self.wavelengths;
-        for l in 0..=self.order {
+        for l in 0..blocks(self.order) {
             let at = |i: usize, j: usize| ((l * self.height + j) * self.width + i) * n;
             let (a, b, c, d) = (
                 at(i0, j0),

@@ -7,7 +7,7 @@ use crate::models::gpu_loops::check_loop_trips;
 use crate::models::hillaire::aerial_perspective::{AerialPerspective, VolumeShape};
 use crate::models::hillaire::directions::LatLong;
 use crate::models::hillaire::ground::HemisphereQuadrature;
-use crate::models::hillaire::moments::MAX_ORDER;
+use crate::models::hillaire::moments::{MAX_ORDER, blocks};
 use crate::models::hillaire::sky_view::SkyView;
 use crate::models::options::{ModelOptions, Setting};
 use crate::models::table_budget::{check_table_bytes, product};
@@ -219,7 +219,13 @@ impl HillaireSettings {
         let (tw, th) = self.transmittance_size;
         let (mw, mh) = self.multiple_scattering_size;
         let global = product(&[tw, th, 24])
-            + product(&[mw, mh, self.multiple_scattering_order + 1, wavelengths, 4])
+            + product(&[
+                mw,
+                mh,
+                blocks(self.multiple_scattering_order),
+                wavelengths,
+                4,
+            ])
             + product(&[self.ground_size, wavelengths, 4]);
         let view = SkyView::bytes_for(self.sky_view_grid(), wavelengths) as u64
             + AerialPerspective::bytes_for(self.volume_shape(), wavelengths) as u64;

@@ -8,6 +8,8 @@ use atmosphere_core::models::hillaire::{
     HillaireSettings, VIEW_INPUTS, multiple_scattering_inputs,
 };
 
+use atmosphere_core::models::hillaire::moments::blocks;
+
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::sky::hillaire::uniform::count;
@@ -144,7 +146,7 @@ impl Tables {
                 "Psi_ms",
                 MS,
                 D2,
-                (mw, mh * (settings.multiple_scattering_order + 1), 1),
+                (mw, mh * blocks(settings.multiple_scattering_order), 1),
             )?,
             ground_irradiance: table_texture(
                 gpu,
