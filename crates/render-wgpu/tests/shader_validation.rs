@@ -292,9 +292,9 @@ fn hillaire_uniform_matches_its_wgsl_layout() {
             ground_azimuths,
             multiple_on,
             view_theta_h,
-            pad0,
-            pad1,
-            pad2,
+            ms_order,
+            mie_g1,
+            mie_g2,
             view_up,
             view_sun_side,
             view_across

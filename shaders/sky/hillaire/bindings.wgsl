@@ -27,9 +27,12 @@ struct HillaireParams {
     multiple_on: u32,
     // Zenith angle of the geometric horizon at the view's radius (`horizon_zenith`, f64).
     view_theta_h: f32,
-    pad0: f32,
-    pad1: f32,
-    pad2: f32,
+    // The anisotropic multiple-scattering term (`moments.rs`): highest Legendre moment
+    // of Psi_ms (0: the paper's isotropic term; the table stacks `psi_blocks()` blocks of
+    // rows), and the Mie phase function's moments g_1, g_2.
+    ms_order: u32,
+    mie_g1: f32,
+    mie_g2: f32,
     // The camera's zenith, and two horizontal unit vectors there: towards the sun's
     // azimuth and 90 degrees from it (any horizontal pair when the sun is at the zenith
     // or nadir); xyz, w = 0. The pass measures view angles in this frame.
@@ -39,4 +42,10 @@ struct HillaireParams {
 }
 
 @group(0) @binding(2) var<uniform> hillaire: HillaireParams;
+
+// `moments::blocks`: blocks of rows of the Psi_ms table, Psi_0..Psi_ms_order about the
+// sun and, with ms_order 2, the second moment about the local zenith.
+fn psi_blocks() -> u32 {
+    return select(hillaire.ms_order + 1u, hillaire.ms_order + 2u, hillaire.ms_order >= 2u);
+}
 @group(0) @binding(3) var transmittance_columns: texture_2d<f32>;

@@ -5,7 +5,8 @@
 // Hillaire 2020, section 5 ("Ray marching") and section 5.5 (Psi_ms): along a view ray
 // the light scattered towards the camera at each segment's midpoint is
 // sigma_s (T_sun p(nu) + Psi_ms), integrated with `segment_weight`; per unit solar
-// irradiance. The Psi_ms LUT is bound at 4 in every shader that marches view rays, and
+// irradiance. With `ms_order` above 0 the Psi_ms term is the anisotropic one of
+// `models/hillaire/moments.rs`. The Psi_ms LUT is bound at 4 in every shader that marches view rays, and
 // read as `common/table_sampling.wgsl` says.
 
 #import sky/hillaire/medium.wgsl
@@ -13,20 +14,25 @@
 
 @group(0) @binding(4) var psi_ms: texture_2d<f32>;
 
-// `MultipleScattering::lookup`: Psi_ms at a point of radius `r` (r^2 - bottom^2 = q) with
-// the sun at zenith cosine `mu_s`, clamped to the table.
-fn psi_ms_lookup(q: f32, r: f32, mu_s: f32) -> vec3<f32> {
+// `MultipleScattering::lookup`: moment `block` of Psi_ms (0: Psi_ms itself) at a point of
+// radius `r` (r^2 - bottom^2 = q) with the sun at zenith cosine `mu_s`, clamped to the
+// table; the texture stacks `psi_blocks()` blocks of rows.
+fn psi_ms_lookup(q: f32, r: f32, mu_s: f32, block: u32) -> vec3<f32> {
     let a = atmosphere;
-    let size = vec2<f32>(textureDimensions(psi_ms));
+    let dims = textureDimensions(psi_ms);
+    let rows = dims.y / psi_blocks();
+    let size = vec2<f32>(f32(dims.x), f32(rows));
     let x = (clamp(mu_s, -1.0, 1.0) + 1.0) * 0.5;
     let y = clamp((q / (r + a.bottom_radius_m)) / (a.top_radius_m - a.bottom_radius_m), 0.0, 1.0);
+    let f = vec2<f32>(x, y) * (size - 1.0) + vec2<f32>(0.0, f32(block * rows));
     if FILTERED_TABLES {
-        return sample_2d(psi_ms, vec2<f32>(x, y) * (size - 1.0));
+        return sample_2d(psi_ms, f);
     }
-    return texel_bilinear(psi_ms, vec2<f32>(x, y) * (size - 1.0));
+    return texel_bilinear(psi_ms, f);
 }
 
-// A view ray: start (q, r mu, r mu_s), view-sun cosine and the phase functions there.
+// A view ray: start (q, r mu, r mu_s), view-sun cosine and the phase functions there;
+// for the anisotropic term, Rayleigh's weight of Psi_2, 5 g_2 P_2(nu) with g_2 = 1/10.
 struct ViewRay {
     q: f32,
     r_mu: f32,
@@ -34,10 +40,43 @@ struct ViewRay {
     nu: f32,
     phase_rayleigh: f32,
     phase_mie: f32,
+    rayleigh_2: f32,
 }
 
 fn view_ray(q: f32, r_mu: f32, r_mu_s: f32, nu: f32) -> ViewRay {
-    return ViewRay(q, r_mu, r_mu_s, nu, rayleigh_phase(nu), mie_phase(nu));
+    let rayleigh_2 = 0.25 * (3.0 * nu * nu - 1.0);
+    return ViewRay(q, r_mu, r_mu_s, nu, rayleigh_phase(nu), mie_phase(nu), rayleigh_2);
+}
+
+// `moments::MAX_LOBE_G`.
+const MAX_LOBE_G: f32 = 0.99;
+
+// `moments::source`: the multiple-scattering source of the Psi_ms blocks at a sample whose
+// view direction has zenith cosine `mu`: Rayleigh's two-moment sum plus Mie's lobe
+// (`moments::lobe`) and, with ms_order 2, the zenith's second moment less the sun's
+// share of it, per channel; Mie's part clamped at 0.
+fn anisotropic_source(ray: ViewRay, p: RayPoint, mu: f32, psi_0: vec3<f32>, s_r: vec3<f32>, s_m: vec3<f32>) -> vec3<f32> {
+    let zero = vec3<f32>(0.0);
+    let psi_1 = psi_ms_lookup(p.q, p.r, p.mu_s, 1u);
+    var psi_2 = zero;
+    var zenith = zero;
+    if hillaire.ms_order >= 2u {
+        psi_2 = psi_ms_lookup(p.q, p.r, p.mu_s, 2u);
+        let psi_2z = psi_ms_lookup(p.q, p.r, p.mu_s, 3u);
+        let p2_s = 0.5 * (3.0 * p.mu_s * p.mu_s - 1.0);
+        zenith = 5.0 * (psi_2z - psi_2 * p2_s) * (0.5 * (3.0 * mu * mu - 1.0));
+    }
+    let dark = psi_0 <= zero;
+    let r1 = select(clamp(psi_1 / psi_0, vec3<f32>(-MAX_LOBE_G), vec3<f32>(MAX_LOBE_G)), zero, dark);
+    let fitted = clamp(psi_2 / psi_0 / r1, r1, vec3<f32>(MAX_LOBE_G));
+    let g_f = select(r1, fitted, (r1 > zero) & vec3<bool>(hillaire.ms_order >= 2u));
+    let a = select(zero, r1 / g_f, g_f != zero);
+    let g = g_f * hillaire.mie_g1;
+    let d = 1.0 + g * g - 2.0 * g * ray.nu;
+    let lobe = (1.0 - g * g) / (d * sqrt(d));
+    let rayleigh = psi_0 + ray.rayleigh_2 * psi_2 + 0.1 * zenith;
+    let mie = psi_0 * ((1.0 - a) + a * lobe) + hillaire.mie_g2 * zenith;
+    return s_r * rayleigh + s_m * max(mie, zero);
 }
 
 // Radiance so far per unit solar irradiance, and the throughput from the start.
@@ -59,13 +98,19 @@ fn march_segment(ray: ViewRay, m: ptr<function, ViewMarch>, t_mid: f32, dt: f32)
         return;
     }
     let sun = sun_transmittance(p.q, p.mu_s);
-    var psi = vec3<f32>(0.0);
-    if hillaire.multiple_on != 0u {
-        psi = psi_ms_lookup(p.q, p.r, p.mu_s);
-    }
     let s_r = atmosphere.rayleigh_scattering_per_m.xyz * rho.x;
     let s_m = atmosphere.mie_scattering_per_m.xyz * rho.y;
-    let source = sun * (s_r * ray.phase_rayleigh + s_m * ray.phase_mie) + psi * (s_r + s_m);
+    var multiple = vec3<f32>(0.0);
+    if hillaire.multiple_on != 0u {
+        let psi_0 = psi_ms_lookup(p.q, p.r, p.mu_s, 0u);
+        if hillaire.ms_order == 0u {
+            multiple = psi_0 * (s_r + s_m);
+        } else {
+            let mu = clamp((ray.r_mu + t_mid) / p.r, -1.0, 1.0);
+            multiple = anisotropic_source(ray, p, mu, psi_0, s_r, s_m);
+        }
+    }
+    let source = sun * (s_r * ray.phase_rayleigh + s_m * ray.phase_mie) + multiple;
     let w = segment_weight(optical_depth(rho), dt);
     (*m).radiance += (*m).throughput * source * w.integral;
     (*m).throughput *= w.transmittance;

@@ -56,6 +56,12 @@ pub fn report_variants() -> Vec<Variant> {
             None,
             &["ms_samples=32", "sky_view_samples=60"],
         ),
+        Variant::new(ModelId::Hillaire, None, &["ms_order=2"]),
+        Variant::new(
+            ModelId::Hillaire,
+            None,
+            &["ms_order=2", "ms_directions=256"],
+        ),
         Variant::new(ModelId::Bruneton, Some(1), &[]),
         Variant::new(ModelId::Bruneton, Some(2), &[]),
         Variant::new(ModelId::Bruneton, None, &[]),

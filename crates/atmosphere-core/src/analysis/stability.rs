@@ -114,8 +114,16 @@ fn relative_difference(a: &RayRadiance, b: &RayRadiance) -> f64 {
 
 /// Runs every case of the sweep through the model `model_id`.
 pub fn run(model_id: ModelId) -> Result<Vec<CaseResult>, ModelError> {
+    run_with(model_id, &sweep_settings(model_id))
+}
+
+/// Runs every case of the sweep through the model `model_id` prepared with `settings`
+/// (a model's non-default options).
+pub fn run_with(
+    model_id: ModelId,
+    settings: &ModelSettings,
+) -> Result<Vec<CaseResult>, ModelError> {
     let earth = crate::atmosphere::presets::earth();
-    let settings = sweep_settings(model_id);
     let mut results = Vec::new();
 
     // Finite, non-negative, bounded: extreme rays on extreme atmospheres.
@@ -127,7 +135,7 @@ pub fn run(model_id: ModelId) -> Result<Vec<CaseResult>, ModelError> {
         ("venus-like (tau > 1e3)", venus_like()),
     ];
     for (case, atmosphere) in atmospheres {
-        let model = prepare(model_id, &atmosphere, &settings)?;
+        let model = prepare(model_id, &atmosphere, settings)?;
         let top = atmosphere.thickness_m();
         let mut worst: f64 = 0.0;
         let mut failure = None;
@@ -166,7 +174,7 @@ pub fn run(model_id: ModelId) -> Result<Vec<CaseResult>, ModelError> {
         });
     }
 
-    let model = prepare(model_id, &earth, &settings)?;
+    let model = prepare(model_id, &earth, settings)?;
     let top = earth.thickness_m();
 
     // The same ray from just inside and just outside the top.

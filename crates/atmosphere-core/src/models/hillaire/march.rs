@@ -8,6 +8,7 @@
 //! Radiance here is per unit solar irradiance (sr^-1); the model multiplies by E_sun.
 
 use crate::models::hillaire::medium::{Medium, point_along, segment_weight};
+use crate::models::hillaire::moments;
 use crate::models::hillaire::multiple_scattering::MultipleScattering;
 use crate::optics::phase::rayleigh;
 
@@ -43,6 +44,7 @@ impl<'a> ViewMarch<'a> {
         nu: f64,
     ) -> ViewMarch<'a> {
         let n = medium.wavelengths();
+        let blocks = multiple.map_or(1, |m| moments::blocks(m.order));
         let phase_mie = if medium.mie {
             medium.atmosphere.mie.phase.eval(nu)
         } else {
@@ -60,26 +62,42 @@ impl<'a> ViewMarch<'a> {
             radiance: vec![0.0; n],
             throughput: vec![1.0; n],
             sun: vec![0.0; n],
-            psi: vec![0.0; n],
+            psi: vec![0.0; blocks * n],
         }
     }
 
     /// Integrates the segment [t_mid - dt/2, t_mid + dt/2] with the medium of its midpoint.
     pub fn segment(&mut self, t_mid: f64, dt: f64) {
         let (r_t, mu_s_t) = point_along(self.r, self.mu, self.mu_s, self.nu, t_mid);
+        let mu_t = ((self.r * self.mu + t_mid) / r_t).clamp(-1.0, 1.0);
         let rho = self.medium.densities(r_t);
         if rho == [0.0; 3] {
             return;
         }
         self.medium.sun_transmittance(r_t, mu_s_t, &mut self.sun);
-        match self.multiple {
-            Some(ms) => ms.lookup(r_t, mu_s_t, &mut self.psi),
-            None => self.psi.fill(0.0),
+        if let Some(ms) = self.multiple {
+            ms.lookup(r_t, mu_s_t, &mut self.psi);
         }
-        for w in 0..self.radiance.len() {
+        let n = self.radiance.len();
+        for w in 0..n {
             let (s_r, s_m, extinction) = self.medium.coefficients(rho, w);
-            let source = self.sun[w] * (s_r * self.phase_rayleigh + s_m * self.phase_mie)
-                + self.psi[w] * (s_r + s_m);
+            let multiple = match self.multiple {
+                None => 0.0,
+                Some(ms) if ms.order == 0 => self.psi[w] * (s_r + s_m),
+                Some(ms) => {
+                    let psi = std::array::from_fn(|l| {
+                        if l < moments::blocks(ms.order) {
+                            self.psi[l * n + w]
+                        } else {
+                            0.0
+                        }
+                    });
+                    let angles = (self.nu, mu_t, mu_s_t);
+                    moments::source(psi, ms.order, angles, &ms.phase_moments, s_r, s_m)
+                }
+            };
+            let source =
+                self.sun[w] * (s_r * self.phase_rayleigh + s_m * self.phase_mie) + multiple;
             let (t_seg, integral) = segment_weight(extinction, dt);
             self.radiance[w] += self.throughput[w] * source * integral;
             self.throughput[w] *= t_seg;

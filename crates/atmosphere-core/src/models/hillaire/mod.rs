@@ -16,6 +16,7 @@ pub mod directions;
 pub mod ground;
 pub mod march;
 pub mod medium;
+pub mod moments;
 pub mod multiple_scattering;
 pub mod rows;
 pub mod settings;
@@ -45,12 +46,22 @@ use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
 
-/// The inputs of Psi_ms: extinction, scattering (part of the extinction inputs) and the
-/// ground's albedo; not the Mie phase function (isotropic there) nor the sun (the table
-/// is per unit irradiance).
+/// The inputs of the paper's Psi_ms: extinction, scattering (part of the extinction
+/// inputs) and the ground's albedo; not the Mie phase function (isotropic there) nor the
+/// sun (the table is per unit irradiance).
 pub const MULTIPLE_SCATTERING_INPUTS: Inputs = Inputs::EXTINCTION.union(Inputs::GROUND_ALBEDO);
-/// The inputs of the ground's sky irradiance and of the per-view tables.
+/// The inputs of the ground's sky irradiance, of the per-view tables and of the
+/// anisotropic Psi_ms (`ms_order` above 0), whose first scattering has the medium's phase.
 pub const VIEW_INPUTS: Inputs = MULTIPLE_SCATTERING_INPUTS.union(Inputs::MIE_PHASE);
+
+/// The inputs of Psi_ms under `settings`.
+pub fn multiple_scattering_inputs(settings: &HillaireSettings) -> Inputs {
+    if settings.multiple_scattering_order == 0 {
+        MULTIPLE_SCATTERING_INPUTS
+    } else {
+        VIEW_INPUTS
+    }
+}
 
 /// The Hillaire 2020 model, prepared for one atmosphere.
 #[derive(Debug)]
@@ -170,6 +181,7 @@ impl Hillaire {
                 s.multiple_scattering_size,
                 s.multiple_scattering_directions.isqrt(),
                 s.multiple_scattering_samples,
+                s.multiple_scattering_order,
             )
         });
     }
@@ -271,7 +283,7 @@ impl SkyModel for Hillaire {
         let changed = update.changed;
         let size = self.settings.transmittance_size;
         update.rebuild_columns("transmittance", &mut self.transmittance, atmosphere, size);
-        if self.multiple_on && changed.intersects(MULTIPLE_SCATTERING_INPUTS) {
+        if self.multiple_on && changed.intersects(multiple_scattering_inputs(&self.settings)) {
             self.build_multiple_scattering();
             update.mark(&["multiple scattering"]);
         }

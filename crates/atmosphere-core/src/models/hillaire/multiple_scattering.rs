@@ -13,12 +13,18 @@
 //! The sphere is sampled by 64 directions (8 x 8 strata of uniform solid angle) and each
 //! ray by 20 segments, as in the paper's implementation. Values are per unit solar
 //! irradiance, stored in f32 per wavelength.
+//!
+//! With the anisotropic setting (`ms_order` 1 or 2, `moments.rs`) the table holds
+//! Psi_0..Psi_order, the moments of the multiple-scattering field about the sun, as
+//! blocks of rows one above the other (the GPU's texture is stacked alike); Psi_0 is
+//! then the paper's Psi_ms with the medium's phase functions at the first scattering.
 
 use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
 use crate::models::hillaire::medium::{Medium, ground_distance, point_along, segment_weight};
+use crate::models::hillaire::moments::{PhaseMoments, blocks, psi_moments};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::transmittance_table::{coord_from_unit, unit_from_coord};
 
@@ -115,39 +121,57 @@ pub fn transfer(
 pub struct MultipleScattering {
     pub width: usize,
     pub height: usize,
+    /// Highest Legendre moment held: 0 (the paper's isotropic Psi_ms), 1 or 2.
+    pub order: usize,
+    /// The phase functions' moments the table was built with (`moments.rs`).
+    pub phase_moments: PhaseMoments,
     wavelengths: usize,
     bottom_m: f64,
     top_m: f64,
-    /// Psi_ms per texel (row-major, rows of altitude) and wavelength, sr^-1.
+    /// Psi_l per moment block, texel (row-major, rows of altitude) and wavelength,
+    /// sr^-1: index ((l * height + j) * width + i) * wavelengths + w.
     pub values: Vec<f32>,
 }
 
 impl MultipleScattering {
     /// Builds the LUT: `size` = (mu_s, altitude) texels, `sqrt_directions`^2 directions and
-    /// `samples` segments per direction.
+    /// `samples` segments per direction; moments up to `order` (0: the paper's).
     pub fn build(
         medium: &Medium,
         size: (usize, usize),
         sqrt_directions: usize,
         samples: usize,
+        order: usize,
     ) -> MultipleScattering {
         let (width, height) = size;
+        let n = medium.wavelengths();
+        let moments = &PhaseMoments::new(&medium.atmosphere.mie.phase);
         let mut table = MultipleScattering {
             width,
             height,
-            wavelengths: medium.wavelengths(),
+            order,
+            phase_moments: *moments,
+            wavelengths: n,
             bottom_m: medium.atmosphere.bottom_radius_m,
             top_m: medium.atmosphere.top_radius_m,
             values: Vec::new(),
         };
-        table.values = (0..width * height)
+        let texels: Vec<Vec<f64>> = (0..width * height)
             .into_par_iter()
-            .flat_map_iter(|index| {
+            .map(|index| {
                 let (r, mu_s) = table.texel_r_mu_s(index % width, index / width);
-                transfer(medium, r, mu_s, sqrt_directions, samples)
-                    .psi()
-                    .into_iter()
-                    .map(|v| v as f32)
+                if order == 0 {
+                    transfer(medium, r, mu_s, sqrt_directions, samples).psi()
+                } else {
+                    psi_moments(medium, moments, r, mu_s, order, sqrt_directions, samples)
+                }
+            })
+            .collect();
+        table.values = (0..blocks(order))
+            .flat_map(|l| {
+                texels
+                    .iter()
+                    .flat_map(move |t| t[l * n..(l + 1) * n].iter().map(|v| *v as f32))
             })
             .collect();
         table
@@ -163,31 +187,33 @@ impl MultipleScattering {
         )
     }
 
-    /// Psi_ms stored at texel (i, j), wavelength `w`.
+    /// Psi_ms (Psi_0) stored at texel (i, j), wavelength `w`.
     pub fn texel(&self, i: usize, j: usize, w: usize) -> f64 {
         self.values[(j * self.width + i) * self.wavelengths + w] as f64
     }
 
-    /// Psi_ms at radius `r` and sun cosine `mu_s`, per wavelength (bilinear, clamped to
-    /// the table).
+    /// Psi_0..Psi_order at radius `r` and sun cosine `mu_s`: `order + 1` blocks of one
+    /// value per wavelength (bilinear, clamped to the table).
     pub fn lookup(&self, r: f64, mu_s: f64, out: &mut [f64]) {
         let x = (mu_s.clamp(-1.0, 1.0) + 1.0) * 0.5;
         let y = ((r - self.bottom_m) / (self.top_m - self.bottom_m)).clamp(0.0, 1.0);
         let (i0, ax) = cell(x, self.width);
         let (j0, ay) = cell(y, self.height);
         let n = self.wavelengths;
-        let at = |i: usize, j: usize| (j * self.width + i) * n;
-        let (a, b, c, d) = (
-            at(i0, j0),
-            at(i0 + 1, j0),
-            at(i0, j0 + 1),
-            at(i0 + 1, j0 + 1),
-        );
-        for w in 0..n {
-            let v = |k: usize| self.values[k + w] as f64;
-            let low = v(a) + ax * (v(b) - v(a));
-            let high = v(c) + ax * (v(d) - v(c));
-            out[w] = low + ay * (high - low);
+        for l in 0..blocks(self.order) {
+            let at = |i: usize, j: usize| ((l * self.height + j) * self.width + i) * n;
+            let (a, b, c, d) = (
+                at(i0, j0),
+                at(i0 + 1, j0),
+                at(i0, j0 + 1),
+                at(i0 + 1, j0 + 1),
+            );
+            for w in 0..n {
+                let v = |k: usize| self.values[k + w] as f64;
+                let low = v(a) + ax * (v(b) - v(a));
+                let high = v(c) + ax * (v(d) - v(c));
+                out[l * n + w] = low + ay * (high - low);
+            }
         }
     }
 

@@ -7,6 +7,7 @@ use crate::models::gpu_loops::check_loop_trips;
 use crate::models::hillaire::aerial_perspective::{AerialPerspective, VolumeShape};
 use crate::models::hillaire::directions::LatLong;
 use crate::models::hillaire::ground::HemisphereQuadrature;
+use crate::models::hillaire::moments::{MAX_ORDER, blocks};
 use crate::models::hillaire::sky_view::SkyView;
 use crate::models::options::{ModelOptions, Setting};
 use crate::models::table_budget::{check_table_bytes, product};
@@ -25,6 +26,9 @@ pub struct HillaireSettings {
     pub multiple_scattering_directions: usize,
     /// Segments per Psi_ms ray: 20.
     pub multiple_scattering_samples: usize,
+    /// Legendre moments about the sun of the multiple-scattering field beyond its mean
+    /// (`moments.rs`): 0, the paper's isotropic term; 1 or 2, the anisotropic term.
+    pub multiple_scattering_order: usize,
     /// Sky-view LUT (longitude, latitude): 192 x 108; the latitude count must be even.
     pub sky_view_size: (usize, usize),
     /// Segments per sky-view ray: 30.
@@ -60,6 +64,7 @@ impl Default for HillaireSettings {
             multiple_scattering_size: (32, 32),
             multiple_scattering_directions: 64,
             multiple_scattering_samples: 20,
+            multiple_scattering_order: 0,
             sky_view_size: (192, 108),
             sky_view_samples: 30,
             aerial_size: (96, 96, 32),
@@ -101,6 +106,8 @@ pub const GROUND_SIZE: Setting<usize> = setting("ground_size", 2..=1024);
 /// [`HillaireSettings::validate`]).
 pub const MS_DIRECTIONS: Setting<usize> = setting("ms_directions", 1..=1024);
 pub const MS_SAMPLES: Setting<usize> = setting("ms_samples", 1..=1024);
+/// The anisotropic term's highest Legendre moment (0: the paper's isotropic term).
+pub const MS_ORDER: Setting<usize> = setting("ms_order", 0..=MAX_ORDER);
 pub const SKY_VIEW_SAMPLES: Setting<usize> = setting("sky_view_samples", 1..=1024);
 pub const AP_SAMPLES_PER_SLICE: Setting<usize> = setting("ap_samples_per_slice", 1..=64);
 pub const MARCH_SAMPLES: Setting<usize> = setting("march_samples", 1..=1024);
@@ -128,6 +135,7 @@ impl HillaireSettings {
                 multiple_scattering_directions: o
                     .count(&MS_DIRECTIONS, d.multiple_scattering_directions)?,
                 multiple_scattering_samples: o.count(&MS_SAMPLES, d.multiple_scattering_samples)?,
+                multiple_scattering_order: o.count(&MS_ORDER, d.multiple_scattering_order)?,
                 sky_view_size: (
                     o.count(&SKY_VIEW_WIDTH, d.sky_view_size.0)?,
                     o.count(&SKY_VIEW_HEIGHT, d.sky_view_size.1)?,
@@ -160,6 +168,7 @@ impl HillaireSettings {
             (MS_HEIGHT, self.multiple_scattering_size.1),
             (MS_DIRECTIONS, self.multiple_scattering_directions),
             (MS_SAMPLES, self.multiple_scattering_samples),
+            (MS_ORDER, self.multiple_scattering_order),
             (SKY_VIEW_WIDTH, self.sky_view_size.0),
             (SKY_VIEW_HEIGHT, self.sky_view_size.1),
             (SKY_VIEW_SAMPLES, self.sky_view_samples),
@@ -204,13 +213,19 @@ impl HillaireSettings {
     }
 
     /// Bytes of the tables these settings make at `wavelengths` wavelengths: the
-    /// transmittance (f64 columns), Psi_ms and the ground's table, and `view_cache`
+    /// transmittance (f64 columns), Psi_ms (a block per moment) and the ground's table, and `view_cache`
     /// times a view's sky-view LUT and aerial volume.
     pub fn table_bytes(&self, wavelengths: usize) -> u64 {
         let (tw, th) = self.transmittance_size;
         let (mw, mh) = self.multiple_scattering_size;
         let global = product(&[tw, th, 24])
-            + product(&[mw, mh, wavelengths, 4])
+            + product(&[
+                mw,
+                mh,
+                blocks(self.multiple_scattering_order),
+                wavelengths,
+                4,
+            ])
             + product(&[self.ground_size, wavelengths, 4]);
         let view = SkyView::bytes_for(self.sky_view_grid(), wavelengths) as u64
             + AerialPerspective::bytes_for(self.volume_shape(), wavelengths) as u64;

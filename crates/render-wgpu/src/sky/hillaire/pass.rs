@@ -173,7 +173,11 @@ impl HillairePass {
                 (
                     &self.multiple_scattering,
                     vec![],
-                    [t.width(), t.height(), 1],
+                    [
+                        t.width(),
+                        tables.settings.multiple_scattering_size.1 as u32,
+                        1,
+                    ],
                 )
             }
             Table::GroundIrradiance => {
@@ -238,11 +242,11 @@ impl ModelPass for HillairePass {
             view,
             multiple_on,
         };
-        let built = &self.tables.built;
+        let (built, settings) = (&self.tables.built, &self.tables.settings);
         let build_if_stale = |plan: &mut SkyPlan<'_, HillaireStep>, table: Table| {
             let stale = built[table as usize]
                 .as_ref()
-                .is_none_or(|old| old.stale_for(table, &source));
+                .is_none_or(|old| old.stale_for(table, settings, &source));
             plan.build_if(HillaireStep::Table(table), stale);
         };
         let skip = |plan: &mut SkyPlan<'_, HillaireStep>, table, why| {

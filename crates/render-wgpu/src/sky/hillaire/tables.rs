@@ -5,8 +5,10 @@
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::table_inputs::Inputs;
 use atmosphere_core::models::hillaire::{
-    HillaireSettings, MULTIPLE_SCATTERING_INPUTS, VIEW_INPUTS,
+    HillaireSettings, VIEW_INPUTS, multiple_scattering_inputs,
 };
+
+use atmosphere_core::models::hillaire::moments::blocks;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
@@ -50,11 +52,11 @@ impl Table {
         }
     }
 
-    /// The atmosphere's inputs it depends on (`Hillaire::update`).
-    fn inputs(self) -> Inputs {
+    /// The atmosphere's inputs it depends on under `settings` (`Hillaire::update`).
+    fn inputs(self, settings: &HillaireSettings) -> Inputs {
         match self {
             Table::Transmittance => Inputs::COLUMNS,
-            Table::MultipleScattering => MULTIPLE_SCATTERING_INPUTS,
+            Table::MultipleScattering => multiple_scattering_inputs(settings),
             Table::GroundIrradiance | Table::SkyView | Table::AerialPerspective => VIEW_INPUTS,
         }
     }
@@ -74,9 +76,9 @@ pub struct Source {
 }
 
 impl Source {
-    /// Whether `table` built from `self` is out of date for `new`.
-    pub fn stale_for(&self, table: Table, new: &Source) -> bool {
-        Inputs::changed(&self.atmosphere, &new.atmosphere).intersects(table.inputs())
+    /// Whether `table` built from `self` under `settings` is out of date for `new`.
+    pub fn stale_for(&self, table: Table, settings: &HillaireSettings, new: &Source) -> bool {
+        Inputs::changed(&self.atmosphere, &new.atmosphere).intersects(table.inputs(settings))
             || (table.per_view() && (self.view != new.view || self.multiple_on != new.multiple_on))
     }
 }
@@ -138,7 +140,14 @@ impl Tables {
                 count("transmittance_width", tw)?,
                 count("transmittance_height", th)?,
             )?,
-            multiple_scattering: table_texture(gpu, "Psi_ms", MS, D2, (mw, mh, 1))?,
+            // Psi_0..Psi_order stacked as blocks of rows (`MultipleScattering::values`).
+            multiple_scattering: table_texture(
+                gpu,
+                "Psi_ms",
+                MS,
+                D2,
+                (mw, mh * blocks(settings.multiple_scattering_order), 1),
+            )?,
             ground_irradiance: table_texture(
                 gpu,
                 "E_sky",

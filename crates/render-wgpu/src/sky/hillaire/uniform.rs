@@ -1,9 +1,11 @@
 //! The hillaire model's parameters on the GPU (WGSL `HillaireParams`): the view of the
-//! per-view tables, the settings' sample counts and the camera's frame.
+//! per-view tables, the settings' sample counts, the anisotropic term's order and Mie
+//! moments, and the camera's frame.
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::hillaire::HillaireSettings;
 use atmosphere_core::models::hillaire::directions::horizon_zenith;
+use atmosphere_core::models::hillaire::moments::PhaseMoments;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
@@ -27,9 +29,9 @@ pub struct HillaireUniform {
     pub ground_azimuths: u32,
     pub multiple_on: u32,
     pub view_theta_h: f32,
-    pub pad0: f32,
-    pub pad1: f32,
-    pub pad2: f32,
+    pub ms_order: u32,
+    pub mie_g1: f32,
+    pub mie_g2: f32,
     pub view_up: [f32; 4],
     pub view_sun_side: [f32; 4],
     pub view_across: [f32; 4],
@@ -56,6 +58,12 @@ impl HillaireUniform {
             .try_normalize()
             .unwrap_or_else(|| up.any_orthonormal_vector());
         let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+        // The Mie phase function's Legendre moments, for the anisotropic term only.
+        let mie = if settings.multiple_scattering_order > 0 {
+            PhaseMoments::new(&atmosphere.mie.phase).mie
+        } else {
+            [1.0, 0.0, 0.0]
+        };
         Ok(HillaireUniform {
             view_r: r as f32,
             view_q: ((r - bottom) * (r + bottom)) as f32,
@@ -71,9 +79,9 @@ impl HillaireUniform {
             ground_azimuths: count("ground_azimuths", settings.ground_azimuths)?,
             multiple_on: u32::from(multiple_on),
             view_theta_h: horizon_zenith(r, bottom) as f32,
-            pad0: 0.0,
-            pad1: 0.0,
-            pad2: 0.0,
+            ms_order: count("ms_order", settings.multiple_scattering_order)?,
+            mie_g1: mie[1] as f32,
+            mie_g2: mie[2] as f32,
             view_up: v4(up),
             view_sun_side: v4(sun_side),
             view_across: v4(up.cross(sun_side)),
