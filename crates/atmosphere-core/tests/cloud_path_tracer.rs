@@ -235,6 +235,15 @@ fn adding_doubling_is_converged_and_conservative() {
     }
 }
 
+/// A slab without extinction (majorant 0) lets every path through uncollided.
+#[test]
+fn a_slab_without_extinction_transmits_the_whole_beam() {
+    let f = slab_fractions(&slab(0.0, 1.0, hg(0.5)), 0.3, 1_000, 4).unwrap();
+    assert_eq!(f.transmitted_direct.mean, 1.0);
+    assert_eq!(f.transmitted.mean, 1.0);
+    assert_eq!(f.reflected.mean + f.absorbed.mean, 0.0);
+}
+
 /// Out-of-range parameters are refused with their names.
 #[test]
 fn bad_parameters_are_refused_by_name() {
