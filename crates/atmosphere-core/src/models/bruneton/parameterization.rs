@@ -8,9 +8,10 @@
 //!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2. u_mu is refined as in
 //!   Bruneton 2017: the distance d to the ray's end is mapped from its range at r
 //!   ([r - Rg, rho] to the ground, [Rt - r, rho + H] to the top) rather than from
-//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]);
+//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]); u_mu_s and u_nu may start at another
+//!   lowest sun cosine and run linearly in the scattering angle ([`AngleMapping`]);
 //! - irradiance E(r, mu_s): linear in r over [Rg, Rt] and in mu_s over [-0.2, 1] (the
-//!   paper's implementation).
+//!   paper's implementation; [min_mu_s, 1] in general).
 //!
 //! u_mu is discontinuous at the horizon: ground rays take [0, 1/2), the others (1/2, 1].
 //! As in the paper's implementation, each half is its own set of texels (the first and
