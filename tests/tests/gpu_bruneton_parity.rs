@@ -141,6 +141,70 @@ fn tables_match_the_cpu() {
     assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
 }
 
+/// The twilight settings: S and E down to the sun 20 deg below the horizon, u_nu linear
+/// in the scattering angle.
+const TWILIGHT: [&str; 6] = [
+    "r=8",
+    "mu=32",
+    "mu_s=16",
+    "nu=8",
+    "min_mu_s=-0.35",
+    "nu_by_angle=true",
+];
+
+#[test]
+fn tables_match_the_cpu_with_the_twilight_mappings() {
+    let Some(gpu) = gpu_or_skip("bruneton twilight tables") else {
+        return;
+    };
+    let errors = compare_tables(&gpu, "earth", &TWILIGHT);
+    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+}
+
+#[test]
+fn twilight_frames_match_the_cpu_with_the_twilight_mappings() {
+    let Some(gpu) = gpu_or_skip("bruneton twilight frames") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let mut toward_the_sun = view(2.0, 80.0, 102.0);
+    toward_the_sun.sun_azimuth_deg = 10.0;
+    let frames = [
+        ("nautical twilight", toward_the_sun, 90.0),
+        (
+            "orbit over the terminator",
+            view(400_000.0, 110.0, 100.0),
+            40.0,
+        ),
+        ("noon", view(1.0, 60.0, 30.0), 70.0),
+    ];
+    for (name, v, fov) in frames {
+        let f = frame("earth", settings(&TWILIGHT), v, fov, 48, 27);
+        check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
+    }
+}
+
+#[test]
+fn the_sun_disk_is_refused_on_the_gpu_naming_it() {
+    let Some(gpu) = gpu_or_skip("bruneton sun disk") else {
+        return;
+    };
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let f = frame(
+        "earth",
+        settings(&["r=8", "mu=32", "mu_s=16", "nu=8", "sun_disk=true"]),
+        view(10.0, 80.0, 50.0),
+        60.0,
+        8,
+        8,
+    );
+    let err = renderer.render(&f).unwrap_err();
+    assert!(
+        matches!(err, RenderError::Unsupported(_)) && err.to_string().contains("sun_disk"),
+        "{err}"
+    );
+}
+
 /// Largest allowed |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel: the f16
 /// HDR store (4.9e-4), the tables' f32 build differences (above: up to 3e-3 relative
 /// where Mie dominates) and f32 texel positions in the look-ups. Measured on lavapipe:

@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::bruneton::parameterization::{
-    Radii, ScatteringSize, mu_s_from_u, nu_from_u, table_position, texel_parameters, u_mu_s, u_nu,
+    AngleMapping, Radii, ScatteringSize, table_position, texel_parameters,
 };
 use atmosphere_core::models::bruneton::{Bruneton, BrunetonSettings};
 use atmosphere_core::models::id::ModelId;
@@ -33,6 +33,7 @@ fn small() -> BrunetonSettings {
             mu: 32,
             mu_s: 8,
             nu: 4,
+            angles: AngleMapping::PAPER,
         },
         irradiance_size: (16, 4),
         view_samples: 20,
@@ -59,13 +60,32 @@ fn parameterization_round_trips() {
             }
         }
     }
-    for &mu_s in &[-0.2, -0.1, 0.0, 0.5, 1.0] {
-        assert!((mu_s_from_u(u_mu_s(mu_s)) - mu_s).abs() < 1e-12, "{mu_s}");
+    let twilight = AngleMapping {
+        min_mu_s: -0.35,
+        nu_by_angle: true,
+    };
+    for angles in [AngleMapping::PAPER, twilight] {
+        let lowest = angles.min_mu_s;
+        for &mu_s in &[lowest, -0.2, -0.1, 0.0, 0.5, 1.0] {
+            assert!(
+                (angles.mu_s_from_u(angles.u_mu_s(mu_s)) - mu_s).abs() < 1e-12,
+                "{mu_s}"
+            );
+            let x = angles.irradiance_x_mu_s(mu_s);
+            assert!((angles.irradiance_mu_s(x) - mu_s).abs() < 1e-12, "{mu_s}");
+        }
+        assert!(angles.u_mu_s(lowest).abs() < 1e-12 && (angles.u_mu_s(1.0) - 1.0).abs() < 1e-12);
+        assert!(angles.irradiance_x_mu_s(lowest).abs() < 1e-12);
+        for &nu in &[-1.0, 0.0, 0.7, 1.0] {
+            assert!((angles.nu_from_u(angles.u_nu(nu)) - nu).abs() < 1e-12);
+        }
     }
-    assert!(u_mu_s(-0.2).abs() < 1e-12 && (u_mu_s(1.0) - 1.0).abs() < 1e-12);
-    for &nu in &[-1.0, 0.0, 0.7, 1.0] {
-        assert!((nu_from_u(u_nu(nu)) - nu).abs() < 1e-15);
-    }
+    // The paper's u_mu_s = (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)).
+    let paper = |mu_s: f64| (1.0 - (-3.0 * mu_s - 0.6f64).exp()) / (1.0 - (-3.6f64).exp());
+    assert!((AngleMapping::PAPER.u_mu_s(0.3) - paper(0.3)).abs() < 1e-15);
+    // By angle, u_nu is linear in the scattering angle: 90 deg in the middle.
+    assert!((twilight.u_nu(0.0) - 0.5).abs() < 1e-15);
+    assert!((twilight.u_nu(0.5) - 2.0 / 3.0).abs() < 1e-12);
     // Texels of reachable (r, mu) fall back on themselves with weight 0 (nu is left out:
     // it is clamped to what mu and mu_s allow).
     let size = BrunetonSettings::default().scattering_size;
@@ -361,4 +381,76 @@ fn orders_against_the_reference() {
         (squares[0] / n).sqrt(),
         (squares[1] / n).sqrt()
     );
+}
+
+/// Small tables with options.
+fn small_with(options: &[&str]) -> Bruneton {
+    let mut settings = ModelSettings {
+        max_orders: Some(2),
+        ..ModelSettings::default()
+    };
+    for item in ["r=8", "mu=32", "mu_s=16", "nu=4", "view_samples=20"]
+        .iter()
+        .chain(options)
+    {
+        let (k, v) = item.split_once('=').unwrap();
+        settings.options.set(k, v);
+    }
+    Bruneton::prepare(&earth(), &settings).unwrap()
+}
+
+/// Green radiance from the ground 10 deg up towards a sun at `sun_zenith_deg`.
+fn towards_the_sun(model: &Bruneton, sun_zenith_deg: f64) -> f64 {
+    let a = earth();
+    let ray =
+        ViewRay::from_angles(a.bottom_radius_m, 2.0, 80.0, sun_zenith_deg, 0.0, None).unwrap();
+    model.radiance(&ray).unwrap().radiance[1]
+}
+
+#[test]
+fn suns_below_the_papers_range_are_resolved_with_a_lower_min_mu_s() {
+    // The paper's table ends at mu_s = -0.2 (101.5 deg): suns below it are clamped, so
+    // the sky of 103 and 106 deg differs only by the view-sun angle; with
+    // min_mu_s = -0.35 it darkens as the sun sinks.
+    let paper = small_with(&[]);
+    let (p103, p106) = (
+        towards_the_sun(&paper, 103.0),
+        towards_the_sun(&paper, 106.0),
+    );
+    let lower = small_with(&["min_mu_s=-0.35"]);
+    let (l103, l106) = (
+        towards_the_sun(&lower, 103.0),
+        towards_the_sun(&lower, 106.0),
+    );
+    eprintln!("103 / 106 deg: paper {p103:e} / {p106:e}, min_mu_s=-0.35 {l103:e} / {l106:e}");
+    assert!(p103 / p106 < 1.1, "{p103} {p106}");
+    assert!(l103 / l106 > 3.0 && l106 > 0.0, "{l103} {l106}");
+}
+
+#[test]
+fn the_sun_disk_lights_the_ground_while_its_centre_is_just_below_the_horizon() {
+    let a = earth();
+    let alpha = a.sun.angular_radius_rad;
+    let point = glam::DVec3::new(0.0, 0.0, a.bottom_radius_m);
+    let at = |model: &Bruneton, below_rad: f64| {
+        let z = (0.5 * std::f64::consts::PI + below_rad).cos();
+        let sun = glam::DVec3::new((1.0 - z * z).sqrt(), 0.0, z);
+        let tilted = atmosphere_core::models::sky_model::SurfacePoint {
+            point_m: point,
+            normal: glam::DVec3::new(1.0, 0.0, 1.0),
+            sun_direction: sun,
+        };
+        model.surface_irradiance(&tilted).unwrap()[0]
+    };
+    let point_sun = small_with(&[]);
+    let disk = small_with(&["sun_disk=true"]);
+    // Centre half a radius below the horizon: a point sun is set, a disk's top shows;
+    // two radii below both are set (the sky's light differs by the tables' small change).
+    let (p, d) = (at(&point_sun, 0.5 * alpha), at(&disk, 0.5 * alpha));
+    assert!(d > 1.5 * p, "{p} {d}");
+    let (p, d) = (at(&point_sun, 2.0 * alpha), at(&disk, 2.0 * alpha));
+    assert!((p - d).abs() < 1e-3 * p, "{p} {d}");
+    // High up the disk and the point agree.
+    let (p, d) = (at(&point_sun, -0.3), at(&disk, -0.3));
+    assert!((p - d).abs() < 1e-3 * p, "{p} {d}");
 }

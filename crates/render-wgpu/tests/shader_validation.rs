@@ -399,9 +399,9 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             mie_chi2,
             order_threshold,
             density_step_m,
-            pad0,
-            pad1,
-            pad2
+            min_mu_s,
+            nu_by_angle,
+            pad0
         ]
     );
     assert_layout!(

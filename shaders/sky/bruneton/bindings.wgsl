@@ -53,9 +53,10 @@ struct BrunetonParams {
     order_threshold: f32,
     // Step of the density table, m.
     density_step_m: f32,
+    // The lowest sun cosine of S and E; 1 when u_nu is linear in the scattering angle.
+    min_mu_s: f32,
+    nu_by_angle: u32,
     pad0: f32,
-    pad1: f32,
-    pad2: f32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

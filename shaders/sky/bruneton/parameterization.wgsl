@@ -2,7 +2,8 @@
 // model's tables and their texels: the GPU twin of atmosphere-core's
 // `bruneton/parameterization.rs` (u_r = rho / H; u_mu from the distance to the ray's end
 // mapped over its range at r, one half of the mu axis per side of the horizon; u_mu_s =
-// (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)); u_nu = (1 + nu) / 2; E linear in r and mu_s).
+// (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s))); u_nu = (1 + nu) / 2 or,
+// with `nu_by_angle`, 1 - acos(nu) / pi; E linear in r and mu_s).
 //
 // Radii enter as q = r^2 - bottom^2 (and r mu) rather than r alone: in f32 a radius near
 // 6.4e6 m carries half a metre of rounding, and r - bottom is formed as q / (r + bottom)
@@ -10,6 +11,7 @@
 
 #import common/ground_ray.wgsl
 #import sky/bruneton/bindings.wgsl
+#import common/phase.wgsl
 
 // A texel position along one axis: the lower texel and the weight of the next.
 struct Axis {
@@ -115,19 +117,41 @@ fn mu_from_x(q: f32, r: f32, x: f32, ground: bool) -> f32 {
     return clamp((horizon_sq() - q - end * end) / (2.0 * r * end), -1.0, 1.0);
 }
 
-// 1 - exp(-3.6).
-const MU_S_NORM: f32 = 0.972676278;
+// u_mu_s = (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s)))
+// (`AngleMapping::u_mu_s`): the paper's curve at its min_mu_s = -0.2.
+fn mu_s_norm() -> f32 {
+    return 1.0 - exp(-3.0 * (1.0 - bruneton.min_mu_s));
+}
 
 fn u_mu_s(mu_s: f32) -> f32 {
-    return clamp((1.0 - exp(-3.0 * mu_s - 0.6)) / MU_S_NORM, 0.0, 1.0);
+    return clamp((1.0 - exp(-3.0 * (mu_s - bruneton.min_mu_s))) / mu_s_norm(), 0.0, 1.0);
 }
 
 fn mu_s_from_u(u: f32) -> f32 {
-    return (-log(1.0 - u * MU_S_NORM) - 0.6) / 3.0;
+    return -log(1.0 - u * mu_s_norm()) / 3.0 + bruneton.min_mu_s;
 }
 
+// u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi with `nu_by_angle`
+// (`AngleMapping::u_nu`).
 fn u_nu(nu: f32) -> f32 {
-    return clamp(0.5 * (1.0 + nu), 0.0, 1.0);
+    let c = clamp(nu, -1.0, 1.0);
+    if bruneton.nu_by_angle == 1u {
+        return clamp(1.0 - acos(c) / PI, 0.0, 1.0);
+    }
+    return 0.5 * (1.0 + c);
+}
+
+fn nu_from_u(u: f32) -> f32 {
+    if bruneton.nu_by_angle == 1u {
+        return -cos(PI * u);
+    }
+    return 2.0 * u - 1.0;
+}
+
+// E's unit coordinate along mu_s, linear over [min_mu_s, 1]
+// (`AngleMapping::irradiance_x_mu_s`).
+fn irradiance_x_mu_s(mu_s: f32) -> f32 {
+    return clamp((mu_s - bruneton.min_mu_s) / (1.0 - bruneton.min_mu_s), 0.0, 1.0);
 }
 
 // The view-sun cosine clamped to what the view and sun zenith cosines allow.
@@ -164,7 +188,7 @@ fn texel(ir: u32, imu: u32, imus: u32, inu: u32) -> Texel {
         t.mu = horizon_mu_of(t.q, t.r);
     }
     t.mu_s = mu_s_from_u(texel_unit(imus, bruneton.mu_s_size));
-    t.nu = clamp_nu(t.mu, t.mu_s, 2.0 * texel_unit(inu, bruneton.nu_size) - 1.0);
+    t.nu = clamp_nu(t.mu, t.mu_s, nu_from_u(texel_unit(inu, bruneton.nu_size)));
     return t;
 }
 
@@ -218,12 +242,9 @@ fn table_position(q: f32, r: f32, r_mu: f32, mu_s: f32, nu: f32, ground: bool) -
     );
 }
 
-// The lowest sun cosine of E (`MIN_MU_S`).
-const MIN_MU_S: f32 = -0.2;
-
 // E's texel (ir, imus): (q, r, mu_s) (`IrradianceTable::texel_r_mu_s`).
 fn irradiance_texel(index: u32) -> vec3<f32> {
     let altitude = texel_unit(index / bruneton.irradiance_mu_s_size, bruneton.irradiance_r_size) * (atmosphere.top_radius_m - atmosphere.bottom_radius_m);
     let q = altitude * (2.0 * atmosphere.bottom_radius_m + altitude);
-    return vec3<f32>(q, atmosphere.bottom_radius_m + altitude, MIN_MU_S + texel_unit(index % bruneton.irradiance_mu_s_size, bruneton.irradiance_mu_s_size) * (1.0 - MIN_MU_S));
+    return vec3<f32>(q, atmosphere.bottom_radius_m + altitude, bruneton.min_mu_s + texel_unit(index % bruneton.irradiance_mu_s_size, bruneton.irradiance_mu_s_size) * (1.0 - bruneton.min_mu_s));
 }

@@ -30,7 +30,7 @@
 // row, the only one with weight there, interpolated along mu_s alone (two texel reads,
 // or one filtered; the same value).
 fn ground_irradiance_at(mu_s: f32) -> vec3<f32> {
-    let am = axis(clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0), bruneton.irradiance_mu_s_size);
+    let am = axis(irradiance_x_mu_s(mu_s), bruneton.irradiance_mu_s_size);
     if FILTERED_TABLES {
         return sample_2d(irradiance, vec2<f32>(f32(am.i) + am.w, 0.0));
     }

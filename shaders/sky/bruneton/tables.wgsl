@@ -35,7 +35,7 @@ fn table4(base: u32, p: Position) -> vec3<f32> {
 fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
     let bottom = atmosphere.bottom_radius_m;
     let x_r = clamp(q / (r + bottom) / (atmosphere.top_radius_m - bottom), 0.0, 1.0);
-    let x_mu_s = clamp((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S), 0.0, 1.0);
+    let x_mu_s = irradiance_x_mu_s(mu_s);
     let ar = axis(x_r, bruneton.irradiance_r_size);
     let am = axis(x_mu_s, bruneton.irradiance_mu_s_size);
     let i = base + ar.i * bruneton.irradiance_mu_s_size + am.i;

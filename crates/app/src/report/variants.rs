@@ -67,6 +67,13 @@ pub fn report_variants() -> Vec<Variant> {
         Variant::new(ModelId::Bruneton, None, &[]),
         Variant::new(ModelId::Bruneton, None, &["view_samples=30"]),
         Variant::new(ModelId::Bruneton, None, &["view_samples=100"]),
+        Variant::new(ModelId::Bruneton, None, &["nu_by_angle=true"]),
+        Variant::new(
+            ModelId::Bruneton,
+            None,
+            &["min_mu_s=-0.35", "nu_by_angle=true"],
+        ),
+        Variant::new(ModelId::Bruneton, None, &["sun_disk=true"]),
         Variant::new(
             ModelId::Bruneton,
             None,

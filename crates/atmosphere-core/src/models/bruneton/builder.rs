@@ -6,6 +6,7 @@ use crate::models::bruneton::channels::Channels;
 use crate::models::bruneton::delta_m::DeltaM;
 use crate::models::bruneton::parameterization::Radii;
 use crate::models::bruneton::settings::BrunetonSettings;
+use crate::models::bruneton::sun_disk::visible_sun;
 use crate::models::bruneton::tables::DensityTable;
 use crate::optics::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground};
 use crate::optics::transmittance_table::TransmittanceTable;
@@ -33,13 +34,27 @@ pub(crate) fn to_f32(a: [f64; 3]) -> [f32; 3] {
 }
 
 impl Builder<'_> {
-    /// Transmittance to the sun (a point) from (r, mu_s); zero behind the planet.
+    /// Transmittance to the sun from (r, mu_s): to a point (zero behind the planet), or
+    /// with `sun_disk` to the disk's visible part.
     pub fn sun_transmittance(&self, r: f64, mu_s: f64) -> [f64; 3] {
-        if ray_hits_ground(r, mu_s, self.radii.bottom_m) {
+        let (fraction, mu) = if self.settings.sun_disk {
+            match visible_sun(
+                r,
+                mu_s,
+                self.radii.bottom_m,
+                self.atmosphere.sun.angular_radius_rad,
+            ) {
+                Some(visible) => visible,
+                None => return [0.0; 3],
+            }
+        } else if ray_hits_ground(r, mu_s, self.radii.bottom_m) {
             return [0.0; 3];
-        }
+        } else {
+            (1.0, mu_s)
+        };
         self.transmittance
-            .interpolate(&self.sun_transmittances, r, mu_s)
+            .interpolate(&self.sun_transmittances, r, mu)
+            .map(|t| fraction * t)
     }
 
     /// Direct sunlight on a horizontal surface at (r, mu_s), per unit solar irradiance.

@@ -22,6 +22,7 @@ pub mod parameterization;
 pub mod precompute;
 pub mod settings;
 pub mod sphere_integrals;
+pub mod sun_disk;
 pub mod tables;
 pub mod view_integrals;
 
@@ -36,6 +37,7 @@ use crate::models::bruneton::channels::Channels;
 use crate::models::bruneton::delta_m::DeltaM;
 use crate::models::bruneton::parameterization::{Radii, table_position};
 use crate::models::bruneton::precompute::{OrderStats, Tables};
+use crate::models::bruneton::sun_disk::visible_sun;
 use crate::models::bruneton::tables::{DensityTable, Table4};
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
@@ -266,12 +268,24 @@ impl SkyModel for Bruneton {
     fn surface_irradiance(&self, surface: &SurfacePoint) -> Result<Vec<f64>, ModelError> {
         let e = SurfaceElement::new(&self.atmosphere, surface)?;
         let n = self.base.spectra.wavelengths_nm.len();
-        let column_sun = (!ray_hits_ground(e.r, e.mu_s, self.radii.bottom_m))
-            .then(|| self.transmittance.column(e.r, e.mu_s));
+        // The sun's visible fraction and the column along the path that dims it.
+        let sun = if self.settings.sun_disk {
+            visible_sun(
+                e.r,
+                e.mu_s,
+                self.radii.bottom_m,
+                self.atmosphere.sun.angular_radius_rad,
+            )
+        } else {
+            (!ray_hits_ground(e.r, e.mu_s, self.radii.bottom_m)).then_some((1.0, e.mu_s))
+        };
+        let column_sun = sun.map(|(fraction, mu)| (fraction, self.transmittance.column(e.r, mu)));
         let mut out = Vec::with_capacity(n);
         for (g, tables) in self.groups.iter().enumerate() {
             let sky = tables.irradiance.lookup(e.r, e.mu_s);
-            let sun_t = column_sun.map_or([0.0; 3], |c| tables.channels.transmittance(c));
+            let sun_t = column_sun.map_or([0.0; 3], |(fraction, c)| {
+                tables.channels.transmittance(c).map(|t| fraction * t)
+            });
             for k in 0..3 {
                 if 3 * g + k < n {
                     let solar = self.base.spectra.solar_irradiance[3 * g + k];

@@ -8,9 +8,10 @@
 //!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2. u_mu is refined as in
 //!   Bruneton 2017: the distance d to the ray's end is mapped from its range at r
 //!   ([r - Rg, rho] to the ground, [Rt - r, rho + H] to the top) rather than from
-//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]);
+//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]); u_mu_s and u_nu may start at another
+//!   lowest sun cosine and run linearly in the scattering angle ([`AngleMapping`]);
 //! - irradiance E(r, mu_s): linear in r over [Rg, Rt] and in mu_s over [-0.2, 1] (the
-//!   paper's implementation).
+//!   paper's implementation; [min_mu_s, 1] in general).
 //!
 //! u_mu is discontinuous at the horizon: ground rays take [0, 1/2), the others (1/2, 1].
 //! As in the paper's implementation, each half is its own set of texels (the first and
@@ -20,14 +21,8 @@
 
 use crate::optics::geometry::{distance_to_entry, distance_to_exit, ray_hits_ground, safe_sqrt};
 
-/// 1 - exp(-3.6): the normalisation of u_mu_s.
-fn mu_s_norm() -> f64 {
-    1.0 - (-3.6f64).exp()
-}
-
-/// The lowest sun cosine the scattering table resolves: u_mu_s = 0 at mu_s = -0.2; lower
-/// suns are clamped to it.
-pub const MIN_MU_S: f64 = -0.2;
+/// The lowest sun cosine of the paper's tables: u_mu_s = 0 at mu_s = -0.2.
+pub const PAPER_MIN_MU_S: f64 = -0.2;
 
 /// Planet radii of the mappings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,24 +116,71 @@ impl Radii {
     }
 }
 
-/// u_mu_s = (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)), clamped to [0, 1].
-pub fn u_mu_s(mu_s: f64) -> f64 {
-    ((1.0 - (-3.0 * mu_s - 0.6).exp()) / mu_s_norm()).clamp(0.0, 1.0)
+/// How the sun's zenith cosine and the view-sun cosine map to unit coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AngleMapping {
+    /// The lowest sun cosine of S and E (u_mu_s = 0 there); lower suns are clamped to
+    /// it. The paper's -0.2 (101.5 deg) stops short of nautical twilight's -0.208.
+    pub min_mu_s: f64,
+    /// u_nu linear in the scattering angle, 1 - acos(nu) / pi, rather than in its cosine
+    /// (the paper's (1 + nu) / 2): the paper's first texel spans the 44 degrees of the
+    /// forward lobe, where multiple scattering in haze and twilight varies most.
+    pub nu_by_angle: bool,
 }
 
-/// Inverse of [`u_mu_s`].
-pub fn mu_s_from_u(u: f64) -> f64 {
-    (-(1.0 - u * mu_s_norm()).ln() - 0.6) / 3.0
-}
+impl AngleMapping {
+    /// The paper's mappings (section 4).
+    pub const PAPER: AngleMapping = AngleMapping {
+        min_mu_s: PAPER_MIN_MU_S,
+        nu_by_angle: false,
+    };
 
-/// u_nu = (1 + nu) / 2.
-pub fn u_nu(nu: f64) -> f64 {
-    (0.5 * (1.0 + nu)).clamp(0.0, 1.0)
-}
+    /// 1 - exp(-3 (1 - min_mu_s)): the normalisation of u_mu_s.
+    fn mu_s_norm(&self) -> f64 {
+        1.0 - (-3.0 * (1.0 - self.min_mu_s)).exp()
+    }
 
-/// Inverse of [`u_nu`].
-pub fn nu_from_u(u: f64) -> f64 {
-    2.0 * u - 1.0
+    /// u_mu_s = (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s))), clamped
+    /// to [0, 1]: the paper's (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)) at its
+    /// min_mu_s = -0.2, and the same curve shifted to start at another.
+    pub fn u_mu_s(&self, mu_s: f64) -> f64 {
+        ((1.0 - (-3.0 * (mu_s - self.min_mu_s)).exp()) / self.mu_s_norm()).clamp(0.0, 1.0)
+    }
+
+    /// Inverse of [`AngleMapping::u_mu_s`].
+    pub fn mu_s_from_u(&self, u: f64) -> f64 {
+        -(1.0 - u * self.mu_s_norm()).ln() / 3.0 + self.min_mu_s
+    }
+
+    /// u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi.
+    pub fn u_nu(&self, nu: f64) -> f64 {
+        let nu = nu.clamp(-1.0, 1.0);
+        if self.nu_by_angle {
+            1.0 - nu.acos() / std::f64::consts::PI
+        } else {
+            0.5 * (1.0 + nu)
+        }
+    }
+
+    /// Inverse of [`AngleMapping::u_nu`].
+    pub fn nu_from_u(&self, u: f64) -> f64 {
+        if self.nu_by_angle {
+            -(std::f64::consts::PI * u).cos()
+        } else {
+            2.0 * u - 1.0
+        }
+    }
+
+    /// E's unit coordinate along mu_s: linear over [min_mu_s, 1] (the paper's
+    /// implementation).
+    pub fn irradiance_x_mu_s(&self, mu_s: f64) -> f64 {
+        ((mu_s - self.min_mu_s) / (1.0 - self.min_mu_s)).clamp(0.0, 1.0)
+    }
+
+    /// Inverse of [`AngleMapping::irradiance_x_mu_s`].
+    pub fn irradiance_mu_s(&self, x: f64) -> f64 {
+        self.min_mu_s + x * (1.0 - self.min_mu_s)
+    }
 }
 
 /// The cosine of the view-sun angle clamped to what view and sun zenith cosines allow.
@@ -177,14 +219,15 @@ pub fn texel_unit(k: usize, n: usize) -> f64 {
     }
 }
 
-/// Sizes of the 4D scattering table: (r, mu, mu_s, nu). The mu axis has an even size: its
-/// first half is for rays that meet the ground.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Sizes of the 4D scattering table: (r, mu, mu_s, nu), and how its angles map to its
+/// axes. The mu axis has an even size: its first half is for rays that meet the ground.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScatteringSize {
     pub r: usize,
     pub mu: usize,
     pub mu_s: usize,
     pub nu: usize,
+    pub angles: AngleMapping,
 }
 
 impl ScatteringSize {
@@ -236,8 +279,8 @@ pub fn texel_parameters(
     } else if !ground && hits {
         mu = crate::optics::geometry::horizon_mu(r, radii.bottom_m) + 1e-12;
     }
-    let mu_s = mu_s_from_u(texel_unit(imus, size.mu_s));
-    let nu = clamp_nu(mu, mu_s, nu_from_u(texel_unit(inu, size.nu)));
+    let mu_s = size.angles.mu_s_from_u(texel_unit(imus, size.mu_s));
+    let nu = clamp_nu(mu, mu_s, size.angles.nu_from_u(texel_unit(inu, size.nu)));
     (r, mu, mu_s, nu, ground)
 }
 
@@ -259,8 +302,8 @@ pub fn table_position(
     [
         axis(radii.u_r(r), size.r),
         (if ground { imu } else { imu + half }, wmu),
-        axis(u_mu_s(mu_s), size.mu_s),
-        axis(u_nu(nu), size.nu),
+        axis(size.angles.u_mu_s(mu_s), size.mu_s),
+        axis(size.angles.u_nu(nu), size.nu),
     ]
 }
 
@@ -268,6 +311,7 @@ pub fn table_position(
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IrradianceMapping {
     pub radii: Radii,
+    pub angles: AngleMapping,
     pub mu_s_size: usize,
     pub r_size: usize,
 }
@@ -276,14 +320,14 @@ impl IrradianceMapping {
     pub fn unit_from_r_mu_s(&self, r: f64, mu_s: f64) -> (f64, f64) {
         (
             ((r - self.radii.bottom_m) / (self.radii.top_m - self.radii.bottom_m)).clamp(0.0, 1.0),
-            ((mu_s - MIN_MU_S) / (1.0 - MIN_MU_S)).clamp(0.0, 1.0),
+            self.angles.irradiance_x_mu_s(mu_s),
         )
     }
 
     pub fn r_mu_s_from_unit(&self, x_r: f64, x_mu_s: f64) -> (f64, f64) {
         (
             self.radii.bottom_m + x_r * (self.radii.top_m - self.radii.bottom_m),
-            MIN_MU_S + x_mu_s * (1.0 - MIN_MU_S),
+            self.angles.irradiance_mu_s(x_mu_s),
         )
     }
 

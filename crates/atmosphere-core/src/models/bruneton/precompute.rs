@@ -105,6 +105,7 @@ impl Builder<'_> {
         });
         let mapping = IrradianceMapping {
             radii: self.radii,
+            angles: self.settings.scattering_size.angles,
             mu_s_size: self.settings.irradiance_size.0,
             r_size: self.settings.irradiance_size.1,
         };

@@ -2,7 +2,7 @@
 
 use std::ops::RangeInclusive;
 
-use crate::models::bruneton::parameterization::ScatteringSize;
+use crate::models::bruneton::parameterization::{AngleMapping, ScatteringSize};
 use crate::models::error::ModelError;
 use crate::models::options::{ModelOptions, Setting};
 use crate::models::table_budget::{check_table_bytes, product};
@@ -38,6 +38,10 @@ pub struct BrunetonSettings {
     /// The most orders when `ModelSettings::max_orders` is `None` (a guard for thick
     /// atmospheres whose orders fade slowly): 32.
     pub order_limit: u32,
+    /// The sun as a disk of the atmosphere's angular radius where it meets the horizon
+    /// (its visible part, dimmed along its centroid's path), rather than a point (the
+    /// paper).
+    pub sun_disk: bool,
 }
 
 impl Default for BrunetonSettings {
@@ -48,6 +52,7 @@ impl Default for BrunetonSettings {
                 mu: 128,
                 mu_s: 32,
                 nu: 8,
+                angles: AngleMapping::PAPER,
             },
             irradiance_size: (64, 16),
             transmittance_size: BRUNETON_TABLE_SIZE,
@@ -55,6 +60,7 @@ impl Default for BrunetonSettings {
             sphere_samples: (16, 32),
             order_threshold: 0.02,
             order_limit: 32,
+            sun_disk: false,
         }
     }
 }
@@ -83,11 +89,17 @@ pub const SPHERE_AZIMUTH: Setting<usize> = setting("sphere_azimuth", 2..=128);
 pub const ORDER_THRESHOLD: Setting<f64> = setting("order_threshold", 0.0..=1.0);
 /// Orders: 63 at most, as many as the GPU records.
 pub const ORDER_LIMIT: Setting<usize> = setting("order_limit", 1..=63);
+/// The lowest sun cosine of S and E: from -0.6 (127 deg) to -0.05 (93 deg).
+pub const MIN_MU_S: Setting<f64> = setting("min_mu_s", -0.6..=-0.05);
+/// Keys of the switches (`true` or `false`).
+pub const NU_BY_ANGLE: &str = "nu_by_angle";
+pub const SUN_DISK: &str = "sun_disk";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
-    /// `order_limit`; the paper's values where absent.
+    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `sun_disk`; the paper's values where
+    /// absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -96,6 +108,10 @@ impl BrunetonSettings {
                     mu: o.count(&MU, d.scattering_size.mu)?,
                     mu_s: o.count(&MU_S, d.scattering_size.mu_s)?,
                     nu: o.count(&NU, d.scattering_size.nu)?,
+                    angles: AngleMapping {
+                        min_mu_s: o.number(&MIN_MU_S, d.scattering_size.angles.min_mu_s)?,
+                        nu_by_angle: o.flag(NU_BY_ANGLE, d.scattering_size.angles.nu_by_angle)?,
+                    },
                 },
                 view_samples: o.count(&VIEW_SAMPLES, d.view_samples)?,
                 sphere_samples: (
@@ -104,6 +120,7 @@ impl BrunetonSettings {
                 ),
                 order_threshold: o.number(&ORDER_THRESHOLD, d.order_threshold)?,
                 order_limit: o.count(&ORDER_LIMIT, d.order_limit as usize)? as u32,
+                sun_disk: o.flag(SUN_DISK, d.sun_disk)?,
                 ..d
             })
         })
@@ -125,6 +142,7 @@ impl BrunetonSettings {
             setting.check(value)?;
         }
         ORDER_THRESHOLD.check(self.order_threshold)?;
+        MIN_MU_S.check(s.angles.min_mu_s)?;
         if !s.mu.is_multiple_of(2) {
             return Err(ModelError::Settings(format!(
                 "bruneton setting mu={} must be even (half the rays meet the ground)",

@@ -127,6 +127,7 @@ impl Builder<'_> {
     pub(crate) fn irradiance_of(&self, previous: Previous) -> IrradianceTable {
         let mapping = IrradianceMapping {
             radii: self.radii,
+            angles: self.settings.scattering_size.angles,
             mu_s_size: self.settings.irradiance_size.0,
             r_size: self.settings.irradiance_size.1,
         };

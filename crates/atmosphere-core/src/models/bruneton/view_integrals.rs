@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use crate::models::bruneton::builder::{Builder, to_f32};
 use crate::models::bruneton::parameterization::{
-    axis, table_position, texel_parameters, u_mu_s, u_nu,
+    AngleMapping, axis, table_position, texel_parameters,
 };
 use crate::models::bruneton::tables::Table4;
 use crate::optics::geometry::radius_at;
@@ -32,9 +32,9 @@ impl RayNode {
     }
 }
 
-/// [`axis`] of [`u_mu_s`] tabulated over mu_s in [-1, 1] (4097 points, linearly
-/// interpolated: within 1e-5 of a texel of the exact position where mu_s >= -0.2, the
-/// table's range), to spare an exponential per node and texel of Delta S.
+/// [`axis`] of [`AngleMapping::u_mu_s`] tabulated over mu_s in [-1, 1] (4097 points,
+/// linearly interpolated: within 1e-5 of a texel of the exact position in the table's
+/// range at the paper's sizes), to spare an exponential per node and texel of Delta S.
 struct MuSAxis {
     size: usize,
     positions: Vec<f64>,
@@ -43,12 +43,12 @@ struct MuSAxis {
 impl MuSAxis {
     const POINTS: usize = 4097;
 
-    fn new(size: usize) -> MuSAxis {
+    fn new(size: usize, angles: &AngleMapping) -> MuSAxis {
         let step = 2.0 / (Self::POINTS - 1) as f64;
         MuSAxis {
             size,
             positions: (0..Self::POINTS)
-                .map(|i| u_mu_s(-1.0 + step * i as f64) * (size - 1) as f64)
+                .map(|i| angles.u_mu_s(-1.0 + step * i as f64) * (size - 1) as f64)
                 .collect(),
         }
     }
@@ -205,7 +205,7 @@ impl Builder<'_> {
     pub(crate) fn scattering_of(&self, density: &Table4) -> Table4 {
         let size = self.settings.scattering_size;
         let per_node = size.nu * size.mu_s;
-        let mu_s_axis = MuSAxis::new(size.mu_s);
+        let mu_s_axis = MuSAxis::new(size.mu_s, &size.angles);
         self.map_rays(false, |nodes, texels, out| {
             // Delta J at each node over (nu, mu_s). The table holds mu_s fastest, then r,
             // so the two r corners of a nu slice are neighbouring runs of mu_s texels.
@@ -238,7 +238,7 @@ impl Builder<'_> {
                 .map(|n| n.weighted_transmittance.map(|t| t as f32))
                 .collect();
             for &(mu_s, nu) in texels {
-                let (inu, wnu) = axis(u_nu(nu), size.nu);
+                let (inu, wnu) = axis(size.angles.u_nu(nu), size.nu);
                 let wnu = wnu as f32;
                 let mut sum = [0.0f32; 3];
                 for ((node, plane), t) in nodes

@@ -61,6 +61,11 @@ fn check_limits(
     layout: &StoreLayout,
 ) -> Result<(), RenderError> {
     let s = settings.scattering_size;
+    if settings.sun_disk {
+        return Err(RenderError::Unsupported(
+            "bruneton sun_disk=true is not built on the GPU yet (the CPU model has it)".into(),
+        ));
+    }
     if s.mu_s * s.nu > ROW_TEXELS {
         return Err(RenderError::Unsupported(format!(
             "bruneton mu_s x nu = {} texels per row (the GPU's row workgroup holds {ROW_TEXELS})",

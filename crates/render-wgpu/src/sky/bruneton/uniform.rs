@@ -56,9 +56,11 @@ pub struct BrunetonUniform {
     pub order_threshold: f32,
     /// Step of the density table, m.
     pub density_step_m: f32,
+    /// The lowest sun cosine of S and E (`AngleMapping::min_mu_s`).
+    pub min_mu_s: f32,
+    /// 1 when u_nu is linear in the scattering angle (`AngleMapping::nu_by_angle`).
+    pub nu_by_angle: u32,
     pub pad0: f32,
-    pub pad1: f32,
-    pub pad2: f32,
 }
 
 impl BrunetonUniform {
@@ -110,9 +112,9 @@ impl BrunetonUniform {
             mie_chi2: delta_m[2] as f32,
             order_threshold: settings.order_threshold as f32,
             density_step_m: (atmosphere.thickness_m() / f64::from(DENSITY_SAMPLES - 1)) as f32,
+            min_mu_s: s.angles.min_mu_s as f32,
+            nu_by_angle: u32::from(s.angles.nu_by_angle),
             pad0: 0.0,
-            pad1: 0.0,
-            pad2: 0.0,
         }
     }
 }
