@@ -13,6 +13,10 @@ use crate::optics::column::{densities, optical_depth};
 use crate::optics::geometry::{radius_at, ray_hits_ground};
 use crate::optics::transmittance_table::TransmittanceTable;
 
+/// Largest f_ms used in F_ms = 1 / (1 - f_ms). f_ms < 1 holds exactly (it is at most the
+/// sphere's mean of 1 - T); the bound only guards against rounding in opaque atmospheres.
+pub const MAX_F_MS: f64 = 1.0 - 1e-6;
+
 /// The transmittance of a segment with extinction `extinction` (m^-1) and length `dt`,
 /// and the integral of the transmittance from the segment's start over its length (m):
 /// (exp(-sigma_t dt), (1 - exp(-sigma_t dt)) / sigma_t), the second `dt` without

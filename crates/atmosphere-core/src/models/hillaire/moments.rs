@@ -37,8 +37,9 @@
 
 use std::f64::consts::PI;
 
-use crate::models::hillaire::medium::{Medium, ground_distance, point_along, segment_weight};
-use crate::models::hillaire::multiple_scattering::MAX_F_MS;
+use crate::models::hillaire::medium::{
+    MAX_F_MS, Medium, ground_distance, point_along, segment_weight,
+};
 use crate::numerics::quadrature::{GAUSS_LEGENDRE_8, mapped};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::phase::{PhaseFunction, rayleigh};

@@ -23,14 +23,12 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::models::hillaire::medium::{Medium, ground_distance, point_along, segment_weight};
+use crate::models::hillaire::medium::{
+    MAX_F_MS, Medium, ground_distance, point_along, segment_weight,
+};
 use crate::models::hillaire::moments::{PhaseMoments, blocks, psi_moments};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::transmittance_table::{coord_from_unit, unit_from_coord};
-
-/// Largest f_ms used in F_ms = 1 / (1 - f_ms). f_ms < 1 holds exactly (it is at most the
-/// sphere's mean of 1 - T); the bound only guards against rounding in opaque atmospheres.
-pub const MAX_F_MS: f64 = 1.0 - 1e-6;
 
 /// L_2nd order and f_ms at one point, per wavelength, per unit solar irradiance.
 #[derive(Clone, Debug, PartialEq)]
