@@ -14,7 +14,8 @@ pub fn check_settings(id: ModelId, settings: &ModelSettings) -> Result<(), Model
     settings.validate()?;
     let options = &settings.options;
     match id {
-        ModelId::Reference | ModelId::Riley => options.reader(id.as_str()).finish(),
+        ModelId::Reference => crate::reference::ReferenceSettings::from_options(options).map(drop),
+        ModelId::Riley => options.reader(id.as_str()).finish(),
         ModelId::Bruneton => bruneton::BrunetonSettings::from_options(options).map(drop),
         ModelId::Hillaire => hillaire::HillaireSettings::from_options(options).map(drop),
         ModelId::Dobashi => dobashi::DobashiSettings::from_options(options).map(drop),
@@ -32,12 +33,9 @@ pub fn prepare(
     atmosphere.validate()?;
     settings.validate()?;
     match id {
-        ModelId::Reference => {
-            settings.options.reader("reference").finish()?;
-            Ok(Box::new(crate::reference::Reference::prepare(
-                atmosphere, settings,
-            )))
-        }
+        ModelId::Reference => Ok(Box::new(crate::reference::Reference::prepare(
+            atmosphere, settings,
+        )?)),
         ModelId::Bruneton => Ok(Box::new(crate::models::bruneton::Bruneton::prepare(
             atmosphere, settings,
         )?)),
