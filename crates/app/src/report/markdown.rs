@@ -104,10 +104,12 @@ fn write_models(md: &mut String, provenance: &Provenance, results: &[VariantResu
     let gpu_note = match &provenance.gpu_adapter {
         Some(adapter) => format!(
             "GPU: a {WIDTH} x {HEIGHT} frame of each view rendered by the model on {adapter}, \
-             wall-clock from `render` until the GPU has finished, the median of {FRAMES} \
-             frames after a warm-up frame, mean over the views; each frame is followed by a \
-             frame of `atmos bench`'s baseline ({BASELINE}) of the same view, and the last \
-             column is the ratio of the two medians, so that the machine's load cancels."
+             wall-clock from `render` until the GPU has finished, {FRAMES} frame(s) per view \
+             after a warm-up frame that builds the setting's tables for the view's atmosphere \
+             (a table a model builds per view counts in that view's frame), mean over the views; each frame \
+             is followed by a frame of `atmos bench`'s baseline ({BASELINE}) of the same \
+             view, and the last column is the ratio of the two means, so that the machine's \
+             load largely cancels."
         ),
         None => "GPU frame times were left out (`--no-gpu`): `-` in their columns.".to_string(),
     };
