@@ -148,10 +148,14 @@ pub struct ContactSheetArgs {
 /// The flags of `atmos bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
-    /// Only these models (repeat the flag); every model on the GPU when absent. The
-    /// baseline, nishita with 16 samples, is always measured.
+    /// Only these models (repeat the flag); every model on the GPU when neither this nor
+    /// --variant is given. The baseline, nishita with 16 samples, is always measured.
     #[arg(long, value_enum)]
     pub model: Vec<ModelId>,
+    /// Also this model with these settings, e.g. "bruneton orders=2" or "hillaire
+    /// ms_samples=4 sky_view_samples=10" (repeat the flag; keys in docs/models/).
+    #[arg(long, value_name = "MODEL KEY=VALUE ...")]
+    pub variant: Vec<String>,
     /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
     #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
     pub atmosphere: String,
@@ -233,7 +237,8 @@ pub struct RenderArgs {
 /// The flags of `atmos report`.
 #[derive(Debug, Args)]
 pub struct ReportArgs {
-    /// Directory of README.md, error_vs_time.png and the reference cache reference.csv.
+    /// Directory of README.md, errors.csv, the plots and the reference caches
+    /// reference.csv and reference_single.csv.
     #[arg(long, value_name = "DIR", default_value = crate::report::variants::DEFAULT_OUT)]
     pub out: PathBuf,
     /// Rays per view as COLUMNSxROWS.
@@ -245,9 +250,18 @@ pub struct ReportArgs {
     /// Relative standard error the reference aims for per ray and wavelength.
     #[arg(long, value_name = "REL", default_value_t = ModelSettings::default().target_relative_error)]
     pub reference_error: f64,
-    /// Compute the reference again even if reference.csv matches the views.
+    /// The reference's most Monte Carlo paths per ray and wavelength on the views with
+    /// the sun below the horizon, where the default stops at 1-5 % standard error
+    /// (256..=67108864; a change recomputes those views alone).
+    #[arg(long, value_name = "N", default_value_t = atmosphere_core::reference::ReferenceSettings::default().max_paths)]
+    pub twilight_max_paths: usize,
+    /// Compute the reference of every view again, even where reference.csv has it.
     #[arg(long)]
     pub recompute_reference: bool,
+    /// Leave out the GPU frame times (for a machine without an adapter); the report says
+    /// so.
+    #[arg(long)]
+    pub no_gpu: bool,
 }
 
 /// "16x9" -> (16, 9), each at least 1.

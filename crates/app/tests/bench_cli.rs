@@ -48,7 +48,38 @@ fn bench_tables_cover_every_view_with_the_baseline_as_unit() {
 }
 
 #[test]
+fn a_variant_is_benched_with_its_settings() {
+    let args = [
+        "bench",
+        "--variant",
+        "nishita samples=4",
+        "--width",
+        "16",
+        "--height",
+        "9",
+        "--frames",
+        "1",
+    ];
+    let output = atmos(&args);
+    if skipped_without_adapter(&output) {
+        return;
+    }
+    assert!(output.status.success(), "{}", stderr(&output));
+    let printed = String::from_utf8(output.stdout).unwrap();
+    for view in ["ground", "sunset", "orbit"] {
+        assert!(
+            printed.contains(&format!("| nishita samples=4 | {view} |")),
+            "{printed}"
+        );
+    }
+    // Only the baseline and the variant: no model's defaults.
+    assert!(!printed.contains("| hillaire |"), "{printed}");
+}
+
+#[test]
 fn bad_bench_flags_are_named() {
+    atmos_fails_with(&["bench", "--variant", "nishita samples=0"], "samples=0");
+    atmos_fails_with(&["bench", "--variant", "reference"], "reference");
     atmos_fails_with(&["bench", "--frames", "0"], "--frames");
     let output = atmos_fails_with(&["bench", "--model", "nonesuch"], "nonesuch");
     assert_eq!(output.status.code(), Some(2));

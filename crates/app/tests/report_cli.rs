@@ -1,10 +1,10 @@
 //! `atmos report` end to end on a tiny grid: the real binary writes the Markdown, the
-//! plot and the reference cache, reuses the cache on a second run, and rejects bad flags
-//! by name.
+//! plots, the error table and the reference cache, reuses the cache on a second run,
+//! measures GPU frame times unless told not to, and rejects bad flags by name.
 
 mod common;
 
-use common::{atmos, atmos_fails_with, stderr};
+use common::{atmos, atmos_fails_with, skipped_without_adapter, stderr};
 
 #[test]
 fn writes_the_report_and_reuses_the_reference() {
@@ -22,6 +22,7 @@ fn writes_the_report_and_reuses_the_reference() {
         "riley",
         "--model",
         "oneil",
+        "--no-gpu",
     ];
     let first = atmos(&args);
     assert!(first.status.success(), "{}", stderr(&first));
@@ -31,7 +32,10 @@ fn writes_the_report_and_reuses_the_reference() {
         "| oneil samples=2 |",
         "| oneil |",
         "ground, civil twilight",
-        "![daytime error",
+        "ground, nautical twilight",
+        "orbit across the terminator (400 km)",
+        "GPU frame times were left out (`--no-gpu`)",
+        "![Daytime luminance error against frame time (CPU",
     ] {
         assert!(readme.contains(needle), "no '{needle}' in\n{readme}");
     }
@@ -43,8 +47,13 @@ fn writes_the_report_and_reuses_the_reference() {
     let png = std::fs::read(dir.path().join("error_vs_time.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");
     let reference = std::fs::read_to_string(dir.path().join("reference.csv")).unwrap();
-    assert_eq!(reference.lines().count(), 2 + 7 * 2);
+    // A title, the header, then per view its fingerprint line and two rays.
+    assert_eq!(reference.lines().count(), 2 + 9 * (1 + 2));
     assert!(dir.path().join("reference_single.csv").exists());
+    assert!(!dir.path().join("error_vs_gpu_time.png").exists());
+    let table = std::fs::read_to_string(dir.path().join("errors.csv")).unwrap();
+    assert_eq!(table.lines().count(), 1 + 4 * 9);
+    assert!(table.contains("\noneil,samples=2,nautical,"), "{table}");
 
     let second = atmos(&args);
     assert!(second.status.success(), "{}", stderr(&second));
@@ -56,7 +65,52 @@ fn writes_the_report_and_reuses_the_reference() {
 }
 
 #[test]
+fn measures_the_gpu_frame_time_beside_the_baseline() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let args = [
+        "report",
+        "--out",
+        out,
+        "--rays",
+        "1x1",
+        "--reference-error",
+        "0.1",
+        "--model",
+        "riley",
+    ];
+    let run = atmos(&args);
+    if skipped_without_adapter(&run) {
+        return;
+    }
+    assert!(run.status.success(), "{}", stderr(&run));
+    let readme = std::fs::read_to_string(dir.path().join("README.md")).unwrap();
+    assert!(readme.contains("GPU: a 1280 x 720 frame"), "{readme}");
+    // The riley row ends with its GPU frame time and the ratio to the baseline.
+    let riley = readme.lines().find(|l| l.starts_with("| riley |")).unwrap();
+    let cells: Vec<&str> = riley.split('|').map(str::trim).collect();
+    let ms: f64 = cells[cells.len() - 3].parse().unwrap();
+    let ratio: f64 = cells[cells.len() - 2].parse().unwrap();
+    assert!(ms > 0.0 && ratio > 0.0, "{riley}");
+    let png = std::fs::read(dir.path().join("error_vs_gpu_time.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let table = std::fs::read_to_string(dir.path().join("errors.csv")).unwrap();
+    let noon = table
+        .lines()
+        .find(|l| l.starts_with("riley,,noon,"))
+        .unwrap();
+    assert!(
+        noon.split(',').nth(4).unwrap().parse::<f64>().unwrap() > 0.0,
+        "{noon}"
+    );
+}
+
+#[test]
 fn bad_flags_are_named() {
     atmos_fails_with(&["report", "--rays", "0x3"], "'0x3'");
     atmos_fails_with(&["report", "--model", "nosuch"], "nosuch");
+    atmos_fails_with(
+        &["report", "--twilight-max-paths", "10"],
+        "--twilight-max-paths",
+    );
 }

@@ -4,6 +4,7 @@
 //! 16-sample nishita frame, the cost baseline of the issue. Times are medians of several
 //! frames after a warm-up frame (which compiles shaders and builds tables).
 
+mod variant;
 mod views;
 
 use std::collections::BTreeMap;
@@ -14,8 +15,6 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
-use atmosphere_core::models::options::ModelOptions;
-use atmosphere_core::models::sky_model::ModelSettings;
 use render_wgpu::Renderer;
 use render_wgpu::frame::Frame;
 use render_wgpu::frame::plan::{FramePlan, StepKind};
@@ -24,45 +23,29 @@ use render_wgpu::sky::registry::GPU_MODELS;
 use crate::cli::BenchArgs;
 use crate::files::{check_writable, write_atomically};
 use crate::progress::Progress;
+pub use variant::Variant;
 pub use views::{BENCH_VIEWS, BenchView};
 
 /// The baseline's label: nishita with 16 view samples.
 pub const BASELINE: &str = "nishita samples=16";
 
-/// A model with its settings, as benchmarked.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Variant {
-    /// `model` or `model key=value ...`.
-    pub label: String,
-    pub model: ModelId,
-    pub options: Vec<String>,
-}
-
-impl Variant {
-    fn new(model: ModelId, options: &[&str]) -> Variant {
-        let mut label = model.to_string();
-        for o in options {
-            label.push(' ');
-            label.push_str(o);
-        }
-        Variant {
-            label,
-            model,
-            options: options.iter().map(|o| o.to_string()).collect(),
-        }
-    }
-}
-
-/// The baseline, then each requested model (all on the GPU when none) with its defaults.
-pub fn variants(models: &[ModelId]) -> Vec<Variant> {
-    let mut out = vec![Variant::new(ModelId::Nishita, &["samples=16"])];
-    let chosen: Vec<ModelId> = if models.is_empty() {
+/// The baseline, then each requested model with its defaults (every model on the GPU
+/// when neither models nor variants are asked for), then the variants asked for.
+pub fn variants(models: &[ModelId], extra: &[Variant]) -> Vec<Variant> {
+    let mut out = vec![baseline()];
+    let chosen: Vec<ModelId> = if models.is_empty() && extra.is_empty() {
         GPU_MODELS.to_vec()
     } else {
         models.to_vec()
     };
-    out.extend(chosen.into_iter().map(|m| Variant::new(m, &[])));
+    out.extend(chosen.into_iter().map(|m| Variant::new(m, None, &[])));
+    out.extend(extra.iter().cloned());
     out
+}
+
+/// The cost baseline: nishita with 16 view samples.
+pub fn baseline() -> Variant {
+    Variant::new(ModelId::Nishita, None, &["samples=16"])
 }
 
 /// The median of `values` (the lower middle one for an even count); `None` when empty.
@@ -109,10 +92,7 @@ fn frame(
         sun_direction: view.view.sun_direction(),
         atmosphere: atmosphere.clone(),
         model: variant.model,
-        settings: ModelSettings {
-            options: ModelOptions::parse(&variant.options)?,
-            ..ModelSettings::default()
-        },
+        settings: variant.settings(),
         exposure_ev100: 14.0,
         width: args.width,
         height: args.height,
@@ -121,7 +101,7 @@ fn frame(
 }
 
 /// Renders `frame`; returns the plan and the wall-clock time, ms.
-fn timed(renderer: &mut Renderer, frame: &Frame) -> anyhow::Result<(FramePlan, f64)> {
+pub fn timed(renderer: &mut Renderer, frame: &Frame) -> anyhow::Result<(FramePlan, f64)> {
     let start = Instant::now();
     let plan = renderer
         .render(frame)
@@ -301,7 +281,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     }
     let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)
         .with_context(|| format!("--atmosphere {}", args.atmosphere))?;
-    let variants = variants(&args.model);
+    let extra = args
+        .variant
+        .iter()
+        .map(|text| Variant::parse(text))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let variants = variants(&args.model, &extra);
     let mut renderer = Renderer::headless()?;
     let adapter = renderer.gpu().adapter_summary();
     let per_variant = 1 + args.frames + BENCH_VIEWS.len() * (1 + args.frames);
@@ -334,10 +319,14 @@ mod tests {
         assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
         assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), Some(2.0));
         assert_eq!(median(&[]), None);
-        let v = variants(&[ModelId::Nishita]);
+        let v = variants(&[ModelId::Nishita], &[]);
         assert_eq!(v[0].label, BASELINE);
         assert_eq!(v[1].label, "nishita");
-        assert_eq!(v[1].options, Vec::<String>::new());
+        assert!(v[1].options.is_empty());
+        assert_eq!(variants(&[], &[]).len(), 1 + GPU_MODELS.len());
+        let extra = Variant::parse("hillaire ms_samples=4").unwrap();
+        let v = variants(&[], std::slice::from_ref(&extra));
+        assert_eq!(v, vec![baseline(), extra]);
     }
 
     #[test]

@@ -5,8 +5,10 @@ use std::fmt::Write;
 
 use atmosphere_core::analysis::error_statistics::RelativeErrorStats;
 
+use crate::bench::BASELINE;
+use crate::report::gpu_time::{FRAMES, HEIGHT, WIDTH};
 use crate::report::measure::{FRAME_PIXELS, VariantResult};
-use crate::report::plot::{Point, pareto_front};
+use crate::report::plot::{CPU_AXIS, GPU_AXIS, Point, TimeAxis, pareto_front};
 use crate::report::reference_cache::ReferenceRadiance;
 use crate::report::views::ReportView;
 
@@ -19,6 +21,8 @@ pub struct Provenance {
     pub command: String,
     pub threads_note: String,
     pub reference_target_error: f64,
+    /// The adapter the GPU frame times were measured on; `None` when they were left out.
+    pub gpu_adapter: Option<String>,
 }
 
 fn percent(x: f64) -> String {
@@ -47,9 +51,15 @@ pub fn write_report(
         provenance.threads_note,
     );
     write_views(&mut md, views, reference);
-    write_models(&mut md, results);
+    write_models(&mut md, provenance, results);
     write_per_view(&mut md, views, results);
-    write_front(&mut md, results);
+    md.push_str("## Error against time\n\n");
+    let cpu: Vec<Point> = results.iter().map(Point::cpu).collect();
+    write_front(&mut md, "error_vs_time.png", &CPU_AXIS, &cpu);
+    if provenance.gpu_adapter.is_some() {
+        let gpu: Vec<Point> = results.iter().filter_map(Point::gpu).collect();
+        write_front(&mut md, "error_vs_gpu_time.png", &GPU_AXIS, &gpu);
+    }
     md.push_str("## Where and why each model errs\n\n");
     md.push_str(NOTES);
     md
@@ -90,7 +100,19 @@ fn write_views(md: &mut String, views: &[ReportView], reference: &ReferenceRadia
     md.push('\n');
 }
 
-fn write_models(md: &mut String, results: &[VariantResult]) {
+fn write_models(md: &mut String, provenance: &Provenance, results: &[VariantResult]) {
+    let gpu_note = match &provenance.gpu_adapter {
+        Some(adapter) => format!(
+            "GPU: a {WIDTH} x {HEIGHT} frame of each view rendered by the model on {adapter}, \
+             wall-clock from `render` until the GPU has finished, {FRAMES} frame(s) per view \
+             after a warm-up frame that builds the setting's tables for the view's atmosphere \
+             (a table a model builds per view counts in that view's frame), mean over the views; each frame \
+             is followed by a frame of `atmos bench`'s baseline ({BASELINE}) of the same \
+             view, and the last column is the ratio of the two means, so that the machine's \
+             load largely cancels."
+        ),
+        None => "GPU frame times were left out (`--no-gpu`): `-` in their columns.".to_string(),
+    };
     let _ = writeln!(
         md,
         "## Models\n\n\
@@ -101,15 +123,20 @@ fn write_models(md: &mut String, results: &[VariantResult]) {
          apart from the light of the orders they leave out. CIEDE2000: mean colour difference after one \
          exposure per view (the reference's median luminance at 18 % grey). Build: table \
          preparation for the Earth atmosphere. Per ray: warm evaluation on one thread. \
-         Frame: a {FRAME_PIXELS} ray frame (1280 x 720) on one thread, plus the tables a \
-         model builds per view (camera and sun).\n\n\
-         | model and setting | daytime RMS % | all RMS % | p95 % | max % | daytime bias % | daytime RMS vs order 1 % | CIEDE2000 | build s | per ray µs | frame s | tables MiB |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|"
+         CPU frame: a {FRAME_PIXELS} ray frame (1280 x 720) on one thread, plus the tables a \
+         model builds per view (camera and sun). {gpu_note} The same numbers per view are \
+         in `errors.csv`.\n\n\
+         | model and setting | daytime RMS % | all RMS % | p95 % | max % | daytime bias % | daytime RMS vs order 1 % | CIEDE2000 | build s | per ray µs | CPU frame s | tables MiB | GPU frame ms | GPU / {BASELINE} |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for r in results {
+        let (gpu_ms, ratio) = r.gpu.as_ref().map_or_else(
+            || ("-".to_string(), "-".to_string()),
+            |g| (format!("{:.1}", g.ms()), format!("{:.2}", g.ratio())),
+        );
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {:+.2} | {} | {:.2} | {:.3} | {:.2} | {:.2} | {:.2} |",
+            "| {} | {} | {} | {} | {} | {:+.2} | {} | {:.2} | {:.3} | {:.2} | {:.2} | {:.2} | {} | {} |",
             r.variant.label(),
             percent(r.daytime.rms),
             percent(r.all.rms),
@@ -122,6 +149,8 @@ fn write_models(md: &mut String, results: &[VariantResult]) {
             1e6 * r.seconds_per_ray(),
             r.frame_seconds(),
             r.table_bytes as f64 / (1024.0 * 1024.0),
+            gpu_ms,
+            ratio,
         );
     }
     md.push('\n');
@@ -153,17 +182,18 @@ fn cell(stats: &RelativeErrorStats) -> String {
     }
 }
 
-fn write_front(md: &mut String, results: &[VariantResult]) {
-    let points: Vec<Point> = results.iter().map(Point::of).collect();
-    md.push_str(
-        "## Error against time\n\n![daytime error against frame time](error_vs_time.png)\n\n\
-         The Pareto front (no faster setting has a lower daytime error), fastest first:\n\n",
+fn write_front(md: &mut String, image: &str, axis: &TimeAxis, points: &[Point]) {
+    let _ = writeln!(
+        md,
+        "![{}]({image})\n\n\
+         The Pareto front (no faster setting has a lower daytime error), fastest first, {}:\n",
+        axis.caption, axis.description,
     );
-    for p in pareto_front(&points) {
+    for p in pareto_front(points) {
         let _ = writeln!(
             md,
-            "- {}: {:.3} s per frame, {:.2} %",
-            p.label, p.frame_seconds, p.error_percent
+            "- {}: {:.3} {} per frame, {:.2} %",
+            p.label, p.frame_time, axis.unit, p.error_percent
         );
     }
     md.push('\n');

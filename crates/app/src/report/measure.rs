@@ -15,6 +15,7 @@ use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
 
+use crate::report::gpu_time::GpuFrameTime;
 use crate::report::reference_cache::ReferenceRadiance;
 use crate::report::views::ReportView;
 
@@ -100,6 +101,8 @@ pub struct VariantResult {
     /// single-scattering models, apart from the light of higher orders they leave out.
     pub daytime_vs_single: RelativeErrorStats,
     pub mean_ciede2000: f64,
+    /// The 1280 x 720 frame on the GPU, where it was measured.
+    pub gpu: Option<GpuFrameTime>,
 }
 
 impl VariantResult {
@@ -189,6 +192,7 @@ pub fn measure(
         daytime_vs_single: RelativeErrorStats::new(single_pairs),
         mean_ciede2000: mean(results.iter().map(|v| v.mean_ciede2000)),
         views: results,
+        gpu: None,
     })
 }
 

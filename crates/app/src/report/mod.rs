@@ -1,6 +1,9 @@
 //! `atmos report`: every model setting against the reference on a fixed set of views:
-//! error, build time, time per ray and memory, as `README.md` and `error_vs_time.png`.
+//! error, build time, time per ray and memory, CPU and GPU frame times, as `README.md`,
+//! `error_vs_time.png`, `error_vs_gpu_time.png` and `errors.csv`.
 
+pub mod error_table;
+pub mod gpu_time;
 pub mod markdown;
 pub mod measure;
 pub mod plot;
@@ -13,12 +16,13 @@ use std::fs;
 use anyhow::{Context, bail};
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::sky_model::ModelSettings;
+use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings};
 
 use crate::cli::ReportArgs;
 use crate::files::write_atomically;
 use crate::report::markdown::{Provenance, write_report};
 use crate::report::measure::measure;
-use crate::report::plot::Point;
+use crate::report::plot::{CPU_AXIS, GPU_AXIS, Point};
 use crate::report::variants::{DEFAULT_OUT, report_variants};
 
 /// Runs the report.
@@ -30,6 +34,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         ..ModelSettings::default()
     };
     base.validate()?;
+    MAX_PATHS
+        .check(args.twilight_max_paths)
+        .context("--twilight-max-paths")?;
     let mut variants = report_variants();
     if !args.model.is_empty() {
         variants.retain(|v| args.model.contains(&v.model));
@@ -42,16 +49,17 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     let reference = reference_cache::load_or_compute(
         &args.out.join("reference.csv"),
         &views,
-        &base,
+        |view| reference_cache::reference_settings(view, &base, args.twilight_max_paths),
         args.recompute_reference,
     )?;
+    let single_base = ModelSettings {
+        max_orders: Some(1),
+        ..base.clone()
+    };
     let single = reference_cache::load_or_compute(
         &args.out.join("reference_single.csv"),
         &views,
-        &ModelSettings {
-            max_orders: Some(1),
-            ..base.clone()
-        },
+        |_| single_base.clone(),
         args.recompute_reference,
     )?;
     let color = SpectrumToColor::new(&base.wavelengths_nm)?;
@@ -62,6 +70,19 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             variant, &views, &reference, &single, &base, &color,
         )?);
     }
+    let adapter = if args.no_gpu {
+        None
+    } else {
+        let gpu_variants = variants
+            .iter()
+            .map(|v| crate::bench::Variant::parse(&v.label()))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let (adapter, times) = gpu_time::measure_all(&gpu_variants, &views)?;
+        for (result, time) in results.iter_mut().zip(times) {
+            result.gpu = time;
+        }
+        Some(adapter)
+    };
     let provenance = Provenance {
         command: command_line(args),
         threads_note: format!(
@@ -70,11 +91,18 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             std::thread::available_parallelism().map_or(1, |n| n.get())
         ),
         reference_target_error: base.target_relative_error,
+        gpu_adapter: adapter,
     };
     let text = write_report(&provenance, &views, &reference, &results);
     write_atomically(&args.out.join("README.md"), text.as_bytes())?;
-    let points: Vec<Point> = results.iter().map(Point::of).collect();
-    plot::draw(&args.out.join("error_vs_time.png"), &points)?;
+    let table = error_table::to_csv(&error_table::rows(&results, &views));
+    write_atomically(&args.out.join("errors.csv"), table.as_bytes())?;
+    let points: Vec<Point> = results.iter().map(Point::cpu).collect();
+    plot::draw(&args.out.join("error_vs_time.png"), &CPU_AXIS, &points)?;
+    if provenance.gpu_adapter.is_some() {
+        let points: Vec<Point> = results.iter().filter_map(Point::gpu).collect();
+        plot::draw(&args.out.join("error_vs_gpu_time.png"), &GPU_AXIS, &points)?;
+    }
     eprintln!("report: wrote {}", args.out.join("README.md").display());
     Ok(())
 }
@@ -90,6 +118,15 @@ fn command_line(args: &ReportArgs) -> String {
     }
     for m in &args.model {
         command.push_str(&format!(" --model {m}"));
+    }
+    if args.no_gpu {
+        command.push_str(" --no-gpu");
+    }
+    if args.twilight_max_paths != ReferenceSettings::default().max_paths {
+        command.push_str(&format!(
+            " --twilight-max-paths {}",
+            args.twilight_max_paths
+        ));
     }
     if args.reference_error != ModelSettings::default().target_relative_error {
         command.push_str(&format!(" --reference-error {}", args.reference_error));

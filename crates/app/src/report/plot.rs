@@ -1,5 +1,6 @@
-//! The report's plot: daytime error against the time of a 1280 x 720 frame, one point per
-//! model setting, log axes, with the Pareto front (no faster setting is more accurate).
+//! The report's plots: daytime error against the time of a 1280 x 720 frame (on the CPU,
+//! and on the GPU), one point per model setting, log axes, with the Pareto front (no
+//! faster setting is more accurate).
 
 use std::path::{Path, PathBuf};
 
@@ -13,23 +14,58 @@ use crate::report::measure::VariantResult;
 
 const FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
 
+/// What a plot's time axis measures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeAxis {
+    pub caption: &'static str,
+    pub description: &'static str,
+    /// The unit after a time in the Pareto list.
+    pub unit: &'static str,
+}
+
+/// A frame on one CPU thread, seconds.
+pub const CPU_AXIS: TimeAxis = TimeAxis {
+    caption: "Daytime luminance error against frame time (CPU, one thread)",
+    description: "time of a 1280 x 720 frame on one CPU thread, s",
+    unit: "s",
+};
+
+/// A frame on the report's GPU adapter as a multiple of the baseline's frame of the same
+/// views, measured interleaved with it: the machine's load cancels, as it does not in
+/// milliseconds on a busy machine.
+pub const GPU_AXIS: TimeAxis = TimeAxis {
+    caption: "Daytime luminance error against frame time (GPU, relative to nishita-16)",
+    description: "time of a 1280 x 720 GPU frame / the same of nishita samples=16",
+    unit: "x baseline",
+};
+
 /// One point of the plot.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Point {
     pub label: String,
     pub model: ModelId,
-    pub frame_seconds: f64,
+    /// Frame time in the axis's unit.
+    pub frame_time: f64,
     pub error_percent: f64,
 }
 
 impl Point {
-    pub fn of(result: &VariantResult) -> Point {
+    /// The setting's CPU frame time, s.
+    pub fn cpu(result: &VariantResult) -> Point {
         Point {
             label: result.variant.label(),
             model: result.variant.model,
-            frame_seconds: result.frame_seconds(),
+            frame_time: result.frame_seconds(),
             error_percent: 100.0 * result.daytime.rms,
         }
+    }
+
+    /// The setting's GPU frame time relative to the baseline's, where it was measured.
+    pub fn gpu(result: &VariantResult) -> Option<Point> {
+        result.gpu.as_ref().map(|gpu| Point {
+            frame_time: gpu.ratio(),
+            ..Point::cpu(result)
+        })
     }
 }
 
@@ -38,8 +74,8 @@ impl Point {
 pub fn pareto_front(points: &[Point]) -> Vec<Point> {
     let mut sorted: Vec<&Point> = points.iter().collect();
     sorted.sort_by(|a, b| {
-        a.frame_seconds
-            .total_cmp(&b.frame_seconds)
+        a.frame_time
+            .total_cmp(&b.frame_time)
             .then(a.error_percent.total_cmp(&b.error_percent))
     });
     let mut front: Vec<Point> = Vec::new();
@@ -60,9 +96,9 @@ fn staircase(front: &[Point], x_end: f64) -> Vec<(f64, f64)> {
     let mut line = Vec::with_capacity(2 * front.len() + 1);
     for (i, p) in front.iter().enumerate() {
         if i > 0 {
-            line.push((p.frame_seconds, front[i - 1].error_percent));
+            line.push((p.frame_time, front[i - 1].error_percent));
         }
-        line.push((p.frame_seconds, p.error_percent));
+        line.push((p.frame_time, p.error_percent));
     }
     if let Some(last) = front.last() {
         line.push((x_end, last.error_percent));
@@ -155,12 +191,12 @@ pub fn register_sans_serif() -> anyhow::Result<()> {
 }
 
 /// Draws the plot to `path` (PNG), through a partial file renamed into place.
-pub fn draw(path: &Path, points: &[Point]) -> anyhow::Result<()> {
+pub fn draw(path: &Path, axis: &TimeAxis, points: &[Point]) -> anyhow::Result<()> {
     register_sans_serif()?;
     let mut partial = path.as_os_str().to_owned();
     partial.push(".partial.png");
     let partial = PathBuf::from(partial);
-    draw_to(&partial, points)
+    draw_to(&partial, axis, points)
         .map_err(|e| anyhow!("{e}"))
         .and_then(|()| std::fs::rename(&partial, path).map_err(Into::into))
         .with_context(|| format!("cannot draw {}", path.display()))
@@ -169,24 +205,25 @@ pub fn draw(path: &Path, points: &[Point]) -> anyhow::Result<()> {
         })
 }
 
-fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Error>> {
+fn draw_to(
+    path: &Path,
+    axis: &TimeAxis,
+    points: &[Point],
+) -> Result<(), Box<dyn std::error::Error>> {
     let root = BitMapBackend::new(path, (1200, 800)).into_drawing_area();
     root.fill(&WHITE)?;
-    let x_range = log_range(points.iter().map(|p| p.frame_seconds));
+    let x_range = log_range(points.iter().map(|p| p.frame_time));
     let x_end = x_range.end;
     let y_range = log_range(points.iter().map(|p| p.error_percent));
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Daytime luminance error against frame time (CPU, one thread)",
-            ("sans-serif", 26),
-        )
+        .caption(axis.caption, ("sans-serif", 26))
         .margin(20)
         .x_label_area_size(60)
         .y_label_area_size(80)
         .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("time of a 1280 x 720 frame, s")
+        .x_desc(axis.description)
         .x_label_formatter(&tick)
         .y_label_formatter(&tick)
         .y_desc("relative RMS luminance error, %")
@@ -201,7 +238,7 @@ fn draw_to(path: &Path, points: &[Point]) -> Result<(), Box<dyn std::error::Erro
     let mut placer = LabelPlacer::default();
     for p in points {
         let color = model_color(p.model);
-        let at = (p.frame_seconds, p.error_percent);
+        let at = (p.frame_time, p.error_percent);
         let offset = placer.place(chart.backend_coord(&at), p.label.chars().count());
         chart.draw_series(std::iter::once(
             EmptyElement::at(at)
@@ -227,7 +264,7 @@ mod tests {
         Point {
             label: label.into(),
             model: ModelId::Nishita,
-            frame_seconds: t,
+            frame_time: t,
             error_percent: e,
         }
     }
@@ -261,7 +298,8 @@ mod tests {
     fn draws_a_png() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("plot.png");
-        draw(&path, &[point("a", 1.0, 10.0), point("b", 3.0, 2.0)]).unwrap();
+        let points = [point("a", 1.0, 10.0), point("b", 3.0, 2.0)];
+        draw(&path, &GPU_AXIS, &points).unwrap();
         let bytes = std::fs::read(&path).unwrap();
         assert_eq!(&bytes[1..4], b"PNG");
         assert!(!dir.path().join("plot.png.partial.png").exists());

@@ -1,8 +1,13 @@
 //! The reference radiance of every ray of the report's views, computed once and kept in
-//! `reference.csv` beside the report: the reference takes minutes, the models seconds, so
-//! regenerating the report after a model changes reuses it. A fingerprint of the views,
-//! their atmospheres and the reference's settings says when it is stale.
+//! `reference.csv` beside the report: the reference takes minutes to hours, the models
+//! seconds, so regenerating the report after a model changes reuses it. Each view's rows
+//! carry a fingerprint of that view, its atmosphere and the reference's settings for it,
+//! so adding or changing a view computes only that view and keeps the others.
+//!
+//! The file: a title line, the column header, then per view a line
+//! `# view <id> fingerprint <16 hex digits>` followed by its rays in order.
 
+use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
@@ -11,6 +16,7 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance};
+use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings};
 use rayon::prelude::*;
 
 use crate::files::write_atomically;
@@ -20,13 +26,36 @@ use crate::report::views::ReportView;
 /// The reference's answers, per view, per ray.
 pub type ReferenceRadiance = Vec<Vec<RayRadiance>>;
 
-/// A stable 64-bit hash (FNV-1a) of everything the reference's answers depend on.
-pub fn fingerprint(views: &[ReportView], settings: &ModelSettings) -> anyhow::Result<String> {
-    let mut text = format!("{settings:?}");
-    for view in views {
-        let atmosphere = Atmosphere::preset(view.atmosphere)?;
-        text.push_str(&format!("{view:?}{atmosphere:?}"));
+/// The first line of the file.
+const TITLE: &str = "# atmos report reference radiance, one fingerprint per view";
+/// What starts the line naming a view and its fingerprint.
+const VIEW_MARK: &str = "# view ";
+
+/// The reference's settings for `view`: `base`, with the path cap `twilight_max_paths`
+/// where the sun is below the horizon and higher orders are computed (there the light of
+/// order two and up is nearly all the radiance and its paths are the least efficient).
+/// A cap equal to the reference's default is left unset, so the fingerprints stay those
+/// of the plain settings.
+pub fn reference_settings(
+    view: &ReportView,
+    base: &ModelSettings,
+    twilight_max_paths: usize,
+) -> ModelSettings {
+    let mut settings = base.clone();
+    if !view.is_daytime()
+        && base.max_orders != Some(1)
+        && twilight_max_paths != ReferenceSettings::default().max_paths
+    {
+        settings.options.set(MAX_PATHS.key, twilight_max_paths);
     }
+    settings
+}
+
+/// A stable 64-bit hash (FNV-1a) of everything one view's reference answers depend on:
+/// the view, its atmosphere and the reference's settings.
+pub fn fingerprint(view: &ReportView, settings: &ModelSettings) -> anyhow::Result<String> {
+    let atmosphere = Atmosphere::preset(view.atmosphere)?;
+    let text = format!("{settings:?}{view:?}{atmosphere:?}");
     let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
     for byte in text.bytes() {
         hash ^= u64::from(byte);
@@ -35,50 +64,100 @@ pub fn fingerprint(views: &[ReportView], settings: &ModelSettings) -> anyhow::Re
     Ok(format!("{hash:016x}"))
 }
 
-/// Reads the cache at `path` if it holds exactly these views and settings; else computes
-/// the reference (in parallel, with progress) and writes the cache.
+/// One view's cached rows and the fingerprint they were computed under.
+#[derive(Clone, Debug, PartialEq)]
+struct CachedView {
+    fingerprint: String,
+    answers: Vec<RayRadiance>,
+}
+
+/// Reads the views of the cache at `path` whose fingerprint matches, computes the others
+/// (in parallel, with progress; `recompute` computes every view) with the settings
+/// `settings_for` gives each view, and writes the cache of exactly these views.
 pub fn load_or_compute(
     path: &Path,
     views: &[ReportView],
-    settings: &ModelSettings,
+    settings_for: impl Fn(&ReportView) -> ModelSettings,
     recompute: bool,
 ) -> anyhow::Result<ReferenceRadiance> {
-    let key = fingerprint(views, settings)?;
+    let settings: Vec<ModelSettings> = views.iter().map(&settings_for).collect();
+    let wavelengths = settings
+        .first()
+        .map_or(0, |s: &ModelSettings| s.wavelengths_nm.len());
+    let keys = views
+        .iter()
+        .zip(&settings)
+        .map(|(v, s)| fingerprint(v, s))
+        .collect::<anyhow::Result<Vec<String>>>()?;
+    let mut cached = BTreeMap::new();
     if !recompute && path.exists() {
-        match read(path, views, settings.wavelengths_nm.len(), &key) {
-            Ok(reference) => {
-                eprintln!("report: reference radiance from {}", path.display());
-                return Ok(reference);
-            }
-            Err(why) => eprintln!("report: recomputing the reference ({why:#})"),
+        match read(path, wavelengths) {
+            Ok(found) => cached = found,
+            Err(why) => eprintln!(
+                "report: recomputing every view of {} ({why:#})",
+                path.display()
+            ),
         }
     }
-    let reference = compute(views, settings)?;
-    write(path, &reference, views, &key)?;
+    let mut reference = Vec::with_capacity(views.len());
+    let mut missing = Vec::new();
+    for (i, (view, key)) in views.iter().zip(&keys).enumerate() {
+        match cached.remove(view.id) {
+            Some(c) if c.fingerprint == *key && c.answers.len() == view.columns * view.rows => {
+                reference.push(c.answers);
+            }
+            found => {
+                if !recompute {
+                    let why = if found.is_some() {
+                        "its view, atmosphere or settings changed"
+                    } else {
+                        "not in the cache"
+                    };
+                    eprintln!(
+                        "report: computing view {} of {} ({why})",
+                        view.id,
+                        path.display()
+                    );
+                }
+                reference.push(Vec::new());
+                missing.push(i);
+            }
+        }
+    }
+    if missing.is_empty() {
+        eprintln!("report: reference radiance from {}", path.display());
+        return Ok(reference);
+    }
+    let total = missing
+        .iter()
+        .map(|&i| views[i].columns * views[i].rows)
+        .sum::<usize>();
+    let progress = Progress::new("reference", "rays", total as u64);
+    for &i in &missing {
+        reference[i] = compute(&views[i], &settings[i], &progress)?;
+        // Written after each view, so an interrupted run keeps what it finished.
+        write(path, &reference, views, &keys)?;
+    }
+    progress.finish();
     Ok(reference)
 }
 
-fn compute(views: &[ReportView], settings: &ModelSettings) -> anyhow::Result<ReferenceRadiance> {
-    let total = views.iter().map(|v| v.columns * v.rows).sum::<usize>();
-    let progress = Progress::new("reference", "rays", total as u64);
-    let mut all = Vec::with_capacity(views.len());
-    for view in views {
-        let atmosphere = Atmosphere::preset(view.atmosphere)?;
-        let model = prepare(ModelId::Reference, &atmosphere, settings)?;
-        let answers = view
-            .rays(&atmosphere)
-            .par_iter()
-            .map(|ray| {
-                let answer = model.radiance(ray);
-                progress.inc();
-                answer
-            })
-            .collect::<Result<Vec<_>, _>>()
-            .with_context(|| format!("reference on view {}", view.id))?;
-        all.push(answers);
-    }
-    progress.finish();
-    Ok(all)
+fn compute(
+    view: &ReportView,
+    settings: &ModelSettings,
+    progress: &Progress,
+) -> anyhow::Result<Vec<RayRadiance>> {
+    let atmosphere = Atmosphere::preset(view.atmosphere)?;
+    let model = prepare(ModelId::Reference, &atmosphere, settings)?;
+    view.rays(&atmosphere)
+        .par_iter()
+        .map(|ray| {
+            let answer = model.radiance(ray);
+            progress.inc();
+            answer
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .with_context(|| format!("reference on view {}", view.id))
 }
 
 fn header(wavelengths: usize) -> String {
@@ -89,21 +168,24 @@ fn header(wavelengths: usize) -> String {
     columns.join(",")
 }
 
+/// Writes the views that have answers (a view not computed yet is left out).
 fn write(
     path: &Path,
-    reference: &ReferenceRadiance,
+    reference: &[Vec<RayRadiance>],
     views: &[ReportView],
-    key: &str,
+    keys: &[String],
 ) -> anyhow::Result<()> {
     let wavelengths = reference
-        .first()
-        .and_then(|v| v.first())
+        .iter()
+        .flatten()
+        .next()
         .map_or(0, |r| r.radiance.len());
-    let mut text = format!(
-        "# atmos report reference radiance, fingerprint {key}\n{}\n",
-        header(wavelengths)
-    );
-    for (view, answers) in views.iter().zip(reference) {
+    let mut text = format!("{TITLE}\n{}\n", header(wavelengths));
+    for ((view, answers), key) in views.iter().zip(reference).zip(keys) {
+        if answers.is_empty() {
+            continue;
+        }
+        text.push_str(&format!("{VIEW_MARK}{} fingerprint {key}\n", view.id));
         for (i, a) in answers.iter().enumerate() {
             let numbers = a
                 .radiance
@@ -122,49 +204,71 @@ fn write(
     write_atomically(path, text.as_bytes())
 }
 
-fn read(
-    path: &Path,
-    views: &[ReportView],
-    wavelengths: usize,
-    key: &str,
-) -> anyhow::Result<ReferenceRadiance> {
+/// Every view in the file, by id; an error for a file that is not a cache of this layout
+/// or has a malformed line, naming the line.
+fn read(path: &Path, wavelengths: usize) -> anyhow::Result<BTreeMap<String, CachedView>> {
     let text = fs::read_to_string(path)?;
     let mut lines = text.lines();
-    let first = lines.next().unwrap_or_default();
-    if !first.ends_with(&format!("fingerprint {key}")) {
-        bail!("views or settings changed since it was computed");
+    if lines.next() != Some(TITLE) {
+        bail!("its first line is not \"{TITLE}\"");
     }
     if lines.next() != Some(header(wavelengths).as_str()) {
-        bail!("unexpected header");
+        bail!("its second line is not the header for {wavelengths} wavelengths");
     }
-    let mut reference: ReferenceRadiance = views.iter().map(|_| Vec::new()).collect();
+    let mut views: BTreeMap<String, CachedView> = BTreeMap::new();
+    let mut current: Option<String> = None;
     for (n, line) in lines.enumerate() {
-        let fields: Vec<&str> = line.split(',').collect();
         let bad = || format!("{} line {}", path.display(), n + 3);
-        if fields.len() != 2 + 3 * wavelengths {
-            bail!("{}: {} fields", bad(), fields.len());
+        if let Some(rest) = line.strip_prefix(VIEW_MARK) {
+            let Some((id, key)) = rest.split_once(" fingerprint ") else {
+                bail!("{}: expected \"# view <id> fingerprint <hex>\"", bad());
+            };
+            if views.contains_key(id) {
+                bail!("{}: view {id} appears twice", bad());
+            }
+            views.insert(
+                id.to_string(),
+                CachedView {
+                    fingerprint: key.to_string(),
+                    answers: Vec::new(),
+                },
+            );
+            current = Some(id.to_string());
+            continue;
         }
-        let v = views
-            .iter()
-            .position(|v| v.id == fields[0])
-            .with_context(|| format!("{}: unknown view {}", bad(), fields[0]))?;
+        let fields: Vec<&str> = line.split(',').collect();
+        if fields.len() != 2 + 3 * wavelengths {
+            bail!(
+                "{}: {} fields, expected {}",
+                bad(),
+                fields.len(),
+                2 + 3 * wavelengths
+            );
+        }
+        let view = match &current {
+            Some(id) if id == fields[0] => views.get_mut(id).expect("inserted above"),
+            _ => bail!("{}: a row of view {} outside its section", bad(), fields[0]),
+        };
+        if fields[1] != view.answers.len().to_string() {
+            bail!(
+                "{}: ray {}, expected {}",
+                bad(),
+                fields[1],
+                view.answers.len()
+            );
+        }
         let numbers = fields[2..]
             .iter()
             .map(|f| f.parse::<f64>())
             .collect::<Result<Vec<f64>, _>>()
             .with_context(bad)?;
-        reference[v].push(RayRadiance {
+        view.answers.push(RayRadiance {
             radiance: numbers[..wavelengths].to_vec(),
             transmittance: numbers[wavelengths..2 * wavelengths].to_vec(),
             radiance_std_error: numbers[2 * wavelengths..].to_vec(),
         });
     }
-    for (view, answers) in views.iter().zip(&reference) {
-        if answers.len() != view.columns * view.rows {
-            bail!("view {} has {} rays", view.id, answers.len());
-        }
-    }
-    Ok(reference)
+    Ok(views)
 }
 
 #[cfg(test)]
@@ -172,33 +276,124 @@ mod tests {
     use super::*;
     use crate::report::views::report_views;
 
+    fn answers(v: usize, rays: usize) -> Vec<RayRadiance> {
+        (0..rays)
+            .map(|i| RayRadiance {
+                radiance: vec![0.1 * v as f64 + 1e-9 * i as f64; 3],
+                transmittance: vec![0.5; 3],
+                radiance_std_error: vec![1e-4; 3],
+            })
+            .collect()
+    }
+
     #[test]
-    fn round_trips_and_notices_a_change_of_views() {
+    fn round_trips_every_view_with_its_own_fingerprint() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("reference.csv");
         let views = report_views(2, 1);
         let settings = ModelSettings::default();
-        let reference: ReferenceRadiance = views
+        let reference: ReferenceRadiance = (0..views.len()).map(|v| answers(v, 2)).collect();
+        let keys: Vec<String> = views
             .iter()
-            .enumerate()
-            .map(|(v, _)| {
-                (0..2)
-                    .map(|i| RayRadiance {
-                        radiance: vec![0.1 * v as f64 + 1e-9 * i as f64; 3],
-                        transmittance: vec![0.5; 3],
-                        radiance_std_error: vec![1e-4; 3],
-                    })
-                    .collect()
-            })
+            .map(|v| fingerprint(v, &settings).unwrap())
             .collect();
-        let key = fingerprint(&views, &settings).unwrap();
-        write(&path, &reference, &views, &key).unwrap();
-        assert_eq!(read(&path, &views, 3, &key).unwrap(), reference);
+        write(&path, &reference, &views, &keys).unwrap();
+        let read_back = read(&path, 3).unwrap();
+        assert_eq!(read_back.len(), views.len());
+        for ((view, expected), key) in views.iter().zip(&reference).zip(&keys) {
+            assert_eq!(read_back[view.id].answers, *expected);
+            assert_eq!(read_back[view.id].fingerprint, *key);
+        }
+        // Each view has its own fingerprint; another ray grid changes them.
+        let mut unique = keys.clone();
+        unique.dedup();
+        assert_eq!(unique.len(), keys.len());
+        let other = fingerprint(&report_views(3, 1)[0], &settings).unwrap();
+        assert_ne!(other, keys[0]);
+    }
 
-        let other = report_views(3, 1);
-        let other_key = fingerprint(&other, &settings).unwrap();
-        assert_ne!(key, other_key);
-        let e = read(&path, &other, 3, &other_key).unwrap_err();
-        assert!(e.to_string().contains("changed"), "{e}");
+    #[test]
+    fn only_the_missing_or_changed_views_are_computed() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("reference.csv");
+        let settings = ModelSettings {
+            max_orders: Some(1),
+            ..ModelSettings::default()
+        };
+        let views: Vec<ReportView> = report_views(2, 1).into_iter().take(3).collect();
+        // The cache holds made-up answers for the first two views, the second under a
+        // stale fingerprint: the first is kept as it is, the others are computed.
+        let made_up: ReferenceRadiance = vec![answers(7, 2), answers(8, 2), Vec::new()];
+        let mut keys: Vec<String> = views
+            .iter()
+            .map(|v| fingerprint(v, &settings).unwrap())
+            .collect();
+        keys[1] = "0000000000000000".into();
+        write(&path, &made_up, &views, &keys).unwrap();
+        let reference = load_or_compute(&path, &views, |_| settings.clone(), false).unwrap();
+        assert_eq!(reference[0], made_up[0]);
+        assert_ne!(reference[1], made_up[1]);
+        assert_eq!(reference[2].len(), 2);
+        assert!(reference[1][0].radiance[0] > 0.0);
+        // The file now holds all three under their own fingerprints.
+        let again = read(&path, 3).unwrap();
+        assert_eq!(again.len(), 3);
+        assert_eq!(
+            again[views[1].id].fingerprint,
+            fingerprint(&views[1], &settings).unwrap()
+        );
+        assert_eq!(again[views[2].id].answers, reference[2]);
+    }
+
+    #[test]
+    fn the_twilight_cap_changes_only_the_fingerprints_of_views_without_sun() {
+        let base = ModelSettings::default();
+        let default_cap = ReferenceSettings::default().max_paths;
+        for view in report_views(2, 1) {
+            let plain = fingerprint(&view, &base).unwrap();
+            let same = reference_settings(&view, &base, default_cap);
+            assert_eq!(fingerprint(&view, &same).unwrap(), plain);
+            let raised = reference_settings(&view, &base, 4 * default_cap);
+            assert_eq!(
+                fingerprint(&view, &raised).unwrap() != plain,
+                !view.is_daytime(),
+                "{}",
+                view.id
+            );
+        }
+        let single = ModelSettings {
+            max_orders: Some(1),
+            ..base
+        };
+        let twilight = &report_views(2, 1)[2];
+        assert_eq!(reference_settings(twilight, &single, 1 << 20), single);
+    }
+
+    #[test]
+    fn a_malformed_file_is_named_with_its_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("reference.csv");
+        let views = report_views(1, 1);
+        let settings = ModelSettings::default();
+        let keys = vec![fingerprint(&views[0], &settings).unwrap()];
+        write(&path, &[answers(0, 1)], &views[..1], &keys).unwrap();
+        let good = fs::read_to_string(&path).unwrap();
+
+        fs::write(&path, good.replace(TITLE, "# something else")).unwrap();
+        let e = format!("{:#}", read(&path, 3).unwrap_err());
+        assert!(e.contains("first line"), "{e}");
+
+        fs::write(&path, good.replace("1e-4", "x")).unwrap();
+        let e = format!("{:#}", read(&path, 3).unwrap_err());
+        assert!(e.contains("line 4"), "{e}");
+
+        let without_section: String = good
+            .lines()
+            .filter(|l| !l.starts_with(VIEW_MARK))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        fs::write(&path, without_section).unwrap();
+        let e = format!("{:#}", read(&path, 3).unwrap_err());
+        assert!(e.contains("outside its section"), "{e}");
     }
 }

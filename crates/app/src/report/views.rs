@@ -65,7 +65,9 @@ impl ReportView {
 }
 
 /// The views of the issue: ground at noon, at sunset and in civil twilight; 10 km;
-/// 100 km; the limb from orbit; heavy aerosol. `columns x rows` rays each.
+/// 100 km; the limb from orbit; heavy aerosol; then twilight seen from orbit across the
+/// terminator, towards the sun (where Bruneton's 2017 tables err most), and nautical
+/// twilight from the ground. `columns x rows` rays each.
 pub fn report_views(columns: usize, rows: usize) -> Vec<ReportView> {
     let view =
         |id, title, atmosphere, altitude_m, sun_zenith_deg, elevation, azimuth, fov| ReportView {
@@ -135,6 +137,26 @@ pub fn report_views(columns: usize, rows: usize) -> Vec<ReportView> {
             45.0,
             20.0,
             45.0,
+            120.0,
+        ),
+        view(
+            "orbit-twilight",
+            "orbit across the terminator (400 km)",
+            "earth",
+            400_000.0,
+            100.0,
+            -limb_dip_deg,
+            0.0,
+            40.0,
+        ),
+        view(
+            "nautical",
+            "ground, nautical twilight",
+            "earth",
+            2.0,
+            102.0,
+            10.0,
+            0.0,
             120.0,
         ),
     ]

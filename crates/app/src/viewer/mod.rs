@@ -7,7 +7,8 @@
 //! rendering, the image), [`screenshot`] (PNG and EXR files of the view), [`flight`]
 //! (the flight controller), [`sun_clock`] (the sun by angles or by UTC date and time, and
 //! the time-lapse), [`exposure`] (manual and automatic exposure) and [`default_view`]
-//! (the view a first start and "reset view" show); [`path_capture`] (a camera-path
+//! (the view a first start and "reset view" show); [`model_error`] (the model panel's
+//! measured error and GPU cost, from the report); [`path_capture`] (a camera-path
 //! keyframe of the view), [`path_editor`] (the keyframes, path files and playback) and
 //! [`path_panel`] (the panel's "Camera path" section).
 
@@ -15,6 +16,7 @@ pub mod app;
 pub mod default_view;
 pub mod exposure;
 pub mod flight;
+pub mod model_error;
 pub mod panel;
 pub mod path_capture;
 pub mod path_editor;

@@ -14,7 +14,7 @@ pub fn check_settings(id: ModelId, settings: &ModelSettings) -> Result<(), Model
     settings.validate()?;
     let options = &settings.options;
     match id {
-        ModelId::Reference => options.reader(id.as_str()).finish(),
+        ModelId::Reference => crate::reference::ReferenceSettings::from_options(options).map(drop),
         ModelId::Riley => riley::RileySettings::from_options(options).map(drop),
         ModelId::Bruneton => bruneton::BrunetonSettings::from_options(options).map(drop),
         ModelId::Hillaire => hillaire::HillaireSettings::from_options(options).map(drop),
@@ -33,12 +33,9 @@ pub fn prepare(
     atmosphere.validate()?;
     settings.validate()?;
     match id {
-        ModelId::Reference => {
-            settings.options.reader("reference").finish()?;
-            Ok(Box::new(crate::reference::Reference::prepare(
-                atmosphere, settings,
-            )))
-        }
+        ModelId::Reference => Ok(Box::new(crate::reference::Reference::prepare(
+            atmosphere, settings,
+        )?)),
         ModelId::Bruneton => Ok(Box::new(crate::models::bruneton::Bruneton::prepare(
             atmosphere, settings,
         )?)),

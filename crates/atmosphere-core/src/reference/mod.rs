@@ -8,6 +8,7 @@
 
 mod majorant;
 mod path_tracer;
+mod settings;
 mod shadow;
 mod single_scattering;
 mod sun;
@@ -19,6 +20,7 @@ use glam::DVec3;
 
 pub use majorant::DensityBounds;
 pub use path_tracer::PathTracer;
+pub use settings::{MAX_PATHS, ReferenceSettings};
 pub use single_scattering::single_scattering;
 pub use sun::disk_mean_transmittance;
 pub use view_path::{RayEnd, ViewPath};
@@ -41,8 +43,6 @@ const MC_TABLE_SIZE: (usize, usize) = (512, 128);
 const BATCH: usize = 256;
 /// Fewest paths before the standard error is trusted.
 const MIN_PATHS: usize = 256;
-/// Most paths per ray and wavelength.
-const MAX_PATHS: usize = 1 << 17;
 /// Radiance below this fraction of the solar irradiance (sr^-1) counts as darkness: its
 /// error is not refined further.
 const DARKNESS: f64 = 1e-10;
@@ -54,6 +54,8 @@ pub struct Reference {
     /// Its `with_mie` is not read: the reference always computes every term.
     base: ModelBase,
     settings: ModelSettings,
+    /// The most paths per ray and wavelength.
+    max_paths: usize,
     table: TransmittanceTable,
     bounds: DensityBounds,
     mie_sampler: PhaseSampler,
@@ -68,16 +70,22 @@ pub struct Estimate {
 }
 
 impl Reference {
-    pub fn prepare(atmosphere: &Atmosphere, settings: &ModelSettings) -> Reference {
+    /// Prepares the reference; its own options (`max_paths`) are read from `settings`.
+    pub fn prepare(
+        atmosphere: &Atmosphere,
+        settings: &ModelSettings,
+    ) -> Result<Reference, ModelError> {
+        let own = ReferenceSettings::from_options(&settings.options)?;
         let (w, h) = MC_TABLE_SIZE;
-        Reference {
+        Ok(Reference {
             atmosphere: atmosphere.clone(),
             base: ModelBase::new(ModelId::Reference, atmosphere, settings),
             settings: settings.clone(),
+            max_paths: own.max_paths,
             table: TransmittanceTable::build(atmosphere, w, h),
             bounds: DensityBounds::new(atmosphere),
             mie_sampler: PhaseSampler::new(&atmosphere.mie.phase),
-        }
+        })
     }
 
     /// The path tracer at wavelength index `w`.
@@ -185,7 +193,7 @@ impl Reference {
             let std_error = (variance / n as f64).sqrt();
             let converged = std_error <= self.settings.target_relative_error * (known + mean)
                 || std_error <= darkness;
-            if n >= MAX_PATHS || (n >= MIN_PATHS && converged) {
+            if n >= self.max_paths || (n >= MIN_PATHS && converged) {
                 return Estimate {
                     mean,
                     std_error,

@@ -232,7 +232,7 @@ mod tests {
             wavelengths_nm: vec![550.0],
             ..ModelSettings::default()
         };
-        let reference = Reference::prepare(&earth, &settings);
+        let reference = Reference::prepare(&earth, &settings).unwrap();
         for (altitude, view_zenith, sun_zenith, azimuth) in [
             (0.0, 60.0, 95.0, 0.0),
             (2_000.0, 80.0, 93.0, 150.0),

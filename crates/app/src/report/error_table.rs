@@ -1,0 +1,135 @@
+//! `errors.csv`: each model setting's error on each report view beside its frame times,
+//! small and machine-readable, for the viewer's model panel (which embeds it).
+//!
+//! Columns: `model`, `setting` (the setting's `key=value` items, `orders=N` first; empty
+//! for the paper's values), `view` (a report view's id), `rms_percent` (relative RMS
+//! luminance error), `gpu_ms` (a 1280 x 720 frame on the report's GPU adapter; empty
+//! where not measured), `cpu_frame_s` (the same frame on one CPU thread).
+
+use anyhow::{Context, bail};
+use atmosphere_core::models::id::ModelId;
+
+use crate::report::measure::VariantResult;
+use crate::report::views::ReportView;
+
+/// The header line.
+const HEADER: &str = "model,setting,view,rms_percent,gpu_ms,cpu_frame_s";
+
+/// One setting on one view.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorRow {
+    pub model: ModelId,
+    /// `key=value` items separated by spaces; empty for the paper's values.
+    pub setting: String,
+    pub view: String,
+    pub rms_percent: f64,
+    pub gpu_ms: Option<f64>,
+    pub cpu_frame_s: f64,
+}
+
+/// The rows of `results`, setting by setting, view by view.
+pub fn rows(results: &[VariantResult], views: &[ReportView]) -> Vec<ErrorRow> {
+    let mut rows = Vec::new();
+    for r in results {
+        let label = r.variant.label();
+        let setting = label
+            .strip_prefix(r.variant.model.as_str())
+            .unwrap_or_default()
+            .trim()
+            .to_string();
+        for (i, (view, result)) in views.iter().zip(&r.views).enumerate() {
+            rows.push(ErrorRow {
+                model: r.variant.model,
+                setting: setting.clone(),
+                view: view.id.to_string(),
+                rms_percent: 100.0 * result.luminance.rms,
+                gpu_ms: r.gpu.as_ref().and_then(|g| g.per_view_ms.get(i).copied()),
+                cpu_frame_s: result.frame_seconds(),
+            });
+        }
+    }
+    rows
+}
+
+/// The CSV text of `rows`.
+pub fn to_csv(rows: &[ErrorRow]) -> String {
+    let mut text = format!("{HEADER}\n");
+    for r in rows {
+        text.push_str(&format!(
+            "{},{},{},{:.3},{},{:.4}\n",
+            r.model,
+            r.setting,
+            r.view,
+            r.rms_percent,
+            r.gpu_ms.map_or_else(String::new, |ms| format!("{ms:.2}")),
+            r.cpu_frame_s
+        ));
+    }
+    text
+}
+
+/// Reads the CSV; a malformed line is an error naming it.
+pub fn parse(text: &str) -> anyhow::Result<Vec<ErrorRow>> {
+    let mut lines = text.lines();
+    if lines.next() != Some(HEADER) {
+        bail!("the error table's first line is not \"{HEADER}\"");
+    }
+    lines
+        .enumerate()
+        .map(|(n, line)| {
+            let at = || format!("error table line {}", n + 2);
+            let fields: Vec<&str> = line.split(',').collect();
+            let [model, setting, view, rms, gpu, cpu] = fields[..] else {
+                bail!("{}: {} fields, expected 6", at(), fields.len());
+            };
+            let number = |text: &str| text.parse::<f64>().with_context(at);
+            Ok(ErrorRow {
+                model: model
+                    .parse()
+                    .map_err(|_| anyhow::anyhow!("{}: no model '{model}'", at()))?,
+                setting: setting.to_string(),
+                view: view.to_string(),
+                rms_percent: number(rms)?,
+                gpu_ms: if gpu.is_empty() {
+                    None
+                } else {
+                    Some(number(gpu)?)
+                },
+                cpu_frame_s: number(cpu)?,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trips_and_names_a_bad_line() {
+        let rows = vec![
+            ErrorRow {
+                model: ModelId::Bruneton,
+                setting: "orders=2 view_samples=30".into(),
+                view: "noon".into(),
+                rms_percent: 6.5,
+                gpu_ms: Some(12.25),
+                cpu_frame_s: 0.37,
+            },
+            ErrorRow {
+                model: ModelId::Riley,
+                setting: String::new(),
+                view: "nautical".into(),
+                rms_percent: 100.0,
+                gpu_ms: None,
+                cpu_frame_s: 0.47,
+            },
+        ];
+        assert_eq!(parse(&to_csv(&rows)).unwrap(), rows);
+        let bad = to_csv(&rows).replace("12.25", "fast");
+        let e = format!("{:#}", parse(&bad).unwrap_err());
+        assert!(e.contains("line 2"), "{e}");
+        let e = format!("{:#}", parse("model,view\n").unwrap_err());
+        assert!(e.contains("first line"), "{e}");
+    }
+}
