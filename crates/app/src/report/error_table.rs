@@ -3,7 +3,8 @@
 //!
 //! Columns: `model`, `setting` (the setting's `key=value` items, `orders=N` first; empty
 //! for the paper's values), `view` (a report view's id), `rms_percent` (relative RMS
-//! luminance error), `gpu_ms` (a 1280 x 720 frame on the report's GPU adapter; empty
+//! luminance error over the rays the report judges; empty where the reference is not
+//! converged on any ray of the view), `gpu_ms` (a 1280 x 720 frame on the report's GPU adapter; empty
 //! where not measured), `cpu_frame_s` (the same frame on one CPU thread).
 
 use anyhow::{Context, bail};
@@ -22,7 +23,8 @@ pub struct ErrorRow {
     /// `key=value` items separated by spaces; empty for the paper's values.
     pub setting: String,
     pub view: String,
-    pub rms_percent: f64,
+    /// `None` where the report judged no ray of the view (`judged_rays.rs`).
+    pub rms_percent: Option<f64>,
     pub gpu_ms: Option<f64>,
     pub cpu_frame_s: f64,
 }
@@ -42,7 +44,7 @@ pub fn rows(results: &[VariantResult], views: &[ReportView]) -> Vec<ErrorRow> {
                 model: r.variant.model,
                 setting: setting.clone(),
                 view: view.id.to_string(),
-                rms_percent: 100.0 * result.luminance.rms,
+                rms_percent: (result.luminance.count > 0).then(|| 100.0 * result.luminance.rms),
                 gpu_ms: r.gpu.as_ref().and_then(|g| g.per_view_ms.get(i).copied()),
                 cpu_frame_s: result.frame_seconds(),
             });
@@ -56,11 +58,12 @@ pub fn to_csv(rows: &[ErrorRow]) -> String {
     let mut text = format!("{HEADER}\n");
     for r in rows {
         text.push_str(&format!(
-            "{},{},{},{:.3},{},{:.4}\n",
+            "{},{},{},{},{},{:.4}\n",
             r.model,
             r.setting,
             r.view,
-            r.rms_percent,
+            r.rms_percent
+                .map_or_else(String::new, |p| format!("{p:.3}")),
             r.gpu_ms.map_or_else(String::new, |ms| format!("{ms:.2}")),
             r.cpu_frame_s
         ));
@@ -89,7 +92,11 @@ pub fn parse(text: &str) -> anyhow::Result<Vec<ErrorRow>> {
                     .map_err(|_| anyhow::anyhow!("{}: no model '{model}'", at()))?,
                 setting: setting.to_string(),
                 view: view.to_string(),
-                rms_percent: number(rms)?,
+                rms_percent: if rms.is_empty() {
+                    None
+                } else {
+                    Some(number(rms)?)
+                },
                 gpu_ms: if gpu.is_empty() {
                     None
                 } else {
@@ -112,7 +119,7 @@ mod tests {
                 model: ModelId::Bruneton,
                 setting: "orders=2 view_samples=30".into(),
                 view: "noon".into(),
-                rms_percent: 6.5,
+                rms_percent: Some(6.5),
                 gpu_ms: Some(12.25),
                 cpu_frame_s: 0.37,
             },
@@ -120,7 +127,7 @@ mod tests {
                 model: ModelId::Riley,
                 setting: String::new(),
                 view: "nautical".into(),
-                rms_percent: 100.0,
+                rms_percent: None,
                 gpu_ms: None,
                 cpu_frame_s: 0.47,
             },

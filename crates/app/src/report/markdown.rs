@@ -6,7 +6,10 @@ use std::fmt::Write;
 use atmosphere_core::analysis::error_statistics::RelativeErrorStats;
 
 use crate::bench::BASELINE;
+use atmosphere_core::color::SpectrumToColor;
+
 use crate::report::gpu_time::{FRAMES, HEIGHT, WIDTH};
+use crate::report::judged_rays::{MAX_RELATIVE_STD_ERROR, is_judged};
 use crate::report::measure::{FRAME_PIXELS, VariantResult};
 use crate::report::plot::{CPU_AXIS, GPU_AXIS, Point, TimeAxis, pareto_front};
 use crate::report::reference_cache::ReferenceRadiance;
@@ -35,6 +38,7 @@ pub fn write_report(
     views: &[ReportView],
     reference: &ReferenceRadiance,
     results: &[VariantResult],
+    color: &SpectrumToColor,
 ) -> String {
     let mut md = String::new();
     let _ = writeln!(
@@ -50,7 +54,7 @@ pub fn write_report(
         100.0 * provenance.reference_target_error,
         provenance.threads_note,
     );
-    write_views(&mut md, views, reference);
+    write_views(&mut md, views, reference, color);
     write_models(&mut md, provenance, results);
     write_per_view(&mut md, views, results);
     md.push_str("## Error against time\n\n");
@@ -65,15 +69,25 @@ pub fn write_report(
     md
 }
 
-fn write_views(md: &mut String, views: &[ReportView], reference: &ReferenceRadiance) {
-    md.push_str(
+fn write_views(
+    md: &mut String,
+    views: &[ReportView],
+    reference: &ReferenceRadiance,
+    color: &SpectrumToColor,
+) {
+    let _ = write!(
+        md,
         "## Views\n\nEach view is a pinhole camera; its rays go through the centres of a \
          grid of pixels. Sun zenith is measured at the camera; look is the optical axis \
          (elevation above the horizontal, azimuth from the sun). Daytime views have the \
-         sun above the horizon. The last column is the reference's mean relative standard \
-         error of radiance.\n\n\
-         | view | atmosphere | altitude | sun zenith | look | fov | rays | daytime | reference std. error |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
+         sun above the horizon. Reference std. error is the reference's mean relative \
+         standard error of radiance; models are judged only on the rays whose reference \
+         luminance is known to {:.0} % (`judged_rays.rs`: where the Monte Carlo has not \
+         converged, an error against it measures its noise), and the last column counts \
+         them; rays into space, with no light, count in no error either.\n\n\
+         | view | atmosphere | altitude | sun zenith | look | fov | rays | daytime | reference std. error | rays judged |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
+        100.0 * MAX_RELATIVE_STD_ERROR,
     );
     for (v, answers) in views.iter().zip(reference) {
         let (sum, n) = answers
@@ -81,9 +95,10 @@ fn write_views(md: &mut String, views: &[ReportView], reference: &ReferenceRadia
             .flat_map(|a| a.radiance.iter().zip(&a.radiance_std_error))
             .filter(|(l, _)| **l > 0.0)
             .fold((0.0, 0usize), |(s, n), (l, e)| (s + e / l, n + 1));
+        let judged = answers.iter().filter(|a| is_judged(a, color)).count();
         let _ = writeln!(
             md,
-            "| {} | {} | {} m | {}° | {:.1}°, {}° | {}° | {}x{} | {} | {:.2} % |",
+            "| {} | {} | {} m | {}° | {:.1}°, {}° | {}° | {}x{} | {} | {:.2} % | {judged} |",
             v.title,
             v.atmosphere,
             v.altitude_m,

@@ -16,6 +16,7 @@ use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
 
 use crate::report::gpu_time::GpuFrameTime;
+use crate::report::judged_rays::is_judged;
 use crate::report::reference_cache::ReferenceRadiance;
 use crate::report::views::ReportView;
 
@@ -156,10 +157,13 @@ pub fn measure(
         let (answers, timing) = timed_passes(model.as_ref(), &rays)
             .with_context(|| format!("{label} on view {}", view.id))?;
         table_bytes = table_bytes.max(model.table_bytes());
+        let judged: Vec<bool> = reference.iter().map(|r| is_judged(r, color)).collect();
         let pairs: Vec<(f64, f64)> = answers
             .iter()
             .zip(reference)
-            .map(|(m, r)| {
+            .zip(&judged)
+            .filter(|(_, judged)| **judged)
+            .map(|((m, r), _)| {
                 (
                     color.luminance_cd_m2(&m.radiance),
                     color.luminance_cd_m2(&r.radiance),
@@ -169,12 +173,19 @@ pub fn measure(
         all_pairs.extend(&pairs);
         if view.is_daytime() {
             day_pairs.extend(&pairs);
-            single_pairs.extend(answers.iter().zip(single).map(|(m, r)| {
-                (
-                    color.luminance_cd_m2(&m.radiance),
-                    color.luminance_cd_m2(&r.radiance),
-                )
-            }));
+            single_pairs.extend(
+                answers
+                    .iter()
+                    .zip(single)
+                    .zip(&judged)
+                    .filter(|(_, judged)| **judged)
+                    .map(|((m, r), _)| {
+                        (
+                            color.luminance_cd_m2(&m.radiance),
+                            color.luminance_cd_m2(&r.radiance),
+                        )
+                    }),
+            );
         }
         results.push(ViewResult {
             luminance: RelativeErrorStats::new(pairs.iter().copied()),

@@ -4,6 +4,7 @@
 
 pub mod error_table;
 pub mod gpu_time;
+pub mod judged_rays;
 pub mod markdown;
 pub mod measure;
 pub mod plot;
@@ -93,7 +94,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         reference_target_error: base.target_relative_error,
         gpu_adapter: adapter,
     };
-    let text = write_report(&provenance, &views, &reference, &results);
+    let text = write_report(&provenance, &views, &reference, &results, &color);
     write_atomically(&args.out.join("README.md"), text.as_bytes())?;
     let table = error_table::to_csv(&error_table::rows(&results, &views));
     write_atomically(&args.out.join("errors.csv"), table.as_bytes())?;

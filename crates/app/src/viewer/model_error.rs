@@ -89,10 +89,11 @@ pub fn line_for(
         || "GPU not measured".to_string(),
         |ms| format!("{ms:.0} ms GPU"),
     );
-    Some(format!(
-        "{:.1} % on {} · {gpu}{note}",
-        row.rms_percent, view.title
-    ))
+    let error = row.rms_percent.map_or_else(
+        || "error unknown (reference not converged)".to_string(),
+        |rms| format!("{rms:.1} %"),
+    );
+    Some(format!("{error} on {} · {gpu}{note}", view.title))
 }
 
 /// The panel's line for the current model, options and camera.
@@ -157,7 +158,7 @@ mod tests {
             model: ModelId::Nishita,
             setting: setting.into(),
             view: view.id.into(),
-            rms_percent: rms,
+            rms_percent: Some(rms),
             gpu_ms: Some(12.0),
             cpu_frame_s: 1.0,
         };
