@@ -9,6 +9,7 @@ pub mod analysis;
 pub mod atmosphere;
 pub mod clouds;
 pub mod color;
+pub mod geo;
 pub mod models;
 pub mod numerics;
 pub mod optics;

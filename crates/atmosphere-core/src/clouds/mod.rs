@@ -5,6 +5,7 @@
 //! fractions with their standard errors, the ground truth the cloud models are checked
 //! against.
 
+pub mod cover;
 pub mod error;
 pub mod estimate;
 pub mod medium;

@@ -1,0 +1,115 @@
+//! Equirectangular grids addressed by latitude and longitude, and the planet-fixed frame's
+//! directions.
+//!
+//! A grid of `width x height` texels covers the sphere north up, its first column starting
+//! at 180 deg west: texel (i, j) is centred on longitude `-180 + (i + 0.5) 360 / width`
+//! and latitude `90 - (j + 0.5) 180 / height` (degrees). Bilinear sampling wraps in
+//! longitude and clamps in latitude (the rows nearest the poles are held constant beyond
+//! their centres), as a GPU sampler with repeat in u and clamp-to-edge in v does.
+//!
+//! Frame: x towards latitude 0 longitude 0, y towards latitude 0 longitude 90 deg east,
+//! z towards the north pole (the terrain's cube sphere and [`crate::sun_position`] use it).
+
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+use glam::DVec3;
+
+/// Latitude and longitude (radians, longitude east positive in (-pi, pi]) of a direction
+/// (need not be unit).
+pub fn lat_lon(direction: DVec3) -> (f64, f64) {
+    let horizontal = direction.x.hypot(direction.y);
+    (
+        direction.z.atan2(horizontal),
+        direction.y.atan2(direction.x),
+    )
+}
+
+/// The unit direction of a latitude and longitude (radians).
+pub fn direction(lat_rad: f64, lon_rad: f64) -> DVec3 {
+    let (sin_lat, cos_lat) = lat_rad.sin_cos();
+    let (sin_lon, cos_lon) = lon_rad.sin_cos();
+    DVec3::new(cos_lat * cos_lon, cos_lat * sin_lon, sin_lat)
+}
+
+/// Latitude and longitude (radians) of the centre of texel (i, j).
+pub fn texel_centre(width: usize, height: usize, i: usize, j: usize) -> (f64, f64) {
+    (
+        FRAC_PI_2 - (j as f64 + 0.5) / height as f64 * PI,
+        -PI + (i as f64 + 0.5) / width as f64 * TAU,
+    )
+}
+
+/// The four texels around a point and their bilinear weights (summing to 1), as
+/// `(index into a row-major texel array, weight)`.
+pub fn bilinear_taps(width: usize, height: usize, lat_rad: f64, lon_rad: f64) -> [(usize, f64); 4] {
+    // Continuous texel coordinates whose integers are texel centres.
+    let x = (lon_rad + PI) / TAU * width as f64 - 0.5;
+    let y = (FRAC_PI_2 - lat_rad) / PI * height as f64 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let fx = x - x0;
+    let column = |k: f64| (k as i64).rem_euclid(width as i64) as usize;
+    let (i0, i1) = (column(x0), column(x0 + 1.0));
+    let last_row = height as f64 - 1.0;
+    let (j0, j1, fy) = if y <= 0.0 {
+        (0, 0, 0.0)
+    } else if y >= last_row {
+        (height - 1, height - 1, 0.0)
+    } else {
+        (y0 as usize, y0 as usize + 1, y - y0)
+    };
+    [
+        (j0 * width + i0, (1.0 - fx) * (1.0 - fy)),
+        (j0 * width + i1, fx * (1.0 - fy)),
+        (j1 * width + i0, (1.0 - fx) * fy),
+        (j1 * width + i1, fx * fy),
+    ]
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lat_lon_round_trip_and_frame() {
+        assert_eq!(direction(0.0, 0.0), DVec3::X);
+        assert!((direction(0.0, FRAC_PI_2) - DVec3::Y).length() < 1e-15);
+        assert!((direction(FRAC_PI_2, 0.0) - DVec3::Z).length() < 1e-15);
+        for (lat, lon) in [(0.3, -2.0), (-1.2, 3.0), (1.5, 0.1), (0.0, -PI + 1e-9)] {
+            let (lat2, lon2) = lat_lon(direction(lat, lon) * 7.0);
+            assert!((lat2 - lat).abs() < 1e-14 && (lon2 - lon).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn taps_hit_texel_centres_wrap_and_clamp() {
+        let (w, h) = (8, 4);
+        // The centre of texel (2, 1): longitude -180 + 2.5 * 45, latitude 90 - 1.5 * 45.
+        let taps = bilinear_taps(
+            w,
+            h,
+            (90.0f64 - 67.5).to_radians(),
+            (-180.0f64 + 112.5).to_radians(),
+        );
+        let best = taps.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap();
+        assert_eq!(best.0, w + 2);
+        assert!((best.1 - 1.0).abs() < 1e-12);
+        // Halfway across the antimeridian: the first and last columns, half each.
+        let taps = bilinear_taps(w, h, (90.0f64 - 67.5).to_radians(), PI);
+        let mut columns: Vec<_> = taps
+            .iter()
+            .filter(|t| t.1 > 0.0)
+            .map(|t| (t.0 % w, t.1))
+            .collect();
+        columns.sort_by_key(|c| c.0);
+        assert_eq!(columns.len(), 2);
+        assert_eq!((columns[0].0, columns[1].0), (0, w - 1));
+        assert!((columns[0].1 - 0.5).abs() < 1e-12);
+        // Beyond the first row's centre (near the pole) the first row is held.
+        for t in bilinear_taps(w, h, 1.55, 0.3) {
+            assert!(t.0 < w || t.1 == 0.0);
+        }
+        for lat in [-FRAC_PI_2, -0.7, 0.0, 0.9] {
+            let sum: f64 = bilinear_taps(w, h, lat, 1.0).iter().map(|t| t.1).sum();
+            assert!((sum - 1.0).abs() < 1e-12);
+        }
+    }
+}

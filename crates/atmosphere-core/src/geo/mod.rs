@@ -1,0 +1,3 @@
+//! Places on a planet: latitude, longitude and the planet-fixed frame.
+
+pub mod equirectangular;
