@@ -11,6 +11,7 @@ pub mod files;
 pub mod location_flags;
 pub mod phase;
 pub mod probe;
+pub mod probe_scene;
 pub mod progress;
 pub mod record;
 pub mod render;
