@@ -284,9 +284,6 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.output {
         check_writable(path)?;
     }
-    if let Some(scene) = &args.scene {
-        return crate::probe_scene::run(args, scene);
-    }
     let model: ModelId = args
         .model
         .parse()

@@ -26,7 +26,7 @@ use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::cli::ProbeArgs;
-use crate::files::write_atomically;
+use crate::files::{check_writable, write_atomically};
 use crate::probe::{CSV_LIMITS, number};
 use crate::progress::Progress;
 
@@ -191,6 +191,9 @@ pub fn read_scene_rays(
 
 /// Runs `atmos probe --scene`.
 pub fn run(args: &ProbeArgs, scene_path: &Path) -> anyhow::Result<()> {
+    if let Some(path) = &args.output {
+        check_writable(path)?;
+    }
     let method: BeamMethodId = args.model.parse().with_context(|| {
         format!(
             "--model {} is a sky model; with --scene the beam methods are {}",
