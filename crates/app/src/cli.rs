@@ -318,7 +318,8 @@ pub struct StabilityArgs {
 /// The flags of `atmos probe`.
 #[derive(Debug, Args)]
 pub struct ProbeArgs {
-    /// Scattering model: a sky model, or with --scene a beam method (reference, march).
+    /// Scattering model: a sky model, or with --scene a beam method (reference, march,
+    /// planes2000).
     #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]
     pub model: String,
     /// A beams scene (TOML; docs/beams.md): rays in its frame, radiance of its lights

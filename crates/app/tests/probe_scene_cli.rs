@@ -94,7 +94,7 @@ fn scene_probe_errors_name_the_problem() {
     let base = ["probe", "--scene", &scene, "--input", input];
     atmos_fails_with(
         &[&base[..], &["--model", "nishita"]].concat(),
-        "--model nishita is a sky model; with --scene the beam methods are reference, march",
+        "--model nishita is a sky model; with --scene the beam methods are reference, march, planes2000",
     );
     atmos_fails_with(
         &[&base[..], &["--model", "march", "--set", "steps=0"]].concat(),

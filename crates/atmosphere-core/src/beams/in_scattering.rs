@@ -98,14 +98,11 @@ impl InScattering {
                 .medium
                 .phase
                 .eval(path.to_light.dot(ray.direction));
-            let common = phase * path.factor * seen;
+            let common = phase * path.factor() * seen;
             let map = light_map_rgb(light, &path);
             let emission = &self.emission[i];
             for k in 0..out.len() {
-                let filter = map.map_or(1.0, |rgb| {
-                    let w = self.channel_weights[k];
-                    w[0] * rgb[0] + w[1] * rgb[1] + w[2] * rgb[2]
-                });
+                let filter = self.filter(map, k);
                 let extinction = self.medium.extinction_per_m[k];
                 out[k] += self.medium.scattering_per_m[k]
                     * emission[k]
@@ -114,6 +111,14 @@ impl InScattering {
                     * (-extinction * (path.distance_m + t_m)).exp();
             }
         }
+    }
+
+    /// The transmission of a light map's linear RGB (none: 1) at wavelength `k`.
+    pub fn filter(&self, rgb: Option<[f64; 3]>, k: usize) -> f64 {
+        rgb.map_or(1.0, |rgb| {
+            let w = self.channel_weights[k];
+            w[0] * rgb[0] + w[1] * rgb[1] + w[2] * rgb[2]
+        })
     }
 
     /// Exact visibility: a shadow ray from the point toward the light, tested against
@@ -132,7 +137,7 @@ impl InScattering {
 }
 
 /// The light map's linear RGB where the path leaves the light, if it has a map.
-fn light_map_rgb(light: &Light, path: &LightPath) -> Option<[f64; 3]> {
+pub fn light_map_rgb(light: &Light, path: &LightPath) -> Option<[f64; 3]> {
     let (u, v, wrap) = path.map_uv;
     light.light_map.as_ref().map(|m| m.sample(u, v, wrap))
 }

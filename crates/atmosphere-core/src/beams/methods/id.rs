@@ -15,17 +15,25 @@ pub enum BeamMethodId {
     Reference,
     /// A ray march with a shadow map per light: the common modern way, the baseline.
     March,
+    /// Dobashi, Yamamoto and Nishita 2000: virtual planes with lattice meshes, projected
+    /// light maps and shadow maps.
+    Planes2000,
 }
 
 impl BeamMethodId {
     /// Every method, the reference first.
-    pub const ALL: [BeamMethodId; 2] = [BeamMethodId::Reference, BeamMethodId::March];
+    pub const ALL: [BeamMethodId; 3] = [
+        BeamMethodId::Reference,
+        BeamMethodId::March,
+        BeamMethodId::Planes2000,
+    ];
 
     /// The id as written on the command line and in files.
     pub const fn as_str(self) -> &'static str {
         match self {
             BeamMethodId::Reference => "reference",
             BeamMethodId::March => "march",
+            BeamMethodId::Planes2000 => "planes2000",
         }
     }
 

@@ -6,5 +6,6 @@ pub mod breakpoints;
 pub mod id;
 pub mod march;
 pub mod method;
+pub mod planes2000;
 pub mod reference;
 pub mod registry;

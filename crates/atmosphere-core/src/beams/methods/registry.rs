@@ -4,6 +4,7 @@ use crate::beams::error::BeamError;
 use crate::beams::methods::id::BeamMethodId;
 use crate::beams::methods::march::March;
 use crate::beams::methods::method::{BeamMethod, BeamSettings};
+use crate::beams::methods::planes2000::Planes2000;
 use crate::beams::methods::reference::Reference;
 use crate::beams::scene::BeamScene;
 use crate::models::error::ModelError;
@@ -19,6 +20,7 @@ pub fn prepare(
     Ok(match id {
         BeamMethodId::Reference => Box::new(Reference::new(scene, settings)?),
         BeamMethodId::March => Box::new(March::new(scene, settings)?),
+        BeamMethodId::Planes2000 => Box::new(Planes2000::new(scene, settings)?),
     })
 }
 
