@@ -318,11 +318,22 @@ pub struct StabilityArgs {
 /// The flags of `atmos probe`.
 #[derive(Debug, Args)]
 pub struct ProbeArgs {
-    /// Scattering model.
-    #[arg(long, value_enum)]
-    pub model: ModelId,
+    /// Scattering model: a sky model, or with --scene a beam method (reference, march,
+    /// planes2000).
+    #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]
+    pub model: String,
+    /// A beams scene (TOML; docs/beams.md): rays in its frame, radiance of its lights
+    /// through its medium; the input columns are then origin_x_m, origin_y_m,
+    /// origin_z_m, dir_x, dir_y, dir_z and optionally distance_m.
+    #[arg(long, value_name = "FILE.toml")]
+    pub scene: Option<PathBuf>,
     /// Atmosphere: a preset (earth, clear, hazy, mars) or a TOML file.
-    #[arg(long, value_name = "PRESET|FILE.toml", default_value = "earth")]
+    #[arg(
+        long,
+        value_name = "PRESET|FILE.toml",
+        default_value = "earth",
+        conflicts_with = "scene"
+    )]
     pub atmosphere: String,
     /// Wavelengths in nm, comma-separated.
     #[arg(
@@ -333,7 +344,7 @@ pub struct ProbeArgs {
     )]
     pub wavelengths: Vec<Wavelength>,
     /// Highest scattering order (1 = single scattering) [default: all orders].
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..), conflicts_with = "scene")]
     pub orders: Option<u32>,
     /// Relative standard error of the radiance that stochastic models aim for.
     #[arg(long, value_name = "REL", default_value_t = ModelSettings::default().target_relative_error)]
@@ -352,6 +363,21 @@ pub struct ProbeArgs {
     /// Where to write the CSV of results (atomically) [default: stdout].
     #[arg(long, value_name = "FILE.csv")]
     pub output: Option<PathBuf>,
+}
+
+/// A sky model's or a beam method's name, checked against both lists (which one it must
+/// be depends on --scene).
+fn parse_probe_model(text: &str) -> Result<String, String> {
+    use atmosphere_core::beams::methods::id::BeamMethodId;
+    if text.parse::<ModelId>().is_ok() || text.parse::<BeamMethodId>().is_ok() {
+        Ok(text.to_string())
+    } else {
+        Err(format!(
+            "unknown model '{text}' (sky models: {}; beam methods, with --scene: {})",
+            ModelId::list(&ModelId::ALL),
+            BeamMethodId::list(&BeamMethodId::ALL)
+        ))
+    }
 }
 
 /// The flags of `atmos phase` (docs/particles.md).

@@ -11,6 +11,7 @@ pub mod files;
 pub mod location_flags;
 pub mod phase;
 pub mod probe;
+pub mod probe_scene;
 pub mod progress;
 pub mod record;
 pub mod render;
@@ -28,7 +29,10 @@ use crate::cli::{Cli, Command};
 /// back as a [`clap::Error`] inside the [`anyhow::Error`].
 pub fn run(args: impl IntoIterator<Item = OsString>) -> anyhow::Result<()> {
     match Cli::try_parse_from(args)?.command {
-        Some(Command::Probe(args)) => probe::run(&args),
+        Some(Command::Probe(args)) => match &args.scene {
+            Some(scene) => probe_scene::run(&args, scene),
+            None => probe::run(&args),
+        },
         Some(Command::Stability(args)) => stability::run(&args),
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::Render(args)) => render::run(&args),

@@ -284,6 +284,10 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.output {
         check_writable(path)?;
     }
+    let model: ModelId = args
+        .model
+        .parse()
+        .with_context(|| format!("--model {} is a beam method: it needs --scene", args.model))?;
     let settings = ModelSettings {
         wavelengths_nm: args.wavelengths.iter().map(|w| w.nm).collect(),
         max_orders: args.orders,
@@ -296,7 +300,7 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     // The model answers at the settings' wavelengths, in their order.
     let color = SpectrumToColor::new(&settings.wavelengths_nm)?;
     let atmosphere = Atmosphere::from_preset_or_file(&args.atmosphere)
-        .and_then(|a| match args.model {
+        .and_then(|a| match model {
             ModelId::Reference => Ok(a),
             _ => a.check_real_time_range().map(|()| a),
         })
@@ -304,7 +308,7 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     let file = args.input.display().to_string();
     let text = read_text(&args.input, CSV_LIMITS)?;
     let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
-    let model = prepare(args.model, &atmosphere, &settings)?;
+    let model = prepare(model, &atmosphere, &settings)?;
 
     let results = evaluate(model.as_ref(), &input.rows)
         .into_iter()
@@ -384,7 +388,7 @@ impl Table<'_> {
 }
 
 /// The shortest text that reads back as `x`, in exponent form when very small or large.
-fn number(x: f64) -> String {
+pub(crate) fn number(x: f64) -> String {
     if x == 0.0 || (1e-4..1e15).contains(&x.abs()) {
         format!("{x}")
     } else {

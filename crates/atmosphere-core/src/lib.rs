@@ -7,6 +7,7 @@
 
 pub mod analysis;
 pub mod atmosphere;
+pub mod beams;
 pub mod clouds;
 pub mod color;
 pub mod geo;

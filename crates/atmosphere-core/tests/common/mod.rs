@@ -1,6 +1,7 @@
 //! Helpers shared by the model tests. Each test file uses some of them.
 #![allow(dead_code)]
 
+pub mod beams;
 pub mod hillaire;
 
 use atmosphere_core::analysis::error_statistics::RelativeErrorStats;

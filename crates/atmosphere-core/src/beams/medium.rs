@@ -1,0 +1,39 @@
+//! The homogeneous medium of a beams scene at a method's wavelengths (Dobashi et al.
+//! 2000 Eq. 2: constant density, so attenuation is exp(-sigma_t t)).
+
+use crate::atmosphere::spectral::Spectral;
+use crate::optics::phase::PhaseFunction;
+
+/// The medium as given: coefficients as functions of wavelength, and a phase function.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Medium {
+    pub scattering_per_m: Spectral,
+    pub absorption_per_m: Spectral,
+    pub phase: PhaseFunction,
+}
+
+/// Scattering and extinction coefficients at given wavelengths, m^-1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MediumSpectra {
+    pub scattering_per_m: Vec<f64>,
+    pub extinction_per_m: Vec<f64>,
+}
+
+impl Medium {
+    /// The coefficients at `wavelengths_nm`.
+    pub fn at(&self, wavelengths_nm: &[f64]) -> MediumSpectra {
+        let scattering_per_m: Vec<f64> = wavelengths_nm
+            .iter()
+            .map(|&w| self.scattering_per_m.at(w))
+            .collect();
+        let extinction_per_m = wavelengths_nm
+            .iter()
+            .zip(&scattering_per_m)
+            .map(|(&w, s)| s + self.absorption_per_m.at(w))
+            .collect();
+        MediumSpectra {
+            scattering_per_m,
+            extinction_per_m,
+        }
+    }
+}
