@@ -33,9 +33,10 @@ use crate::terrain::colour_map::ColourMap;
 use crate::terrain::colour_mips::colour_mips;
 use crate::terrain::earth_data::{COLOUR_FILE, EarthData};
 use crate::terrain::frustum::Frustum;
-use crate::terrain::height_map::HeightMap;
+use crate::terrain::height_field::HeightField;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
 use crate::terrain::map_error::MapError;
+use crate::terrain::refined_heights::RefinedHeights;
 use crate::terrain::stitching::stitched_indices;
 use crate::terrain::surface::TerrainSurface;
 
@@ -96,7 +97,7 @@ struct Draw {
 /// The terrain's maps, pipeline and chunk cache; see the module documentation.
 #[derive(Debug)]
 pub struct TerrainPass {
-    surface: TerrainSurface<HeightMap>,
+    surface: TerrainSurface<RefinedHeights>,
     lod: LodSettings,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
@@ -132,7 +133,7 @@ impl TerrainPass {
         radius_m: f64,
         earth: &EarthData,
     ) -> Result<TerrainPass, RenderError> {
-        let heights = earth.heights()?;
+        let heights = earth.refined_heights()?;
         let colours = earth.colours()?;
         let device = &gpu.device;
         let largest = device.limits().max_texture_dimension_2d;
@@ -225,9 +226,10 @@ impl TerrainPass {
             }
             .into());
         }
+        let lod = LodSettings::for_spacing(radius_m, heights.sample_spacing_rad());
         Ok(TerrainPass {
             surface: TerrainSurface::new(heights, radius_m),
-            lod: LodSettings::new(radius_m),
+            lod,
             pipeline,
             layout,
             params,
@@ -255,7 +257,7 @@ impl TerrainPass {
         if self.surface.exaggeration != options.exaggeration || self.surface.radius_m != radius_m {
             self.surface.exaggeration = options.exaggeration;
             self.surface.radius_m = radius_m;
-            self.lod.radius_m = radius_m;
+            self.lod = LodSettings::for_spacing(radius_m, self.surface.heights.sample_spacing_rad());
             self.chunks.clear();
         }
         let camera = frame.camera_position_m;
