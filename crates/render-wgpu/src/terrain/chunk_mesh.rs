@@ -80,7 +80,11 @@ impl ChunkMesh {
         for j in 0..=cells {
             for i in 0..=cells {
                 let (i, j) = (i as i64, j as i64);
-                positions.push((grid_point(&grid, side, i, j) - origin_m).as_vec3().to_array());
+                positions.push(
+                    (grid_point(&grid, side, i, j) - origin_m)
+                        .as_vec3()
+                        .to_array(),
+                );
                 let along_u = grid_point(&grid, side, i + 1, j) - grid_point(&grid, side, i - 1, j);
                 let along_v = grid_point(&grid, side, i, j + 1) - grid_point(&grid, side, i, j - 1);
                 normals.push(along_u.cross(along_v).normalize().as_vec3().to_array());

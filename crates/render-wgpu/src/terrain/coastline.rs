@@ -51,7 +51,10 @@ mod tests {
             let mut previous = constrain_to_coast(h, 0.0, &SETTINGS);
             for k in 1..=1000 {
                 let out = constrain_to_coast(h, k as f64 / 1000.0, &SETTINGS);
-                assert!((out - previous).abs() <= 2e-3 * h.abs().max(5.0) + 1e-12, "{h} {k}");
+                assert!(
+                    (out - previous).abs() <= 2e-3 * h.abs().max(5.0) + 1e-12,
+                    "{h} {k}"
+                );
                 previous = out;
             }
         }

@@ -134,7 +134,9 @@ mod tests {
             assert!((dy - s.dy).abs() < 1e-7, "{dy} {}", s.dy);
             assert!((dxdy - s.dxdy).abs() < 1e-6, "{dxdy} {}", s.dxdy);
             let wrapped = at(x + 16.0, y);
-            assert!((wrapped.value - s.value).abs() < 1e-12 && (wrapped.dxdy - s.dxdy).abs() < 1e-9);
+            assert!(
+                (wrapped.value - s.value).abs() < 1e-12 && (wrapped.dxdy - s.dxdy).abs() < 1e-9
+            );
             assert_ne!(gradient_noise(x, y, 16, 4, 42), s);
             assert_ne!(gradient_noise(x, y, 16, 3, 43), s);
         }

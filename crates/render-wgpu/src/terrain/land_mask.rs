@@ -204,7 +204,10 @@ mod tests {
             .write_to(&mut Cursor::new(&mut grey), image::ImageFormat::Png)
             .unwrap();
         let e = LandMask::decode(&grey, Path::new("eight.png")).unwrap_err();
-        assert!(e.to_string().contains("eight.png") && e.to_string().contains("1-bit"), "{e}");
+        assert!(
+            e.to_string().contains("eight.png") && e.to_string().contains("1-bit"),
+            "{e}"
+        );
         let e = LandMask::decode(&png_of(48, 24, |_, _| true), Path::new("odd.png")).unwrap_err();
         assert!(e.to_string().contains("multiples of 32"), "{e}");
         let e = LandMask::decode(b"nothing", Path::new("junk.png")).unwrap_err();

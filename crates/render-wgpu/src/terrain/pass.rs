@@ -257,7 +257,8 @@ impl TerrainPass {
         if self.surface.exaggeration != options.exaggeration || self.surface.radius_m != radius_m {
             self.surface.exaggeration = options.exaggeration;
             self.surface.radius_m = radius_m;
-            self.lod = LodSettings::for_spacing(radius_m, self.surface.heights.sample_spacing_rad());
+            self.lod =
+                LodSettings::for_spacing(radius_m, self.surface.heights.sample_spacing_rad());
             self.chunks.clear();
         }
         let camera = frame.camera_position_m;

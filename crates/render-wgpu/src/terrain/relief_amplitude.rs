@@ -113,11 +113,7 @@ impl ReliefAmplitude {
 /// fraction `x` of cell `k`, and their derivatives.
 fn weights(x: f64) -> ([f64; 3], [f64; 3]) {
     (
-        [
-            0.5 * (1.0 - x) * (1.0 - x),
-            0.5 + x - x * x,
-            0.5 * x * x,
-        ],
+        [0.5 * (1.0 - x) * (1.0 - x), 0.5 + x - x * x, 0.5 * x * x],
         [x - 1.0, 1.0 - 2.0 * x, x],
     )
 }
