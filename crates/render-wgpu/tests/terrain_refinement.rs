@@ -65,7 +65,7 @@ fn refined_cells_average_back_to_the_data_within_a_metre() {
     let cells = [
         ("Pennine Alps", 46.0, 7.8),
         ("Himalaya", 28.0, 86.9),
-        ("Andes", -20.0, -68.0),
+        ("Altiplano", -20.0, -68.0),
         ("Mid-Atlantic Ridge", 30.0, -42.0),
         ("Pacific abyssal plain", 0.0, -150.0),
         ("Sahara", 23.0, 10.0),
