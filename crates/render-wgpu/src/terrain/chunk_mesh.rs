@@ -40,13 +40,16 @@ pub struct ChunkMesh {
     pub positions: Vec<[f32; 3]>,
     /// Outward unit normals.
     pub normals: Vec<[f32; 3]>,
+    /// The height field's height at each vertex, metres (below 0 in the sea, where the
+    /// drawn surface is the sea's): the terrain shader's land or water.
+    pub heights_m: Vec<f32>,
     /// Counter-clockwise triangles (seen from outside), stitched to coarser neighbours.
     pub indices: Vec<u32>,
 }
 
 /// Point (i, j) of a chunk's grid extended by one cell on every side (`side` points
 /// along a row, (-1, -1) first).
-fn grid_point(grid: &[DVec3], side: i64, i: i64, j: i64) -> DVec3 {
+fn grid_point<T: Copy>(grid: &[T], side: i64, i: i64, j: i64) -> T {
     grid[((j + 1) * side + i + 1) as usize]
 }
 
@@ -67,16 +70,19 @@ impl ChunkMesh {
         let origin_m = vertex_direction(key, cells, cells / 2, cells / 2) * surface.radius_m;
         // Points on the grid one cell beyond the chunk on every side, for the normals.
         let side = cells as i64 + 3;
-        let grid: Vec<DVec3> = (-1..=cells as i64 + 1)
+        let (grid, grid_heights): (Vec<DVec3>, Vec<f64>) = (-1..=cells as i64 + 1)
             .flat_map(|j| (-1..=cells as i64 + 1).map(move |i| (i, j)))
             .map(|(i, j)| {
                 let (u, v) = key.vertex_uv(cells, i, j);
-                surface.position_m(direction(key.face, u, v))
+                let d = direction(key.face, u, v);
+                let h = surface.heights.height_m(d);
+                (d * (surface.radius_m + surface.elevation_of_height(h)), h)
             })
-            .collect();
+            .unzip();
         let count = ((cells + 1) * (cells + 1)) as usize;
         let mut positions = Vec::with_capacity(count);
         let mut normals = Vec::with_capacity(count);
+        let mut heights_m = Vec::with_capacity(count);
         for j in 0..=cells {
             for i in 0..=cells {
                 let (i, j) = (i as i64, j as i64);
@@ -85,6 +91,7 @@ impl ChunkMesh {
                         .as_vec3()
                         .to_array(),
                 );
+                heights_m.push(grid_point(&grid_heights, side, i, j) as f32);
                 let along_u = grid_point(&grid, side, i + 1, j) - grid_point(&grid, side, i - 1, j);
                 let along_v = grid_point(&grid, side, i, j + 1) - grid_point(&grid, side, i, j - 1);
                 normals.push(along_u.cross(along_v).normalize().as_vec3().to_array());
@@ -96,8 +103,21 @@ impl ChunkMesh {
             origin_m,
             positions,
             normals,
+            heights_m,
             indices: stitched_indices(cells, chunk.coarser),
         }
+    }
+
+    /// A sphere holding every vertex, hence every triangle (centre, radius), metres:
+    /// centred on the origin, reaching the farthest vertex (plus a millimetre for the f32
+    /// offsets).
+    pub fn bounding_sphere(&self) -> (DVec3, f64) {
+        let reach = self
+            .positions
+            .iter()
+            .map(|&p| glam::Vec3::from_array(p).as_dvec3().length())
+            .fold(0.0, f64::max);
+        (self.origin_m, reach + 1e-3)
     }
 
     /// A vertex's planet-centred position as the GPU sees it (origin plus f32 offset).

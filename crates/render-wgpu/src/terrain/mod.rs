@@ -26,6 +26,7 @@ pub mod map_image;
 pub mod pass;
 pub mod refined_heights;
 pub mod relief_amplitude;
+pub mod sea_colour;
 pub mod stitching;
 pub mod surface;
 

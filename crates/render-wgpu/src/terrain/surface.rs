@@ -38,8 +38,17 @@ impl<H: HeightField> TerrainSurface<H> {
 
     /// The drawn elevation above the reference sphere, metres: `k h'(d)`.
     pub fn elevation_m(&self, direction: DVec3) -> f64 {
-        let h = self.heights.height_m(direction);
-        self.exaggeration * if self.sea_surface { h.max(0.0) } else { h }
+        self.elevation_of_height(self.heights.height_m(direction))
+    }
+
+    /// The drawn elevation of a height `height_m` of the field, metres.
+    pub fn elevation_of_height(&self, height_m: f64) -> f64 {
+        self.exaggeration
+            * if self.sea_surface {
+                height_m.max(0.0)
+            } else {
+                height_m
+            }
     }
 
     /// The surface point in a direction (unit), planet-centred, metres.
