@@ -2,8 +2,10 @@
 // `terrain/pass.rs`): the chunks of the cube-sphere quadtree drawn into the surface buffer
 // that every model's pixel pass reads (`common/surface.wgsl`): per pixel the outward
 // normal and the distance from the camera along the pixel's ray, and the albedo from the
-// Earth's colour map. CPU twin: none in atmosphere-core (the meshes are built by
-// render-wgpu's `terrain/`); the projection is `Frame::pixel_ray`'s. No paper.
+// Earth's colour map, or the water's albedo where the interpolated height of the height
+// field is below 0 (the refined coastline, `sea_colour.rs`). CPU twin: none in
+// atmosphere-core (the meshes are built by render-wgpu's `terrain/`); the projection is
+// `Frame::pixel_ray`'s. No paper.
 //
 // Camera-relative: a vertex is its chunk's offset `origin - camera` (f64 on the CPU,
 // rounded to f32) plus its f32 offset from the origin, so positions near the camera are
@@ -21,6 +23,8 @@ struct TerrainParams {
     forward: vec4<f32>,
     // x: the near plane's distance, m.
     near: vec4<f32>,
+    // rgb: the water's albedo.
+    sea_albedo: vec4<f32>,
 }
 
 struct Chunk {
@@ -45,6 +49,8 @@ struct VertexOut {
     // Planet-centred position, m (rounded to about 0.5 m).
     @location(1) planet: vec3<f32>,
     @location(2) normal: vec3<f32>,
+    // The height field's height, m (below 0: water).
+    @location(3) height: f32,
 }
 
 @vertex
@@ -52,6 +58,7 @@ fn vertex_main(
     @builtin(instance_index) chunk: u32,
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
+    @location(2) height: f32,
 ) -> VertexOut {
     let c = chunks[chunk];
     let relative = c.offset.xyz + position;
@@ -61,6 +68,7 @@ fn vertex_main(
     out.relative = relative;
     out.planet = c.origin.xyz + position;
     out.normal = normal;
+    out.height = height;
     return out;
 }
 
@@ -89,6 +97,6 @@ fn fragment_main(in: VertexOut) -> SurfaceOut {
         unwrap_derivative(dpdx(uv)), unwrap_derivative(dpdy(uv)));
     var out: SurfaceOut;
     out.geometry = vec4<f32>(normalize(in.normal), length(in.relative));
-    out.albedo = vec4<f32>(colour.rgb, 1.0);
+    out.albedo = vec4<f32>(select(colour.rgb, terrain.sea_albedo.rgb, in.height < 0.0), 1.0);
     return out;
 }

@@ -1,19 +1,30 @@
 //! Where the Earth's maps come from: built into the library (the default, so that a
 //! copied or installed binary draws the terrain wherever it runs), or a folder holding
-//! `height.png` and `colour.jpg` in the formats of `docs/terrain.md`.
+//! `height.png` and `colour.jpg` (and, optionally, `land_mask.png`) in the formats of
+//! `docs/terrain.md`.
 
 use std::path::{Path, PathBuf};
 
 use super::colour_map::ColourMap;
 use super::height_map::HeightMap;
+use super::land_mask::LandMask;
 use super::map_error::MapError;
 use super::map_image::{decode_image, load_image};
+use super::refined_heights::{RefinedHeights, RefinementSettings};
 
 /// The height map's file name, in `assets/earth/` and in a folder of maps.
 pub const HEIGHT_FILE: &str = "height.png";
 /// The colour map's file name, in `assets/earth/` and in a folder of maps.
 pub const COLOUR_FILE: &str = "colour.jpg";
 
+/// The land/sea mask's file name, in `assets/earth/` and (optional) in a folder of maps.
+pub const LAND_MASK_FILE: &str = "land_mask.png";
+
+/// `assets/earth/land_mask.png`, built in.
+const BUILT_IN_LAND_MASK: &[u8] = include_bytes!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../assets/earth/land_mask.png"
+));
 /// `assets/earth/height.png`, built in.
 const BUILT_IN_HEIGHTS: &[u8] = include_bytes!(concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -86,6 +97,33 @@ impl EarthData {
         ColourMap::from_image(image, &path)
     }
 
+    /// Decodes the land/sea mask: the built-in one, or a folder's `land_mask.png` when it
+    /// has one (none otherwise: the coastline is then the height map's).
+    pub fn land_mask(&self) -> Result<Option<LandMask>, MapError> {
+        let path = self.path_of(LAND_MASK_FILE);
+        match self {
+            EarthData::BuiltIn => LandMask::decode(BUILT_IN_LAND_MASK, &path).map(Some),
+            EarthData::Folder(_) if !path.is_file() => Ok(None),
+            EarthData::Folder(_) => {
+                let bytes = std::fs::read(&path).map_err(|e| MapError::Read {
+                    path: path.clone(),
+                    source: image::ImageError::IoError(e),
+                })?;
+                LandMask::decode(&bytes, &path).map(Some)
+            }
+        }
+    }
+
+    /// The heights the terrain draws: the height map refined below its resolution with
+    /// the default settings, held to the land mask's coastline where there is one.
+    pub fn refined_heights(&self) -> Result<RefinedHeights, MapError> {
+        Ok(RefinedHeights::new(
+            self.heights()?,
+            self.land_mask()?,
+            RefinementSettings::default(),
+        ))
+    }
+
     /// How errors name map `file` of this source.
     pub fn path_of(&self, file: &str) -> PathBuf {
         match self {
@@ -105,6 +143,8 @@ mod tests {
         assert_eq!((heights.width, heights.height), (2160, 1080));
         let colours = EarthData::BuiltIn.colours().unwrap();
         assert_eq!((colours.width, colours.height), (4096, 2048));
+        let mask = EarthData::BuiltIn.land_mask().unwrap().unwrap();
+        assert_eq!((mask.width, mask.height), (43200, 21600));
     }
 
     #[test]
@@ -150,6 +190,7 @@ mod tests {
         );
         let colours = data.colours().unwrap();
         assert!(colours.texels[0][0] > 150 && colours.texels[0][2] < 60);
+        assert!(data.land_mask().unwrap().is_none());
 
         std::fs::write(dir.path().join(HEIGHT_FILE), b"not a picture").unwrap();
         let e = data.heights().unwrap_err().to_string();

@@ -11,7 +11,8 @@ pub trait HeightField {
     /// A bound on `|height_m|` anywhere, metres: chunks' bounding spheres grow by it.
     fn max_abs_height_m(&self) -> f64;
 
-    /// The angle between neighbouring samples of the data, radians: the step of the
-    /// normals' central differences.
+    /// The angle between neighbouring samples of the field's finest detail, radians: the
+    /// level of detail splits chunks until their cells are this fine
+    /// (`LodSettings::finest_level`).
     fn sample_spacing_rad(&self) -> f64;
 }

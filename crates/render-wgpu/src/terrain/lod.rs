@@ -65,6 +65,23 @@ impl LodSettings {
         }
     }
 
+    /// The defaults with `max_level` at the finest level whose cells are no larger than a
+    /// height field's `sample_spacing_rad` (see [`LodSettings::finest_level`]).
+    pub fn for_spacing(radius_m: f64, sample_spacing_rad: f64) -> LodSettings {
+        let mut settings = LodSettings::new(radius_m);
+        settings.max_level = settings.finest_level(sample_spacing_rad);
+        settings
+    }
+
+    /// The first level whose cells (`e_L`) are no larger than `sample_spacing_rad` on the
+    /// reference sphere: splitting further would only resample the same detail.
+    pub fn finest_level(&self, sample_spacing_rad: f64) -> u8 {
+        let spacing_m = sample_spacing_rad * self.radius_m;
+        (0..MAX_LEVEL)
+            .find(|&level| self.geometric_error_m(level) <= spacing_m)
+            .unwrap_or(MAX_LEVEL)
+    }
+
     /// Checks the settings; the message names the field.
     pub fn validate(&self) -> Result<(), InvalidLodSettings> {
         self.check().map_err(InvalidLodSettings)
@@ -358,6 +375,18 @@ mod tests {
             }
         }
         assert!(counts.iter().all(|&(_, n)| n <= 4000), "{counts:?}");
+    }
+
+    /// The finest level follows the height field's detail: cells of 10' data (18.5 km)
+    /// stop at level 5, metre-scale detail goes to level 18 (1.2 m cells).
+    #[test]
+    fn the_finest_level_follows_the_sample_spacing() {
+        let data = LodSettings::for_spacing(R, std::f64::consts::PI / 1080.0);
+        assert_eq!(data.max_level, 5);
+        assert!(data.geometric_error_m(5) <= 18_500.0 && data.geometric_error_m(4) > 18_500.0);
+        let fine = LodSettings::for_spacing(R, 2.26 / R);
+        assert_eq!(fine.max_level, 18);
+        assert_eq!(LodSettings::for_spacing(R, 1e-12).max_level, MAX_LEVEL);
     }
 
     #[test]

@@ -33,9 +33,11 @@ use crate::terrain::colour_map::ColourMap;
 use crate::terrain::colour_mips::colour_mips;
 use crate::terrain::earth_data::{COLOUR_FILE, EarthData};
 use crate::terrain::frustum::Frustum;
-use crate::terrain::height_map::HeightMap;
+use crate::terrain::height_field::HeightField;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
 use crate::terrain::map_error::MapError;
+use crate::terrain::refined_heights::RefinedHeights;
+use crate::terrain::sea_colour::open_sea_albedo;
 use crate::terrain::stitching::stitched_indices;
 use crate::terrain::surface::TerrainSurface;
 
@@ -47,7 +49,7 @@ const KEEP_FRAMES: u64 = 240;
 /// The smallest near plane, m.
 const MIN_NEAR_M: f64 = 0.05;
 
-/// WGSL `TerrainParams`, 64 bytes.
+/// WGSL `TerrainParams`, 80 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct TerrainUniform {
@@ -55,6 +57,8 @@ pub struct TerrainUniform {
     pub up: [f32; 4],
     pub forward: [f32; 4],
     pub near: [f32; 4],
+    /// rgb: the water's albedo (`sea_colour.rs`).
+    pub sea_albedo: [f32; 4],
 }
 
 /// WGSL `Chunk`, 32 bytes.
@@ -65,19 +69,21 @@ struct ChunkUniform {
     origin: [f32; 4],
 }
 
-/// A chunk's vertices on the GPU: position relative to the origin, then the normal.
+/// A chunk's vertices on the GPU: position relative to the origin, the normal, and the
+/// height field's height (below 0: water).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 struct Vertex {
     position: [f32; 3],
     normal: [f32; 3],
+    height: f32,
 }
 
 #[derive(Debug)]
 struct GpuChunk {
     vertices: wgpu::Buffer,
     origin_m: DVec3,
-    /// Bounding sphere (centre, radius), m.
+    /// Bounding sphere of the mesh's vertices (centre, radius), m.
     bounds: (DVec3, f64),
     /// The largest distance of a vertex from the planet's centre, m: no point of the
     /// chunk's flat triangles lies farther (the distance is convex).
@@ -96,7 +102,7 @@ struct Draw {
 /// The terrain's maps, pipeline and chunk cache; see the module documentation.
 #[derive(Debug)]
 pub struct TerrainPass {
-    surface: TerrainSurface<HeightMap>,
+    surface: TerrainSurface<RefinedHeights>,
     lod: LodSettings,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
@@ -111,6 +117,8 @@ pub struct TerrainPass {
     depth: wgpu::Texture,
     draws: Vec<Draw>,
     frame_number: u64,
+    /// The water's albedo, linear.
+    sea_albedo: [f64; 3],
 }
 
 /// A reversed-depth buffer of `width` x `height` pixels.
@@ -132,8 +140,9 @@ impl TerrainPass {
         radius_m: f64,
         earth: &EarthData,
     ) -> Result<TerrainPass, RenderError> {
-        let heights = earth.heights()?;
+        let heights = earth.refined_heights()?;
         let colours = earth.colours()?;
+        let sea_albedo = open_sea_albedo(&colours, &heights.data, heights.mask.as_ref());
         let device = &gpu.device;
         let largest = device.limits().max_texture_dimension_2d;
         if colours.width > largest as usize {
@@ -155,7 +164,10 @@ impl TerrainPass {
             device,
             "terrain",
             &[
-                in_stage(S::VERTEX, uniform_entry(0, size_of::<TerrainUniform>())),
+                in_stage(
+                    S::VERTEX | S::FRAGMENT,
+                    uniform_entry(0, size_of::<TerrainUniform>()),
+                ),
                 in_stage(
                     S::VERTEX,
                     read_only_storage_buffer_entry(1, size_of::<ChunkUniform>()),
@@ -182,7 +194,9 @@ impl TerrainPass {
                 buffers: &[Some(wgpu::VertexBufferLayout {
                     array_stride: size_of::<Vertex>() as u64,
                     step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+                    attributes: &wgpu::vertex_attr_array![
+                        0 => Float32x3, 1 => Float32x3, 2 => Float32
+                    ],
                 })],
             },
             primitive: wgpu::PrimitiveState {
@@ -225,9 +239,10 @@ impl TerrainPass {
             }
             .into());
         }
+        let lod = LodSettings::for_spacing(radius_m, heights.sample_spacing_rad());
         Ok(TerrainPass {
             surface: TerrainSurface::new(heights, radius_m),
-            lod: LodSettings::new(radius_m),
+            lod,
             pipeline,
             layout,
             params,
@@ -239,6 +254,7 @@ impl TerrainPass {
             depth: depth_buffer(gpu, 1, 1),
             draws: Vec::new(),
             frame_number: 0,
+            sea_albedo,
         })
     }
 
@@ -255,7 +271,8 @@ impl TerrainPass {
         if self.surface.exaggeration != options.exaggeration || self.surface.radius_m != radius_m {
             self.surface.exaggeration = options.exaggeration;
             self.surface.radius_m = radius_m;
-            self.lod.radius_m = radius_m;
+            self.lod =
+                LodSettings::for_spacing(radius_m, self.surface.heights.sample_spacing_rad());
             self.chunks.clear();
         }
         let camera = frame.camera_position_m;
@@ -281,22 +298,22 @@ impl TerrainPass {
             .iter()
             .filter(|c| !self.chunks.contains_key(&c.key))
             .collect();
-        let built: Vec<(ChunkMesh, (DVec3, f64))> = missing
+        let built: Vec<ChunkMesh> = missing
             .par_iter()
-            .map(|chunk| {
-                let mesh = ChunkMesh::build(surface, chunk, self.lod.cells);
-                let bounds = self
-                    .lod
-                    .bounding_sphere(chunk.key, &|d| surface.elevation_m(d));
-                (mesh, bounds)
-            })
+            .map(|chunk| ChunkMesh::build(surface, chunk, self.lod.cells))
             .collect();
-        for (mesh, bounds) in built {
+        for mesh in built {
+            let bounds = mesh.bounding_sphere();
             let vertices: Vec<Vertex> = mesh
                 .positions
                 .iter()
                 .zip(&mesh.normals)
-                .map(|(&position, &normal)| Vertex { position, normal })
+                .zip(&mesh.heights_m)
+                .map(|((&position, &normal), &height)| Vertex {
+                    position,
+                    normal,
+                    height,
+                })
                 .collect();
             let buffer = buffer_with(gpu, "terrain chunk", &vertices, wgpu::BufferUsages::VERTEX);
             let max_radius_m = (0..mesh.positions.len() as u32)
@@ -323,10 +340,9 @@ impl TerrainPass {
         for chunk in &selected {
             let gpu_chunk = self.chunks.get_mut(&chunk.key).expect("built above");
             gpu_chunk.last_selected = self.frame_number;
-            // The sphere grows by a margin for the relief between its sampled points.
             let (centre, radius) = gpu_chunk.bounds;
             let below_every_ray = gpu_chunk.max_radius_m + 1.0 < lowest_ray_m;
-            if below_every_ray || !frustum.sees_sphere(centre, radius * 1.05 + 1.0) {
+            if below_every_ray || !frustum.sees_sphere(centre, radius) {
                 continue;
             }
             self.draws.push(Draw {
@@ -361,11 +377,13 @@ impl TerrainPass {
         gpu.queue
             .write_buffer(&self.chunk_buffer, 0, bytemuck::cast_slice(&uniforms));
         let clearance = altitude_m - ground_m;
+        let sea = self.sea_albedo.map(|c| c as f32);
         let params = TerrainUniform {
             right: v4(right / half_w),
             up: v4(up / half_h),
             forward: v4(forward),
             near: [near_plane_m(clearance) as f32, 0.0, 0.0, 0.0],
+            sea_albedo: [sea[0], sea[1], sea[2], 1.0],
         };
         gpu.write_uniform(&self.params, &params);
         self.ensure_depth(gpu, frame.width, frame.height);

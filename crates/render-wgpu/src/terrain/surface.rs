@@ -6,10 +6,8 @@
 //! `k` the vertical exaggeration and `h'` the height, raised to 0 over the oceans when
 //! `sea_surface` is on (the colour map shows the sea; the bathymetry is kept for later
 //! use). `k = 1` is true scale; the Earth's relief is 0.14 % of its radius, so views from
-//! orbit often use `k` of 10 to 50 to show it. Normals come from the same function by
-//! central differences over one data sample, so a vertex's normal depends only on its
-//! direction: shared vertices of neighbouring chunks get the same normal, whatever their
-//! levels of detail.
+//! orbit often use `k` of 10 to 50 to show it. Normals come from the chunk meshes
+//! (`chunk_mesh.rs`).
 
 use glam::DVec3;
 
@@ -40,8 +38,17 @@ impl<H: HeightField> TerrainSurface<H> {
 
     /// The drawn elevation above the reference sphere, metres: `k h'(d)`.
     pub fn elevation_m(&self, direction: DVec3) -> f64 {
-        let h = self.heights.height_m(direction);
-        self.exaggeration * if self.sea_surface { h.max(0.0) } else { h }
+        self.elevation_of_height(self.heights.height_m(direction))
+    }
+
+    /// The drawn elevation of a height `height_m` of the field, metres.
+    pub fn elevation_of_height(&self, height_m: f64) -> f64 {
+        self.exaggeration
+            * if self.sea_surface {
+                height_m.max(0.0)
+            } else {
+                height_m
+            }
     }
 
     /// The surface point in a direction (unit), planet-centred, metres.
@@ -52,28 +59,6 @@ impl<H: HeightField> TerrainSurface<H> {
     /// A bound on `|elevation_m|`.
     pub fn elevation_bound_m(&self) -> f64 {
         self.exaggeration.abs() * self.heights.max_abs_height_m()
-    }
-
-    /// The outward unit normal in a direction (unit): `d - grad(k h') R / (R + k h')`
-    /// with the gradient from central differences over `sample_spacing_rad` along two
-    /// tangents.
-    pub fn normal(&self, direction: DVec3) -> DVec3 {
-        let step = self.heights.sample_spacing_rad();
-        // Any tangent basis gives the same gradient; this one avoids the poles' singularity.
-        let helper = if direction.z.abs() < 0.9 {
-            DVec3::Z
-        } else {
-            DVec3::X
-        };
-        let t1 = helper.cross(direction).normalize();
-        let t2 = direction.cross(t1);
-        let slope = |t: DVec3| {
-            let forward = self.elevation_m((direction + t * step).normalize());
-            let back = self.elevation_m((direction - t * step).normalize());
-            // The two samples are 2 atan(step) apart on the sphere of radius R + k h.
-            (forward - back) / (2.0 * step.atan() * (self.radius_m + self.elevation_m(direction)))
-        };
-        (direction - t1 * slope(t1) - t2 * slope(t2)).normalize()
     }
 }
 
@@ -100,7 +85,7 @@ mod tests {
     }
 
     #[test]
-    fn normal_tilts_against_the_slope_and_exaggeration_scales_it() {
+    fn exaggeration_scales_heights_and_the_sea_surface_is_flat() {
         let radius_m = 6.36e6;
         let mut surface = TerrainSurface::new(
             Ramp {
@@ -110,17 +95,12 @@ mod tests {
             radius_m,
         );
         surface.sea_surface = false;
-        // At (1, 0, 0) the height rises towards +y with slope 0.1 / (1 + 0) = 0.1.
-        let n = surface.normal(DVec3::X);
-        assert!((n.y / n.x + 0.1).abs() < 1e-6, "{n}");
         surface.exaggeration = 3.0;
-        let n = surface.normal(DVec3::X);
-        assert!((n.y / n.x + 0.3).abs() < 1e-6, "{n}");
         assert_eq!(surface.position_m(DVec3::Y), DVec3::Y * radius_m * 1.3);
         assert!((surface.elevation_bound_m() - 0.3 * radius_m).abs() < 1e-6);
+        assert_eq!(surface.position_m(-DVec3::Y), -DVec3::Y * radius_m * 0.7);
         // Below sea level the sea surface is flat at the reference radius.
         surface.sea_surface = true;
         assert_eq!(surface.position_m(-DVec3::Y), -DVec3::Y * radius_m);
-        assert_eq!(surface.normal(-DVec3::Y), -DVec3::Y);
     }
 }
