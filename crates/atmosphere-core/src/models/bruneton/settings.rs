@@ -75,7 +75,8 @@ const fn setting<T>(key: &'static str, range: RangeInclusive<T>) -> Setting<T> {
 }
 
 /// S's axes: up to 256 x 1024 x 256 x 64 texels (r, mu, mu_s, nu); the memory budget
-/// bounds their product, the GPU's row workgroup mu_s x nu.
+/// bounds their product, the GPU's device limits the store and mu_s x nu (a 3D texture's
+/// width).
 pub const R: Setting<usize> = setting("r", 2..=256);
 pub const MU: Setting<usize> = setting("mu", 4..=1024);
 pub const MU_S: Setting<usize> = setting("mu_s", 2..=256);
