@@ -351,8 +351,9 @@ fn unsupported_sizes_are_errors_naming_them() {
 }
 
 /// More sun angles and scattering angles than a 256-invocation workgroup holds per row
-/// (mu_s x nu = 512), and more texels than one row of flat workgroups (131072).
-const WIDE_ROWS: [&str; 4] = ["r=8", "mu=32", "mu_s=32", "nu=16"];
+/// (mu_s x nu = 512), more texels than one row of flat workgroups (131072), and E with
+/// four times the paper's sun angles.
+const WIDE_ROWS: [&str; 5] = ["r=8", "mu=32", "mu_s=32", "nu=16", "e_mu_s=256"];
 
 #[test]
 fn tables_with_wide_rows_match_the_cpu() {
