@@ -362,6 +362,21 @@ fn tables_with_wide_rows_match_the_cpu() {
     };
     let errors = compare_tables(&gpu, "earth", &WIDE_ROWS);
     assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let f = frame(
+        "earth",
+        settings(&WIDE_ROWS),
+        view(2.0, 80.0, 96.0),
+        90.0,
+        48,
+        27,
+    );
+    check(
+        &mut renderer,
+        "civil twilight, wide rows",
+        &f,
+        MAX_RELATIVE_ERROR,
+    );
 }
 
 /// Options from environment variable `name`: `key=value` items separated by spaces or
