@@ -247,6 +247,10 @@ pub struct ReportArgs {
     /// Only these models (repeat the flag); all when absent.
     #[arg(long, value_parser = report_model)]
     pub model: Vec<ModelId>,
+    /// Only these settings, as `model key=value ...` (repeat the flag), in place of the
+    /// report's list; e.g. `--variant "bruneton nu=16 mu_s=64"`.
+    #[arg(long, value_name = "SETTING")]
+    pub variant: Vec<String>,
     /// Relative standard error the reference aims for per ray and wavelength.
     #[arg(long, value_name = "REL", default_value_t = ModelSettings::default().target_relative_error)]
     pub reference_error: f64,

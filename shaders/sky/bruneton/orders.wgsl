@@ -142,10 +142,11 @@ fn decide(@builtin(local_invocation_index) lid: u32) {
 // S += Delta S and E += Delta E, one invocation per texel.
 @compute @workgroup_size(64)
 fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x < bruneton.scattering_texels {
-        store[bruneton.multiple_offset + id.x] += store[bruneton.delta_s_offset + id.x];
+    let index = flat_index(id);
+    if index < bruneton.scattering_texels {
+        store[bruneton.multiple_offset + index] += store[bruneton.delta_s_offset + index];
     }
-    if id.x < bruneton.irradiance_texels {
-        store[bruneton.irradiance_offset + id.x] += store[bruneton.delta_e_offset + id.x];
+    if index < bruneton.irradiance_texels {
+        store[bruneton.irradiance_offset + index] += store[bruneton.delta_e_offset + index];
     }
 }

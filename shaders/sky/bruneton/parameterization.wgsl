@@ -202,6 +202,15 @@ struct TexelCoords {
 
 // The texel of linear index `index` (`ScatteringSize::coords`): mu_s fastest, then r,
 // mu, nu.
+// Invocations along x of a flat dispatch over the texels of S (`FLAT_ROW_GROUPS` x `FLAT`
+// of render-wgpu's `sky/bruneton/workgroups.rs`); further texels go along y.
+const FLAT_ROW_INVOCATIONS: u32 = 65536u;
+
+// The texel of a flat dispatch's invocation `id`.
+fn flat_index(id: vec3<u32>) -> u32 {
+    return id.x + id.y * FLAT_ROW_INVOCATIONS;
+}
+
 fn texel_coords(index: u32) -> TexelCoords {
     let rest = index / bruneton.mu_s_size;
     let rest2 = rest / bruneton.r_size;

@@ -73,10 +73,11 @@ fn moments(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= bruneton.scattering_texels {
+    let index = flat_index(id);
+    if index >= bruneton.scattering_texels {
         return;
     }
-    let c = texel_coords(id.x);
+    let c = texel_coords(index);
     let tx = texel(c.r, c.mu, c.mu_s, c.nu);
     let sin_s = safe_sqrt(1.0 - tx.mu_s * tx.mu_s);
     let vx = select(0.0, (tx.nu - tx.mu * tx.mu_s) / sin_s, sin_s > 1e-9);
@@ -99,6 +100,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         j += atmosphere.mie_scattering_per_m.xyz * rho.y * max(j_m, vec3<f32>(0.0));
     }
     let value = vec4<f32>(max(j, vec3<f32>(0.0)), 0.0);
-    store[bruneton.delta_j_offset + id.x] = value;
+    store[bruneton.delta_j_offset + index] = value;
     textureStore(delta_j_out, texture_texel(c.r, c.mu, c.mu_s, c.nu), value);
 }

@@ -22,7 +22,7 @@ use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings};
 use crate::cli::ReportArgs;
 use crate::files::write_atomically;
 use crate::report::markdown::{Provenance, write_report};
-use crate::report::measure::measure;
+use crate::report::measure::{Variant, measure};
 use crate::report::plot::{CPU_AXIS, GPU_AXIS, Point};
 use crate::report::variants::{DEFAULT_OUT, report_variants};
 
@@ -38,7 +38,21 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     MAX_PATHS
         .check(args.twilight_max_paths)
         .context("--twilight-max-paths")?;
-    let mut variants = report_variants();
+    let mut variants = if args.variant.is_empty() {
+        report_variants()
+    } else {
+        args.variant
+            .iter()
+            .map(|text| {
+                let v = crate::bench::Variant::parse(text)?;
+                Ok(Variant {
+                    model: v.model,
+                    max_orders: v.max_orders,
+                    options: v.options,
+                })
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?
+    };
     if !args.model.is_empty() {
         variants.retain(|v| args.model.contains(&v.model));
     }
@@ -119,6 +133,9 @@ fn command_line(args: &ReportArgs) -> String {
     }
     for m in &args.model {
         command.push_str(&format!(" --model {m}"));
+    }
+    for v in &args.variant {
+        command.push_str(&format!(" --variant '{v}'"));
     }
     if args.no_gpu {
         command.push_str(" --no-gpu");

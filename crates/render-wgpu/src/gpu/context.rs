@@ -4,7 +4,7 @@
 
 use crate::gpu::adapter_choice::{no_adapter, refusal, summary, usable_adapters};
 use crate::gpu::error::GpuError;
-use crate::gpu::requirements::required_limits;
+use crate::gpu::requirements::device_limits;
 
 /// Instance, adapter, device and queue.
 #[derive(Debug)]
@@ -96,7 +96,7 @@ pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'sta
         label: Some("atmos"),
         required_features: adapter.features()
             & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TIMESTAMP_QUERY),
-        required_limits: required_limits(),
+        required_limits: device_limits(&adapter.limits()),
         ..Default::default()
     }
 }

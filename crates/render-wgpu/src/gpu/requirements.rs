@@ -95,6 +95,21 @@ pub fn required_limits() -> wgpu::Limits {
     wgpu::Limits::default()
 }
 
+/// The limits the device is created with: [`required_limits`], with the buffer sizes
+/// raised to all that the adapter offers, so that larger tables (bruneton's S at more
+/// texels than the paper's) are built where the adapter holds them; each table checks
+/// its size against the device's limits and names what does not fit.
+pub fn device_limits(adapter: &wgpu::Limits) -> wgpu::Limits {
+    let base = required_limits();
+    wgpu::Limits {
+        max_storage_buffer_binding_size: base
+            .max_storage_buffer_binding_size
+            .max(adapter.max_storage_buffer_binding_size),
+        max_buffer_size: base.max_buffer_size.max(adapter.max_buffer_size),
+        ..base
+    }
+}
+
 /// Why `adapter` cannot run atmos (see [`shortfalls`]); empty when it can.
 pub fn adapter_shortfalls(adapter: &wgpu::Adapter) -> Vec<String> {
     shortfalls(

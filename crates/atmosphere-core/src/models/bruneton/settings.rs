@@ -75,11 +75,14 @@ const fn setting<T>(key: &'static str, range: RangeInclusive<T>) -> Setting<T> {
 }
 
 /// S's axes: up to 256 x 1024 x 256 x 64 texels (r, mu, mu_s, nu); the memory budget
-/// bounds their product, the GPU's row workgroup mu_s x nu.
+/// bounds their product, the GPU's device limits the store and mu_s x nu (a 3D texture's
+/// width).
 pub const R: Setting<usize> = setting("r", 2..=256);
 pub const MU: Setting<usize> = setting("mu", 4..=1024);
 pub const MU_S: Setting<usize> = setting("mu_s", 2..=256);
 pub const NU: Setting<usize> = setting("nu", 2..=64);
+/// E's sun-angle texels (its axis is linear in mu_s).
+pub const E_MU_S: Setting<usize> = setting("e_mu_s", 2..=1024);
 /// Sample counts: one GPU invocation's loops run well under 65535 trips in all (the
 /// sphere integrals' 2 sides x 8 x ceil(sphere_zenith / 16) zenith nodes x
 /// sphere_azimuth / 2 azimuths at most 8192).
@@ -97,7 +100,7 @@ pub const SUN_DISK: &str = "sun_disk";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
-    /// `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
+    /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
     /// `order_limit`, `min_mu_s`, `nu_by_angle`, `sun_disk`; the paper's values where
     /// absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
@@ -113,6 +116,7 @@ impl BrunetonSettings {
                         nu_by_angle: o.flag(NU_BY_ANGLE, d.scattering_size.angles.nu_by_angle)?,
                     },
                 },
+                irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),
                 view_samples: o.count(&VIEW_SAMPLES, d.view_samples)?,
                 sphere_samples: (
                     o.count(&SPHERE_ZENITH, d.sphere_samples.0)?,
@@ -134,6 +138,7 @@ impl BrunetonSettings {
             (MU, s.mu),
             (MU_S, s.mu_s),
             (NU, s.nu),
+            (E_MU_S, self.irradiance_size.0),
             (VIEW_SAMPLES, self.view_samples),
             (SPHERE_ZENITH, self.sphere_samples.0),
             (SPHERE_AZIMUTH, self.sphere_samples.1),

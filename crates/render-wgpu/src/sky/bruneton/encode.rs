@@ -7,7 +7,7 @@ use crate::sky::bruneton::bindings::bind_group;
 use crate::sky::bruneton::pipelines::Pipelines;
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreTable};
 use crate::sky::bruneton::tables::Tables;
-use crate::sky::bruneton::workgroups::FLAT;
+use crate::sky::bruneton::workgroups::{FLAT, flat_groups};
 use crate::sky::model_pass::PassIo;
 use crate::sky::table_sampling::TableSampling;
 
@@ -42,25 +42,31 @@ impl StepEncoder<'_> {
         bind_group(self.gpu, self.io, t, pipeline, &t.params, &extra, elsewhere)
     }
 
-    /// One dispatch of `x` workgroups of `pipeline` with the shared bindings alone.
+    /// One dispatch of `groups` workgroups of `pipeline` with the shared bindings alone.
     fn shared_only(
         &self,
         pipeline: &ComputePipeline,
         label: &str,
-        x: u32,
+        groups: [u32; 3],
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Timestamps<'_>,
     ) {
         let t = self.tables;
         let bind_group = bind_group(self.gpu, self.io, t, pipeline, &t.params, &[], &[]);
-        pipeline.dispatch(encoder, label, &bind_group, [x, 1, 1], timestamps);
+        pipeline.dispatch(encoder, label, &bind_group, groups, timestamps);
     }
 
     /// The density table into the store, then copied into its texture.
     pub fn density(&self, encoder: &mut wgpu::CommandEncoder, timestamps: Timestamps<'_>) {
         let t = self.tables;
-        let x = DENSITY_SAMPLES.div_ceil(FLAT);
-        self.shared_only(&self.pipelines.density, "density", x, encoder, timestamps);
+        let groups = [DENSITY_SAMPLES.div_ceil(FLAT), 1, 1];
+        self.shared_only(
+            &self.pipelines.density,
+            "density",
+            groups,
+            encoder,
+            timestamps,
+        );
         let (offset, _) = t.layout.range(StoreTable::Density);
         encoder.copy_buffer_to_texture(
             wgpu::TexelCopyBufferInfo {
@@ -76,16 +82,16 @@ impl StepEncoder<'_> {
         );
     }
 
-    /// Single scattering: one workgroup per row (r, mu) of S.
+    /// Single scattering: one invocation per texel of S.
     pub fn single_scattering(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Timestamps<'_>,
     ) {
-        let s = self.tables.settings.scattering_size;
-        let rows = (s.r * s.mu) as u32;
+        let texels = self.tables.settings.scattering_size.texels() as u32;
         let single = &self.pipelines.single;
-        self.shared_only(single, "single scattering", rows, encoder, timestamps);
+        let groups = flat_groups(texels);
+        self.shared_only(single, "single scattering", groups, encoder, timestamps);
     }
 
     /// S into the three 3D textures and E into its 2D texture.
@@ -100,7 +106,7 @@ impl StepEncoder<'_> {
         let bind_group = self.scattering_bind_group(texture, &[&irradiance], &[]);
         let (e_mu_s, e_r) = t.settings.irradiance_size;
         let texels = (t.settings.scattering_size.texels() as u32).max((e_mu_s * e_r) as u32);
-        let groups = [texels.div_ceil(FLAT), 1, 1];
+        let groups = flat_groups(texels);
         texture.dispatch(
             encoder,
             "scattering texture",

@@ -43,4 +43,4 @@ pub use pass::BrunetonPass;
 pub use step::BrunetonStep;
 pub use store::StoreTable;
 pub use uniform::BrunetonUniform;
-pub use workgroups::{ROW_TEXELS, SLICE_TEXELS};
+pub use workgroups::SLICE_TEXELS;

@@ -6,7 +6,7 @@ use atmosphere_core::models::bruneton::parameterization::ScatteringSize;
 use bytemuck::{Pod, Zeroable};
 
 use crate::sky::bruneton::store::SUM_GROUPS;
-use crate::sky::bruneton::workgroups::{FLAT, delta_s_slices};
+use crate::sky::bruneton::workgroups::{FLAT, delta_s_slices, flat_groups};
 
 /// The most orders the GPU loop records (`OrderState::shares` holds 64).
 pub const MAX_ORDERS: u32 = 63;
@@ -60,13 +60,17 @@ impl OrderState {
         let n = s.texels() as u32;
         let e = irradiance_texels;
         let groups = |x: u32| [x, 1, 1, 0];
+        let flat = |texels: u32| {
+            let [x, y, z] = flat_groups(texels);
+            [x, y, z, 0]
+        };
         let full = [
             groups(((s.r * s.mu_s) as u32).div_ceil(FLAT)),
-            groups(n.div_ceil(FLAT)),
+            flat(n),
             groups(e.div_ceil(FLAT)),
             groups(delta_s_slices(n).1 / FLAT),
             groups(SUM_GROUPS),
-            groups(n.max(e).div_ceil(FLAT)),
+            flat(n.max(e)),
         ];
         OrderState {
             totals: [0.0; 4],

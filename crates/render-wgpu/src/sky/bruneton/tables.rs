@@ -12,7 +12,7 @@ use crate::sky::bruneton::order_state::{MAX_ORDERS, OrderState};
 use crate::sky::bruneton::progressive::Share;
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout};
 use crate::sky::bruneton::uniform::BrunetonUniform;
-use crate::sky::bruneton::workgroups::{FLAT, ROW_TEXELS, delta_s_slices};
+use crate::sky::bruneton::workgroups::{FLAT, delta_s_slices, flat_groups};
 use crate::sky::transmittance::{TableOutput, TransmittancePass};
 
 /// The tables of one set of sizes.
@@ -61,16 +61,11 @@ fn check_limits(
     layout: &StoreLayout,
 ) -> Result<(), RenderError> {
     let s = settings.scattering_size;
+    let e_texels = settings.irradiance_size.0 * settings.irradiance_size.1;
     if settings.sun_disk {
         return Err(RenderError::Unsupported(
             "bruneton sun_disk=true is not built on the GPU yet (the CPU model has it)".into(),
         ));
-    }
-    if s.mu_s * s.nu > ROW_TEXELS {
-        return Err(RenderError::Unsupported(format!(
-            "bruneton mu_s x nu = {} texels per row (the GPU's row workgroup holds {ROW_TEXELS})",
-            s.mu_s * s.nu
-        )));
     }
     if max_orders > MAX_ORDERS {
         return Err(RenderError::Unsupported(format!(
@@ -78,16 +73,43 @@ fn check_limits(
         )));
     }
     let limits = gpu.device.limits();
-    let groups = (s.texels() as u64).div_ceil(u64::from(FLAT));
-    if layout.bytes() > limits.max_storage_buffer_binding_size
-        || groups > u64::from(limits.max_compute_workgroups_per_dimension)
-        || (s.r * s.mu) as u64 > u64::from(limits.max_compute_workgroups_per_dimension)
+    let too_big = |what: String| {
+        Err(RenderError::Unsupported(format!(
+            "bruneton tables of r={} mu={} mu_s={} nu={}: {what}",
+            s.r, s.mu, s.mu_s, s.nu
+        )))
+    };
+    if layout.bytes()
+        > limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size)
     {
-        return Err(RenderError::Unsupported(format!(
-            "bruneton tables of {s:?}: {} bytes of tables being built, more than the device's \
-             storage buffer or workgroup limits allow",
-            layout.bytes()
-        )));
+        return too_big(format!(
+            "{} bytes of tables being built, more than the device's storage buffer binding \
+             ({} bytes) or buffer ({} bytes) holds",
+            layout.bytes(),
+            limits.max_storage_buffer_binding_size,
+            limits.max_buffer_size
+        ));
+    }
+    let width = (s.nu * s.mu_s) as u64;
+    let largest = width.max(s.mu as u64).max(s.r as u64);
+    if largest > u64::from(limits.max_texture_dimension_3d) {
+        return too_big(format!(
+            "a 3D texture of {} x {} x {} texels (mu_s x nu, mu, r), more than the device's \
+             {} per side",
+            width, s.mu, s.r, limits.max_texture_dimension_3d
+        ));
+    }
+    let [_, rows, _] = flat_groups(s.texels().max(e_texels) as u32);
+    let moments = (s.r * s.mu_s) as u64;
+    if u64::from(rows).max(moments.div_ceil(u64::from(FLAT)))
+        > u64::from(limits.max_compute_workgroups_per_dimension)
+    {
+        return too_big(format!(
+            "more workgroups per dispatch dimension than the device's {}",
+            limits.max_compute_workgroups_per_dimension
+        ));
     }
     Ok(())
 }
