@@ -255,7 +255,8 @@ mod tests {
         assert!((side.1 - 0.5).abs() < 1e-12 && side.0.abs() < 1e-12 && side.2);
         let quarter = uv(&point, frame.y * 3.0);
         assert!((quarter.0 - 0.25).abs() < 1e-12);
-        // A spot's map: its frame's x to the right of the image, y up.
+        // A spot's map (its axis is -y too, so its frame is `frame`): x to the right of
+        // the image, y up.
         let light = spot(30.0);
         let below = DVec3::new(0.0, 10.0, 0.0);
         let (u, v, wrap) = uv(&light, below + frame.x);
