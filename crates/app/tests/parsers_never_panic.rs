@@ -10,6 +10,10 @@ use atmos::render::scene::Scene;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::limits::{MAX_COEFFICIENT_PER_M, MAX_IRRADIANCE_W_M2_NM};
 use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text_from};
+use atmosphere_core::beams::methods::id::BeamMethodId;
+use atmosphere_core::beams::methods::method::BeamSettings;
+use atmosphere_core::beams::methods::registry::prepare as prepare_beams;
+use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::models::bruneton::settings::BrunetonSettings;
 use atmosphere_core::models::dobashi::settings::DobashiSettings;
 use atmosphere_core::models::hillaire::HillaireSettings;
@@ -168,6 +172,48 @@ fn read_scene(bytes: &[u8]) {
     }
 }
 
+/// The shipped beams scenes, read from their folder so that their light maps and mesh
+/// load.
+const BEAMS_SCENES: [&str; 3] = [
+    include_str!("../../../assets/scenes/beams/sphere_spotlight.toml"),
+    include_str!("../../../assets/scenes/beams/stage_five_spots.toml"),
+    include_str!("../../../assets/scenes/beams/stained_glass_room.toml"),
+];
+
+/// A beams scene the reader accepted gives finite, non-negative radiance at its camera's
+/// centre from every method that accepts its default settings.
+fn read_beams_scene(bytes: &[u8]) {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes/beams");
+    if let Ok(text) = read_text_from(bytes, "fuzz.toml", TOML_LIMITS)
+        && let Ok(scene) = BeamScene::from_toml(&text, "fuzz.toml", &folder)
+    {
+        let ray = scene.camera.ray(
+            0.5 * f64::from(scene.camera.width_px),
+            0.5 * f64::from(scene.camera.height_px),
+        );
+        for (id, options) in [
+            (BeamMethodId::Reference, vec![("max_panels", 2000)]),
+            (
+                BeamMethodId::March,
+                vec![("steps", 16), ("shadow_map_px", 16)],
+            ),
+            (
+                BeamMethodId::Planes2000,
+                vec![("planes", 8), ("lattice", 4), ("shadow_map_px", 16)],
+            ),
+        ] {
+            let mut settings = BeamSettings::default();
+            for (key, value) in options {
+                settings.options.set(key, value);
+            }
+            if let Ok(method) = prepare_beams(id, &scene, &settings) {
+                let l = method.radiance(&ray).unwrap();
+                assert!(l.iter().all(|x| x.is_finite() && *x >= 0.0), "{id}: {l:?}");
+            }
+        }
+    }
+}
+
 /// Keys every model reads, and some none does.
 const KEYS: [&str; 12] = [
     "samples",
@@ -237,6 +283,14 @@ proptest! {
         edits in edits(),
     ) {
         read_scene(mutate(scene, &edits).as_bytes());
+    }
+
+    #[test]
+    fn beams_scene_toml_mutated_from_the_shipped_scenes(
+        scene in select(&BEAMS_SCENES[..]),
+        edits in edits(),
+    ) {
+        read_beams_scene(mutate(scene, &edits).as_bytes());
     }
 
     #[test]

@@ -25,7 +25,7 @@ fn every_bad_field_is_named() {
     let cases = [
         (format!("{SPOT}cone_deg = 95\n"), "scene.toml: lights[0].cone_deg: 95 must be in (0, 89) degrees"),
         (format!("{SPOT}cone_deg = 20\nfalloff_exponent = -1\n"), "lights[0].falloff_exponent"),
-        (format!("{SPOT}cone_deg = 20\nradius_m = 0\n"), "lights[0].radius_m: 0 must be a finite number > 0"),
+        (format!("{SPOT}cone_deg = 20\nradius_m = 0\n"), "lights[0].radius_m: 0 must be at least 0.0001 m"),
         (format!("{SPOT}cone_deg = 20\nlight_map = \"gobo.png\"\n"), "lights[0].light_map: cannot read image /nonexistent/gobo.png"),
         (
             "[[lights]]\nkind = \"parallel\"\nposition_m = [0, 5, 0]\ndirection = [0, 0, 0]\n\
@@ -50,6 +50,16 @@ fn every_bad_field_is_named() {
         ),
         ("[[occluders]]\nkind = \"gltf\"\nfile = \"teapot.glb\"\n".into(), "occluders[0].file: cannot read glTF /nonexistent/teapot.glb"),
         ("[[occluders]]\nkind = \"cone\"\n".into(), "unknown variant `cone`"),
+        (
+            "[[lights]]\nkind = \"point\"\nposition_m = [0, 5, 1e9]\n\
+             intensity_w_sr_nm = { kind = \"constant\", value = 1 }\n".into(),
+            "lights[0].position_m: [0.0, 5.0, 1000000000.0] must be finite, each coordinate at most 1e7 m",
+        ),
+        (
+            "[[lights]]\nkind = \"point\"\nposition_m = [0, 5, 0]\n\
+             intensity_w_sr_nm = { kind = \"constant\", value = 1e20 }\n".into(),
+            "lights[0].intensity_w_sr_nm: 1e20 exceeds the largest allowed, 1e12",
+        ),
         ("[[lights]]\nkind = \"point\"\nposition = [0, 5, 0]\n".into(), "unknown field `position`"),
     ];
     for (text, expected) in cases {

@@ -51,3 +51,42 @@ fn every_shipped_scene_gives_finite_positive_light() {
         }
     }
 }
+
+#[test]
+fn the_reference_converges_through_light_maps_and_box_shadows() {
+    // Stained glass (a 128 x 128 map) through window openings in a wall of boxes: the
+    // default tolerance agrees with a thousand times finer one on a grid of pixels.
+    let path = shipped_scenes()
+        .into_iter()
+        .find(|p| p.ends_with("stained_glass_room.toml"))
+        .unwrap();
+    let scene = BeamScene::load(&path).unwrap();
+    let mut fine = BeamSettings::default();
+    fine.options.set("tolerance", 1e-8);
+    fine.options.set("max_panels", 2_000_000);
+    let coarse = prepare(BeamMethodId::Reference, &scene, &BeamSettings::default()).unwrap();
+    let fine = prepare(BeamMethodId::Reference, &scene, &fine).unwrap();
+    let (w, h) = (
+        f64::from(scene.camera.width_px),
+        f64::from(scene.camera.height_px),
+    );
+    let mut lit = 0;
+    for j in 0..6 {
+        for i in 0..8 {
+            let ray = scene
+                .camera
+                .ray((i as f64 + 0.5) * w / 8.0, (j as f64 + 0.5) * h / 6.0);
+            let (a, b) = (coarse.radiance(&ray).unwrap(), fine.radiance(&ray).unwrap());
+            for k in 0..3 {
+                assert!(
+                    (a[k] - b[k]).abs() <= 1e-4 * b[k],
+                    "pixel ({i}, {j}): {} {}",
+                    a[k],
+                    b[k]
+                );
+            }
+            lit += usize::from(b[1] > 0.0);
+        }
+    }
+    assert!(lit >= 8, "{lit} of 48 rays see a shaft");
+}

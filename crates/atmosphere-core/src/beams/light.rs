@@ -236,6 +236,39 @@ mod tests {
     }
 
     #[test]
+    fn light_maps_are_laid_out_as_documented() {
+        // A point light's map: theta from the axis down the image, phi across it.
+        let frame = LightFrame::new(DVec3::NEG_Y, None).unwrap();
+        let point = Light {
+            shape: LightShape::Point {
+                position_m: DVec3::ZERO,
+                radius_m: 0.05,
+                frame,
+            },
+            emission: Spectral::Constant { value: 1.0 },
+            light_map: None,
+        };
+        let uv = |light: &Light, p: DVec3| light.path_from(p).unwrap().map_uv;
+        assert!(uv(&point, DVec3::new(0.0, -5.0, 0.0)).1.abs() < 1e-12);
+        assert!((uv(&point, DVec3::new(0.0, 5.0, 0.0)).1 - 1.0).abs() < 1e-12);
+        let side = uv(&point, frame.x * 3.0);
+        assert!((side.1 - 0.5).abs() < 1e-12 && side.0.abs() < 1e-12 && side.2);
+        let quarter = uv(&point, frame.y * 3.0);
+        assert!((quarter.0 - 0.25).abs() < 1e-12);
+        // A spot's map (its axis is -y too, so its frame is `frame`): x to the right of
+        // the image, y up.
+        let light = spot(30.0);
+        let below = DVec3::new(0.0, 10.0, 0.0);
+        let (u, v, wrap) = uv(&light, below + frame.x);
+        assert!(u > 0.5 && (v - 0.5).abs() < 1e-12 && !wrap);
+        let (u, v, _) = uv(&light, below + frame.y);
+        assert!((u - 0.5).abs() < 1e-12 && v < 0.5);
+        // At the cone's edge along x the map's edge: u = 1.
+        let edge = below + frame.x * (10.0 * 30f64.to_radians().tan() * 0.999_999);
+        assert!((uv(&light, edge).0 - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
     fn parallel_light_lights_its_rectangle_downstream_of_its_plane() {
         let light = Light {
             shape: LightShape::Parallel {

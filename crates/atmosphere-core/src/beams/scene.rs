@@ -26,6 +26,15 @@ pub const DEFAULT_LIGHT_RADIUS_M: f64 = 0.05;
 
 /// The most lights a scene may hold.
 pub const MAX_LIGHTS: usize = 64;
+/// The largest scattering or absorption coefficient, m^-1 (a light's 1/e distance of a
+/// micrometre): beyond it nothing is visible, and the products stay finite.
+pub const MAX_COEFFICIENT_PER_M: f64 = 1e6;
+/// The largest intensity (W sr^-1 nm^-1) or irradiance (W m^-2 nm^-1) of a light.
+pub const MAX_EMISSION: f64 = 1e12;
+/// The largest coordinate, size or distance in a scene, m.
+pub const MAX_COORDINATE_M: f64 = 1e7;
+/// The smallest radius of a point light or spot, m (the inverse square stays finite).
+pub const MIN_LIGHT_RADIUS_M: f64 = 1e-4;
 
 /// A checked scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -103,8 +112,9 @@ impl Check<'_> {
     }
 
     fn medium(&self, m: &MediumFile) -> Result<Medium, BeamError> {
-        self.spectral("medium.scattering_per_m", &m.scattering_per_m)?;
-        self.spectral("medium.absorption_per_m", &m.absorption_per_m)?;
+        let max = MAX_COEFFICIENT_PER_M;
+        self.spectral("medium.scattering_per_m", &m.scattering_per_m, max)?;
+        self.spectral("medium.absorption_per_m", &m.absorption_per_m, max)?;
         if let Some(problem) = m.phase.problem() {
             return Err(self.error("medium.phase", problem));
         }
@@ -115,17 +125,33 @@ impl Check<'_> {
         })
     }
 
-    fn spectral(&self, field: &str, s: &Spectral) -> Result<(), BeamError> {
-        match s.problem() {
-            Some(problem) => Err(self.error(field, problem)),
-            None => Ok(()),
+    /// A spectral quantity, at most `max` over the visible range (checked every 5 nm
+    /// from 360 to 830 nm).
+    fn spectral(&self, field: &str, s: &Spectral, max: f64) -> Result<(), BeamError> {
+        if let Some(problem) = s.problem() {
+            return Err(self.error(field, problem));
         }
+        let peak = (0..=94)
+            .map(|i| s.at(360.0 + 5.0 * f64::from(i)))
+            .fold(0.0, f64::max);
+        if peak > max {
+            return Err(self.error(
+                field,
+                format!("{peak:e} exceeds the largest allowed, {max:e}"),
+            ));
+        }
+        Ok(())
     }
 
     fn point(&self, field: &str, p: [f64; 3]) -> Result<DVec3, BeamError> {
         let v = DVec3::from(p);
-        if !v.is_finite() {
-            return Err(self.error(field, format!("{p:?} must be finite")));
+        if !(v.is_finite() && v.abs().max_element() <= MAX_COORDINATE_M) {
+            return Err(self.error(
+                field,
+                format!(
+                    "{p:?} must be finite, each coordinate at most {MAX_COORDINATE_M:e} m in size"
+                ),
+            ));
         }
         Ok(v)
     }
@@ -137,10 +163,13 @@ impl Check<'_> {
     }
 
     fn positive(&self, field: &str, x: f64) -> Result<f64, BeamError> {
-        if x.is_finite() && x > 0.0 {
+        if x.is_finite() && x > 0.0 && x <= MAX_COORDINATE_M {
             Ok(x)
         } else {
-            Err(self.error(field, format!("{x} must be a finite number > 0")))
+            Err(self.error(
+                field,
+                format!("{x} must be > 0 and at most {MAX_COORDINATE_M:e}"),
+            ))
         }
     }
 
@@ -175,10 +204,14 @@ impl Check<'_> {
     }
 
     fn radius(&self, field: &str, r: Option<f64>) -> Result<f64, BeamError> {
-        self.positive(
-            &format!("{field}.radius_m"),
-            r.unwrap_or(DEFAULT_LIGHT_RADIUS_M),
-        )
+        let r = r.unwrap_or(DEFAULT_LIGHT_RADIUS_M);
+        if r < MIN_LIGHT_RADIUS_M {
+            return Err(self.error(
+                &format!("{field}.radius_m"),
+                format!("{r} must be at least {MIN_LIGHT_RADIUS_M} m"),
+            ));
+        }
+        self.positive(&format!("{field}.radius_m"), r)
     }
 
     fn light(&self, field: &str, l: &LightFile) -> Result<Light, BeamError> {
@@ -265,7 +298,7 @@ impl Check<'_> {
             }
         };
         let (emission, name) = emission;
-        self.spectral(&at(name), emission)?;
+        self.spectral(&at(name), emission, MAX_EMISSION)?;
         Ok(Light {
             shape,
             emission: emission.clone(),

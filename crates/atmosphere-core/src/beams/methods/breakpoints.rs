@@ -1,8 +1,12 @@
 //! Where along a view ray the in-scattered light jumps or peaks, found analytically so
 //! that the reference's quadrature places panel edges there instead of hunting for
 //! them: the edges of each spot's cone and each parallel beam's rectangle, the shadow
-//! boundaries of spheres (a cone from a point light, a cylinder along a parallel one),
-//! and the closest approach to each point light, where 1 / s^2 peaks.
+//! boundaries of spheres (a cone from a point light, a cylinder along a parallel one)
+//! and of the edges of boxes and quads (the plane through an edge and the light),
+//! the closest approach to each point light, where 1 / s^2 peaks, and the lines through
+//! the texel centres of each light map, where its bilinear filtering has kinks (planes
+//! through a spot's apex, planes across a parallel beam, a point light's cones of
+//! constant theta and half-planes of constant phi).
 
 use glam::DVec3;
 
@@ -16,6 +20,7 @@ use crate::beams::scene::BeamScene;
 pub fn breakpoints(scene: &BeamScene, ray: &SceneRay, t_end: f64) -> Vec<f64> {
     let (o, d) = (ray.origin_m, ray.direction);
     let mut t = vec![0.0, t_end];
+    let edges = primitive_edges(scene);
     let spheres: Vec<(DVec3, f64)> = scene
         .occluders
         .primitives
@@ -26,6 +31,22 @@ pub fn breakpoints(scene: &BeamScene, ray: &SceneRay, t_end: f64) -> Vec<f64> {
         })
         .collect();
     for light in &scene.lights {
+        if let Some(map) = &light.light_map {
+            texel_centre_lines(&light.shape, map.width, map.height, o, d, &mut t);
+        }
+        for &(a, b) in &edges {
+            let toward_light = match &light.shape {
+                LightShape::Parallel { frame, .. } => frame.z,
+                LightShape::Point { position_m, .. } | LightShape::Spot { position_m, .. } => {
+                    a - *position_m
+                }
+            };
+            let n = (b - a).cross(toward_light);
+            let rate = n.dot(d);
+            if rate != 0.0 {
+                t.push(n.dot(a - o) / rate);
+            }
+        }
         match &light.shape {
             LightShape::Point {
                 position_m,
@@ -92,6 +113,116 @@ pub fn breakpoints(scene: &BeamScene, ray: &SceneRay, t_end: f64) -> Vec<f64> {
     t.sort_by(f64::total_cmp);
     t.dedup();
     t
+}
+
+/// The edges of the scene's boxes and quads, whose shadows are bounded by the planes
+/// through them and the light.
+fn primitive_edges(scene: &BeamScene) -> Vec<(DVec3, DVec3)> {
+    let mut edges = Vec::new();
+    for p in &scene.occluders.primitives {
+        match *p {
+            Primitive::Box { min, max } => {
+                let corner = |i: usize| {
+                    DVec3::new(
+                        if i & 1 == 0 { min.x } else { max.x },
+                        if i & 2 == 0 { min.y } else { max.y },
+                        if i & 4 == 0 { min.z } else { max.z },
+                    )
+                };
+                for i in 0..8 {
+                    for bit in [1, 2, 4] {
+                        if i & bit == 0 {
+                            edges.push((corner(i), corner(i | bit)));
+                        }
+                    }
+                }
+            }
+            Primitive::Quad {
+                corner,
+                edge_u,
+                edge_v,
+            } => {
+                let far = corner + edge_u + edge_v;
+                edges.extend([
+                    (corner, corner + edge_u),
+                    (corner, corner + edge_v),
+                    (corner + edge_u, far),
+                    (corner + edge_v, far),
+                ]);
+            }
+            Primitive::Sphere { .. } | Primitive::Plane { .. } => {}
+        }
+    }
+    edges
+}
+
+/// Where the ray crosses the lines of a `width` x `height` light map's texel centres,
+/// as the light's shape lays the map out (`light.rs`).
+fn texel_centre_lines(
+    shape: &LightShape,
+    width: usize,
+    height: usize,
+    o: DVec3,
+    d: DVec3,
+    t: &mut Vec<f64>,
+) {
+    let centre = |i: usize, n: usize| 2.0 * (i as f64 + 0.5) / n as f64 - 1.0;
+    // The plane through `point` with normal `n`.
+    let plane = |n: DVec3, point: DVec3| -> Option<f64> {
+        let rate = n.dot(d);
+        (rate != 0.0).then(|| n.dot(point - o) / rate)
+    };
+    match shape {
+        LightShape::Spot {
+            position_m,
+            frame,
+            tan_cone,
+            ..
+        } => {
+            for i in 0..width {
+                let a = centre(i, width) * tan_cone;
+                t.extend(plane(frame.x - frame.z * a, *position_m));
+            }
+            for j in 0..height {
+                let b = -centre(j, height) * tan_cone;
+                t.extend(plane(frame.y - frame.z * b, *position_m));
+            }
+        }
+        LightShape::Parallel {
+            position_m,
+            frame,
+            half_size_m: Some([hx, hy]),
+        } => {
+            for i in 0..width {
+                t.extend(plane(
+                    frame.x,
+                    *position_m + frame.x * (centre(i, width) * hx),
+                ));
+            }
+            for j in 0..height {
+                t.extend(plane(
+                    frame.y,
+                    *position_m - frame.y * (centre(j, height) * hy),
+                ));
+            }
+        }
+        LightShape::Parallel { .. } => {}
+        LightShape::Point {
+            position_m, frame, ..
+        } => {
+            for i in 0..width {
+                let phi = std::f64::consts::PI * (centre(i, width) + 1.0);
+                t.extend(plane(
+                    frame.y * phi.cos() - frame.x * phi.sin(),
+                    *position_m,
+                ));
+            }
+            for j in 0..height {
+                let theta = 0.5 * std::f64::consts::PI * (centre(j, height) + 1.0);
+                t.extend(cone(o, d, *position_m, frame.z, theta.cos()));
+            }
+        }
+    }
 }
 
 /// Where the ray crosses the double cone with apex `apex`, unit axis `axis` and
