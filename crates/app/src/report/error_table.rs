@@ -44,7 +44,7 @@ pub fn rows(results: &[VariantResult], views: &[ReportView]) -> Vec<ErrorRow> {
                 model: r.variant.model,
                 setting: setting.clone(),
                 view: view.id.to_string(),
-                rms_percent: (result.luminance.count > 0).then(|| 100.0 * result.luminance.rms),
+                rms_percent: (result.luminance.count > 0).then_some(100.0 * result.luminance.rms),
                 gpu_ms: r.gpu.as_ref().and_then(|g| g.per_view_ms.get(i).copied()),
                 cpu_frame_s: result.frame_seconds(),
             });
