@@ -262,6 +262,14 @@ pub struct ReportArgs {
     /// Compute the reference of every view again, even where reference.csv has it.
     #[arg(long)]
     pub recompute_reference: bool,
+    /// Compute the reference of this view again (its id, e.g. nautical; repeat the flag),
+    /// keeping the others from reference.csv: for a change of the reference's method,
+    /// which no fingerprint sees.
+    #[arg(long, value_name = "ID")]
+    pub recompute_view: Vec<String>,
+    /// Stop once the reference caches are up to date, before measuring any model.
+    #[arg(long)]
+    pub reference_only: bool,
     /// Leave out the GPU frame times (for a machine without an adapter); the report says
     /// so.
     #[arg(long)]

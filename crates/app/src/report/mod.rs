@@ -61,11 +61,23 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     }
     fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
+    for id in &args.recompute_view {
+        if !views.iter().any(|v| v.id == id) {
+            let known: Vec<&str> = views.iter().map(|v| v.id).collect();
+            bail!(
+                "--recompute-view {id}: no such view (the views: {})",
+                known.join(", ")
+            );
+        }
+    }
+    let recompute = |view: &views::ReportView| {
+        args.recompute_reference || args.recompute_view.iter().any(|id| id == view.id)
+    };
     let reference = reference_cache::load_or_compute(
         &args.out.join("reference.csv"),
         &views,
         |view| reference_cache::reference_settings(view, &base, args.twilight_max_paths),
-        args.recompute_reference,
+        recompute,
     )?;
     let single_base = ModelSettings {
         max_orders: Some(1),
@@ -75,8 +87,12 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         &args.out.join("reference_single.csv"),
         &views,
         |_| single_base.clone(),
-        args.recompute_reference,
+        recompute,
     )?;
+    if args.reference_only {
+        eprintln!("report: reference caches written to {}", args.out.display());
+        return Ok(());
+    }
     let color = SpectrumToColor::new(&base.wavelengths_nm)?;
     let mut results = Vec::with_capacity(variants.len());
     for (i, variant) in variants.iter().enumerate() {

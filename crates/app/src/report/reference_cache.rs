@@ -72,13 +72,14 @@ struct CachedView {
 }
 
 /// Reads the views of the cache at `path` whose fingerprint matches, computes the others
-/// (in parallel, with progress; `recompute` computes every view) with the settings
-/// `settings_for` gives each view, and writes the cache of exactly these views.
+/// (in parallel, with progress; the views `recompute` names are computed whatever the
+/// cache holds) with the settings `settings_for` gives each view, and writes the cache
+/// of exactly these views.
 pub fn load_or_compute(
     path: &Path,
     views: &[ReportView],
     settings_for: impl Fn(&ReportView) -> ModelSettings,
-    recompute: bool,
+    recompute: impl Fn(&ReportView) -> bool,
 ) -> anyhow::Result<ReferenceRadiance> {
     let settings: Vec<ModelSettings> = views.iter().map(&settings_for).collect();
     let wavelengths = settings
@@ -90,7 +91,7 @@ pub fn load_or_compute(
         .map(|(v, s)| fingerprint(v, s))
         .collect::<anyhow::Result<Vec<String>>>()?;
     let mut cached = BTreeMap::new();
-    if !recompute && path.exists() {
+    if path.exists() {
         match read(path, wavelengths) {
             Ok(found) => cached = found,
             Err(why) => eprintln!(
@@ -103,22 +104,26 @@ pub fn load_or_compute(
     let mut missing = Vec::new();
     for (i, (view, key)) in views.iter().zip(&keys).enumerate() {
         match cached.remove(view.id) {
-            Some(c) if c.fingerprint == *key && c.answers.len() == view.columns * view.rows => {
+            Some(c)
+                if c.fingerprint == *key
+                    && c.answers.len() == view.columns * view.rows
+                    && !recompute(view) =>
+            {
                 reference.push(c.answers);
             }
             found => {
-                if !recompute {
-                    let why = if found.is_some() {
-                        "its view, atmosphere or settings changed"
-                    } else {
-                        "not in the cache"
-                    };
-                    eprintln!(
-                        "report: computing view {} of {} ({why})",
-                        view.id,
-                        path.display()
-                    );
-                }
+                let why = if recompute(view) {
+                    "asked to recompute it"
+                } else if found.is_some() {
+                    "its view, atmosphere or settings changed"
+                } else {
+                    "not in the cache"
+                };
+                eprintln!(
+                    "report: computing view {} of {} ({why})",
+                    view.id,
+                    path.display()
+                );
                 reference.push(Vec::new());
                 missing.push(i);
             }
@@ -330,7 +335,7 @@ mod tests {
             .collect();
         keys[1] = "0000000000000000".into();
         write(&path, &made_up, &views, &keys).unwrap();
-        let reference = load_or_compute(&path, &views, |_| settings.clone(), false).unwrap();
+        let reference = load_or_compute(&path, &views, |_| settings.clone(), |_| false).unwrap();
         assert_eq!(reference[0], made_up[0]);
         assert_ne!(reference[1], made_up[1]);
         assert_eq!(reference[2].len(), 2);
@@ -343,6 +348,29 @@ mod tests {
             fingerprint(&views[1], &settings).unwrap()
         );
         assert_eq!(again[views[2].id].answers, reference[2]);
+    }
+
+    #[test]
+    fn a_view_asked_for_is_computed_again_and_the_others_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("reference.csv");
+        let settings = ModelSettings {
+            max_orders: Some(1),
+            ..ModelSettings::default()
+        };
+        let views: Vec<ReportView> = report_views(2, 1).into_iter().take(2).collect();
+        let made_up: ReferenceRadiance = vec![answers(7, 2), answers(8, 2)];
+        let keys: Vec<String> = views
+            .iter()
+            .map(|v| fingerprint(v, &settings).unwrap())
+            .collect();
+        write(&path, &made_up, &views, &keys).unwrap();
+        let again = views[1].id;
+        let reference =
+            load_or_compute(&path, &views, |_| settings.clone(), |v| v.id == again).unwrap();
+        assert_eq!(reference[0], made_up[0]);
+        assert_ne!(reference[1], made_up[1]);
+        assert!(reference[1][0].radiance[0] > 0.0);
     }
 
     #[test]

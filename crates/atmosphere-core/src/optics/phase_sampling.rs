@@ -66,6 +66,27 @@ impl PhaseSampler {
         }
     }
 
+    /// The density over the sphere (sr^-1) of the directions [`PhaseSampler::sample`]
+    /// draws, at the cosine `nu` of the scattering angle: the phase function itself for
+    /// the exact samplers, the proposal's bin for a tabulated one.
+    pub fn pdf(&self, nu: f64) -> f64 {
+        let nu = nu.clamp(-1.0, 1.0);
+        match self {
+            PhaseSampler::Rayleigh => PhaseFunction::Rayleigh.eval(nu),
+            PhaseSampler::CornetteShanks { g } => PhaseFunction::CornetteShanks { g: *g }.eval(nu),
+            PhaseSampler::HenyeyGreenstein { g } => {
+                PhaseFunction::HenyeyGreenstein { g: *g }.eval(nu)
+            }
+            PhaseSampler::NishitaHazy => PhaseFunction::NishitaHazy.eval(nu),
+            PhaseSampler::Tabulated { cdf, .. } => {
+                let width = 2.0 / cdf.len() as f64;
+                let i = (((nu + 1.0) / width) as usize).min(cdf.len() - 1);
+                let mass = cdf[i] - if i == 0 { 0.0 } else { cdf[i - 1] };
+                mass / (2.0 * std::f64::consts::PI * width)
+            }
+        }
+    }
+
     /// (cosine of the scattering angle, weight = phase / pdf).
     pub fn sample(&self, sampler: &mut Sampler) -> (f64, f64) {
         match self {
@@ -184,6 +205,34 @@ mod tests {
             let (chi2, worst) = chi_square(&PhaseSampler::new(&phase), &phase, SAMPLES);
             println!("{phase:?}: chi-square {chi2:.1}, worst bin {worst:.2} sigma");
             assert!(chi2 < CHI2_999 && worst < 4.0, "{phase:?}: {chi2} {worst}");
+        }
+    }
+
+    /// The density a sampler reports is the one it draws from: the weight it returns is
+    /// the phase function over that density.
+    #[test]
+    fn the_reported_density_is_the_drawn_one() {
+        let phases = [
+            PhaseFunction::Rayleigh,
+            PhaseFunction::CornetteShanks { g: 0.8 },
+            PhaseFunction::HenyeyGreenstein { g: -0.4 },
+            PhaseFunction::NishitaHazy,
+            PhaseFunction::Tabulated {
+                angles_deg: vec![0.0, 30.0, 120.0, 180.0],
+                values: vec![4.0, 1.0, 0.2, 0.6],
+            },
+        ];
+        let mut rng = Sampler::new(5);
+        for phase in phases {
+            let sampler = PhaseSampler::new(&phase);
+            for _ in 0..1000 {
+                let (nu, weight) = sampler.sample(&mut rng);
+                let expected = phase.eval(nu) / sampler.pdf(nu);
+                assert!(
+                    (weight - expected).abs() <= 1e-9 * expected,
+                    "{phase:?} {nu}"
+                );
+            }
         }
     }
 

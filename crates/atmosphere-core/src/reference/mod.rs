@@ -6,6 +6,8 @@
 //! the requested fraction of the radiance. f64 throughout. See docs/models/reference.md
 //! for why this split, and how convergence is checked.
 
+mod guide;
+mod last_event;
 mod majorant;
 mod path_tracer;
 mod settings;
@@ -14,12 +16,13 @@ mod single_scattering;
 mod sun;
 mod view_path;
 
-use std::f64::consts::PI;
-
 use glam::DVec3;
 
+pub use guide::{DirectionGuide, Guiding};
+use last_event::{LastEvent, LastEvents};
 pub use majorant::DensityBounds;
 pub use path_tracer::PathTracer;
+use path_tracer::Scatterer;
 pub use settings::{MAX_PATHS, ReferenceSettings};
 pub use single_scattering::single_scattering;
 pub use sun::disk_mean_transmittance;
@@ -32,7 +35,7 @@ use crate::models::id::ModelId;
 use crate::models::model_base::ModelBase;
 use crate::models::settings::ModelSettings;
 use crate::models::sky_model::{RayRadiance, SkyModel, ViewRay};
-use crate::numerics::sampling::{Sampler, cosine_weighted, direction_around, mix_seed};
+use crate::numerics::sampling::{Sampler, mix_seed};
 use crate::optics::column::{Fineness, optical_depth};
 use crate::optics::phase_sampling::PhaseSampler;
 use crate::optics::transmittance_table::TransmittanceTable;
@@ -43,9 +46,9 @@ const MC_TABLE_SIZE: (usize, usize) = (512, 128);
 const BATCH: usize = 256;
 /// Fewest paths before the standard error is trusted.
 const MIN_PATHS: usize = 256;
-/// Radiance below this fraction of the solar irradiance (sr^-1) counts as darkness: its
-/// error is not refined further.
-const DARKNESS: f64 = 1e-10;
+/// A standard error below this fraction of the solar irradiance (sr^-1) counts as
+/// darkness and is not refined further; far below the ground in nautical twilight.
+const DARKNESS: f64 = 1e-14;
 
 /// The reference model, prepared for one atmosphere.
 #[derive(Debug)]
@@ -101,17 +104,20 @@ impl Reference {
             solar_irradiance: self.base.spectra.solar_irradiance[w],
             max_orders: self.settings.max_orders,
             sun_direction,
+            guide: None,
         }
     }
 
     /// Orders two and up along a discretised view ray at wavelength index `w`, refined
-    /// until the standard error is below `target` times (`known` + the estimate).
+    /// until the standard error is below `target` times (`known` + the estimate), with
+    /// directions guided towards sunlit air or not (the same expected value).
     pub fn multiple_scattering(
         &self,
         path: &ViewPath,
         sun_direction: DVec3,
         w: usize,
         known: f64,
+        guiding: Guiding,
         sampler: &mut Sampler,
     ) -> Estimate {
         let none = Estimate {
@@ -127,63 +133,53 @@ impl Reference {
             self.base.spectra.rayleigh_scattering[w],
             self.base.spectra.mie_scattering[w],
         );
-        // Where the light of order two and up is scattered towards the camera for the
-        // last time: a view node (mass = weight * T * sigma_s) or the ground
-        // (mass = T * albedo).
-        let mut masses: Vec<f64> = path
+        let events: Vec<LastEvent> = path
             .nodes
             .iter()
-            .map(|n| {
-                n.weight
+            .map(|n| LastEvent {
+                position: n.position,
+                scatterer: Scatterer::Air {
+                    rayleigh: br * n.densities[0],
+                    mie: bm * n.densities[1],
+                },
+                mass: n.weight
                     * (-optical_depth(n.column_from_camera, ext)).exp()
-                    * (br * n.densities[0] + bm * n.densities[1])
+                    * (br * n.densities[0] + bm * n.densities[1]),
+            })
+            .chain(match path.end {
+                RayEnd::Ground(point) => Some(LastEvent {
+                    position: point,
+                    scatterer: Scatterer::Ground(point.normalize()),
+                    mass: (-optical_depth(path.total_column, ext)).exp()
+                        * self.atmosphere.ground_albedo,
+                }),
+                _ => None,
             })
             .collect();
-        if let RayEnd::Ground(_) = path.end {
-            masses.push(
-                (-optical_depth(path.total_column, ext)).exp() * self.atmosphere.ground_albedo,
-            );
-        }
-        let total: f64 = masses.iter().sum();
-        if total <= 0.0 {
+        let unguided = self.tracer(w, sun_direction);
+        let Some(last) = LastEvents::new(
+            events,
+            path.direction,
+            &unguided,
+            guiding == Guiding::TowardsLitAir,
+        ) else {
             return none;
-        }
-        let mut cdf = masses;
-        let mut acc = 0.0;
-        for m in cdf.iter_mut() {
-            acc += *m;
-            *m = acc / total;
-        }
-        let tracer = self.tracer(w, sun_direction);
+        };
         let darkness = DARKNESS * self.base.spectra.solar_irradiance[w];
         let (mut sum, mut sum_sq, mut n) = (0.0, 0.0, 0usize);
         loop {
             for _ in 0..BATCH {
-                let u = sampler.uniform();
-                let i = cdf.partition_point(|c| *c < u).min(cdf.len() - 1);
-                let value = if i < path.nodes.len() {
-                    let node = &path.nodes[i];
-                    let sr = br * node.densities[0];
-                    let sm = bm * node.densities[1];
-                    let (nu, weight) = if sampler.uniform() * (sr + sm) < sr {
-                        (
-                            crate::optics::phase_sampling::sample_rayleigh(sampler.uniform()),
-                            1.0,
-                        )
-                    } else {
-                        self.mie_sampler.sample(sampler)
-                    };
-                    let direction =
-                        direction_around(path.direction, nu, 2.0 * PI * sampler.uniform());
-                    weight * tracer.incoming_scattered(node.position, direction, 2, sampler)
+                let (event, mass_weight, guide) = last.draw(sampler.uniform());
+                let tracer = PathTracer { guide, ..unguided };
+                let (direction, weight) =
+                    tracer.scatter(event.position, path.direction, event.scatterer, sampler);
+                let value = if weight > 0.0 {
+                    mass_weight
+                        * weight
+                        * tracer.incoming_scattered(event.position, direction, 2, sampler)
                 } else {
-                    let RayEnd::Ground(point) = path.end else {
-                        unreachable!()
-                    };
-                    let direction = cosine_weighted(point.normalize(), sampler);
-                    tracer.incoming_scattered(point, direction, 2, sampler)
+                    0.0
                 };
-                let value = total * value;
                 sum += value;
                 sum_sq += value * value;
             }
@@ -254,7 +250,8 @@ impl SkyModel for Reference {
         let mut std_error = Vec::with_capacity(single.len());
         for (w, l1) in single.iter().enumerate() {
             let mut sampler = Sampler::new(mix_seed(&[seed, w as u64]));
-            let ms = self.multiple_scattering(&path, sun, w, *l1, &mut sampler);
+            let ms =
+                self.multiple_scattering(&path, sun, w, *l1, Guiding::TowardsLitAir, &mut sampler);
             radiance.push(l1 + ms.mean);
             std_error.push(ms.std_error);
         }

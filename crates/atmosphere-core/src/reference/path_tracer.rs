@@ -15,6 +15,7 @@ use crate::optics::geometry::{distance_to_entry, distance_to_exit, ray_hits_grou
 use crate::optics::phase::rayleigh;
 use crate::optics::phase_sampling::{PhaseSampler, sample_rayleigh};
 use crate::optics::transmittance_table::TransmittanceTable;
+use crate::reference::guide::DirectionGuide;
 use crate::reference::majorant::DensityBounds;
 use crate::reference::view_path::altitude;
 
@@ -35,7 +36,24 @@ pub struct PathTracer<'a> {
     pub solar_irradiance: f64,
     pub max_orders: Option<u32>,
     pub sun_direction: DVec3,
+    /// Directions towards sunlit air, mixed into the drawing of directions at events in
+    /// the umbra (`guide.rs`); `None` draws from the phase function (or cosine) alone.
+    pub guide: Option<&'a DirectionGuide>,
 }
+
+/// What scatters light at a path's event.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Scatterer {
+    /// Air with these scattering coefficients, Rayleigh and Mie, m^-1.
+    Air { rayleigh: f64, mie: f64 },
+    /// The Lambertian ground, with this normal.
+    Ground(DVec3),
+}
+
+/// Probability of drawing from the guide rather than from the phase function (or cosine)
+/// at an event in the umbra: the weight of a direction is then at most 1 / (1 - share)
+/// times the phase function's own.
+const GUIDE_SHARE: f64 = 0.7;
 
 /// Where a ray from a point inside the atmosphere next interacts.
 enum Event {
@@ -121,13 +139,13 @@ impl PathTracer<'_> {
                     if last {
                         return radiance;
                     }
-                    let (nu, weight) = if sampler.uniform() * (sr + sm) < sr {
-                        (sample_rayleigh(sampler.uniform()), 1.0)
-                    } else {
-                        self.mie_sampler.sample(sampler)
+                    let scatterer = Scatterer::Air {
+                        rayleigh: sr,
+                        mie: sm,
                     };
+                    let (next, weight) = self.scatter(p, direction, scatterer, sampler);
                     throughput *= weight;
-                    direction = direction_around(direction, nu, 2.0 * PI * sampler.uniform());
+                    direction = next;
                     position = p;
                 }
                 Event::Ground(p) => {
@@ -150,8 +168,10 @@ impl PathTracer<'_> {
                     if last {
                         return radiance;
                     }
-                    throughput *= albedo;
-                    direction = cosine_weighted(normal, sampler);
+                    let (next, weight) =
+                        self.scatter(p, direction, Scatterer::Ground(normal), sampler);
+                    throughput *= albedo * weight;
+                    direction = next;
                     position = p;
                 }
             }
@@ -166,6 +186,74 @@ impl PathTracer<'_> {
                 }
                 throughput /= survive;
             }
+        }
+    }
+
+    /// The direction light arrived from before it scattered at `position` into
+    /// `outgoing` (the direction the path came along, traced backwards), and its weight:
+    /// the phase function (or cosine / pi) over the density it was drawn with. In the
+    /// umbra, with a guide, the density is the mixture of the guide and the phase
+    /// function (balance heuristic, `guide.rs`); elsewhere the phase function alone.
+    pub(crate) fn scatter(
+        &self,
+        position: DVec3,
+        outgoing: DVec3,
+        scatterer: Scatterer,
+        sampler: &mut Sampler,
+    ) -> (DVec3, f64) {
+        let Some(guide) = self.guide.filter(|_| self.in_umbra(position)) else {
+            return self.scatter_by_phase(outgoing, scatterer, sampler);
+        };
+        let direction = if sampler.uniform() < GUIDE_SHARE {
+            guide.sample(sampler)
+        } else {
+            self.scatter_by_phase(outgoing, scatterer, sampler).0
+        };
+        let (value, phase_pdf) = match scatterer {
+            Scatterer::Air {
+                rayleigh: sr,
+                mie: sm,
+            } if sr + sm > 0.0 => {
+                let nu = outgoing.dot(direction);
+                let phase_r = sr * rayleigh(nu);
+                (
+                    (phase_r + sm * self.atmosphere.mie.phase.eval(nu)) / (sr + sm),
+                    (phase_r + sm * self.mie_sampler.pdf(nu)) / (sr + sm),
+                )
+            }
+            Scatterer::Air { .. } => (0.0, 0.0),
+            Scatterer::Ground(normal) => {
+                let cosine = normal.dot(direction).max(0.0) / PI;
+                (cosine, cosine)
+            }
+        };
+        let pdf = GUIDE_SHARE * guide.pdf(direction) + (1.0 - GUIDE_SHARE) * phase_pdf;
+        (direction, if pdf > 0.0 { value / pdf } else { 0.0 })
+    }
+
+    /// A direction drawn from the phase function (the Rayleigh or the Mie part in
+    /// proportion to their scattering coefficients) or, on the ground, the cosine, and
+    /// its weight.
+    fn scatter_by_phase(
+        &self,
+        outgoing: DVec3,
+        scatterer: Scatterer,
+        sampler: &mut Sampler,
+    ) -> (DVec3, f64) {
+        match scatterer {
+            Scatterer::Air {
+                rayleigh: sr,
+                mie: sm,
+            } => {
+                let (nu, weight) = if sampler.uniform() * (sr + sm) < sr {
+                    (sample_rayleigh(sampler.uniform()), 1.0)
+                } else {
+                    self.mie_sampler.sample(sampler)
+                };
+                let phi = 2.0 * PI * sampler.uniform();
+                (direction_around(outgoing, nu, phi), weight)
+            }
+            Scatterer::Ground(normal) => (cosine_weighted(normal, sampler), 1.0),
         }
     }
 
