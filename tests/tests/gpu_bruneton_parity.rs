@@ -405,7 +405,7 @@ fn cost_at_1280x720_against_nishita_16() {
         return;
     };
     let mut renderer = Renderer::new(gpu).unwrap();
-    let ground = atmos::bench::BENCH_VIEWS[0];
+    let ground = atmos::bench::views::BENCH_VIEWS[0];
     let mut nishita = frame(
         "earth",
         settings(&["samples=16"]),

@@ -51,8 +51,16 @@ fn writes_the_report_and_reuses_the_reference() {
     assert_eq!(reference.lines().count(), 2 + 9 * (1 + 2));
     assert!(dir.path().join("reference_single.csv").exists());
     assert!(!dir.path().join("error_vs_gpu_time.png").exists());
+    // A header, then one line per setting of the models asked for and view.
+    let settings = readme
+        .lines()
+        .filter(|l| l.starts_with("| riley") || l.starts_with("| oneil"))
+        .map(|l| l.split('|').nth(1).unwrap().trim())
+        .collect::<std::collections::BTreeSet<_>>()
+        .len();
+    assert!(settings >= 4, "{settings}");
     let table = std::fs::read_to_string(dir.path().join("errors.csv")).unwrap();
-    assert_eq!(table.lines().count(), 1 + 4 * 9);
+    assert_eq!(table.lines().count(), 1 + settings * 9);
     assert!(table.contains("\noneil,samples=2,nautical,"), "{table}");
 
     let second = atmos(&args);

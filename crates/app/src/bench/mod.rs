@@ -4,13 +4,14 @@
 //! 16-sample nishita frame, the cost baseline of the issue. Times are medians of several
 //! frames after a warm-up frame (which compiles shaders and builds tables).
 
-mod variant;
-mod views;
+pub mod baseline;
+pub mod timing;
+pub mod variant;
+pub mod views;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::io::Write as _;
-use std::time::Instant;
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
@@ -23,11 +24,10 @@ use render_wgpu::sky::registry::GPU_MODELS;
 use crate::cli::BenchArgs;
 use crate::files::{check_writable, write_atomically};
 use crate::progress::Progress;
-pub use variant::Variant;
-pub use views::{BENCH_VIEWS, BenchView};
-
-/// The baseline's label: nishita with 16 view samples.
-pub const BASELINE: &str = "nishita samples=16";
+use baseline::{BASELINE, baseline};
+use timing::{median, timed};
+use variant::Variant;
+use views::{BENCH_VIEWS, BenchView};
 
 /// The baseline, then each requested model with its defaults (every model on the GPU
 /// when neither models nor variants are asked for), then the variants asked for.
@@ -41,18 +41,6 @@ pub fn variants(models: &[ModelId], extra: &[Variant]) -> Vec<Variant> {
     out.extend(chosen.into_iter().map(|m| Variant::new(m, None, &[])));
     out.extend(extra.iter().cloned());
     out
-}
-
-/// The cost baseline: nishita with 16 view samples.
-pub fn baseline() -> Variant {
-    Variant::new(ModelId::Nishita, None, &["samples=16"])
-}
-
-/// The median of `values` (the lower middle one for an even count); `None` when empty.
-pub fn median(values: &[f64]) -> Option<f64> {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    sorted.get((sorted.len().max(1) - 1) / 2).copied()
 }
 
 /// The measured times of one model in one view, ms.
@@ -98,15 +86,6 @@ fn frame(
         height: args.height,
         terrain: None,
     })
-}
-
-/// Renders `frame`; returns the plan and the wall-clock time, ms.
-pub fn timed(renderer: &mut Renderer, frame: &Frame) -> anyhow::Result<(FramePlan, f64)> {
-    let start = Instant::now();
-    let plan = renderer
-        .render(frame)
-        .with_context(|| format!("rendering {}", frame.model))?;
-    Ok((plan, start.elapsed().as_secs_f64() * 1e3))
 }
 
 /// Median GPU time per step of `kind` over `plans`, in the first plan's order.

@@ -10,7 +10,9 @@ use atmosphere_core::atmosphere::Atmosphere;
 use render_wgpu::Renderer;
 use render_wgpu::frame::{Frame, LocalView};
 
-use crate::bench::{self, Variant, median};
+use crate::bench::baseline;
+use crate::bench::timing::{median, timed};
+use crate::bench::variant::Variant;
 use crate::progress::Progress;
 use crate::report::views::ReportView;
 
@@ -93,10 +95,10 @@ impl WarmRenderer {
         let frame = frame_of(view, variant)?;
         let shown = Some((view.atmosphere, variant.label.clone()));
         if self.last != shown {
-            bench::timed(&mut self.renderer, &frame)?;
+            timed(&mut self.renderer, &frame)?;
             self.last = shown;
         }
-        Ok(bench::timed(&mut self.renderer, &frame)?.1)
+        Ok(timed(&mut self.renderer, &frame)?.1)
     }
 }
 
@@ -116,7 +118,7 @@ pub fn measure_all(
     };
     let adapter = measured.renderer.gpu().adapter_summary();
     let progress = Progress::new("gpu frames", "views", (variants.len() * views.len()) as u64);
-    let reference = bench::baseline();
+    let reference = baseline::baseline();
     let mut times = Vec::with_capacity(variants.len());
     for variant in variants {
         match measure(

@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use atmosphere_core::analysis::error_statistics::RelativeErrorStats;
 
-use crate::bench::BASELINE;
+use crate::bench::baseline::BASELINE;
 use atmosphere_core::color::SpectrumToColor;
 
 use crate::report::gpu_time::{FRAMES, HEIGHT, WIDTH};

@@ -44,7 +44,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         args.variant
             .iter()
             .map(|text| {
-                let v = crate::bench::Variant::parse(text)?;
+                let v = crate::bench::variant::Variant::parse(text)?;
                 Ok(Variant {
                     model: v.model,
                     max_orders: v.max_orders,
@@ -106,7 +106,7 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     } else {
         let gpu_variants = variants
             .iter()
-            .map(|v| crate::bench::Variant::parse(&v.label()))
+            .map(|v| crate::bench::variant::Variant::parse(&v.label()))
             .collect::<anyhow::Result<Vec<_>>>()?;
         let (adapter, times) = gpu_time::measure_all(&gpu_variants, &views)?;
         for (result, time) in results.iter_mut().zip(times) {

@@ -17,15 +17,13 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use crate::numerics::sampling::{Sampler, orthonormal_basis};
-use crate::optics::column::optical_depth;
+use crate::optics::phase::PhaseFunction;
 use crate::optics::phase::rayleigh;
-use crate::reference::path_tracer::{PathTracer, Scatterer};
+use crate::reference::scatterer::Scatterer;
 
 /// Cells in the cosine of the zenith angle over [-1, 1]: about half a degree at the
 /// horizon, where the lit band lies in deep twilight.
 const ZENITH_CELLS: usize = 256;
-/// Pieces of each direction's lit part on which the guide's radiance is estimated.
-const GUIDE_PIECES: usize = 8;
 /// Cells in azimuth over [-pi, pi), symmetric about the sun's azimuth.
 const AZIMUTH_CELLS: usize = 32;
 
@@ -78,11 +76,16 @@ impl ExpectedLight {
 }
 
 impl DirectionGuide {
-    /// The guide around `anchor` at the tracer's wavelength, or `None` where no direction
-    /// sees sunlit air.
-    pub fn new(tracer: &PathTracer<'_>, anchor: DVec3) -> Option<DirectionGuide> {
+    /// The guide around `anchor`, from `incoming(direction)`: a rough estimate of the
+    /// sunlight scattered once towards the anchor from each direction (in units of the
+    /// solar irradiance); `None` where no direction sees sunlit air.
+    pub fn new(
+        anchor: DVec3,
+        sun_direction: DVec3,
+        incoming: impl Fn(DVec3) -> f64,
+    ) -> Option<DirectionGuide> {
         let up = anchor.normalize();
-        let across = tracer.sun_direction - up * tracer.sun_direction.dot(up);
+        let across = sun_direction - up * sun_direction.dot(up);
         let x = if across.length_squared() > 1e-24 {
             across.normalize()
         } else {
@@ -104,7 +107,7 @@ impl DirectionGuide {
             let u = -1.0 + du * (i as f64 + 0.5);
             for j in AZIMUTH_CELLS / 2..AZIMUTH_CELLS {
                 let phi = -PI + dphi * (j as f64 + 0.5);
-                let value = rough_incoming(tracer, anchor, guide.direction(u, phi));
+                let value = incoming(guide.direction(u, phi));
                 guide.probability[i * AZIMUTH_CELLS + j] = value;
                 guide.probability[i * AZIMUTH_CELLS + AZIMUTH_CELLS - 1 - j] = value;
             }
@@ -154,9 +157,8 @@ impl DirectionGuide {
     /// The light expected at the anchor, scattered towards `-outgoing` (the direction a
     /// path arrived along): the integral over the cells of the rough radiance times
     /// each phase function (and the cosine with the anchor's up / pi, for the ground).
-    pub fn expected(&self, outgoing: DVec3, tracer: &PathTracer<'_>) -> ExpectedLight {
+    pub fn expected(&self, outgoing: DVec3, mie: &PhaseFunction) -> ExpectedLight {
         let (du, dphi) = cell_size();
-        let mie = &tracer.atmosphere.mie.phase;
         let mut out = ExpectedLight {
             rayleigh: 0.0,
             mie: 0.0,
@@ -190,91 +192,4 @@ impl DirectionGuide {
 /// their product.
 fn cell_size() -> (f64, f64) {
     (2.0 / ZENITH_CELLS as f64, 2.0 * PI / AZIMUTH_CELLS as f64)
-}
-
-/// A rough estimate of the sunlight scattered once towards `position` from `direction`
-/// (the lit part of the ray's envelope, the ground at its end, for the sun's centre), in
-/// units of the solar irradiance.
-fn rough_incoming(tracer: &PathTracer<'_>, position: DVec3, direction: DVec3) -> f64 {
-    let segment = tracer.segment(position, direction);
-    let dark = tracer.umbra_interval(position, direction, &segment);
-    let (_, envelope) = tracer.lit_envelope(position, direction, &segment, dark, GUIDE_PIECES);
-    let mut value: f64 = envelope.iter().sum();
-    if segment.hits_ground {
-        let p = position + direction * segment.length;
-        let cosine = p.normalize().dot(tracer.sun_direction);
-        if cosine > 0.0 {
-            let start = tracer.start_column(&segment);
-            let view_t = (-optical_depth(
-                tracer.column_along(&segment, start, segment.length),
-                tracer.extinction,
-            ))
-            .exp();
-            value += view_t * tracer.atmosphere.ground_albedo / PI
-                * cosine
-                * tracer.sun_transmittance(p, tracer.sun_direction);
-        }
-    }
-    value
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::atmosphere::Atmosphere;
-    use crate::models::settings::ModelSettings;
-    use crate::reference::Reference;
-
-    /// Directions drawn from the mixture of guide and phase function (or cosine) carry
-    /// weights whose mean is the integral of the phase function (or of cosine / pi over
-    /// the hemisphere): 1. A guide whose density disagreed with its draws would miss it.
-    #[test]
-    fn mixture_weights_integrate_the_phase_function_and_the_cosine() {
-        let earth = Atmosphere::preset("earth").unwrap();
-        let settings = ModelSettings {
-            wavelengths_nm: vec![440.0],
-            ..ModelSettings::default()
-        };
-        let reference = Reference::prepare(&earth, &settings).unwrap();
-        let z = 102f64.to_radians();
-        let sun = DVec3::new(z.sin(), 0.0, z.cos());
-        let unguided = reference.tracer(0, sun);
-        let ground = DVec3::new(0.0, 0.0, earth.bottom_radius_m);
-        let air = DVec3::new(0.0, 0.0, earth.bottom_radius_m + 12_000.0);
-        for (anchor, scatterer) in [
-            (
-                air,
-                Scatterer::Air {
-                    rayleigh: 2e-6,
-                    mie: 1e-6,
-                },
-            ),
-            (ground, Scatterer::Ground(DVec3::Z)),
-        ] {
-            assert!(unguided.in_umbra(anchor));
-            let guide = DirectionGuide::new(&unguided, anchor).expect("lit air in view");
-            let tracer = PathTracer {
-                guide: Some(&guide),
-                ..unguided
-            };
-            let outgoing = DVec3::new(0.3, 0.2, 0.9).normalize();
-            let mut sampler = Sampler::new(3);
-            let n = 200_000;
-            let (mut sum, mut sum_sq, mut towards_sun) = (0.0, 0.0, 0usize);
-            for _ in 0..n {
-                let (direction, weight) = tracer.scatter(anchor, outgoing, scatterer, &mut sampler);
-                sum += weight;
-                sum_sq += weight * weight;
-                towards_sun += usize::from(direction.dot(sun) > 0.9);
-            }
-            let mean = sum / n as f64;
-            let std_error = ((sum_sq / n as f64 - mean * mean) / n as f64).sqrt();
-            assert!(
-                (mean - 1.0).abs() < 4.0 * std_error,
-                "{scatterer:?}: mean weight {mean} +- {std_error}"
-            );
-            // The guide does send directions towards the sun, where the lit air is.
-            assert!(towards_sun > n / 4, "{scatterer:?}: {towards_sun} of {n}");
-        }
-    }
 }

@@ -15,7 +15,8 @@
 use glam::DVec3;
 
 use crate::reference::guide::{DirectionGuide, ExpectedLight};
-use crate::reference::path_tracer::{PathTracer, Scatterer};
+use crate::reference::path_tracer::PathTracer;
+use crate::reference::scatterer::Scatterer;
 
 /// Largest change of altitude within a group, m.
 const GROUP_HEIGHT_M: f64 = 4_000.0;
@@ -68,7 +69,10 @@ impl LastEvents {
         // The light each group's guide expects at its events, towards the camera.
         let per_group: Vec<Option<ExpectedLight>> = guides
             .iter()
-            .map(|g| g.as_ref().map(|g| g.expected(view_direction, tracer)))
+            .map(|g| {
+                g.as_ref()
+                    .map(|g| g.expected(view_direction, &tracer.atmosphere.mie.phase))
+            })
             .collect();
         let expected: Vec<f64> = events
             .iter()
@@ -155,7 +159,12 @@ fn group_and_guide(
     }
     let guides = members
         .iter()
-        .map(|m| DirectionGuide::new(tracer, events[m[m.len() / 2]].position))
+        .map(|m| {
+            let anchor = events[m[m.len() / 2]].position;
+            DirectionGuide::new(anchor, tracer.sun_direction, |d| {
+                tracer.rough_incoming(anchor, d)
+            })
+        })
         .collect();
     (group, guides)
 }

@@ -7,9 +7,12 @@
 //! for why this split, and how convergence is checked.
 
 mod guide;
+#[cfg(test)]
+mod guide_tests;
 mod last_event;
 mod majorant;
 mod path_tracer;
+mod scatterer;
 mod settings;
 mod shadow;
 mod single_scattering;
@@ -22,8 +25,8 @@ pub use guide::{DirectionGuide, Guiding};
 use last_event::{LastEvent, LastEvents};
 pub use majorant::DensityBounds;
 pub use path_tracer::PathTracer;
-use path_tracer::Scatterer;
-pub use settings::{MAX_PATHS, ReferenceSettings};
+use scatterer::Scatterer;
+pub use settings::{MAX_PATHS, MIN_PATHS, ReferenceSettings};
 pub use single_scattering::single_scattering;
 pub use sun::disk_mean_transmittance;
 pub use view_path::{RayEnd, ViewPath};
@@ -44,8 +47,6 @@ use crate::optics::transmittance_table::TransmittanceTable;
 const MC_TABLE_SIZE: (usize, usize) = (512, 128);
 /// Paths per batch between checks of the standard error.
 const BATCH: usize = 256;
-/// Fewest paths before the standard error is trusted.
-const MIN_PATHS: usize = 256;
 /// A standard error below this fraction of the solar irradiance (sr^-1) counts as
 /// darkness and is not refined further; far below the ground in nautical twilight.
 const DARKNESS: f64 = 1e-14;

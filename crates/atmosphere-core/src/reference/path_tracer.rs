@@ -17,6 +17,7 @@ use crate::optics::phase_sampling::{PhaseSampler, sample_rayleigh};
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::reference::guide::DirectionGuide;
 use crate::reference::majorant::DensityBounds;
+use crate::reference::scatterer::Scatterer;
 use crate::reference::view_path::altitude;
 
 /// Scattering order from which Russian roulette may end a path.
@@ -41,14 +42,8 @@ pub struct PathTracer<'a> {
     pub guide: Option<&'a DirectionGuide>,
 }
 
-/// What scatters light at a path's event.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum Scatterer {
-    /// Air with these scattering coefficients, Rayleigh and Mie, m^-1.
-    Air { rayleigh: f64, mie: f64 },
-    /// The Lambertian ground, with this normal.
-    Ground(DVec3),
-}
+/// Pieces of each direction's lit part on which the guide's radiance is estimated.
+const GUIDE_PIECES: usize = 8;
 
 /// Probability of drawing from the guide rather than from the phase function (or cosine)
 /// at an event in the umbra: the weight of a direction is then at most 1 / (1 - share)
@@ -75,6 +70,32 @@ pub(crate) struct Segment {
 }
 
 impl PathTracer<'_> {
+    /// A rough estimate of the sunlight scattered once towards `position` from `direction`
+    /// (the lit part of the ray's envelope, the ground at its end, for the sun's centre), in
+    /// units of the solar irradiance.
+    pub(crate) fn rough_incoming(&self, position: DVec3, direction: DVec3) -> f64 {
+        let segment = self.segment(position, direction);
+        let dark = self.umbra_interval(position, direction, &segment);
+        let (_, envelope) = self.lit_envelope(position, direction, &segment, dark, GUIDE_PIECES);
+        let mut value: f64 = envelope.iter().sum();
+        if segment.hits_ground {
+            let p = position + direction * segment.length;
+            let cosine = p.normalize().dot(self.sun_direction);
+            if cosine > 0.0 {
+                let start = self.start_column(&segment);
+                let view_t = (-optical_depth(
+                    self.column_along(&segment, start, segment.length),
+                    self.extinction,
+                ))
+                .exp();
+                value += view_t * self.atmosphere.ground_albedo / PI
+                    * cosine
+                    * self.sun_transmittance(p, self.sun_direction);
+            }
+        }
+        value
+    }
+
     /// An estimate of the radiance arriving at `position` from `direction` made of light
     /// scattered at least once (no direct sunlight), where the first event met along
     /// `direction` is of scattering order `first_order`.

@@ -4,12 +4,15 @@
 use crate::models::error::ModelError;
 use crate::models::options::{ModelOptions, Setting};
 
+/// Fewest paths before the standard error is trusted.
+pub const MIN_PATHS: usize = 256;
+
 /// Paths per ray and wavelength at most: from the fewest the error is trusted with to
 /// 2^26 (about a minute per ray and wavelength in deep twilight on one core).
 pub const MAX_PATHS: Setting<usize> = Setting {
     model: "reference",
     key: "max_paths",
-    range: super::MIN_PATHS..=1 << 26,
+    range: MIN_PATHS..=1 << 26,
 };
 
 /// The reference's settings read from `key=value` options.
