@@ -49,13 +49,13 @@ impl Default for RefinementSettings {
     fn default() -> RefinementSettings {
         RefinementSettings {
             octaves: 14,
-            roughness: 0.5,
+            roughness: 0.55,
             seed: 0x61_74_6D_6F_73,
             amplitude: AmplitudeSettings {
-                land_gain: 0.5,
+                land_gain: 0.6,
                 sea_gain: 0.15,
                 land_floor_m: 4.0,
-                cap_m: 800.0,
+                cap_m: 900.0,
             },
             coast: CoastSettings {
                 lift_m: 1.0,
