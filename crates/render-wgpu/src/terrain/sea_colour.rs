@@ -48,7 +48,7 @@ pub fn open_sea_albedo(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::terrain::EarthData;
+    use crate::terrain::earth_data::EarthData;
 
     /// The Blue Marble's open sea is dark and blue.
     #[test]
