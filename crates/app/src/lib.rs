@@ -5,6 +5,7 @@ pub mod bench;
 pub mod camera_path;
 pub mod cli;
 pub mod contact_sheet;
+pub mod csv_lines;
 pub mod earth_data_flag;
 pub mod exposure_meter;
 pub mod files;

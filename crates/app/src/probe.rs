@@ -21,12 +21,12 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
-use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::cli::ProbeArgs;
+use crate::csv_lines::{record_fields, record_lines};
 use crate::files::{check_writable, write_atomically};
-use crate::progress::Progress;
+use crate::progress::map_with_progress;
 
 /// The columns every input needs, in the order of [`ViewRay::from_angles`].
 pub const REQUIRED_COLUMNS: [&str; 4] = [
@@ -142,25 +142,13 @@ pub struct ProbeRow {
 /// Each record is one line (so that errors name the line); blank lines and lines
 /// starting with `#` are skipped.
 pub fn read_rays(text: &str, file: &str, bottom_radius_m: f64) -> Result<ProbeInput, InputError> {
-    let mut records = (1..).zip(text.lines()).filter(|(_, l)| {
-        let l = l.trim_start();
-        !l.is_empty() && !l.starts_with('#')
-    });
+    let mut records = record_lines(text);
     let fields = |line: u64, text: &str| -> Result<Vec<String>, InputError> {
-        let record = csv::ReaderBuilder::new()
-            .has_headers(false)
-            .flexible(true)
-            .trim(csv::Trim::All)
-            .from_reader(text.as_bytes())
-            .records()
-            .next()
-            .transpose()
-            .map_err(|reason| InputError::Csv {
-                file: file.to_string(),
-                line,
-                reason,
-            })?;
-        Ok(record.map_or_else(Vec::new, |r| r.iter().map(str::to_string).collect()))
+        record_fields(text).map_err(|reason| InputError::Csv {
+            file: file.to_string(),
+            line,
+            reason,
+        })
     };
     let Some((header_line, header_text)) = records.next() else {
         return Err(InputError::NoHeader {
@@ -337,17 +325,7 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
 
 /// The radiance of every row, in parallel, in the order of the rows.
 fn evaluate(model: &dyn SkyModel, rows: &[ProbeRow]) -> Vec<Result<RayRadiance, ModelError>> {
-    let progress = Progress::new("probe", "rays", rows.len() as u64);
-    let results = rows
-        .par_iter()
-        .map(|row| {
-            let result = model.radiance(&row.ray);
-            progress.inc();
-            result
-        })
-        .collect();
-    progress.finish();
-    results
+    map_with_progress("probe", "rays", rows, |row| model.radiance(&row.ray))
 }
 
 /// The output table's columns beyond the input's.

@@ -22,13 +22,13 @@ use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::options::ModelOptions;
 use glam::DVec3;
-use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::cli::ProbeArgs;
+use crate::csv_lines::{record_fields, record_lines};
 use crate::files::{check_writable, write_atomically};
 use crate::probe::{CSV_LIMITS, number};
-use crate::progress::Progress;
+use crate::progress::map_with_progress;
 
 /// The columns every scene input needs.
 pub const SCENE_COLUMNS: [&str; 6] = [
@@ -98,25 +98,13 @@ pub fn read_scene_rays(
     text: &str,
     file: &str,
 ) -> Result<(Vec<String>, Vec<SceneRow>), SceneInputError> {
-    let mut records = (1..).zip(text.lines()).filter(|(_, l)| {
-        let l = l.trim_start();
-        !l.is_empty() && !l.starts_with('#')
-    });
+    let mut records = record_lines(text);
     let fields = |line: u64, text: &str| -> Result<Vec<String>, SceneInputError> {
-        let record = csv::ReaderBuilder::new()
-            .has_headers(false)
-            .flexible(true)
-            .trim(csv::Trim::All)
-            .from_reader(text.as_bytes())
-            .records()
-            .next()
-            .transpose()
-            .map_err(|reason| SceneInputError::Csv {
-                file: file.to_string(),
-                line,
-                reason,
-            })?;
-        Ok(record.map_or_else(Vec::new, |r| r.iter().map(str::to_string).collect()))
+        record_fields(text).map_err(|reason| SceneInputError::Csv {
+            file: file.to_string(),
+            line,
+            reason,
+        })
     };
     let Some((header_line, header_text)) = records.next() else {
         return Err(SceneInputError::NoHeader {
@@ -243,17 +231,7 @@ pub fn run(args: &ProbeArgs, scene_path: &Path) -> anyhow::Result<()> {
 
 /// The radiance of every row, in parallel, in the order of the rows.
 fn evaluate(method: &dyn BeamMethod, rows: &[SceneRow]) -> Vec<Result<Vec<f64>, BeamError>> {
-    let progress = Progress::new("probe", "rays", rows.len() as u64);
-    let results = rows
-        .par_iter()
-        .map(|row| {
-            let result = method.radiance(&row.ray);
-            progress.inc();
-            result
-        })
-        .collect();
-    progress.finish();
-    results
+    map_with_progress("probe", "rays", rows, |row| method.radiance(&row.ray))
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
 
 /// Less work than this (in items) shows no progress lines when stderr is not a terminal.
 const LITTLE_WORK: u64 = 16;
@@ -74,6 +75,27 @@ impl Progress {
             bar.finish();
         }
     }
+}
+
+/// `f` of every item, in parallel (rayon), in the items' order, with progress of `task`
+/// counted in `unit`.
+pub fn map_with_progress<T: Sync, R: Send>(
+    task: &str,
+    unit: &'static str,
+    items: &[T],
+    f: impl Fn(&T) -> R + Sync,
+) -> Vec<R> {
+    let progress = Progress::new(task, unit, items.len() as u64);
+    let results = items
+        .par_iter()
+        .map(|item| {
+            let result = f(item);
+            progress.inc();
+            result
+        })
+        .collect();
+    progress.finish();
+    results
 }
 
 /// The time the remaining `total - done` items take at the pace of the first `done`.
