@@ -6,11 +6,12 @@ use crate::numerics::sampling::Sampler;
 use crate::optics::mie::phase_table::PhaseTable;
 use crate::optics::phase::PhaseFunction;
 use crate::optics::phase_sampling::PhaseSampler;
+use crate::optics::prepared_phase::PreparedPhase;
 
 /// A phase function (sr^-1) and the sampler drawing scattering angles from it.
 #[derive(Clone, Debug)]
 pub struct CloudPhase {
-    function: PhaseFunction,
+    function: PreparedPhase,
     sampler: PhaseSampler,
 }
 
@@ -21,7 +22,10 @@ impl CloudPhase {
             return Err(CloudError(format!("cloud phase function: {problem}")));
         }
         let sampler = PhaseSampler::new(&function);
-        Ok(CloudPhase { function, sampler })
+        Ok(CloudPhase {
+            function: PreparedPhase::new(function),
+            sampler,
+        })
     }
 
     /// The droplets' Mie table, sampled by inverse CDF on a piecewise-constant proposal
@@ -31,7 +35,7 @@ impl CloudPhase {
     }
 
     pub fn function(&self) -> &PhaseFunction {
-        &self.function
+        self.function.function()
     }
 
     /// The phase function at the cosine `nu` of the scattering angle, sr^-1.

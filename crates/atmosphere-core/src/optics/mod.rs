@@ -10,6 +10,7 @@ pub mod mie;
 pub mod multiple_scattering_phase;
 pub mod phase;
 pub mod phase_sampling;
+pub mod prepared_phase;
 pub mod refractive_index;
 pub mod sun_disk;
 pub mod surface_lighting;

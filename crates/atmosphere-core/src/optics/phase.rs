@@ -102,14 +102,14 @@ pub fn nishita_hazy(nu: f64) -> f64 {
     (1.0 + 9.0 * cos_half_sq.powi(8)) / (8.0 * PI)
 }
 
-fn tabulated_raw(angles_deg: &[f64], values: &[f64], nu: f64) -> f64 {
+pub(crate) fn tabulated_raw(angles_deg: &[f64], values: &[f64], nu: f64) -> f64 {
     crate::atmosphere::spectral::interpolate_clamped(angles_deg, values, nu.acos().to_degrees())
 }
 
 /// Integral over the sphere of the tabulated values: 2 pi times the integral over theta of
 /// p(theta) sin(theta), exact for piecewise-linear p on each interval (Simpson is exact
 /// for the product's smooth parts only; we subdivide each interval 16 times).
-fn tabulated_integral(angles_deg: &[f64], values: &[f64]) -> f64 {
+pub(crate) fn tabulated_integral(angles_deg: &[f64], values: &[f64]) -> f64 {
     let mut sum = 0.0;
     for i in 0..angles_deg.len() - 1 {
         let (a, b) = (angles_deg[i].to_radians(), angles_deg[i + 1].to_radians());

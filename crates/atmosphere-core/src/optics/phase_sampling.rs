@@ -4,6 +4,7 @@
 
 use crate::numerics::sampling::Sampler;
 use crate::optics::phase::PhaseFunction;
+use crate::optics::prepared_phase::PreparedPhase;
 
 /// A sampler prepared from a [`PhaseFunction`].
 #[derive(Clone, Debug)]
@@ -18,7 +19,7 @@ pub enum PhaseSampler {
     NishitaHazy,
     /// Piecewise-constant proposal in nu with exact weights.
     Tabulated {
-        phase: PhaseFunction,
+        phase: PreparedPhase,
         /// Cumulative probability at the end of each equal bin of nu over [-1, 1].
         cdf: Vec<f64>,
     },
@@ -42,6 +43,7 @@ impl PhaseSampler {
             PhaseFunction::HenyeyGreenstein { g } => PhaseSampler::HenyeyGreenstein { g: *g },
             PhaseFunction::NishitaHazy => PhaseSampler::NishitaHazy,
             PhaseFunction::Tabulated { .. } => {
+                let phase = PreparedPhase::new(phase.clone());
                 let width = 2.0 / TABULATED_BINS as f64;
                 let mut cdf = Vec::with_capacity(TABULATED_BINS);
                 let mut acc = 0.0;
@@ -58,10 +60,7 @@ impl PhaseSampler {
                 for c in &mut cdf {
                     *c /= acc;
                 }
-                PhaseSampler::Tabulated {
-                    phase: phase.clone(),
-                    cdf,
-                }
+                PhaseSampler::Tabulated { phase, cdf }
             }
         }
     }
