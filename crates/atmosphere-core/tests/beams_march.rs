@@ -4,20 +4,9 @@
 mod common;
 
 use atmosphere_core::beams::methods::id::BeamMethodId;
-use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
-use atmosphere_core::beams::methods::registry::prepare;
 use atmosphere_core::beams::ray::SceneRay;
-use atmosphere_core::beams::scene::BeamScene;
 use common::beams::*;
 use glam::DVec3;
-
-fn method(id: BeamMethodId, scene: &BeamScene, options: &[&str]) -> Box<dyn BeamMethod> {
-    let settings = BeamSettings {
-        options: atmosphere_core::models::options::ModelOptions::parse(options).unwrap(),
-        ..BeamSettings::default()
-    };
-    prepare(id, scene, &settings).unwrap()
-}
 
 #[test]
 fn converged_march_matches_the_point_light_closed_form_within_half_a_percent() {

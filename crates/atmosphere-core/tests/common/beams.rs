@@ -2,7 +2,11 @@
 
 use std::path::Path;
 
+use atmosphere_core::beams::methods::id::BeamMethodId;
+use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
+use atmosphere_core::beams::methods::registry::prepare;
 use atmosphere_core::beams::scene::BeamScene;
+use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::numerics::quadrature::{GAUSS_LEGENDRE_8, mapped};
 use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
@@ -13,6 +17,15 @@ pub const CAMERA: &str = "[camera]\nposition_m = [0, 2, 20]\nlook_at_m = [0, 2, 
 pub fn scene(medium: &str, rest: &str) -> BeamScene {
     let text = format!("[medium]\n{medium}\n{CAMERA}\n{rest}");
     BeamScene::from_toml(&text, "test.toml", Path::new(".")).unwrap()
+}
+
+/// Method `id` prepared for `scene` with the settings `options` ("key=value").
+pub fn method(id: BeamMethodId, scene: &BeamScene, options: &[&str]) -> Box<dyn BeamMethod> {
+    let settings = BeamSettings {
+        options: ModelOptions::parse(options).unwrap(),
+        ..BeamSettings::default()
+    };
+    prepare(id, scene, &settings).unwrap()
 }
 
 pub fn medium(scattering: f64, absorption: f64, phase: &str) -> String {
