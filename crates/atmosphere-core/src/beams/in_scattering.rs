@@ -52,13 +52,7 @@ impl InScattering {
     /// or where the medium has extinguished the light (0 in a medium that neither
     /// scatters nor absorbs, where nothing is scattered).
     pub fn ray_end_m(&self, ray: &SceneRay) -> f64 {
-        let thinnest = self
-            .medium
-            .extinction_per_m
-            .iter()
-            .copied()
-            .filter(|&e| e > 0.0)
-            .fold(f64::INFINITY, f64::min);
+        let thinnest = self.medium.thinnest_extinction_per_m();
         let extinguished = if thinnest.is_finite() {
             EXTINGUISHED_OPTICAL_DEPTH / thinnest
         } else {

@@ -37,3 +37,15 @@ impl Medium {
         }
     }
 }
+
+impl MediumSpectra {
+    /// The smallest positive extinction over the wavelengths, m^-1 (infinite where no
+    /// wavelength is attenuated): the one that carries light farthest.
+    pub fn thinnest_extinction_per_m(&self) -> f64 {
+        self.extinction_per_m
+            .iter()
+            .copied()
+            .filter(|&e| e > 0.0)
+            .fold(f64::INFINITY, f64::min)
+    }
+}

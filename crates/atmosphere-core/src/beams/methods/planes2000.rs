@@ -195,13 +195,7 @@ fn content_depth(scattering: &InScattering) -> f64 {
             )
         }));
     }
-    let thinnest = scattering
-        .medium
-        .extinction_per_m
-        .iter()
-        .copied()
-        .filter(|&e| e > 0.0)
-        .fold(f64::INFINITY, f64::min);
+    let thinnest = scattering.medium.thinnest_extinction_per_m();
     let extinguished = (EXTINGUISHED_OPTICAL_DEPTH / thinnest).min(FAR_M.range.end().to_owned());
     let farthest = points
         .iter()
