@@ -141,6 +141,19 @@ fn tables_match_the_cpu() {
     assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
 }
 
+/// Mie's Delta J by quadrature about the view (`mie_directions`), in the hazy atmosphere
+/// whose forward-peaked aerosol it is for.
+#[test]
+fn tables_match_the_cpu_with_the_mie_quadrature() {
+    let Some(gpu) = gpu_or_skip("bruneton tables with the Mie quadrature") else {
+        return;
+    };
+    let mut options = REDUCED.to_vec();
+    options.push("mie_directions=8");
+    let errors = compare_tables(&gpu, "hazy", &options);
+    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+}
+
 /// The twilight settings: S and E down to the sun 20 deg below the horizon, u_nu linear
 /// in the scattering angle.
 const TWILIGHT: [&str; 6] = [

@@ -401,7 +401,7 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             density_step_m,
             min_mu_s,
             nu_by_angle,
-            pad0
+            mie_directions
         ]
     );
     assert_layout!(

@@ -56,7 +56,7 @@ struct BrunetonParams {
     // The lowest sun cosine of S and E; 1 when u_nu is linear in the scattering angle.
     min_mu_s: f32,
     nu_by_angle: u32,
-    pad0: f32,
+    mie_directions: u32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

@@ -10,9 +10,10 @@
 // sun's vertical plane). Entry point `main`: Delta J at every texel from the moments:
 // Rayleigh exactly (its phase function is quadratic in the direction), Mie by the
 // delta-M approximation with three Legendre terms, whose forward peak takes the incoming
-// radiance along the view.
+// radiance along the view, or, with `mie_directions`, by a quadrature about the view
+// (`sky/bruneton/mie_quadrature.wgsl`).
 
-#import sky/bruneton/previous_order.wgsl
+#import sky/bruneton/mie_quadrature.wgsl
 
 // Delta J also as a 3D texture, texel (x = nu * mu_s_size + mu_s, y = mu, z = r), for
 // Delta S to read (`sky/bruneton/scattering.wgsl`).
@@ -91,7 +92,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         + store[base + 5u].xyz * (vz * vz) + store[base + 6u].xyz * (2.0 * vx * vz);
     let rho = density_at(tx.q / (tx.r + atmosphere.bottom_radius_m));
     var j = atmosphere.rayleigh_scattering_per_m.xyz * (rho.x * 3.0 / (16.0 * PI)) * (l0 + q);
-    if bruneton.mie_on == 1u {
+    if bruneton.mie_on == 1u && bruneton.mie_directions > 0u {
+        let j_m = mie_by_quadrature(tx.q, tx.r, tx.mu_s, sin_s, vec3<f32>(vx, vy, vz));
+        j += atmosphere.mie_scattering_per_m.xyz * rho.y * max(j_m, vec3<f32>(0.0));
+    } else if bruneton.mie_on == 1u {
         let l_v = incoming(tx.q, tx.r, tx.mu, tx.mu_s, tx.nu, tx.ground);
         let p1 = vx * fx + vz * fz;
         let p2 = 0.5 * (3.0 * q - l0);

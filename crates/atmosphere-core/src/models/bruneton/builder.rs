@@ -4,6 +4,7 @@
 use crate::atmosphere::Atmosphere;
 use crate::models::bruneton::channels::Channels;
 use crate::models::bruneton::delta_m::DeltaM;
+use crate::models::bruneton::mie_quadrature::MieQuadrature;
 use crate::models::bruneton::parameterization::Radii;
 use crate::models::bruneton::settings::BrunetonSettings;
 use crate::models::bruneton::sun_disk::visible_sun;
@@ -25,6 +26,9 @@ pub struct Builder<'a> {
     pub sun_transmittances: Vec<[f64; 3]>,
     /// The Mie phase function's delta-M form; `None` prunes all Mie work (no aerosol).
     pub delta_m: Option<DeltaM>,
+    /// Mie's Delta J by quadrature about the view (`mie_directions` > 0) instead of
+    /// `delta_m`.
+    pub mie_quadrature: Option<MieQuadrature>,
     pub max_orders: u32,
 }
 

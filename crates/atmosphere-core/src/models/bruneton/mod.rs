@@ -18,6 +18,7 @@
 pub mod builder;
 pub mod channels;
 pub mod delta_m;
+pub mod mie_quadrature;
 pub mod parameterization;
 pub mod precompute;
 pub mod settings;
@@ -35,6 +36,7 @@ use crate::atmosphere::table_inputs::Inputs;
 use crate::models::bruneton::builder::Builder;
 use crate::models::bruneton::channels::Channels;
 use crate::models::bruneton::delta_m::DeltaM;
+use crate::models::bruneton::mie_quadrature::MieQuadrature;
 use crate::models::bruneton::parameterization::{Radii, table_position};
 use crate::models::bruneton::precompute::{OrderStats, Tables};
 use crate::models::bruneton::sun_disk::visible_sun;
@@ -158,6 +160,9 @@ impl Bruneton {
             channels,
             sun_transmittances: channels.transmittances(&self.transmittance),
             delta_m,
+            mie_quadrature: (delta_m.is_some() && self.settings.mie_directions > 0).then(|| {
+                MieQuadrature::new(&self.atmosphere.mie.phase, self.settings.mie_directions)
+            }),
             max_orders: self.max_orders.unwrap_or(self.settings.order_limit),
         }
     }

@@ -42,6 +42,11 @@ pub struct BrunetonSettings {
     /// (its visible part, dimmed along its centroid's path), rather than a point (the
     /// paper).
     pub sun_disk: bool,
+    /// Mie's share of Delta J: 0 for the delta-M form with three Legendre terms from the
+    /// moments of the incoming radiance (the default); n (a multiple of 8) for a
+    /// quadrature of n x n directions about each texel's view direction with the exact
+    /// phase function (`mie_quadrature.rs`).
+    pub mie_directions: usize,
 }
 
 impl Default for BrunetonSettings {
@@ -61,6 +66,7 @@ impl Default for BrunetonSettings {
             order_threshold: 0.02,
             order_limit: 32,
             sun_disk: false,
+            mie_directions: 0,
         }
     }
 }
@@ -94,6 +100,9 @@ pub const ORDER_THRESHOLD: Setting<f64> = setting("order_threshold", 0.0..=1.0);
 pub const ORDER_LIMIT: Setting<usize> = setting("order_limit", 1..=63);
 /// The lowest sun cosine of S and E: from -0.6 (127 deg) to -0.05 (93 deg).
 pub const MIN_MU_S: Setting<f64> = setting("min_mu_s", -0.6..=-0.05);
+/// Directions of Mie's Delta J quadrature per axis (0: delta-M); the GPU's loop runs
+/// their square.
+pub const MIE_DIRECTIONS: Setting<usize> = setting("mie_directions", 0..=64);
 /// Keys of the switches (`true` or `false`).
 pub const NU_BY_ANGLE: &str = "nu_by_angle";
 pub const SUN_DISK: &str = "sun_disk";
@@ -101,7 +110,7 @@ pub const SUN_DISK: &str = "sun_disk";
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
-    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `sun_disk`; the paper's values where
+    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `sun_disk`, `mie_directions`; the paper's values where
     /// absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
@@ -125,6 +134,7 @@ impl BrunetonSettings {
                 order_threshold: o.number(&ORDER_THRESHOLD, d.order_threshold)?,
                 order_limit: o.count(&ORDER_LIMIT, d.order_limit as usize)? as u32,
                 sun_disk: o.flag(SUN_DISK, d.sun_disk)?,
+                mie_directions: o.count(&MIE_DIRECTIONS, d.mie_directions)?,
                 ..d
             })
         })
@@ -143,6 +153,7 @@ impl BrunetonSettings {
             (SPHERE_ZENITH, self.sphere_samples.0),
             (SPHERE_AZIMUTH, self.sphere_samples.1),
             (ORDER_LIMIT, self.order_limit as usize),
+            (MIE_DIRECTIONS, self.mie_directions),
         ] {
             setting.check(value)?;
         }
@@ -152,6 +163,12 @@ impl BrunetonSettings {
             return Err(ModelError::Settings(format!(
                 "bruneton setting mu={} must be even (half the rays meet the ground)",
                 s.mu
+            )));
+        }
+        if !self.mie_directions.is_multiple_of(8) {
+            return Err(ModelError::Settings(format!(
+                "bruneton setting mie_directions={} must be 0 or a multiple of 8",
+                self.mie_directions
             )));
         }
         let two = |(a, b): (usize, usize)| (2..=2048).contains(&a) && (2..=2048).contains(&b);

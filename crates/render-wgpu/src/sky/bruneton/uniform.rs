@@ -60,7 +60,9 @@ pub struct BrunetonUniform {
     pub min_mu_s: f32,
     /// 1 when u_nu is linear in the scattering angle (`AngleMapping::nu_by_angle`).
     pub nu_by_angle: u32,
-    pub pad0: f32,
+    /// Mie's Delta J by a quadrature of this many directions squared about the view
+    /// (`BrunetonSettings::mie_directions`); 0 for the delta-M form.
+    pub mie_directions: u32,
 }
 
 impl BrunetonUniform {
@@ -114,7 +116,7 @@ impl BrunetonUniform {
             density_step_m: (atmosphere.thickness_m() / f64::from(DENSITY_SAMPLES - 1)) as f32,
             min_mu_s: s.angles.min_mu_s as f32,
             nu_by_angle: u32::from(s.angles.nu_by_angle),
-            pad0: 0.0,
+            mie_directions: u(settings.mie_directions),
         }
     }
 }
