@@ -19,6 +19,7 @@
 
 use rayon::prelude::*;
 
+use crate::beams::in_scattering::EXTINGUISHED_OPTICAL_DEPTH;
 use crate::beams::medium::MediumSpectra;
 use crate::numerics::quadrature::{GAUSS_LEGENDRE_8, mapped};
 use crate::optics::phase::PhaseFunction;
@@ -157,9 +158,13 @@ fn q_integral(
     if sigma_s == 0.0 {
         return 0.0;
     }
-    let (a, b) = ((u / v).atan(), ((u + interval_m) / v).atan());
-    // Panels enough for the attenuation across the interval and the turn of theta.
-    let panels = (4.0 + 2.0 * sigma_t * interval_m + 8.0 * (b - a)).min(256.0) as usize;
+    // Past an optical depth of EXTINGUISHED_OPTICAL_DEPTH from u the integrand is below
+    // 1e-9 of its start: the integral stops there.
+    let length = interval_m.min(EXTINGUISHED_OPTICAL_DEPTH / sigma_t);
+    let (a, b) = ((u / v).atan(), ((u + length) / v).atan());
+    // Panels enough for the attenuation across the interval (four e-folds a panel) and
+    // the turn of theta.
+    let panels = (4.0 + 0.25 * sigma_t * length + 8.0 * (b - a)).min(64.0) as usize;
     let step = (b - a) / panels as f64;
     let mut sum = 0.0;
     for p in 0..panels {
