@@ -9,13 +9,14 @@
 //! view direction, dt apart, over the depths of each light's bounding volume
 //! (`planes.rs`); dt is the largest multiple of `delta_min_m` up to `delta_max_m` whose
 //! table stays within `i_max` (section 4.2.1). m_k comes from f_l on the centre ray and
-//! epsilon (section 4.2.2). Rays must start at the scene camera's position.
+//! epsilon (section 4.2.2; `planes.rs` says how epsilon is scaled). Rays must start at the scene camera's position.
 //!
 //! Where the paper leaves a choice: an oblique ray crosses the planes dt / cos apart, so
 //! its intervals are that long and read the table once per dt of them (the paper keeps
 //! dt, leaving gaps off the screen's centre); an interval cut by an occluder counts its
-//! share of q; the m_k samples are dt / m_k apart from the main plane (Eq. 10's
-//! dt / (m_k - 1) would put the last on the next main plane, counting it twice).
+//! share of q and the mean of f_h over the samples in front of the occluder; the m_k
+//! samples are dt / m_k apart from the main plane (Eq. 10's dt / (m_k - 1) would put the
+//! last on the next main plane, counting it twice).
 
 pub mod interval;
 pub mod planes;
@@ -57,11 +58,12 @@ pub const I_MAX: Setting<f64> = Setting {
     key: "i_max",
     range: 1e-12..=1e12,
 };
-/// The sub-plane threshold on f_l / m_k, m^-2 sr^-1 (the paper's epsilon: 0.01).
+/// The sub-plane threshold on f_l / m_k as a share of the centre ray's f_l (the paper's
+/// epsilon: 0.01).
 pub const EPSILON: Setting<f64> = Setting {
     model: MODEL,
     key: "epsilon",
-    range: 0.0..=1e12,
+    range: 0.0..=1.0,
 };
 /// The most sub-planes in one plane interval (the paper sets none; 64).
 pub const MAX_SUBPLANES: Setting<usize> = Setting {
@@ -353,14 +355,20 @@ impl BeamMethod for Qtable2002 {
             let emission = &self.scattering.emission[l];
             for (k, &m) in planes.samples.iter().enumerate() {
                 let t_k = (planes.first_depth_m + k as f64 * self.table.interval_m()) / cos_forward;
-                if t_k >= t_end {
+                // A plane within a thousandth of the ray's length of its end meets the
+                // occluder's surface at a shadow map's resolution, and the map's bias
+                // lights it: that sliver of the ray is left out.
+                if t_k >= t_end * (1.0 - 1e-3) {
                     break;
                 }
                 let length = dt_ray.min(t_end - t_k);
-                // Eq. 10: the mean of I_l H over the main plane and its sub-planes.
+                // Eq. 10: the mean of I_l H over the main plane and its sub-planes in
+                // front of the ray's end (an occluder hides those behind it).
+                let spacing = dt_ray / m as f64;
+                let visible = ((length / spacing).ceil() as usize).clamp(1, m);
                 f_h.fill(0.0);
-                for j in 0..m {
-                    let point = ray.at(t_k + j as f64 * length / m as f64);
+                for j in 0..visible {
+                    let point = ray.at(t_k + j as f64 * spacing);
                     let Some(path) = light.path_from(point) else {
                         continue;
                     };
@@ -386,7 +394,7 @@ impl BeamMethod for Qtable2002 {
                             length,
                             w,
                         );
-                        *s += f_h[w] / m as f64 * smooth;
+                        *s += f_h[w] / visible as f64 * smooth;
                     }
                 }
             }

@@ -5,6 +5,11 @@
 //! m_k chosen from f_l on the ray through the centre of the screen so that
 //! max over lambda of f_l(d_k) / m_k stays at least epsilon).
 //!
+//! The paper's epsilon is a share of I_max, the brightest value its frame buffer holds
+//! (0.01 of 1.0), with I_l <= 1. Radiance here has physical units, so f_l is taken as a
+//! share of the whole f_l of the centre ray (the sum over its intervals): a sub-plane
+//! is inserted where it adds at least epsilon of the centre pixel's unshadowed light.
+//!
 //! Bounding volumes: a spot's pyramid over its cone (apex at the light, base square at
 //! d0 along its axis); a point light's cube of half-side d0; a parallel light's beam
 //! rectangle swept d0 along its direction, or all depths up to d0 for an unbounded beam.
@@ -29,20 +34,23 @@ pub struct LightPlanes {
     pub samples: Vec<usize>,
     /// The largest f_l over the wavelengths of interval k on the centre ray, m^-2 sr^-1.
     pub centre_f_l: Vec<f64>,
+    /// Interval k's share of the sum of `centre_f_l` (0 where that sum is 0).
+    pub centre_share: Vec<f64>,
 }
 
 /// How the sub-planes are counted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SubPlaneRule {
-    /// The paper's epsilon, in f_l's units.
+    /// The paper's epsilon, a share of the centre ray's f_l.
     pub epsilon: f64,
     /// The most sub-planes in one interval.
     pub max_subplanes: usize,
 }
 
 impl SubPlaneRule {
-    /// m_k for an interval of f_l `f`: the largest m with f / m >= epsilon, at least 1
-    /// and at most 1 + `max_subplanes`.
+    /// m_k for an interval of share `f`: the largest m with f / m >= epsilon (the
+    /// paper's "minimum number" bounds m from above), at least 1 and at most
+    /// 1 + `max_subplanes`.
     pub fn samples(&self, f: f64) -> usize {
         let most = 1 + self.max_subplanes;
         if self.epsilon <= 0.0 {
@@ -100,10 +108,16 @@ impl LightPlanes {
                     .fold(0.0, f64::max)
             })
             .collect();
+        let total: f64 = centre_f_l.iter().sum();
+        let centre_share: Vec<f64> = centre_f_l
+            .iter()
+            .map(|&f| if total > 0.0 { f / total } else { 0.0 })
+            .collect();
         LightPlanes {
             first_depth_m: lo,
-            samples: centre_f_l.iter().map(|&f| rule.samples(f)).collect(),
+            samples: centre_share.iter().map(|&f| rule.samples(f)).collect(),
             centre_f_l,
+            centre_share,
         }
     }
 
