@@ -247,7 +247,7 @@ fn sub_planes_appear_only_where_f_l_exceeds_epsilon() {
         .fold((0, 0.0), |b, (k, f)| if *f > b.1 { (k, *f) } else { b })
         .0;
     assert_eq!(samples[brightest], 3);
-    assert!(samples.iter().any(|&m| m == 1));
+    assert!(samples.contains(&1));
     // Epsilon 0: the most sub-planes everywhere.
     let all = qtable(&s, &["epsilon=0", "max_subplanes=16"]);
     assert!(all.planes()[0].samples.iter().all(|&m| m == 17));
