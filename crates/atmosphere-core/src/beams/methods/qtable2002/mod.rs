@@ -204,7 +204,6 @@ impl Qtable2002 {
             medium: &scattering.medium,
             phase: &scene.medium.phase,
             camera: &camera,
-            extinguished_m,
         };
         let rule = SubPlaneRule {
             epsilon: own.epsilon,

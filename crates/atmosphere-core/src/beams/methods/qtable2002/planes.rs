@@ -67,8 +67,6 @@ pub struct PlaneContext<'a> {
     pub medium: &'a MediumSpectra,
     pub phase: &'a PhaseFunction,
     pub camera: &'a Camera,
-    /// Depths past which the medium has extinguished the light, m.
-    pub extinguished_m: f64,
 }
 
 impl LightPlanes {
