@@ -331,7 +331,7 @@ pub struct StabilityArgs {
 #[derive(Debug, Args)]
 pub struct ProbeArgs {
     /// Scattering model: a sky model, or with --scene a beam method (reference, march,
-    /// planes2000).
+    /// planes2000, qtable2002).
     #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]
     pub model: String,
     /// A beams scene (TOML; docs/beams.md): rays in its frame, radiance of its lights

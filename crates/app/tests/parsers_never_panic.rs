@@ -201,6 +201,15 @@ fn read_beams_scene(bytes: &[u8]) {
                 BeamMethodId::Planes2000,
                 vec![("planes", 8), ("lattice", 4), ("shadow_map_px", 16)],
             ),
+            (
+                BeamMethodId::Qtable2002,
+                vec![
+                    ("table_u", 8),
+                    ("table_v", 8),
+                    ("max_subplanes", 2),
+                    ("shadow_map_px", 16),
+                ],
+            ),
         ] {
             let mut settings = BeamSettings::default();
             for (key, value) in options {

@@ -94,11 +94,15 @@ fn scene_probe_errors_name_the_problem() {
     let base = ["probe", "--scene", &scene, "--input", input];
     atmos_fails_with(
         &[&base[..], &["--model", "nishita"]].concat(),
-        "--model nishita is a sky model; with --scene the beam methods are reference, march, planes2000",
+        "--model nishita is a sky model; with --scene the beam methods are reference, march, planes2000, qtable2002",
     );
     atmos_fails_with(
         &[&base[..], &["--model", "march", "--set", "steps=0"]].concat(),
         "march setting steps=0 is outside 1..=65536",
+    );
+    atmos_fails_with(
+        &[&base[..], &["--model", "qtable2002", "--set", "epsilon=2"]].concat(),
+        "qtable2002 setting epsilon=2 is outside 0..=1",
     );
     let output = atmos(&[&base[..], &["--model", "reference", "--orders", "1"]].concat());
     assert_eq!(output.status.code(), Some(2), "{}", stderr(&output));

@@ -3,10 +3,13 @@
 
 use std::path::PathBuf;
 
+use atmosphere_core::beams::bvh::Bvh;
 use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::registry::prepare;
+use atmosphere_core::beams::ray::SceneRay;
 use atmosphere_core::beams::scene::BeamScene;
+use glam::DVec3;
 
 fn shipped_scenes() -> Vec<PathBuf> {
     let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes/beams");
@@ -22,7 +25,7 @@ fn shipped_scenes() -> Vec<PathBuf> {
 #[test]
 fn every_shipped_scene_gives_finite_positive_light() {
     let scenes = shipped_scenes();
-    assert_eq!(scenes.len(), 3, "{scenes:?}");
+    assert_eq!(scenes.len(), 4, "{scenes:?}");
     for path in scenes {
         let scene = BeamScene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         let (w, h) = (
@@ -89,4 +92,55 @@ fn the_reference_converges_through_light_maps_and_box_shadows() {
         }
     }
     assert!(lit >= 8, "{lit} of 48 rays see a shaft");
+}
+
+#[test]
+fn the_teapot_stands_where_its_scene_puts_it_and_shadows_the_beam_below_it() {
+    let path = shipped_scenes()
+        .into_iter()
+        .find(|p| p.ends_with("teapot_spotlight.toml"))
+        .unwrap();
+    let scene = BeamScene::load(&path).unwrap();
+    // 32 patches of 8 x 8 quads, less the triangles where the lid's and the bottom's
+    // patches close to a point.
+    assert_eq!(scene.occluders.triangles.len(), 4032);
+    let (lo, hi) = scene.occluders.triangles.bounds().unwrap();
+    // Newell's extent (x -3 to 3.4 at the handle and spout tips' tessellation, z up to
+    // 3.15, radius 2) scaled by 0.4, z up turned to y up, 1 m up on the pedestal.
+    for (got, expected) in [
+        (lo.x, -1.2),
+        (hi.y, 2.26),
+        (lo.z, -0.8),
+        (hi.z, 0.8),
+        (lo.y, 1.0),
+    ] {
+        assert!((got - expected).abs() < 1e-3, "{got} vs {expected}");
+    }
+    // From the camera below the teapot's body, beside the pedestal: the teapot's shadow
+    // removes the light of the stretch under it.
+    let toward = DVec3::new(0.55, 0.5, 0.0);
+    let ray = SceneRay::new(
+        scene.camera.position_m,
+        toward - scene.camera.position_m,
+        None,
+    )
+    .unwrap();
+    let mut open = scene.clone();
+    open.occluders.triangles = Bvh::default();
+    let settings = BeamSettings::default();
+    let radiance =
+        |s: &BeamScene, id| prepare(id, s, &settings).unwrap().radiance(&ray).unwrap()[1];
+    let (shadowed, unshadowed) = (
+        radiance(&scene, BeamMethodId::Reference),
+        radiance(&open, BeamMethodId::Reference),
+    );
+    assert!(
+        shadowed > 0.0 && shadowed < 0.8 * unshadowed,
+        "{shadowed} with the teapot, {unshadowed} without"
+    );
+    let qtable = radiance(&scene, BeamMethodId::Qtable2002);
+    assert!(
+        (qtable - shadowed).abs() < 0.05 * shadowed,
+        "qtable2002 {qtable}, reference {shadowed}"
+    );
 }

@@ -18,14 +18,18 @@ pub enum BeamMethodId {
     /// Dobashi, Yamamoto and Nishita 2000: virtual planes with lattice meshes, projected
     /// light maps and shadow maps.
     Planes2000,
+    /// Dobashi, Yamamoto and Nishita 2002: the pre-integrated q(u, v) table, the plane
+    /// interval chosen from it, and sub-planes where f_l exceeds epsilon.
+    Qtable2002,
 }
 
 impl BeamMethodId {
     /// Every method, the reference first.
-    pub const ALL: [BeamMethodId; 3] = [
+    pub const ALL: [BeamMethodId; 4] = [
         BeamMethodId::Reference,
         BeamMethodId::March,
         BeamMethodId::Planes2000,
+        BeamMethodId::Qtable2002,
     ];
 
     /// The id as written on the command line and in files.
@@ -34,6 +38,7 @@ impl BeamMethodId {
             BeamMethodId::Reference => "reference",
             BeamMethodId::March => "march",
             BeamMethodId::Planes2000 => "planes2000",
+            BeamMethodId::Qtable2002 => "qtable2002",
         }
     }
 

@@ -7,5 +7,6 @@ pub mod id;
 pub mod march;
 pub mod method;
 pub mod planes2000;
+pub mod qtable2002;
 pub mod reference;
 pub mod registry;

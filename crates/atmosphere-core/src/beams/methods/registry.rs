@@ -5,6 +5,7 @@ use crate::beams::methods::id::BeamMethodId;
 use crate::beams::methods::march::March;
 use crate::beams::methods::method::{BeamMethod, BeamSettings};
 use crate::beams::methods::planes2000::Planes2000;
+use crate::beams::methods::qtable2002::Qtable2002;
 use crate::beams::methods::reference::Reference;
 use crate::beams::scene::BeamScene;
 use crate::models::error::ModelError;
@@ -21,6 +22,7 @@ pub fn prepare(
         BeamMethodId::Reference => Box::new(Reference::new(scene, settings)?),
         BeamMethodId::March => Box::new(March::new(scene, settings)?),
         BeamMethodId::Planes2000 => Box::new(Planes2000::new(scene, settings)?),
+        BeamMethodId::Qtable2002 => Box::new(Qtable2002::new(scene, settings)?),
     })
 }
 
