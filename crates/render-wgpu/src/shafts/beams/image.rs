@@ -10,7 +10,10 @@ use crate::gpu::pipeline::texture_2d;
 use crate::gpu::readback::read_texture;
 use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
-use crate::shafts::beams::march_pass::RADIANCE_FORMAT;
+
+/// The format of the radiance image: f32, so that the parity test sees the passes' own
+/// rounding and nothing else.
+pub const RADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// The radiance image of a beams pass.
 #[derive(Debug)]

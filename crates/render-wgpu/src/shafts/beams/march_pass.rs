@@ -13,7 +13,7 @@ use crate::gpu::pipeline::{
 };
 use crate::gpu::timer::GpuTimer;
 use crate::shafts::beams::gpu_scene::{BeamsUniform, GpuScene};
-use crate::shafts::beams::image::BeamImage;
+use crate::shafts::beams::image::{BeamImage, RADIANCE_FORMAT};
 use crate::shafts::beams::limits;
 
 /// The march's pipeline, made once per device.
@@ -21,10 +21,6 @@ use crate::shafts::beams::limits;
 pub struct MarchPass {
     pipeline: ComputePipeline,
 }
-
-/// The format of the radiance image: f32, so that the parity test sees the march's
-/// own rounding and nothing else.
-pub const RADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 impl MarchPass {
     pub fn new(gpu: &GpuContext) -> Result<MarchPass, RenderError> {
