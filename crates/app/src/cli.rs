@@ -218,8 +218,15 @@ pub struct RecordArgs {
 pub struct RenderArgs {
     /// A scene file (TOML) with the fields of the flags below (model, altitude_m,
     /// sun_zenith_deg, ..., set); flags given as well override its fields.
+    /// A beams scene (docs/beams.md: a file with `[medium]` and `[[lights]]`) is
+    /// rendered from its own camera; of the flags below it takes --model (a beam
+    /// method on the GPU: march), --width, --height, --exposure and --set.
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
+    /// Scattering model (every sky model but the reference is on the GPU), or with a
+    /// beams scene a beam method [default: march].
+    #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]
+    pub model: Option<String>,
     #[command(flatten)]
     pub fields: crate::render::scene::Scene,
     /// The flags of the scene's `latitude_deg` and `longitude_deg`.

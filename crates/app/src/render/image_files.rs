@@ -29,12 +29,22 @@ pub fn png_bytes(
     text: &[(&str, String)],
     utf8_text: &[(&str, String)],
 ) -> anyhow::Result<Vec<u8>> {
-    if pixels.len() != frame.width as usize * frame.height as usize {
+    png_of_size((frame.width, frame.height), pixels, text, utf8_text)
+}
+
+/// As [`png_bytes`], for an image of (width, height) pixels of any scene.
+pub fn png_of_size(
+    (width, height): (u32, u32),
+    pixels: &[[u8; 4]],
+    text: &[(&str, String)],
+    utf8_text: &[(&str, String)],
+) -> anyhow::Result<Vec<u8>> {
+    if pixels.len() != width as usize * height as usize {
         bail!("pixel count does not match the image size");
     }
     let rgb: Vec<u8> = pixels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
     let mut bytes = Vec::new();
-    let mut encoder = png::Encoder::new(&mut bytes, frame.width, frame.height);
+    let mut encoder = png::Encoder::new(&mut bytes, width, height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
