@@ -18,6 +18,7 @@ use render_wgpu::frame::MAX_SIDE_PX;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::post::luminance::{log_average_luminance, luminance_weights};
 use render_wgpu::shafts::beams::gpu_scene::GpuScene;
+use render_wgpu::shafts::beams::limits::check_trips;
 use render_wgpu::shafts::beams::march_pass::MarchPass;
 
 use crate::exposure_meter::metered_ev100;
@@ -123,10 +124,13 @@ pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::R
         options: ModelOptions::parse(&f.set)?,
     };
     let march = March::new(&scene, &settings)?;
+    let packed = GpuScene::new(&march);
+    // Refused before the device is opened: the loops depend on the settings alone.
+    check_trips(&packed)?;
     let gpu = GpuContext::headless()?;
     let pass = MarchPass::new(&gpu)?;
     let start = Instant::now();
-    let (image, gpu_ms) = pass.render(&gpu, &GpuScene::new(&march))?;
+    let (image, gpu_ms) = pass.render(&gpu, &packed)?;
     let radiance = image.read_radiance(&gpu)?;
     let elapsed = start.elapsed();
     let ev100 = match f.exposure {

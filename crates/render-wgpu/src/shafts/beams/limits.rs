@@ -26,7 +26,7 @@ pub fn march_loop_trips(scene: &GpuScene) -> usize {
 /// Nothing, or an error naming the image side, buffer or loop count of `scene` that
 /// exceeds the device's `limits`.
 pub fn check(scene: &GpuScene, limits: &wgpu::Limits) -> Result<(), RenderError> {
-    let [width, height, steps, lights] = scene.uniform.size_steps_lights;
+    let [width, height, ..] = scene.uniform.size_steps_lights;
     let side = limits.max_texture_dimension_2d;
     if width > side || height > side {
         return Err(RenderError::BeamsTooLarge(format!(
@@ -52,6 +52,13 @@ pub fn check(scene: &GpuScene, limits: &wgpu::Limits) -> Result<(), RenderError>
              (lower shadow_map_px or use smaller light maps)"
         )));
     }
+    check_trips(scene)
+}
+
+/// Nothing, or an error naming the steps and lights of `scene` whose loops exceed what
+/// one GPU invocation may run (no device needed).
+pub fn check_trips(scene: &GpuScene) -> Result<(), RenderError> {
+    let [_, _, steps, lights] = scene.uniform.size_steps_lights;
     let what =
         format!("steps={steps} x {lights} lights (with shadow views, planes and the ray's end)");
     check_loop_trips("march", &what, march_loop_trips(scene))?;
