@@ -70,7 +70,8 @@ pub struct LightUniform {
     /// Its shadow views: the first and how many (0: nothing shadows it).
     pub first_view: u32,
     pub view_count: u32,
-    pub pad: [u32; 2],
+    pub pad0: u32,
+    pub pad1: u32,
 }
 
 /// One depth image of a shadow map (WGSL `ShadowView`), 96 bytes.
@@ -103,7 +104,9 @@ pub struct PrimitiveUniform {
     pub c: [f32; 4],
     /// 0 sphere, 1 box, 2 quad, 3 plane.
     pub kind: u32,
-    pub pad: [u32; 3],
+    pub pad0: u32,
+    pub pad1: u32,
+    pub pad2: u32,
 }
 
 /// A node of the triangles' hierarchy (WGSL `BvhNode`), 32 bytes.
@@ -346,6 +349,6 @@ fn primitive(p: &Primitive, eye: DVec3) -> PrimitiveUniform {
         b,
         c,
         kind,
-        pad: [0; 3],
+        ..Default::default()
     }
 }
