@@ -14,31 +14,27 @@
 #import shafts/beams/shadow_maps.wgsl
 #import shafts/beams/phase.wgsl
 
-// The light scattered toward the camera per metre at `point`, distance `t` along `dir`.
-fn in_scattering(point: vec3<f32>, t: f32, dir: vec3<f32>) -> vec3<f32> {
-    var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < params.size_steps_lights.w; i++) {
-        let light = lights[i];
-        let path = light_path(light, point);
-        if !path.inside {
-            continue;
-        }
-        let seen = shadow_visibility(light, point, path.to_light, path.distance_m);
-        if seen <= 0.0 {
-            continue;
-        }
-        let weight = beams_phase(dot(path.to_light, dir)) * path.factor * seen;
-        let rgb = light_map_rgb(light, path.uv, path.wrap_u);
-        let transmission = vec3<f32>(
-            dot(params.channel_weights[0].xyz, rgb),
-            dot(params.channel_weights[1].xyz, rgb),
-            dot(params.channel_weights[2].xyz, rgb),
-        );
-        let extinction = params.extinction_per_m.xyz;
-        sum += params.scattering_per_m.xyz * light.emission.xyz * weight * transmission
-            * exp(-extinction * (path.distance_m + t));
+// The light of `light` scattered toward the camera per metre at `point`, distance `t`
+// along `dir`.
+fn in_scattering(light: BeamLight, point: vec3<f32>, t: f32, dir: vec3<f32>) -> vec3<f32> {
+    let path = light_path(light, point);
+    if !path.inside {
+        return vec3<f32>(0.0);
     }
-    return sum;
+    let seen = shadow_visibility(light, point, path.to_light, path.distance_m);
+    if seen <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let weight = beams_phase(dot(path.to_light, dir)) * path.factor * seen;
+    let rgb = light_map_rgb(light, path.uv, path.wrap_u);
+    let transmission = vec3<f32>(
+        dot(params.channel_weights[0].xyz, rgb),
+        dot(params.channel_weights[1].xyz, rgb),
+        dot(params.channel_weights[2].xyz, rgb),
+    );
+    let extinction = params.extinction_per_m.xyz;
+    return params.scattering_per_m.xyz * light.emission.xyz * weight * transmission
+        * exp(-extinction * (path.distance_m + t));
 }
 
 @compute @workgroup_size(8, 8)
@@ -56,10 +52,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let t_end = select(limit, hit, hit != MISS);
     let steps = params.size_steps_lights.z;
     let step = t_end / f32(steps);
+    // Light by light, each read once (the sum is the CPU's in another order).
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < steps; i++) {
-        let t = (f32(i) + 0.5) * step;
-        sum += in_scattering(dir * t, t, dir);
+    for (var l = 0u; l < params.size_steps_lights.w; l++) {
+        let light = lights[l];
+        for (var i = 0u; i < steps; i++) {
+            let t = (f32(i) + 0.5) * step;
+            sum += in_scattering(light, dir * t, t, dir);
+        }
     }
     textureStore(radiance_out, vec2<i32>(id.xy), vec4<f32>(sum * step, 1.0));
 }

@@ -8,8 +8,9 @@ use crate::gpu::error::RenderError;
 use crate::shafts::beams::gpu_scene::GpuScene;
 
 /// The loop trips one invocation of the march may run at most: the ray's end (every
-/// node and triangle of the hierarchy, every primitive), then per step the lights, and
-/// per light its shadow views, the planes tested beyond them and the phase table's rows.
+/// node and triangle of the hierarchy, every primitive), then per light its steps, and
+/// per step the light's shadow views, the planes tested beyond them and the phase
+/// table's rows.
 pub fn march_loop_trips(scene: &GpuScene) -> usize {
     let [_, _, steps, lights] = scene.uniform.size_steps_lights.map(|v| v as usize);
     let primitives = scene.primitives.len();
@@ -19,8 +20,8 @@ pub fn march_loop_trips(scene: &GpuScene) -> usize {
         .map(|l| l.view_count as usize)
         .max()
         .unwrap_or(0);
-    let per_light = 1 + views + primitives + scene.phase_table.len();
-    scene.nodes.len() + scene.triangles.len() / 3 + primitives + steps * (1 + lights * per_light)
+    let per_step = 1 + views + primitives + scene.phase_table.len();
+    scene.nodes.len() + scene.triangles.len() / 3 + primitives + lights * (1 + steps * per_step)
 }
 
 /// Nothing, or an error naming the image side, buffer or loop count of `scene` that
