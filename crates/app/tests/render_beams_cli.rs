@@ -76,7 +76,7 @@ fn beams_flags_that_do_not_apply_fail_clearly_and_write_nothing() {
             "a.png",
             "--altitude-m do not apply",
         ),
-        (&[], "a.exr", "EXR is not yet written for beams"),
+        (&[], "a.jpg", "must end in .exr"),
         (&["--width", "0"], "a.png", "--width 0 must be 1 to 8192"),
         (&["--exposure", "500"], "a.png", "--exposure 500 is outside"),
         (&["--set", "steps=0"], "a.png", "steps"),
@@ -115,4 +115,53 @@ fn beams_flags_that_do_not_apply_fail_clearly_and_write_nothing() {
     assert!(!output.status.success());
     assert!(err.contains("--model march is a beam method"), "{err}");
     assert!(!out.exists());
+}
+
+#[test]
+fn a_beams_scene_renders_to_an_exr_of_luminance_with_its_method() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("beams.exr");
+    let output = atmos(&[
+        "render",
+        "--scene",
+        SPHERE,
+        "--width",
+        "20",
+        "--height",
+        "30",
+        "--set",
+        "shadow_map_px=64",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    if skipped_without_adapter(&output) {
+        return;
+    }
+    assert!(output.status.success(), "{}", stderr(&output));
+    let image = exr::prelude::read_first_rgba_layer_from_file(
+        &out,
+        |size, _| vec![[0f32; 3]; size.width() * size.height()],
+        |pixels: &mut Vec<[f32; 3]>, p, (r, g, b, _): (f32, f32, f32, f32)| {
+            pixels[p.y() * 20 + p.x()] = [r, g, b];
+        },
+    )
+    .unwrap();
+    let layer = &image.layer_data;
+    let method = layer
+        .attributes
+        .other
+        .get(&exr::meta::attribute::Text::from("atmos:beam_method"));
+    assert!(
+        matches!(method, Some(exr::meta::attribute::AttributeValue::Text(t)) if t.to_string() == "march"),
+        "{method:?}"
+    );
+    // Linear values in cd/m^2: the beam between the light and the sphere is bright, the
+    // corners outside the cone are black.
+    let pixels = &layer.channel_data.pixels;
+    assert!(
+        pixels[6 * 20 + 10][1] > 100.0,
+        "beam {:?}",
+        pixels[6 * 20 + 10]
+    );
+    assert_eq!(pixels[0], [0.0; 3]);
 }

@@ -1,6 +1,6 @@
 //! `atmos render --scene FILE.toml` where the file is a beams scene (docs/beams.md):
-//! its camera's image rendered on the GPU by a beam method, tone-mapped as a planet
-//! frame is, and written atomically as a PNG. A scene file is a beams scene when it has
+//! its camera's image rendered on the GPU by a beam method and written atomically as a
+//! PNG (tone-mapped as a planet frame is) or an EXR (linear sRGB in cd/m^2). A scene file is a beams scene when it has
 //! a `[medium]` table or `[[lights]]`, which no planet scene has.
 
 use std::path::Path;
@@ -23,8 +23,11 @@ use render_wgpu::shafts::beams::march_pass::MarchPass;
 
 use crate::exposure_meter::metered_ev100;
 use crate::files::write_atomically;
-use crate::render::image_files::png_of_size;
+use crate::render::image_files::{exr_of_size, png_of_size};
 use crate::render::scene::{EXPOSURE_EV100, Output, Scene};
+
+/// What an EXR of a beams scene holds.
+const EXR_UNITS: &str = "linear sRGB (IEC 61966-2-1, D65) in cd/m^2, from spectral radiance at 680, 550, 440 nm (CIE 1931)";
 
 /// The beam methods on the GPU.
 pub const GPU_METHODS: [BeamMethodId; 1] = [BeamMethodId::March];
@@ -92,12 +95,7 @@ pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::R
             path.display()
         );
     }
-    let Output::Png(png) = Output::from_path(out)? else {
-        bail!(
-            "--out {}: a beams scene is written as PNG (tone-mapped); EXR is not yet written for beams",
-            out.display()
-        );
-    };
+    let output = Output::from_path(out)?;
     if let Some(ev) = f.exposure
         && !(ev.is_finite() && (EXPOSURE_EV100[0]..=EXPOSURE_EV100[1]).contains(&ev))
     {
@@ -140,20 +138,30 @@ pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::R
             &radiance,
         )),
     };
-    let pixels = image.tone_mapped(&gpu, ev100)?;
     let size = (scene.camera.width_px, scene.camera.height_px);
-    let text = [
+    let mut text = vec![
         ("atmos:beam_method", id.to_string()),
+        ("atmos:beam_settings", f.set.join(", ")),
+        ("atmos:beams_scene", path.display().to_string()),
         ("atmos:exposure_ev100", ev100.to_string()),
     ];
-    write_atomically(&png, &png_of_size(size, &pixels, &text, &[])?)?;
+    match &output {
+        Output::Png(png) => {
+            let pixels = image.tone_mapped(&gpu, ev100)?;
+            write_atomically(png, &png_of_size(size, &pixels, &text, &[])?)?;
+        }
+        Output::Exr(exr) => {
+            text.push(("atmos:units", EXR_UNITS.into()));
+            write_atomically(exr, &exr_of_size(size, None, &text, &radiance)?)?;
+        }
+    }
     let gpu_time = gpu_ms.map_or("no timestamps".into(), |ms| format!("march {ms:.1} ms"));
     eprintln!(
         "{}x{} beams {id} frame on {} in {elapsed:.1?} (GPU: {gpu_time}; EV100 {ev100:.1}); wrote {}",
         size.0,
         size.1,
         gpu.adapter_summary(),
-        png.display()
+        out.display()
     );
     Ok(())
 }
