@@ -152,7 +152,7 @@ fn a_beams_scene_renders_to_an_exr_of_luminance_with_its_method() {
         .other
         .get(&exr::meta::attribute::Text::from("atmos:beam_method"));
     assert!(
-        matches!(method, Some(exr::meta::attribute::AttributeValue::Text(t)) if t.to_string() == "march"),
+        matches!(method, Some(exr::meta::attribute::AttributeValue::Text(t)) if t == "march"),
         "{method:?}"
     );
     // Linear values in cd/m^2: the beam between the light and the sphere is bright, the
