@@ -166,6 +166,15 @@ pub struct BenchArgs {
     /// Frames measured per view (after one warm-up frame); the median is reported.
     #[arg(long, default_value_t = 5)]
     pub frames: usize,
+    /// A beams scene (docs/beams.md): also time beam methods on the GPU rendering its
+    /// camera at --width x --height, each frame interleaved with a baseline frame; the
+    /// planet models are then measured only when --model or --variant asks.
+    #[arg(long, value_name = "FILE.toml")]
+    pub beams_scene: Option<PathBuf>,
+    /// A beam method on the GPU with its settings for --beams-scene, e.g. "march
+    /// steps=32" (repeat the flag; keys in docs/beams/) [default: march].
+    #[arg(long, value_name = "METHOD KEY=VALUE ...", requires = "beams_scene")]
+    pub beams_variant: Vec<String>,
     /// Also write the tables to this Markdown file (atomically).
     #[arg(long, value_name = "FILE.md")]
     pub out: Option<PathBuf>,

@@ -41,20 +41,21 @@ pub fn is_beams_scene(path: &Path) -> anyhow::Result<bool> {
         .is_ok_and(|t| t.contains_key("medium") || t.contains_key("lights")))
 }
 
-/// The beam method of `--model` (default `march`), refused unless it is on the GPU.
-fn method(model: Option<&str>) -> anyhow::Result<BeamMethodId> {
+/// The beam method `model` (default `march`) given by `flag`, refused unless it is on
+/// the GPU.
+pub fn gpu_method(flag: &str, model: Option<&str>) -> anyhow::Result<BeamMethodId> {
     let Some(text) = model else {
         return Ok(BeamMethodId::March);
     };
     let id: BeamMethodId = text.parse().map_err(|_| {
         anyhow::anyhow!(
-            "--model {text}: a beams scene takes a beam method ({})",
+            "{flag} {text}: a beams scene takes a beam method ({})",
             BeamMethodId::list(&BeamMethodId::ALL)
         )
     })?;
     if !GPU_METHODS.contains(&id) {
         bail!(
-            "--model {id}: not yet on the GPU (beam methods on the GPU: {}; `atmos probe \
+            "{flag} {id}: not yet on the GPU (beam methods on the GPU: {}; `atmos probe \
              --scene` computes the others on the CPU)",
             BeamMethodId::list(&GPU_METHODS)
         );
@@ -86,7 +87,7 @@ fn planet_flags(f: &Scene) -> Vec<&'static str> {
 /// `--exposure`, `--set`) and method `model` to `out`; prints the adapter and the
 /// times on stderr.
 pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::Result<()> {
-    let id = method(model)?;
+    let id = gpu_method("--model", model)?;
     let unused = planet_flags(f);
     if !unused.is_empty() {
         bail!(
