@@ -119,7 +119,7 @@ pub struct NodeUniform {
     pub count: u32,
 }
 
-/// The lights' scene packed for the march pass.
+/// A beams scene packed for the march pass.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct GpuScene {
     pub uniform: BeamsUniform,

@@ -65,3 +65,44 @@ pub fn check_trips(scene: &GpuScene) -> Result<(), RenderError> {
     check_loop_trips("march", &what, march_loop_trips(scene))?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shafts::beams::gpu_scene::LightUniform;
+
+    fn scene(width: u32, steps: u32, depths: usize) -> GpuScene {
+        let mut scene = GpuScene {
+            lights: vec![LightUniform {
+                view_count: 1,
+                ..Default::default()
+            }],
+            depths: vec![0.0; depths],
+            ..Default::default()
+        };
+        scene.uniform.size_steps_lights = [width, 10, steps, 1];
+        scene
+    }
+
+    #[test]
+    fn what_does_not_fit_the_device_is_named() {
+        let limits = wgpu::Limits {
+            max_texture_dimension_2d: 8192,
+            max_storage_buffer_binding_size: 4096,
+            ..wgpu::Limits::default()
+        };
+        assert!(check(&scene(8192, 128, 1024), &limits).is_ok());
+        let err = check(&scene(8193, 128, 1024), &limits).unwrap_err();
+        assert!(err.to_string().contains("8193x10 px exceeds"), "{err}");
+        let err = check(&scene(64, 128, 1025), &limits).unwrap_err();
+        assert!(
+            err.to_string().contains("shadow maps take 4100 bytes"),
+            "{err}"
+        );
+        // One light with one view: 1 + steps x 2 trips.
+        assert_eq!(march_loop_trips(&scene(64, 100, 0)), 201);
+        assert!(check(&scene(64, 16383, 0), &limits).is_ok());
+        let err = check(&scene(64, 16384, 0), &limits).unwrap_err();
+        assert!(err.to_string().contains("32769 loop trips"), "{err}");
+    }
+}
