@@ -103,6 +103,66 @@ fn gpu_march_matches_the_cpu_march_on_the_shipped_scenes() {
     }
 }
 
+/// A point light with a light map (its azimuth wraps) and six shadow views, a spot,
+/// a box, a sphere and a quad, and a tabulated phase function: what no shipped scene
+/// holds.
+const POINT_LIGHT_SCENE: &str = r#"
+[medium]
+scattering_per_m = { kind = "constant", value = 0.05 }
+absorption_per_m = { kind = "constant", value = 0.01 }
+phase = { kind = "tabulated", angles_deg = [0.0, 30.0, 90.0, 150.0, 180.0], values = [4.0, 2.0, 1.0, 0.8, 1.2] }
+
+[camera]
+position_m = [1.0, 3.0, 14.0]
+look_at_m = [0.0, 3.0, 0.0]
+vertical_fov_deg = 60.0
+width_px = 48
+height_px = 36
+
+[[lights]]
+kind = "point"
+position_m = [0.5, 4.0, 0.0]
+intensity_w_sr_nm = { kind = "constant", value = 300.0 }
+axis = [0.3, -1.0, 0.0]
+light_map = "gobo_dots.png"
+
+[[lights]]
+kind = "spot"
+position_m = [-4.0, 8.0, 1.0]
+direction = [0.4, -1.0, 0.0]
+cone_deg = 20.0
+falloff_exponent = 2.0
+intensity_w_sr_nm = { kind = "constant", value = 800.0 }
+
+[[occluders]]
+kind = "box"
+min_m = [-1.5, 1.0, -1.0]
+max_m = [-0.5, 2.0, 1.0]
+
+[[occluders]]
+kind = "sphere"
+center_m = [1.8, 3.5, 0.5]
+radius_m = 0.6
+
+[[occluders]]
+kind = "quad"
+corner_m = [-6.0, 0.0, -5.0]
+edge_u_m = [12.0, 0.0, 0.0]
+edge_v_m = [0.0, 10.0, 0.0]
+"#;
+
+#[test]
+fn gpu_march_matches_the_cpu_march_with_a_point_light_and_a_tabulated_phase() {
+    let Some(gpu) = gpu_or_skip("beams march parity, point light") else {
+        return;
+    };
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/beams");
+    let scene = BeamScene::from_toml(POINT_LIGHT_SCENE, "point.toml", &folder).unwrap();
+    let pass = MarchPass::new(&gpu).unwrap();
+    let (cpu, gpu_pixels) = both(&gpu, &pass, &scene);
+    check("point light", &cpu, &gpu_pixels);
+}
+
 #[test]
 fn the_sphere_darkens_the_air_in_its_shadow_as_on_the_cpu() {
     let Some(gpu) = gpu_or_skip("beams march shadow") else {
