@@ -166,6 +166,15 @@ pub struct BenchArgs {
     /// Frames measured per view (after one warm-up frame); the median is reported.
     #[arg(long, default_value_t = 5)]
     pub frames: usize,
+    /// A beams scene (docs/beams.md): also time beam methods on the GPU rendering its
+    /// camera at --width x --height, each frame interleaved with a baseline frame; the
+    /// planet models are then measured only when --model or --variant asks.
+    #[arg(long, value_name = "FILE.toml")]
+    pub beams_scene: Option<PathBuf>,
+    /// A beam method on the GPU with its settings for --beams-scene, e.g. "march
+    /// steps=32" (repeat the flag; keys in docs/beams/) [default: march].
+    #[arg(long, value_name = "METHOD KEY=VALUE ...", requires = "beams_scene")]
+    pub beams_variant: Vec<String>,
     /// Also write the tables to this Markdown file (atomically).
     #[arg(long, value_name = "FILE.md")]
     pub out: Option<PathBuf>,
@@ -218,8 +227,15 @@ pub struct RecordArgs {
 pub struct RenderArgs {
     /// A scene file (TOML) with the fields of the flags below (model, altitude_m,
     /// sun_zenith_deg, ..., set); flags given as well override its fields.
+    /// A beams scene (docs/beams.md: a file with `[medium]` and `[[lights]]`) is
+    /// rendered from its own camera; of the flags below it takes --model (a beam
+    /// method on the GPU: march), --width, --height, --exposure and --set.
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
+    /// Scattering model (every sky model but the reference is on the GPU), or with a
+    /// beams scene a beam method [default: march].
+    #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]
+    pub model: Option<String>,
     #[command(flatten)]
     pub fields: crate::render::scene::Scene,
     /// The flags of the scene's `latitude_deg` and `longitude_deg`.

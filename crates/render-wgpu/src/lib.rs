@@ -18,6 +18,7 @@ pub mod frame;
 pub mod gpu;
 pub mod post;
 pub mod renderer;
+pub mod shafts;
 pub mod sky;
 pub mod terrain;
 

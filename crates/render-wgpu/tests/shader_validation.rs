@@ -12,6 +12,9 @@ use render_wgpu::frame::atmosphere_uniform::{
     AtmosphereUniform, DensityLayerUniform, DensityProfileUniform,
 };
 use render_wgpu::gpu::shaders;
+use render_wgpu::shafts::beams::gpu_scene::{
+    BeamsUniform, LightUniform, NodeUniform, PrimitiveUniform, ShadowViewUniform,
+};
 
 /// What the device offers shaders: WebGPU's defaults (naga's default capabilities).
 /// Add a capability here when `GpuContext` starts requesting the feature behind it.
@@ -419,5 +422,54 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             full,
             shares
         ]
+    );
+}
+
+#[test]
+fn beams_structs_match_their_wgsl_layouts() {
+    assert_layout!(
+        "shafts/beams/march.wgsl",
+        "BeamsParams",
+        BeamsUniform,
+        [
+            camera_right,
+            camera_up,
+            camera_forward,
+            scattering_per_m,
+            extinction_per_m,
+            channel_weights,
+            size_steps_lights,
+            counts,
+            phase
+        ]
+    );
+    assert_layout!(
+        "shafts/beams/march.wgsl",
+        "BeamLight",
+        LightUniform,
+        [
+            position, frame_x, frame_y, frame_z, beam, emission, kind, map_offset, map_width,
+            map_height, first_view, view_count, pad0, pad1
+        ]
+    );
+    assert_layout!(
+        "shafts/beams/march.wgsl",
+        "ShadowView",
+        ShadowViewUniform,
+        [
+            origin, frame_x, frame_y, frame_z, half, kind, size, offset, pad
+        ]
+    );
+    assert_layout!(
+        "shafts/beams/march.wgsl",
+        "Primitive",
+        PrimitiveUniform,
+        [a, b, c, kind, pad0, pad1, pad2]
+    );
+    assert_layout!(
+        "shafts/beams/march.wgsl",
+        "BvhNode",
+        NodeUniform,
+        [min, first, max, count]
     );
 }

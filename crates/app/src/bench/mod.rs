@@ -5,6 +5,7 @@
 //! frames after a warm-up frame (which compiles shaders and builds tables).
 
 pub mod baseline;
+pub mod beams;
 pub mod timing;
 pub mod variant;
 pub mod views;
@@ -265,11 +266,26 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         .iter()
         .map(|text| Variant::parse(text))
         .collect::<anyhow::Result<Vec<_>>>()?;
-    let variants = variants(&args.model, &extra);
+    let beam_variants = match (&args.beams_scene, args.beams_variant.is_empty()) {
+        (None, _) => Vec::new(),
+        (Some(_), true) => vec![beams::BeamVariant::parse("march")?],
+        (Some(_), false) => args
+            .beams_variant
+            .iter()
+            .map(|text| beams::BeamVariant::parse(text))
+            .collect::<anyhow::Result<Vec<_>>>()?,
+    };
+    let variants = if args.beams_scene.is_some() && args.model.is_empty() && extra.is_empty() {
+        vec![baseline()]
+    } else {
+        variants(&args.model, &extra)
+    };
     let mut renderer = Renderer::headless()?;
     let adapter = renderer.gpu().adapter_summary();
     let per_variant = 1 + args.frames + BENCH_VIEWS.len() * (1 + args.frames);
-    let progress = Progress::new("bench", "frames", (variants.len() * per_variant) as u64);
+    let total =
+        variants.len() * per_variant + beam_variants.len() * beams::frames_per_variant(args.frames);
+    let progress = Progress::new("bench", "frames", total as u64);
     let mut results = Vec::new();
     for variant in &variants {
         results.push(measure(
@@ -280,8 +296,17 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             &progress,
         )?);
     }
+    let mut beam_results = Vec::new();
+    if let Some(path) = &args.beams_scene {
+        let base = frame(&baseline(), &BENCH_VIEWS[0], &atmosphere, args)?;
+        let size = ((args.width, args.height), args.frames);
+        beam_results = beams::measure(&mut renderer, &base, path, &beam_variants, size, &progress)?;
+    }
     progress.finish();
-    let text = markdown(&adapter, args, &results);
+    let mut text = markdown(&adapter, args, &results);
+    if let Some(path) = &args.beams_scene {
+        text.push_str(&beams::markdown(path, BASELINE, &beam_results));
+    }
     std::io::stdout().lock().write_all(text.as_bytes())?;
     if let Some(path) = &args.out {
         write_atomically(path, text.as_bytes())?;

@@ -29,12 +29,22 @@ pub fn png_bytes(
     text: &[(&str, String)],
     utf8_text: &[(&str, String)],
 ) -> anyhow::Result<Vec<u8>> {
-    if pixels.len() != frame.width as usize * frame.height as usize {
+    png_of_size((frame.width, frame.height), pixels, text, utf8_text)
+}
+
+/// As [`png_bytes`], for an image of (width, height) pixels of any scene.
+pub fn png_of_size(
+    (width, height): (u32, u32),
+    pixels: &[[u8; 4]],
+    text: &[(&str, String)],
+    utf8_text: &[(&str, String)],
+) -> anyhow::Result<Vec<u8>> {
+    if pixels.len() != width as usize * height as usize {
         bail!("pixel count does not match the image size");
     }
     let rgb: Vec<u8> = pixels.iter().flat_map(|p| [p[0], p[1], p[2]]).collect();
     let mut bytes = Vec::new();
-    let mut encoder = png::Encoder::new(&mut bytes, frame.width, frame.height);
+    let mut encoder = png::Encoder::new(&mut bytes, width, height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
@@ -110,9 +120,34 @@ pub fn exr_bytes(
     attributes: &[(&str, String)],
     radiance: &[[f32; 4]],
 ) -> anyhow::Result<Vec<u8>> {
+    // OpenEXR's standard place of the image: the camera's planetocentric latitude and
+    // longitude, degrees, and its altitude above the ground sphere, m.
+    let camera = frame.camera_position_m;
+    let radius_m = camera.length();
+    let place = [
+        (camera.z / radius_m).asin().to_degrees(),
+        camera.y.atan2(camera.x).to_degrees(),
+        radius_m - frame.atmosphere.bottom_radius_m,
+    ];
+    exr_of_size(
+        (frame.width, frame.height),
+        Some(place),
+        attributes,
+        radiance,
+    )
+}
+
+/// As [`exr_bytes`], for an image of (width, height) pixels of any scene, with the
+/// camera's latitude, longitude (degrees) and altitude (m) where it is on a planet.
+pub fn exr_of_size(
+    (width, height): (u32, u32),
+    place: Option<[f64; 3]>,
+    attributes: &[(&str, String)],
+    radiance: &[[f32; 4]],
+) -> anyhow::Result<Vec<u8>> {
     let to_srgb = SpectrumToColor::new(&RGB_WAVELENGTHS_NM)?;
-    let width = frame.width as usize;
-    if radiance.len() != width * frame.height as usize {
+    let width = width as usize;
+    if radiance.len() != width * height as usize {
         bail!("pixel count does not match the image size");
     }
     let srgb: Vec<[f32; 3]> = radiance
@@ -125,13 +160,11 @@ pub fn exr_bytes(
         .collect();
     let mut layer_attributes = LayerAttributes::named("atmos");
     layer_attributes.software_name = Some(Text::from("atmos"));
-    // OpenEXR's standard place of the image: the camera's planetocentric latitude and
-    // longitude, degrees, and its altitude above the ground sphere, m.
-    let camera = frame.camera_position_m;
-    let radius_m = camera.length();
-    layer_attributes.latitude = Some((camera.z / radius_m).asin().to_degrees() as f32);
-    layer_attributes.longitude = Some(camera.y.atan2(camera.x).to_degrees() as f32);
-    layer_attributes.altitude = Some((radius_m - frame.atmosphere.bottom_radius_m) as f32);
+    if let Some([latitude, longitude, altitude]) = place {
+        layer_attributes.latitude = Some(latitude as f32);
+        layer_attributes.longitude = Some(longitude as f32);
+        layer_attributes.altitude = Some(altitude as f32);
+    }
     for (name, value) in attributes {
         let text = Text::new_or_none(value)
             .with_context(|| format!("header attribute {name} has characters EXR cannot hold"))?;
@@ -140,7 +173,7 @@ pub fn exr_bytes(
             .insert(Text::from(*name), AttributeValue::Text(text));
     }
     let layer = Layer::new(
-        (width, frame.height as usize),
+        (width, height as usize),
         layer_attributes,
         // Tiles in increasing order: the same image always gives the same bytes.
         Encoding {

@@ -1,6 +1,7 @@
 //! `atmos render`: one frame of a scene, headless, to an EXR (linear HDR) or a PNG
 //! (tone-mapped) file.
 
+pub mod beams;
 pub mod image_files;
 pub mod scene;
 pub mod sun_disk_clip;
@@ -20,7 +21,17 @@ use sun_disk_clip::sun_disk_clip_warning;
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let output = Output::from_path(&args.out)?;
     check_writable(&args.out)?;
-    let flags = args.fields.clone().at(&args.location);
+    let mut flags = args.fields.clone().at(&args.location);
+    if let Some(path) = &args.scene
+        && beams::is_beams_scene(path)?
+    {
+        return beams::run(path, &flags, args.model.as_deref(), &args.out);
+    }
+    if let Some(model) = &args.model {
+        flags.model = Some(model.parse().map_err(|_| {
+            anyhow::anyhow!("--model {model} is a beam method: give a beams scene with --scene")
+        })?);
+    }
     let scene = match &args.scene {
         Some(path) => Scene::load(path)?
             .overridden_by(flags)

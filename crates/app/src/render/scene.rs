@@ -38,8 +38,9 @@ pub const EXPOSURE_EV100: [f64; 2] = [-60.0, 100.0];
 #[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
-    /// Scattering model (every model but the reference is on the GPU).
-    #[arg(long, value_enum)]
+    /// Scattering model (every model but the reference is on the GPU); the flag is
+    /// `RenderArgs::model`, which a beams scene reads as a beam method.
+    #[arg(skip)]
     pub model: Option<ModelId>,
     /// Camera altitude above the ground, m, in [0, 1e10].
     #[arg(long, value_name = "M", allow_negative_numbers = true)]

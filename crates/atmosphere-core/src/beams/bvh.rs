@@ -10,16 +10,16 @@ use crate::beams::triangle::Triangle;
 const LEAF_SIZE: usize = 4;
 /// The traversal stack: depth is about log2(triangles / LEAF_SIZE) + 1, so 64 holds any
 /// mesh that fits in memory.
-const STACK_DEPTH: usize = 64;
+pub const STACK_DEPTH: usize = 64;
 
 /// A node: its box, and either two children (`count == 0`: `first` is the left child,
 /// the right one follows it) or `count` triangles from `first`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Node {
-    min: DVec3,
-    max: DVec3,
-    first: usize,
-    count: usize,
+pub struct Node {
+    pub min: DVec3,
+    pub max: DVec3,
+    pub first: usize,
+    pub count: usize,
 }
 
 /// Triangles reordered into leaves, and the nodes over them (the root first).
@@ -78,6 +78,16 @@ impl Bvh {
     }
 
     /// How many triangles it holds.
+    /// The triangles in leaf order (what a GPU traversal uploads with [`Bvh::nodes`]).
+    pub fn triangles(&self) -> &[Triangle] {
+        &self.triangles
+    }
+
+    /// The nodes, the root first.
+    pub fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+
     pub fn len(&self) -> usize {
         self.triangles.len()
     }

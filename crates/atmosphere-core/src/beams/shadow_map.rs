@@ -15,7 +15,7 @@ use crate::beams::occluders::Occluders;
 
 /// How a map's texels are laid out from the light.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Projection {
+pub enum Projection {
     /// From `apex` through the square of tangents [-tan_half, tan_half]^2 about
     /// `frame.z`; depth is the distance from the apex.
     Perspective {
@@ -32,12 +32,13 @@ enum Projection {
     },
 }
 
-/// One square depth image.
+/// One square depth image: `size` x `size` distances from the light, m, row by row
+/// from the top (infinite where no occluder is met).
 #[derive(Clone, Debug, PartialEq)]
-struct View {
-    projection: Projection,
-    size: usize,
-    depth_m: Vec<f32>,
+pub struct View {
+    pub projection: Projection,
+    pub size: usize,
+    pub depth_m: Vec<f32>,
 }
 
 /// A light's shadow map; no views when nothing can shadow the light.
@@ -85,6 +86,11 @@ impl ShadowMap {
             .map(|projection| View::render(projection, occluders, size))
             .collect();
         ShadowMap { views }
+    }
+
+    /// The depth images, looked up in this order (what a GPU pass uploads).
+    pub fn views(&self) -> &[View] {
+        &self.views
     }
 
     /// The lit fraction, in [0, 1], of `point` on `path` to the light. Points outside

@@ -71,4 +71,9 @@ pub enum RenderError {
     Gpu(#[from] GpuError),
     #[error("terrain: {0}")]
     Terrain(#[from] crate::terrain::MapError),
+    /// A beams scene that cannot be prepared, or does not fit the device.
+    #[error(transparent)]
+    Beams(#[from] atmosphere_core::beams::error::BeamError),
+    #[error("the beams scene does not fit the GPU: {0}")]
+    BeamsTooLarge(String),
 }

@@ -74,6 +74,21 @@ impl March {
             settings: own,
         })
     }
+
+    /// The settings read from the options.
+    pub fn settings(&self) -> MarchSettings {
+        self.settings
+    }
+
+    /// The scene's lights and medium at the method's wavelengths.
+    pub fn scattering(&self) -> &InScattering {
+        &self.scattering
+    }
+
+    /// Each light's shadow map, in the scene's order.
+    pub fn shadow_maps(&self) -> &[ShadowMap] {
+        &self.shadow_maps
+    }
 }
 
 impl BeamMethod for March {

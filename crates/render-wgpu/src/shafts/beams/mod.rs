@@ -1,0 +1,18 @@
+//! Light beams of local scenes on the GPU (docs/beams.md, "On the GPU"): lights through
+//! a homogeneous medium with occluders casting shadows into the air, after Dobashi,
+//! Yamamoto and Nishita 2000. The CPU specification is atmosphere-core's `beams/`.
+//!
+//! - [`gpu_scene`]: the scene packed for the shaders (lights, light maps, shadow maps,
+//!   occluders, phase function), relative to the camera;
+//! - [`limits`]: what the device must hold, checked before anything is made;
+//! - [`march_pass`]: the per-pixel ray march with shadow maps
+//!   (`shaders/shafts/beams/march.wgsl`), twin of `beams/methods/march.rs`;
+//! - [`image`]: the rendered radiance, tone-mapped as a planet frame is, read back.
+//!
+//! The shadow maps are those the CPU march builds (a ray per texel), uploaded: the
+//! parity of GPU and CPU then rests on the march alone.
+
+pub mod gpu_scene;
+pub mod image;
+pub mod limits;
+pub mod march_pass;

@@ -1,0 +1,4 @@
+//! Light in the air cut by shadows: the local light beams of lights through a
+//! homogeneous medium ([`beams`]).
+
+pub mod beams;
