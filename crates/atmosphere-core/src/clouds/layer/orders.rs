@@ -78,3 +78,54 @@ impl ScatteringOrders {
         self.forward[w][n.clamp(1, ORDERS) - 1]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::numerics::gauss_legendre_rule::gauss_legendre;
+    use crate::optics::phase::henyey_greenstein;
+
+    /// Henyey-Greenstein's A_n is Henyey-Greenstein with g^n (its Legendre coefficients
+    /// are g^l): the table at its angles, its unit integral (trapezoid in angle) and
+    /// F_n = (1 + g) / (2 g) - (1 - g^2) / (2 g sqrt(1 + g^2)) with g = 0.7^n.
+    #[test]
+    fn henyey_greenstein_tables_are_henyey_greenstein_powers() {
+        let rule = gauss_legendre(400);
+        let values: Vec<f64> = rule
+            .iter()
+            .map(|&(nu, _)| henyey_greenstein(0.7, nu))
+            .collect();
+        let orders =
+            ScatteringOrders::new(&[LegendreSeries::from_gauss_rule(&rule, &values, 200)]).unwrap();
+        for n in [1usize, 2, 5, 26] {
+            let g = 0.7f64.powi(n as i32);
+            for nu in [-1.0, -0.3, 0.2, 0.9, 1.0] {
+                let table = orders.distribution(0, n, nu);
+                let exact = henyey_greenstein(g, nu);
+                assert!(
+                    (table / exact - 1.0).abs() < 2e-3,
+                    "A_{n}({nu}) = {table}, {exact}"
+                );
+            }
+            let row = &orders.table(0)[(n - 1) * ANGLES..n * ANGLES];
+            let step = std::f64::consts::PI / (ANGLES - 1) as f64;
+            let integral: f64 = row
+                .windows(2)
+                .enumerate()
+                .map(|(k, a)| {
+                    let (t0, t1) = (k as f64 * step, (k + 1) as f64 * step);
+                    0.5 * step * (a[0] * t0.sin() + a[1] * t1.sin())
+                })
+                .sum::<f64>()
+                * 2.0
+                * std::f64::consts::PI;
+            assert!((integral - 1.0).abs() < 1e-3, "A_{n}: integral {integral}");
+            let forward = (1.0 + g) / (2.0 * g) - (1.0 - g * g) / (2.0 * g * (1.0 + g * g).sqrt());
+            assert!(
+                (orders.forward_fraction(0, n) - forward).abs() < 1e-6,
+                "F_{n}"
+            );
+        }
+        assert!(ScatteringOrders::new(&[]).is_err());
+    }
+}
