@@ -7,6 +7,7 @@
 //! - [`sky`]: each scattering model's tables and per-pixel pass behind one trait, and the
 //!   registry that makes them;
 //! - [`terrain`]: the planet's relief and colour, drawn into the frame's surface;
+//! - [`clouds`]: the cloud layer's ray march;
 //! - [`post`]: tone mapping and the luminance measured for exposure;
 //! - [`Renderer`] ties them: tables are kept between frames and rebuilt only when an
 //!   input they depend on changed, as the frame's plan says (docs/rendering.md).
@@ -14,6 +15,7 @@
 //! Every shader has a CPU twin in atmosphere-core and matches it within a tolerance
 //! checked by a parity test in `tests/`.
 
+pub mod clouds;
 pub mod frame;
 pub mod gpu;
 pub mod post;

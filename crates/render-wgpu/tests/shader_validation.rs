@@ -473,3 +473,27 @@ fn beams_structs_match_their_wgsl_layouts() {
         [min, first, max, count]
     );
 }
+
+#[test]
+fn cloud_layer_uniform_matches_its_wgsl_layout() {
+    use render_wgpu::clouds::layer_uniform::LayerUniform;
+    assert_layout!(
+        "clouds/layer_image.wgsl",
+        "LayerParams",
+        LayerUniform,
+        [
+            camera_m,
+            forward,
+            right,
+            up,
+            sun_direction,
+            sun_irradiance,
+            sky_irradiance,
+            radii_m,
+            medium,
+            detail,
+            counts,
+            sizes
+        ]
+    );
+}

@@ -8,6 +8,7 @@
 pub mod cover;
 pub mod error;
 pub mod estimate;
+pub mod layer;
 pub mod medium;
 pub mod phase;
 pub mod slab;

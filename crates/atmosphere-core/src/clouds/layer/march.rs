@@ -1,0 +1,163 @@
+//! The ray march of one view ray through a cloud medium: the light it scatters towards
+//! the camera and its transmittance, per wavelength.
+//!
+//! The segment `[t0, t1]` is cut into `steps` equal steps, each sampled at its middle.
+//! A step of extinction sigma adds, with the energy-conserving integral over the step of
+//! Hillaire 2016 ("Physically based sky, atmosphere and cloud rendering in Frostbite"),
+//!     T_view (1 - exp(-sigma dt)) albedo (J_sun + J_sky)
+//! and multiplies T_view by exp(-sigma dt). The sun's source J_sun comes from a shadow
+//! march of `shadow_steps` equal steps from the sample to the medium's boundary towards
+//! the sun:
+//! - Riley et al. 2004 section 4.2 ([`LayerMethod::Riley`]): walking in from the
+//!   boundary, the intensity keeps per step I <- I (T + (1 - T) (albedo F_m)^(sigma ds))
+//!   with m = floor(n + 1 + sigma ds) (Eq. 25, the worst case of Eq. 24), n = albedo tau
+//!   the expected number of scatterings so far (Eq. 22); then
+//!   J_sun = E_sun I (A_(floor(n)+1)(theta) + xi) (Eq. 26), theta the angle between the
+//!   view ray and the sun.
+//! - the octaves of Wrenninge et al. 2013 ([`LayerMethod::Octaves`]):
+//!   J_sun = E_sun sum_i a^i exp(-b^i tau) (c^i A_1(theta) + (1 - c^i) / (4 pi)),
+//!   a = b = c = 1/2.
+//!
+//! The sky's light is isotropic from the upper hemisphere: a horizontal irradiance E_sky
+//! is a radiance E_sky / pi over 2 pi sr, of which an isotropic scatterer sends
+//! E_sky / (2 pi) per steradian, dimmed by exp(-sigma h) with h the distance to the
+//! boundary straight up (one sample of the density above: the ambient's attenuation).
+//! The march stops once T_view < [`MIN_TRANSMITTANCE`].
+
+use glam::DVec3;
+
+use super::orders::ScatteringOrders;
+use super::settings::{LayerMethod, LayerSettings, MAX_SHADOW_STEPS};
+use crate::clouds::medium::CloudMedium;
+
+/// The view transmittance below which what lies behind is left out.
+pub const MIN_TRANSMITTANCE: f64 = 1e-4;
+/// Wrenninge et al. 2013's octave factors a (scattering), b (extinction), c (phase).
+pub const OCTAVE_A: f64 = 0.5;
+pub const OCTAVE_B: f64 = 0.5;
+pub const OCTAVE_C: f64 = 0.5;
+
+/// What lights the cloud, per wavelength, taken where the view ray enters it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CloudLight {
+    /// Unit vector towards the sun.
+    pub sun_direction: DVec3,
+    /// The sun's irradiance on a plane facing it, through the atmosphere, W m^-2 nm^-1.
+    pub sun_irradiance: Vec<f64>,
+    /// The sky's irradiance on a horizontal plane, W m^-2 nm^-1.
+    pub sky_irradiance: Vec<f64>,
+    /// The local vertical (unit).
+    pub up: DVec3,
+}
+
+/// A view ray's segment through the medium.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MarchRay {
+    pub origin: DVec3,
+    /// Unit vector.
+    pub direction: DVec3,
+    pub t0: f64,
+    pub t1: f64,
+}
+
+/// What the march answers, per wavelength.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CloudSegment {
+    /// Radiance scattered towards the camera at the segment's start, W m^-2 sr^-1 nm^-1.
+    pub radiance: Vec<f64>,
+    /// Transmittance of the segment.
+    pub transmittance: Vec<f64>,
+}
+
+/// Marches `ray` through `medium` lit by `light`, with the multiple-scattering tables
+/// `orders` (one per wavelength of the light) and the method and steps of `settings`.
+pub fn march(
+    medium: &impl CloudMedium,
+    ray: &MarchRay,
+    light: &CloudLight,
+    orders: &ScatteringOrders,
+    settings: &LayerSettings,
+) -> CloudSegment {
+    let waves = light.sun_irradiance.len();
+    let mut radiance = vec![0.0; waves];
+    let mut transmittance = 1.0;
+    let dt = (ray.t1 - ray.t0).max(0.0) / settings.steps as f64;
+    let nu = ray.direction.dot(light.sun_direction);
+    for i in 0..settings.steps {
+        let p = ray.origin + ray.direction * (ray.t0 + (i as f64 + 0.5) * dt);
+        let sigma = medium.extinction(p);
+        if sigma <= 0.0 {
+            continue;
+        }
+        let albedo = medium.single_scattering_albedo(p);
+        let step_t = (-sigma * dt).exp();
+        let weight = transmittance * (1.0 - step_t) * albedo;
+        let up_depth = sigma * medium.distance_to_boundary(p, light.up);
+        let sky = (-up_depth).exp() / (2.0 * std::f64::consts::PI);
+        let sun = sun_source(medium, p, light, orders, settings, nu, albedo);
+        for w in 0..waves {
+            radiance[w] +=
+                weight * (light.sun_irradiance[w] * sun[w] + light.sky_irradiance[w] * sky);
+        }
+        transmittance *= step_t;
+        if transmittance < MIN_TRANSMITTANCE {
+            break;
+        }
+    }
+    CloudSegment {
+        radiance,
+        transmittance: vec![transmittance; waves],
+    }
+}
+
+/// J_sun / E_sun at `p` per wavelength, sr^-1 (the module's equations).
+fn sun_source(
+    medium: &impl CloudMedium,
+    p: DVec3,
+    light: &CloudLight,
+    orders: &ScatteringOrders,
+    settings: &LayerSettings,
+    nu: f64,
+    albedo: f64,
+) -> Vec<f64> {
+    let steps = settings.shadow_steps.min(MAX_SHADOW_STEPS) as usize;
+    let length = medium.distance_to_boundary(p, light.sun_direction);
+    let ds = length / steps as f64;
+    // Optical depths of the shadow steps, from the boundary inwards.
+    let mut depths = [0.0; MAX_SHADOW_STEPS as usize];
+    for (k, depth) in depths.iter_mut().enumerate().take(steps) {
+        let q = p + light.sun_direction * (length - (k as f64 + 0.5) * ds);
+        *depth = medium.extinction(q) * ds;
+    }
+    let tau: f64 = depths[..steps].iter().sum();
+    (0..orders.wavelengths())
+        .map(|w| match settings.method {
+            LayerMethod::Riley => {
+                let mut intensity = 1.0;
+                let mut walked = 0.0;
+                for &d in &depths[..steps] {
+                    let n = albedo * walked;
+                    let m = (n + 1.0 + d).floor() as usize;
+                    let kept = albedo * orders.forward_fraction(w, m);
+                    let t = (-d).exp();
+                    intensity *= t + (1.0 - t) * kept.powf(d);
+                    walked += d;
+                }
+                let n = (albedo * tau).floor() as usize + 1;
+                intensity * (orders.distribution(w, n, nu) + settings.backscatter_xi)
+            }
+            LayerMethod::Octaves => {
+                let single = orders.distribution(w, 1, nu);
+                let isotropic = 1.0 / (4.0 * std::f64::consts::PI);
+                (0..settings.octaves as i32)
+                    .map(|i| {
+                        let c = OCTAVE_C.powi(i);
+                        OCTAVE_A.powi(i)
+                            * (-OCTAVE_B.powi(i) * tau).exp()
+                            * (c * single + (1.0 - c) * isotropic)
+                    })
+                    .sum()
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,141 @@
+//! What the cloud layer pass costs against the hillaire sky pass, in one run on one
+//! device at 1280 x 720: the hillaire frame of a flight view under the layer (500 m up,
+//! looking 10 degrees above the horizon, sun 30 degrees up) through the `Renderer` (its per-step GPU
+//! times), then the cloud layer pass of the same view over the generated cover, both
+//! methods, at the default steps (48 view, 8 shadow); rounds interleaved, medians. The
+//! cloud pass is timed by the wall clock around its dispatch and read-back (lavapipe's
+//! timestamps around a lone compute pass read about 0.1 ms whatever it does).
+//!
+//! Run: `cargo bench -p render-wgpu --bench cloud_layer` (on lavapipe:
+//! `WGPU_BACKEND=vulkan VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json`).
+
+use std::time::Instant;
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::clouds::cover::generated::{CoverParameters, GeneratedCover};
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::march::CloudLight;
+use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
+use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
+use atmosphere_core::optics::legendre_series::LegendreSeries;
+use atmosphere_core::optics::phase::henyey_greenstein;
+use glam::DVec3;
+use render_wgpu::Renderer;
+use render_wgpu::clouds::layer_inputs::LayerInputs;
+use render_wgpu::clouds::layer_pass::CloudLayerPass;
+use render_wgpu::clouds::layer_uniform::{LayerCamera, LayerUniform};
+use render_wgpu::frame::{Frame, LocalView};
+
+const ROUNDS: usize = 2;
+const WIDTH: u32 = 1280;
+const HEIGHT: u32 = 720;
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+fn main() {
+    let view = LocalView {
+        altitude_m: 500.0,
+        view_zenith_deg: 80.0,
+        view_azimuth_deg: 0.0,
+        sun_zenith_deg: 60.0,
+        sun_azimuth_deg: 40.0,
+    };
+    let atmosphere = Atmosphere::preset("earth").unwrap();
+    let frame = Frame {
+        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
+        orientation: view.orientation(),
+        vertical_fov_deg: 60.0,
+        sun_direction: view.sun_direction(),
+        atmosphere: atmosphere.clone(),
+        model: ModelId::Hillaire,
+        settings: ModelSettings::default(),
+        exposure_ev100: 14.0,
+        width: WIDTH,
+        height: HEIGHT,
+        terrain: None,
+    };
+    let mut renderer = Renderer::headless().expect("a GPU adapter");
+    let cover = GeneratedCover::new(CoverParameters::default()).unwrap();
+    let grid = CoverGrid::rasterize(1024, 512, |p| cover.cover(p)).unwrap();
+    let rule = gauss_legendre(600);
+    let values: Vec<f64> = rule
+        .iter()
+        .map(|&(nu, _)| henyey_greenstein(0.85, nu))
+        .collect();
+    let series = LegendreSeries::from_gauss_rule(&rule, &values, 300);
+    let orders = ScatteringOrders::new(&vec![series; 3]).unwrap();
+    let gpu = renderer.gpu();
+    let inputs = LayerInputs::new(gpu, &grid, &orders).unwrap();
+    let pass = CloudLayerPass::new(gpu).unwrap();
+    let orientation = frame.orientation;
+    let camera = LayerCamera {
+        position_m: frame.camera_position_m,
+        forward: orientation * -DVec3::Z,
+        right: orientation * DVec3::X,
+        up: orientation * DVec3::Y,
+        fov_deg: 60.0,
+        width: WIDTH,
+        height: HEIGHT,
+    };
+    let light = CloudLight {
+        sun_direction: frame.sun_direction,
+        sun_irradiance: vec![1.3, 1.5, 1.4],
+        sky_irradiance: vec![0.1, 0.2, 0.35],
+        up: DVec3::Z,
+    };
+    let methods = [LayerMethod::Riley, LayerMethod::Octaves];
+    let mut sky_ms = Vec::new();
+    let mut frame_ms = Vec::new();
+    let mut cloud_ms = vec![Vec::new(); methods.len()];
+    let mut clouded = 0;
+    for _ in 0..ROUNDS {
+        let start = Instant::now();
+        let plan = renderer.render(&frame).expect("the hillaire frame");
+        frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        let step = plan.steps.iter().find(|s| s.name == "hillaire");
+        sky_ms.push(
+            step.and_then(|s| s.gpu_ms)
+                .expect("the hillaire pass's GPU time"),
+        );
+        for (k, &method) in methods.iter().enumerate() {
+            let settings = LayerSettings {
+                method,
+                ..LayerSettings::default()
+            };
+            let params = LayerUniform::new(
+                &camera,
+                &light,
+                &settings,
+                atmosphere.bottom_radius_m,
+                (grid.width(), grid.height()),
+            )
+            .unwrap();
+            let start = Instant::now();
+            let pixels = pass.render(renderer.gpu(), &params, &inputs).unwrap();
+            cloud_ms[k].push(start.elapsed().as_secs_f64() * 1e3);
+            clouded = pixels.iter().filter(|p| p[3] < 0.5).count();
+        }
+    }
+    let (sky, whole) = (median(sky_ms), median(frame_ms));
+    println!(
+        "{}: hillaire pass {sky:.1} ms (GPU timer), whole hillaire frame {whole:.1} ms (wall \
+         clock, with read-back); {clouded} of {} pixels behind cloud (T < 0.5)",
+        renderer.gpu().adapter_summary(),
+        WIDTH * HEIGHT
+    );
+    for (method, times) in methods.iter().zip(cloud_ms) {
+        let cloud = median(times);
+        println!(
+            "cloud layer, {method}: {cloud:.1} ms (wall clock, with read-back), {:.1} x the \
+             hillaire pass, {:.1} x the whole frame",
+            cloud / sky,
+            cloud / whole
+        );
+    }
+}

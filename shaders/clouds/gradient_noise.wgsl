@@ -1,0 +1,74 @@
+// Library: 3D gradient noise and its fractal sum (Perlin 2002, "Improving noise"), the
+// twin of atmosphere-core's `numerics/gradient_noise.rs`: the same lowbias32 integer
+// hash of the lattice point and seed, the same 12 cube-edge gradients and quintic fade,
+// so a value depends only on (seed, point) on either side.
+
+fn noise_mix(x_in: u32) -> u32 {
+    var x = x_in;
+    x = x ^ (x >> 16u);
+    x = x * 0x7feb352du;
+    x = x ^ (x >> 15u);
+    x = x * 0x846ca68bu;
+    x = x ^ (x >> 16u);
+    return x;
+}
+
+fn lattice_hash(seed: u32, c: vec3<i32>) -> u32 {
+    return noise_mix(seed ^ noise_mix(bitcast<u32>(c.x) ^ noise_mix(bitcast<u32>(c.y)
+        ^ noise_mix(bitcast<u32>(c.z)))));
+}
+
+fn gradient_dot(hash: u32, o: vec3<f32>) -> f32 {
+    switch hash % 12u {
+        case 0u: { return o.x + o.y; }
+        case 1u: { return -o.x + o.y; }
+        case 2u: { return o.x - o.y; }
+        case 3u: { return -o.x - o.y; }
+        case 4u: { return o.x + o.z; }
+        case 5u: { return -o.x + o.z; }
+        case 6u: { return o.x - o.z; }
+        case 7u: { return -o.x - o.z; }
+        case 8u: { return o.y + o.z; }
+        case 9u: { return -o.y + o.z; }
+        case 10u: { return o.y - o.z; }
+        default: { return -o.y - o.z; }
+    }
+}
+
+fn noise_fade(t: vec3<f32>) -> vec3<f32> {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+// Gradient noise at `point`: 0 on the lattice, within about [-1, 1].
+fn gradient_noise(seed: u32, point: vec3<f32>) -> f32 {
+    let cell = floor(point);
+    let f = point - cell;
+    let c = vec3<i32>(cell);
+    let u = noise_fade(f);
+    var corners: array<f32, 8>;
+    for (var k = 0u; k < 8u; k++) {
+        let d = vec3<u32>(k & 1u, (k >> 1u) & 1u, (k >> 2u) & 1u);
+        corners[k] = gradient_dot(lattice_hash(seed, c + vec3<i32>(d)), f - vec3<f32>(d));
+    }
+    let x00 = mix(corners[0], corners[1], u.x);
+    let x10 = mix(corners[2], corners[3], u.x);
+    let x01 = mix(corners[4], corners[5], u.x);
+    let x11 = mix(corners[6], corners[7], u.x);
+    return mix(mix(x00, x10, u.y), mix(x01, x11, u.y), u.z);
+}
+
+// The fractal sum of `octaves` octaves (frequency doubling, amplitude times `gain`, each
+// octave seeded by noise_mix(seed + octave)), normalised by the sum of the amplitudes.
+fn fractal_noise(seed: u32, point: vec3<f32>, octaves: u32, gain: f32) -> f32 {
+    var sum = 0.0;
+    var norm = 0.0;
+    var amplitude = 1.0;
+    var frequency = 1.0;
+    for (var octave = 0u; octave < octaves; octave++) {
+        sum += amplitude * gradient_noise(noise_mix(seed + octave), point * frequency);
+        norm += amplitude;
+        amplitude *= gain;
+        frequency *= 2.0;
+    }
+    return select(0.0, sum / norm, norm > 0.0);
+}

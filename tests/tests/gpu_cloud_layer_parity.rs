@@ -1,0 +1,245 @@
+//! The cloud layer's march on the GPU (`shaders/clouds/layer_image.wgsl`) against its
+//! CPU twin (atmosphere-core's `clouds/layer/shell.rs` and `march.rs`), pixel by pixel on
+//! 64 x 36 images: from the ground, from inside the layer and from above the deck, with
+//! both methods, over a cover with structure at the scale of the view.
+//!
+//! Tolerance: each pixel's radiance within 3 % of itself plus 1 % of the image's
+//! brightest pixel, but for one value in a hundred (of three per pixel), which may be
+//! off by four times that (`JUMP_FACTOR`); the transmittance within 0.01. The GPU works in f32 about the
+//! planet's centre (a point 6.36e6 m out carries 0.5 m of rounding, 3e-4 of a 1500 m
+//! layer and of a 2 km noise cell) and the march's early stop at T < 1e-4 may fall one
+//! step apart.
+//!
+//! Needs a GPU adapter (lavapipe will do); see `support`.
+
+mod support;
+
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::field::CloudLayer;
+use atmosphere_core::clouds::layer::march::{CloudLight, MarchRay, march};
+use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::geo::equirectangular::lat_lon;
+use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
+use atmosphere_core::optics::legendre_series::LegendreSeries;
+use atmosphere_core::optics::phase::{PhaseFunction, henyey_greenstein};
+use glam::DVec3;
+use render_wgpu::clouds::layer_inputs::LayerInputs;
+use render_wgpu::clouds::layer_pass::CloudLayerPass;
+use render_wgpu::clouds::layer_uniform::{LayerCamera, LayerUniform};
+
+const BOTTOM_M: f64 = 6_360_000.0;
+const RELATIVE: f64 = 0.03;
+const OF_BRIGHTEST: f64 = 0.01;
+const TRANSMITTANCE: f64 = 0.01;
+/// How far past the tolerance one value in a hundred may lie: Riley's order index
+/// floor(albedo tau) + 1 jumps A_n where the sun's optical depth crosses an integer, and
+/// f32 rounding may put a pixel on either side.
+const JUMP_FACTOR: f64 = 4.0;
+
+/// Henyey-Greenstein tables, another g at each wavelength so that a swapped channel
+/// shows.
+fn orders() -> ScatteringOrders {
+    let rule = gauss_legendre(600);
+    let series: Vec<LegendreSeries> = [0.84, 0.85, 0.86]
+        .iter()
+        .map(|&g| {
+            let values: Vec<f64> = rule
+                .iter()
+                .map(|&(nu, _)| henyey_greenstein(g, nu))
+                .collect();
+            LegendreSeries::from_gauss_rule(&rule, &values, 300)
+        })
+        .collect();
+    ScatteringOrders::new(&series).unwrap()
+}
+
+/// Cells about 15 km across near (0 N, 0 E), where the cameras are, on a 2048 x 1024
+/// grid (20 km texels): cover from 0 to 1 within a view.
+fn cover() -> CoverGrid {
+    CoverGrid::rasterize(2048, 1024, |p| {
+        let (lat, lon) = lat_lon(p);
+        0.5 + 0.8 * (lat * 400.0).sin() * (lon * 300.0).cos()
+    })
+    .unwrap()
+}
+
+fn camera(altitude_m: f64, pitch_deg: f64) -> LayerCamera {
+    let position_m = DVec3::new(BOTTOM_M + altitude_m, 0.0, 0.0);
+    let pitch = pitch_deg.to_radians();
+    let forward = DVec3::new(pitch.sin(), pitch.cos(), 0.0);
+    let right = DVec3::Z;
+    LayerCamera {
+        position_m,
+        forward,
+        right,
+        up: right.cross(forward),
+        fov_deg: 60.0,
+        width: 64,
+        height: 36,
+    }
+}
+
+fn light(sun_elevation_deg: f64) -> CloudLight {
+    let e = sun_elevation_deg.to_radians();
+    CloudLight {
+        sun_direction: DVec3::new(e.sin(), e.cos() * 0.6, e.cos() * 0.8),
+        sun_irradiance: vec![1.2, 1.5, 1.4],
+        sky_irradiance: vec![0.1, 0.2, 0.35],
+        up: DVec3::X,
+    }
+}
+
+/// The CPU's [radiance x 3, transmittance] of every pixel.
+fn cpu_image(
+    layer: &CloudLayer,
+    camera: &LayerCamera,
+    light: &CloudLight,
+    orders: &ScatteringOrders,
+) -> Vec<[f64; 4]> {
+    let mut image = Vec::new();
+    for y in 0..camera.height {
+        for x in 0..camera.width {
+            let d = camera.pixel_direction(x, y);
+            let o = camera.position_m;
+            image.push(match layer.shell().first_segment(o, d, f64::INFINITY) {
+                Some((t0, t1)) => {
+                    let light = CloudLight {
+                        up: (o + d * t0).normalize(),
+                        ..light.clone()
+                    };
+                    let ray = MarchRay {
+                        origin: o,
+                        direction: d,
+                        t0,
+                        t1,
+                    };
+                    let c = march(layer, &ray, &light, orders, layer.settings());
+                    [
+                        c.radiance[0],
+                        c.radiance[1],
+                        c.radiance[2],
+                        c.transmittance[0],
+                    ]
+                }
+                None => [0.0, 0.0, 0.0, 1.0],
+            });
+        }
+    }
+    image
+}
+
+#[test]
+fn the_gpu_march_matches_the_cpu_from_below_inside_and_above() {
+    let Some(gpu) = support::gpu_or_skip("cloud layer parity") else {
+        return;
+    };
+    let orders = orders();
+    let cover = cover();
+    let inputs = LayerInputs::new(&gpu, &cover, &orders).unwrap();
+    let pass = CloudLayerPass::new(&gpu).unwrap();
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+    let views = [
+        ("below, riley", camera(10.0, 35.0), LayerMethod::Riley, 40.0),
+        (
+            "inside, octaves",
+            camera(2200.0, 0.0),
+            LayerMethod::Octaves,
+            25.0,
+        ),
+        (
+            "inside, riley, low sun",
+            camera(2200.0, 5.0),
+            LayerMethod::Riley,
+            10.0,
+        ),
+        (
+            "above, riley",
+            camera(5000.0, -30.0),
+            LayerMethod::Riley,
+            50.0,
+        ),
+    ];
+    for (name, camera, method, sun_elevation) in views {
+        let settings = LayerSettings {
+            method,
+            steps: 32,
+            shadow_steps: 6,
+            ..LayerSettings::default()
+        };
+        let layer = CloudLayer::new(settings, BOTTOM_M, cover.clone(), phase.clone()).unwrap();
+        let light = light(sun_elevation);
+        let params = LayerUniform::new(
+            &camera,
+            &light,
+            &settings,
+            BOTTOM_M,
+            (cover.width(), cover.height()),
+        )
+        .unwrap();
+        let gpu_image = pass.render(&gpu, &params, &inputs).unwrap();
+        let cpu = cpu_image(&layer, &camera, &light, &orders);
+        let brightest = cpu
+            .iter()
+            .flat_map(|p| p[..3].iter().copied())
+            .fold(0.0, f64::max);
+        let clouded = cpu.iter().filter(|p| p[3] < 0.5).count();
+        let clear = cpu.iter().filter(|p| p[3] > 0.99).count();
+        assert!(brightest > 1e-3, "{name}: no cloud lit");
+        assert!(clouded > 100, "{name}: {clouded} clouded pixels");
+        let mut worst: f64 = 0.0;
+        let mut outside = 0;
+        for (k, (g, c)) in gpu_image.iter().zip(&cpu).enumerate() {
+            for w in 0..3 {
+                let error = (f64::from(g[w]) - c[w]).abs();
+                let allowed = RELATIVE * c[w] + OF_BRIGHTEST * brightest;
+                worst = worst.max(error / allowed);
+                if error > allowed {
+                    outside += 1;
+                }
+                assert!(
+                    error <= JUMP_FACTOR * allowed,
+                    "{name}: pixel {k} wavelength {w}: GPU {} CPU {}",
+                    g[w],
+                    c[w]
+                );
+            }
+            assert!(
+                (f64::from(g[3]) - c[3]).abs() <= TRANSMITTANCE,
+                "{name}: pixel {k} T: GPU {} CPU {}",
+                g[3],
+                c[3]
+            );
+        }
+        println!(
+            "{name}: brightest {brightest:.4}, {clouded} of {} pixels clouded, {clear} clear, \
+             {outside} values outside the tolerance, worst {worst:.3} of it",
+            cpu.len()
+        );
+        assert!(
+            outside * 100 <= 3 * cpu.len(),
+            "{name}: {outside} values outside"
+        );
+    }
+}
+
+#[test]
+fn tables_for_other_than_three_wavelengths_are_refused_by_name() {
+    let Some(gpu) = support::gpu_or_skip("cloud layer inputs") else {
+        return;
+    };
+    let rule = gauss_legendre(64);
+    let values: Vec<f64> = rule
+        .iter()
+        .map(|&(nu, _)| henyey_greenstein(0.5, nu))
+        .collect();
+    let one =
+        ScatteringOrders::new(&[LegendreSeries::from_gauss_rule(&rule, &values, 30)]).unwrap();
+    let e = LayerInputs::new(&gpu, &cover(), &one).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("cloud phase tables for 1 wavelengths"),
+        "{e}"
+    );
+}
