@@ -2,7 +2,8 @@
 //! CPU twin: the surface buffer's distance, normal and albedo at each pixel equal the
 //! nearest hit of the pixel's ray (`Frame::pixel_ray`) on the chunk meshes the CPU
 //! selects for the same camera (`select_chunks`, `ChunkMesh`), the normal interpolated
-//! across the triangle and the albedo from `ColourMap::sample_linear`; from a metre-scale
+//! across the triangle and the albedo from `ColourMap::sample_linear` with rock and snow
+//! laid over it (`geo::land_cover::land_albedo`), the sea marked as water; from a metre-scale
 //! near plane to the whole disc from 20,000 km. And the planner: looking into space
 //! skips the pass and changes no pixel.
 //!
@@ -10,6 +11,7 @@
 
 mod support;
 
+use atmosphere_core::geo::land_cover::{SnowLine, land_albedo};
 use atmosphere_core::models::id::ModelId;
 use std::collections::HashMap;
 
@@ -35,7 +37,10 @@ fn terrain_frame(lat: f64, lon: f64, view: LocalView, fov_deg: f64, w: u32, h: u
     f.camera_position_m = place * f.camera_position_m;
     f.orientation = place * f.orientation;
     f.sun_direction = place * f.sun_direction;
-    f.terrain = Some(TerrainOptions { exaggeration: 2.0 });
+    f.terrain = Some(TerrainOptions {
+        exaggeration: 2.0,
+        ..TerrainOptions::default()
+    });
     f
 }
 
@@ -154,6 +159,7 @@ fn check_surface(
     let mut cpu = CpuTerrain::new(f);
     let heights = &cpu.surface.heights;
     let sea = open_sea_albedo(&colours, &heights.data, heights.mask.as_ref());
+    let snow_line = SnowLine::for_declination(f.sun_direction.normalize().z.asin());
     let mut water = 0;
     let (mut compared, mut edges, mut worst_distance, mut worst_normal, mut worst_albedo) =
         (0, 0, 0.0f64, 0.0f64, 0.0f64);
@@ -180,12 +186,19 @@ fn check_surface(
             // Within a centimetre of the coastline f32 interpolation may decide either way.
             if distance < 20_000.0 && height.abs() > 0.01 {
                 let (lat, lon) = lat_lon(point);
+                let cos_slope = normal.dot(point.normalize());
                 let expected = if height < 0.0 {
                     water += 1;
                     sea
                 } else {
-                    colours.sample_linear(lat, lon)
+                    let map = colours.sample_linear(lat, lon);
+                    land_albedo(map, lat, height, cos_slope, &snow_line)
                 };
+                assert_eq!(
+                    texel.water,
+                    height < 0.0,
+                    "{name}: water at ({column}, {row})"
+                );
                 albedos += 1;
                 for c in 0..3 {
                     worst_albedo =
@@ -274,6 +287,7 @@ fn a_bad_exaggeration_is_refused() {
     let mut f = terrain_frame(46.05, 7.75, view(4_000.0, 20.0, 225.0), 40.0, 8, 8);
     f.terrain = Some(TerrainOptions {
         exaggeration: f64::NAN,
+        ..TerrainOptions::default()
     });
     let err = renderer.render(&f).unwrap_err().to_string();
     assert!(err.contains("exaggeration"), "{err}");

@@ -345,6 +345,7 @@ impl Renderer {
                 normal: [g[0], g[1], g[2]],
                 distance_m: g[3],
                 albedo: [a[0], a[1], a[2]].map(|v| f32::from(v) / 255.0),
+                water: a[3] < 128,
             })
             .collect())
     }

@@ -10,10 +10,15 @@
 //! camera's height above the terrain below it, so 1 m and 1e8 m need nothing special.
 //! Albedo comes from the colour map (decoded from sRGB, mip-mapped in linear light),
 //! taken as the albedo at the three wavelengths: the Blue Marble is a true-colour
-//! picture, not a measured albedo, which docs/terrain.md discusses.
+//! picture, not a measured albedo, which docs/terrain.md discusses; rock on steep slopes
+//! and snow above the season's snow line replace it (atmosphere-core's
+//! `geo::land_cover`), and the sea is marked for the model passes' specular water.
 
 use std::collections::HashMap;
 
+use atmosphere_core::geo::land_cover::{
+    ROCK_ALBEDO, ROCK_SLOPE_COS, SNOW_ALBEDO, SNOW_BAND_M, SnowLine,
+};
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -49,7 +54,7 @@ const KEEP_FRAMES: u64 = 240;
 /// The smallest near plane, m.
 const MIN_NEAR_M: f64 = 0.05;
 
-/// WGSL `TerrainParams`, 80 bytes.
+/// WGSL `TerrainParams`, 128 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct TerrainUniform {
@@ -59,6 +64,14 @@ pub struct TerrainUniform {
     pub near: [f32; 4],
     /// rgb: the water's albedo (`sea_colour.rs`).
     pub sea_albedo: [f32; 4],
+    /// The season's snow line (atmosphere-core's `geo::land_cover::SnowLine`): x its
+    /// height at the thermal equator, m; y its fall to the pole, m; z the thermal
+    /// equator's latitude, rad; w the band over which snow sets in, m.
+    pub snow_line: [f32; 4],
+    /// rgb: rock's albedo; w: the slope cosine where rock sets in.
+    pub rock: [f32; 4],
+    /// rgb: snow's albedo; w: the slope cosine past which all is rock.
+    pub snow: [f32; 4],
 }
 
 /// WGSL `Chunk`, 32 bytes.
@@ -378,12 +391,24 @@ impl TerrainPass {
             .write_buffer(&self.chunk_buffer, 0, bytemuck::cast_slice(&uniforms));
         let clearance = altitude_m - ground_m;
         let sea = self.sea_albedo.map(|c| c as f32);
+        // The season: the sun's declination, its planet-fixed direction's latitude.
+        let declination = frame.sun_direction.normalize().z.clamp(-1.0, 1.0).asin();
+        let line = SnowLine::for_declination(declination);
+        let with_w = |c: [f64; 3], w: f64| [c[0] as f32, c[1] as f32, c[2] as f32, w as f32];
         let params = TerrainUniform {
             right: v4(right / half_w),
             up: v4(up / half_h),
             forward: v4(forward),
             near: [near_plane_m(clearance) as f32, 0.0, 0.0, 0.0],
             sea_albedo: [sea[0], sea[1], sea[2], 1.0],
+            snow_line: [
+                line.at_equator_m as f32,
+                line.drop_to_pole_m as f32,
+                line.shift_rad as f32,
+                SNOW_BAND_M as f32,
+            ],
+            rock: with_w(ROCK_ALBEDO, ROCK_SLOPE_COS[0]),
+            snow: with_w(SNOW_ALBEDO, ROCK_SLOPE_COS[1]),
         };
         gpu.write_uniform(&self.params, &params);
         self.ensure_depth(gpu, frame.width, frame.height);
