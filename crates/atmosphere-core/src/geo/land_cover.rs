@@ -14,9 +14,8 @@
 //!   `H`, over a band `B` of 300 m, 0 at or below sea level;
 //! - the snow line where a zonal sea-level temperature, cooled with height at the
 //!   standard atmosphere's 6.5 K/km (U.S. Standard Atmosphere 1976, its first layer),
-//!   reaches -5 deg C:
-//!       H = (T_0(phi_t) + 5 K) / (6.5 K/km),  T_0 = 27 deg C - 35 K sin^2(phi_t),
-//!   at the thermal latitude `phi_t = phi - 0.4 delta` (summer warms a hemisphere as if it
+//!   reaches -5 deg C, `H = (T_0(phi_t) + 5 K) / (6.5 K/km)` with
+//!   `T_0 = 27 deg C - 35 K sin^2(phi_t)`, at the thermal latitude `phi_t = phi - 0.4 delta` (summer warms a hemisphere as if it
 //!   lay nearer the equator). This is this project's rule, not a paper's: its three
 //!   constants put the line at about 5 km in the tropics (the glaciers of the Andes and
 //!   East Africa), 1.4 km in the Alps in January and 3.0 km in July (the Alps' summer

@@ -17,8 +17,7 @@
 //!   model's irradiance: see [`transmitted_sun`]) times the glitter factor of Cox and
 //!   Munk 1954 (the radiance of the sun's glitter from the slopes' distribution) with
 //!   the facets' masking and shadowing,
-//!       G = F(v . h) p(tan beta) G1(v) G1(s) / (4 (n . v) cos^4 beta),
-//!   with `h = (v + s) / |v + s|` the facet normal that mirrors the sun into the eye,
+//!   `G = F(v . h) p(tan beta) G1(v) G1(s) / (4 (n . v) cos^4 beta)`, with `h = (v + s) / |v + s|` the facet normal that mirrors the sun into the eye,
 //!   `beta` its tilt from `n` and `p` the isotropic Gaussian distribution of the
 //!   surface's slopes, `p = exp(-tan^2 beta / sigma^2) / (pi sigma^2)`, whose mean square
 //!   slope grows with the wind speed `W` 12.5 m above the sea (Cox and Munk 1954's fit
