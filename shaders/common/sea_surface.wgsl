@@ -13,6 +13,11 @@
 #import common/frame_params.wgsl
 #import common/surface.wgsl
 
+// Whether the pipeline draws the sea at all (`PixelPipeline`): its variant for a surface
+// without sea has the sea's branch compiled out, as a software rasteriser runs both
+// sides of every branch.
+override SEA: bool = true;
+
 // The reflectance of unpolarised light meeting water at incidence cosine `c` from air:
 // the mean of r_s^2 and r_p^2 (`fresnel_reflectance`).
 fn water_fresnel(c_in: f32) -> f32 {

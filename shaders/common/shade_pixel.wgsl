@@ -37,7 +37,7 @@ fn shade_pixel(px: vec2<u32>) {
     }
     if surface.present {
         let irradiance = model_surface_irradiance(r.end, surface.normal);
-        if surface.water {
+        if SEA && surface.water {
             r = shade_sea(r, surface, direction, irradiance);
         } else {
             r = add_surface(r, surface, irradiance);

@@ -168,3 +168,31 @@ fn the_glint_s_brightest_pixel_lies_in_the_sun_s_specular_direction() {
         at(aside)
     );
 }
+
+#[test]
+fn a_frame_without_sea_skips_the_sea_and_its_land_is_the_same() {
+    let Some(mut renderer) = renderer_or_skip("sea skipped") else {
+        return;
+    };
+    // The same flat surface as land, then with one pixel of sea: the second frame runs
+    // the passes' sea variant, the first their variant without it; every other pixel is
+    // the same bit for bit.
+    let f = sea_frame(ModelId::Nishita, (32, 18), 93.0, (60.0, 160.0), 5.0);
+    let mut land = flat_sea(&f);
+    for t in &mut land {
+        t.water = false;
+    }
+    renderer.render_with_surface(&f, &land).unwrap();
+    let without = renderer.read_hdr().unwrap();
+    let sea_pixel = (f.width * (f.height - 2) + 5) as usize;
+    let mut one_sea = land.clone();
+    one_sea[sea_pixel].water = true;
+    renderer.render_with_surface(&f, &one_sea).unwrap();
+    let with = renderer.read_hdr().unwrap();
+    for (i, (a, b)) in without.iter().zip(&with).enumerate() {
+        if i != sea_pixel {
+            assert_eq!(a, b, "pixel {i}");
+        }
+    }
+    assert_ne!(without[sea_pixel], with[sea_pixel]);
+}

@@ -189,7 +189,7 @@ fn shade(px: vec2<u32>, inside: bool) {
     var r = bruneton_radiance(direction, surface.distance, inside);
     if surface.present {
         let e = bruneton_surface_irradiance(r.end, surface.normal);
-        if surface.water {
+        if SEA && surface.water {
             let mirror = sea_mirror(r.end, direction, surface.normal);
             let sky = segment_radiance(mirror, mirror_segment(r.end, mirror), false).radiance;
             let sun = sea_sun(r.end, bruneton_surface_irradiance(r.end, frame.sun_direction.xyz),

@@ -249,7 +249,7 @@ fn shade(px: vec2<u32>, tables: bool, march: bool) {
     var r = hillaire_radiance(direction, surface.distance, tables, march);
     if surface.present {
         let irradiance = hillaire_surface_irradiance(r.end, surface.normal);
-        if surface.water && march {
+        if SEA && surface.water && march {
             let mirror = sea_mirror(r.end, direction, surface.normal);
             let sky = hillaire_mirror_sky(mirror, mirror_segment(r.end, mirror));
             let sun = sea_sun(r.end, hillaire_surface_irradiance(r.end, frame.sun_direction.xyz),

@@ -103,6 +103,8 @@ struct GpuChunk {
     max_radius_m: f64,
     /// The last frame whose level of detail chose the chunk.
     last_selected: u64,
+    /// Whether a vertex lies in the sea (its height below 0).
+    has_water: bool,
 }
 
 /// One chunk of this frame: its key and which edges border a coarser chunk.
@@ -129,6 +131,8 @@ pub struct TerrainPass {
     /// The depth buffer at the last prepared frame's size (1 x 1 before the first).
     depth: wgpu::Texture,
     draws: Vec<Draw>,
+    /// Whether a chunk drawn this frame holds sea.
+    water_in_view: bool,
     frame_number: u64,
     /// The water's albedo, linear.
     sea_albedo: [f64; 3],
@@ -266,6 +270,7 @@ impl TerrainPass {
             chunk_buffer,
             depth: depth_buffer(gpu, 1, 1),
             draws: Vec::new(),
+            water_in_view: false,
             frame_number: 0,
             sea_albedo,
         })
@@ -340,6 +345,7 @@ impl TerrainPass {
                     bounds,
                     max_radius_m,
                     last_selected: 0,
+                    has_water: mesh.heights_m.iter().any(|&h| h < 0.0),
                 },
             );
         }
@@ -349,6 +355,7 @@ impl TerrainPass {
         let frustum = Frustum::new(camera, [right, up, forward], half_w, half_h);
         let lowest_ray_m = frustum.lowest_radius_m();
         self.draws.clear();
+        self.water_in_view = false;
         let mut uniforms = Vec::new();
         for chunk in &selected {
             let gpu_chunk = self.chunks.get_mut(&chunk.key).expect("built above");
@@ -358,6 +365,7 @@ impl TerrainPass {
             if below_every_ray || !frustum.sees_sphere(centre, radius) {
                 continue;
             }
+            self.water_in_view |= gpu_chunk.has_water;
             self.draws.push(Draw {
                 key: chunk.key,
                 coarser: chunk.coarser,
@@ -480,6 +488,12 @@ impl TerrainPass {
             let instance = instance as u32;
             pass.draw_indexed(0..*count, 0, instance..instance + 1);
         }
+    }
+
+    /// Whether the last prepared frame draws sea: the model passes then run their
+    /// variant with the sea's reflection (`shaders/common/sea_surface.wgsl`).
+    pub fn water_in_view(&self) -> bool {
+        self.water_in_view
     }
 
     /// The drawn terrain's elevation above the reference sphere in a unit direction, m,
