@@ -23,6 +23,9 @@ struct FrameParams {
     sun_centre_radiance: vec4<f32>,
     sun_limb_exponent: vec4<f32>,
     size_px: vec4<u32>,
+    // x: the sea's mean square slope (`common/sea_surface.wgsl`); y: water's refractive
+    // index.
+    sea: vec4<f32>,
 }
 
 @group(0) @binding(1) var<uniform> frame: FrameParams;
@@ -140,6 +143,25 @@ fn view_segment(direction: vec3<f32>, object_m: f32) -> Segment {
         s.start = p - half_chord * direction;
         s.start_dot_sun = dot(s.start, sun);
     }
+    s = to_boundary(s);
+    if object_m > 0.0 {
+        let remaining = object_m - s.t_enter;
+        s.cut = remaining < s.length;
+        if s.cut || s.end == END_GROUND {
+            s.length = min(remaining, s.length);
+            s.end = END_OBJECT;
+        }
+    }
+    return s;
+}
+
+// The segment `s_in` (start, q and r_mu set, inside the atmosphere) run to the ground or
+// the top, whichever it meets: `on_ground`, `end` and `length`.
+fn to_boundary(s_in: Segment) -> Segment {
+    let bottom = atmosphere.bottom_radius_m;
+    let top = atmosphere.top_radius_m;
+    let horizon_sq = (top - bottom) * (top + bottom);
+    var s = s_in;
     let ground_disc = s.r_mu * s.r_mu - s.q;
     s.on_ground = s.r_mu < 0.0 && ground_disc >= 0.0;
     if s.on_ground {
@@ -147,19 +169,12 @@ fn view_segment(direction: vec3<f32>, object_m: f32) -> Segment {
         let denom = -s.r_mu + safe_sqrt(ground_disc);
         s.length = select(0.0, max(s.q / denom, 0.0), denom > 0.0);
     } else {
+        s.end = END_SPACE;
         let root = safe_sqrt(ground_disc + horizon_sq);
         if s.r_mu > 0.0 {
             s.length = max((horizon_sq - s.q) / (s.r_mu + root), 0.0);
         } else {
             s.length = max(-s.r_mu + root, 0.0);
-        }
-    }
-    if object_m > 0.0 {
-        let remaining = object_m - s.t_enter;
-        s.cut = remaining < s.length;
-        if s.cut || s.end == END_GROUND {
-            s.length = min(remaining, s.length);
-            s.end = END_OBJECT;
         }
     }
     return s;

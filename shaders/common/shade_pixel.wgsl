@@ -2,8 +2,9 @@
 // (each model's `sky/<model>/pixel.wgsl` has the `@compute main` that calls
 // `shade_pixel`). CPU twin: atmosphere-core's `optics/surface_lighting.rs`
 // (`radiance_with_surface`): the model's radiance along the pixel's view ray, ended on
-// the frame's surface where it has one, plus that surface's Lambertian reflection; then
-// the transmitted sun disk where the ray reaches space (`hdr_pixel`). No paper: the
+// the frame's surface where it has one, plus that surface's Lambertian reflection, or on
+// the sea the water's light (`common/sea_surface.wgsl`, twin `optics/sea_surface.rs`);
+// then the transmitted sun disk where the ray reaches space (`hdr_pixel`). No paper: the
 // frame's bookkeeping around each model's equations.
 //
 // The importing pass defines what differs per model:
@@ -19,6 +20,7 @@
 
 #import common/frame_params.wgsl
 #import common/surface.wgsl
+#import common/sea_surface.wgsl
 
 // Pixel `px`: the model's radiance, the surface's reflection and the sun disk into the
 // HDR target, clamped to the largest finite f16.
@@ -34,7 +36,23 @@ fn shade_pixel(px: vec2<u32>) {
         r = model_radiance(direction, s, r);
     }
     if surface.present {
-        r = add_surface(r, surface, model_surface_irradiance(r.end, surface.normal));
+        let irradiance = model_surface_irradiance(r.end, surface.normal);
+        if SEA && surface.water {
+            r = shade_sea(r, surface, direction, irradiance);
+        } else {
+            r = add_surface(r, surface, irradiance);
+        }
     }
     textureStore(hdr, px, hdr_pixel(direction, r));
+}
+
+// `r` ending on the sea `surface` with the model's `irradiance` there: the water's light
+// from the model's sky along the mirror direction and its sun (`add_sea`).
+fn shade_sea(r: Radiance, surface: Surface, direction: vec3<f32>, irradiance: vec3<f32>) -> Radiance {
+    let mirror = sea_mirror(r.end, direction, surface.normal);
+    let m = mirror_segment(r.end, mirror);
+    let sky = model_radiance(mirror, m, radiance_of_empty(m, mirror)).radiance;
+    let sun = sea_sun(r.end, model_surface_irradiance(r.end, frame.sun_direction.xyz),
+        model_surface_irradiance(r.end, across_normal(r.end)));
+    return add_sea(r, surface, direction, irradiance, sky, sun);
 }

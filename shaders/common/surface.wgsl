@@ -14,7 +14,8 @@
 // xyz: outward unit normal; w: distance from the camera along the pixel's ray, m
 // (0: no surface in this pixel).
 @group(0) @binding(30) var surface_geometry: texture_2d<f32>;
-// rgb: albedo (linear).
+// rgb: albedo (linear); a: 1 for a Lambertian surface, 0 for the sea
+// (`common/sea_surface.wgsl`), whose rgb is then the water body's albedo.
 @group(0) @binding(31) var surface_albedo: texture_2d<f32>;
 
 // Whether the pipeline reads a surface at all (`PixelPipeline`): its variant without one
@@ -28,6 +29,8 @@ struct Surface {
     distance: f32,
     normal: vec3<f32>,
     albedo: vec3<f32>,
+    // Whether the surface is the sea.
+    water: bool,
 }
 
 // The surface in pixel `px`; none at all, without reading, in the pipeline variant for
@@ -43,7 +46,9 @@ fn frame_surface(px: vec2<u32>) -> Surface {
     out.present = geometry.w > 0.0;
     out.distance = max(geometry.w, 0.0);
     out.normal = geometry.xyz;
-    out.albedo = textureLoad(surface_albedo, px, 0).rgb;
+    let albedo = textureLoad(surface_albedo, px, 0);
+    out.albedo = albedo.rgb;
+    out.water = albedo.a < 0.5;
     return out;
 }
 

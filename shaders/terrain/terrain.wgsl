@@ -2,10 +2,12 @@
 // `terrain/pass.rs`): the chunks of the cube-sphere quadtree drawn into the surface buffer
 // that every model's pixel pass reads (`common/surface.wgsl`): per pixel the outward
 // normal and the distance from the camera along the pixel's ray, and the albedo from the
-// Earth's colour map, or the water's albedo where the interpolated height of the height
-// field is below 0 (the refined coastline, `sea_colour.rs`). CPU twin: none in
-// atmosphere-core (the meshes are built by render-wgpu's `terrain/`); the projection is
-// `Frame::pixel_ray`'s. No paper.
+// Earth's colour map (alpha 1), or the water body's albedo and alpha 0, the sea
+// (`common/sea_surface.wgsl`), where the interpolated height of the height field is
+// below 0 (the refined coastline, `sea_colour.rs`); the land's colour gets rock on steep
+// slopes and snow above the season's snow line (`land_albedo`). CPU twins: the meshes
+// are built by render-wgpu's `terrain/`; the projection is `Frame::pixel_ray`'s; the
+// land's colour is atmosphere-core's `geo/land_cover.rs`. No paper.
 //
 // Camera-relative: a vertex is its chunk's offset `origin - camera` (f64 on the CPU,
 // rounded to f32) plus its f32 offset from the origin, so positions near the camera are
@@ -25,6 +27,14 @@ struct TerrainParams {
     near: vec4<f32>,
     // rgb: the water's albedo.
     sea_albedo: vec4<f32>,
+    // The season's snow line (`land_albedo`): x its height at the thermal equator, m; y
+    // its fall to the pole, m; z the thermal equator's latitude, rad; w the band over
+    // which snow sets in, m.
+    snow_line: vec4<f32>,
+    // rgb: rock's albedo; w: the slope cosine where rock sets in.
+    rock: vec4<f32>,
+    // rgb: snow's albedo; w: the slope cosine past which all is rock.
+    snow: vec4<f32>,
 }
 
 struct Chunk {
@@ -90,13 +100,31 @@ fn unwrap_derivative(d: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(d.x - round(d.x), d.y);
 }
 
+// The land's albedo from the colour map's `map` at planet-centred `p`, `height` m above
+// the sea, with unit `normal` (atmosphere-core's `geo::land_cover::land_albedo`): rock
+// where steep, snow above the season's snow line, none at or below sea level.
+fn land_albedo(map: vec3<f32>, p: vec3<f32>, height: f32, normal: vec3<f32>) -> vec3<f32> {
+    let up = normalize(p);
+    let rock = 1.0 - smoothstep(terrain.snow.w, terrain.rock.w, dot(normal, up));
+    let latitude = atan2(p.z, length(p.xy));
+    let sine = sin(latitude - terrain.snow_line.z);
+    let line = terrain.snow_line.x - terrain.snow_line.y * sine * sine;
+    let band = 0.5 * terrain.snow_line.w;
+    let snow = select(0.0, smoothstep(-band, band, height - line), height > 0.0) * (1.0 - rock);
+    let ground = mix(map, terrain.rock.rgb, rock);
+    return mix(ground, terrain.snow.rgb, snow);
+}
+
 @fragment
 fn fragment_main(in: VertexOut) -> SurfaceOut {
     let uv = map_uv(in.planet);
     let colour = textureSampleGrad(colour_map, colour_sampler, uv,
         unwrap_derivative(dpdx(uv)), unwrap_derivative(dpdy(uv)));
+    let normal = normalize(in.normal);
     var out: SurfaceOut;
-    out.geometry = vec4<f32>(normalize(in.normal), length(in.relative));
-    out.albedo = vec4<f32>(select(colour.rgb, terrain.sea_albedo.rgb, in.height < 0.0), 1.0);
+    out.geometry = vec4<f32>(normal, length(in.relative));
+    let water = in.height < 0.0;
+    let land = land_albedo(colour.rgb, in.planet, in.height, normal);
+    out.albedo = select(vec4<f32>(land, 1.0), vec4<f32>(terrain.sea_albedo.rgb, 0.0), water);
     return out;
 }

@@ -2,7 +2,8 @@
 //! CPU twin: the surface buffer's distance, normal and albedo at each pixel equal the
 //! nearest hit of the pixel's ray (`Frame::pixel_ray`) on the chunk meshes the CPU
 //! selects for the same camera (`select_chunks`, `ChunkMesh`), the normal interpolated
-//! across the triangle and the albedo from `ColourMap::sample_linear`; from a metre-scale
+//! across the triangle and the albedo from `ColourMap::sample_linear` with rock and snow
+//! laid over it (`geo::land_cover::land_albedo`), the sea marked as water; from a metre-scale
 //! near plane to the whole disc from 20,000 km. And the planner: looking into space
 //! skips the pass and changes no pixel.
 //!
@@ -10,6 +11,7 @@
 
 mod support;
 
+use atmosphere_core::geo::land_cover::{SnowLine, land_albedo};
 use atmosphere_core::models::id::ModelId;
 use std::collections::HashMap;
 
@@ -35,7 +37,10 @@ fn terrain_frame(lat: f64, lon: f64, view: LocalView, fov_deg: f64, w: u32, h: u
     f.camera_position_m = place * f.camera_position_m;
     f.orientation = place * f.orientation;
     f.sun_direction = place * f.sun_direction;
-    f.terrain = Some(TerrainOptions { exaggeration: 2.0 });
+    f.terrain = Some(TerrainOptions {
+        exaggeration: 2.0,
+        ..TerrainOptions::default()
+    });
     f
 }
 
@@ -138,14 +143,15 @@ impl CpuTerrain {
 /// against an exact ray), at most `max_edge_fraction` of them. `near_albedo`: whether
 /// some hits lie within 20 km, where the albedo is compared with the full-resolution map,
 /// or with the water's albedo where the interpolated height is below 0. Returns the
-/// number of water pixels compared (`None`: no GPU, skipped).
+/// numbers of water pixels and of land pixels under rock or snow compared (`None`: no
+/// GPU, skipped).
 fn check_surface(
     name: &str,
     f: &Frame,
     step: u32,
     max_edge_fraction: f64,
     near_albedo: bool,
-) -> Option<usize> {
+) -> Option<(usize, usize)> {
     let mut renderer = renderer_or_skip(name)?;
     let plan = renderer.render(f).unwrap();
     assert!(plan.runs("terrain"), "{plan}");
@@ -154,7 +160,8 @@ fn check_surface(
     let mut cpu = CpuTerrain::new(f);
     let heights = &cpu.surface.heights;
     let sea = open_sea_albedo(&colours, &heights.data, heights.mask.as_ref());
-    let mut water = 0;
+    let snow_line = SnowLine::for_declination(f.sun_direction.normalize().z.asin());
+    let (mut water, mut covered) = (0, 0);
     let (mut compared, mut edges, mut worst_distance, mut worst_normal, mut worst_albedo) =
         (0, 0, 0.0f64, 0.0f64, 0.0f64);
     let mut albedos = 0;
@@ -180,12 +187,21 @@ fn check_surface(
             // Within a centimetre of the coastline f32 interpolation may decide either way.
             if distance < 20_000.0 && height.abs() > 0.01 {
                 let (lat, lon) = lat_lon(point);
+                let cos_slope = normal.dot(point.normalize());
                 let expected = if height < 0.0 {
                     water += 1;
                     sea
                 } else {
-                    colours.sample_linear(lat, lon)
+                    let map = colours.sample_linear(lat, lon);
+                    let land = land_albedo(map, lat, height, cos_slope, &snow_line);
+                    covered += usize::from((0..3).any(|c| (land[c] - map[c]).abs() > 0.02));
+                    land
                 };
+                assert_eq!(
+                    texel.water,
+                    height < 0.0,
+                    "{name}: water at ({column}, {row})"
+                );
                 albedos += 1;
                 for c in 0..3 {
                     worst_albedo =
@@ -218,15 +234,20 @@ fn check_surface(
     assert!(worst_normal < 2e-3, "{name}: normal {worst_normal:e}");
     // Bilinear sRGB filtering in 8 bits against the CPU's f64.
     assert!(worst_albedo < 6e-3, "{name}: albedo {worst_albedo:e}");
-    Some(water)
+    println!("{name}: {water} water pixels, {covered} under rock or snow");
+    Some((water, covered))
 }
 
 #[test]
 fn terrain_over_the_alps_matches_the_cpu_meshes() {
     // Exaggeration 2 lifts the peaks near 9 km.
     let f = terrain_frame(46.05, 7.75, view(11_000.0, 95.0, 225.0), 60.0, 96, 54);
-    let water = check_surface("Alps from 11 km", &f, 3, 0.05, true);
-    assert!(matches!(water, None | Some(0)), "{water:?}");
+    let counts = check_surface("Alps from 11 km", &f, 3, 0.05, true);
+    // No sea; rock and snow on the near slopes.
+    assert!(
+        counts.is_none_or(|(water, covered)| water == 0 && covered > 10),
+        "{counts:?}"
+    );
 }
 
 #[test]
@@ -238,8 +259,8 @@ fn terrain_a_metre_above_the_ground_matches_the_cpu_meshes() {
     let cpu = CpuTerrain::new(&f);
     let ground = cpu.surface.elevation_m(up);
     f.camera_position_m = up * (f.atmosphere.bottom_radius_m + ground + 1.5);
-    let water = check_surface("1.5 m over the Sahara", &f, 2, 0.05, true);
-    assert!(matches!(water, None | Some(0)), "{water:?}");
+    let counts = check_surface("1.5 m over the Sahara", &f, 2, 0.05, true);
+    assert!(counts.is_none_or(|(water, _)| water == 0), "{counts:?}");
 }
 
 #[test]
@@ -274,6 +295,7 @@ fn a_bad_exaggeration_is_refused() {
     let mut f = terrain_frame(46.05, 7.75, view(4_000.0, 20.0, 225.0), 40.0, 8, 8);
     f.terrain = Some(TerrainOptions {
         exaggeration: f64::NAN,
+        ..TerrainOptions::default()
     });
     let err = renderer.render(&f).unwrap_err().to_string();
     assert!(err.contains("exaggeration"), "{err}");

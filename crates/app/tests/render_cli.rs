@@ -207,6 +207,11 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "frame.png",
             "--exaggeration 500",
         ),
+        (
+            &[("--terrain", "true"), ("--wind-m-s", "30")],
+            "frame.png",
+            "--wind-m-s: wind_m_s 30 is outside [0, 20] m/s",
+        ),
     ];
     for (overrides, name, message) in cases {
         let out = dir.path().join(name);

@@ -215,6 +215,11 @@ impl Renderer {
             _ => false,
         };
         plan.surface = surface.is_some() || draws_terrain;
+        // The sea's variant of the pixel passes only where the surface holds sea.
+        let has_sea = match surface {
+            Some(texels) => texels.iter().any(|t| t.water && t.distance_m > 0.0),
+            None => draws_terrain && self.terrain.as_ref().is_some_and(|t| t.water_in_view()),
+        };
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
         let targets = match self.targets.take() {
@@ -261,6 +266,7 @@ impl Renderer {
             hdr: &targets.hdr,
             surface: &surface_views,
             has_surface: plan.surface,
+            has_sea,
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         if let Some(terrain) = self.terrain.as_ref().filter(|_| draws_terrain) {
@@ -345,6 +351,7 @@ impl Renderer {
                 normal: [g[0], g[1], g[2]],
                 distance_m: g[3],
                 albedo: [a[0], a[1], a[2]].map(|v| f32::from(v) / 255.0),
+                water: a[3] < 128,
             })
             .collect())
     }

@@ -257,7 +257,8 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
             sun_direction,
             sun_centre_radiance,
             sun_limb_exponent,
-            size_px
+            size_px,
+            sea
         ]
     );
     assert_layout!(
@@ -271,6 +272,17 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
         "ToneMapParams",
         ToneMapUniform,
         [red, green, blue]
+    );
+}
+
+#[test]
+fn terrain_uniform_matches_its_wgsl_layout() {
+    use render_wgpu::terrain::pass::TerrainUniform;
+    assert_layout!(
+        "terrain/terrain.wgsl",
+        "TerrainParams",
+        TerrainUniform,
+        [right, up, forward, near, sea_albedo, snow_line, rock, snow]
     );
 }
 

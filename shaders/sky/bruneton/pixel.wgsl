@@ -10,7 +10,8 @@
 // zero (its ray has length 0), so it is not looked up; the same holds for the frame's
 // surface where it lies beyond the ground. A surface that cuts the ray short
 // (`Segment::cut`) subtracts T(x, x_o) S(x_o) looked up at its point x_o, and is lit by
-// `bruneton_surface_irradiance`. The sun disk with limb darkening is added where the ray
+// `bruneton_surface_irradiance`; the sea adds `add_sea` (`common/sea_surface.wgsl`) with
+// the sky along its mirror ray from the 3D textures. The sun disk with limb darkening is added where the ray
 // reaches space, times its transmittance. The view slice, E and the transmittance
 // table are read through the texture unit's linear filter where the device filters
 // Rgba32Float (`common/table_sampling.wgsl`), else texel by texel.
@@ -19,6 +20,7 @@
 #import common/frame_params.wgsl
 #import common/phase.wgsl
 #import common/surface.wgsl
+#import common/sea_surface.wgsl
 #import common/table_sampling.wgsl
 
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
@@ -104,7 +106,13 @@ fn scattered(p: Position, nu: f32, inside: bool) -> vec3<f32> {
 // an object at `object_m` (0: none); `inside`: the camera is inside the atmosphere and
 // the view slice holds S at its r and mu_s.
 fn bruneton_radiance(direction: vec3<f32>, object_m: f32, inside: bool) -> Radiance {
-    let s = view_segment(direction, object_m);
+    return segment_radiance(direction, view_segment(direction, object_m), inside);
+}
+
+// `Bruneton::radiance` for the ray along unit `direction` whose segment in the atmosphere
+// is `s` (a camera's, or the sea's mirror ray, `common/sea_surface.wgsl`, which reads
+// the 3D textures: `inside` false).
+fn segment_radiance(direction: vec3<f32>, s: Segment, inside: bool) -> Radiance {
     var out = radiance_of_empty(s, direction);
     if !s.hit {
         return out;
@@ -181,7 +189,15 @@ fn shade(px: vec2<u32>, inside: bool) {
     var r = bruneton_radiance(direction, surface.distance, inside);
     if surface.present {
         let e = bruneton_surface_irradiance(r.end, surface.normal);
-        r = add_surface(r, surface, e);
+        if SEA && surface.water {
+            let mirror = sea_mirror(r.end, direction, surface.normal);
+            let sky = segment_radiance(mirror, mirror_segment(r.end, mirror), false).radiance;
+            let sun = sea_sun(r.end, bruneton_surface_irradiance(r.end, frame.sun_direction.xyz),
+                bruneton_surface_irradiance(r.end, across_normal(r.end)));
+            r = add_sea(r, surface, direction, e, sky, sun);
+        } else {
+            r = add_surface(r, surface, e);
+        }
     }
     textureStore(hdr, px, hdr_pixel(direction, r));
 }

@@ -19,7 +19,10 @@
 // irradiance, times it.
 fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance {
     var r = empty;
-    let terms = trace(make_ray(s, direction, frame.sun_direction.xyz), dobashi.use_spheres != 0u);
+    // Sample spheres for a camera far out only: the sea's mirror ray starts inside
+    // (`t_enter` 0) and crosses the planes, as `Tracer::uses_spheres` says for its origin.
+    let spheres = dobashi.use_spheres != 0u && s.t_enter > 0.0;
+    let terms = trace(make_ray(s, direction, frame.sun_direction.xyz), spheres);
     r.radiance = atmosphere.solar_irradiance.xyz * (terms.single + terms.ambient);
     r.transmittance = terms.transmittance;
     return r;

@@ -12,7 +12,8 @@
 // - otherwise (ground or surface beyond the range, camera in space from where the ray
 //   enters the atmosphere): the view march per pixel;
 // - ground: albedo / pi (T_sun max(mu_s, 0) + E_sky(mu_s)) times the transmittance; a
-//   surface: `add_surface` with `hillaire_surface_irradiance`;
+//   surface: `add_surface` with `hillaire_surface_irradiance`; the sea: `add_sea`
+//   (`common/sea_surface.wgsl`) with the sky along the mirror direction marched;
 // - the limb-darkened sun disk times the transmittance where the ray reaches space.
 // Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three channels to the HDR target,
 // clamped to the largest finite f16. The transmittance table, the sky view and the volume
@@ -24,6 +25,7 @@
 #import sky/hillaire/directions.wgsl
 #import common/frame_params.wgsl
 #import common/surface.wgsl
+#import common/sea_surface.wgsl
 #import common/table_sampling.wgsl
 #import common/surface_columns.wgsl
 
@@ -178,13 +180,31 @@ fn hillaire_radiance(direction: vec3<f32>, object_m: f32, tables: bool, march: b
         m = march_run(view_ray(s.q, s.r_mu, s.start_dot_sun, nu), s.length,
             hillaire.march_samples);
     }
+    m = with_ground(m, s, nu);
+    out.radiance = max(m.radiance * atmosphere.solar_irradiance.xyz, vec3<f32>(0.0));
+    out.transmittance = clamp(m.throughput, vec3<f32>(0.0), vec3<f32>(1.0));
+    return out;
+}
+
+// `m`, the light along segment `s` at cosine `nu` to the sun, with the Lambertian ground
+// at its end where it ends on the ground.
+fn with_ground(m_in: ViewMarch, s: Segment, nu: f32) -> ViewMarch {
+    var m = m_in;
     if s.end == END_GROUND {
         let mu_g = clamp((s.start_dot_sun + s.length * nu) / atmosphere.bottom_radius_m, -1.0, 1.0);
         m.radiance += m.throughput * ground_light(mu_g);
     }
-    out.radiance = max(m.radiance * atmosphere.solar_irradiance.xyz, vec3<f32>(0.0));
-    out.transmittance = clamp(m.throughput, vec3<f32>(0.0), vec3<f32>(1.0));
-    return out;
+    return m;
+}
+
+// The sky's radiance along the sea's mirror ray (`common/sea_surface.wgsl`): marched from
+// the sea point (the sky view and the volume hold the camera's rays only).
+fn hillaire_mirror_sky(direction: vec3<f32>, s: Segment) -> vec3<f32> {
+    let nu = dot(direction, frame.sun_direction.xyz);
+    var m = march_run(view_ray(s.q, s.r_mu, s.start_dot_sun, nu), s.length,
+        hillaire.march_samples);
+    m = with_ground(m, s, nu);
+    return max(m.radiance * atmosphere.solar_irradiance.xyz, vec3<f32>(0.0));
 }
 
 // `Hillaire::surface_irradiance`: the transmitted sun from the transmittance LUT and the
@@ -228,7 +248,16 @@ fn shade(px: vec2<u32>, tables: bool, march: bool) {
     let surface = frame_surface(px);
     var r = hillaire_radiance(direction, surface.distance, tables, march);
     if surface.present {
-        r = add_surface(r, surface, hillaire_surface_irradiance(r.end, surface.normal));
+        let irradiance = hillaire_surface_irradiance(r.end, surface.normal);
+        if SEA && surface.water && march {
+            let mirror = sea_mirror(r.end, direction, surface.normal);
+            let sky = hillaire_mirror_sky(mirror, mirror_segment(r.end, mirror));
+            let sun = sea_sun(r.end, hillaire_surface_irradiance(r.end, frame.sun_direction.xyz),
+                hillaire_surface_irradiance(r.end, across_normal(r.end)));
+            r = add_sea(r, surface, direction, irradiance, sky, sun);
+        } else {
+            r = add_surface(r, surface, irradiance);
+        }
     }
     textureStore(hdr, px, hdr_pixel(direction, r));
 }

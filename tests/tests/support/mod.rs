@@ -17,6 +17,7 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel};
+use atmosphere_core::optics::sea_surface::{SeaHit, radiance_with_sea, slope_variance};
 use atmosphere_core::optics::sun_disk;
 use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
 use atmosphere_core::optics::view_segment::{SegmentEnd, ViewSegment};
@@ -225,6 +226,17 @@ fn cpu_pixel(
     surface: Option<&SurfaceTexel>,
 ) -> [f64; 3] {
     let ray = frame.pixel_ray(column, row);
+    if let Some(texel) = surface.filter(|t| t.distance_m > 0.0 && t.water) {
+        let wind = frame.terrain.unwrap_or_default().wind_m_s;
+        let hit = SeaHit {
+            distance_m: f64::from(texel.distance_m),
+            normal: glam::Vec3::from_array(texel.normal).as_dvec3(),
+            body_albedo: texel.stored_albedo().map(f64::from).to_vec(),
+            slope_variance: slope_variance(wind),
+        };
+        let answer = radiance_with_sea(model, &frame.atmosphere, &ray, &hit).unwrap();
+        return std::array::from_fn(|w| answer.radiance[w]);
+    }
     if let Some(texel) = surface.filter(|t| t.distance_m > 0.0) {
         let hit = SurfaceHit {
             distance_m: f64::from(texel.distance_m),
@@ -311,6 +323,18 @@ pub fn check_sun_disk(test: &str, model: ModelId, max_relative_error: f64) {
     let middle = (frame.height / 2 * frame.width + frame.width / 2) as usize;
     let (centre, near_limb) = (hdr[middle][1], hdr[middle + 4][1]);
     assert!(centre > 1e4 && near_limb < centre, "{centre} {near_limb}");
+}
+
+/// As [`check`], the frame's rays ending on `surface` (the sea's pixels by
+/// `radiance_with_sea` on the CPU).
+pub fn check_given_surface(
+    renderer: &mut Renderer,
+    name: &str,
+    frame: &Frame,
+    surface: &[SurfaceTexel],
+    max_relative_error: f64,
+) -> f64 {
+    check_over(renderer, name, frame, Some(surface), max_relative_error)
 }
 
 /// As [`check`], the frame's rays ending on [`synthetic_surface`].
@@ -466,6 +490,7 @@ pub fn synthetic_surface(frame: &Frame) -> Vec<SurfaceTexel> {
                     0.1 + 0.8 * row as f32 / frame.height as f32,
                     0.05 * (k % 7) as f32,
                 ],
+                water: false,
             });
         }
     }

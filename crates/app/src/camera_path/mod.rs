@@ -375,6 +375,7 @@ impl CameraPath {
             height,
             terrain: key.terrain.then_some(TerrainOptions {
                 exaggeration: blend.exaggeration,
+                ..TerrainOptions::default()
             }),
         })
     }

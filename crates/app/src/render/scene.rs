@@ -13,6 +13,7 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::check_settings;
 use atmosphere_core::models::sky_model::ModelSettings;
+use atmosphere_core::optics::sea_surface::{DEFAULT_WIND_M_S, check_wind};
 use clap::Args;
 use glam::DQuat;
 use render_wgpu::frame::{
@@ -90,6 +91,10 @@ pub struct Scene {
     /// Vertical exaggeration of the terrain, in (0, 100] [default: 1].
     #[arg(long, value_name = "K")]
     pub exaggeration: Option<f64>,
+    /// Wind speed over the sea, m/s, in [0, 20]: the roughness of the sun's glint on the
+    /// water (Cox and Munk 1954) [default: 5].
+    #[arg(long, value_name = "M_S")]
+    pub wind_m_s: Option<f64>,
     /// A model setting as key=value (repeat the flag), e.g. `--set samples=32`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -147,6 +152,7 @@ impl Scene {
             longitude_deg: flags.longitude_deg.or(self.longitude_deg),
             terrain: flags.terrain.or(self.terrain),
             exaggeration: flags.exaggeration.or(self.exaggeration),
+            wind_m_s: flags.wind_m_s.or(self.wind_m_s),
             set,
         }
     }
@@ -175,6 +181,7 @@ impl Scene {
             longitude_deg: self.longitude_deg,
             terrain: Some(self.terrain.unwrap_or(false)),
             exaggeration: Some(self.exaggeration.unwrap_or(1.0)),
+            wind_m_s: Some(self.wind_m_s.unwrap_or(DEFAULT_WIND_M_S)),
             set: self.set.clone(),
         })
     }
@@ -253,7 +260,12 @@ impl Scene {
                 if !(exaggeration > 0.0 && exaggeration <= MAX_EXAGGERATION) {
                     bail!("--exaggeration {exaggeration} must lie in (0, {MAX_EXAGGERATION}]");
                 }
-                Some(TerrainOptions { exaggeration })
+                let wind_m_s = value(s.wind_m_s);
+                check_wind(wind_m_s).map_err(|e| anyhow::anyhow!("--wind-m-s: {e}"))?;
+                Some(TerrainOptions {
+                    exaggeration,
+                    wind_m_s,
+                })
             }
             _ => None,
         };
@@ -403,6 +415,15 @@ mod tests {
                 ..scene()
             })
             .contains("venus")
+        );
+        let windy = err(Scene {
+            terrain: Some(true),
+            wind_m_s: Some(30.0),
+            ..scene()
+        });
+        assert!(
+            windy.contains("--wind-m-s") && windy.contains("[0, 20]"),
+            "{windy}"
         );
         for (field, flag) in [
             (

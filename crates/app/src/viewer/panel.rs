@@ -8,6 +8,7 @@ use render_wgpu::frame::{MAX_EXAGGERATION, terrain_fits};
 use render_wgpu::sky::registry::GPU_MODELS;
 
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::optics::sea_surface::WIND_RANGE_M_S;
 use atmosphere_core::sun_position::days_in_month;
 
 use crate::viewer::exposure::ExposureMode;
@@ -319,6 +320,14 @@ fn terrain(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         .on_hover_text(
             "Vertical exaggeration of the heights: 1 is true scale; the Earth's relief is \
              0.14 % of its radius, so views from orbit show it better at 10 to 50",
+        );
+        ui.add_enabled(
+            settings.terrain,
+            egui::Slider::new(&mut settings.wind_m_s, WIND_RANGE_M_S).text("wind, m/s"),
+        )
+        .on_hover_text(
+            "Wind over the sea: the sun's glint on the water spreads with the waves' slopes, \
+             whose mean square grows with the wind (Cox and Munk 1954); 0 is a calm sea",
         );
     });
 }

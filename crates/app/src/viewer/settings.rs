@@ -8,6 +8,7 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::sky_model::ModelSettings;
 use atmosphere_core::optics::phase::PhaseFunction;
+use atmosphere_core::optics::sea_surface::DEFAULT_WIND_M_S;
 use glam::DVec3;
 use render_wgpu::Frame;
 use render_wgpu::frame::{TerrainOptions, look_orientation, terrain_fits};
@@ -106,6 +107,9 @@ pub struct ViewerSettings {
     pub terrain: bool,
     /// Vertical exaggeration of the terrain (1 = true scale).
     pub exaggeration: f64,
+    /// Wind speed over the sea, m/s (the glint's roughness), in
+    /// [`atmosphere_core::optics::sea_surface::WIND_RANGE_M_S`].
+    pub wind_m_s: f64,
 }
 
 impl Default for ViewerSettings {
@@ -129,6 +133,7 @@ impl Default for ViewerSettings {
             exposure_mode: ExposureMode::default(),
             terrain: true,
             exaggeration: 1.0,
+            wind_m_s: DEFAULT_WIND_M_S,
         };
         settings.reset_view();
         settings
@@ -349,6 +354,7 @@ impl ViewerSettings {
             height,
             terrain: (self.terrain && terrain_fits(&atmosphere)).then_some(TerrainOptions {
                 exaggeration: self.exaggeration,
+                wind_m_s: self.wind_m_s,
             }),
             atmosphere,
         })

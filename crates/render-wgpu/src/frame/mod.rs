@@ -13,6 +13,7 @@ use atmosphere_core::atmosphere::{Atmosphere, presets};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::check_settings;
 use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
+use atmosphere_core::optics::sea_surface::{DEFAULT_WIND_M_S, check_wind};
 use glam::{DMat3, DQuat, DVec3};
 
 use crate::gpu::error::RenderError;
@@ -50,6 +51,11 @@ pub struct TerrainOptions {
     /// Vertical exaggeration of the heights (1 = true scale; docs/terrain.md), in
     /// (0, MAX_EXAGGERATION].
     pub exaggeration: f64,
+    /// Wind speed 12.5 m above the sea, m/s, in
+    /// [`atmosphere_core::optics::sea_surface::WIND_RANGE_M_S`]: the roughness of the
+    /// sea's glint (Cox and Munk 1954; docs/terrain.md, "Water"). A caller's surface
+    /// ([`crate::Renderer::render_with_surface`]) takes its sea from here too.
+    pub wind_m_s: f64,
 }
 
 /// The largest vertical exaggeration: the Earth's relief times 100 reaches 880 km, far
@@ -58,7 +64,10 @@ pub const MAX_EXAGGERATION: f64 = 100.0;
 
 impl Default for TerrainOptions {
     fn default() -> Self {
-        TerrainOptions { exaggeration: 1.0 }
+        TerrainOptions {
+            exaggeration: 1.0,
+            wind_m_s: DEFAULT_WIND_M_S,
+        }
     }
 }
 
@@ -173,6 +182,9 @@ impl Frame {
                 "terrain exaggeration {} must lie in (0, {MAX_EXAGGERATION}]",
                 t.exaggeration
             ));
+        }
+        if let Some(t) = self.terrain {
+            check_wind(t.wind_m_s).map_err(|e| RenderError::Frame(format!("terrain {e}")))?;
         }
         if !(1..=MAX_SIDE_PX).contains(&self.width) || !(1..=MAX_SIDE_PX).contains(&self.height) {
             return bad(format!(
@@ -317,13 +329,22 @@ mod tests {
         f.width = 0;
         assert!(f.validate().is_err());
         let mut f = frame();
-        f.terrain = Some(TerrainOptions { exaggeration: 0.0 });
+        f.terrain = Some(TerrainOptions {
+            exaggeration: 0.0,
+            ..TerrainOptions::default()
+        });
         assert!(
             f.validate()
                 .unwrap_err()
                 .to_string()
                 .contains("exaggeration")
         );
+        f.terrain = Some(TerrainOptions {
+            wind_m_s: 25.0,
+            ..TerrainOptions::default()
+        });
+        let e = f.validate().unwrap_err().to_string();
+        assert!(e.contains("wind_m_s 25") && e.contains("[0, 20]"), "{e}");
         let mut f = frame();
         f.terrain = Some(TerrainOptions::default());
         assert!(f.validate().is_ok());

@@ -10,7 +10,8 @@ use crate::gpu::pipeline::texture_2d;
 /// Per pixel: xyz the outward unit normal, w the distance from the camera along the
 /// pixel's ray, m (0: no surface).
 pub const GEOMETRY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// Per pixel: the surface's albedo, linear, in rgb.
+/// Per pixel: the surface's albedo, linear, in rgb; alpha 1 for a Lambertian surface, 0
+/// for the sea (`shaders/common/sea_surface.wgsl`), whose rgb is the water body's albedo.
 pub const ALBEDO_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// The bindings of the two textures in every model's pixel pass.
 pub const GEOMETRY_BINDING: u32 = 30;
@@ -25,6 +26,9 @@ pub struct SurfaceTexel {
     pub distance_m: f32,
     /// Linear albedo at the three wavelengths, stored in 8 bits each.
     pub albedo: [f32; 3],
+    /// The sea: a specular interface over a water body of albedo `albedo`
+    /// (atmosphere-core's `optics::sea_surface`), not a Lambertian surface.
+    pub water: bool,
 }
 
 impl SurfaceTexel {
@@ -83,7 +87,7 @@ impl SurfaceBuffer {
             .iter()
             .map(|t| {
                 let [r, g, b] = t.albedo.map(unorm8);
-                [r, g, b, 255]
+                [r, g, b, if t.water { 0 } else { 255 }]
             })
             .collect();
         let write = |texture: &wgpu::Texture, bytes: &[u8], texel_bytes: u32| {

@@ -11,12 +11,13 @@
 //! below a pixel's angle, and the shaders find where a ray enters the atmosphere from
 //! its closest approach to the centre, which does not cancel.
 
+use atmosphere_core::optics::sea_surface::{WATER_REFRACTIVE_INDEX, slope_variance};
 use atmosphere_core::optics::sun_disk;
 use bytemuck::{Pod, Zeroable};
 
 use crate::frame::Frame;
 
-/// WGSL `FrameParams`, 144 bytes.
+/// WGSL `FrameParams`, 160 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct FrameUniform {
@@ -40,6 +41,9 @@ pub struct FrameUniform {
     pub sun_limb_exponent: [f32; 4],
     /// Image width and height, px; zw: 0.
     pub size_px: [u32; 4],
+    /// x: the sea's mean square slope for the terrain's wind (default wind without
+    /// terrain); y: water's refractive index; zw: 0 (`common/sea_surface.wgsl`).
+    pub sea: [f32; 4],
 }
 
 impl FrameUniform {
@@ -75,6 +79,12 @@ impl FrameUniform {
             }),
             sun_limb_exponent: per_channel(&sun_disk::limb_darkening_exponent),
             size_px: [frame.width, frame.height, 0, 0],
+            sea: [
+                slope_variance(frame.terrain.unwrap_or_default().wind_m_s) as f32,
+                WATER_REFRACTIVE_INDEX as f32,
+                0.0,
+                0.0,
+            ],
         }
     }
 }

@@ -311,14 +311,17 @@ impl ComputePipeline {
 /// even one that no pixel takes, so a frame without a surface would otherwise pay for it.
 #[derive(Debug)]
 pub struct PixelPipeline {
+    with_sea: ComputePipeline,
     with_surface: ComputePipeline,
     without_surface: ComputePipeline,
 }
 
 impl PixelPipeline {
-    /// Both variants of entry point `entry` of `shader` (see [`ComputePipeline::new`]),
-    /// with the shader's other pipeline-overridable constants set to `constants` (name,
-    /// value) in both.
+    /// The three variants of entry point `entry` of `shader` (see
+    /// [`ComputePipeline::new`]): with a surface and the sea, with a surface on land only
+    /// (`SEA` false: the sea's mirror ray compiled out, as a software rasteriser pays for
+    /// every branch), and without a surface; the shader's other pipeline-overridable
+    /// constants set to `constants` (name, value) in all.
     pub fn with_constants(
         gpu: &GpuContext,
         shader: &str,
@@ -327,23 +330,25 @@ impl PixelPipeline {
         entries: &[wgpu::BindGroupLayoutEntry],
         constants: &[(&str, f64)],
     ) -> Result<PixelPipeline, GpuError> {
-        let variant = |surface: f64| {
-            let mut all = vec![("SURFACE", surface)];
+        let variant = |surface: f64, sea: f64| {
+            let mut all = vec![("SURFACE", surface), ("SEA", sea)];
             all.extend_from_slice(constants);
             ComputePipeline::with_constants(gpu, shader, entry, label, entries, &all)
         };
         Ok(PixelPipeline {
-            with_surface: variant(1.0)?,
-            without_surface: variant(0.0)?,
+            with_sea: variant(1.0, 1.0)?,
+            with_surface: variant(1.0, 0.0)?,
+            without_surface: variant(0.0, 0.0)?,
         })
     }
 
-    /// The variant for a frame with (`true`) or without a surface.
-    pub fn variant(&self, surface: bool) -> &ComputePipeline {
-        if surface {
-            &self.with_surface
-        } else {
-            &self.without_surface
+    /// The variant for a frame with (`surface`) or without a surface, and with sea
+    /// (`sea`, only with a surface) or without.
+    pub fn variant(&self, surface: bool, sea: bool) -> &ComputePipeline {
+        match (surface, sea) {
+            (true, true) => &self.with_sea,
+            (true, false) => &self.with_surface,
+            (false, _) => &self.without_surface,
         }
     }
 }

@@ -40,6 +40,8 @@ pub struct PassIo<'a> {
     pub surface: &'a [wgpu::TextureView; 2],
     /// Whether the frame has a surface: which variant of a `PixelPipeline` runs.
     pub has_surface: bool,
+    /// Whether that surface holds sea (`shaders/common/sea_surface.wgsl`).
+    pub has_sea: bool,
 }
 
 /// Where one step of a model records its work: the GPU, what the frame's steps read and
@@ -94,6 +96,7 @@ impl StandaloneInputs {
             hdr: &self.hdr,
             surface: &self.surface,
             has_surface: false,
+            has_sea: false,
         }
     }
 }

@@ -106,7 +106,7 @@ impl PixelPass {
         if let Some(sampling) = &self.sampling {
             resources.push(sampling.sampler_binding());
         }
-        let pipeline = self.pipeline.variant(io.has_surface);
+        let pipeline = self.pipeline.variant(io.has_surface, io.has_sea);
         let bind_group = pipeline.bind_group_numbered(cx.gpu, &resources);
         let groups = texel_groups(io.hdr);
         pipeline.dispatch(cx.encoder, self.label, &bind_group, groups, cx.timestamps);

@@ -10,10 +10,15 @@
 //! camera's height above the terrain below it, so 1 m and 1e8 m need nothing special.
 //! Albedo comes from the colour map (decoded from sRGB, mip-mapped in linear light),
 //! taken as the albedo at the three wavelengths: the Blue Marble is a true-colour
-//! picture, not a measured albedo, which docs/terrain.md discusses.
+//! picture, not a measured albedo, which docs/terrain.md discusses; rock on steep slopes
+//! and snow above the season's snow line replace it (atmosphere-core's
+//! `geo::land_cover`), and the sea is marked for the model passes' specular water.
 
 use std::collections::HashMap;
 
+use atmosphere_core::geo::land_cover::{
+    ROCK_ALBEDO, ROCK_SLOPE_COS, SNOW_ALBEDO, SNOW_BAND_M, SnowLine,
+};
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -49,7 +54,7 @@ const KEEP_FRAMES: u64 = 240;
 /// The smallest near plane, m.
 const MIN_NEAR_M: f64 = 0.05;
 
-/// WGSL `TerrainParams`, 80 bytes.
+/// WGSL `TerrainParams`, 128 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct TerrainUniform {
@@ -59,6 +64,14 @@ pub struct TerrainUniform {
     pub near: [f32; 4],
     /// rgb: the water's albedo (`sea_colour.rs`).
     pub sea_albedo: [f32; 4],
+    /// The season's snow line (atmosphere-core's `geo::land_cover::SnowLine`): x its
+    /// height at the thermal equator, m; y its fall to the pole, m; z the thermal
+    /// equator's latitude, rad; w the band over which snow sets in, m.
+    pub snow_line: [f32; 4],
+    /// rgb: rock's albedo; w: the slope cosine where rock sets in.
+    pub rock: [f32; 4],
+    /// rgb: snow's albedo; w: the slope cosine past which all is rock.
+    pub snow: [f32; 4],
 }
 
 /// WGSL `Chunk`, 32 bytes.
@@ -90,6 +103,8 @@ struct GpuChunk {
     max_radius_m: f64,
     /// The last frame whose level of detail chose the chunk.
     last_selected: u64,
+    /// Whether a vertex lies in the sea (its height below 0).
+    has_water: bool,
 }
 
 /// One chunk of this frame: its key and which edges border a coarser chunk.
@@ -116,6 +131,8 @@ pub struct TerrainPass {
     /// The depth buffer at the last prepared frame's size (1 x 1 before the first).
     depth: wgpu::Texture,
     draws: Vec<Draw>,
+    /// Whether a chunk drawn this frame holds sea.
+    water_in_view: bool,
     frame_number: u64,
     /// The water's albedo, linear.
     sea_albedo: [f64; 3],
@@ -253,6 +270,7 @@ impl TerrainPass {
             chunk_buffer,
             depth: depth_buffer(gpu, 1, 1),
             draws: Vec::new(),
+            water_in_view: false,
             frame_number: 0,
             sea_albedo,
         })
@@ -327,6 +345,7 @@ impl TerrainPass {
                     bounds,
                     max_radius_m,
                     last_selected: 0,
+                    has_water: mesh.heights_m.iter().any(|&h| h < 0.0),
                 },
             );
         }
@@ -336,6 +355,7 @@ impl TerrainPass {
         let frustum = Frustum::new(camera, [right, up, forward], half_w, half_h);
         let lowest_ray_m = frustum.lowest_radius_m();
         self.draws.clear();
+        self.water_in_view = false;
         let mut uniforms = Vec::new();
         for chunk in &selected {
             let gpu_chunk = self.chunks.get_mut(&chunk.key).expect("built above");
@@ -345,6 +365,7 @@ impl TerrainPass {
             if below_every_ray || !frustum.sees_sphere(centre, radius) {
                 continue;
             }
+            self.water_in_view |= gpu_chunk.has_water;
             self.draws.push(Draw {
                 key: chunk.key,
                 coarser: chunk.coarser,
@@ -378,12 +399,24 @@ impl TerrainPass {
             .write_buffer(&self.chunk_buffer, 0, bytemuck::cast_slice(&uniforms));
         let clearance = altitude_m - ground_m;
         let sea = self.sea_albedo.map(|c| c as f32);
+        // The season: the sun's declination, its planet-fixed direction's latitude.
+        let declination = frame.sun_direction.normalize().z.clamp(-1.0, 1.0).asin();
+        let line = SnowLine::for_declination(declination);
+        let with_w = |c: [f64; 3], w: f64| [c[0] as f32, c[1] as f32, c[2] as f32, w as f32];
         let params = TerrainUniform {
             right: v4(right / half_w),
             up: v4(up / half_h),
             forward: v4(forward),
             near: [near_plane_m(clearance) as f32, 0.0, 0.0, 0.0],
             sea_albedo: [sea[0], sea[1], sea[2], 1.0],
+            snow_line: [
+                line.at_equator_m as f32,
+                line.drop_to_pole_m as f32,
+                line.shift_rad as f32,
+                SNOW_BAND_M as f32,
+            ],
+            rock: with_w(ROCK_ALBEDO, ROCK_SLOPE_COS[0]),
+            snow: with_w(SNOW_ALBEDO, ROCK_SLOPE_COS[1]),
         };
         gpu.write_uniform(&self.params, &params);
         self.ensure_depth(gpu, frame.width, frame.height);
@@ -455,6 +488,12 @@ impl TerrainPass {
             let instance = instance as u32;
             pass.draw_indexed(0..*count, 0, instance..instance + 1);
         }
+    }
+
+    /// Whether the last prepared frame draws sea: the model passes then run their
+    /// variant with the sea's reflection (`shaders/common/sea_surface.wgsl`).
+    pub fn water_in_view(&self) -> bool {
+        self.water_in_view
     }
 
     /// The drawn terrain's elevation above the reference sphere in a unit direction, m,

@@ -138,7 +138,8 @@ impl StepEncoder<'_> {
         let slice = t.view_slice.create_view(&Default::default());
         let irradiance = t.irradiance.create_view(&Default::default());
         let p = self.pipelines;
-        let render = if inside { &p.render_inside } else { &p.render }.variant(io.has_surface);
+        let render =
+            if inside { &p.render_inside } else { &p.render }.variant(io.has_surface, io.has_sea);
         let [geometry, albedo] = io.surface;
         let surface = [
             (
