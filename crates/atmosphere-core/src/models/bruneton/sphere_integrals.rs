@@ -266,10 +266,13 @@ impl Builder<'_> {
 mod tests {
     use super::*;
     use crate::atmosphere::Atmosphere;
-    use crate::models::bruneton::Bruneton;
+    use crate::models::bruneton::channels::Channels;
+    use crate::models::bruneton::delta_m::DeltaM;
     use crate::models::bruneton::mie_quadrature::MieQuadrature;
+    use crate::models::bruneton::parameterization::Radii;
+    use crate::models::bruneton::settings::BrunetonSettings;
     use crate::models::bruneton::tables::DensityTable;
-    use crate::models::settings::ModelSettings;
+    use crate::optics::transmittance_table::TransmittanceTable;
 
     /// In haze, order 2's Delta J on the ground's lowest sky texels: the quadrature about
     /// the view (16 x 16 directions) agrees with a four times finer one within 3.5 % RMS,
@@ -278,20 +281,33 @@ mod tests {
     #[test]
     fn the_mie_quadrature_converges_where_delta_m_errs() {
         let atmosphere = Atmosphere::preset("hazy").unwrap();
-        let mut settings = ModelSettings {
-            max_orders: Some(1),
-            ..ModelSettings::default()
-        };
-        for (k, v) in [("r", "8"), ("mu", "32"), ("mu_s", "16"), ("nu", "8")] {
-            settings.options.set(k, v);
-        }
-        let model = Bruneton::prepare(&atmosphere, &settings).unwrap();
+        let mut settings = BrunetonSettings::default();
+        settings.scattering_size.r = 8;
+        settings.scattering_size.mu = 32;
+        settings.scattering_size.mu_s = 16;
+        let (width, height) = settings.transmittance_size;
+        let transmittance = TransmittanceTable::build(&atmosphere, width, height);
         let densities = DensityTable::new(&atmosphere);
-        let mut builder = model.builder(&densities, model.delta_m(), [680.0, 550.0, 440.0]);
-        let t = &model.tables()[0];
+        let channels = Channels::new(&atmosphere, [680.0, 550.0, 440.0]);
+        let mut builder = Builder {
+            atmosphere: &atmosphere,
+            settings: &settings,
+            radii: Radii {
+                bottom_m: atmosphere.bottom_radius_m,
+                top_m: atmosphere.top_radius_m,
+            },
+            transmittance: &transmittance,
+            densities: &densities,
+            channels,
+            sun_transmittances: channels.transmittances(&transmittance),
+            delta_m: Some(DeltaM::new(&atmosphere.mie.phase)),
+            mie_quadrature: None,
+            max_orders: 2,
+        };
+        let (single_rayleigh, single_mie) = builder.single_scattering();
         let previous = Previous::Single {
-            rayleigh: &t.single_rayleigh,
-            mie: t.single_mie.as_ref(),
+            rayleigh: &single_rayleigh,
+            mie: single_mie.as_ref(),
         };
         let delta_m = builder.scattering_density(previous, PreviousIrradiance::Direct);
         builder.mie_quadrature = Some(MieQuadrature::new(&atmosphere.mie.phase, 16));
