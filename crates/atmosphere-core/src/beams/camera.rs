@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use crate::beams::error::BeamError;
 use crate::beams::ray::SceneRay;
 
 /// A pinhole camera, m; `forward`, `right` and `up` are orthonormal.
@@ -29,5 +30,20 @@ impl Camera {
             direction: (self.forward + self.right * sx + self.up * sy).normalize(),
             max_distance_m: None,
         }
+    }
+
+    /// For methods that sample planes facing this camera (Dobashi et al. 2000, 2002): the
+    /// cosine of `ray` to the forward axis, `None` for a ray facing away; an error naming
+    /// `method` when the ray does not start at the camera.
+    pub fn forward_cosine(&self, method: &str, ray: &SceneRay) -> Result<Option<f64>, BeamError> {
+        let tolerance = 1e-6 * self.position_m.length().max(1.0);
+        if ray.origin_m.distance(self.position_m) > tolerance {
+            return Err(BeamError::Ray(format!(
+                "{method} renders from the scene camera at {}; this ray starts at {}",
+                self.position_m, ray.origin_m
+            )));
+        }
+        let cos_forward = ray.direction.dot(self.forward);
+        Ok((cos_forward > 0.0).then_some(cos_forward))
     }
 }

@@ -36,6 +36,7 @@ use glam::DVec3;
 use crate::atmosphere::Atmosphere;
 use crate::models::error::ModelError;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
+use crate::optics::surface_lighting::check_hit;
 use crate::optics::view_segment::ViewSegment;
 
 /// Refractive index of sea water in the visible (Hale and Querry 1973 give 1.331 to
@@ -187,19 +188,7 @@ pub fn radiance_with_sea(
     ray: &ViewRay,
     hit: &SeaHit,
 ) -> Result<RayRadiance, ModelError> {
-    if !(hit.distance_m.is_finite() && hit.distance_m > 0.0) {
-        return Err(ModelError::Ray(format!(
-            "sea distance {} must be > 0",
-            hit.distance_m
-        )));
-    }
-    if hit.body_albedo.len() != model.wavelengths_nm().len() {
-        return Err(ModelError::Ray(format!(
-            "{} albedos for {} wavelengths",
-            hit.body_albedo.len(),
-            model.wavelengths_nm().len()
-        )));
-    }
+    check_hit("sea", hit.distance_m, &hit.body_albedo, model)?;
     let normal = hit.normal.try_normalize().ok_or_else(|| {
         ModelError::Ray("the sea's normal must be a finite non-zero vector".into())
     })?;

@@ -42,19 +42,7 @@ pub fn radiance_with_surface(
     ray: &ViewRay,
     hit: &SurfaceHit,
 ) -> Result<RayRadiance, ModelError> {
-    if !(hit.distance_m.is_finite() && hit.distance_m > 0.0) {
-        return Err(ModelError::Ray(format!(
-            "surface distance {} must be > 0",
-            hit.distance_m
-        )));
-    }
-    if hit.albedo.len() != model.wavelengths_nm().len() {
-        return Err(ModelError::Ray(format!(
-            "{} albedos for {} wavelengths",
-            hit.albedo.len(),
-            model.wavelengths_nm().len()
-        )));
-    }
+    check_hit("surface", hit.distance_m, &hit.albedo, model)?;
     let ray = ViewRay {
         max_distance_m: Some(hit.distance_m),
         ..*ray
@@ -168,6 +156,29 @@ impl SurfaceElement {
             .map(|w| self.irradiance(solar_irradiance[w], sun_transmittance(w), 0.0))
             .collect()
     }
+}
+
+/// Nothing, or an error when a `what` (surface, sea) hit at `distance_m` is not ahead of
+/// the ray or its `albedo` has not one value per wavelength of `model`.
+pub fn check_hit(
+    what: &str,
+    distance_m: f64,
+    albedo: &[f64],
+    model: &dyn SkyModel,
+) -> Result<(), ModelError> {
+    if !(distance_m.is_finite() && distance_m > 0.0) {
+        return Err(ModelError::Ray(format!(
+            "{what} distance {distance_m} must be > 0"
+        )));
+    }
+    if albedo.len() != model.wavelengths_nm().len() {
+        return Err(ModelError::Ray(format!(
+            "{} albedos for {} wavelengths",
+            albedo.len(),
+            model.wavelengths_nm().len()
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

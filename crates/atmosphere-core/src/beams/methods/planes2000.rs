@@ -211,19 +211,11 @@ fn content_depth(scattering: &InScattering) -> f64 {
 impl BeamMethod for Planes2000 {
     fn radiance(&self, ray: &SceneRay) -> Result<Vec<f64>, BeamError> {
         let cam = &self.camera;
-        let tolerance = 1e-6 * cam.position_m.length().max(1.0);
-        if ray.origin_m.distance(cam.position_m) > tolerance {
-            return Err(BeamError::Ray(format!(
-                "planes2000 renders from the scene camera at {}; this ray starts at {}",
-                cam.position_m, ray.origin_m
-            )));
-        }
         let wl = self.scattering.wavelengths_nm.len();
         let mut sum = vec![0.0; wl];
-        let cos_forward = ray.direction.dot(cam.forward);
-        if cos_forward <= 0.0 {
+        let Some(cos_forward) = cam.forward_cosine("planes2000", ray)? else {
             return Ok(sum);
-        }
+        };
         let t_end = self.scattering.ray_end_m(ray);
         let n = (self.settings.lattice - 1) as f64;
         let occluders = &self.scattering.scene.occluders;

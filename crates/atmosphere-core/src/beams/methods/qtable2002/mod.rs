@@ -332,19 +332,11 @@ fn table_extent(
 impl BeamMethod for Qtable2002 {
     fn radiance(&self, ray: &SceneRay) -> Result<Vec<f64>, BeamError> {
         let cam = &self.camera;
-        let tolerance = 1e-6 * cam.position_m.length().max(1.0);
-        if ray.origin_m.distance(cam.position_m) > tolerance {
-            return Err(BeamError::Ray(format!(
-                "qtable2002 renders from the scene camera at {}; this ray starts at {}",
-                cam.position_m, ray.origin_m
-            )));
-        }
         let wl = self.scattering.wavelengths_nm.len();
         let mut sum = vec![0.0; wl];
-        let cos_forward = ray.direction.dot(cam.forward);
-        if cos_forward <= 0.0 {
+        let Some(cos_forward) = cam.forward_cosine("qtable2002", ray)? else {
             return Ok(sum);
-        }
+        };
         let t_end = self.scattering.ray_end_m(ray);
         let dt_ray = self.table.interval_m() / cos_forward;
         let occluders = &self.scattering.scene.occluders;
