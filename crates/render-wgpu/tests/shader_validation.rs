@@ -416,7 +416,8 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             density_step_m,
             min_mu_s,
             nu_by_angle,
-            mie_directions
+            mie_directions,
+            store_chunk_texels
         ]
     );
     assert_layout!(

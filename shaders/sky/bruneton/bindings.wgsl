@@ -57,6 +57,8 @@ struct BrunetonParams {
     min_mu_s: f32,
     nu_by_angle: u32,
     mie_directions: u32,
+    // Texels of the store each of its bindings covers (the last may cover fewer).
+    store_chunk_texels: u32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;
@@ -66,7 +68,53 @@ struct BrunetonParams {
 @group(0) @binding(5) var transmittance: texture_2d<f32>;
 // The store: every table being built, each at its offset in `bruneton` (vec4 per texel,
 // rgb = the three channels), indexed as on the CPU so that a table read back compares
-// texel by texel.
-@group(0) @binding(4) var<storage, read_write> store: array<vec4<f32>>;
+// texel by texel. One buffer bound as four consecutive ranges (chunks) of
+// `store_chunk_texels` texels, so that it may exceed the device's largest storage
+// binding; bindings past the last chunk repeat it. Read and written only through
+// `store_read` and `store_write`, by the texel's index in the whole store.
+@group(0) @binding(4) var<storage, read_write> store0: array<vec4<f32>>;
+@group(0) @binding(13) var<storage, read_write> store1: array<vec4<f32>>;
+@group(0) @binding(14) var<storage, read_write> store2: array<vec4<f32>>;
+@group(0) @binding(15) var<storage, read_write> store3: array<vec4<f32>>;
+
+// Texel `i` of the store.
+fn store_read(i: u32) -> vec4<f32> {
+    let chunk = i / bruneton.store_chunk_texels;
+    let j = i - chunk * bruneton.store_chunk_texels;
+    switch chunk {
+        case 0u: {
+            return store0[j];
+        }
+        case 1u: {
+            return store1[j];
+        }
+        case 2u: {
+            return store2[j];
+        }
+        default: {
+            return store3[j];
+        }
+    }
+}
+
+// Writes `value` to texel `i` of the store.
+fn store_write(i: u32, value: vec4<f32>) {
+    let chunk = i / bruneton.store_chunk_texels;
+    let j = i - chunk * bruneton.store_chunk_texels;
+    switch chunk {
+        case 0u: {
+            store0[j] = value;
+        }
+        case 1u: {
+            store1[j] = value;
+        }
+        case 2u: {
+            store2[j] = value;
+        }
+        default: {
+            store3[j] = value;
+        }
+    }
+}
 // The density table, copied from the store into a 1D texture for the shaders' reads.
 @group(0) @binding(12) var density_table: texture_1d<f32>;

@@ -10,5 +10,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= DENSITY_SAMPLES {
         return;
     }
-    store[bruneton.density_offset + id.x] = vec4<f32>(densities(f32(id.x) * bruneton.density_step_m), 0.0);
+    store_write(bruneton.density_offset + id.x, vec4<f32>(densities(f32(id.x) * bruneton.density_step_m), 0.0));
 }

@@ -30,5 +30,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             e += (theta.y * 2.0 * phi_step * st * ct) * l;
         }
     }
-    store[bruneton.delta_e_offset + id.x] = vec4<f32>(e, 0.0);
+    store_write(bruneton.delta_e_offset + id.x, vec4<f32>(e, 0.0));
 }

@@ -60,12 +60,12 @@ fn reduce(lid: u32) {
 // else the order's Delta S.
 fn texel_radiance(index: u32, single: bool) -> vec3<f32> {
     if !single {
-        return store[bruneton.delta_s_offset + index].xyz;
+        return store_read(bruneton.delta_s_offset + index).xyz;
     }
     let nu = texel_of_index(index).nu;
-    var l = rayleigh_phase(nu) * store[bruneton.single_rayleigh_offset + index].xyz;
+    var l = rayleigh_phase(nu) * store_read(bruneton.single_rayleigh_offset + index).xyz;
     if bruneton.mie_on == 1u {
-        l += mie_phase(nu) * store[bruneton.single_mie_offset + index].xyz;
+        l += mie_phase(nu) * store_read(bruneton.single_mie_offset + index).xyz;
     }
     return l;
 }
@@ -79,7 +79,7 @@ fn sum(group: u32, lid: u32, single: bool) {
     partial[lid] = s;
     reduce(lid);
     if lid == 0u {
-        store[bruneton.partials_offset + group] = vec4<f32>(partial[0], 0.0);
+        store_write(bruneton.partials_offset + group, vec4<f32>(partial[0], 0.0));
     }
 }
 
@@ -95,7 +95,7 @@ fn sum_order(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_
 
 @compute @workgroup_size(256)
 fn decide(@builtin(local_invocation_index) lid: u32) {
-    partial[lid] = store[bruneton.partials_offset + lid].xyz;
+    partial[lid] = store_read(bruneton.partials_offset + lid).xyz;
     reduce(lid);
     if lid != 0u {
         return;
@@ -144,9 +144,11 @@ fn decide(@builtin(local_invocation_index) lid: u32) {
 fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = flat_index(id);
     if index < bruneton.scattering_texels {
-        store[bruneton.multiple_offset + index] += store[bruneton.delta_s_offset + index];
+        let at = bruneton.multiple_offset + index;
+        store_write(at, store_read(at) + store_read(bruneton.delta_s_offset + index));
     }
     if index < bruneton.irradiance_texels {
-        store[bruneton.irradiance_offset + index] += store[bruneton.delta_e_offset + index];
+        let at = bruneton.irradiance_offset + index;
+        store_write(at, store_read(at) + store_read(bruneton.delta_e_offset + index));
     }
 }

@@ -50,5 +50,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let b = mix(plane_entry(p, s.i, nu_axis.i + 1u), plane_entry(p, s.i + 1u, nu_axis.i + 1u), s.w);
         sum += node.weighted_transmittance * mix(a, b, nu_axis.w);
     }
-    store[bruneton.delta_s_offset + index] = vec4<f32>(sum, 0.0);
+    store_write(bruneton.delta_s_offset + index, vec4<f32>(sum, 0.0));
 }

@@ -68,7 +68,7 @@ fn moments(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let base = moments_base(ir, imus);
     for (var j = 0u; j < 7u; j++) {
-        store[base + j] = vec4<f32>(m[j], 0.0);
+        store_write(base + j, vec4<f32>(m[j], 0.0));
     }
 }
 
@@ -85,11 +85,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let vy = safe_sqrt(1.0 - tx.mu * tx.mu - vx * vx);
     let vz = tx.mu;
     let base = moments_base(c.r, c.mu_s);
-    let l0 = store[base].xyz;
-    let fx = store[base + 1u].xyz;
-    let fz = store[base + 2u].xyz;
-    let q = store[base + 3u].xyz * (vx * vx) + store[base + 4u].xyz * (vy * vy)
-        + store[base + 5u].xyz * (vz * vz) + store[base + 6u].xyz * (2.0 * vx * vz);
+    let l0 = store_read(base).xyz;
+    let fx = store_read(base + 1u).xyz;
+    let fz = store_read(base + 2u).xyz;
+    let q = store_read(base + 3u).xyz * (vx * vx) + store_read(base + 4u).xyz * (vy * vy)
+        + store_read(base + 5u).xyz * (vz * vz) + store_read(base + 6u).xyz * (2.0 * vx * vz);
     let rho = density_at(tx.q / (tx.r + atmosphere.bottom_radius_m));
     var j = atmosphere.rayleigh_scattering_per_m.xyz * (rho.x * 3.0 / (16.0 * PI)) * (l0 + q);
     if bruneton.mie_on == 1u && bruneton.mie_directions > 0u {
@@ -104,6 +104,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         j += atmosphere.mie_scattering_per_m.xyz * rho.y * max(j_m, vec3<f32>(0.0));
     }
     let value = vec4<f32>(max(j, vec3<f32>(0.0)), 0.0);
-    store[bruneton.delta_j_offset + index] = value;
+    store_write(bruneton.delta_j_offset + index, value);
     textureStore(delta_j_out, texture_texel(c.r, c.mu, c.mu_s, c.nu), value);
 }

@@ -17,16 +17,16 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let index = flat_index(id);
     if index < bruneton.irradiance_mu_s_size * bruneton.irradiance_r_size {
         let at_e = vec2<u32>(index % bruneton.irradiance_mu_s_size, index / bruneton.irradiance_mu_s_size);
-        textureStore(irradiance, at_e, vec4<f32>(store[bruneton.irradiance_offset + index].xyz, 1.0));
+        textureStore(irradiance, at_e, vec4<f32>(store_read(bruneton.irradiance_offset + index).xyz, 1.0));
     }
     if index >= bruneton.scattering_texels {
         return;
     }
     let c = texel_coords(index);
     let at = texture_texel(c.r, c.mu, c.mu_s, c.nu);
-    textureStore(single_rayleigh, at, vec4<f32>(store[bruneton.single_rayleigh_offset + index].xyz, 1.0));
-    textureStore(multiple, at, vec4<f32>(store[bruneton.multiple_offset + index].xyz, 1.0));
+    textureStore(single_rayleigh, at, vec4<f32>(store_read(bruneton.single_rayleigh_offset + index).xyz, 1.0));
+    textureStore(multiple, at, vec4<f32>(store_read(bruneton.multiple_offset + index).xyz, 1.0));
     if bruneton.mie_on == 1u {
-        textureStore(single_mie, at, vec4<f32>(store[bruneton.single_mie_offset + index].xyz, 1.0));
+        textureStore(single_mie, at, vec4<f32>(store_read(bruneton.single_mie_offset + index).xyz, 1.0));
     }
 }

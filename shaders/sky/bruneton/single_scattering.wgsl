@@ -29,8 +29,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         rayleigh += c * node.densities.x;
         mie += c * node.densities.y;
     }
-    store[bruneton.single_rayleigh_offset + index] = vec4<f32>(rayleigh * atmosphere.rayleigh_scattering_per_m.xyz, 0.0);
+    store_write(bruneton.single_rayleigh_offset + index, vec4<f32>(rayleigh * atmosphere.rayleigh_scattering_per_m.xyz, 0.0));
     if bruneton.mie_on == 1u {
-        store[bruneton.single_mie_offset + index] = vec4<f32>(mie * atmosphere.mie_scattering_per_m.xyz, 0.0);
+        store_write(bruneton.single_mie_offset + index, vec4<f32>(mie * atmosphere.mie_scattering_per_m.xyz, 0.0));
     }
 }

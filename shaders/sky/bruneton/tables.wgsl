@@ -15,7 +15,7 @@ fn table4_slice(base: u32, p: Position, inu: u32) -> vec3<f32> {
         for (var dr = 0u; dr < 2u; dr++) {
             let w_r = select(1.0 - p.r.w, p.r.w, dr == 1u);
             let i = base + table_index(p.r.i + dr, p.mu.i + dm, p.mu_s.i, inu);
-            out += (wm * w_r) * mix(store[i].xyz, store[i + 1u].xyz, p.mu_s.w);
+            out += (wm * w_r) * mix(store_read(i).xyz, store_read(i + 1u).xyz, p.mu_s.w);
         }
     }
     return out;
@@ -39,8 +39,8 @@ fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
     let ar = axis(x_r, bruneton.irradiance_r_size);
     let am = axis(x_mu_s, bruneton.irradiance_mu_s_size);
     let i = base + ar.i * bruneton.irradiance_mu_s_size + am.i;
-    let lower = mix(store[i].xyz, store[i + 1u].xyz, am.w);
-    let upper = mix(store[i + bruneton.irradiance_mu_s_size].xyz, store[i + bruneton.irradiance_mu_s_size + 1u].xyz, am.w);
+    let lower = mix(store_read(i).xyz, store_read(i + 1u).xyz, am.w);
+    let upper = mix(store_read(i + bruneton.irradiance_mu_s_size).xyz, store_read(i + bruneton.irradiance_mu_s_size + 1u).xyz, am.w);
     return mix(lower, upper, ar.w);
 }
 

@@ -7,6 +7,7 @@ use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::pipeline::{ComputePipeline, storage_buffer_entry, texture_entry, uniform_entry};
+use crate::sky::bruneton::store_chunks::STORE_BINDINGS as STORE_CHUNK_BINDINGS;
 use crate::sky::bruneton::tables::Tables;
 use crate::sky::bruneton::uniform::BrunetonUniform;
 use crate::sky::model_pass::PassIo;
@@ -19,8 +20,8 @@ const FRAME_BINDING: u32 = 1;
 const PARAMS_BINDING: u32 = 2;
 /// The columns table T(r, mu) (`sky/transmittance_table.wgsl`, `columns`).
 pub const COLUMNS_BINDING: u32 = 3;
-/// The store (`store.rs`).
-const STORE_BINDING: u32 = 4;
+/// The store's chunks (`store.rs`, `store_chunks.rs`): `store0` to `store3`.
+const STORE_BINDINGS: [u32; STORE_CHUNK_BINDINGS] = [4, 13, 14, 15];
 /// The transmittance table.
 const TRANSMITTANCE_BINDING: u32 = 5;
 /// The density table's texture.
@@ -28,18 +29,24 @@ const DENSITY_BINDING: u32 = 12;
 /// The first binding of a step's own resources.
 pub const FIRST_STEP_BINDING: u32 = 6;
 
-/// The layout entries of the shared bindings, with the store at least `store_bytes`.
+/// The layout entries of the shared bindings, with each chunk of the store at least
+/// `store_bytes`.
 pub fn shared_entries(store_bytes: usize) -> Vec<wgpu::BindGroupLayoutEntry> {
     use wgpu::TextureViewDimension::{D1, D2};
-    vec![
+    let mut entries = vec![
         texture_entry(DENSITY_BINDING, D1),
         uniform_entry(ATMOSPHERE_BINDING, size_of::<AtmosphereUniform>()),
         uniform_entry(FRAME_BINDING, size_of::<FrameUniform>()),
         uniform_entry(PARAMS_BINDING, size_of::<BrunetonUniform>()),
         texture_entry(COLUMNS_BINDING, D2),
-        storage_buffer_entry(STORE_BINDING, store_bytes),
         texture_entry(TRANSMITTANCE_BINDING, D2),
-    ]
+    ];
+    entries.extend(
+        STORE_BINDINGS
+            .iter()
+            .map(|&binding| storage_buffer_entry(binding, store_bytes)),
+    );
+    entries
 }
 
 /// The bind group of `pipeline`: the shared bindings with `params`, then `extra` from
@@ -67,7 +74,6 @@ pub fn bind_group(
             COLUMNS_BINDING,
             wgpu::BindingResource::TextureView(&columns),
         ),
-        (STORE_BINDING, tables.store.as_entire_binding()),
         (
             TRANSMITTANCE_BINDING,
             wgpu::BindingResource::TextureView(&transmittance),
@@ -77,6 +83,14 @@ pub fn bind_group(
             wgpu::BindingResource::TextureView(&density),
         ),
     ];
+    let chunks = tables.chunks.ranges().map(|(offset, size)| {
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer: &tables.store,
+            offset,
+            size: Some(size),
+        })
+    });
+    resources.extend(STORE_BINDINGS.into_iter().zip(chunks));
     resources.extend((FIRST_STEP_BINDING..).zip(extra.iter().cloned()));
     resources.extend_from_slice(more);
     pipeline.bind_group_numbered(gpu, &resources)

@@ -12,15 +12,17 @@
 //! the `inside` entry point interpolates in mu and nu), and the per-pixel pass.
 //!
 //! Tables being built live in one storage buffer, the store (`store.rs`), indexed as the
-//! CPU's, so a table read back compares texel by texel. Rebuilds follow the CPU's
-//! (`built.rs`); Mie work is left out when `Spectra::needs_mie` says so. The loop over
-//! orders may be spread over frames (`progressive.rs`).
+//! CPU's, so a table read back compares texel by texel; it is bound as up to four ranges
+//! (`store_chunks.rs`), so that it may exceed the device's largest storage binding.
+//! Rebuilds follow the CPU's (`built.rs`); Mie work is left out when
+//! `Spectra::needs_mie` says so. The loop over orders may be spread over frames
+//! (`progressive.rs`).
 //!
 //! Files: `step.rs` the steps; `pass.rs` the [`crate::sky::model_pass::ModelPass`] and
 //! the plan; `encode.rs` and `orders.rs` each step's dispatches; `pipelines.rs` and
 //! `bindings.rs` the pipelines and their bindings; `tables.rs`, `store.rs`,
-//! `uniform.rs`, `order_state.rs` and `workgroups.rs` the GPU resources; `readback.rs`
-//! and `standalone.rs` for tests and profiling.
+//! `store_chunks.rs`, `uniform.rs`, `order_state.rs` and `workgroups.rs` the GPU
+//! resources; `readback.rs` and `standalone.rs` for tests and profiling.
 
 mod bindings;
 mod built;
@@ -34,6 +36,7 @@ mod readback;
 mod standalone;
 pub mod step;
 pub mod store;
+mod store_chunks;
 mod tables;
 pub mod uniform;
 pub mod workgroups;

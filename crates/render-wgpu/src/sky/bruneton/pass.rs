@@ -51,11 +51,26 @@ pub struct BrunetonPass {
     pub(super) frame: PlannedFrame,
     /// Whether the loop over orders is spread over frames ([`ModelPass::set_progressive`]).
     progressive: bool,
+    /// The most bytes one binding of the store covers (`store_chunks.rs`).
+    store_binding_bytes: u64,
 }
 
 impl BrunetonPass {
     /// The pass with its tables at the default settings' sizes, none built yet.
     pub fn new(gpu: &GpuContext) -> Result<BrunetonPass, RenderError> {
+        let limit = gpu.device.limits().max_storage_buffer_binding_size;
+        BrunetonPass::with_store_binding(gpu, limit)
+    }
+
+    /// The pass with the store of the tables it plans bound in ranges of at most
+    /// `binding_bytes` (the device's largest storage buffer binding where that is less),
+    /// so that a test may split small tables over several bindings; the default settings'
+    /// tables, made now and unbuilt, are bound as [`BrunetonPass::new`] binds them.
+    pub fn with_store_binding(
+        gpu: &GpuContext,
+        binding_bytes: u64,
+    ) -> Result<BrunetonPass, RenderError> {
+        let limit = gpu.device.limits().max_storage_buffer_binding_size;
         // The pass may sample the columns table, the view slice and E.
         let sampling = TableSampling::new(gpu);
         let settings = BrunetonSettings::default();
@@ -63,7 +78,7 @@ impl BrunetonPass {
         Ok(BrunetonPass {
             pipelines: Pipelines::new(gpu, &sampling)?,
             sampling,
-            tables: Tables::new(gpu, &settings, settings.order_limit)?,
+            tables: Tables::new(gpu, &settings, settings.order_limit, limit)?,
             frame: PlannedFrame {
                 atmosphere_uniform: AtmosphereUniform::new(&atmosphere, RGB_WAVELENGTHS_NM)?,
                 atmosphere,
@@ -72,6 +87,7 @@ impl BrunetonPass {
                 inside: true,
             },
             progressive: false,
+            store_binding_bytes: binding_bytes,
         })
     }
 }
@@ -84,8 +100,12 @@ impl ModelPass for BrunetonPass {
         let atmosphere_uniform = frame_atmosphere(frame)?;
         let settings = BrunetonSettings::from_options(&frame.settings.options)?;
         let max_orders = frame.settings.max_orders.unwrap_or(settings.order_limit);
-        if self.tables.settings != settings || self.tables.max_orders != max_orders {
-            self.tables = Tables::new(gpu, &settings, max_orders)?;
+        let binding_bytes = self.store_binding_bytes;
+        if self.tables.settings != settings
+            || self.tables.max_orders != max_orders
+            || self.tables.binding_bytes != binding_bytes
+        {
+            self.tables = Tables::new(gpu, &settings, max_orders, binding_bytes)?;
         }
         let tables = &mut self.tables;
         let atmosphere = &frame.atmosphere;
@@ -133,6 +153,7 @@ impl ModelPass for BrunetonPass {
         let uniform = BrunetonUniform::new(
             &tables.settings,
             &tables.layout,
+            &tables.chunks,
             max_orders,
             atmosphere,
             mie,

@@ -8,7 +8,7 @@ pub const DENSITY_SAMPLES: u32 = 8192;
 /// Workgroups of the partial sums (`SUM_GROUPS` of `sky/bruneton/orders.wgsl`).
 pub const SUM_GROUPS: u32 = 256;
 /// Bytes of one texel of the store (`vec4<f32>`, rgb = the three channels).
-const TEXEL_BYTES: u64 = 16;
+pub const TEXEL_BYTES: u64 = 16;
 
 /// The tables of the store, in its order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -59,9 +59,14 @@ impl StoreLayout {
         StoreLayout { offsets, lengths }
     }
 
+    /// The store's size in texels.
+    pub fn texels(&self) -> u64 {
+        u64::from(self.offsets[TABLES - 1]) + u64::from(self.lengths[TABLES - 1])
+    }
+
     /// The store's size in bytes.
     pub fn bytes(&self) -> u64 {
-        u64::from(self.offsets[TABLES - 1] + self.lengths[TABLES - 1]) * TEXEL_BYTES
+        self.texels() * TEXEL_BYTES
     }
 
     /// The first texel of `table`.

@@ -11,6 +11,7 @@ use crate::sky::bruneton::built::Built;
 use crate::sky::bruneton::order_state::{MAX_ORDERS, OrderState};
 use crate::sky::bruneton::progressive::Share;
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout};
+use crate::sky::bruneton::store_chunks::{STORE_BINDINGS, StoreChunks};
 use crate::sky::bruneton::uniform::BrunetonUniform;
 use crate::sky::bruneton::workgroups::{FLAT, delta_s_slices, flat_groups};
 use crate::sky::transmittance::{TableOutput, TransmittancePass};
@@ -21,6 +22,10 @@ pub struct Tables {
     pub settings: BrunetonSettings,
     pub max_orders: u32,
     pub layout: StoreLayout,
+    /// The store's split over its bindings.
+    pub chunks: StoreChunks,
+    /// The most bytes one binding of the store was asked to cover.
+    pub binding_bytes: u64,
     pub columns: TransmittancePass,
     pub transmittance: TransmittancePass,
     pub store: wgpu::Buffer,
@@ -53,13 +58,15 @@ pub struct Tables {
     pub next: Option<Share>,
 }
 
-/// Why the GPU cannot build tables of `settings` with `max_orders`, if it cannot.
+/// Why the GPU cannot build tables of `settings` with `max_orders`, if it cannot; else
+/// the store's split over bindings of at most `binding_bytes`.
 fn check_limits(
     gpu: &GpuContext,
     settings: &BrunetonSettings,
     max_orders: u32,
     layout: &StoreLayout,
-) -> Result<(), RenderError> {
+    binding_bytes: u64,
+) -> Result<StoreChunks, RenderError> {
     let s = settings.scattering_size;
     let e_texels = settings.irradiance_size.0 * settings.irradiance_size.1;
     if settings.sun_disk {
@@ -75,23 +82,31 @@ fn check_limits(
     let limits = gpu.device.limits();
     let too_big = |what: String| {
         Err(RenderError::Unsupported(format!(
-            "bruneton tables of r={} mu={} mu_s={} nu={}: {what}",
-            s.r, s.mu, s.mu_s, s.nu
+            "bruneton tables of r={} mu={} mu_s={} nu={} e_mu_s={} e_r={}: {what}",
+            s.r, s.mu, s.mu_s, s.nu, settings.irradiance_size.0, settings.irradiance_size.1
         )))
     };
-    if layout.bytes()
-        > limits
-            .max_storage_buffer_binding_size
-            .min(limits.max_buffer_size)
-    {
+    if layout.bytes() > limits.max_buffer_size {
         return too_big(format!(
-            "{} bytes of tables being built, more than the device's storage buffer binding \
-             ({} bytes) or buffer ({} bytes) holds",
+            "{} bytes of tables being built, more than the device's largest buffer ({} bytes)",
             layout.bytes(),
-            limits.max_storage_buffer_binding_size,
             limits.max_buffer_size
         ));
     }
+    let binding_bytes = binding_bytes.min(limits.max_storage_buffer_binding_size);
+    let alignment = u64::from(limits.min_storage_buffer_offset_alignment);
+    let chunks = match StoreChunks::new(layout.texels(), binding_bytes, alignment) {
+        Ok(chunks) => chunks,
+        Err(chunk_bytes) => {
+            return too_big(format!(
+                "{} bytes of tables being built, more than {STORE_BINDINGS} storage bindings \
+                 of {chunk_bytes} bytes hold (bindings of at most {binding_bytes} bytes, the \
+                 device's largest is {} bytes, at multiples of {alignment} bytes)",
+                layout.bytes(),
+                limits.max_storage_buffer_binding_size
+            ));
+        }
+    };
     let width = (s.nu * s.mu_s) as u64;
     let largest = width.max(s.mu as u64).max(s.r as u64);
     if largest > u64::from(limits.max_texture_dimension_3d) {
@@ -111,20 +126,23 @@ fn check_limits(
             limits.max_compute_workgroups_per_dimension
         ));
     }
-    Ok(())
+    Ok(chunks)
 }
 
 impl Tables {
-    /// The tables for `settings`, or why the GPU cannot hold them.
+    /// The tables for `settings`, the store bound in ranges of at most `binding_bytes`
+    /// (the device's largest storage buffer binding or less), or why the GPU cannot hold
+    /// them.
     pub fn new(
         gpu: &GpuContext,
         settings: &BrunetonSettings,
         max_orders: u32,
+        binding_bytes: u64,
     ) -> Result<Tables, RenderError> {
         let s = settings.scattering_size;
         let (e_mu_s, e_r) = settings.irradiance_size;
         let layout = StoreLayout::new(s, e_mu_s * e_r);
-        check_limits(gpu, settings, max_orders, &layout)?;
+        let chunks = check_limits(gpu, settings, max_orders, &layout, binding_bytes)?;
         let device = &gpu.device;
         let (slices, slice_texels) = delta_s_slices(s.texels() as u32);
         let slice_stride = u64::from(device.limits().min_uniform_buffer_offset_alignment).max(16);
@@ -177,6 +195,8 @@ impl Tables {
             settings: settings.clone(),
             max_orders,
             layout,
+            chunks,
+            binding_bytes,
             columns: TransmittancePass::with(gpu, TableOutput::Columns, t_width, t_height)?,
             transmittance: TransmittancePass::with(
                 gpu,

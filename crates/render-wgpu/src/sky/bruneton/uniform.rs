@@ -7,8 +7,9 @@ use atmosphere_core::models::bruneton::delta_m::DeltaM;
 use bytemuck::{Pod, Zeroable};
 
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout, StoreTable};
+use crate::sky::bruneton::store_chunks::StoreChunks;
 
-/// WGSL `BrunetonParams`, 128 bytes: the sizes of the tables and of the sphere integrals,
+/// WGSL `BrunetonParams`, 132 bytes: the sizes of the tables and of the sphere integrals,
 /// the store's offsets (texels), and what the build depends on besides the atmosphere.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -63,14 +64,18 @@ pub struct BrunetonUniform {
     /// Mie's Delta J by a quadrature of this many directions squared about the view
     /// (`BrunetonSettings::mie_directions`); 0 for the delta-M form.
     pub mie_directions: u32,
+    /// Texels of the store each of its bindings covers (`store_chunks.rs`).
+    pub store_chunk_texels: u32,
 }
 
 impl BrunetonUniform {
-    /// The parameters of tables of `settings` laid out as `layout`, recording at most
+    /// The parameters of tables of `settings` laid out as `layout` and bound as `chunks`,
+    /// recording at most
     /// `max_orders`, for `atmosphere` with Mie computed or not (`mie`).
     pub fn new(
         settings: &BrunetonSettings,
         layout: &StoreLayout,
+        chunks: &StoreChunks,
         max_orders: u32,
         atmosphere: &Atmosphere,
         mie: bool,
@@ -117,6 +122,7 @@ impl BrunetonUniform {
             min_mu_s: s.angles.min_mu_s as f32,
             nu_by_angle: u32::from(s.angles.nu_by_angle),
             mie_directions: u(settings.mie_directions),
+            store_chunk_texels: chunks.chunk_texels,
         }
     }
 }
