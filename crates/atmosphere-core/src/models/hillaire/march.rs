@@ -5,9 +5,16 @@
 //! segment integrated with [`segment_weight`]. The sky-view LUT, the aerial-perspective
 //! volume, the ground's sky light and the per-pixel march all run this step.
 //!
+//! With a similarity-scaled medium (`Medium::diffuse`, `similarity.rs`) every
+//! transmittance of the light, the sun's to the sample and the sample's to the camera, is
+//! the scaled medium's, single scattering keeps the true scattering coefficients and
+//! phase functions (Nakajima and Tanaka 1988's truncated single scattering), and the
+//! multiple-scattering term is scattered with the scaled coefficients; the transmittance
+//! the march reports stays the true medium's.
+//!
 //! Radiance here is per unit solar irradiance (sr^-1); the model multiplies by E_sun.
 
-use crate::models::hillaire::medium::{Medium, point_along, segment_weight};
+use crate::models::hillaire::medium::{Medium, coefficients, point_along, segment_weight};
 use crate::models::hillaire::moments;
 use crate::models::hillaire::multiple_scattering::MultipleScattering;
 use crate::optics::phase::rayleigh;
@@ -28,6 +35,8 @@ pub struct ViewMarch<'a> {
     /// Radiance so far per unit solar irradiance, and the throughput from the start.
     pub radiance: Vec<f64>,
     pub throughput: Vec<f64>,
+    /// Throughput of the scaled medium, for orders two and up (`Medium::diffuse`).
+    diffuse_throughput: Vec<f64>,
     sun: Vec<f64>,
     psi: Vec<f64>,
 }
@@ -61,6 +70,7 @@ impl<'a> ViewMarch<'a> {
             phase_mie,
             radiance: vec![0.0; n],
             throughput: vec![1.0; n],
+            diffuse_throughput: vec![1.0; n],
             sun: vec![0.0; n],
             psi: vec![0.0; blocks * n],
         }
@@ -74,17 +84,25 @@ impl<'a> ViewMarch<'a> {
         if rho == [0.0; 3] {
             return;
         }
-        self.medium.sun_transmittance(r_t, mu_s_t, &mut self.sun);
+        let light = self.medium.diffuse.unwrap_or(self.medium.spectra);
+        self.medium
+            .sun_transmittance_in(light, r_t, mu_s_t, &mut self.sun);
         if let Some(ms) = self.multiple {
             ms.lookup(r_t, mu_s_t, &mut self.psi);
         }
         let n = self.radiance.len();
         for w in 0..n {
             let (s_r, s_m, extinction) = self.medium.coefficients(rho, w);
-            let multiple = match self.multiple {
-                None => 0.0,
-                Some(ms) if ms.order == 0 => self.psi[w] * (s_r + s_m),
-                Some(ms) => {
+            let (t_seg, integral) = segment_weight(extinction, dt);
+            let single = self.sun[w] * (s_r * self.phase_rayleigh + s_m * self.phase_mie);
+            let multiple = match (self.multiple, self.medium.diffuse) {
+                (None, _) => 0.0,
+                (Some(ms), None) if ms.order == 0 => self.psi[w] * (s_r + s_m),
+                (Some(_), Some(diffuse)) => {
+                    let (s_r, s_m, _) = coefficients(diffuse, rho, w);
+                    self.psi[w] * (s_r + s_m)
+                }
+                (Some(ms), None) => {
                     let psi = std::array::from_fn(|l| {
                         if l < moments::blocks(ms.order) {
                             self.psi[l * n + w]
@@ -96,10 +114,16 @@ impl<'a> ViewMarch<'a> {
                     moments::source(psi, ms.order, angles, &ms.phase_moments, s_r, s_m)
                 }
             };
-            let source =
-                self.sun[w] * (s_r * self.phase_rayleigh + s_m * self.phase_mie) + multiple;
-            let (t_seg, integral) = segment_weight(extinction, dt);
-            self.radiance[w] += self.throughput[w] * source * integral;
+            match self.medium.diffuse {
+                None => self.radiance[w] += self.throughput[w] * (single + multiple) * integral,
+                Some(diffuse) => {
+                    let (t_light, integral_light) =
+                        segment_weight(coefficients(diffuse, rho, w).2, dt);
+                    self.radiance[w] +=
+                        self.diffuse_throughput[w] * (single + multiple) * integral_light;
+                    self.diffuse_throughput[w] *= t_light;
+                }
+            }
             self.throughput[w] *= t_seg;
         }
     }

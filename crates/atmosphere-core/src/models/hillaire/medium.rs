@@ -39,6 +39,9 @@ pub struct Medium<'a> {
     /// False when the Mie terms are left out (`ModelSettings::prune` at zero aerosol): the
     /// Mie density is then taken as 0, which changes no sum (its coefficients are 0).
     pub mie: bool,
+    /// The coefficients that orders two and up see along a view ray, when they differ
+    /// from `spectra`: the similarity-scaled medium (`similarity.rs`, `ms_similarity`).
+    pub diffuse: Option<&'a Spectra>,
 }
 
 impl Medium<'_> {
@@ -68,6 +71,12 @@ impl Medium<'_> {
     /// the sun (the paper's point sun and planet shadow). Radii outside the atmosphere are
     /// clamped to it.
     pub fn sun_transmittance(&self, r: f64, mu_s: f64, out: &mut [f64]) {
+        self.sun_transmittance_in(self.spectra, r, mu_s, out);
+    }
+
+    /// [`Medium::sun_transmittance`] through a medium of coefficients `spectra` (the
+    /// table holds columns of matter, so any coefficients read it).
+    pub fn sun_transmittance_in(&self, spectra: &Spectra, r: f64, mu_s: f64, out: &mut [f64]) {
         let bottom = self.atmosphere.bottom_radius_m;
         let r = r.clamp(bottom, self.atmosphere.top_radius_m);
         let mu_s = mu_s.clamp(-1.0, 1.0);
@@ -76,7 +85,7 @@ impl Medium<'_> {
             return;
         }
         let column = self.transmittance.column(r, mu_s);
-        for (o, e) in out.iter_mut().zip(&self.spectra.extinction) {
+        for (o, e) in out.iter_mut().zip(&spectra.extinction) {
             *o = (-optical_depth(column, *e)).exp();
         }
     }
@@ -84,12 +93,18 @@ impl Medium<'_> {
     /// Scattering (Rayleigh, Mie) and extinction coefficients at wavelength `w` for
     /// densities `rho`, m^-1.
     pub fn coefficients(&self, rho: [f64; 3], w: usize) -> (f64, f64, f64) {
-        (
-            self.spectra.rayleigh_scattering[w] * rho[0],
-            self.spectra.mie_scattering[w] * rho[1],
-            optical_depth(rho, self.spectra.extinction[w]),
-        )
+        coefficients(self.spectra, rho, w)
     }
+}
+
+/// Scattering (Rayleigh, Mie) and extinction coefficients of `spectra` at wavelength `w`
+/// for densities `rho`, m^-1.
+pub fn coefficients(spectra: &Spectra, rho: [f64; 3], w: usize) -> (f64, f64, f64) {
+    (
+        spectra.rayleigh_scattering[w] * rho[0],
+        spectra.mie_scattering[w] * rho[1],
+        optical_depth(rho, spectra.extinction[w]),
+    )
 }
 
 /// A point at distance `t` along the ray from (r, mu) whose sun cosine is `mu_s` and

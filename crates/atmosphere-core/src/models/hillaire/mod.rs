@@ -20,12 +20,14 @@ pub mod moments;
 pub mod multiple_scattering;
 pub mod rows;
 pub mod settings;
+pub mod similarity;
 pub mod sky_view;
 pub mod view_cache;
 
 pub use settings::HillaireSettings;
 
 use crate::atmosphere::Atmosphere;
+use crate::atmosphere::spectra::Spectra;
 use crate::atmosphere::table_inputs::Inputs;
 use crate::models::error::ModelError;
 use crate::models::hillaire::aerial_perspective::AerialPerspective;
@@ -72,6 +74,8 @@ pub struct Hillaire {
     /// Orders two and up (the Psi_ms term and the sky's light on the ground); off for
     /// `ModelSettings::max_orders == Some(1)`.
     multiple_on: bool,
+    /// The similarity-scaled coefficients of orders two and up (`ms_delta` above 0).
+    diffuse: Option<Spectra>,
     transmittance: TransmittanceTable,
     multiple: Option<MultipleScattering>,
     ground: Option<GroundIrradiance>,
@@ -92,16 +96,19 @@ impl Hillaire {
         settings.validate()?;
         settings.check_table_bytes(model_settings.wavelengths_nm.len())?;
         let (w, h) = settings.transmittance_size;
+        let multiple_on = model_settings.max_orders != Some(1);
         let mut model = Hillaire {
             atmosphere: atmosphere.clone(),
+            diffuse: None,
             base,
             settings,
-            multiple_on: model_settings.max_orders != Some(1),
+            multiple_on,
             transmittance: TransmittanceTable::build(atmosphere, w, h),
             multiple: None,
             ground: None,
             views: ViewCache::new(settings.view_cache),
         };
+        model.scale_medium();
         model.build_multiple_scattering();
         model.build_ground_irradiance();
         Ok(model)
@@ -118,7 +125,29 @@ impl Hillaire {
             spectra: &self.base.spectra,
             transmittance: &self.transmittance,
             mie: self.base.with_mie,
+            diffuse: self.diffuse.as_ref(),
         }
+    }
+
+    /// The medium in which Psi_ms is built: the similarity-scaled one with
+    /// `ms_delta` above 0, else the true one.
+    pub fn multiple_scattering_medium(&self) -> Medium<'_> {
+        match &self.diffuse {
+            Some(diffuse) => Medium {
+                spectra: diffuse,
+                diffuse: None,
+                ..self.medium()
+            },
+            None => self.medium(),
+        }
+    }
+
+    /// The similarity-scaled coefficients of orders two and up, with `ms_delta` above 0
+    /// and orders two and up on.
+    fn scale_medium(&mut self) {
+        let f = self.settings.multiple_scattering_delta;
+        self.diffuse =
+            (self.multiple_on && f > 0.0).then(|| similarity::scaled(&self.base.spectra, f));
     }
 
     /// The Psi_ms LUT (none for single scattering).
@@ -177,7 +206,7 @@ impl Hillaire {
         let s = self.settings;
         self.multiple = self.multiple_on.then(|| {
             MultipleScattering::build(
-                &self.medium(),
+                &self.multiple_scattering_medium(),
                 s.multiple_scattering_size,
                 s.multiple_scattering_directions.isqrt(),
                 s.multiple_scattering_samples,
@@ -283,6 +312,7 @@ impl SkyModel for Hillaire {
         let changed = update.changed;
         let size = self.settings.transmittance_size;
         update.rebuild_columns("transmittance", &mut self.transmittance, atmosphere, size);
+        self.scale_medium();
         if self.multiple_on && changed.intersects(multiple_scattering_inputs(&self.settings)) {
             self.build_multiple_scattering();
             update.mark(&["multiple scattering"]);

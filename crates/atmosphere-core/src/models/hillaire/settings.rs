@@ -29,6 +29,9 @@ pub struct HillaireSettings {
     /// Legendre moments about the sun of the multiple-scattering field beyond its mean
     /// (`moments.rs`): 0, the paper's isotropic term; 1 or 2, the anisotropic term.
     pub multiple_scattering_order: usize,
+    /// The share f of Mie scattering that orders two and up take as unscattered, the
+    /// similarity-scaled medium of `similarity.rs`: 0, the paper's medium.
+    pub multiple_scattering_delta: f64,
     /// Sky-view LUT (longitude, latitude): 192 x 108; the latitude count must be even.
     pub sky_view_size: (usize, usize),
     /// Segments per sky-view ray: 30.
@@ -65,6 +68,7 @@ impl Default for HillaireSettings {
             multiple_scattering_directions: 64,
             multiple_scattering_samples: 20,
             multiple_scattering_order: 0,
+            multiple_scattering_delta: 0.0,
             sky_view_size: (192, 108),
             sky_view_samples: 30,
             aerial_size: (96, 96, 32),
@@ -108,6 +112,8 @@ pub const MS_DIRECTIONS: Setting<usize> = setting("ms_directions", 1..=1024);
 pub const MS_SAMPLES: Setting<usize> = setting("ms_samples", 1..=1024);
 /// The anisotropic term's highest Legendre moment (0: the paper's isotropic term).
 pub const MS_ORDER: Setting<usize> = setting("ms_order", 0..=MAX_ORDER);
+/// The delta fraction of the similarity-scaled medium (0: the paper's medium).
+pub const MS_DELTA: Setting<f64> = setting("ms_delta", 0.0..=1.0);
 pub const SKY_VIEW_SAMPLES: Setting<usize> = setting("sky_view_samples", 1..=1024);
 pub const AP_SAMPLES_PER_SLICE: Setting<usize> = setting("ap_samples_per_slice", 1..=64);
 pub const MARCH_SAMPLES: Setting<usize> = setting("march_samples", 1..=1024);
@@ -136,6 +142,7 @@ impl HillaireSettings {
                     .count(&MS_DIRECTIONS, d.multiple_scattering_directions)?,
                 multiple_scattering_samples: o.count(&MS_SAMPLES, d.multiple_scattering_samples)?,
                 multiple_scattering_order: o.count(&MS_ORDER, d.multiple_scattering_order)?,
+                multiple_scattering_delta: o.number(&MS_DELTA, d.multiple_scattering_delta)?,
                 sky_view_size: (
                     o.count(&SKY_VIEW_WIDTH, d.sky_view_size.0)?,
                     o.count(&SKY_VIEW_HEIGHT, d.sky_view_size.1)?,
@@ -185,12 +192,19 @@ impl HillaireSettings {
             setting.check(value)?;
         }
         AP_RANGE_M.check(self.aerial_range_m)?;
+        MS_DELTA.check(self.multiple_scattering_delta)?;
         let bad = |m: String| Err(ModelError::Settings(format!("hillaire: {m}")));
         let root = self.multiple_scattering_directions.isqrt();
         if root * root != self.multiple_scattering_directions {
             return bad(format!(
                 "ms_directions {} must be a square number",
                 self.multiple_scattering_directions
+            ));
+        }
+        if self.multiple_scattering_delta > 0.0 && self.multiple_scattering_order != 0 {
+            return bad(format!(
+                "ms_delta={} scales the paper's isotropic term and needs ms_order=0, not {}",
+                self.multiple_scattering_delta, self.multiple_scattering_order
             ));
         }
         for (key, h) in [("sky_view_height", self.sky_view_size.1), ("ap_height", ah)] {
