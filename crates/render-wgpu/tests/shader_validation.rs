@@ -310,6 +310,10 @@ fn hillaire_uniform_matches_its_wgsl_layout() {
             ms_order,
             mie_g1,
             mie_g2,
+            ms_delta,
+            pad_0,
+            pad_1,
+            pad_2,
             view_up,
             view_sun_side,
             view_across

@@ -33,6 +33,13 @@ struct HillaireParams {
     ms_order: u32,
     mie_g1: f32,
     mie_g2: f32,
+    // The delta fraction of the similarity-scaled medium of orders two and up
+    // (`models/hillaire/similarity.rs`; 0: the paper's medium, and always without orders
+    // two and up), and padding.
+    ms_delta: f32,
+    pad_0: f32,
+    pad_1: f32,
+    pad_2: f32,
     // The camera's zenith, and two horizontal unit vectors there: towards the sun's
     // azimuth and 90 degrees from it (any horizontal pair when the sun is at the zenith
     // or nadir); xyz, w = 0. The pass measures view angles in this frame.

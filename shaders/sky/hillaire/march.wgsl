@@ -6,7 +6,11 @@
 // the light scattered towards the camera at each segment's midpoint is
 // sigma_s (T_sun p(nu) + Psi_ms), integrated with `segment_weight`; per unit solar
 // irradiance. With `ms_order` above 0 the Psi_ms term is the anisotropic one of
-// `models/hillaire/moments.rs`. The Psi_ms LUT is bound at 4 in every shader that marches view rays, and
+// `models/hillaire/moments.rs`. With `ms_delta` above 0 (`models/hillaire/similarity.rs`)
+// the light travels through the similarity-scaled medium: the sun's transmittance and
+// the throughput to the camera are the scaled medium's, Psi_ms scatters with Mie
+// scattering times 1 - ms_delta, and the throughput the march reports stays the true
+// one. The Psi_ms LUT is bound at 4 in every shader that marches view rays, and
 // read as `common/table_sampling.wgsl` says.
 
 #import sky/hillaire/medium.wgsl
@@ -79,14 +83,16 @@ fn anisotropic_source(ray: ViewRay, p: RayPoint, mu: f32, psi_0: vec3<f32>, s_r:
     return s_r * rayleigh + s_m * max(mie, zero);
 }
 
-// Radiance so far per unit solar irradiance, and the throughput from the start.
+// Radiance so far per unit solar irradiance, the throughput from the start, and the
+// throughput of the similarity-scaled medium (used with `ms_delta` above 0 only).
 struct ViewMarch {
     radiance: vec3<f32>,
     throughput: vec3<f32>,
+    light_throughput: vec3<f32>,
 }
 
 fn view_march() -> ViewMarch {
-    return ViewMarch(vec3<f32>(0.0), vec3<f32>(1.0));
+    return ViewMarch(vec3<f32>(0.0), vec3<f32>(1.0), vec3<f32>(1.0));
 }
 
 // `ViewMarch::segment`: the segment [t_mid - dt/2, t_mid + dt/2] with the medium of its
@@ -97,14 +103,15 @@ fn march_segment(ray: ViewRay, m: ptr<function, ViewMarch>, t_mid: f32, dt: f32)
     if all(rho == vec3<f32>(0.0)) {
         return;
     }
-    let sun = sun_transmittance(p.q, p.mu_s);
+    let delta = hillaire.ms_delta;
+    let sun = sun_transmittance_in(p.q, p.mu_s, delta);
     let s_r = atmosphere.rayleigh_scattering_per_m.xyz * rho.x;
     let s_m = atmosphere.mie_scattering_per_m.xyz * rho.y;
     var multiple = vec3<f32>(0.0);
     if hillaire.multiple_on != 0u {
         let psi_0 = psi_ms_lookup(p.q, p.r, p.mu_s, 0u);
         if hillaire.ms_order == 0u {
-            multiple = psi_0 * (s_r + s_m);
+            multiple = psi_0 * (s_r + (1.0 - delta) * s_m);
         } else {
             let mu = clamp((ray.r_mu + t_mid) / p.r, -1.0, 1.0);
             multiple = anisotropic_source(ray, p, mu, psi_0, s_r, s_m);
@@ -112,7 +119,13 @@ fn march_segment(ray: ViewRay, m: ptr<function, ViewMarch>, t_mid: f32, dt: f32)
     }
     let source = sun * (s_r * ray.phase_rayleigh + s_m * ray.phase_mie) + multiple;
     let w = segment_weight(optical_depth(rho), dt);
-    (*m).radiance += (*m).throughput * source * w.integral;
+    if delta > 0.0 {
+        let light = segment_weight(scaled_optical_depth(rho, delta), dt);
+        (*m).radiance += (*m).light_throughput * source * light.integral;
+        (*m).light_throughput *= light.transmittance;
+    } else {
+        (*m).radiance += (*m).throughput * source * w.integral;
+    }
     (*m).throughput *= w.transmittance;
 }
 

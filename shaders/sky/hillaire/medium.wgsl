@@ -79,6 +79,19 @@ fn altitude_from_q_clamped(q: f32) -> f32 {
 // `Medium::sun_transmittance`: transmittance towards a point sun at zenith cosine `mu_s`
 // from the table, radii clamped to the atmosphere; 0 where the planet hides the sun.
 fn sun_transmittance(q: f32, mu_s: f32) -> vec3<f32> {
+    return sun_transmittance_in(q, mu_s, 0.0);
+}
+
+// The optical depth of a column (or the extinction at densities `rho`) in the
+// similarity-scaled medium of delta fraction `delta` (`similarity::scaled`): Mie's
+// extinction less `delta` times its scattering; the true medium's for `delta` = 0.
+fn scaled_optical_depth(column_m: vec3<f32>, delta: f32) -> vec3<f32> {
+    return optical_depth(column_m) - delta * column_m.y * atmosphere.mie_scattering_per_m.xyz;
+}
+
+// `Medium::sun_transmittance_in` the similarity-scaled medium of delta fraction `delta`
+// (the table holds columns of matter, so any coefficients read it).
+fn sun_transmittance_in(q: f32, mu_s: f32, delta: f32) -> vec3<f32> {
     let bottom = atmosphere.bottom_radius_m;
     let qc = clamp(q, 0.0, top_q());
     let r = sqrt(bottom * bottom + qc);
@@ -86,7 +99,7 @@ fn sun_transmittance(q: f32, mu_s: f32) -> vec3<f32> {
     if hits_ground(qc, r * mu) {
         return vec3<f32>(0.0);
     }
-    return exp(-optical_depth(read_table_columns(transmittance_columns, qc, mu)));
+    return exp(-scaled_optical_depth(read_table_columns(transmittance_columns, qc, mu), delta));
 }
 
 // `distance_to_exit` to the top from (q, r mu) inside the atmosphere, by the product of

@@ -16,6 +16,10 @@
 // and block l of rows (l = 0..ms_order) holds Psi_l = mean of L P_l(c) / (1 - f_l); with
 // ms_order 2 a fourth block holds the second moment about the zenith, mean of L P_2(mu)
 // / (1 - f_2).
+// With `ms_delta` above 0 (`models/hillaire/similarity.rs`) the medium is the
+// similarity-scaled one: Mie scattering times 1 - ms_delta, extinction and the sun's
+// transmittance less ms_delta times Mie scattering (ms_order is then 0; ms_delta is 0
+// otherwise).
 
 #import sky/hillaire/medium.wgsl
 
@@ -56,13 +60,14 @@ fn direction_light(t: Texel, mu: f32, nu: f32, phase_r: f32, phase_m: f32) -> Di
     let dt = length / f32(hillaire.ms_samples);
     var light = DirectionLight(vec3<f32>(0.0), array<vec3<f32>, BLOCKS>());
     var throughput = vec3<f32>(1.0);
+    let delta = hillaire.ms_delta;
     for (var k = 0u; k < hillaire.ms_samples; k++) {
         let p = point_along(t.q, r_mu, t.r * t.mu_s, nu, (f32(k) + 0.5) * dt);
         let rho = medium_densities(p.q);
-        let sun = sun_transmittance(p.q, p.mu_s);
-        let w = segment_weight(optical_depth(rho), dt);
+        let sun = sun_transmittance_in(p.q, p.mu_s, delta);
+        let w = segment_weight(scaled_optical_depth(rho, delta), dt);
         let s_r = a.rayleigh_scattering_per_m.xyz * rho.x;
-        let s_m = a.mie_scattering_per_m.xyz * rho.y;
+        let s_m = (1.0 - delta) * a.mie_scattering_per_m.xyz * rho.y;
         let reach = throughput * w.integral;
         light.radiance += (s_r * phase_r + s_m * phase_m) * sun * reach;
         // All blocks, unrolled: a loop here would count against lavapipe's loop trips.
@@ -74,7 +79,7 @@ fn direction_light(t: Texel, mu: f32, nu: f32, phase_r: f32, phase_m: f32) -> Di
     }
     if ground {
         let p = point_along(t.q, r_mu, t.r * t.mu_s, nu, length);
-        light.radiance += throughput * sun_transmittance(0.0, p.mu_s) * max(p.mu_s, 0.0)
+        light.radiance += throughput * sun_transmittance_in(0.0, p.mu_s, delta) * max(p.mu_s, 0.0)
             * a.ground_albedo / PI;
     }
     return light;

@@ -1,6 +1,6 @@
 //! The hillaire model's parameters on the GPU (WGSL `HillaireParams`): the view of the
 //! per-view tables, the settings' sample counts, the anisotropic term's order and Mie
-//! moments, and the camera's frame.
+//! moments, the similarity-scaled medium's delta fraction, and the camera's frame.
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::hillaire::HillaireSettings;
@@ -11,8 +11,9 @@ use glam::DVec3;
 
 use crate::gpu::error::RenderError;
 
-/// WGSL `HillaireParams`, 112 bytes: the view of the per-view tables, the settings'
-/// sample counts, and the camera's frame for the pass's view angles.
+/// WGSL `HillaireParams`, 128 bytes: the view of the per-view tables, the settings'
+/// sample counts, the multiple-scattering term's settings, and the camera's frame for the
+/// pass's view angles.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct HillaireUniform {
@@ -32,6 +33,11 @@ pub struct HillaireUniform {
     pub ms_order: u32,
     pub mie_g1: f32,
     pub mie_g2: f32,
+    /// `ms_delta` with orders two and up on, else 0.
+    pub ms_delta: f32,
+    pub pad_0: f32,
+    pub pad_1: f32,
+    pub pad_2: f32,
     pub view_up: [f32; 4],
     pub view_sun_side: [f32; 4],
     pub view_across: [f32; 4],
@@ -82,6 +88,14 @@ impl HillaireUniform {
             ms_order: count("ms_order", settings.multiple_scattering_order)?,
             mie_g1: mie[1] as f32,
             mie_g2: mie[2] as f32,
+            ms_delta: if multiple_on {
+                settings.multiple_scattering_delta as f32
+            } else {
+                0.0
+            },
+            pad_0: 0.0,
+            pad_1: 0.0,
+            pad_2: 0.0,
             view_up: v4(up),
             view_sun_side: v4(sun_side),
             view_across: v4(up.cross(sun_side)),
