@@ -35,6 +35,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             march_segment(ray, &m, f32(k) * slice_m + (f32(s) + 0.5) * dt, dt);
         }
         textureStore(radiance_out, vec3<u32>(id.xy, k), vec4<f32>(m.radiance, 1.0));
-        textureStore(transmittance_out, vec3<u32>(id.xy, k), vec4<f32>(m.throughput, 1.0));
+        textureStore(transmittance_out, vec3<u32>(id.xy, k), vec4<f32>(march_throughput(m), 1.0));
     }
 }

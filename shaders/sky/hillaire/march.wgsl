@@ -83,16 +83,29 @@ fn anisotropic_source(ray: ViewRay, p: RayPoint, mu: f32, psi_0: vec3<f32>, s_r:
     return s_r * rayleigh + s_m * max(mie, zero);
 }
 
-// Radiance so far per unit solar irradiance, the throughput from the start, and the
-// throughput of the similarity-scaled medium (used with `ms_delta` above 0 only).
+// Radiance so far per unit solar irradiance and the throughput from the start. With
+// `ms_delta` above 0 a segment updates the throughput of the similarity-scaled medium and
+// the Mie column marched (m) instead, and `march_throughput` gives the true throughput.
 struct ViewMarch {
     radiance: vec3<f32>,
     throughput: vec3<f32>,
-    light_throughput: vec3<f32>,
+    mie_column_m: f32,
 }
 
 fn view_march() -> ViewMarch {
-    return ViewMarch(vec3<f32>(0.0), vec3<f32>(1.0), vec3<f32>(1.0));
+    return ViewMarch(vec3<f32>(0.0), vec3<f32>(1.0), 0.0);
+}
+
+// `ViewMarch::throughput`: the true medium's throughput. The product over segments of
+// exp(-sigma_t dt) is that of exp(-sigma_t' dt) times exp(-ms_delta sigma_s,Mie times the
+// Mie column), the extinction the scaling took out: one exponential for the whole march
+// in place of one per segment.
+fn march_throughput(m: ViewMarch) -> vec3<f32> {
+    if hillaire.ms_delta > 0.0 {
+        let removed = hillaire.ms_delta * atmosphere.mie_scattering_per_m.xyz * m.mie_column_m;
+        return m.throughput * exp(-removed);
+    }
+    return m.throughput;
 }
 
 // `ViewMarch::segment`: the segment [t_mid - dt/2, t_mid + dt/2] with the medium of its
@@ -118,23 +131,20 @@ fn march_segment(ray: ViewRay, m: ptr<function, ViewMarch>, t_mid: f32, dt: f32)
         }
     }
     let source = sun * (s_r * ray.phase_rayleigh + s_m * ray.phase_mie) + multiple;
-    let w = segment_weight(optical_depth(rho), dt);
-    if delta > 0.0 {
-        let light = segment_weight(scaled_optical_depth(rho, delta), dt);
-        (*m).radiance += (*m).light_throughput * source * light.integral;
-        (*m).light_throughput *= light.transmittance;
-    } else {
-        (*m).radiance += (*m).throughput * source * w.integral;
-    }
+    let w = segment_weight(scaled_optical_depth(rho, delta), dt);
+    (*m).radiance += (*m).throughput * source * w.integral;
     (*m).throughput *= w.transmittance;
+    (*m).mie_column_m += rho.y * dt;
 }
 
-// `ViewMarch::run`: `length` metres in `samples` equal segments.
+// `ViewMarch::run`: `length` metres in `samples` equal segments; the true throughput.
 fn march_run(ray: ViewRay, length: f32, samples: u32) -> ViewMarch {
     var m = view_march();
     let dt = length / f32(samples);
     for (var k = 0u; k < samples; k++) {
         march_segment(ray, &m, (f32(k) + 0.5) * dt, dt);
     }
+    m.throughput = march_throughput(m);
+    m.mie_column_m = 0.0;
     return m;
 }
