@@ -35,7 +35,7 @@ pub struct ViewMarch<'a> {
     /// Radiance so far per unit solar irradiance, and the throughput from the start.
     pub radiance: Vec<f64>,
     pub throughput: Vec<f64>,
-    /// Throughput of the scaled medium, for orders two and up (`Medium::diffuse`).
+    /// Throughput of the scaled medium, which the light takes (`Medium::diffuse`).
     diffuse_throughput: Vec<f64>,
     sun: Vec<f64>,
     psi: Vec<f64>,
