@@ -19,9 +19,8 @@
 //! paper's Psi_ms built in the scaled medium, scattered with sigma_s'. The transmittance a
 //! ray reports (to surfaces and to space) stays the true one.
 //!
-//! f is a setting: the transport approximation's f = g_1 (p' isotropic) over-corrects
-//! the paper's isotropic Psi_ms, and the report's views put the best f near 0.45
-//! (docs/models/hillaire.md).
+//! f is a setting, since the transport approximation's f = g_1 (p' isotropic)
+//! over-corrects; docs/models/hillaire.md gives the errors by f.
 
 use crate::atmosphere::spectra::Spectra;
 
