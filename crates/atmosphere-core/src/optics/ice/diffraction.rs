@@ -7,7 +7,7 @@
 
 use std::f64::consts::PI;
 
-/// J1 by Abramowitz and Stegun 1964, Eq. 9.4.4 (|v| <= 3, error below 1.3e-8) and
+/// J1 by Abramowitz and Stegun 1964, Eq. 9.4.4 (|v| <= 3, error below 1.3e-8 |v|) and
 /// 9.4.6 (v > 3, error below 1e-7 relative to the envelope).
 pub fn bessel_j1(v: f64) -> f64 {
     let a = v.abs();
@@ -75,7 +75,7 @@ mod tests {
     fn j1_matches_its_integral_and_the_pattern_is_normalised() {
         for v in [0.0, 0.1, 1.0, 2.9, 3.0, 3.1, 3.8317, 7.0, 20.0, 100.0] {
             let (a, b) = (bessel_j1(v), j1_by_integral(v));
-            assert!((a - b).abs() < 2e-8, "J1({v}) = {a}, integral {b}");
+            assert!((a - b).abs() < 1e-7, "J1({v}) = {a}, integral {b}");
         }
         assert!((bessel_j1(-2.0) + bessel_j1(2.0)).abs() < 1e-15);
         // Unit integral over small angles for ka = 200.
