@@ -32,7 +32,8 @@ pub fn bessel_j1(v: f64) -> f64 {
                         + y * (0.000_743_48 + y * (0.000_798_24 - y * 0.000_291_66)))));
         f * theta.cos() / a.sqrt()
     };
-    value.copysign(v)
+    // J1 is odd.
+    if v < 0.0 { -value } else { value }
 }
 
 /// The Airy pattern of a disc of `ka` = k times its radius at scattering angle `theta`
