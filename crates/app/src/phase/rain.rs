@@ -15,8 +15,8 @@ use crate::cli::PhaseArgs;
 /// function to 3e-2 (relative to the larger of it and 1 / (4 pi)).
 pub const RAIN_TOLERANCE: f64 = 3e-3;
 
-/// The radii a settled rain average is expected to take, all rules together (the
-/// coarse-angle test settles at 2049 intervals after rules of 17 to 1025).
+/// The radii a settled rain average is expected to take, all rules together: about
+/// twice the last rule's (docs/particles.md).
 const EXPECTED_RADII: f64 = 4100.0;
 
 /// The description and the per-wavelength results of rain.

@@ -7,8 +7,8 @@ use thiserror::Error;
 /// The range of length / (2 radius): plates to 0.01, columns to 100.
 pub const ASPECT_RATIO_RANGE: [f64; 2] = [0.01, 100.0];
 
-/// The range of radius and length, m: 1 um (diffraction and geometric optics part
-/// below about 20 wavelengths, see docs/particles.md) to 10 mm.
+/// The range of radius and length, m: 1 um to 10 mm (geometric optics holds for crystals
+/// many wavelengths across; docs/particles.md says where it stops).
 pub const SIZE_RANGE_M: [f64; 2] = [1e-6, 1e-2];
 
 #[derive(Clone, Debug, Error, PartialEq)]

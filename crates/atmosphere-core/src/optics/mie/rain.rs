@@ -10,7 +10,7 @@
 //! angle the interference of a drop's rays makes the intensity oscillate in x with a
 //! period of order one; a rule whose nodes are far apart samples that oscillation at
 //! aliased frequencies, and the sum over the smooth weight cancels it to O(1 / intervals),
-//! so the averages settle with hundreds of radii, not 1e5 (docs/particles.md measures it).
+//! so the averages settle with thousands of radii, not 1e5 (docs/particles.md).
 
 use std::f64::consts::PI;
 
