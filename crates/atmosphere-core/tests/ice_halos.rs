@@ -92,6 +92,23 @@ fn absorption_free_ice_scatters_every_ray_and_the_table_is_normalised() {
         }
     }
     assert!(hits > 10_000);
+    // Absorbing ice (1/e in 100 um): what leaves, what is absorbed and what is dropped
+    // still sum to the incident weight.
+    let dark = IceOptics {
+        index: 1.311,
+        absorption_per_m: 1e4,
+    };
+    let d = DVec3::new(0.3, -0.5, 0.8).normalize();
+    let (e1, e2) = orthonormal_basis(d);
+    for i in 0..1000 {
+        let u = i as f64 / 1000.0 - 0.5;
+        let origin = radius * u * e1 + 0.3 * radius * u * e2 - 2.0 * radius * d;
+        let mut left = 0.0;
+        if let Some(o) = trace(&crystal, dark, origin, d, |_, w| left += w) {
+            assert!(o.absorbed > 0.0);
+            assert!((left + o.absorbed + o.dropped - 1.0).abs() < 1e-12);
+        }
+    }
     let table = ice_phase_table(
         &crystal,
         Complex64::new(1.311, 0.0),
