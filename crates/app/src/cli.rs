@@ -414,11 +414,38 @@ pub struct PhaseArgs {
     /// The particle.
     #[arg(long, value_enum)]
     pub particle: crate::phase::flags::Particle,
-    /// Radius in um, in (0, 10000]; with --distribution, the effective radius
-    /// <r^3> / <r^2>.
+    /// Radius in um, in (0, 10000]: of water drops (with --distribution, the effective
+    /// radius <r^3> / <r^2>), or of ice crystals (axis to prism edge). Not for rain.
     #[arg(long, value_name = "UM", allow_negative_numbers = true,
           value_parser = crate::phase::flags::parse_radius_um)]
-    pub radius_um: f64,
+    pub radius_um: Option<f64>,
+    /// Rain: the rain rate of the Marshall-Palmer drop sizes, mm/h, in [0.1, 300].
+    #[arg(long, value_name = "MM_PER_H", allow_negative_numbers = true)]
+    pub rain_rate_mm_h: Option<f64>,
+    /// Ice: the crystal's length along its c-axis in um; length / (2 radius) in
+    /// [0.01, 100].
+    #[arg(long, value_name = "UM", allow_negative_numbers = true,
+          value_parser = crate::phase::flags::parse_radius_um)]
+    pub length_um: Option<f64>,
+    /// Ice plates: horizontal (c-axis near the vertical, for sundogs) instead of random
+    /// orientations; needs --sun-elevation-deg.
+    #[arg(long)]
+    pub horizontal: bool,
+    /// Horizontal plates: the sun's elevation in degrees, in [0, 90].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub sun_elevation_deg: Option<f64>,
+    /// Horizontal plates: the standard deviation of each tilt component of the c-axis,
+    /// degrees, in [0, 30].
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 1.0,
+        allow_negative_numbers = true
+    )]
+    pub tilt_deg: f64,
+    /// Ice: rays traced per wavelength, in [1000, 1e8].
+    #[arg(long, value_name = "N", default_value_t = 2_000_000)]
+    pub rays: usize,
     /// Size distribution: lognormal:SIGMA (sigma of ln r, in [0.01, 1]) or
     /// modified-gamma:ALPHA,GAMMA (alpha in [0.5, 100], gamma in [0.1, 10]) [default: one
     /// radius].

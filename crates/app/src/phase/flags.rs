@@ -5,12 +5,30 @@ use atmosphere_core::optics::mie::error::MieError;
 use atmosphere_core::optics::mie::size_distribution::SizeDistribution;
 use num_complex::Complex64;
 
-/// The particles `atmos phase` knows; later kinds (ice crystals) join here.
+/// The particles `atmos phase` knows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Particle {
     /// Spheres of liquid water (cloud droplets, rain): Lorenz-Mie, refractive index from
     /// Hale and Querry 1973.
     Water,
+    /// Rain: water drops of 0.1 to 3 mm radius in the Marshall-Palmer (1948)
+    /// distribution of a rain rate, Lorenz-Mie.
+    Rain,
+    /// Hexagonal ice columns, ray traced with diffraction; Warren and Brandt 2008.
+    IceColumn,
+    /// Hexagonal ice plates, ray traced with diffraction; Warren and Brandt 2008.
+    IcePlate,
+}
+
+impl Particle {
+    pub fn name(self) -> &'static str {
+        match self {
+            Particle::Water => "water",
+            Particle::Rain => "rain",
+            Particle::IceColumn => "ice-column",
+            Particle::IcePlate => "ice-plate",
+        }
+    }
 }
 
 /// The range of --radius-um: a 10 mm drop is past any raindrop that stays whole.

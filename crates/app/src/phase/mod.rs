@@ -1,31 +1,23 @@
-//! `atmos phase`: phase functions of particles as CSV (docs/particles.md). Water drops
-//! by Lorenz-Mie, of one radius or averaged over a size distribution, at each
-//! wavelength, with Q_ext, Q_sca and g in the header.
+//! `atmos phase`: phase functions of particles as CSV (docs/particles.md), at each
+//! wavelength, with Q_ext, Q_sca and g in the header: water drops by Lorenz-Mie, of one
+//! radius or averaged over a size distribution (`water.rs`); rain, Lorenz-Mie over the
+//! Marshall-Palmer drop sizes of a rain rate (`rain.rs`); hexagonal ice columns and
+//! plates by ray tracing with diffraction (`ice.rs`).
 
 pub mod flags;
+pub mod ice;
+pub mod rain;
 pub mod table;
+pub mod water;
 
 use std::io::Write;
 
-use anyhow::{Context, bail};
-use atmosphere_core::optics::mie::coefficients::wiscombe_terms;
-use atmosphere_core::optics::mie::polydisperse::particle_optics;
-use atmosphere_core::optics::mie::size_distribution::SizeDistribution;
-use atmosphere_core::optics::refractive_index::water::water_refractive_index;
-use rayon::prelude::*;
+use anyhow::bail;
 
 use crate::cli::PhaseArgs;
 use crate::files::{check_writable, write_atomically};
 use flags::{MAX_WAVELENGTHS, Particle};
-use table::{WavelengthResult, write_csv};
-
-/// How closely a size-distribution average must settle: cross-sections and g to 1e-3,
-/// the phase function to 1e-2 (relative to the larger of it and 1 / (4 pi)).
-pub const DISTRIBUTION_TOLERANCE: f64 = 1e-3;
-
-/// The most work one run takes on, in Mie terms times angles times radii (about a
-/// minute on two cores): more is refused before it starts rather than left to run.
-const MAX_WORK: f64 = 2e11;
+use table::write_csv;
 
 /// Runs `atmos phase`.
 pub fn run(args: &PhaseArgs) -> anyhow::Result<()> {
@@ -38,103 +30,97 @@ pub fn run(args: &PhaseArgs) -> anyhow::Result<()> {
             args.wavelengths.len()
         );
     }
-    let radius_m = args.radius_um * 1e-6;
-    let distribution = match &args.distribution {
-        None => SizeDistribution::Monodisperse { radius_m },
-        Some(flag) => flag
-            .with_effective_radius(radius_m)
-            .context("--distribution")?,
+    for w in &args.wavelengths {
+        if !(w.nm.is_finite() && w.nm > 0.0) {
+            bail!("--wavelengths: {} nm is not a positive wavelength", w.label);
+        }
+    }
+    check_flags_apply(args)?;
+    let (description, results) = match args.particle {
+        Particle::Water => water::compute(args)?,
+        Particle::Rain => rain::compute(args)?,
+        Particle::IceColumn | Particle::IcePlate => ice::compute(args)?,
     };
-    let indices = args
-        .wavelengths
-        .iter()
-        .map(|w| {
-            if !(w.nm.is_finite() && w.nm > 0.0) {
-                bail!("--wavelengths: {} nm is not a positive wavelength", w.label);
-            }
-            match (args.refractive_index, args.particle) {
-                (Some(m), _) => Ok(m),
-                (None, Particle::Water) => Ok(water_refractive_index(w.nm)?),
-            }
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    check_work(args, &distribution)?;
-
-    let angles = &args.angles_deg;
-    let cosines: Vec<f64> = angles.angles_deg().map(|a| a.to_radians().cos()).collect();
-    let results = args
-        .wavelengths
-        .par_iter()
-        .zip(&indices)
-        .map(|(w, &m)| {
-            let optics = particle_optics(
-                m,
-                w.nm * 1e-9,
-                &distribution,
-                &cosines,
-                DISTRIBUTION_TOLERANCE,
-            )
-            .with_context(|| format!("at {} nm", w.label))?;
-            Ok(WavelengthResult {
-                label: w.label.clone(),
-                refractive_index: m,
-                optics,
-            })
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-
-    let text = write_csv(&describe(args), angles, &results);
+    let text = write_csv(&description, &args.angles_deg, &results);
     match &args.output {
         Some(path) => write_atomically(path, text.as_bytes()),
         None => Ok(std::io::stdout().lock().write_all(text.as_bytes())?),
     }
 }
 
-/// The first header line: what was computed.
-fn describe(args: &PhaseArgs) -> String {
-    let particle = match args.particle {
-        Particle::Water => "water",
-    };
-    let index = match args.refractive_index {
-        Some(m) => format!("refractive index {}{:+e}i", m.re, m.im),
-        None => "refractive index of Hale and Querry 1973".to_string(),
-    };
-    match &args.distribution {
-        None => format!("particle {particle}, radius {} um, {index}", args.radius_um),
-        Some(d) => format!(
-            "particle {particle}, effective radius {} um, distribution {}, {index}",
-            args.radius_um,
-            d.describe()
+/// Refuses a flag the particle does not take, and a missing one it needs, by name.
+fn check_flags_apply(args: &PhaseArgs) -> anyhow::Result<()> {
+    let particle = args.particle;
+    let ice = matches!(particle, Particle::IceColumn | Particle::IcePlate);
+    // Each flag: its name, whether it was given, and whether this particle takes it.
+    let flags = [
+        (
+            "--radius-um",
+            args.radius_um.is_some(),
+            particle != Particle::Rain,
         ),
+        (
+            "--distribution",
+            args.distribution.is_some(),
+            particle == Particle::Water,
+        ),
+        (
+            "--rain-rate-mm-h",
+            args.rain_rate_mm_h.is_some(),
+            particle == Particle::Rain,
+        ),
+        ("--length-um", args.length_um.is_some(), ice),
+        (
+            "--horizontal",
+            args.horizontal,
+            particle == Particle::IcePlate,
+        ),
+        (
+            "--sun-elevation-deg",
+            args.sun_elevation_deg.is_some(),
+            args.horizontal,
+        ),
+    ];
+    for (name, given, takes) in flags {
+        if given && !takes {
+            bail!(
+                "{name} does not apply to --particle {}: it is for {}",
+                particle.name(),
+                takers(name)
+            );
+        }
     }
-}
-
-/// Refuses a run whose estimated work (terms at the largest radius, times angles, times
-/// radii: about one per half unit of size parameter across a distribution) is past
-/// [`MAX_WORK`].
-fn check_work(args: &PhaseArgs, distribution: &SizeDistribution) -> anyhow::Result<()> {
-    let [lo, hi] = distribution.log_radius_range();
-    let angles = args.angles_deg.count as f64;
-    let work: f64 = args
-        .wavelengths
-        .iter()
-        .map(|w| {
-            let k = 2.0 * std::f64::consts::PI / (w.nm * 1e-9);
-            let (x_lo, x_hi) = (k * lo.exp(), k * hi.exp());
-            let radii = if lo == hi {
-                1.0
-            } else {
-                (2.0 * (x_hi - x_lo)).max(64.0)
-            };
-            wiscombe_terms(x_hi.min(1e6)) as f64 * angles * radii
-        })
-        .sum();
-    if work > MAX_WORK {
-        bail!(
-            "this asks for about {work:.1e} term evaluations (Mie terms x angles x radii), \
-             more than {MAX_WORK:.0e}: use fewer angles, wavelengths, a smaller radius or a \
-             narrower distribution"
-        );
+    let needed = [
+        (
+            "--radius-um",
+            args.radius_um.is_none() && particle != Particle::Rain,
+        ),
+        (
+            "--rain-rate-mm-h",
+            args.rain_rate_mm_h.is_none() && particle == Particle::Rain,
+        ),
+        ("--length-um", args.length_um.is_none() && ice),
+        (
+            "--sun-elevation-deg",
+            args.sun_elevation_deg.is_none() && args.horizontal,
+        ),
+    ];
+    for (name, missing) in needed {
+        if missing {
+            bail!("{name} is required for --particle {}", particle.name());
+        }
     }
     Ok(())
+}
+
+/// Which particles take a flag, for the message that refuses it elsewhere.
+fn takers(flag: &str) -> &'static str {
+    match flag {
+        "--radius-um" => "water, ice-column and ice-plate only",
+        "--distribution" => "water only",
+        "--rain-rate-mm-h" => "rain only",
+        "--length-um" => "ice-column and ice-plate only",
+        "--horizontal" => "ice-plate only",
+        _ => "ice-plate with --horizontal only",
+    }
 }

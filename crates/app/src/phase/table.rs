@@ -1,5 +1,6 @@
 //! The CSV `atmos phase` writes: comment lines naming the particle and, per wavelength,
-//! the refractive index, Q_ext, Q_sca, g and the radii averaged; then `angle_deg` and
+//! the refractive index, Q_ext, Q_sca, g and the radii averaged (rays that hit, for ice
+//! crystals); then `angle_deg` and
 //! one column `p_<nm>` per wavelength, the phase function in sr^-1 with unit integral
 //! over the sphere.
 
@@ -16,6 +17,8 @@ pub struct WavelengthResult {
     pub label: String,
     pub refractive_index: Complex64,
     pub optics: ParticleOptics,
+    /// What the last header field counts: `radii` (averaged) or `rays_hit`.
+    pub samples: &'static str,
 }
 
 /// The CSV text: `description` as the first comment line.
@@ -25,18 +28,20 @@ pub fn write_csv(description: &str, angles: &AngleRange, results: &[WavelengthRe
     let _ = writeln!(
         text,
         "# per wavelength (nm): relative refractive index m = m_re + i m_im, efficiencies \
-         (cross-sections over pi <r^2>), asymmetry g, radii averaged"
+         (cross-sections over pi <r^2>, or over the mean projected area of crystals), \
+         asymmetry g, radii averaged or rays that hit"
     );
     for r in results {
         let _ = writeln!(
             text,
-            "# wavelength_nm={} m_re={} m_im={:e} Q_ext={:.9} Q_sca={:.9} g={:.9} radii={}",
+            "# wavelength_nm={} m_re={} m_im={:e} Q_ext={:.9} Q_sca={:.9} g={:.9} {}={}",
             r.label,
             r.refractive_index.re,
             r.refractive_index.im,
             r.optics.extinction_efficiency(),
             r.optics.scattering_efficiency(),
             r.optics.asymmetry,
+            r.samples,
             r.optics.radii,
         );
     }

@@ -5,6 +5,7 @@
 
 pub mod column;
 pub mod geometry;
+pub mod ice;
 pub mod legendre_series;
 pub mod mie;
 pub mod multiple_scattering_phase;

@@ -13,6 +13,8 @@ pub mod efficiencies;
 pub mod error;
 pub mod legendre;
 pub mod limits;
+pub mod marshall_palmer;
 pub mod phase_table;
 pub mod polydisperse;
+pub mod rain;
 pub mod size_distribution;

@@ -54,7 +54,7 @@ impl ParticleOptics {
 
 /// One radius's contribution: the number weight, then weight times pi r^2, C_ext, C_sca,
 /// g C_sca and dC_sca/dOmega at each cosine.
-fn sample(
+pub(super) fn sample(
     m: Complex64,
     wavenumber: f64,
     radius_m: f64,
@@ -82,7 +82,7 @@ fn sample(
 }
 
 /// The averages from the weighted sums of [`sample`].
-fn averages(sums: &[f64], radii: usize) -> ParticleOptics {
+pub(super) fn averages(sums: &[f64], radii: usize) -> ParticleOptics {
     let scattering = sums[3] / sums[0];
     ParticleOptics {
         geometric_cross_section_m2: sums[1] / sums[0],
@@ -97,7 +97,7 @@ fn averages(sums: &[f64], radii: usize) -> ParticleOptics {
 /// The largest relative change of any average between two rules: the cross-sections' and g's relative to their value, the phase function's
 /// relative to the larger of its value and the isotropic 1 / (4 pi), over
 /// [`PHASE_TOLERANCE_FACTOR`].
-fn relative_change(old: &ParticleOptics, new: &ParticleOptics) -> f64 {
+pub(super) fn relative_change(old: &ParticleOptics, new: &ParticleOptics) -> f64 {
     let isotropic = 1.0 / (4.0 * PI);
     let phase = old
         .phase

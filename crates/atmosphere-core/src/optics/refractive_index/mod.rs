@@ -1,4 +1,5 @@
 //! Complex refractive indices of the materials particles are made of, m = n + i k
 //! (k >= 0 absorbs), at a vacuum wavelength.
 
+pub mod ice;
 pub mod water;
