@@ -2,8 +2,8 @@
 //! CPU twin (atmosphere-core's `clouds/layer/shell.rs` and `march.rs`), pixel by pixel on
 //! 64 x 36 images: from the ground, from inside the layer and from above the deck, with
 //! both methods, over a cover with structure at the scale of the view; and the
-//! interactive and offline presets (`MarchQuality`), the interactive one marched at half
-//! resolution and interpolated (`clouds/layer/upsample.rs`), whose distance from the
+//! interactive and offline presets (`MarchQuality`), the interactive one marched at a third
+//! of the resolution and interpolated (`clouds/layer/upsample.rs`), whose distance from the
 //! full-resolution march is bounded too.
 //!
 //! Tolerance: each pixel's radiance within 3 % of itself plus 1 % of the image's
@@ -259,14 +259,14 @@ fn the_gpu_march_matches_the_cpu_from_below_inside_and_above() {
     }
 }
 
-/// The interactive preset's half-resolution image lies within this mean absolute
+/// The interactive preset's reduced-resolution image lies within this mean absolute
 /// radiance error (relative to the mean radiance) of the same march at full resolution.
 /// At 64 x 36 over 60 degrees a pixel spans a degree, twenty times a 1280 x 720 pixel,
-/// and the interpolation spans two: the worst case of the views the renderer draws.
-const UPSAMPLE_MEAN_ERROR: f64 = 0.15;
+/// and the interpolation spans three: the worst case of the views the renderer draws.
+const UPSAMPLE_MEAN_ERROR: f64 = 0.2;
 
 #[test]
-fn the_presets_match_the_cpu_and_the_half_resolution_march_stays_near_the_full() {
+fn the_presets_match_the_cpu_and_the_reduced_march_stays_near_the_full() {
     let Some(gpu) = support::gpu_or_skip("cloud layer presets") else {
         return;
     };
@@ -336,7 +336,7 @@ fn the_presets_match_the_cpu_and_the_half_resolution_march_stays_near_the_full()
             }
         }
         println!(
-            "{name}: half resolution against full, mean radiance error {:.4} of the mean",
+            "{name}: reduced resolution against full, mean radiance error {:.4} of the mean",
             error / total
         );
         assert!(

@@ -72,8 +72,8 @@ fn rows() -> Vec<Row> {
             settings: MarchQuality::Interactive.apply(octaves),
         },
         Row {
-            name: "riley, offline",
-            settings: MarchQuality::Offline.apply(riley),
+            name: "octaves, offline",
+            settings: MarchQuality::Offline.apply(octaves),
         },
     ]
 }

@@ -11,7 +11,7 @@ use super::settings::{LayerSettings, MAX_DETAIL_OCTAVES, MAX_SHADOW_STEPS, MAX_S
 pub enum MarchQuality {
     /// For flight: few view steps through one octave of detail, a two-step shadow
     /// march through the cover and profile alone (the noise's mean), a stop once 2 % of
-    /// the light behind is left, one ray per 2 x 2 pixels.
+    /// the light behind is left, one ray per 3 x 3 pixels.
     Interactive,
     /// For recordings: more steps than the defaults and the full noise everywhere.
     Offline,
@@ -35,12 +35,12 @@ impl MarchQuality {
     fn march(self) -> March {
         match self {
             MarchQuality::Interactive => March {
-                steps: 24,
+                steps: 20,
                 shadow_steps: 2,
                 detail_octaves: 1,
                 shadow_octaves: 0,
                 min_transmittance: 0.02,
-                resolution_divisor: 2,
+                resolution_divisor: 3,
             },
             MarchQuality::Offline => March {
                 steps: 128,
