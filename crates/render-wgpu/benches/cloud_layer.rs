@@ -2,10 +2,12 @@
 //! device at 1280 x 720: the hillaire frame of a flight view under the layer (500 m up,
 //! looking 10 degrees above the horizon, sun 30 degrees up) through the `Renderer` (its per-step GPU
 //! times), then the cloud layer pass of the same view over the generated cover: both
-//! methods at the default march (48 view, 8 shadow steps) and the interactive and offline
-//! presets (`MarchQuality`); rounds interleaved, medians. The cloud pass is timed by the
-//! wall clock around its dispatch and read-back (lavapipe's timestamps around a lone
-//! compute pass read about 0.1 ms whatever it does).
+//! methods at the default march (48 view, 8 shadow steps) and at the interactive preset
+//! (`MarchQuality`), and octaves at the offline preset (Riley's march does not converge
+//! as its shadow steps shrink: `docs/clouds.md`, "Cost"); rounds interleaved, medians.
+//! The cloud pass is timed by the wall clock around its dispatch and read-back
+//! (lavapipe's timestamps around a lone compute pass read about 0.1 ms whatever it
+//! does).
 //!
 //! Each row's error is measured against the finest march of the same method on the same
 //! view at 160 x 90: the mean absolute radiance error over all pixels and wavelengths
