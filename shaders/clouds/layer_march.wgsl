@@ -2,12 +2,12 @@
 // `clouds/layer/march.rs` (its documentation holds the equations): equal steps sampled
 // at their middles, the energy-conserving step integral (Hillaire 2016), the sun by
 // Riley et al. 2004's expected orders (Eq. 22, 25, 26) or Wrenninge et al. 2013's
-// octaves, the sky as isotropic ambient, stopping below a transmittance of 1e-4.
+// octaves, the sky as isotropic ambient, the shadow march through the density with
+// `noise.y` octaves, stopping below the transmittance `detail.z`.
 
 #import clouds/layer_medium.wgsl
 
 const MAX_SHADOW_STEPS: u32 = 64u;
-const MIN_TRANSMITTANCE: f32 = 1e-4;
 
 // A_n (n clamped to 1..26) at the scattering angle of cosine `nu`, each wavelength.
 fn distribution(n: u32, nu: f32) -> vec3<f32> {
@@ -40,7 +40,7 @@ fn sun_source(p: vec3<f32>, nu: f32, albedo: f32) -> vec3<f32> {
     var tau = 0.0;
     for (var k = 0u; k < steps; k++) {
         let q = p + s * (length_m - (f32(k) + 0.5) * ds);
-        depths[k] = layer_extinction(q) * ds;
+        depths[k] = layer_extinction(q, layer.noise.y) * ds;
         tau += depths[k];
     }
     if layer.counts.z == 0u {
@@ -84,7 +84,7 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
     let albedo = layer.medium.y;
     for (var i = 0u; i < layer.counts.x; i++) {
         let p = o + d * (t0 + (f32(i) + 0.5) * dt);
-        let sigma = layer_extinction(p);
+        let sigma = layer_extinction(p, layer.noise.x);
         if sigma <= 0.0 {
             continue;
         }
@@ -94,7 +94,7 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
         let sun = sun_source(p, nu, albedo);
         radiance += weight * (layer.sun_irradiance.xyz * sun + layer.sky_irradiance.xyz * sky);
         transmittance *= step_t;
-        if transmittance < MIN_TRANSMITTANCE {
+        if transmittance < layer.detail.z {
             break;
         }
     }

@@ -5,7 +5,6 @@
 #import clouds/layer_params.wgsl
 #import clouds/gradient_noise.wgsl
 
-const DETAIL_OCTAVES: u32 = 3u;
 const DETAIL_SEED: u32 = 0x5eedc10du;
 
 // Bilinear cover at a planet-fixed point (geo's `bilinear_taps`: wraps in longitude,
@@ -54,8 +53,9 @@ fn vertical_profile(x: f32, c: f32) -> f32 {
     return smoothstep_01(0.0, 0.1, x) * (1.0 - smoothstep_01(0.6 * top, top, x));
 }
 
-// Extinction at `p`, m^-1.
-fn layer_extinction(p: vec3<f32>) -> f32 {
+// Extinction at `p`, m^-1, with `octaves` octaves of detail noise (`field.rs`'s
+// density_with_octaves; 0 octaves: the noise's mean).
+fn layer_extinction(p: vec3<f32>, octaves: u32) -> f32 {
     let x = (length(p) - layer.radii_m.y) / layer.radii_m.w;
     if x < 0.0 || x > 1.0 {
         return 0.0;
@@ -66,7 +66,7 @@ fn layer_extinction(p: vec3<f32>) -> f32 {
     }
     var erosion = 1.0;
     if layer.detail.y > 0.0 {
-        let n = fractal_noise(DETAIL_SEED, p / layer.detail.x, DETAIL_OCTAVES, 0.5);
+        let n = fractal_noise(DETAIL_SEED, p / layer.detail.x, octaves, 0.5);
         erosion = 1.0 - layer.detail.y * (0.5 - 0.5 * clamp(n, -1.0, 1.0));
     }
     return layer.medium.x * clamp(c * vertical_profile(x, c) * erosion, 0.0, 1.0);

@@ -20,12 +20,15 @@ struct LayerParams {
     radii_m: vec4<f32>,
     // extinction_per_m, albedo, coverage_scale, backscatter_xi.
     medium: vec4<f32>,
-    // detail_scale_m, detail_strength (zw unused).
+    // detail_scale_m, detail_strength, min_transmittance (w unused).
     detail: vec4<f32>,
     // steps, shadow_steps, method (0 riley, 1 octaves), octaves.
     counts: vec4<u32>,
     // The cover grid's width and height, the image's width and height.
     sizes: vec4<u32>,
+    // Octaves of detail noise read by the view march and by the shadow march, the
+    // resolution divisor (w unused).
+    noise: vec4<u32>,
 }
 
 @group(0) @binding(0) var<uniform> layer: LayerParams;
@@ -34,7 +37,8 @@ struct LayerParams {
 // A_1..A_26 at ANGLES angles per wavelength, then F_1..F_26 per wavelength
 // (`clouds::layer::orders::ScatteringOrders`).
 @group(0) @binding(2) var<storage, read> orders: array<f32>;
-// rgb: the cloud's radiance towards the camera; a: its transmittance.
+// rgb: the cloud's radiance towards the camera; a: its transmittance; the full image,
+// or the reduced one that `layer_upsample.wgsl` brings to full size.
 @group(0) @binding(3) var cloud_image: texture_storage_2d<rgba32float, write>;
 
 const ANGLES: u32 = 1024u;

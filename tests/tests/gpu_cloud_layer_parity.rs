@@ -1,14 +1,18 @@
 //! The cloud layer's march on the GPU (`shaders/clouds/layer_image.wgsl`) against its
 //! CPU twin (atmosphere-core's `clouds/layer/shell.rs` and `march.rs`), pixel by pixel on
 //! 64 x 36 images: from the ground, from inside the layer and from above the deck, with
-//! both methods, over a cover with structure at the scale of the view.
+//! both methods, over a cover with structure at the scale of the view; and the
+//! interactive and offline presets (`MarchQuality`), the interactive one marched at a third
+//! of the resolution and interpolated (`clouds/layer/upsample.rs`), whose distance from the
+//! full-resolution march is bounded too.
 //!
 //! Tolerance: each pixel's radiance within 3 % of itself plus 1 % of the image's
 //! brightest pixel, but for one value in a hundred (of three per pixel), which may be
 //! off by four times that (`JUMP_FACTOR`); the transmittance within 0.01. The GPU works in f32 about the
 //! planet's centre (a point 6.36e6 m out carries 0.5 m of rounding, 3e-4 of a 1500 m
 //! layer and of a 2 km noise cell) and the march's early stop at T < 1e-4 may fall one
-//! step apart.
+//! step apart (under a preset that stops at T < 0.02, the transmittance may differ by
+//! that much).
 //!
 //! Needs a GPU adapter (lavapipe will do); see `support`.
 
@@ -18,7 +22,9 @@ use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::march::{CloudLight, MarchRay, march};
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::upsample::{marched_coordinate, reduced_size, upsample};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::geo::equirectangular::lat_lon;
 use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
@@ -91,17 +97,26 @@ fn light(sun_elevation_deg: f64) -> CloudLight {
     }
 }
 
-/// The CPU's [radiance x 3, transmittance] of every pixel.
+/// The CPU's [radiance x 3, transmittance] of every pixel: marched at the layer's
+/// resolution divisor and interpolated to full size.
 fn cpu_image(
     layer: &CloudLayer,
     camera: &LayerCamera,
     light: &CloudLight,
     orders: &ScatteringOrders,
 ) -> Vec<[f64; 4]> {
+    let (w, h) = reduced_size(
+        camera.width,
+        camera.height,
+        layer.settings().resolution_divisor,
+    );
     let mut image = Vec::new();
-    for y in 0..camera.height {
-        for x in 0..camera.width {
-            let d = camera.pixel_direction(x, y);
+    for y in 0..h {
+        for x in 0..w {
+            let d = camera.direction_at(
+                marched_coordinate(x, w, camera.width),
+                marched_coordinate(y, h, camera.height),
+            );
             let o = camera.position_m;
             image.push(match layer.shell().first_segment(o, d, f64::INFINITY) {
                 Some((t0, t1)) => {
@@ -127,7 +142,76 @@ fn cpu_image(
             });
         }
     }
-    image
+    upsample(&image, (w, h), camera.width, camera.height)
+}
+
+/// Renders `settings` on the GPU and the CPU and checks every pixel against the
+/// module's tolerance (the transmittance's at least the settings' stopping
+/// transmittance); returns the GPU image.
+fn check_parity(
+    gpu: &render_wgpu::GpuContext,
+    (pass, inputs): (&CloudLayerPass, &LayerInputs),
+    name: &str,
+    (camera, sun_elevation): (LayerCamera, f64),
+    settings: LayerSettings,
+) -> Vec<[f32; 4]> {
+    let (orders, cover) = (orders(), cover());
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+    let layer = CloudLayer::new(settings, BOTTOM_M, cover.clone(), phase).unwrap();
+    let light = light(sun_elevation);
+    let params = LayerUniform::new(
+        &camera,
+        &light,
+        &settings,
+        BOTTOM_M,
+        (cover.width(), cover.height()),
+    )
+    .unwrap();
+    let gpu_image = pass.render(gpu, &params, inputs).unwrap();
+    let cpu = cpu_image(&layer, &camera, &light, &orders);
+    let brightest = cpu
+        .iter()
+        .flat_map(|p| p[..3].iter().copied())
+        .fold(0.0, f64::max);
+    let clouded = cpu.iter().filter(|p| p[3] < 0.5).count();
+    let clear = cpu.iter().filter(|p| p[3] > 0.99).count();
+    assert!(brightest > 1e-3, "{name}: no cloud lit");
+    assert!(clouded > 100, "{name}: {clouded} clouded pixels");
+    let transmittance_tolerance = TRANSMITTANCE.max(settings.min_transmittance);
+    let mut worst: f64 = 0.0;
+    let mut outside = 0;
+    for (k, (g, c)) in gpu_image.iter().zip(&cpu).enumerate() {
+        for w in 0..3 {
+            let error = (f64::from(g[w]) - c[w]).abs();
+            let allowed = RELATIVE * c[w] + OF_BRIGHTEST * brightest;
+            worst = worst.max(error / allowed);
+            if error > allowed {
+                outside += 1;
+            }
+            assert!(
+                error <= JUMP_FACTOR * allowed,
+                "{name}: pixel {k} wavelength {w}: GPU {} CPU {}",
+                g[w],
+                c[w]
+            );
+        }
+        assert!(
+            (f64::from(g[3]) - c[3]).abs() <= transmittance_tolerance,
+            "{name}: pixel {k} T: GPU {} CPU {}",
+            g[3],
+            c[3]
+        );
+    }
+    println!(
+        "{name}: brightest {brightest:.4}, {clouded} of {} pixels clouded, {clear} clear, \
+         {outside} values outside the tolerance, worst {worst:.3} of it",
+        cpu.len()
+    );
+    assert!(
+        outside * 100 <= 3 * cpu.len(),
+        "{name}: {outside} values outside"
+    );
+    gpu_image
 }
 
 #[test]
@@ -135,11 +219,8 @@ fn the_gpu_march_matches_the_cpu_from_below_inside_and_above() {
     let Some(gpu) = support::gpu_or_skip("cloud layer parity") else {
         return;
     };
-    let orders = orders();
-    let cover = cover();
-    let inputs = LayerInputs::new(&gpu, &cover, &orders).unwrap();
+    let inputs = LayerInputs::new(&gpu, &cover(), &orders()).unwrap();
     let pass = CloudLayerPass::new(&gpu).unwrap();
-    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     let views = [
         ("below, riley", camera(10.0, 35.0), LayerMethod::Riley, 40.0),
         (
@@ -168,58 +249,99 @@ fn the_gpu_march_matches_the_cpu_from_below_inside_and_above() {
             shadow_steps: 6,
             ..LayerSettings::default()
         };
-        let layer = CloudLayer::new(settings, BOTTOM_M, cover.clone(), phase.clone()).unwrap();
-        let light = light(sun_elevation);
+        check_parity(
+            &gpu,
+            (&pass, &inputs),
+            name,
+            (camera, sun_elevation),
+            settings,
+        );
+    }
+}
+
+/// The interactive preset's reduced-resolution image lies within this mean absolute
+/// radiance error (relative to the mean radiance) of the same march at full resolution.
+/// At 64 x 36 over 60 degrees a pixel spans a degree, twenty times a 1280 x 720 pixel,
+/// and the interpolation spans three: the worst case of the views the renderer draws.
+const UPSAMPLE_MEAN_ERROR: f64 = 0.2;
+
+#[test]
+fn the_presets_match_the_cpu_and_the_reduced_march_stays_near_the_full() {
+    let Some(gpu) = support::gpu_or_skip("cloud layer presets") else {
+        return;
+    };
+    let inputs = LayerInputs::new(&gpu, &cover(), &orders()).unwrap();
+    let pass = CloudLayerPass::new(&gpu).unwrap();
+    let riley = LayerSettings::default();
+    let octaves = LayerSettings {
+        method: LayerMethod::Octaves,
+        ..riley
+    };
+    let interactive = MarchQuality::Interactive;
+    let views = [
+        (
+            "interactive, below, riley",
+            camera(10.0, 35.0),
+            40.0,
+            interactive.apply(riley),
+        ),
+        (
+            "interactive, inside, octaves",
+            camera(2200.0, 0.0),
+            25.0,
+            interactive.apply(octaves),
+        ),
+        (
+            "interactive, above, riley",
+            camera(5000.0, -30.0),
+            50.0,
+            interactive.apply(riley),
+        ),
+        (
+            "offline, below, octaves",
+            camera(10.0, 35.0),
+            40.0,
+            MarchQuality::Offline.apply(octaves),
+        ),
+    ];
+    for (name, camera, sun_elevation, settings) in views {
+        let image = check_parity(
+            &gpu,
+            (&pass, &inputs),
+            name,
+            (camera, sun_elevation),
+            settings,
+        );
+        if settings.resolution_divisor == 1 {
+            continue;
+        }
+        let full = LayerSettings {
+            resolution_divisor: 1,
+            ..settings
+        };
         let params = LayerUniform::new(
             &camera,
-            &light,
-            &settings,
+            &light(sun_elevation),
+            &full,
             BOTTOM_M,
-            (cover.width(), cover.height()),
+            (2048, 1024),
         )
         .unwrap();
-        let gpu_image = pass.render(&gpu, &params, &inputs).unwrap();
-        let cpu = cpu_image(&layer, &camera, &light, &orders);
-        let brightest = cpu
-            .iter()
-            .flat_map(|p| p[..3].iter().copied())
-            .fold(0.0, f64::max);
-        let clouded = cpu.iter().filter(|p| p[3] < 0.5).count();
-        let clear = cpu.iter().filter(|p| p[3] > 0.99).count();
-        assert!(brightest > 1e-3, "{name}: no cloud lit");
-        assert!(clouded > 100, "{name}: {clouded} clouded pixels");
-        let mut worst: f64 = 0.0;
-        let mut outside = 0;
-        for (k, (g, c)) in gpu_image.iter().zip(&cpu).enumerate() {
+        let reference = pass.render(&gpu, &params, &inputs).unwrap();
+        let (mut error, mut total) = (0.0, 0.0);
+        for (p, q) in image.iter().zip(&reference) {
             for w in 0..3 {
-                let error = (f64::from(g[w]) - c[w]).abs();
-                let allowed = RELATIVE * c[w] + OF_BRIGHTEST * brightest;
-                worst = worst.max(error / allowed);
-                if error > allowed {
-                    outside += 1;
-                }
-                assert!(
-                    error <= JUMP_FACTOR * allowed,
-                    "{name}: pixel {k} wavelength {w}: GPU {} CPU {}",
-                    g[w],
-                    c[w]
-                );
+                error += f64::from((p[w] - q[w]).abs());
+                total += f64::from(q[w]);
             }
-            assert!(
-                (f64::from(g[3]) - c[3]).abs() <= TRANSMITTANCE,
-                "{name}: pixel {k} T: GPU {} CPU {}",
-                g[3],
-                c[3]
-            );
         }
         println!(
-            "{name}: brightest {brightest:.4}, {clouded} of {} pixels clouded, {clear} clear, \
-             {outside} values outside the tolerance, worst {worst:.3} of it",
-            cpu.len()
+            "{name}: reduced resolution against full, mean radiance error {:.4} of the mean",
+            error / total
         );
         assert!(
-            outside * 100 <= 3 * cpu.len(),
-            "{name}: {outside} values outside"
+            error <= UPSAMPLE_MEAN_ERROR * total,
+            "{name}: {error} of {total}"
         );
     }
 }

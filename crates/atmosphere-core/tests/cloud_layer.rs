@@ -8,6 +8,7 @@ use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::composite::radiance_with_clouds;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::models::id::ModelId;
@@ -105,14 +106,20 @@ fn overcast_hides_the_sky_from_below_and_shines_from_above() {
 fn a_thousand_times_the_density_stays_finite_and_opaque() {
     let model = model();
     let orders = orders(model.wavelengths_nm().len());
-    for method in [LayerMethod::Riley, LayerMethod::Octaves] {
+    let interactive = MarchQuality::Interactive.apply(LayerSettings::default());
+    for (method, base) in [
+        (LayerMethod::Riley, LayerSettings::default()),
+        (LayerMethod::Octaves, LayerSettings::default()),
+        (LayerMethod::Riley, interactive),
+        (LayerMethod::Octaves, interactive),
+    ] {
         for extinction_per_m in [0.001, 1.0] {
             let l = layer(
                 1.0,
                 LayerSettings {
                     extinction_per_m,
                     method,
-                    ..LayerSettings::default()
+                    ..base
                 },
             );
             for r in [
@@ -122,8 +129,11 @@ fn a_thousand_times_the_density_stays_finite_and_opaque() {
             ] {
                 let a = radiance_with_clouds(model.as_ref(), &l, &orders, &r).unwrap();
                 assert_sane(&format!("{method} {extinction_per_m}"), &a, 10.0);
+                // Opaque: below 1e-3, or below where the march stops (what lies
+                // behind is then seen through the transmittance marched so far).
                 if extinction_per_m == 1.0 {
-                    assert!(a.transmittance.iter().all(|t| *t < 1e-3), "{a:?}");
+                    let opaque = base.min_transmittance.max(1e-3);
+                    assert!(a.transmittance.iter().all(|t| *t < opaque), "{a:?}");
                 }
             }
         }
@@ -134,31 +144,35 @@ fn a_thousand_times_the_density_stays_finite_and_opaque() {
 fn inside_a_cloud_and_at_its_top_the_answers_are_finite_and_continuous() {
     let model = model();
     let orders = orders(model.wavelengths_nm().len());
-    let s = LayerSettings::default();
-    let l = layer(1.0, s);
-    let top = s.base_m + s.thickness_m;
-    for view in [0.0, 60.0, 90.0, 120.0, 180.0] {
-        let inside = radiance_with_clouds(
-            model.as_ref(),
-            &l,
-            &orders,
-            &ray(s.base_m + 500.0, view, 30.0),
-        )
-        .unwrap();
-        assert_sane("inside", &inside, 10.0);
-        assert!(inside.transmittance[1] < 0.999, "view {view}: {inside:?}");
-        let at = radiance_with_clouds(model.as_ref(), &l, &orders, &ray(top, view, 30.0)).unwrap();
-        let above =
-            radiance_with_clouds(model.as_ref(), &l, &orders, &ray(top + 0.5, view, 30.0)).unwrap();
-        assert_sane("at the top", &at, 10.0);
-        for w in 0..at.radiance.len() {
-            let scale = at.radiance[w].max(above.radiance[w]).max(1e-6);
-            assert!(
-                (at.radiance[w] - above.radiance[w]).abs() < 0.02 * scale,
-                "view {view}: {} at the top, {} 0.5 m above",
-                at.radiance[w],
-                above.radiance[w]
-            );
+    let default = LayerSettings::default();
+    for s in [default, MarchQuality::Interactive.apply(default)] {
+        let l = layer(1.0, s);
+        let top = s.base_m + s.thickness_m;
+        for view in [0.0, 60.0, 90.0, 120.0, 180.0] {
+            let inside = radiance_with_clouds(
+                model.as_ref(),
+                &l,
+                &orders,
+                &ray(s.base_m + 500.0, view, 30.0),
+            )
+            .unwrap();
+            assert_sane("inside", &inside, 10.0);
+            assert!(inside.transmittance[1] < 0.999, "view {view}: {inside:?}");
+            let at =
+                radiance_with_clouds(model.as_ref(), &l, &orders, &ray(top, view, 30.0)).unwrap();
+            let above =
+                radiance_with_clouds(model.as_ref(), &l, &orders, &ray(top + 0.5, view, 30.0))
+                    .unwrap();
+            assert_sane("at the top", &at, 10.0);
+            for w in 0..at.radiance.len() {
+                let scale = at.radiance[w].max(above.radiance[w]).max(1e-6);
+                assert!(
+                    (at.radiance[w] - above.radiance[w]).abs() < 0.02 * scale,
+                    "view {view}: {} at the top, {} 0.5 m above",
+                    at.radiance[w],
+                    above.radiance[w]
+                );
+            }
         }
     }
 }
@@ -240,6 +254,34 @@ fn bad_settings_and_tables_are_refused_by_name() {
                 ..LayerSettings::default()
             },
             "cloud coverage_scale = 5",
+        ),
+        (
+            LayerSettings {
+                detail_octaves: 0,
+                ..LayerSettings::default()
+            },
+            "cloud detail_octaves = 0 must lie in [1, 3]",
+        ),
+        (
+            LayerSettings {
+                shadow_octaves: 4,
+                ..LayerSettings::default()
+            },
+            "cloud shadow_octaves = 4 must lie in [0, 3]",
+        ),
+        (
+            LayerSettings {
+                min_transmittance: 0.5,
+                ..LayerSettings::default()
+            },
+            "cloud min_transmittance = 0.5 must lie in [0.000001, 0.1]",
+        ),
+        (
+            LayerSettings {
+                resolution_divisor: 5,
+                ..LayerSettings::default()
+            },
+            "cloud resolution_divisor = 5 must lie in [1, 4]",
         ),
     ];
     for (settings, message) in cases {

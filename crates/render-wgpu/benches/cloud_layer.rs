@@ -1,10 +1,17 @@
 //! What the cloud layer pass costs against the hillaire sky pass, in one run on one
 //! device at 1280 x 720: the hillaire frame of a flight view under the layer (500 m up,
 //! looking 10 degrees above the horizon, sun 30 degrees up) through the `Renderer` (its per-step GPU
-//! times), then the cloud layer pass of the same view over the generated cover, both
-//! methods, at the default steps (48 view, 8 shadow); rounds interleaved, medians. The
-//! cloud pass is timed by the wall clock around its dispatch and read-back (lavapipe's
-//! timestamps around a lone compute pass read about 0.1 ms whatever it does).
+//! times), then the cloud layer pass of the same view over the generated cover: both
+//! methods at the default march (48 view, 8 shadow steps) and at the interactive preset
+//! (`MarchQuality`), and octaves at the offline preset (Riley's march does not converge
+//! as its shadow steps shrink: `docs/clouds.md`, "Cost"); rounds interleaved, medians.
+//! The cloud pass is timed by the wall clock around its dispatch and read-back
+//! (lavapipe's timestamps around a lone compute pass read about 0.1 ms whatever it
+//! does).
+//!
+//! Each row's error is measured against the finest march of the same method on the same
+//! view at 160 x 90: the mean absolute radiance error over all pixels and wavelengths
+//! relative to the finest image's mean radiance, and the largest transmittance error.
 //!
 //! Run: `cargo bench -p render-wgpu --bench cloud_layer` (on lavapipe:
 //! `WGPU_BACKEND=vulkan VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json`).
@@ -16,6 +23,7 @@ use atmosphere_core::clouds::cover::generated::{CoverParameters, GeneratedCover}
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::ModelSettings;
@@ -32,6 +40,59 @@ use render_wgpu::frame::{Frame, LocalView};
 const ROUNDS: usize = 2;
 const WIDTH: u32 = 1280;
 const HEIGHT: u32 = 720;
+/// The size of the images compared with the finest march.
+const ERROR_WIDTH: u32 = 160;
+const ERROR_HEIGHT: u32 = 90;
+
+/// A row of the bench: its name and settings.
+struct Row {
+    name: &'static str,
+    settings: LayerSettings,
+}
+
+fn rows() -> Vec<Row> {
+    let riley = LayerSettings::default();
+    let octaves = LayerSettings {
+        method: LayerMethod::Octaves,
+        ..riley
+    };
+    vec![
+        Row {
+            name: "riley, default",
+            settings: riley,
+        },
+        Row {
+            name: "octaves, default",
+            settings: octaves,
+        },
+        Row {
+            name: "riley, interactive",
+            settings: MarchQuality::Interactive.apply(riley),
+        },
+        Row {
+            name: "octaves, interactive",
+            settings: MarchQuality::Interactive.apply(octaves),
+        },
+        Row {
+            name: "octaves, offline",
+            settings: MarchQuality::Offline.apply(octaves),
+        },
+    ]
+}
+
+/// Mean |L - L_finest| over pixels and wavelengths / mean L_finest, and the largest
+/// |T - T_finest|.
+fn error_against(image: &[[f32; 4]], finest: &[[f32; 4]]) -> (f64, f64) {
+    let (mut error, mut total, mut worst_t) = (0.0, 0.0, 0.0_f64);
+    for (p, q) in image.iter().zip(finest) {
+        for w in 0..3 {
+            error += f64::from((p[w] - q[w]).abs());
+            total += f64::from(q[w]);
+        }
+        worst_t = worst_t.max(f64::from((p[3] - q[3]).abs()));
+    }
+    (error / total, worst_t)
+}
 
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
@@ -89,10 +150,43 @@ fn main() {
         sky_irradiance: vec![0.1, 0.2, 0.35],
         up: DVec3::Z,
     };
-    let methods = [LayerMethod::Riley, LayerMethod::Octaves];
+    let rows = rows();
+    let params_at = |settings: &LayerSettings, width: u32, height: u32| {
+        let camera = LayerCamera {
+            width,
+            height,
+            ..camera
+        };
+        LayerUniform::new(
+            &camera,
+            &light,
+            settings,
+            atmosphere.bottom_radius_m,
+            (grid.width(), grid.height()),
+        )
+        .unwrap()
+    };
+    // The finest image of each method, rendered once.
+    let mut finest: Vec<(LayerMethod, Vec<[f32; 4]>)> = Vec::new();
+    let mut errors = Vec::new();
+    for row in &rows {
+        let method = row.settings.method;
+        if !finest.iter().any(|(m, _)| *m == method) {
+            let settings = MarchQuality::Finest.apply(row.settings);
+            let params = params_at(&settings, ERROR_WIDTH, ERROR_HEIGHT);
+            finest.push((
+                method,
+                pass.render(renderer.gpu(), &params, &inputs).unwrap(),
+            ));
+        }
+        let reference = &finest.iter().find(|(m, _)| *m == method).unwrap().1;
+        let params = params_at(&row.settings, ERROR_WIDTH, ERROR_HEIGHT);
+        let image = pass.render(renderer.gpu(), &params, &inputs).unwrap();
+        errors.push(error_against(&image, reference));
+    }
     let mut sky_ms = Vec::new();
     let mut frame_ms = Vec::new();
-    let mut cloud_ms = vec![Vec::new(); methods.len()];
+    let mut cloud_ms = vec![Vec::new(); rows.len()];
     let mut clouded = 0;
     for _ in 0..ROUNDS {
         let start = Instant::now();
@@ -103,19 +197,8 @@ fn main() {
             step.and_then(|s| s.gpu_ms)
                 .expect("the hillaire pass's GPU time"),
         );
-        for (k, &method) in methods.iter().enumerate() {
-            let settings = LayerSettings {
-                method,
-                ..LayerSettings::default()
-            };
-            let params = LayerUniform::new(
-                &camera,
-                &light,
-                &settings,
-                atmosphere.bottom_radius_m,
-                (grid.width(), grid.height()),
-            )
-            .unwrap();
+        for (k, row) in rows.iter().enumerate() {
+            let params = params_at(&row.settings, WIDTH, HEIGHT);
             let start = Instant::now();
             let pixels = pass.render(renderer.gpu(), &params, &inputs).unwrap();
             cloud_ms[k].push(start.elapsed().as_secs_f64() * 1e3);
@@ -129,13 +212,16 @@ fn main() {
         renderer.gpu().adapter_summary(),
         WIDTH * HEIGHT
     );
-    for (method, times) in methods.iter().zip(cloud_ms) {
+    for ((row, times), (error, worst_t)) in rows.iter().zip(cloud_ms).zip(errors) {
         let cloud = median(times);
         println!(
-            "cloud layer, {method}: {cloud:.1} ms (wall clock, with read-back), {:.1} x the \
-             hillaire pass, {:.1} x the whole frame",
+            "cloud layer, {}: {cloud:.1} ms (wall clock, with read-back), {:.2} x the \
+             hillaire pass, {:.2} x the whole frame; against the finest march: radiance \
+             {:.1} % (mean absolute / mean), transmittance {worst_t:.3} (largest)",
+            row.name,
             cloud / sky,
-            cloud / whole
+            cloud / whole,
+            100.0 * error
         );
     }
 }

@@ -510,7 +510,8 @@ fn cloud_layer_uniform_matches_its_wgsl_layout() {
             medium,
             detail,
             counts,
-            sizes
+            sizes,
+            noise
         ]
     );
 }

@@ -9,6 +9,12 @@ pub trait CloudMedium {
     /// Extinction coefficient at `position`, m^-1 (0 outside the cloud).
     fn extinction(&self, position: DVec3) -> f64;
 
+    /// The extinction a march's shadow rays towards the sun read, m^-1: the same field
+    /// unless the medium offers a cheaper, smoother one for its light.
+    fn light_extinction(&self, position: DVec3) -> f64 {
+        self.extinction(position)
+    }
+
     /// Single-scattering albedo at `position`, in [0, 1].
     fn single_scattering_albedo(&self, position: DVec3) -> f64;
 

@@ -1,6 +1,8 @@
 //! The cloud layer pass: `shaders/clouds/layer_image.wgsl` writes each pixel's cloud
 //! radiance (rgb, at 680, 550, 440 nm) and transmittance (a) into an `Rgba32Float`
-//! image; see `atmosphere-core`'s `clouds/layer/` for the equations.
+//! image; see `atmosphere-core`'s `clouds/layer/` for the equations. With a resolution
+//! divisor above 1 it marches a reduced image that `shaders/clouds/layer_upsample.wgsl`
+//! brings to full size (`clouds/layer/upsample.rs`).
 
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::LayerUniform;
@@ -11,13 +13,15 @@ use crate::gpu::pipeline::{
     texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
+use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
-/// The compiled pass and its parameter buffer.
+/// The compiled passes (the march and the upsample) and the parameter buffer.
 #[derive(Debug)]
 pub struct CloudLayerPass {
     pipeline: ComputePipeline,
+    upsample: ComputePipeline,
     params: wgpu::Buffer,
 }
 
@@ -38,12 +42,23 @@ impl CloudLayerPass {
                 "cloud layer",
                 &entries,
             )?,
+            upsample: ComputePipeline::new(
+                gpu,
+                "clouds/layer_upsample.wgsl",
+                "main",
+                "cloud layer upsample",
+                &[
+                    texture_entry(0, D2),
+                    storage_texture_entry(1, IMAGE_FORMAT, D2),
+                ],
+            )?,
             params: uniform_buffer(&gpu.device, "cloud layer", size_of::<LayerUniform>()),
         })
     }
 
     /// Records the pass into `encoder`, writing `image` (`Rgba32Float`, the size of
-    /// `params.sizes.zw`), timed by `timestamps` when given.
+    /// `params.sizes.zw`), timed by `timestamps` when given (from the march's start to
+    /// the upsample's end when the march is reduced).
     pub fn encode(
         &self,
         gpu: &GpuContext,
@@ -54,22 +69,77 @@ impl CloudLayerPass {
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         gpu.write_uniform(&self.params, params);
-        let cover = inputs.cover.create_view(&Default::default());
+        let divisor = params.noise[2];
+        if divisor <= 1 {
+            self.march(gpu, encoder, inputs, image, timestamps);
+            return;
+        }
+        let reduced = texture_2d(
+            &gpu.device,
+            "cloud layer reduced image",
+            reduced_size(params.sizes[2], params.sizes[3], divisor),
+            IMAGE_FORMAT,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let (start, end) = match timestamps {
+            Some(t) => (
+                Some(wgpu::ComputePassTimestampWrites {
+                    query_set: t.query_set,
+                    beginning_of_pass_write_index: t.beginning_of_pass_write_index,
+                    end_of_pass_write_index: None,
+                }),
+                Some(wgpu::ComputePassTimestampWrites {
+                    query_set: t.query_set,
+                    beginning_of_pass_write_index: None,
+                    end_of_pass_write_index: t.end_of_pass_write_index,
+                }),
+            ),
+            None => (None, None),
+        };
+        self.march(gpu, encoder, inputs, &reduced, start);
+        let source = reduced.create_view(&Default::default());
         let target = image.create_view(&Default::default());
+        let bind_group = self.upsample.bind_group(
+            gpu,
+            &[
+                wgpu::BindingResource::TextureView(&source),
+                wgpu::BindingResource::TextureView(&target),
+            ],
+        );
+        self.upsample.dispatch(
+            encoder,
+            "cloud layer upsample",
+            &bind_group,
+            texel_groups(image),
+            end,
+        );
+    }
+
+    /// Records the march into `target`, the full or the reduced image.
+    fn march(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &LayerInputs,
+        target: &wgpu::Texture,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let cover = inputs.cover.create_view(&Default::default());
+        let view = target.create_view(&Default::default());
         let bind_group = self.pipeline.bind_group(
             gpu,
             &[
                 self.params.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&cover),
                 inputs.orders.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&target),
+                wgpu::BindingResource::TextureView(&view),
             ],
         );
         self.pipeline.dispatch(
             encoder,
             "cloud layer",
             &bind_group,
-            texel_groups(image),
+            texel_groups(target),
             timestamps,
         );
     }

@@ -29,15 +29,21 @@ pub struct LayerCamera {
 impl LayerCamera {
     /// The unit direction of pixel (x, y), as the shader forms it.
     pub fn pixel_direction(&self, x: u32, y: u32) -> DVec3 {
+        self.direction_at(f64::from(x), f64::from(y))
+    }
+
+    /// The unit direction through the fractional pixel coordinate (x, y) (pixel x's
+    /// centre at x): what a reduced-resolution march's ray looks along.
+    pub fn direction_at(&self, x: f64, y: f64) -> DVec3 {
         let t = (self.fov_deg.to_radians() / 2.0).tan();
         let aspect = f64::from(self.width) / f64::from(self.height);
-        let sx = (2.0 * (f64::from(x) + 0.5) / f64::from(self.width) - 1.0) * t * aspect;
-        let sy = (2.0 * (f64::from(y) + 0.5) / f64::from(self.height) - 1.0) * t;
+        let sx = (2.0 * (x + 0.5) / f64::from(self.width) - 1.0) * t * aspect;
+        let sy = (2.0 * (y + 0.5) / f64::from(self.height) - 1.0) * t;
         (self.forward + self.right * sx - self.up * sy).normalize()
     }
 }
 
-/// WGSL `LayerParams`, 192 bytes.
+/// WGSL `LayerParams`, 208 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct LayerUniform {
@@ -55,12 +61,15 @@ pub struct LayerUniform {
     pub radii_m: [f32; 4],
     /// extinction_per_m, albedo, coverage_scale, backscatter_xi.
     pub medium: [f32; 4],
-    /// detail_scale_m, detail_strength, 0, 0.
+    /// detail_scale_m, detail_strength, min_transmittance, 0.
     pub detail: [f32; 4],
     /// steps, shadow_steps, method (0 riley, 1 octaves), octaves.
     pub counts: [u32; 4],
     /// The cover grid's width and height, the image's width and height.
     pub sizes: [u32; 4],
+    /// Octaves of detail noise of the view march and of the shadow march, the
+    /// resolution divisor, 0.
+    pub noise: [u32; 4],
 }
 
 fn vec4(v: DVec3, w: f64) -> [f32; 4] {
@@ -121,7 +130,7 @@ impl LayerUniform {
             detail: [
                 settings.detail_scale_m as f32,
                 settings.detail_strength as f32,
-                0.0,
+                settings.min_transmittance as f32,
                 0.0,
             ],
             counts: [
@@ -138,6 +147,12 @@ impl LayerUniform {
                 cover_size.1 as u32,
                 camera.width,
                 camera.height,
+            ],
+            noise: [
+                settings.detail_octaves,
+                settings.shadow_octaves,
+                settings.resolution_divisor,
+                0,
             ],
         })
     }

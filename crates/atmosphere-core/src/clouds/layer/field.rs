@@ -57,8 +57,15 @@ impl CloudLayer {
         &self.cover
     }
 
-    /// The density, 0 to 1, at `point`: cover x profile x erosion.
+    /// The density, 0 to 1, at `point`: cover x profile x erosion by `detail_octaves`
+    /// octaves of noise.
     pub fn density(&self, point: DVec3) -> f64 {
+        self.density_with_octaves(point, self.settings.detail_octaves)
+    }
+
+    /// The density with `octaves` octaves of detail noise: the view march reads
+    /// `detail_octaves`, the sun's shadow march `shadow_octaves`.
+    pub fn density_with_octaves(&self, point: DVec3, octaves: u32) -> f64 {
         let s = &self.settings;
         let x = (point.length() - self.shell.base_radius_m) / s.thickness_m;
         if !(0.0..=1.0).contains(&x) {
@@ -71,7 +78,7 @@ impl CloudLayer {
         density(
             x,
             cover,
-            detail_erosion(point, s.detail_scale_m, s.detail_strength),
+            detail_erosion(point, s.detail_scale_m, s.detail_strength, octaves),
         )
     }
 }
@@ -79,6 +86,11 @@ impl CloudLayer {
 impl CloudMedium for CloudLayer {
     fn extinction(&self, position: DVec3) -> f64 {
         self.settings.extinction_per_m * self.density(position)
+    }
+
+    fn light_extinction(&self, position: DVec3) -> f64 {
+        self.settings.extinction_per_m
+            * self.density_with_octaves(position, self.settings.shadow_octaves)
     }
 
     fn single_scattering_albedo(&self, _position: DVec3) -> f64 {

@@ -22,7 +22,10 @@
 //! is a radiance E_sky / pi over 2 pi sr, of which an isotropic scatterer sends
 //! E_sky / (2 pi) per steradian, dimmed by exp(-sigma h) with h the distance to the
 //! boundary straight up (one sample of the density above: the ambient's attenuation).
-//! The march stops once T_view < [`MIN_TRANSMITTANCE`].
+//! The shadow march reads the medium's [`CloudMedium::light_extinction`] (for the layer,
+//! its density with `shadow_octaves` octaves of detail noise). The march stops once
+//! T_view < `min_transmittance`: what lies behind would add at most that fraction of
+//! its light.
 
 use glam::DVec3;
 
@@ -30,8 +33,6 @@ use super::orders::ScatteringOrders;
 use super::settings::{LayerMethod, LayerSettings, MAX_SHADOW_STEPS};
 use crate::clouds::medium::CloudMedium;
 
-/// The view transmittance below which what lies behind is left out.
-pub const MIN_TRANSMITTANCE: f64 = 1e-4;
 /// Wrenninge et al. 2013's octave factors a (scattering), b (extinction), c (phase).
 pub const OCTAVE_A: f64 = 0.5;
 pub const OCTAVE_B: f64 = 0.5;
@@ -100,7 +101,7 @@ pub fn march(
                 weight * (light.sun_irradiance[w] * sun[w] + light.sky_irradiance[w] * sky);
         }
         transmittance *= step_t;
-        if transmittance < MIN_TRANSMITTANCE {
+        if transmittance < settings.min_transmittance {
             break;
         }
     }
@@ -127,7 +128,7 @@ fn sun_source(
     let mut depths = [0.0; MAX_SHADOW_STEPS as usize];
     for (k, depth) in depths.iter_mut().enumerate().take(steps) {
         let q = p + light.sun_direction * (length - (k as f64 + 0.5) * ds);
-        *depth = medium.extinction(q) * ds;
+        *depth = medium.light_extinction(q) * ds;
     }
     let tau: f64 = depths[..steps].iter().sum();
     (0..orders.wavelengths())

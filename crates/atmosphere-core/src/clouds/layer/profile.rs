@@ -8,7 +8,7 @@ use glam::DVec3;
 
 use crate::numerics::gradient_noise::fractal_noise;
 
-/// Octaves of the detail noise.
+/// The most octaves of the detail noise.
 pub const DETAIL_OCTAVES: u32 = 3;
 /// The detail noise's seed.
 pub const DETAIL_SEED: u32 = 0x5eed_c10d;
@@ -35,13 +35,14 @@ pub fn vertical_profile(x: f64, cover: f64) -> f64 {
 }
 
 /// The erosion by detail noise at `point_m` (planet-fixed, metres): 1 minus `strength`
-/// times a fractal gradient noise (Perlin 2002) mapped to [0, 1], so it only removes
-/// cloud and never adds any where the cover is 0.
-pub fn detail_erosion(point_m: DVec3, scale_m: f64, strength: f64) -> f64 {
+/// times a fractal gradient noise (Perlin 2002) of `octaves` octaves mapped to [0, 1],
+/// so it only removes cloud and never adds any where the cover is 0. With 0 octaves the
+/// noise is its mean, 0: an erosion of 1 - strength / 2 everywhere.
+pub fn detail_erosion(point_m: DVec3, scale_m: f64, strength: f64, octaves: u32) -> f64 {
     if strength == 0.0 {
         return 1.0;
     }
-    let n = fractal_noise(DETAIL_SEED, point_m / scale_m, DETAIL_OCTAVES, 0.5);
+    let n = fractal_noise(DETAIL_SEED, point_m / scale_m, octaves, 0.5);
     1.0 - strength * (0.5 - 0.5 * n.clamp(-1.0, 1.0))
 }
 
@@ -70,9 +71,10 @@ mod tests {
     fn erosion_stays_in_its_range() {
         for k in 0..200 {
             let p = DVec3::new(k as f64 * 137.0, 6.36e6, k as f64 * -59.0);
-            let e = detail_erosion(p, 2000.0, 0.7);
+            let e = detail_erosion(p, 2000.0, 0.7, DETAIL_OCTAVES);
             assert!((0.3..=1.0).contains(&e), "{e}");
         }
-        assert_eq!(detail_erosion(DVec3::ONE, 2000.0, 0.0), 1.0);
+        assert_eq!(detail_erosion(DVec3::ONE, 2000.0, 0.0, 3), 1.0);
+        assert_eq!(detail_erosion(DVec3::ONE * 777.0, 2000.0, 0.6, 0), 0.7);
     }
 }

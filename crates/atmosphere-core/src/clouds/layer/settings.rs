@@ -56,6 +56,13 @@ pub const MAX_STEPS: u32 = 512;
 pub const MAX_SHADOW_STEPS: u32 = 64;
 /// The most octaves of [`LayerMethod::Octaves`].
 pub const MAX_OCTAVES: u32 = 8;
+/// The most octaves of detail noise (the field's own, `profile::DETAIL_OCTAVES`).
+pub const MAX_DETAIL_OCTAVES: u32 = super::profile::DETAIL_OCTAVES;
+/// The range of the view transmittance at which the march stops.
+pub const MIN_STOP_TRANSMITTANCE: f64 = 1e-6;
+pub const MAX_STOP_TRANSMITTANCE: f64 = 0.1;
+/// The coarsest march: one ray per 4 x 4 pixels.
+pub const MAX_RESOLUTION_DIVISOR: u32 = 4;
 
 /// The cloud layer's settings. Every field has a range ([`LayerSettings::check`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -83,6 +90,16 @@ pub struct LayerSettings {
     pub backscatter_xi: f64,
     /// Octaves of [`LayerMethod::Octaves`], in [1, 8].
     pub octaves: u32,
+    /// Octaves of detail noise in the density the view march reads, in [1, 3].
+    pub detail_octaves: u32,
+    /// Octaves of detail noise in the density the sun's shadow march reads, in [0, 3]
+    /// (0: the noise's mean; the light sees a smoother cloud than the eye).
+    pub shadow_octaves: u32,
+    /// The view transmittance below which the march stops, in [1e-6, 0.1].
+    pub min_transmittance: f64,
+    /// The march's resolution is the image's divided by this in each direction, the
+    /// rest interpolated (`upsample.rs`), in [1, 4].
+    pub resolution_divisor: u32,
 }
 
 impl Default for LayerSettings {
@@ -100,6 +117,10 @@ impl Default for LayerSettings {
             shadow_steps: 8,
             backscatter_xi: 0.05,
             octaves: 4,
+            detail_octaves: MAX_DETAIL_OCTAVES,
+            shadow_octaves: MAX_DETAIL_OCTAVES,
+            min_transmittance: 1e-4,
+            resolution_divisor: 1,
         }
     }
 }
@@ -128,7 +149,29 @@ impl LayerSettings {
         check_count("cloud steps", self.steps, MAX_STEPS)?;
         check_count("cloud shadow_steps", self.shadow_steps, MAX_SHADOW_STEPS)?;
         check_range("cloud backscatter_xi", self.backscatter_xi, 0.0, 1.0)?;
-        check_count("cloud octaves", self.octaves, MAX_OCTAVES)
+        check_count("cloud octaves", self.octaves, MAX_OCTAVES)?;
+        check_count(
+            "cloud detail_octaves",
+            self.detail_octaves,
+            MAX_DETAIL_OCTAVES,
+        )?;
+        if self.shadow_octaves > MAX_DETAIL_OCTAVES {
+            return Err(CloudError(format!(
+                "cloud shadow_octaves = {} must lie in [0, {MAX_DETAIL_OCTAVES}]",
+                self.shadow_octaves
+            )));
+        }
+        check_range(
+            "cloud min_transmittance",
+            self.min_transmittance,
+            MIN_STOP_TRANSMITTANCE,
+            MAX_STOP_TRANSMITTANCE,
+        )?;
+        check_count(
+            "cloud resolution_divisor",
+            self.resolution_divisor,
+            MAX_RESOLUTION_DIVISOR,
+        )
     }
 
     /// Radius of the layer's base and top on a planet of `bottom_radius_m`.

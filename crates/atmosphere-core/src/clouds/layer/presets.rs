@@ -1,0 +1,77 @@
+//! The march's quality presets: how many view and shadow steps, how many octaves of
+//! detail noise the eye and the sun's shadow rays read, and where the march stops. They
+//! leave the cloud itself (where it lies, how dense, its light's method) as it is. What
+//! each costs and how far it lies from the finest is measured in `docs/clouds.md`
+//! ("Cost").
+
+use super::settings::{LayerSettings, MAX_DETAIL_OCTAVES, MAX_SHADOW_STEPS, MAX_STEPS};
+
+/// A quality of the cloud layer's march.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MarchQuality {
+    /// For flight: few view steps through one octave of detail, a two-step shadow
+    /// march through the cover and profile alone (the noise's mean), a stop once 2 % of
+    /// the light behind is left, one ray per 3 x 3 pixels.
+    Interactive,
+    /// For recordings: more steps than the defaults and the full noise everywhere.
+    Offline,
+    /// The most steps and octaves the settings allow: what the others are measured
+    /// against.
+    Finest,
+}
+
+/// The view steps, shadow steps, view octaves, shadow octaves, stopping transmittance
+/// and resolution divisor of a quality.
+struct March {
+    steps: u32,
+    shadow_steps: u32,
+    detail_octaves: u32,
+    shadow_octaves: u32,
+    min_transmittance: f64,
+    resolution_divisor: u32,
+}
+
+impl MarchQuality {
+    fn march(self) -> March {
+        match self {
+            MarchQuality::Interactive => March {
+                steps: 20,
+                shadow_steps: 2,
+                detail_octaves: 1,
+                shadow_octaves: 0,
+                min_transmittance: 0.02,
+                resolution_divisor: 3,
+            },
+            MarchQuality::Offline => March {
+                steps: 128,
+                shadow_steps: 16,
+                detail_octaves: MAX_DETAIL_OCTAVES,
+                shadow_octaves: MAX_DETAIL_OCTAVES,
+                min_transmittance: 1e-4,
+                resolution_divisor: 1,
+            },
+            MarchQuality::Finest => March {
+                steps: MAX_STEPS,
+                shadow_steps: MAX_SHADOW_STEPS,
+                detail_octaves: MAX_DETAIL_OCTAVES,
+                shadow_octaves: MAX_DETAIL_OCTAVES,
+                min_transmittance: 1e-6,
+                resolution_divisor: 1,
+            },
+        }
+    }
+
+    /// `settings` with this quality's march.
+    pub fn apply(self, settings: LayerSettings) -> LayerSettings {
+        let m = self.march();
+        LayerSettings {
+            steps: m.steps,
+            shadow_steps: m.shadow_steps,
+            detail_octaves: m.detail_octaves,
+            shadow_octaves: m.shadow_octaves,
+            min_transmittance: m.min_transmittance,
+            resolution_divisor: m.resolution_divisor,
+            ..settings
+        }
+    }
+}
