@@ -2,6 +2,7 @@
 //! (tone-mapped) file.
 
 pub mod beams;
+pub mod cloud_flags;
 pub mod image_files;
 pub mod scene;
 pub mod sun_disk_clip;
@@ -46,6 +47,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     }
     let mut renderer = Renderer::headless()?;
     renderer.set_earth_data(earth_data);
+    cloud_flags::set_up(&mut renderer, &frame, &scene.clouds)?;
     let start = Instant::now();
     let plan = renderer.render(&frame)?;
     let elapsed = start.elapsed();
