@@ -31,7 +31,7 @@ pub enum Command {
     /// error_vs_time.png.
     Report(ReportArgs),
     /// One frame of a scene, headless: EXR (linear HDR radiance) or PNG (tone-mapped).
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// GPU table build and frame times of every model on this adapter (ground, sunset and
     /// orbit views), per pass, as Markdown tables.
     Bench(BenchArgs),
