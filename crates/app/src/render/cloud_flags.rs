@@ -22,8 +22,8 @@ use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
 use render_wgpu::{Frame, Renderer};
 use serde::{Deserialize, Serialize};
 
-/// The generated cover's grid: 1024 x 512 texels (39 km at the equator).
-pub const GENERATED_GRID: (usize, usize) = (1024, 512);
+/// The generated cover's grid: 2048 x 1024 texels (20 km at the equator).
+pub const GENERATED_GRID: (usize, usize) = (2048, 1024);
 /// The asymmetry of the droplets' phase function (lognormal, effective radius 10 um,
 /// 550 nm; docs/particles.md), which the layer's Henyey-Greenstein stand-in takes.
 pub const DROPLET_ASYMMETRY: f64 = 0.8654;
