@@ -179,22 +179,40 @@ pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
     Ok(ScatteringOrders::new(&vec![series; 3])?)
 }
 
-/// Gives `renderer` the layer of `flags` for `frame` (its cover, tables and the light of
-/// the frame's model on the CPU), or no clouds when they are off.
-pub fn set_up(renderer: &mut Renderer, frame: &Frame, flags: &CloudFlags) -> anyhow::Result<()> {
-    let Some(settings) = flags.settings()? else {
-        renderer.set_clouds(None)?;
-        return Ok(());
-    };
-    renderer.set_cloud_inputs(&flags.cover_grid()?, &droplet_orders()?)?;
-    let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
-    let light = frame_light(model.as_ref(), frame, &settings)?;
-    renderer.set_clouds(Some(FrameClouds {
-        settings,
-        light,
-        prune: true,
-    }))?;
-    Ok(())
+/// What a frame's clouds need besides the light: the layer's settings, its cover and its
+/// tables, made (and checked, errors naming the flag) before the GPU is opened.
+#[derive(Debug)]
+pub struct CloudInputs {
+    pub settings: LayerSettings,
+    pub cover: CoverGrid,
+    pub orders: ScatteringOrders,
+}
+
+impl CloudInputs {
+    /// The inputs of `flags`; `None` when the clouds are off.
+    pub fn load(flags: &CloudFlags) -> anyhow::Result<Option<CloudInputs>> {
+        let Some(settings) = flags.settings()? else {
+            return Ok(None);
+        };
+        Ok(Some(CloudInputs {
+            settings,
+            cover: flags.cover_grid()?,
+            orders: droplet_orders()?,
+        }))
+    }
+
+    /// Gives `renderer` these clouds for `frame`, lit by the frame's model on the CPU.
+    pub fn set_up(&self, renderer: &mut Renderer, frame: &Frame) -> anyhow::Result<()> {
+        renderer.set_cloud_inputs(&self.cover, &self.orders)?;
+        let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
+        let light = frame_light(model.as_ref(), frame, &self.settings)?;
+        renderer.set_clouds(Some(FrameClouds {
+            settings: self.settings,
+            light,
+            prune: true,
+        }))?;
+        Ok(())
+    }
 }
 
 #[cfg(test)]
