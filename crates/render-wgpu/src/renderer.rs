@@ -283,6 +283,9 @@ impl Renderer {
             }
             None => None,
         };
+        if clouds_step.is_some() && self.cloud_pass.is_none() {
+            self.cloud_pass = Some(CloudFramePass::new(&self.gpu)?);
+        }
         // The model's second run ends on the cloud: a surface, whose passes it needs.
         plan.surface = has_surface || clouds_step.is_some();
         // The sea's variant of the pixel passes only where the surface holds sea.
@@ -292,7 +295,7 @@ impl Renderer {
         };
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
-        let targets = match self.targets.take() {
+        let mut targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,
             _ => Targets {
                 hdr: target(&self.gpu, "hdr", HDR_FORMAT, frame),
@@ -301,14 +304,8 @@ impl Renderer {
                 clouds: None,
             },
         };
-        let mut targets = targets;
-        if clouds_step.is_some() {
-            if self.cloud_pass.is_none() {
-                self.cloud_pass = Some(CloudFramePass::new(&self.gpu)?);
-            }
-            if targets.clouds.is_none() {
-                targets.clouds = Some(CloudTargets::new(&self.gpu, frame.width, frame.height));
-            }
+        if clouds_step.is_some() && targets.clouds.is_none() {
+            targets.clouds = Some(CloudTargets::new(&self.gpu, frame.width, frame.height));
         }
         if let Some(texels) = surface {
             targets.surface.upload(&self.gpu, texels);
