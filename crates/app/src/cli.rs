@@ -95,6 +95,9 @@ pub struct StartView {
     /// Draw the smooth sphere instead of the Earth's terrain.
     #[arg(long)]
     pub no_terrain: bool,
+    /// Turn the cloud layer on (the panel's "Clouds" section holds its settings).
+    #[arg(long)]
+    pub clouds: bool,
 }
 
 /// A UTC date and time `YYYY-MM-DDTHH:MM[:SS]`, each field checked.

@@ -65,6 +65,9 @@ pub fn apply(start: &StartView, settings: &mut ViewerSettings) -> anyhow::Result
         }
         settings.exaggeration = k;
     }
+    if start.clouds {
+        settings.clouds.on = true;
+    }
     if start.no_terrain {
         settings.terrain = false;
     }
