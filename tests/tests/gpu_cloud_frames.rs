@@ -1,6 +1,6 @@
 //! The cloud layer composited into `Renderer` frames (`clouds/frame_pass.rs`,
 //! `shaders/clouds/frame_march.wgsl` and `frame_composite.wgsl`) against its CPU twin,
-//! atmosphere-core's `clouds/layer/composite.rs`, on whole 48 x 27 frames of two models,
+//! atmosphere-core's `clouds/layer/composite.rs`, on whole 48 x 27 frames of three models,
 //! with a surface in front of, inside and behind the cloud; cover 0 leaves the frame
 //! exactly as without clouds; the planner's pruning changes nothing; bad input is named.
 //!
@@ -186,7 +186,7 @@ fn cpu_pixel(
 }
 
 #[test]
-fn composited_frames_match_the_cpu_composite_for_two_models() {
+fn composited_frames_match_the_cpu_composite_for_three_models() {
     let Some(mut renderer) = support::renderer_or_skip("cloud frames parity") else {
         return;
     };
@@ -194,7 +194,7 @@ fn composited_frames_match_the_cpu_composite_for_two_models() {
     let cover = cover(1.0);
     renderer.set_cloud_inputs(&cover, &orders).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
-    for model_id in [ModelId::Nishita, ModelId::Riley] {
+    for model_id in [ModelId::Nishita, ModelId::Riley, ModelId::Hillaire] {
         let frame = frame(model_id);
         let model = prepare(model_id, &frame.atmosphere, &frame.settings).unwrap();
         let settings = settings();
