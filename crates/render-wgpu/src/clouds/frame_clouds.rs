@@ -81,3 +81,79 @@ pub fn frame_light(
         .ok_or_else(|| RenderError::Frame("sun direction must be non-zero".into()))?;
     Ok(light_at(model, vertical * (0.5 * (base_m + top_m)), sun)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use atmosphere_core::atmosphere::Atmosphere;
+    use atmosphere_core::models::id::ModelId;
+    use glam::DVec3;
+
+    use crate::frame::look_orientation;
+
+    fn frame(altitude_m: f64, forward: DVec3) -> Frame {
+        let atmosphere = Atmosphere::preset("earth").unwrap();
+        Frame {
+            camera_position_m: DVec3::Z * (atmosphere.bottom_radius_m + altitude_m),
+            orientation: look_orientation(forward, DVec3::X)
+                .or_else(|| look_orientation(forward, DVec3::Z))
+                .unwrap(),
+            vertical_fov_deg: 50.0,
+            sun_direction: DVec3::Z,
+            atmosphere,
+            model: ModelId::Nishita,
+            settings: Default::default(),
+            exposure_ev100: 14.0,
+            width: 64,
+            height: 36,
+            terrain: None,
+        }
+    }
+
+    /// Whether the ray through any of a grid of points over the image (its edges
+    /// included) meets the sphere of the layer's top.
+    fn any_ray_meets_the_top(frame: &Frame, settings: &LayerSettings) -> bool {
+        let (_, top_m) = settings.radii_m(frame.atmosphere.bottom_radius_m);
+        let o = frame.camera_position_m;
+        (0..=32).any(|i| {
+            (0..=18).any(|j| {
+                let x = f64::from(frame.width) * f64::from(i) / 32.0;
+                let y = f64::from(frame.height) * f64::from(j) / 18.0;
+                let d = frame.direction_through(x, y).normalize();
+                let b = o.dot(d);
+                b < 0.0 && b * b - o.length_squared() + top_m * top_m >= 0.0
+            })
+        })
+    }
+
+    #[test]
+    fn a_pruned_frame_has_no_ray_that_meets_the_layer() {
+        let settings = LayerSettings::default();
+        let (mut pruned, mut kept) = (0, 0);
+        for altitude_m in [3_500.0, 1e5, 4e5, 3.6e7] {
+            for k in 0..72 {
+                let angle = f64::from(k) * 5f64.to_radians();
+                let forward = DVec3::new(angle.sin(), 0.3 * angle.cos(), angle.cos());
+                let f = frame(altitude_m, forward.normalize());
+                match why_no_clouds(&f, &settings, 1.0) {
+                    Some(why) => {
+                        assert_eq!(why, LAYER_NOT_IN_VIEW);
+                        assert!(!any_ray_meets_the_top(&f, &settings), "{altitude_m} {k}");
+                        pruned += 1;
+                    }
+                    None => kept += 1,
+                }
+            }
+        }
+        assert!(pruned > 20 && kept > 20, "{pruned} pruned, {kept} kept");
+        // Below the top and with no cloud in the cover.
+        let f = frame(1_000.0, DVec3::Z);
+        assert_eq!(why_no_clouds(&f, &settings, 1.0), None);
+        assert_eq!(why_no_clouds(&f, &settings, 0.0), Some(NO_CLOUD_IN_COVER));
+        let empty = LayerSettings {
+            coverage_scale: 0.0,
+            ..settings
+        };
+        assert_eq!(why_no_clouds(&f, &empty, 1.0), Some(NO_CLOUD_IN_COVER));
+    }
+}
