@@ -1,8 +1,9 @@
 //! The cloud layer composited into `Renderer` frames (`clouds/frame_pass.rs`,
 //! `shaders/clouds/frame_march.wgsl` and `frame_composite.wgsl`) against its CPU twin,
-//! atmosphere-core's `clouds/layer/composite.rs`, on whole 48 x 27 frames of three models,
-//! with a surface in front of, inside and behind the cloud; cover 0 leaves the frame
-//! exactly as without clouds; the planner's pruning changes nothing; bad input is named.
+//! atmosphere-core's `clouds/layer/composite.rs`, on whole 48 x 27 frames of three
+//! models, with a surface in front of, inside and behind the cloud; cover 0 leaves the
+//! frame exactly as without clouds; the planner's pruning changes nothing; bad input is
+//! named.
 //!
 //! Tolerance: each pixel's radiance within 4 % of itself plus 1 % of the frame's
 //! brightest value, but for one value in a hundred, which may be off by four times that
