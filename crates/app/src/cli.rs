@@ -31,7 +31,7 @@ pub enum Command {
     /// error_vs_time.png.
     Report(ReportArgs),
     /// One frame of a scene, headless: EXR (linear HDR radiance) or PNG (tone-mapped).
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// GPU table build and frame times of every model on this adapter (ground, sunset and
     /// orbit views), per pass, as Markdown tables.
     Bench(BenchArgs),
@@ -95,6 +95,9 @@ pub struct StartView {
     /// Draw the smooth sphere instead of the Earth's terrain.
     #[arg(long)]
     pub no_terrain: bool,
+    /// Turn the cloud layer on (the panel's "Clouds" section holds its settings).
+    #[arg(long)]
+    pub clouds: bool,
 }
 
 /// A UTC date and time `YYYY-MM-DDTHH:MM[:SS]`, each field checked.

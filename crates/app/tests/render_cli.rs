@@ -161,6 +161,31 @@ fn renders_an_exr_of_linear_radiance_from_a_scene_file() {
     assert!(sky > 1e3 && sky < 3e4, "sky {sky} cd/m^2");
 }
 
+#[test]
+fn clouds_from_an_image_cover_grey_the_blue_sky() {
+    let dir = tempfile::tempdir().unwrap();
+    let cover = dir.path().join("overcast.png");
+    image::RgbaImage::from_pixel(8, 4, image::Rgba([0, 255, 0, 255]))
+        .save(&cover)
+        .unwrap();
+    let clear = dir.path().join("clear.png");
+    let cloudy = dir.path().join("cloudy.png");
+    let cover_flag = format!("{}:g", cover.display());
+    if !render(&[], &clear) || !render(&["--clouds", "--cloud-cover", &cover_flag], &cloudy) {
+        return;
+    }
+    // Blue over red at the top of the frame, 40 degrees above the horizon.
+    let blueness = |path: &Path| {
+        let p = *image::open(path).unwrap().to_rgb8().get_pixel(16, 1);
+        f64::from(p[2]) / f64::from(p[0]).max(1.0)
+    };
+    let (clear, cloudy) = (blueness(&clear), blueness(&cloudy));
+    assert!(
+        clear > 1.2 && cloudy < 0.85 * clear,
+        "clear {clear}, cloudy {cloudy}"
+    );
+}
+
 /// `SCENE` as `--flag=value` arguments, with `overrides` replacing values by flag.
 fn scene_with(overrides: &[(&str, &str)]) -> Vec<String> {
     let mut args: Vec<String> = SCENE
@@ -211,6 +236,24 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             &[("--terrain", "true"), ("--wind-m-s", "30")],
             "frame.png",
             "--wind-m-s: wind_m_s 30 is outside [0, 20] m/s",
+        ),
+        (
+            &[("--clouds", "true"), ("--cloud-base-m", "-1")],
+            "frame.png",
+            "--cloud-base-m -1 must lie in [0, 20000]",
+        ),
+        (
+            &[("--clouds", "true"), ("--cloud-method", "slices")],
+            "frame.png",
+            "--cloud-method: cloud method \"slices\" is not one of riley, octaves",
+        ),
+        (
+            &[
+                ("--clouds", "true"),
+                ("--cloud-cover", "/nonexistent/c.png:g"),
+            ],
+            "frame.png",
+            "--cloud-cover /nonexistent/c.png:g",
         ),
     ];
     for (overrides, name, message) in cases {

@@ -4,7 +4,13 @@
 //! texture: read back ([`Renderer::read_ldr`]) or sampled by a window
 //! ([`Renderer::ldr_texture`], e.g. as an egui image).
 
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::models::id::ModelId;
+
+use crate::clouds::frame_clouds::{FrameClouds, why_no_clouds};
+use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
+use crate::clouds::layer_inputs::LayerInputs;
 
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
@@ -36,6 +42,8 @@ struct Targets {
     hdr: wgpu::Texture,
     ldr: wgpu::Texture,
     surface: SurfaceBuffer,
+    /// The cloud steps' images, made when a frame of this size first has clouds.
+    clouds: Option<CloudTargets>,
 }
 
 /// Renders frames; see the module documentation.
@@ -56,6 +64,13 @@ pub struct Renderer {
     timer: Option<GpuTimer>,
     /// Whether models may spread their table builds over frames.
     progressive: bool,
+    /// The cloud layer frames show ([`Renderer::set_clouds`]); `None`: no clouds.
+    clouds: Option<FrameClouds>,
+    /// The cover and tables on the GPU, and the cover's largest value
+    /// ([`Renderer::set_cloud_inputs`]).
+    cloud_inputs: Option<(LayerInputs, f64)>,
+    /// The cloud steps, compiled when a frame first has clouds.
+    cloud_pass: Option<CloudFramePass>,
 }
 
 fn target(
@@ -98,6 +113,9 @@ impl Renderer {
             timer: GpuTimer::new(&gpu, MAX_STEPS),
             targets: None,
             progressive: false,
+            clouds: None,
+            cloud_inputs: None,
+            cloud_pass: None,
             gpu,
         })
     }
@@ -139,6 +157,34 @@ impl Renderer {
         for (_, model) in &mut self.models {
             model.set_progressive(on);
         }
+    }
+
+    /// Uploads the cloud layer's `cover` and its multiple-scattering tables `orders` (at
+    /// 680, 550 and 440 nm), which frames with clouds read ([`Renderer::set_clouds`]).
+    pub fn set_cloud_inputs(
+        &mut self,
+        cover: &CoverGrid,
+        orders: &ScatteringOrders,
+    ) -> Result<(), RenderError> {
+        let max_cover = cover.values().iter().fold(0.0f32, |m, &v| m.max(v));
+        self.cloud_inputs = Some((
+            LayerInputs::new(&self.gpu, cover, orders)?,
+            f64::from(max_cover),
+        ));
+        Ok(())
+    }
+
+    /// The cloud layer of the frames that follow, composited with every model
+    /// (docs/clouds.md, "Clouds in frames"); `None`: no clouds. The settings are checked
+    /// here, by name.
+    pub fn set_clouds(&mut self, clouds: Option<FrameClouds>) -> Result<(), RenderError> {
+        if let Some(c) = &clouds {
+            c.settings
+                .check()
+                .map_err(|e| RenderError::Frame(e.to_string()))?;
+        }
+        self.clouds = clouds;
+        Ok(())
     }
 
     /// Bytes of GPU memory held by the tables of the models used so far.
@@ -214,7 +260,34 @@ impl Renderer {
             }
             _ => false,
         };
-        plan.surface = surface.is_some() || draws_terrain;
+        let has_surface = surface.is_some() || draws_terrain;
+        // The cloud layer's march (docs/clouds.md, "Clouds in frames"): run unless the
+        // planner shows it cannot change the image.
+        let clouds_step = match &self.clouds {
+            Some(clouds) => {
+                let Some((_, max_cover)) = &self.cloud_inputs else {
+                    return Err(RenderError::Frame(
+                        "clouds are on but no cloud cover was given (set_cloud_inputs)".into(),
+                    ));
+                };
+                match why_no_clouds(frame, &clouds.settings, *max_cover).filter(|_| clouds.prune) {
+                    Some(why) => {
+                        plan.skip("clouds", why);
+                        None
+                    }
+                    None => {
+                        plan.run("clouds", StepKind::Pass);
+                        Some(plan.steps.len() as u32 - 1)
+                    }
+                }
+            }
+            None => None,
+        };
+        if clouds_step.is_some() && self.cloud_pass.is_none() {
+            self.cloud_pass = Some(CloudFramePass::new(&self.gpu)?);
+        }
+        // The model's second run ends on the cloud: a surface, whose passes it needs.
+        plan.surface = has_surface || clouds_step.is_some();
         // The sea's variant of the pixel passes only where the surface holds sea.
         let has_sea = match surface {
             Some(texels) => texels.iter().any(|t| t.water && t.distance_m > 0.0),
@@ -222,14 +295,18 @@ impl Renderer {
         };
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
-        let targets = match self.targets.take() {
+        let mut targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,
             _ => Targets {
                 hdr: target(&self.gpu, "hdr", HDR_FORMAT, frame),
                 ldr: target(&self.gpu, "ldr", LDR_FORMAT, frame),
                 surface: SurfaceBuffer::new(&self.gpu, frame.width, frame.height),
+                clouds: None,
             },
         };
+        if clouds_step.is_some() && targets.clouds.is_none() {
+            targets.clouds = Some(CloudTargets::new(&self.gpu, frame.width, frame.height));
+        }
         if let Some(texels) = surface {
             targets.surface.upload(&self.gpu, texels);
         }
@@ -255,17 +332,25 @@ impl Renderer {
             self.targets = Some(targets);
             return Err(e);
         }
+        let cloud_steps = clouds_step.map(|march| {
+            plan.run("cloud_front", StepKind::Pass);
+            plan.run("cloud_composite", StepKind::Pass);
+            (march, plan.steps.len() as u32 - 2)
+        });
         let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
 
         let timer = self.timer.as_ref();
         let surface_views = targets.surface.views();
+        // With clouds, the model's pixels go to the cloud steps' `full` image and the
+        // composite writes the HDR target.
+        let cloud_targets = targets.clouds.as_ref().filter(|_| cloud_steps.is_some());
         let io = PassIo {
             atmosphere: &self.atmosphere,
             frame: &self.frame,
-            hdr: &targets.hdr,
+            hdr: cloud_targets.map_or(&targets.hdr, |c| &c.full),
             surface: &surface_views,
-            has_surface: plan.surface,
+            has_surface,
             has_sea,
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
@@ -277,12 +362,67 @@ impl Renderer {
                 timer.map(|t| t.render_writes(0)),
             );
         }
+        if let (Some((march, _)), Some(c), Some(pass), Some(clouds), Some((inputs, _))) = (
+            cloud_steps,
+            cloud_targets,
+            &self.cloud_pass,
+            &self.clouds,
+            &self.cloud_inputs,
+        ) {
+            let scene = MarchScene {
+                frame,
+                clouds,
+                inputs,
+                surface: &surface_views[0],
+                has_surface,
+            };
+            let marched = pass.encode_march(
+                gpu,
+                &mut encoder,
+                &scene,
+                c,
+                timer.map(|t| t.compute_writes(march)),
+            );
+            if let Err(e) = marched {
+                self.targets = Some(targets);
+                return Err(e);
+            }
+        }
         model.encode_planned(&mut FrameRecorder {
             gpu,
             io: &io,
             encoder: &mut encoder,
             timer,
         });
+        if let (Some((_, front)), Some(c), Some(pass)) =
+            (cloud_steps, cloud_targets, &self.cloud_pass)
+        {
+            let front_surface = c.front_surface();
+            let front_io = PassIo {
+                hdr: &c.front,
+                surface: &front_surface,
+                has_surface: true,
+                has_sea: false,
+                ..io
+            };
+            model.encode_passes(
+                &mut FrameRecorder {
+                    gpu,
+                    io: &front_io,
+                    encoder: &mut encoder,
+                    timer,
+                },
+                front,
+            );
+            pass.encode_composite(
+                gpu,
+                &mut encoder,
+                (&self.atmosphere, &self.frame),
+                c,
+                &targets.hdr,
+                timer.map(|t| t.compute_writes(front + 1)),
+            );
+        }
         self.tone_map.encode(
             gpu,
             &tone_map,

@@ -2,6 +2,7 @@
 //! (tone-mapped) file.
 
 pub mod beams;
+pub mod cloud_flags;
 pub mod image_files;
 pub mod scene;
 pub mod sun_disk_clip;
@@ -13,6 +14,7 @@ use render_wgpu::Renderer;
 
 use crate::cli::RenderArgs;
 use crate::files::check_writable;
+use cloud_flags::CloudInputs;
 use scene::{Output, Scene};
 use sun_disk_clip::sun_disk_clip_warning;
 
@@ -41,11 +43,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     };
     let frame = scene.frame()?;
     let earth_data = args.earth_data.source()?;
+    let clouds = CloudInputs::load(&scene.clouds)?;
     if let Some(warning) = sun_disk_clip_warning(&frame.atmosphere) {
         eprintln!("warning: {warning}");
     }
     let mut renderer = Renderer::headless()?;
     renderer.set_earth_data(earth_data);
+    if let Some(clouds) = &clouds {
+        clouds.set_up(&mut renderer, &frame)?;
+    }
     let start = Instant::now();
     let plan = renderer.render(&frame)?;
     let elapsed = start.elapsed();

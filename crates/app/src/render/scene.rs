@@ -22,6 +22,7 @@ use render_wgpu::frame::{
 use render_wgpu::{Frame, Renderer};
 use serde::{Deserialize, Serialize};
 
+use super::cloud_flags::CloudFlags;
 use crate::location_flags::{LocationFlags, check_lat_lon};
 
 /// Zenith angles (view and sun), degrees: beyond them an angle would be wrapped.
@@ -99,6 +100,11 @@ pub struct Scene {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub set: Vec<String>,
+    /// The cloud layer (`--clouds` and the `--cloud-*` flags; a `[clouds]` table in a
+    /// scene file).
+    #[command(flatten)]
+    #[serde(default, skip_serializing_if = "CloudFlags::is_empty")]
+    pub clouds: CloudFlags,
 }
 
 impl Scene {
@@ -154,6 +160,7 @@ impl Scene {
             exaggeration: flags.exaggeration.or(self.exaggeration),
             wind_m_s: flags.wind_m_s.or(self.wind_m_s),
             set,
+            clouds: self.clouds.overridden_by(flags.clouds),
         }
     }
 
@@ -183,6 +190,7 @@ impl Scene {
             exaggeration: Some(self.exaggeration.unwrap_or(1.0)),
             wind_m_s: Some(self.wind_m_s.unwrap_or(DEFAULT_WIND_M_S)),
             set: self.set.clone(),
+            clouds: self.clouds.clone(),
         })
     }
 

@@ -15,6 +15,8 @@ use render_wgpu::frame::plan::FramePlan;
 use render_wgpu::{Frame, GpuContext, Renderer};
 
 use crate::cli::ViewArgs;
+use crate::viewer::cloud_settings::CloudSettings;
+use crate::viewer::cloud_state::CloudState;
 use crate::viewer::exposure::{AutoExposure, ExposureMode};
 use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
 use crate::viewer::panel::{self, Stats};
@@ -51,6 +53,9 @@ pub struct ViewerApp {
     texture: Option<egui::TextureId>,
     /// The last frame rendered, to render again only on change.
     last_frame: Option<Frame>,
+    /// The cloud settings of the last frame rendered (the frame does not hold them).
+    last_clouds: Option<CloudSettings>,
+    clouds: CloudState,
     last_plan: Option<FramePlan>,
     auto_exposure: AutoExposure,
     frame_ms: f64,
@@ -117,6 +122,8 @@ impl ViewerApp {
             render_state,
             texture: None,
             last_frame: None,
+            last_clouds: None,
+            clouds: CloudState::default(),
             last_plan: None,
             auto_exposure: AutoExposure::default(),
             frame_ms: 0.0,
@@ -158,10 +165,16 @@ impl ViewerApp {
     /// Renders `frame` if it differs from the last one or tables are being built, and
     /// points the egui texture at it.
     fn render(&mut self, frame: Frame) -> anyhow::Result<()> {
-        if self.last_frame.as_ref() == Some(&frame) && !self.building() {
+        if self.last_frame.as_ref() == Some(&frame)
+            && self.last_clouds.as_ref() == Some(&self.settings.clouds)
+            && !self.building()
+        {
             return Ok(());
         }
         let start = Instant::now();
+        self.clouds
+            .apply(&mut self.renderer, &frame, &self.settings.clouds)?;
+        self.last_clouds = Some(self.settings.clouds.clone());
         let plan = self.renderer.render(&frame)?;
         self.frame_ms = start.elapsed().as_secs_f64() * 1e3;
         self.last_plan = Some(plan);

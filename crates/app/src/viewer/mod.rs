@@ -10,9 +10,14 @@
 //! (the view a first start and "reset view" show); [`model_error`] (the model panel's
 //! measured error and GPU cost, from the report); [`path_capture`] (a camera-path
 //! keyframe of the view), [`path_editor`] (the keyframes, path files and playback) and
-//! [`path_panel`] (the panel's "Camera path" section).
+//! [`path_panel`] (the panel's "Camera path" section); [`cloud_settings`],
+//! [`cloud_panel`] and [`cloud_state`] (the cloud layer's settings, its panel section,
+//! and what the renderer is given for it).
 
 pub mod app;
+pub mod cloud_panel;
+pub mod cloud_settings;
+pub mod cloud_state;
 pub mod default_view;
 pub mod exposure;
 pub mod flight;

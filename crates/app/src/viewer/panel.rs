@@ -11,6 +11,7 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::optics::sea_surface::WIND_RANGE_M_S;
 use atmosphere_core::sun_position::days_in_month;
 
+use crate::viewer::cloud_panel;
 use crate::viewer::exposure::ExposureMode;
 use crate::viewer::model_error;
 use crate::viewer::path_editor::PathEditor;
@@ -52,6 +53,7 @@ pub fn show(
         camera(ui, settings);
         atmosphere(ui, settings);
         terrain(ui, settings);
+        cloud_panel::show(ui, &mut settings.clouds);
         model(ui, settings);
         actions.screenshot = image(ui, settings);
         path_panel::show(ui, path, settings);

@@ -15,6 +15,7 @@ use render_wgpu::frame::{TerrainOptions, look_orientation, terrain_fits};
 use render_wgpu::terrain::geo_grid;
 use serde::{Deserialize, Serialize};
 
+use crate::viewer::cloud_settings::CloudSettings;
 use crate::viewer::default_view;
 use crate::viewer::exposure::ExposureMode;
 use crate::viewer::flight::{FlightState, local_frame};
@@ -110,6 +111,8 @@ pub struct ViewerSettings {
     /// Wind speed over the sea, m/s (the glint's roughness), in
     /// [`atmosphere_core::optics::sea_surface::WIND_RANGE_M_S`].
     pub wind_m_s: f64,
+    /// The cloud layer (the panel's "Clouds" section).
+    pub clouds: CloudSettings,
 }
 
 impl Default for ViewerSettings {
@@ -134,6 +137,7 @@ impl Default for ViewerSettings {
             terrain: true,
             exaggeration: 1.0,
             wind_m_s: DEFAULT_WIND_M_S,
+            clouds: CloudSettings::default(),
         };
         settings.reset_view();
         settings

@@ -65,6 +65,9 @@ pub fn apply(start: &StartView, settings: &mut ViewerSettings) -> anyhow::Result
         }
         settings.exaggeration = k;
     }
+    if start.clouds {
+        settings.clouds.on = true;
+    }
     if start.no_terrain {
         settings.terrain = false;
     }
@@ -94,8 +97,11 @@ mod tests {
             utc: Some(UtcDateTime::new(2024, 6, 21, 12, 0, 0.0).unwrap()),
             exaggeration: Some(5.0),
             no_terrain: true,
+            clouds: true,
         };
+        assert!(!s.clouds.on);
         apply(&start, &mut s).unwrap();
+        assert!(s.clouds.on);
         let (lat, lon) = s.camera_lat_lon_deg();
         assert!(
             (lat + 33.9).abs() < 1e-9 && (lon + 160.0).abs() < 1e-9,

@@ -1,8 +1,12 @@
 //! Clouds on the GPU: the cloud layer's ray march (`shaders/clouds/`), twin of
 //! atmosphere-core's `clouds/layer/` and checked against it pixel by pixel.
 //! [`layer_uniform`] holds the pass's parameters, [`layer_inputs`] the cover texture
-//! and the multiple-scattering tables, [`layer_pass`] the pass.
+//! and the multiple-scattering tables, [`layer_pass`] the pass; [`frame_clouds`] the
+//! layer of a renderer frame and the planner's rule, [`frame_pass`] its march and its
+//! composite with the frame's sky model.
 
+pub mod frame_clouds;
+pub mod frame_pass;
 pub mod layer_inputs;
 pub mod layer_pass;
 pub mod layer_uniform;

@@ -23,6 +23,11 @@ pub trait SkyPass: std::fmt::Debug {
     /// Records the steps the last [`SkyPass::plan`] added, in order, into `frame`.
     fn encode_planned(&mut self, frame: &mut FrameRecorder<'_>);
 
+    /// Records again only the passes (no table builds) the last [`SkyPass::plan`] added,
+    /// into `frame`, whose `io` may hold another target and surface (the cloud's entry:
+    /// `crate::clouds::frame_pass`); timed together in the plan's slot `slot`.
+    fn encode_passes(&mut self, frame: &mut FrameRecorder<'_>, slot: u32);
+
     /// [`ModelPass::set_progressive`].
     fn set_progressive(&mut self, on: bool);
 
@@ -84,6 +89,38 @@ impl<M: ModelPass> SkyPass for Planned<M> {
     fn encode_planned(&mut self, frame: &mut FrameRecorder<'_>) {
         for &PlannedStep { index, step } in &self.steps {
             self.model.encode(step, frame.step(index));
+        }
+    }
+
+    fn encode_passes(&mut self, frame: &mut FrameRecorder<'_>, slot: u32) {
+        let passes: Vec<M::Step> = self
+            .steps
+            .iter()
+            .map(|s| s.step)
+            .filter(|s| s.kind() == StepKind::Pass)
+            .collect();
+        let last = passes.len().saturating_sub(1);
+        for (i, step) in passes.into_iter().enumerate() {
+            // The first pass writes the slot's start, the last its end.
+            let timestamps = frame.timer.map(|t| {
+                let mut writes = t.compute_writes(slot);
+                if i > 0 {
+                    writes.beginning_of_pass_write_index = None;
+                }
+                if i < last {
+                    writes.end_of_pass_write_index = None;
+                }
+                writes
+            });
+            self.model.encode(
+                step,
+                StepContext {
+                    gpu: frame.gpu,
+                    io: frame.io,
+                    encoder: frame.encoder,
+                    timestamps,
+                },
+            );
         }
     }
 

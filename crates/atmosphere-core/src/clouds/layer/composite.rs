@@ -16,7 +16,7 @@
 use glam::DVec3;
 
 use super::field::CloudLayer;
-use super::march::{CloudLight, MarchRay, march};
+use super::march::{CloudLight, CloudSegment, MarchRay, march};
 use super::orders::ScatteringOrders;
 use crate::models::error::ModelError;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
@@ -68,15 +68,22 @@ pub fn radiance_with_clouds(
         orders,
         layer.settings(),
     );
+    Ok(composite(&full, &front, &cloud))
+}
+
+/// The module's composite of the model's answer for the whole ray, `full` (ended on a
+/// surface, with its reflection, where the ray has one), for the ray ended where it
+/// enters the cloud, `front`, and the cloud's march `cloud`, per wavelength.
+pub fn composite(full: &RayRadiance, front: &RayRadiance, cloud: &CloudSegment) -> RayRadiance {
     let mut answer = full.clone();
-    for w in 0..waves {
+    for w in 0..answer.radiance.len() {
         let behind = (full.radiance[w] - front.radiance[w]).max(0.0);
         answer.radiance[w] = front.radiance[w]
             + front.transmittance[w] * cloud.radiance[w]
             + cloud.transmittance[w] * behind;
         answer.transmittance[w] = full.transmittance[w] * cloud.transmittance[w];
     }
-    Ok(answer)
+    answer
 }
 
 /// The model's sun (through its transmittance) and sky irradiance at `point`.

@@ -1,0 +1,330 @@
+//! The cloud layer of a scene (`atmos render --clouds`, or a scene file's `[clouds]`
+//! table): where the cover comes from, where the layer lies, how dense it is and how its
+//! light is computed, each checked against its range with errors naming the flag; and
+//! what the renderer needs from them (docs/clouds.md, "Clouds in frames").
+
+use std::path::Path;
+
+use anyhow::{Context, bail};
+use atmosphere_core::clouds::cover::generated::{CoverParameters, GeneratedCover};
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::settings::{
+    LayerMethod, LayerSettings, MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M,
+    MIN_THICKNESS_M,
+};
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
+use atmosphere_core::optics::legendre_series::LegendreSeries;
+use atmosphere_core::optics::phase::henyey_greenstein;
+use clap::Args;
+use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::{Frame, Renderer};
+use serde::{Deserialize, Serialize};
+
+/// The generated cover's grid: 2048 x 1024 texels (20 km at the equator).
+pub const GENERATED_GRID: (usize, usize) = (2048, 1024);
+/// The asymmetry of the droplets' phase function (lognormal, effective radius 10 um,
+/// 550 nm; docs/particles.md), which the layer's Henyey-Greenstein stand-in takes.
+pub const DROPLET_ASYMMETRY: f64 = 0.8654;
+
+/// The cloud flags; every one optional, the layer's defaults
+/// (`LayerSettings::default`) filling the rest.
+#[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CloudFlags {
+    /// Composite the planet's cloud layer into the frame, with every model [default:
+    /// false].
+    #[arg(long = "clouds", value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
+    pub on: Option<bool>,
+    /// The cloud cover: `generated` (a deterministic global cover with the structure of
+    /// real weather) or any equirectangular image, north up, the first column at 180 W,
+    /// whose channel r, g, b or a (after a colon; default r) gives the cover from 0 to 1
+    /// [default: generated].
+    #[arg(long = "cloud-cover", value_name = "generated|FILE.png[:r|g|b|a]")]
+    pub cover: Option<String>,
+    /// Altitude of the layer's base above the ground, m, in [0, 20000] [default: 1500].
+    #[arg(long = "cloud-base-m", value_name = "M")]
+    pub base_m: Option<f64>,
+    /// Thickness of the layer, m, in [10, 15000] [default: 1500].
+    #[arg(long = "cloud-thickness-m", value_name = "M")]
+    pub thickness_m: Option<f64>,
+    /// Extinction where the cloud is densest, m^-1, in [0, 1] [default: 0.04].
+    #[arg(long = "cloud-density", value_name = "PER_M")]
+    pub density_per_m: Option<f64>,
+    /// How light scattered more than once is computed: riley (Riley et al. 2004) or
+    /// octaves (Wrenninge et al. 2013) [default: riley].
+    #[arg(long = "cloud-method", value_name = "riley|octaves")]
+    pub method: Option<String>,
+}
+
+impl CloudFlags {
+    /// Whether no field is set (the scene file then has no `[clouds]` table).
+    pub fn is_empty(&self) -> bool {
+        *self == CloudFlags::default()
+    }
+
+    /// These flags with every field that `flags` sets replaced.
+    pub fn overridden_by(self, flags: CloudFlags) -> CloudFlags {
+        CloudFlags {
+            on: flags.on.or(self.on),
+            cover: flags.cover.or(self.cover),
+            base_m: flags.base_m.or(self.base_m),
+            thickness_m: flags.thickness_m.or(self.thickness_m),
+            density_per_m: flags.density_per_m.or(self.density_per_m),
+            method: flags.method.or(self.method),
+        }
+    }
+
+    /// The layer's settings when the clouds are on, `None` when off; a value out of its
+    /// range or an unknown method is an error naming the flag, its value and its range.
+    pub fn settings(&self) -> anyhow::Result<Option<LayerSettings>> {
+        if self.on != Some(true) {
+            return Ok(None);
+        }
+        let defaults = LayerSettings::default();
+        let within = |value: Option<f64>, default: f64, flag: &str, low: f64, high: f64| {
+            let v = value.unwrap_or(default);
+            if !(v.is_finite() && (low..=high).contains(&v)) {
+                bail!("--{flag} {v} must lie in [{low}, {high}]");
+            }
+            Ok(v)
+        };
+        let method = match &self.method {
+            Some(m) => m
+                .parse::<LayerMethod>()
+                .map_err(|e| anyhow::anyhow!("--cloud-method: {e}"))?,
+            None => defaults.method,
+        };
+        let settings = LayerSettings {
+            base_m: within(
+                self.base_m,
+                defaults.base_m,
+                "cloud-base-m",
+                MIN_BASE_M,
+                MAX_BASE_M,
+            )?,
+            thickness_m: within(
+                self.thickness_m,
+                defaults.thickness_m,
+                "cloud-thickness-m",
+                MIN_THICKNESS_M,
+                MAX_THICKNESS_M,
+            )?,
+            extinction_per_m: within(
+                self.density_per_m,
+                defaults.extinction_per_m,
+                "cloud-density",
+                0.0,
+                MAX_EXTINCTION_PER_M,
+            )?,
+            method,
+            ..defaults
+        };
+        settings.check()?;
+        Ok(Some(settings))
+    }
+
+    /// The cover grid of `--cloud-cover`.
+    pub fn cover_grid(&self) -> anyhow::Result<CoverGrid> {
+        let source = self.cover.as_deref().unwrap_or("generated");
+        if source == "generated" {
+            let cover = GeneratedCover::new(CoverParameters::default())?;
+            let (width, height) = GENERATED_GRID;
+            return Ok(CoverGrid::rasterize(width, height, |p| cover.cover(p))?);
+        }
+        let (path, channel) = match source.rsplit_once(':') {
+            Some((path, c)) if ["r", "g", "b", "a"].contains(&c) => (path, c),
+            Some((_, c)) if c.len() == 1 => {
+                bail!("--cloud-cover {source}: channel {c:?} is not one of r, g, b, a")
+            }
+            _ => (source, "r"),
+        };
+        image_cover(Path::new(path), channel).with_context(|| format!("--cloud-cover {source}"))
+    }
+}
+
+/// The cover in `channel` of the equirectangular image at `path`, 0 to 1.
+fn image_cover(path: &Path, channel: &str) -> anyhow::Result<CoverGrid> {
+    let image = image::open(path)
+        .with_context(|| format!("cannot read {}", path.display()))?
+        .to_rgba8();
+    let index = ["r", "g", "b", "a"]
+        .iter()
+        .position(|c| *c == channel)
+        .unwrap_or(0);
+    let values = image
+        .pixels()
+        .map(|p| f32::from(p.0[index]) / 255.0)
+        .collect();
+    let what = format!("{} channel {channel}", path.display());
+    Ok(CoverGrid::from_values(
+        &what,
+        image.width() as usize,
+        image.height() as usize,
+        values,
+    )?)
+}
+
+/// The layer's multiple-scattering tables at 680, 550 and 440 nm: Riley et al. 2004's
+/// A_n and F_n of a Henyey-Greenstein function with the droplets' asymmetry, from its
+/// Legendre series (exact to degree 300 at g = 0.87: chi_l = g^l < 1e-18).
+pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
+    let rule = gauss_legendre(600);
+    let values: Vec<f64> = rule
+        .iter()
+        .map(|&(nu, _)| henyey_greenstein(DROPLET_ASYMMETRY, nu))
+        .collect();
+    let series = LegendreSeries::from_gauss_rule(&rule, &values, 300);
+    Ok(ScatteringOrders::new(&vec![series; 3])?)
+}
+
+/// What a frame's clouds need besides the light: the layer's settings, its cover and its
+/// tables, made (and checked, errors naming the flag) before the GPU is opened.
+#[derive(Debug)]
+pub struct CloudInputs {
+    pub settings: LayerSettings,
+    pub cover: CoverGrid,
+    pub orders: ScatteringOrders,
+}
+
+impl CloudInputs {
+    /// The inputs of `flags`; `None` when the clouds are off.
+    pub fn load(flags: &CloudFlags) -> anyhow::Result<Option<CloudInputs>> {
+        let Some(settings) = flags.settings()? else {
+            return Ok(None);
+        };
+        Ok(Some(CloudInputs {
+            settings,
+            cover: flags.cover_grid()?,
+            orders: droplet_orders()?,
+        }))
+    }
+
+    /// Gives `renderer` these clouds for `frame`, lit by the frame's model on the CPU.
+    pub fn set_up(&self, renderer: &mut Renderer, frame: &Frame) -> anyhow::Result<()> {
+        renderer.set_cloud_inputs(&self.cover, &self.orders)?;
+        let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
+        let light = frame_light(model.as_ref(), frame, &self.settings)?;
+        renderer.set_clouds(Some(FrameClouds {
+            settings: self.settings,
+            light,
+            prune: true,
+        }))?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn on() -> CloudFlags {
+        CloudFlags {
+            on: Some(true),
+            ..CloudFlags::default()
+        }
+    }
+
+    #[test]
+    fn off_gives_no_layer_and_on_the_defaults_with_the_flags_set() {
+        assert_eq!(CloudFlags::default().settings().unwrap(), None);
+        let settings = CloudFlags {
+            base_m: Some(800.0),
+            method: Some("octaves".into()),
+            ..on()
+        }
+        .settings()
+        .unwrap()
+        .unwrap();
+        assert_eq!(settings.base_m, 800.0);
+        assert_eq!(settings.method, LayerMethod::Octaves);
+        assert_eq!(settings.thickness_m, LayerSettings::default().thickness_m);
+    }
+
+    #[test]
+    fn bad_values_are_refused_naming_the_flag_and_range() {
+        let error = |flags: CloudFlags| flags.settings().unwrap_err().to_string();
+        let e = error(CloudFlags {
+            base_m: Some(-1.0),
+            ..on()
+        });
+        assert!(
+            e.contains("--cloud-base-m -1") && e.contains("[0, 20000]"),
+            "{e}"
+        );
+        let e = error(CloudFlags {
+            thickness_m: Some(f64::NAN),
+            ..on()
+        });
+        assert!(e.contains("--cloud-thickness-m NaN"), "{e}");
+        let e = error(CloudFlags {
+            density_per_m: Some(2.0),
+            ..on()
+        });
+        assert!(
+            e.contains("--cloud-density 2") && e.contains("[0, 1]"),
+            "{e}"
+        );
+        let e = error(CloudFlags {
+            method: Some("slices".into()),
+            ..on()
+        });
+        assert!(
+            e.contains("--cloud-method") && e.contains("riley, octaves"),
+            "{e}"
+        );
+        let e = CloudFlags {
+            cover: Some("x.png:q".into()),
+            ..on()
+        }
+        .cover_grid()
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("channel \"q\""), "{e}");
+        let e = CloudFlags {
+            cover: Some("/nonexistent/cover.png".into()),
+            ..on()
+        }
+        .cover_grid()
+        .unwrap_err();
+        assert!(
+            format!("{e:#}").contains("--cloud-cover /nonexistent/cover.png"),
+            "{e:#}"
+        );
+    }
+
+    #[test]
+    fn an_image_channel_is_the_cover() {
+        let dir = std::env::temp_dir().join(format!("atmos-cloud-cover-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("cover.png");
+        let image = image::RgbaImage::from_fn(4, 2, |x, y| {
+            image::Rgba([0, 51 * x as u8, 255, 255 * y as u8])
+        });
+        image.save(&path).unwrap();
+        let flags = |channel: &str| CloudFlags {
+            cover: Some(format!("{}:{channel}", path.display())),
+            ..on()
+        };
+        let green = flags("g").cover_grid().unwrap();
+        assert_eq!((green.width(), green.height()), (4, 2));
+        assert_eq!(&green.values()[..4], &[0.0, 0.2, 0.4, 0.6]);
+        let alpha = flags("a").cover_grid().unwrap();
+        assert_eq!(&alpha.values()[3..5], &[0.0, 1.0]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_scene_file_takes_a_clouds_table_and_flags_override_it() {
+        let file: CloudFlags =
+            toml::from_str("on = true\nbase_m = 900.0\nmethod = \"octaves\"\n").unwrap();
+        let merged = file.overridden_by(CloudFlags {
+            base_m: Some(1200.0),
+            ..CloudFlags::default()
+        });
+        assert_eq!(merged.base_m, Some(1200.0));
+        assert_eq!(merged.method.as_deref(), Some("octaves"));
+        assert!(toml::from_str::<CloudFlags>("bse_m = 1.0\n").is_err());
+    }
+}

@@ -1,0 +1,53 @@
+//! The side panel's "Clouds" section: the cloud layer on or off, its cover, base
+//! altitude, thickness, density and method (`cloud_settings.rs`).
+
+use atmosphere_core::clouds::layer::settings::{
+    MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M, MIN_THICKNESS_M,
+};
+
+use eframe::egui;
+
+use crate::viewer::cloud_settings::CloudSettings;
+
+/// The section's widgets over `clouds`.
+pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
+    ui.collapsing("Clouds", |ui| {
+        ui.checkbox(&mut clouds.on, "cloud layer").on_hover_text(
+            "A layer of cloud around the planet from the cover below, ray marched and \
+             composited with the current model's light and aerial perspective",
+        );
+        ui.add_enabled_ui(clouds.on, |ui| {
+            ui.horizontal(|ui| {
+                ui.label("cover");
+                ui.text_edit_singleline(&mut clouds.cover).on_hover_text(
+                    "generated: a global cover with the structure of real weather; or any \
+                     equirectangular image, FILE.png[:r|g|b|a], whose channel is the cover",
+                );
+            });
+            ui.add(egui::Slider::new(&mut clouds.base_m, MIN_BASE_M..=MAX_BASE_M).text("base, m"));
+            ui.add(
+                egui::Slider::new(&mut clouds.thickness_m, MIN_THICKNESS_M..=MAX_THICKNESS_M)
+                    .logarithmic(true)
+                    .text("thickness, m"),
+            );
+            ui.add(
+                egui::Slider::new(&mut clouds.density_per_m, 0.0..=MAX_EXTINCTION_PER_M)
+                    .logarithmic(true)
+                    .text("density, 1/m"),
+            )
+            .on_hover_text("Extinction where the cloud is densest (a cumulus core: about 0.1)");
+            egui::ComboBox::from_label("method")
+                .selected_text(clouds.method.as_str())
+                .show_ui(ui, |ui| {
+                    for method in ["riley", "octaves"] {
+                        ui.selectable_value(&mut clouds.method, method.to_string(), method);
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "riley: Riley et al. 2004's expected orders of scattering; octaves: \
+                     Wrenninge et al. 2013's production approximation",
+                );
+        });
+    });
+}

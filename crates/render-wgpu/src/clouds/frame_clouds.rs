@@ -1,0 +1,159 @@
+//! The cloud layer of a renderer frame: its settings and light ([`FrameClouds`]), the
+//! planner's rule for when the frame can do without it ([`why_no_clouds`]), and the light
+//! from the frame's CPU sky model ([`frame_light`]). The compositing is
+//! atmosphere-core's `clouds/layer/composite.rs`; the GPU passes are
+//! [`crate::clouds::frame_pass`].
+
+use atmosphere_core::clouds::layer::composite::light_at;
+use atmosphere_core::clouds::layer::march::CloudLight;
+use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::models::sky_model::SkyModel;
+
+use crate::frame::Frame;
+use crate::gpu::error::RenderError;
+
+/// Why the planner leaves a frame's cloud steps out when the cover holds no cloud.
+pub const NO_CLOUD_IN_COVER: &str = "no cloud in the cover";
+/// Why the planner leaves a frame's cloud steps out when no pixel's ray meets the layer.
+pub const LAYER_NOT_IN_VIEW: &str = "the cloud layer is not in view";
+
+/// The cloud layer a frame shows: the layer's settings and the light on it (one value
+/// for the image, as the layer pass takes it). The cover and the multiple-scattering
+/// tables are uploaded once ([`crate::Renderer::set_cloud_inputs`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameClouds {
+    pub settings: LayerSettings,
+    /// The sun and sky light on the layer at the frame's three wavelengths.
+    pub light: CloudLight,
+    /// Whether the planner may leave the cloud steps out when they cannot change the
+    /// image ([`why_no_clouds`]); off only to check that pruning changes nothing.
+    pub prune: bool,
+}
+
+/// Why `frame` needs no cloud steps, if it does not: the cover, scaled by the settings'
+/// `coverage_scale`, is 0 everywhere (its largest value is `max_cover`) or the layer is
+/// empty; or the camera is above the layer's top and the cone around the view that holds
+/// every pixel's ray misses the sphere of the top. Both are conservative: a frame they
+/// prune has no pixel whose ray meets a cloud.
+pub fn why_no_clouds(
+    frame: &Frame,
+    settings: &LayerSettings,
+    max_cover: f64,
+) -> Option<&'static str> {
+    if max_cover * settings.coverage_scale <= 0.0 || settings.extinction_per_m <= 0.0 {
+        return Some(NO_CLOUD_IN_COVER);
+    }
+    let (_, top_m) = settings.radii_m(frame.atmosphere.bottom_radius_m);
+    let r = frame.camera_position_m.length();
+    if r <= top_m {
+        return None;
+    }
+    let [_, _, forward] = frame.axes();
+    let (half_w, half_h) = frame.half_extent();
+    let cone = half_w.hypot(half_h).atan();
+    let to_centre = -frame.camera_position_m / r;
+    let off_centre = forward.normalize().dot(to_centre).clamp(-1.0, 1.0).acos();
+    // A margin of 1e-6 rad keeps rays that graze the top in.
+    let sphere = (top_m / r).asin();
+    (off_centre - cone > sphere + 1e-6).then_some(LAYER_NOT_IN_VIEW)
+}
+
+/// The light of `model` (the frame's model on the CPU, at the GPU's three wavelengths)
+/// on the layer of `settings`, at the middle of the layer on the camera's vertical:
+/// Riley et al. 2004's cloud lit by the sky model's transmitted sun and its sky
+/// (`composite.rs`, `light_at`).
+pub fn frame_light(
+    model: &dyn SkyModel,
+    frame: &Frame,
+    settings: &LayerSettings,
+) -> Result<CloudLight, RenderError> {
+    settings
+        .check()
+        .map_err(|e| RenderError::Frame(e.to_string()))?;
+    let (base_m, top_m) = settings.radii_m(frame.atmosphere.bottom_radius_m);
+    let vertical = frame
+        .camera_position_m
+        .try_normalize()
+        .ok_or_else(|| RenderError::Frame("camera at the planet's centre".into()))?;
+    let sun = frame
+        .sun_direction
+        .try_normalize()
+        .ok_or_else(|| RenderError::Frame("sun direction must be non-zero".into()))?;
+    Ok(light_at(model, vertical * (0.5 * (base_m + top_m)), sun)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use atmosphere_core::atmosphere::Atmosphere;
+    use atmosphere_core::models::id::ModelId;
+    use glam::DVec3;
+
+    use crate::frame::look_orientation;
+
+    fn frame(altitude_m: f64, forward: DVec3) -> Frame {
+        let atmosphere = Atmosphere::preset("earth").unwrap();
+        Frame {
+            camera_position_m: DVec3::Z * (atmosphere.bottom_radius_m + altitude_m),
+            orientation: look_orientation(forward, DVec3::X)
+                .or_else(|| look_orientation(forward, DVec3::Z))
+                .unwrap(),
+            vertical_fov_deg: 50.0,
+            sun_direction: DVec3::Z,
+            atmosphere,
+            model: ModelId::Nishita,
+            settings: Default::default(),
+            exposure_ev100: 14.0,
+            width: 64,
+            height: 36,
+            terrain: None,
+        }
+    }
+
+    /// Whether the ray through any of a grid of points over the image (its edges
+    /// included) meets the sphere of the layer's top.
+    fn any_ray_meets_the_top(frame: &Frame, settings: &LayerSettings) -> bool {
+        let (_, top_m) = settings.radii_m(frame.atmosphere.bottom_radius_m);
+        let o = frame.camera_position_m;
+        (0..=32).any(|i| {
+            (0..=18).any(|j| {
+                let x = f64::from(frame.width) * f64::from(i) / 32.0;
+                let y = f64::from(frame.height) * f64::from(j) / 18.0;
+                let d = frame.direction_through(x, y).normalize();
+                let b = o.dot(d);
+                b < 0.0 && b * b - o.length_squared() + top_m * top_m >= 0.0
+            })
+        })
+    }
+
+    #[test]
+    fn a_pruned_frame_has_no_ray_that_meets_the_layer() {
+        let settings = LayerSettings::default();
+        let (mut pruned, mut kept) = (0, 0);
+        for altitude_m in [3_500.0, 1e5, 4e5, 3.6e7] {
+            for k in 0..72 {
+                let angle = f64::from(k) * 5f64.to_radians();
+                let forward = DVec3::new(angle.sin(), 0.3 * angle.cos(), angle.cos());
+                let f = frame(altitude_m, forward.normalize());
+                match why_no_clouds(&f, &settings, 1.0) {
+                    Some(why) => {
+                        assert_eq!(why, LAYER_NOT_IN_VIEW);
+                        assert!(!any_ray_meets_the_top(&f, &settings), "{altitude_m} {k}");
+                        pruned += 1;
+                    }
+                    None => kept += 1,
+                }
+            }
+        }
+        assert!(pruned > 20 && kept > 20, "{pruned} pruned, {kept} kept");
+        // Below the top and with no cloud in the cover.
+        let f = frame(1_000.0, DVec3::Z);
+        assert_eq!(why_no_clouds(&f, &settings, 1.0), None);
+        assert_eq!(why_no_clouds(&f, &settings, 0.0), Some(NO_CLOUD_IN_COVER));
+        let empty = LayerSettings {
+            coverage_scale: 0.0,
+            ..settings
+        };
+        assert_eq!(why_no_clouds(&f, &empty, 1.0), Some(NO_CLOUD_IN_COVER));
+    }
+}

@@ -1,0 +1,247 @@
+//! The cloud layer in a renderer frame, on the GPU: the march of every pixel ended on the
+//! frame's surface (`shaders/clouds/frame_march.wgsl`), which also writes where each ray
+//! enters the cloud as the surface of the sky model's second run (albedo 0: the model's
+//! radiance in front of the cloud, its aerial perspective), and the composite of the
+//! cloud with the model's two runs into the HDR target
+//! (`shaders/clouds/frame_composite.wgsl`). The compositing is atmosphere-core's
+//! `clouds/layer/composite.rs`.
+
+use crate::clouds::frame_clouds::FrameClouds;
+use crate::clouds::layer_inputs::LayerInputs;
+use crate::clouds::layer_uniform::{LayerCamera, LayerUniform};
+use crate::frame::Frame;
+use crate::frame::atmosphere_uniform::AtmosphereUniform;
+use crate::frame::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT};
+use crate::frame::uniform::FrameUniform;
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::{GpuError, RenderError};
+use crate::gpu::formats::HDR_FORMAT;
+use crate::gpu::pipeline::{
+    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
+    texture_2d, texture_entry, uniform_buffer, uniform_entry,
+};
+
+const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// The images of one frame size the cloud steps write and read.
+#[derive(Debug)]
+pub struct CloudTargets {
+    /// The model's pixels, whole (L_full).
+    pub full: wgpu::Texture,
+    /// The model's pixels ended at the cloud (L_front).
+    pub front: wgpu::Texture,
+    /// The cloud's radiance (rgb) and transmittance (a).
+    pub cloud: wgpu::Texture,
+    /// The second run's surface: the cloud's entry (`surface_buffer.rs`'s layout).
+    pub front_geometry: wgpu::Texture,
+    /// Its albedo: 0, Lambertian.
+    pub front_albedo: wgpu::Texture,
+}
+
+impl CloudTargets {
+    pub fn new(gpu: &GpuContext, width: u32, height: u32) -> CloudTargets {
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let image = |label, format| texture_2d(&gpu.device, label, (width, height), format, usage);
+        let front_albedo = texture_2d(
+            &gpu.device,
+            "cloud front albedo",
+            (width, height),
+            ALBEDO_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
+        let black = vec![[0u8, 0, 0, 255]; width as usize * height as usize];
+        gpu.queue.write_texture(
+            front_albedo.as_image_copy(),
+            bytemuck::cast_slice(&black),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(width * 4),
+                rows_per_image: Some(height),
+            },
+            front_albedo.size(),
+        );
+        CloudTargets {
+            full: image("cloud full", HDR_FORMAT),
+            front: image("cloud front", HDR_FORMAT),
+            cloud: image("cloud image", CLOUD_FORMAT),
+            front_geometry: image("cloud front geometry", GEOMETRY_FORMAT),
+            front_albedo,
+        }
+    }
+
+    /// (width, height) in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.full.width(), self.full.height())
+    }
+
+    /// Views of the second run's surface, for its `PassIo`.
+    pub fn front_surface(&self) -> [wgpu::TextureView; 2] {
+        [
+            self.front_geometry.create_view(&Default::default()),
+            self.front_albedo.create_view(&Default::default()),
+        ]
+    }
+}
+
+/// The layer's camera for `frame`: the frame's camera, axes and field of view.
+pub fn frame_camera(frame: &Frame) -> LayerCamera {
+    let [right, up, forward] = frame.axes();
+    LayerCamera {
+        position_m: frame.camera_position_m,
+        forward: forward.normalize(),
+        right: right.normalize(),
+        up: up.normalize(),
+        fov_deg: frame.vertical_fov_deg,
+        width: frame.width,
+        height: frame.height,
+    }
+}
+
+/// What the march of a frame reads.
+#[derive(Debug)]
+pub struct MarchScene<'a> {
+    pub frame: &'a Frame,
+    pub clouds: &'a FrameClouds,
+    /// The cover texture and the multiple-scattering tables.
+    pub inputs: &'a LayerInputs,
+    /// The frame's surface geometry (`surface_buffer.rs`), read where `has_surface`.
+    pub surface: &'a wgpu::TextureView,
+    pub has_surface: bool,
+}
+
+/// The march and composite pipelines and their parameter buffers.
+#[derive(Debug)]
+pub struct CloudFramePass {
+    march: ComputePipeline,
+    composite: ComputePipeline,
+    params: wgpu::Buffer,
+    flags: wgpu::Buffer,
+}
+
+impl CloudFramePass {
+    pub fn new(gpu: &GpuContext) -> Result<CloudFramePass, GpuError> {
+        use wgpu::TextureViewDimension::D2;
+        let march = [
+            uniform_entry(0, size_of::<LayerUniform>()),
+            texture_entry(1, D2),
+            read_only_storage_buffer_entry(2, 4),
+            storage_texture_entry(3, CLOUD_FORMAT, D2),
+            texture_entry(4, D2),
+            storage_texture_entry(5, GEOMETRY_FORMAT, D2),
+            uniform_entry(6, 16),
+        ];
+        let composite = [
+            uniform_entry(0, size_of::<AtmosphereUniform>()),
+            uniform_entry(1, size_of::<FrameUniform>()),
+            texture_entry(2, D2),
+            texture_entry(3, D2),
+            texture_entry(4, D2),
+            texture_entry(5, D2),
+            storage_texture_entry(6, HDR_FORMAT, D2),
+        ];
+        Ok(CloudFramePass {
+            march: ComputePipeline::new(
+                gpu,
+                "clouds/frame_march.wgsl",
+                "main",
+                "cloud frame march",
+                &march,
+            )?,
+            composite: ComputePipeline::new(
+                gpu,
+                "clouds/frame_composite.wgsl",
+                "main",
+                "cloud composite",
+                &composite,
+            )?,
+            params: uniform_buffer(&gpu.device, "cloud frame", size_of::<LayerUniform>()),
+            flags: uniform_buffer(&gpu.device, "cloud frame flags", 16),
+        })
+    }
+
+    /// Records the march of `scene`'s pixels into `targets.cloud` and
+    /// `targets.front_geometry`.
+    pub fn encode_march(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &MarchScene<'_>,
+        targets: &CloudTargets,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), RenderError> {
+        let frame = scene.frame;
+        let params = LayerUniform::new(
+            &frame_camera(frame),
+            &scene.clouds.light,
+            &scene.clouds.settings,
+            frame.atmosphere.bottom_radius_m,
+            scene.inputs.cover_size,
+        )?;
+        gpu.write_uniform(&self.params, &params);
+        gpu.write_uniform(&self.flags, &[u32::from(scene.has_surface), 0, 0, 0]);
+        let cover = scene.inputs.cover.create_view(&Default::default());
+        let cloud = targets.cloud.create_view(&Default::default());
+        let front = targets.front_geometry.create_view(&Default::default());
+        let bind_group = self.march.bind_group(
+            gpu,
+            &[
+                self.params.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&cover),
+                scene.inputs.orders.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&cloud),
+                wgpu::BindingResource::TextureView(scene.surface),
+                wgpu::BindingResource::TextureView(&front),
+                self.flags.as_entire_binding(),
+            ],
+        );
+        self.march.dispatch(
+            encoder,
+            "cloud frame march",
+            &bind_group,
+            texel_groups(&targets.cloud),
+            timestamps,
+        );
+        Ok(())
+    }
+
+    /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and
+    /// `frame` uniforms.
+    pub fn encode_composite(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        uniforms: (&wgpu::Buffer, &wgpu::Buffer),
+        targets: &CloudTargets,
+        hdr: &wgpu::Texture,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let views = [
+            view(&targets.full),
+            view(&targets.front),
+            view(&targets.cloud),
+            view(&targets.front_geometry),
+            view(hdr),
+        ];
+        let [full, front, cloud, geometry, out] = &views;
+        let bind_group = self.composite.bind_group(
+            gpu,
+            &[
+                uniforms.0.as_entire_binding(),
+                uniforms.1.as_entire_binding(),
+                wgpu::BindingResource::TextureView(full),
+                wgpu::BindingResource::TextureView(front),
+                wgpu::BindingResource::TextureView(cloud),
+                wgpu::BindingResource::TextureView(geometry),
+                wgpu::BindingResource::TextureView(out),
+            ],
+        );
+        self.composite.dispatch(
+            encoder,
+            "cloud composite",
+            &bind_group,
+            texel_groups(hdr),
+            timestamps,
+        );
+    }
+}

@@ -1,0 +1,390 @@
+//! The cloud layer composited into `Renderer` frames (`clouds/frame_pass.rs`,
+//! `shaders/clouds/frame_march.wgsl` and `frame_composite.wgsl`) against its CPU twin,
+//! atmosphere-core's `clouds/layer/composite.rs`, on whole 48 x 27 frames of three
+//! models, with a surface in front of, inside and behind the cloud; cover 0 leaves the
+//! frame exactly as without clouds; the planner's pruning changes nothing; bad input is
+//! named.
+//!
+//! Tolerance: each pixel's radiance within 4 % of itself plus 1 % of the frame's
+//! brightest value, but for one value in a hundred, which may be off by four times that
+//! (the cloud layer's parity test says why: Riley's order index jumps where the sun's
+//! optical depth crosses an integer). On top of the march's f32 error (3 % in its own
+//! test) come the model's own GPU error, the f16 images the composite reads, and the
+//! transmittance in front of the cloud, the atmosphere's (32 midpoint steps) on the GPU
+//! and the model's on the CPU.
+//!
+//! Needs a GPU adapter (lavapipe will do); see `support`.
+
+mod support;
+
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::composite::composite;
+use atmosphere_core::clouds::layer::field::CloudLayer;
+use atmosphere_core::clouds::layer::march::{CloudLight, MarchRay, march};
+use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::geo::equirectangular::lat_lon;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
+use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
+use atmosphere_core::optics::legendre_series::LegendreSeries;
+use atmosphere_core::optics::phase::{PhaseFunction, henyey_greenstein};
+use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
+use glam::DVec3;
+use render_wgpu::Renderer;
+use render_wgpu::clouds::frame_clouds::{
+    FrameClouds, LAYER_NOT_IN_VIEW, NO_CLOUD_IN_COVER, frame_light,
+};
+use render_wgpu::frame::surface_buffer::SurfaceTexel;
+use render_wgpu::frame::{Frame, look_orientation};
+
+const RELATIVE: f64 = 0.04;
+const OF_BRIGHTEST: f64 = 0.01;
+const JUMP_FACTOR: f64 = 4.0;
+/// The columns of the frame with a surface ("a mountain"), 2 km from the camera.
+const MOUNTAIN_COLUMNS: u32 = 16;
+const MOUNTAIN_M: f32 = 2_000.0;
+
+/// Henyey-Greenstein tables, another g at each wavelength so that a swapped channel
+/// shows.
+fn orders() -> ScatteringOrders {
+    let rule = gauss_legendre(600);
+    let series: Vec<LegendreSeries> = [0.84, 0.85, 0.86]
+        .iter()
+        .map(|&g| {
+            let values: Vec<f64> = rule
+                .iter()
+                .map(|&(nu, _)| henyey_greenstein(g, nu))
+                .collect();
+            LegendreSeries::from_gauss_rule(&rule, &values, 300)
+        })
+        .collect();
+    ScatteringOrders::new(&series).unwrap()
+}
+
+/// Cells about 15 km across near (0 N, 0 E), where the camera is, scaled by `scale`.
+fn cover(scale: f64) -> CoverGrid {
+    CoverGrid::rasterize(2048, 1024, |p| {
+        let (lat, lon) = lat_lon(p);
+        scale * (0.5 + 0.8 * (lat * 400.0).sin() * (lon * 300.0).cos())
+    })
+    .unwrap()
+}
+
+fn settings() -> LayerSettings {
+    LayerSettings {
+        steps: 24,
+        shadow_steps: 6,
+        ..LayerSettings::default()
+    }
+}
+
+/// 500 m above (0 N, 0 E), looking 20 degrees above the horizon, the sun 40 degrees up
+/// behind the camera's right shoulder.
+fn frame(model: ModelId) -> Frame {
+    let atmosphere = atmosphere_core::atmosphere::Atmosphere::preset("earth").unwrap();
+    let up = DVec3::X;
+    let pitch = 20f64.to_radians();
+    let forward = DVec3::new(pitch.sin(), pitch.cos(), 0.0);
+    let sun = 40f64.to_radians();
+    Frame {
+        camera_position_m: up * (atmosphere.bottom_radius_m + 500.0),
+        orientation: look_orientation(forward, up).unwrap(),
+        vertical_fov_deg: 60.0,
+        sun_direction: DVec3::new(sun.sin(), -sun.cos() * 0.6, sun.cos() * 0.8),
+        atmosphere,
+        model,
+        settings: Default::default(),
+        exposure_ev100: 14.0,
+        width: 48,
+        height: 27,
+        terrain: None,
+    }
+}
+
+/// A wall facing the camera 2 km away over the left third of the frame: in front of the
+/// cloud's base low in the frame, inside the layer high in it.
+fn mountain(frame: &Frame) -> Vec<SurfaceTexel> {
+    let mut texels = Vec::new();
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            texels.push(if column < MOUNTAIN_COLUMNS {
+                let d = frame.pixel_ray(column, row).direction;
+                SurfaceTexel {
+                    normal: (-d).as_vec3().to_array(),
+                    distance_m: MOUNTAIN_M,
+                    albedo: [0.3, 0.25, 0.2],
+                    water: false,
+                }
+            } else {
+                SurfaceTexel::default()
+            });
+        }
+    }
+    texels
+}
+
+/// The CPU's composite of pixel (column, row): `composite.rs` with the model's answers
+/// for the whole ray (ended on the surface) and for the ray ended at the cloud.
+fn cpu_pixel(
+    model: &dyn SkyModel,
+    layer: &CloudLayer,
+    orders: &ScatteringOrders,
+    light: &CloudLight,
+    frame: &Frame,
+    (column, row): (u32, u32),
+    texel: &SurfaceTexel,
+) -> RayRadiance {
+    let ray = frame.pixel_ray(column, row);
+    let surface_m = f64::from(texel.distance_m);
+    let full = if texel.distance_m > 0.0 {
+        let hit = SurfaceHit {
+            distance_m: surface_m,
+            normal: glam::Vec3::from_array(texel.normal).as_dvec3(),
+            albedo: texel.stored_albedo().map(f64::from).to_vec(),
+        };
+        radiance_with_surface(model, &frame.atmosphere, &ray, &hit).unwrap()
+    } else {
+        model.radiance(&ray).unwrap()
+    };
+    let end = if texel.distance_m > 0.0 {
+        surface_m
+    } else {
+        f64::INFINITY
+    };
+    let (o, d) = (ray.origin_m, ray.direction);
+    let Some((t0, t1)) = layer.shell().first_segment(o, d, end) else {
+        return full;
+    };
+    let cloud = march(
+        layer,
+        &MarchRay {
+            origin: o,
+            direction: d,
+            t0,
+            t1,
+        },
+        &CloudLight {
+            up: (o + d * t0).normalize(),
+            ..light.clone()
+        },
+        orders,
+        layer.settings(),
+    );
+    let front = if t0 > 0.0 {
+        model
+            .radiance(&ViewRay {
+                max_distance_m: Some(t0),
+                ..ray
+            })
+            .unwrap()
+    } else {
+        RayRadiance::unattenuated(3)
+    };
+    composite(&full, &front, &cloud)
+}
+
+#[test]
+fn composited_frames_match_the_cpu_composite_for_three_models() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud frames parity") else {
+        return;
+    };
+    let orders = orders();
+    let cover = cover(1.0);
+    renderer.set_cloud_inputs(&cover, &orders).unwrap();
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+    for model_id in [ModelId::Nishita, ModelId::Riley, ModelId::Hillaire] {
+        let frame = frame(model_id);
+        let model = prepare(model_id, &frame.atmosphere, &frame.settings).unwrap();
+        let settings = settings();
+        let light = frame_light(model.as_ref(), &frame, &settings).unwrap();
+        let layer = CloudLayer::new(
+            settings,
+            frame.atmosphere.bottom_radius_m,
+            cover.clone(),
+            phase.clone(),
+        )
+        .unwrap();
+        renderer
+            .set_clouds(Some(FrameClouds {
+                settings,
+                light: light.clone(),
+                prune: true,
+            }))
+            .unwrap();
+        let surface = mountain(&frame);
+        let plan = renderer.render_with_surface(&frame, &surface).unwrap();
+        assert!(
+            plan.runs("clouds") && plan.runs("cloud_front") && plan.runs("cloud_composite"),
+            "{plan}"
+        );
+        let gpu = renderer.read_hdr().unwrap();
+        let cpu: Vec<RayRadiance> = (0..frame.height)
+            .flat_map(|row| (0..frame.width).map(move |column| (column, row)))
+            .zip(&surface)
+            .map(|(px, texel)| {
+                cpu_pixel(model.as_ref(), &layer, &orders, &light, &frame, px, texel)
+            })
+            .collect();
+        let brightest = cpu
+            .iter()
+            .flat_map(|p| p.radiance.iter().copied())
+            .fold(0.0, f64::max);
+        let (mut worst, mut outside, mut far_outside) = (0.0f64, 0, 0);
+        for (g, c) in gpu.iter().zip(&cpu) {
+            for w in 0..3 {
+                let error = (f64::from(g[w]) - c.radiance[w]).abs();
+                let allowed = RELATIVE * c.radiance[w] + OF_BRIGHTEST * brightest;
+                worst = worst.max(error / allowed);
+                outside += usize::from(error > allowed);
+                far_outside += usize::from(error > JUMP_FACTOR * allowed);
+            }
+        }
+        // The cloud shows, and the mountain's rays meet the layer behind it (the march
+        // must not run) and inside it (the march must stop on it).
+        let clouded = cpu.iter().filter(|p| p.transmittance[1] < 0.5).count();
+        let (mut behind, mut inside) = (0, 0);
+        for row in 0..frame.height {
+            for column in 0..MOUNTAIN_COLUMNS {
+                let ray = frame.pixel_ray(column, row);
+                let to_mountain = f64::from(MOUNTAIN_M);
+                if let Some((t0, t1)) =
+                    layer
+                        .shell()
+                        .first_segment(ray.origin_m, ray.direction, f64::INFINITY)
+                {
+                    behind += usize::from(t0 > to_mountain);
+                    inside += usize::from(t0 < to_mountain && to_mountain < t1);
+                }
+            }
+        }
+        println!(
+            "{model_id}: worst {worst:.2} of the tolerance, {outside} of {} values outside, \
+             {clouded} clouded pixels, the mountain before the layer in {behind} pixels and \
+             inside it in {inside}; plan: {plan}",
+            3 * cpu.len()
+        );
+        assert!(clouded > 100, "{model_id}: {clouded} clouded pixels");
+        assert!(
+            behind > 20 && inside > 20,
+            "{model_id}: {behind} and {inside}"
+        );
+        assert!(
+            outside * 100 <= 3 * cpu.len() && far_outside == 0,
+            "{model_id}: {outside} values outside the tolerance, {far_outside} far outside; \
+             worst {worst:.2} of it"
+        );
+    }
+}
+
+/// Renders `frame` over `surface` with `clouds` and returns the HDR image and the plan.
+fn render(
+    renderer: &mut Renderer,
+    frame: &Frame,
+    clouds: Option<FrameClouds>,
+) -> (Vec<[f32; 4]>, render_wgpu::frame::plan::FramePlan) {
+    renderer.set_clouds(clouds).unwrap();
+    let plan = renderer.render(frame).unwrap();
+    (renderer.read_hdr().unwrap(), plan)
+}
+
+#[test]
+fn cover_zero_leaves_the_frame_exactly_as_without_clouds() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud frames cover 0") else {
+        return;
+    };
+    renderer.set_cloud_inputs(&cover(0.0), &orders()).unwrap();
+    let frame = frame(ModelId::Nishita);
+    let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
+    let light = frame_light(model.as_ref(), &frame, &settings()).unwrap();
+    let clouds = |prune| FrameClouds {
+        settings: settings(),
+        light: light.clone(),
+        prune,
+    };
+    let (clear, _) = render(&mut renderer, &frame, None);
+    let (run, plan) = render(&mut renderer, &frame, Some(clouds(false)));
+    assert!(plan.runs("clouds"), "{plan}");
+    assert_eq!(clear, run, "cover 0 changed the frame");
+    let (pruned, plan) = render(&mut renderer, &frame, Some(clouds(true)));
+    assert!(!plan.runs("clouds"), "{plan}");
+    assert!(
+        plan.skipped.contains(&("clouds", NO_CLOUD_IN_COVER)),
+        "{plan}"
+    );
+    assert_eq!(clear, pruned);
+}
+
+#[test]
+fn pruning_a_layer_out_of_view_changes_nothing() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud frames pruning") else {
+        return;
+    };
+    renderer.set_cloud_inputs(&cover(1.0), &orders()).unwrap();
+    // 400 km up, looking 30 degrees above the horizon: the planet and the layer lie
+    // below the frame.
+    let mut frame = frame(ModelId::Nishita);
+    frame.camera_position_m = DVec3::X * (frame.atmosphere.bottom_radius_m + 400_000.0);
+    let pitch = 30f64.to_radians();
+    frame.orientation =
+        look_orientation(DVec3::new(pitch.sin(), pitch.cos(), 0.0), DVec3::X).unwrap();
+    frame.vertical_fov_deg = 40.0;
+    let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
+    let light = frame_light(model.as_ref(), &frame, &settings()).unwrap();
+    let clouds = |prune| FrameClouds {
+        settings: settings(),
+        light: light.clone(),
+        prune,
+    };
+    let (run, plan) = render(&mut renderer, &frame, Some(clouds(false)));
+    assert!(plan.runs("clouds"), "{plan}");
+    let (pruned, plan) = render(&mut renderer, &frame, Some(clouds(true)));
+    assert!(
+        plan.skipped.contains(&("clouds", LAYER_NOT_IN_VIEW)),
+        "{plan}"
+    );
+    assert!(
+        plan.to_string()
+            .contains("clouds (the cloud layer is not in view)")
+    );
+    assert_eq!(run, pruned, "pruning changed the frame");
+    // Looking down at the deck the planner keeps the layer.
+    frame.orientation = look_orientation(-DVec3::X, DVec3::Y).unwrap();
+    let (_, plan) = render(&mut renderer, &frame, Some(clouds(true)));
+    assert!(plan.runs("clouds"), "{plan}");
+}
+
+#[test]
+fn bad_cloud_input_is_refused_by_name() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud frames bad input") else {
+        return;
+    };
+    let frame = frame(ModelId::Nishita);
+    let light = CloudLight {
+        sun_direction: frame.sun_direction,
+        sun_irradiance: vec![1.0; 3],
+        sky_irradiance: vec![0.1; 3],
+        up: DVec3::X,
+    };
+    let bad = FrameClouds {
+        settings: LayerSettings {
+            base_m: -5.0,
+            ..settings()
+        },
+        light: light.clone(),
+        prune: true,
+    };
+    let e = renderer.set_clouds(Some(bad)).unwrap_err().to_string();
+    assert!(e.contains("cloud base_m") && e.contains("-5"), "{e}");
+    renderer
+        .set_clouds(Some(FrameClouds {
+            settings: settings(),
+            light,
+            prune: true,
+        }))
+        .unwrap();
+    let e = renderer.render(&frame).unwrap_err().to_string();
+    assert!(e.contains("no cloud cover"), "{e}");
+}
