@@ -265,6 +265,7 @@ impl Scene {
                 Some(TerrainOptions {
                     exaggeration,
                     wind_m_s,
+                    ..TerrainOptions::default()
                 })
             }
             _ => None,
