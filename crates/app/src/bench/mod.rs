@@ -6,6 +6,7 @@
 
 pub mod baseline;
 pub mod beams;
+pub mod flight;
 pub mod timing;
 pub mod variant;
 pub mod views;
@@ -255,6 +256,18 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     }
     if args.frames == 0 {
         bail!("--frames must be at least 1");
+    }
+    if let Some(path) = &args.flight {
+        let mut renderer = Renderer::headless()?;
+        let adapter = renderer.gpu().adapter_summary();
+        let size = (args.width, args.height);
+        let frames = flight::measure(&mut renderer, path, args.flight_fps, size)?;
+        let text = flight::markdown(path, &adapter, size, &frames);
+        std::io::stdout().lock().write_all(text.as_bytes())?;
+        if let Some(out) = &args.out {
+            write_atomically(out, text.as_bytes())?;
+        }
+        return Ok(());
     }
     for m in &args.model {
         Renderer::check_model(*m)?;
