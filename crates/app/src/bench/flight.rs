@@ -9,6 +9,7 @@ use std::path::Path;
 
 use anyhow::bail;
 use render_wgpu::Renderer;
+use render_wgpu::frame::Frame;
 
 use crate::camera_path::CameraPath;
 use crate::progress::Progress;
@@ -16,7 +17,7 @@ use crate::progress::Progress;
 use super::timing::{median, timed};
 
 /// One timed frame of the flight.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct FlightFrame {
     pub time_s: f64,
     pub altitude_m: f64,
@@ -24,53 +25,78 @@ pub struct FlightFrame {
     /// Chosen chunks drawn as a cover, and meshes being built, after the frame.
     pub covered: usize,
     pub building: usize,
+    /// The frame's passes with their GPU times, ms (indicative on a software adapter).
+    pub passes: String,
 }
 
-/// Flies `path` at `fps` frames per second of its time at `width` x `height`.
-pub fn measure(
-    renderer: &mut Renderer,
-    path: &Path,
+/// The path's frames at `fps` frames per second of its time (the path's own fps when
+/// `None`) at `width` x `height`, checked before any GPU work: at least 3, each with
+/// terrain. `file` names the path in errors.
+pub fn frames(
+    camera_path: &CameraPath,
+    file: &Path,
     fps: Option<u32>,
     (width, height): (u32, u32),
-) -> anyhow::Result<Vec<FlightFrame>> {
-    let camera_path = CameraPath::load(path)?;
+) -> anyhow::Result<Vec<(f64, Frame)>> {
     let fps = fps.map_or(camera_path.fps(), f64::from);
     let count = camera_path.frame_count(fps);
     if count < 3 {
         bail!(
             "--flight {}: {count} frames at {fps} fps; at least 3 are needed",
-            path.display()
+            file.display()
         );
     }
-    let progress = Progress::new("flight", "frames", count as u64);
-    let mut frames = Vec::with_capacity(count);
-    for k in 0..count {
-        let time_s = k as f64 / fps;
-        let mut frame = camera_path.frame_at(time_s, width, height)?;
-        let Some(terrain) = frame.terrain.as_mut() else {
-            bail!(
-                "--flight {}: no terrain at {time_s} s; the flight measures terrain work",
-                path.display()
-            );
-        };
-        terrain.wait_for_chunks = false;
-        let (_, wall_ms) = timed(renderer, &frame)?;
+    (0..count)
+        .map(|k| {
+            let time_s = k as f64 / fps;
+            let mut frame = camera_path.frame_at(time_s, width, height)?;
+            let Some(terrain) = frame.terrain.as_mut() else {
+                bail!(
+                    "--flight {}: no terrain at {time_s} s; the flight measures terrain work",
+                    file.display()
+                );
+            };
+            terrain.wait_for_chunks = false;
+            Ok((time_s, frame))
+        })
+        .collect()
+}
+
+/// Renders the flight's `frames` in order, timing each.
+pub fn measure(
+    renderer: &mut Renderer,
+    frames: &[(f64, Frame)],
+) -> anyhow::Result<Vec<FlightFrame>> {
+    let progress = Progress::new("flight", "frames", frames.len() as u64);
+    let mut timed_frames = Vec::with_capacity(frames.len());
+    for (time_s, frame) in frames {
+        let (plan, wall_ms) = timed(renderer, frame)?;
+        let passes = plan
+            .steps
+            .iter()
+            .map(|step| match step.gpu_ms {
+                Some(ms) => format!("{} {ms:.0}", step.name),
+                None => step.name.to_string(),
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
         let stand = renderer.terrain_progress().unwrap_or_default();
-        frames.push(FlightFrame {
-            time_s,
+        timed_frames.push(FlightFrame {
+            time_s: *time_s,
             altitude_m: frame.camera_position_m.length() - frame.atmosphere.bottom_radius_m,
             wall_ms,
             covered: stand.covered,
             building: stand.building,
+            passes,
         });
         progress.inc();
     }
     progress.finish();
-    Ok(frames)
+    Ok(timed_frames)
 }
 
 /// The report: the first frame, the median and the longest of the others and their
-/// ratio, and the five longest frames.
+/// ratio, and the five longest frames with one of median length.
 pub fn markdown(path: &Path, adapter: &str, size: (u32, u32), frames: &[FlightFrame]) -> String {
     let (first, rest) = frames
         .split_first()
@@ -129,6 +155,7 @@ mod tests {
             wall_ms,
             covered: 0,
             building: 0,
+            passes: "terrain 5".to_string(),
         }
     }
 

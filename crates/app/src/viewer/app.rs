@@ -17,6 +17,7 @@ use render_wgpu::{Frame, GpuContext, Renderer};
 use crate::cli::ViewArgs;
 use crate::viewer::exposure::{AutoExposure, ExposureMode};
 use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
+use crate::viewer::frame_times::FrameTimes;
 use crate::viewer::panel::{self, Stats};
 use crate::viewer::path_editor::PathEditor;
 use crate::viewer::screenshot;
@@ -54,6 +55,8 @@ pub struct ViewerApp {
     last_plan: Option<FramePlan>,
     auto_exposure: AutoExposure,
     frame_ms: f64,
+    /// The last frames' wall times, for the longest.
+    frame_times: FrameTimes,
     adapter: String,
     /// The last report: a screenshot's paths or an error.
     message: String,
@@ -120,6 +123,7 @@ impl ViewerApp {
             last_plan: None,
             auto_exposure: AutoExposure::default(),
             frame_ms: 0.0,
+            frame_times: FrameTimes::default(),
             adapter,
             message: String::new(),
             show_help: false,
@@ -148,11 +152,16 @@ impl ViewerApp {
         })
     }
 
-    /// Whether the last frame's tables were still being built (more of them next frame).
+    /// Whether the last frame's tables were still being built, or terrain meshes were
+    /// being built or covered (more of them next frame).
     fn building(&self) -> bool {
         self.last_plan
             .as_ref()
             .is_some_and(|p| p.building.is_some())
+            || self
+                .renderer
+                .terrain_progress()
+                .is_some_and(|t| t.covered > 0 || t.building > 0)
     }
 
     /// Renders `frame` if it differs from the last one or tables are being built, and
@@ -164,6 +173,7 @@ impl ViewerApp {
         let start = Instant::now();
         let plan = self.renderer.render(&frame)?;
         self.frame_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.frame_times.push(self.frame_ms);
         self.last_plan = Some(plan);
         self.last_frame = Some(frame);
         if self.settings.exposure_mode == ExposureMode::Auto {
@@ -265,6 +275,7 @@ impl eframe::App for ViewerApp {
         let before = self.settings.clone();
         let stats = Stats {
             frame_ms: self.frame_ms,
+            longest_ms: self.frame_times.longest(),
             render_size: self
                 .last_frame
                 .as_ref()
