@@ -131,14 +131,16 @@ pub fn markdown(path: &Path, adapter: &str, size: (u32, u32), frames: &[FlightFr
     );
     let _ = writeln!(
         text,
-        "| time, s | altitude, m | frame, ms | covered | building |"
+        "| time, s | altitude, m | frame, ms | covered | building | passes, GPU ms |"
     );
-    let _ = writeln!(text, "|---|---|---|---|---|");
-    for f in longest.iter().take(5) {
+    let _ = writeln!(text, "|---|---|---|---|---|---|");
+    // The five longest, then one of median length.
+    let typical = longest.iter().find(|f| f.wall_ms <= mid);
+    for f in longest.iter().take(5).chain(typical) {
         let _ = writeln!(
             text,
-            "| {:.2} | {:.0} | {:.1} | {} | {} |",
-            f.time_s, f.altitude_m, f.wall_ms, f.covered, f.building
+            "| {:.2} | {:.0} | {:.1} | {} | {} | {} |",
+            f.time_s, f.altitude_m, f.wall_ms, f.covered, f.building, f.passes
         );
     }
     text
@@ -172,5 +174,16 @@ mod tests {
             text.contains("longest frame: 30.0 ms at 0.20 s (2 m), 2.50 x the median"),
             "{text}"
         );
+        // The table: the longest first, the one of median length last.
+        let rows: Vec<&str> = text.lines().filter(|l| l.starts_with("| 0.")).collect();
+        assert_eq!(
+            rows.first(),
+            Some(&"| 0.20 | 2 | 30.0 | 0 | 0 | terrain 5 |")
+        );
+        assert_eq!(
+            rows.last(),
+            Some(&"| 0.30 | 2 | 12.0 | 0 | 0 | terrain 5 |")
+        );
+        assert_eq!(rows.len(), 4);
     }
 }
