@@ -337,7 +337,14 @@ impl eframe::App for ViewerApp {
                 .path
                 .preview_frame(width, height)
                 .unwrap_or_else(|| self.settings.frame(width, height))
-                .and_then(|frame| self.render(frame));
+                .and_then(|mut frame| {
+                    // Batch screenshots (`--frames`) wait for every terrain mesh, as
+                    // offline renders do; the live view never waits.
+                    if let Some(terrain) = frame.terrain.as_mut() {
+                        terrain.wait_for_chunks = self.args.frames.is_some();
+                    }
+                    self.render(frame)
+                });
             if let Err(e) = rendered {
                 self.message = format!("cannot render: {e:#}");
             }
