@@ -23,7 +23,8 @@ struct TerrainParams {
     right: vec4<f32>,
     up: vec4<f32>,
     forward: vec4<f32>,
-    // x: the near plane's distance, m.
+    // x: the near plane's distance, m; y: where a morph begins, as a fraction of its end
+    // (`geomorph.rs`'s MORPH_START).
     near: vec4<f32>,
     // rgb: the water's albedo.
     sea_albedo: vec4<f32>,
@@ -42,6 +43,10 @@ struct Chunk {
     offset: vec4<f32>,
     // xyz: the chunk's origin, planet-centred, m (for latitude and longitude).
     origin: vec4<f32>,
+    // x, y: where the chunk's own and its coarser neighbours' morphs end, m (0: none);
+    // z: the edges bordering a coarser chunk as bits (1 << Edge: u min, u max, v min,
+    // v max); w: cells along a side.
+    morph: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> terrain: TerrainParams;
@@ -63,14 +68,39 @@ struct VertexOut {
     @location(3) height: f32,
 }
 
+// Geomorphing (render-wgpu's `terrain/geomorph.rs`, `morph_factor` and `morph_role`;
+// Strugar 2009): the factor of vertex `index` of chunk `c`, `relative` to the camera, by
+// which it moves towards its morph target: 0 for its parent's vertices, the coarser
+// neighbour's factor for the even vertices of an edge bordering one, its own otherwise.
+fn morph_factor(c: Chunk, index: u32, relative: vec3<f32>) -> f32 {
+    let cells = u32(c.morph.w);
+    let i = index % (cells + 1u);
+    let j = index / (cells + 1u);
+    let mask = u32(c.morph.z);
+    let on_coarser = (i == 0u && (mask & 1u) != 0u) || (i == cells && (mask & 2u) != 0u)
+        || (j == 0u && (mask & 4u) != 0u) || (j == cells && (mask & 8u) != 0u);
+    let odd = (i % 2u) == 1u || (j % 2u) == 1u;
+    let end = select(select(0.0, c.morph.y, on_coarser), c.morph.x, odd);
+    let start = terrain.near.y;
+    let m = clamp((length(relative) / end - start) / (1.0 - start), 0.0, 1.0);
+    return select(0.0, m, end > 0.0);
+}
+
 @vertex
 fn vertex_main(
     @builtin(instance_index) chunk: u32,
-    @location(0) position: vec3<f32>,
+    @builtin(vertex_index) index: u32,
+    @location(0) own_position: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) height: f32,
+    @location(2) own_height: f32,
+    // The morph target relative to the vertex.
+    @location(3) morph_offset: vec3<f32>,
+    @location(4) target_height: f32,
 ) -> VertexOut {
     let c = chunks[chunk];
+    let m = morph_factor(c, index, c.offset.xyz + own_position);
+    let position = own_position + m * morph_offset;
+    let height = mix(own_height, target_height, m);
     let relative = c.offset.xyz + position;
     var out: VertexOut;
     out.clip = vec4<f32>(dot(relative, terrain.right.xyz), dot(relative, terrain.up.xyz),

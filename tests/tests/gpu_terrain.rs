@@ -20,6 +20,7 @@ use render_wgpu::Frame;
 use render_wgpu::frame::{LocalView, TerrainOptions, location_rotation};
 use render_wgpu::terrain::chunk_key::ChunkKey;
 use render_wgpu::terrain::geo_grid::lat_lon;
+use render_wgpu::terrain::geomorph::MorphEnds;
 use render_wgpu::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
 use render_wgpu::terrain::sea_colour::open_sea_albedo;
 use render_wgpu::terrain::{ChunkMesh, EarthData, HeightField, RefinedHeights, TerrainSurface};
@@ -75,6 +76,7 @@ fn hit_triangle(origin: DVec3, dir: DVec3, p: [DVec3; 3]) -> Option<(f64, f64, f
 struct CpuTerrain {
     surface: TerrainSurface<RefinedHeights>,
     settings: LodSettings,
+    view: LodView,
     /// The chosen chunks.
     chunks: Vec<SelectedChunk>,
     meshes: HashMap<ChunkKey, ChunkMesh>,
@@ -99,6 +101,7 @@ impl CpuTerrain {
         CpuTerrain {
             surface,
             settings,
+            view: lod_view,
             chunks,
             meshes: HashMap::new(),
         }
@@ -120,15 +123,19 @@ impl CpuTerrain {
             if (to_centre - dir * along).length() > radius || along < -radius {
                 continue;
             }
+            // Geomorphed as the vertex shader does (`geomorph.rs`).
+            let ends = MorphEnds::of_level(&self.settings, &self.view, chunk.key.level);
+            let factor = |k: u32| mesh.morph_factor(k, chunk.coarser, self.view.camera_m, ends);
             for t in mesh.indices.chunks(3) {
-                let p = [0, 1, 2].map(|k| mesh.world_position_m(t[k]));
+                let m = [0, 1, 2].map(|k| factor(t[k]));
+                let p = [0, 1, 2].map(|k| mesh.morphed_position_m(t[k], m[k]));
                 if let Some((d, u, v)) = hit_triangle(origin, dir, p)
                     && best.is_none_or(|b| d < b.0)
                 {
                     let n =
                         [0, 1, 2].map(|k| glam::Vec3::from(mesh.normals[t[k] as usize]).as_dvec3());
                     let normal = (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize();
-                    let h = [0, 1, 2].map(|k| f64::from(mesh.heights_m[t[k] as usize]));
+                    let h = [0, 1, 2].map(|k| mesh.morphed_height_m(t[k], m[k]));
                     let height = h[0] * (1.0 - u - v) + h[1] * u + h[2] * v;
                     best = Some((d, normal, origin + dir * d, height));
                 }
@@ -138,7 +145,8 @@ impl CpuTerrain {
     }
 }
 
-/// Compares every `step`-th pixel's surface texel with the CPU's hit; pixels where one
+/// Compares every `step`-th pixel's surface texel with the CPU's hit (distances within
+/// `max_distance`, relative); pixels where one
 /// side sees terrain and the other not lie on silhouettes (the rasteriser's coverage
 /// against an exact ray), at most `max_edge_fraction` of them. `near_albedo`: whether
 /// some hits lie within 20 km, where the albedo is compared with the full-resolution map,
@@ -149,6 +157,7 @@ fn check_surface(
     name: &str,
     f: &Frame,
     step: u32,
+    max_distance: f64,
     max_edge_fraction: f64,
     near_albedo: bool,
 ) -> Option<(usize, usize)> {
@@ -229,7 +238,10 @@ fn check_surface(
     );
     // f32 camera-relative positions: 1e-5 of the distance, up to a few times more a
     // metre above the ground.
-    assert!(worst_distance < 4e-5, "{name}: distance {worst_distance:e}");
+    assert!(
+        worst_distance < max_distance,
+        "{name}: distance {worst_distance:e}"
+    );
     // The rasteriser interpolates the normal linearly; the CPU the same, then normalises.
     assert!(worst_normal < 2e-3, "{name}: normal {worst_normal:e}");
     // Bilinear sRGB filtering in 8 bits against the CPU's f64.
@@ -242,7 +254,7 @@ fn check_surface(
 fn terrain_over_the_alps_matches_the_cpu_meshes() {
     // Exaggeration 2 lifts the peaks near 9 km.
     let f = terrain_frame(46.05, 7.75, view(11_000.0, 95.0, 225.0), 60.0, 96, 54);
-    let counts = check_surface("Alps from 11 km", &f, 3, 0.05, true);
+    let counts = check_surface("Alps from 11 km", &f, 3, 4e-5, 0.05, true);
     // No sea; rock and snow on the near slopes.
     assert!(
         counts.is_none_or(|(water, covered)| water == 0 && covered > 10),
@@ -259,7 +271,9 @@ fn terrain_a_metre_above_the_ground_matches_the_cpu_meshes() {
     let cpu = CpuTerrain::new(&f);
     let ground = cpu.surface.elevation_m(up);
     f.camera_position_m = up * (f.atmosphere.bottom_radius_m + ground + 1.5);
-    let counts = check_surface("1.5 m over the Sahara", &f, 2, 0.05, true);
+    // Rays graze metre-scale facets a few metres away, geomorphing within the band: the
+    // GPU's f32 morph departs from the CPU's by a fraction of a millimetre there.
+    let counts = check_surface("1.5 m over the Sahara", &f, 2, 1.2e-4, 0.05, true);
     assert!(counts.is_none_or(|(water, _)| water == 0), "{counts:?}");
 }
 
@@ -268,7 +282,7 @@ fn the_whole_disc_from_20000_km_matches_the_cpu_meshes() {
     let f = terrain_frame(30.0, 10.0, view(2e7, 180.0, 0.0), 40.0, 64, 64);
     // Every hit is far beyond 20 km: the albedo comes from averaged mip levels and is
     // not compared here (`colour_mips.rs` has its own test).
-    check_surface("disc from 20,000 km", &f, 2, 0.08, false);
+    check_surface("disc from 20,000 km", &f, 2, 4e-5, 0.08, false);
 }
 
 #[test]

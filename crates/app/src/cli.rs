@@ -181,6 +181,15 @@ pub struct BenchArgs {
     /// Also write the tables to this Markdown file (atomically).
     #[arg(long, value_name = "FILE.md")]
     pub out: Option<PathBuf>,
+    /// Fly this camera path (docs/camera-paths.md, with terrain) as the viewer does, the
+    /// terrain's chunk meshes built off the render thread, and report the median and the
+    /// longest frame instead of the models' tables (docs/terrain.md, "No popping").
+    #[arg(long, value_name = "PATH.toml", conflicts_with = "beams_scene")]
+    pub flight: Option<PathBuf>,
+    /// With --flight: frames per second of the path's time, 1 to 240 [default: the
+    /// path's fps].
+    #[arg(long, requires = "flight", value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub flight_fps: Option<u32>,
 }
 
 /// The flags of `atmos record` (docs/recording.md).

@@ -244,6 +244,7 @@ fn shipped_paths_give_valid_frames() {
         [
             "ascent_alps.toml",
             "day_at_one_place.toml",
+            "flight_sea_to_orbit.toml",
             "sunrise_from_orbit.toml"
         ]
     );

@@ -126,6 +126,13 @@ impl Renderer {
         registry::check_model(id)
     }
 
+    /// How the last frame with terrain stood with its chunk meshes (`None` before any):
+    /// with `TerrainOptions::wait_for_chunks` off, how many it covered and how many are
+    /// still being built.
+    pub fn terrain_progress(&self) -> Option<crate::terrain::pass::ChunkProgress> {
+        self.terrain.as_ref().map(|t| t.progress())
+    }
+
     /// The terrain's elevation (m above the reference sphere) in a unit direction, as
     /// the last frame with terrain drew it; `None` before any.
     pub fn terrain_elevation_m(&self, direction: glam::DVec3) -> Option<f64> {

@@ -10,6 +10,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 use render_wgpu::terrain::chunk_mesh::vertex_direction;
 use render_wgpu::terrain::geo_grid::direction;
+use render_wgpu::terrain::geomorph::{MorphEnds, morphed_vertex_m};
 use render_wgpu::terrain::lod::{LodSettings, LodView, select_chunks};
 use render_wgpu::terrain::refined_heights::RefinementSettings;
 use render_wgpu::terrain::{ChunkMesh, EarthData, HeightField, RefinedHeights, TerrainSurface};
@@ -129,10 +130,11 @@ fn heights_are_a_pure_continuous_function_of_place() {
     }
 }
 
-/// Every triangle edge of the chunks chosen for `camera`, in f64 positions bit for bit, is
-/// matched by exactly one reversed edge, and the Euler characteristic is 2: one closed
-/// surface, without a crack between chunks of different levels or across cube faces.
-/// Returns the number of chunks and whether the finest level is among them.
+/// Every triangle edge of the chunks chosen for `camera`, in f64 positions bit for bit and
+/// geomorphed for that camera (`geomorph.rs`), is matched by exactly one reversed edge,
+/// and the Euler characteristic is 2: one closed surface, without a crack between chunks
+/// of different levels or across cube faces. Returns the number of chunks and whether the
+/// finest level is among them.
 fn assert_watertight(surface: &TerrainSurface<RefinedHeights>, camera: DVec3) -> (usize, bool) {
     let cells = 8;
     let mut settings = LodSettings {
@@ -142,7 +144,8 @@ fn assert_watertight(surface: &TerrainSurface<RefinedHeights>, camera: DVec3) ->
     };
     settings.max_level = settings.finest_level(surface.heights.sample_spacing_rad());
     let elevation = |d: DVec3| surface.elevation_m(d);
-    let chunks = select_chunks(&settings, &LodView::new(camera, 1080.0, 1.0), elevation).unwrap();
+    let view = LodView::new(camera, 1080.0, 1.0);
+    let chunks = select_chunks(&settings, &view, elevation).unwrap();
     let levels: HashSet<u8> = chunks.iter().map(|c| c.key.level).collect();
     assert!(levels.len() >= 6, "{levels:?}");
     assert!(chunks.iter().any(|c| c.coarser.iter().any(|&b| b)));
@@ -150,18 +153,25 @@ fn assert_watertight(surface: &TerrainSurface<RefinedHeights>, camera: DVec3) ->
     let mut edges: HashMap<([u64; 3], [u64; 3]), u32> = HashMap::new();
     let mut vertices = HashSet::new();
     let mut triangles = 0i64;
+    let mut moved = 0;
     for chunk in &chunks {
         let mesh = ChunkMesh::build(surface, chunk, cells);
+        let ends = MorphEnds::of_level(&settings, &view, chunk.key.level);
         let world = |k: u32| {
             let (i, j) = (k % (cells + 1), k / (cells + 1));
-            surface.position_m(vertex_direction(chunk.key, cells, i, j))
+            morphed_vertex_m(surface, chunk, cells, (i, j), camera, ends)
         };
         for t in mesh.indices.chunks(3) {
             let p = [world(t[0]), world(t[1]), world(t[2])];
             for (k, q) in t.iter().zip(p) {
-                // f32 offsets from the chunk's origin, rounded.
+                // The shader's twin, from f32 offsets from the chunk's origin, rounded.
                 let offset = (q - mesh.origin_m).length();
-                assert!((mesh.world_position_m(*k) - q).length() < 1.2e-7 * offset + 1e-9);
+                let m = mesh.morph_factor(*k, chunk.coarser, camera, ends);
+                let drawn = mesh.morphed_position_m(*k, m);
+                assert!((drawn - q).length() < 2.4e-7 * offset + 1e-9);
+                let (i, j) = (k % (cells + 1), k / (cells + 1));
+                let own = surface.position_m(vertex_direction(chunk.key, cells, i, j));
+                moved += usize::from((own - q).length() > 1e-3);
                 vertices.insert(bits(q));
             }
             for (a, b) in [(p[0], p[1]), (p[1], p[2]), (p[2], p[0])] {
@@ -176,6 +186,7 @@ fn assert_watertight(surface: &TerrainSurface<RefinedHeights>, camera: DVec3) ->
     }
     let euler = vertices.len() as i64 - (edges.len() / 2) as i64 + triangles;
     assert_eq!(euler, 2);
+    assert!(moved > 0, "no vertex is morphed");
     (chunks.len(), levels.contains(&settings.max_level))
 }
 

@@ -6,6 +6,7 @@
 
 pub mod baseline;
 pub mod beams;
+pub mod flight;
 pub mod timing;
 pub mod variant;
 pub mod views;
@@ -22,6 +23,7 @@ use render_wgpu::frame::Frame;
 use render_wgpu::frame::plan::{FramePlan, StepKind};
 use render_wgpu::sky::registry::GPU_MODELS;
 
+use crate::camera_path::CameraPath;
 use crate::cli::BenchArgs;
 use crate::files::{check_writable, write_atomically};
 use crate::progress::Progress;
@@ -255,6 +257,20 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     }
     if args.frames == 0 {
         bail!("--frames must be at least 1");
+    }
+    if let Some(path) = &args.flight {
+        let size = (args.width, args.height);
+        let camera_path = CameraPath::load(path)?;
+        let flight_frames = flight::frames(&camera_path, path, args.flight_fps, size)?;
+        let mut renderer = Renderer::headless()?;
+        let adapter = renderer.gpu().adapter_summary();
+        let frames = flight::measure(&mut renderer, &flight_frames)?;
+        let text = flight::markdown(path, &adapter, size, &frames);
+        std::io::stdout().lock().write_all(text.as_bytes())?;
+        if let Some(out) = &args.out {
+            write_atomically(out, text.as_bytes())?;
+        }
+        return Ok(());
     }
     for m in &args.model {
         Renderer::check_model(*m)?;

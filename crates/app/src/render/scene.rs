@@ -273,6 +273,7 @@ impl Scene {
                 Some(TerrainOptions {
                     exaggeration,
                     wind_m_s,
+                    ..TerrainOptions::default()
                 })
             }
             _ => None,

@@ -19,6 +19,7 @@ use crate::viewer::cloud_settings::CloudSettings;
 use crate::viewer::cloud_state::CloudState;
 use crate::viewer::exposure::{AutoExposure, ExposureMode};
 use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
+use crate::viewer::frame_times::FrameTimes;
 use crate::viewer::panel::{self, Stats};
 use crate::viewer::path_editor::PathEditor;
 use crate::viewer::screenshot;
@@ -59,6 +60,8 @@ pub struct ViewerApp {
     last_plan: Option<FramePlan>,
     auto_exposure: AutoExposure,
     frame_ms: f64,
+    /// The last frames' wall times, for the longest.
+    frame_times: FrameTimes,
     adapter: String,
     /// The last report: a screenshot's paths or an error.
     message: String,
@@ -127,6 +130,7 @@ impl ViewerApp {
             last_plan: None,
             auto_exposure: AutoExposure::default(),
             frame_ms: 0.0,
+            frame_times: FrameTimes::default(),
             adapter,
             message: String::new(),
             show_help: false,
@@ -155,11 +159,16 @@ impl ViewerApp {
         })
     }
 
-    /// Whether the last frame's tables were still being built (more of them next frame).
+    /// Whether the last frame's tables were still being built, or terrain meshes were
+    /// being built or covered (more of them next frame).
     fn building(&self) -> bool {
         self.last_plan
             .as_ref()
             .is_some_and(|p| p.building.is_some())
+            || self
+                .renderer
+                .terrain_progress()
+                .is_some_and(|t| t.covered > 0 || t.building > 0)
     }
 
     /// Renders `frame` if it differs from the last one or tables are being built, and
@@ -177,6 +186,7 @@ impl ViewerApp {
         self.last_clouds = Some(self.settings.clouds.clone());
         let plan = self.renderer.render(&frame)?;
         self.frame_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.frame_times.push(self.frame_ms);
         self.last_plan = Some(plan);
         self.last_frame = Some(frame);
         if self.settings.exposure_mode == ExposureMode::Auto {
@@ -278,6 +288,7 @@ impl eframe::App for ViewerApp {
         let before = self.settings.clone();
         let stats = Stats {
             frame_ms: self.frame_ms,
+            longest_ms: self.frame_times.longest(),
             render_size: self
                 .last_frame
                 .as_ref()
@@ -339,7 +350,14 @@ impl eframe::App for ViewerApp {
                 .path
                 .preview_frame(width, height)
                 .unwrap_or_else(|| self.settings.frame(width, height))
-                .and_then(|frame| self.render(frame));
+                .and_then(|mut frame| {
+                    // Batch screenshots (`--frames`) wait for every terrain mesh, as
+                    // offline renders do; the live view never waits.
+                    if let Some(terrain) = frame.terrain.as_mut() {
+                        terrain.wait_for_chunks = self.args.frames.is_some();
+                    }
+                    self.render(frame)
+                });
             if let Err(e) = rendered {
                 self.message = format!("cannot render: {e:#}");
             }

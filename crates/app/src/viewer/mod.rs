@@ -21,6 +21,7 @@ pub mod cloud_state;
 pub mod default_view;
 pub mod exposure;
 pub mod flight;
+pub mod frame_times;
 pub mod model_error;
 pub mod panel;
 pub mod path_capture;

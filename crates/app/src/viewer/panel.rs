@@ -26,6 +26,8 @@ use crate::viewer::sun_clock::{self, SPEED_RANGE, SunMode};
 pub struct Stats<'a> {
     /// Wall time of the last render, ms.
     pub frame_ms: f64,
+    /// The longest of the last renders, ms, and its ratio to their median.
+    pub longest_ms: Option<(f64, f64)>,
     /// Size of the last rendered image, pixels.
     pub render_size: (u32, u32),
     pub plan: Option<&'a FramePlan>,
@@ -453,6 +455,14 @@ fn stats_section(ui: &mut egui::Ui, stats: &Stats) {
             stats.frame_ms, stats.render_size.0, stats.render_size.1
         ))
         .on_hover_text("Wall time of the last render and its size in pixels");
+        if let Some((longest, ratio)) = stats.longest_ms {
+            ui.label(format!("longest {longest:.1} ms, {ratio:.2} x the median"))
+                .on_hover_text(format!(
+                    "The longest of the last {} renders against their median: a hitch \
+                     while flying (terrain meshes are built off the render thread)",
+                    crate::viewer::frame_times::WINDOW
+                ));
+        }
         if let Some(plan) = stats.plan {
             if let Some(building) = &plan.building {
                 ui.label(format!("building {building}")).on_hover_text(

@@ -215,10 +215,16 @@ impl PathEditor {
         true
     }
 
-    /// The path's frame at the playhead while previewing, at `width` x `height`.
+    /// The path's frame at the playhead while previewing, at `width` x `height`; its
+    /// terrain never waits for chunk meshes, as every frame of the viewer.
     pub fn preview_frame(&self, width: u32, height: u32) -> Option<anyhow::Result<Frame>> {
         let path = self.path.as_ref().filter(|_| self.previewing)?;
-        Some(path.frame_at(self.time_s, width, height))
+        Some(path.frame_at(self.time_s, width, height).map(|mut frame| {
+            if let Some(terrain) = frame.terrain.as_mut() {
+                terrain.wait_for_chunks = false;
+            }
+            frame
+        }))
     }
 }
 
@@ -271,7 +277,14 @@ mod tests {
         assert_eq!(path.settings, view.settings);
         assert_eq!(path.exposure_ev100, view.exposure_ev100);
         assert_eq!(path.vertical_fov_deg, view.vertical_fov_deg);
-        assert_eq!(path.terrain, view.terrain);
+        // A path's frames wait for the terrain's meshes, the viewer's do not.
+        let waiting = |f: &Frame| {
+            f.terrain.map(|t| render_wgpu::frame::TerrainOptions {
+                wait_for_chunks: true,
+                ..t
+            })
+        };
+        assert_eq!(waiting(path), waiting(view));
         assert_eq!(path.atmosphere, view.atmosphere);
     }
 
@@ -392,7 +405,11 @@ mod tests {
         assert!(editor.tick(2.0));
         assert_eq!(editor.time_s(), 2.0);
         let frame = editor.preview_frame(4, 2).unwrap().unwrap();
-        assert_eq!(frame, editor.path().unwrap().frame_at(2.0, 4, 2).unwrap());
+        let mut expected = editor.path().unwrap().frame_at(2.0, 4, 2).unwrap();
+        if let Some(t) = expected.terrain.as_mut() {
+            t.wait_for_chunks = false;
+        }
+        assert_eq!(frame, expected);
         assert!(editor.tick(10.0));
         assert_eq!(editor.time_s(), KEYFRAME_STEP_S);
         assert!(!editor.playing() && !editor.tick(1.0), "paused at the end");

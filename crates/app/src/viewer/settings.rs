@@ -359,6 +359,8 @@ impl ViewerSettings {
             terrain: (self.terrain && terrain_fits(&atmosphere)).then_some(TerrainOptions {
                 exaggeration: self.exaggeration,
                 wind_m_s: self.wind_m_s,
+                // A frame of the viewer never waits for terrain work.
+                wait_for_chunks: false,
             }),
             atmosphere,
         })

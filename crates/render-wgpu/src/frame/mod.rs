@@ -56,6 +56,11 @@ pub struct TerrainOptions {
     /// sea's glint (Cox and Munk 1954; docs/terrain.md, "Water"). A caller's surface
     /// ([`crate::Renderer::render_with_surface`]) takes its sea from here too.
     pub wind_m_s: f64,
+    /// Whether a frame waits for every chunk mesh it chooses (on: offline rendering,
+    /// whose image then depends on the frame alone) or draws what is built and covers
+    /// the rest while a worker builds it (off: the viewer, whose frames never wait;
+    /// docs/terrain.md, "No popping").
+    pub wait_for_chunks: bool,
 }
 
 /// The largest vertical exaggeration: the Earth's relief times 100 reaches 880 km, far
@@ -67,6 +72,7 @@ impl Default for TerrainOptions {
         TerrainOptions {
             exaggeration: 1.0,
             wind_m_s: DEFAULT_WIND_M_S,
+            wait_for_chunks: true,
         }
     }
 }

@@ -22,6 +22,7 @@ use glam::DVec3;
 
 use super::chunk_key::ChunkKey;
 use super::cube_sphere::direction;
+use super::geomorph::{MorphEnds, morph_role, target_pair, vertex_factor};
 use super::height_field::HeightField;
 use super::lod::SelectedChunk;
 use super::stitching::stitched_indices;
@@ -43,6 +44,12 @@ pub struct ChunkMesh {
     /// The height field's height at each vertex, metres (below 0 in the sea, where the
     /// drawn surface is the sea's): the terrain shader's land or water.
     pub heights_m: Vec<f32>,
+    /// Each vertex's morph target relative to the vertex, metres (small, so the shader's
+    /// f32 morph is nearly exact): the parent's surface below it, or for an even vertex of
+    /// an edge the coarser neighbour's (`geomorph.rs`).
+    pub morph_offsets: Vec<[f32; 3]>,
+    /// The height field's height at each morph target, metres.
+    pub morph_heights_m: Vec<f32>,
     /// Counter-clockwise triangles (seen from outside), stitched to coarser neighbours.
     pub indices: Vec<u32>,
 }
@@ -83,6 +90,8 @@ impl ChunkMesh {
         let mut positions = Vec::with_capacity(count);
         let mut normals = Vec::with_capacity(count);
         let mut heights_m = Vec::with_capacity(count);
+        let mut morph_offsets = Vec::with_capacity(count);
+        let mut morph_heights_m = Vec::with_capacity(count);
         for j in 0..=cells {
             for i in 0..=cells {
                 let (i, j) = (i as i64, j as i64);
@@ -95,6 +104,16 @@ impl ChunkMesh {
                 let along_u = grid_point(&grid, side, i + 1, j) - grid_point(&grid, side, i - 1, j);
                 let along_v = grid_point(&grid, side, i, j + 1) - grid_point(&grid, side, i, j - 1);
                 normals.push(along_u.cross(along_v).normalize().as_vec3().to_array());
+                let [a, b] =
+                    target_pair(key, cells, i as u32, j as u32).map(|(i, j)| (i as i64, j as i64));
+                let target =
+                    (grid_point(&grid, side, a.0, a.1) + grid_point(&grid, side, b.0, b.1)) * 0.5;
+                let own = grid_point(&grid, side, i, j);
+                morph_offsets.push((target - own).as_vec3().to_array());
+                let height = 0.5
+                    * (grid_point(&grid_heights, side, a.0, a.1)
+                        + grid_point(&grid_heights, side, b.0, b.1));
+                morph_heights_m.push(height as f32);
             }
         }
         ChunkMesh {
@@ -104,6 +123,8 @@ impl ChunkMesh {
             positions,
             normals,
             heights_m,
+            morph_offsets,
+            morph_heights_m,
             indices: stitched_indices(cells, chunk.coarser),
         }
     }
@@ -124,12 +145,47 @@ impl ChunkMesh {
     pub fn world_position_m(&self, index: u32) -> DVec3 {
         self.origin_m + glam::Vec3::from_array(self.positions[index as usize]).as_dvec3()
     }
+
+    /// A vertex's morph factor for a camera at `camera_m`, drawn with the coarser edges
+    /// `coarser` and the morph ends `ends` (`geomorph.rs`; the vertex shader's twin).
+    pub fn morph_factor(
+        &self,
+        index: u32,
+        coarser: [bool; 4],
+        camera_m: DVec3,
+        ends: MorphEnds,
+    ) -> f64 {
+        let (i, j) = (index % (self.cells + 1), index / (self.cells + 1));
+        let role = morph_role(self.cells, coarser, i, j);
+        vertex_factor(
+            role,
+            (self.world_position_m(index) - camera_m).length(),
+            ends,
+        )
+    }
+
+    /// A vertex's planet-centred position as the vertex shader morphs it by `factor`
+    /// ([`ChunkMesh::morph_factor`]), in f64 from the f32 offsets.
+    pub fn morphed_position_m(&self, index: u32, factor: f64) -> DVec3 {
+        let offset = glam::Vec3::from_array(self.morph_offsets[index as usize]).as_dvec3();
+        self.world_position_m(index) + offset * factor
+    }
+
+    /// A vertex's height field height as the vertex shader morphs it by `factor`, m.
+    pub fn morphed_height_m(&self, index: u32, factor: f64) -> f64 {
+        let (own, target) = (
+            f64::from(self.heights_m[index as usize]),
+            f64::from(self.morph_heights_m[index as usize]),
+        );
+        own + (target - own) * factor
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use std::collections::{HashMap, HashSet};
 
+    use super::super::geomorph::morphed_vertex_m;
     use super::super::lod::{LodSettings, LodView, select_chunks};
     use super::*;
 
@@ -251,6 +307,36 @@ mod tests {
             assert!((n.length() - 1.0).abs() < 1e-6);
             assert!((n - exact(d)).length() < 1e-4, "{n} {}", exact(d));
             assert!(n.dot(d) > 0.5);
+        }
+    }
+
+    /// The mesh's f32 targets give the f64 specification's morphed positions.
+    #[test]
+    fn the_meshes_targets_round_the_specification() {
+        let surface = TerrainSurface::new(Waves, R);
+        let mut key = super::super::chunk_key::ChunkKey::root(super::super::cube_sphere::Face(5));
+        for _ in 0..9 {
+            key = key.children()[1];
+        }
+        let chunk = SelectedChunk {
+            key,
+            coarser: [true, false, false, true],
+        };
+        let cells = 8;
+        let settings = LodSettings {
+            cells,
+            ..LodSettings::new(R)
+        };
+        let mesh = ChunkMesh::build(&surface, &chunk, cells);
+        let origin = mesh.origin_m;
+        let view = LodView::new(origin * 1.000_05, 720.0, 1.0);
+        let ends = MorphEnds::of_level(&settings, &view, key.level);
+        for k in 0..mesh.positions.len() as u32 {
+            let (i, j) = (k % (cells + 1), k / (cells + 1));
+            let exact = morphed_vertex_m(&surface, &chunk, cells, (i, j), view.camera_m, ends);
+            let m = mesh.morph_factor(k, chunk.coarser, view.camera_m, ends);
+            let drawn = mesh.morphed_position_m(k, m);
+            assert!((drawn - exact).length() < 2.4e-7 * (exact - origin).length() + 1e-9);
         }
     }
 }

@@ -45,7 +45,8 @@ pub struct InvalidLodSettings(pub String);
 pub struct LodSettings {
     /// The reference radius `R`, metres.
     pub radius_m: f64,
-    /// Cells along a chunk's side `n` (even, for stitching).
+    /// Cells along a chunk's side `n` (a multiple of 4: even for stitching, and so that
+    /// a chunk's corners are its grandparent's vertices for geomorphing).
     pub cells: u32,
     /// Split while a chunk's projected geometric error is above this, pixels.
     pub max_error_px: f64,
@@ -91,8 +92,11 @@ impl LodSettings {
         if !(self.radius_m > 0.0 && self.radius_m.is_finite()) {
             return Err(format!("radius_m: {} (expected > 0)", self.radius_m));
         }
-        if self.cells < 2 || !self.cells.is_multiple_of(2) || self.cells > 256 {
-            return Err(format!("cells: {} (expected even, 2 to 256)", self.cells));
+        if self.cells < 4 || !self.cells.is_multiple_of(4) || self.cells > 256 {
+            return Err(format!(
+                "cells: {} (expected a multiple of 4, 4 to 256)",
+                self.cells
+            ));
         }
         if !(self.max_error_px > 0.0 && self.max_error_px.is_finite()) {
             return Err(format!(
@@ -394,6 +398,8 @@ mod tests {
         let mut s = settings();
         s.cells = 7;
         assert!(s.validate().unwrap_err().0.starts_with("cells"));
+        s.cells = 6;
+        assert!(s.validate().unwrap_err().0.contains("multiple of 4"));
         let mut s = settings();
         s.max_error_px = 0.0;
         assert!(s.validate().unwrap_err().0.starts_with("max_error_px"));

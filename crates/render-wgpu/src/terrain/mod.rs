@@ -7,16 +7,21 @@
 //! [`lod::select_chunks`] for a camera -> one [`ChunkMesh`] per chosen chunk, positions
 //! relative to its f64 origin.
 
+pub mod chunk_cache;
+pub mod chunk_cover;
 pub mod chunk_key;
 pub mod chunk_mesh;
+pub mod chunk_worker;
 pub mod coastline;
 pub mod colour_map;
 pub mod colour_mips;
+pub mod colour_texture;
 pub mod cube_sphere;
 pub mod detail_noise;
 pub mod earth_data;
 pub mod frustum;
 pub mod geo_grid;
+pub mod geomorph;
 pub mod height_field;
 pub mod height_map;
 pub mod land_mask;

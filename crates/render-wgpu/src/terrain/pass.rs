@@ -4,9 +4,12 @@
 //!
 //! Each frame: the quadtree's chunks for the camera ([`select_chunks`], screen-space
 //! error), those whose bounding sphere meets the view pyramid ([`Frustum`]), their meshes
-//! (built on first use, in parallel, and kept while drawn; a changed exaggeration
+//! (built on first use and kept while drawn, `chunk_cache.rs`; a changed exaggeration
 //! rebuilds them), and one draw per chunk with its `origin - camera` offset computed in
-//! f64. Depth is reversed with an infinite far plane and a near plane at half the
+//! f64 and its morph ends (`geomorph.rs`). Offline (`TerrainOptions::wait_for_chunks`)
+//! the frame builds every missing mesh in parallel before drawing, so its image depends
+//! on nothing but the frame; interactive, the meshes are built off the render thread
+//! (`chunk_worker.rs`) and covered until they arrive (`chunk_cover.rs`). Depth is reversed with an infinite far plane and a near plane at half the
 //! camera's height above the terrain below it, so 1 m and 1e8 m need nothing special.
 //! Albedo comes from the colour map (decoded from sRGB, mip-mapped in linear light),
 //! taken as the albedo at the three wavelengths: the Blue Marble is a true-colour
@@ -15,6 +18,7 @@
 //! `geo::land_cover`), and the sea is marked for the model passes' specular water.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use atmosphere_core::geo::land_cover::{
     ROCK_ALBEDO, ROCK_SLOPE_COS, SNOW_ALBEDO, SNOW_BAND_M, SnowLine,
@@ -22,7 +26,6 @@ use atmosphere_core::geo::land_cover::{
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use rayon::prelude::*;
-use wgpu::util::DeviceExt;
 
 use crate::frame::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT, SurfaceBuffer};
 use crate::frame::{Frame, TerrainOptions};
@@ -32,12 +35,16 @@ use crate::gpu::pipeline::{
     buffer, float_texture_entry, in_stage, one_group_layout, ordered_bind_group,
     read_only_storage_buffer_entry, shader_module, texture_2d, uniform_buffer, uniform_entry,
 };
+use crate::terrain::chunk_cache::{ChunkCache, Vertex, buffer_with};
+use crate::terrain::chunk_cover::cover;
 use crate::terrain::chunk_key::ChunkKey;
 use crate::terrain::chunk_mesh::ChunkMesh;
-use crate::terrain::colour_map::ColourMap;
-use crate::terrain::colour_mips::colour_mips;
+use crate::terrain::chunk_worker::ChunkWorker;
+use crate::terrain::colour_texture::upload_colour;
+use crate::terrain::cube_sphere::Face;
 use crate::terrain::earth_data::{COLOUR_FILE, EarthData};
 use crate::terrain::frustum::Frustum;
+use crate::terrain::geomorph::{MORPH_START, MorphEnds};
 use crate::terrain::height_field::HeightField;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
 use crate::terrain::map_error::MapError;
@@ -47,9 +54,6 @@ use crate::terrain::stitching::stitched_indices;
 use crate::terrain::surface::TerrainSurface;
 
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-
-/// Chunks the level of detail has not chosen for this many frames leave the cache.
-const KEEP_FRAMES: u64 = 240;
 
 /// The smallest near plane, m.
 const MIN_NEAR_M: f64 = 0.05;
@@ -74,37 +78,26 @@ pub struct TerrainUniform {
     pub snow: [f32; 4],
 }
 
-/// WGSL `Chunk`, 32 bytes.
+/// WGSL `Chunk`, 48 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 struct ChunkUniform {
     offset: [f32; 4],
     origin: [f32; 4],
+    /// x, y: where the chunk's own and its coarser neighbours' morphs end, m
+    /// (`geomorph::MorphEnds`); z: the coarser edges as bits (`1 << Edge`); w: cells.
+    morph: [f32; 4],
 }
 
-/// A chunk's vertices on the GPU: position relative to the origin, the normal, and the
-/// height field's height (below 0: water).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-struct Vertex {
-    position: [f32; 3],
-    normal: [f32; 3],
-    height: f32,
-}
-
-#[derive(Debug)]
-struct GpuChunk {
-    vertices: wgpu::Buffer,
-    origin_m: DVec3,
-    /// Bounding sphere of the mesh's vertices (centre, radius), m.
-    bounds: (DVec3, f64),
-    /// The largest distance of a vertex from the planet's centre, m: no point of the
-    /// chunk's flat triangles lies farther (the distance is convex).
-    max_radius_m: f64,
-    /// The last frame whose level of detail chose the chunk.
-    last_selected: u64,
-    /// Whether a vertex lies in the sea (its height below 0).
-    has_water: bool,
+/// How the chosen chunks of the last prepared frame stand.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ChunkProgress {
+    /// Chunks the level of detail chose.
+    pub chosen: usize,
+    /// Chosen chunks without a mesh yet, drawn as a cover (`chunk_cover.rs`).
+    pub covered: usize,
+    /// Meshes the worker is building.
+    pub building: usize,
 }
 
 /// One chunk of this frame: its key and which edges border a coarser chunk.
@@ -117,14 +110,16 @@ struct Draw {
 /// The terrain's maps, pipeline and chunk cache; see the module documentation.
 #[derive(Debug)]
 pub struct TerrainPass {
-    surface: TerrainSurface<RefinedHeights>,
+    surface: Arc<TerrainSurface<Arc<RefinedHeights>>>,
     lod: LodSettings,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     params: wgpu::Buffer,
     colour: wgpu::TextureView,
     sampler: wgpu::Sampler,
-    chunks: HashMap<ChunkKey, GpuChunk>,
+    chunks: ChunkCache,
+    worker: ChunkWorker,
+    progress: ChunkProgress,
     /// Index buffers by coarser-edge pattern (the same for every chunk).
     indices: HashMap<[bool; 4], (wgpu::Buffer, u32)>,
     chunk_buffer: wgpu::Buffer,
@@ -212,7 +207,7 @@ impl TerrainPass {
                     array_stride: size_of::<Vertex>() as u64,
                     step_mode: wgpu::VertexStepMode::Vertex,
                     attributes: &wgpu::vertex_attr_array![
-                        0 => Float32x3, 1 => Float32x3, 2 => Float32
+                        0 => Float32x3, 1 => Float32x3, 2 => Float32, 3 => Float32x3, 4 => Float32
                     ],
                 })],
             },
@@ -258,14 +253,16 @@ impl TerrainPass {
         }
         let lod = LodSettings::for_spacing(radius_m, heights.sample_spacing_rad());
         Ok(TerrainPass {
-            surface: TerrainSurface::new(heights, radius_m),
+            surface: Arc::new(TerrainSurface::new(Arc::new(heights), radius_m)),
             lod,
             pipeline,
             layout,
             params,
             colour,
             sampler,
-            chunks: HashMap::new(),
+            chunks: ChunkCache::default(),
+            worker: ChunkWorker::default(),
+            progress: ChunkProgress::default(),
             indices: HashMap::new(),
             chunk_buffer,
             depth: depth_buffer(gpu, 1, 1),
@@ -277,7 +274,9 @@ impl TerrainPass {
     }
 
     /// Chooses, builds and uploads the chunks `frame` sees with `options`; returns how
-    /// many it will draw (0: no terrain in view, the pass can be skipped).
+    /// many it will draw (0: no terrain in view, the pass can be skipped). With
+    /// `options.wait_for_chunks` off, chunk meshes not yet built are asked of the worker
+    /// and covered meanwhile (`chunk_cover.rs`): only the six roots are ever built here.
     pub fn prepare(
         &mut self,
         gpu: &GpuContext,
@@ -287,11 +286,15 @@ impl TerrainPass {
         self.frame_number += 1;
         let radius_m = frame.atmosphere.bottom_radius_m;
         if self.surface.exaggeration != options.exaggeration || self.surface.radius_m != radius_m {
-            self.surface.exaggeration = options.exaggeration;
-            self.surface.radius_m = radius_m;
+            self.surface = Arc::new(TerrainSurface {
+                exaggeration: options.exaggeration,
+                radius_m,
+                ..(*self.surface).clone()
+            });
             self.lod =
                 LodSettings::for_spacing(radius_m, self.surface.heights.sample_spacing_rad());
             self.chunks.clear();
+            self.worker.reset();
         }
         let camera = frame.camera_position_m;
         let surface = &self.surface;
@@ -312,43 +315,21 @@ impl TerrainPass {
         );
         let selected = select_chunks(&self.lod, &view, |d| surface.elevation_m(d))
             .map_err(|e| RenderError::Frame(e.to_string()))?;
-        let missing: Vec<&SelectedChunk> = selected
-            .iter()
-            .filter(|c| !self.chunks.contains_key(&c.key))
-            .collect();
-        let built: Vec<ChunkMesh> = missing
-            .par_iter()
-            .map(|chunk| ChunkMesh::build(surface, chunk, self.lod.cells))
-            .collect();
-        for mesh in built {
-            let bounds = mesh.bounding_sphere();
-            let vertices: Vec<Vertex> = mesh
-                .positions
+        let draws = if options.wait_for_chunks {
+            self.build_in_place(gpu, &selected);
+            selected.clone()
+        } else {
+            self.build_off_thread(gpu, &selected, camera);
+            cover(&selected, |k| self.chunks.contains(k))
+        };
+        self.progress = ChunkProgress {
+            chosen: selected.len(),
+            covered: selected
                 .iter()
-                .zip(&mesh.normals)
-                .zip(&mesh.heights_m)
-                .map(|((&position, &normal), &height)| Vertex {
-                    position,
-                    normal,
-                    height,
-                })
-                .collect();
-            let buffer = buffer_with(gpu, "terrain chunk", &vertices, wgpu::BufferUsages::VERTEX);
-            let max_radius_m = (0..mesh.positions.len() as u32)
-                .map(|k| mesh.world_position_m(k).length())
-                .fold(0.0, f64::max);
-            self.chunks.insert(
-                mesh.key,
-                GpuChunk {
-                    vertices: buffer,
-                    origin_m: mesh.origin_m,
-                    bounds,
-                    max_radius_m,
-                    last_selected: 0,
-                    has_water: mesh.heights_m.iter().any(|&h| h < 0.0),
-                },
-            );
-        }
+                .filter(|c| !self.chunks.contains(c.key))
+                .count(),
+            building: self.worker.pending(),
+        };
 
         let [right, up, forward] = frame.axes();
         let (half_w, half_h) = frame.half_extent();
@@ -357,9 +338,9 @@ impl TerrainPass {
         self.draws.clear();
         self.water_in_view = false;
         let mut uniforms = Vec::new();
-        for chunk in &selected {
-            let gpu_chunk = self.chunks.get_mut(&chunk.key).expect("built above");
-            gpu_chunk.last_selected = self.frame_number;
+        for chunk in &draws {
+            self.chunks.touch(chunk.key, self.frame_number);
+            let gpu_chunk = self.chunks.get(chunk.key).expect("built or covered above");
             let (centre, radius) = gpu_chunk.bounds;
             let below_every_ray = gpu_chunk.max_radius_m + 1.0 < lowest_ray_m;
             if below_every_ray || !frustum.sees_sphere(centre, radius) {
@@ -370,14 +351,23 @@ impl TerrainPass {
                 key: chunk.key,
                 coarser: chunk.coarser,
             });
+            let ends = MorphEnds::of_level(&self.lod, &view, chunk.key.level);
+            let mask = (0..4)
+                .filter(|&e| chunk.coarser[e])
+                .map(|e| 1 << e)
+                .sum::<u32>();
             uniforms.push(ChunkUniform {
                 offset: v4(gpu_chunk.origin_m - camera),
                 origin: v4(gpu_chunk.origin_m),
+                morph: [
+                    ends.own_m as f32,
+                    ends.edge_m as f32,
+                    mask as f32,
+                    self.lod.cells as f32,
+                ],
             });
         }
-        let frame_number = self.frame_number;
-        self.chunks
-            .retain(|_, c| frame_number - c.last_selected < KEEP_FRAMES);
+        self.chunks.evict(self.frame_number);
         for draw in &self.draws {
             self.indices.entry(draw.coarser).or_insert_with(|| {
                 let indices = stitched_indices(self.lod.cells, draw.coarser);
@@ -407,7 +397,7 @@ impl TerrainPass {
             right: v4(right / half_w),
             up: v4(up / half_h),
             forward: v4(forward),
-            near: [near_plane_m(clearance) as f32, 0.0, 0.0, 0.0],
+            near: [near_plane_m(clearance) as f32, MORPH_START as f32, 0.0, 0.0],
             sea_albedo: [sea[0], sea[1], sea[2], 1.0],
             snow_line: [
                 line.at_equator_m as f32,
@@ -421,6 +411,64 @@ impl TerrainPass {
         gpu.write_uniform(&self.params, &params);
         self.ensure_depth(gpu, frame.width, frame.height);
         Ok(self.draws.len())
+    }
+
+    /// Builds the chosen chunks not in the cache, in parallel, and uploads them.
+    fn build_in_place(&mut self, gpu: &GpuContext, selected: &[SelectedChunk]) {
+        let missing: Vec<&SelectedChunk> = selected
+            .iter()
+            .filter(|c| !self.chunks.contains(c.key))
+            .collect();
+        let surface = &self.surface;
+        let cells = self.lod.cells;
+        let built: Vec<ChunkMesh> = missing
+            .par_iter()
+            .map(|chunk| ChunkMesh::build(surface, chunk, cells))
+            .collect();
+        for mesh in &built {
+            self.chunks.insert(gpu, mesh, self.frame_number);
+        }
+    }
+
+    /// Uploads the worker's finished meshes, builds the six roots here if missing (the
+    /// cover of last resort), and asks the worker for the chosen chunks still missing,
+    /// coarsest first, then nearest.
+    fn build_off_thread(&mut self, gpu: &GpuContext, selected: &[SelectedChunk], camera: DVec3) {
+        for mesh in self.worker.finished() {
+            if !self.chunks.contains(mesh.key) {
+                self.chunks.insert(gpu, &mesh, self.frame_number);
+            }
+        }
+        let roots: Vec<SelectedChunk> = Face::ALL
+            .iter()
+            .map(|&f| SelectedChunk {
+                key: ChunkKey::root(f),
+                coarser: [false; 4],
+            })
+            .collect();
+        self.build_in_place(gpu, &roots);
+        let mut missing: Vec<(u8, f64, SelectedChunk)> = selected
+            .iter()
+            .filter(|c| !self.chunks.contains(c.key) && !self.worker.is_building(c.key))
+            .map(|c| {
+                let centre = self
+                    .lod
+                    .bounding_sphere(c.key, &|d| self.surface.elevation_m(d))
+                    .0;
+                (c.key.level, (centre - camera).length(), *c)
+            })
+            .collect();
+        missing.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        for (_, _, chunk) in missing {
+            if !self.worker.request(&self.surface, chunk, self.lod.cells) {
+                break;
+            }
+        }
+    }
+
+    /// How the last prepared frame's chunks stood.
+    pub fn progress(&self) -> ChunkProgress {
+        self.progress
     }
 
     fn ensure_depth(&mut self, gpu: &GpuContext, width: u32, height: u32) {
@@ -481,7 +529,7 @@ impl TerrainPass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind_group, &[]);
         for (instance, draw) in self.draws.iter().enumerate() {
-            let chunk = &self.chunks[&draw.key];
+            let chunk = self.chunks.get(draw.key).expect("drawn chunks are cached");
             let (indices, count) = &self.indices[&draw.coarser];
             pass.set_vertex_buffer(0, chunk.vertices.slice(..));
             pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
@@ -513,65 +561,10 @@ fn v4(v: DVec3) -> [f32; 4] {
     [v.x as f32, v.y as f32, v.z as f32, 0.0]
 }
 
-fn buffer_with<T: Pod>(
-    gpu: &GpuContext,
-    label: &str,
-    data: &[T],
-    usage: wgpu::BufferUsages,
-) -> wgpu::Buffer {
-    gpu.device
-        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(label),
-            contents: bytemuck::cast_slice(data),
-            usage,
-        })
-}
-
 fn chunk_buffer(gpu: &GpuContext, chunks: usize) -> wgpu::Buffer {
     let size = (chunks.max(1) * size_of::<ChunkUniform>()) as u64;
     let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
     buffer(&gpu.device, "terrain chunks", size, usage)
-}
-
-/// The colour map as an sRGB texture with its mip chain.
-fn upload_colour(gpu: &GpuContext, map: &ColourMap) -> wgpu::TextureView {
-    let levels = colour_mips(map);
-    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("colour map"),
-        size: wgpu::Extent3d {
-            width: map.width as u32,
-            height: map.height as u32,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: levels.len() as u32,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8UnormSrgb,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    for (level, mip) in levels.iter().enumerate() {
-        gpu.queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: level as u32,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            bytemuck::cast_slice(&mip.texels),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(mip.width as u32 * 4),
-                rows_per_image: Some(mip.height as u32),
-            },
-            wgpu::Extent3d {
-                width: mip.width as u32,
-                height: mip.height as u32,
-                depth_or_array_layers: 1,
-            },
-        );
-    }
-    texture.create_view(&Default::default())
 }
 
 #[cfg(test)]
