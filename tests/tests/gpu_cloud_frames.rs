@@ -28,9 +28,8 @@ use atmosphere_core::geo::equirectangular::lat_lon;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
-use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
-use atmosphere_core::optics::phase::{PhaseFunction, henyey_greenstein};
+use atmosphere_core::optics::phase::PhaseFunction;
 use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
 use glam::DVec3;
 use render_wgpu::Renderer;
@@ -50,16 +49,9 @@ const MOUNTAIN_M: f32 = 2_000.0;
 /// Henyey-Greenstein tables, another g at each wavelength so that a swapped channel
 /// shows.
 fn orders() -> ScatteringOrders {
-    let rule = gauss_legendre(600);
     let series: Vec<LegendreSeries> = [0.84, 0.85, 0.86]
         .iter()
-        .map(|&g| {
-            let values: Vec<f64> = rule
-                .iter()
-                .map(|&(nu, _)| henyey_greenstein(g, nu))
-                .collect();
-            LegendreSeries::from_gauss_rule(&rule, &values, 300)
-        })
+        .map(|&g| LegendreSeries::henyey_greenstein(g, 300))
         .collect();
     ScatteringOrders::new(&series).unwrap()
 }

@@ -27,9 +27,8 @@ use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, reduced_size, upsample};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::geo::equirectangular::lat_lon;
-use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
-use atmosphere_core::optics::phase::{PhaseFunction, henyey_greenstein};
+use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::clouds::layer_inputs::LayerInputs;
 use render_wgpu::clouds::layer_pass::CloudLayerPass;
@@ -47,16 +46,9 @@ const JUMP_FACTOR: f64 = 4.0;
 /// Henyey-Greenstein tables, another g at each wavelength so that a swapped channel
 /// shows.
 fn orders() -> ScatteringOrders {
-    let rule = gauss_legendre(600);
     let series: Vec<LegendreSeries> = [0.84, 0.85, 0.86]
         .iter()
-        .map(|&g| {
-            let values: Vec<f64> = rule
-                .iter()
-                .map(|&(nu, _)| henyey_greenstein(g, nu))
-                .collect();
-            LegendreSeries::from_gauss_rule(&rule, &values, 300)
-        })
+        .map(|&g| LegendreSeries::henyey_greenstein(g, 300))
         .collect();
     ScatteringOrders::new(&series).unwrap()
 }
@@ -351,13 +343,7 @@ fn tables_for_other_than_three_wavelengths_are_refused_by_name() {
     let Some(gpu) = support::gpu_or_skip("cloud layer inputs") else {
         return;
     };
-    let rule = gauss_legendre(64);
-    let values: Vec<f64> = rule
-        .iter()
-        .map(|&(nu, _)| henyey_greenstein(0.5, nu))
-        .collect();
-    let one =
-        ScatteringOrders::new(&[LegendreSeries::from_gauss_rule(&rule, &values, 30)]).unwrap();
+    let one = ScatteringOrders::new(&[LegendreSeries::henyey_greenstein(0.5, 30)]).unwrap();
     let e = LayerInputs::new(&gpu, &cover(), &one).unwrap_err();
     assert!(
         e.to_string()

@@ -14,9 +14,8 @@ use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
-use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
-use atmosphere_core::optics::phase::{PhaseFunction, henyey_greenstein};
+use atmosphere_core::optics::phase::PhaseFunction;
 
 const BOTTOM_M: f64 = 6_360_000.0;
 
@@ -25,12 +24,7 @@ fn model() -> Box<dyn SkyModel> {
 }
 
 fn orders(waves: usize) -> ScatteringOrders {
-    let rule = gauss_legendre(600);
-    let values: Vec<f64> = rule
-        .iter()
-        .map(|&(nu, _)| henyey_greenstein(0.85, nu))
-        .collect();
-    let series = LegendreSeries::from_gauss_rule(&rule, &values, 300);
+    let series = LegendreSeries::henyey_greenstein(0.85, 300);
     ScatteringOrders::new(&vec![series; waves]).unwrap()
 }
 

@@ -19,12 +19,7 @@ const G: f64 = 0.85;
 const THICKNESS_M: f64 = 1000.0;
 
 fn orders() -> ScatteringOrders {
-    let rule = gauss_legendre(600);
-    let values: Vec<f64> = rule
-        .iter()
-        .map(|&(nu, _)| henyey_greenstein(G, nu))
-        .collect();
-    ScatteringOrders::new(&[LegendreSeries::from_gauss_rule(&rule, &values, 300)]).unwrap()
+    ScatteringOrders::new(&[LegendreSeries::henyey_greenstein(G, 300)]).unwrap()
 }
 
 fn slab(tau: f64) -> Slab {

@@ -173,3 +173,27 @@ fn the_cut_series_equals_the_full_one() {
         }
     }
 }
+
+#[test]
+fn the_closed_form_henyey_greenstein_series_is_the_function() {
+    for g in [-0.3, 0.5, 0.85] {
+        let closed = LegendreSeries::henyey_greenstein(g, 300);
+        let quadrature = series_of(|nu| henyey_greenstein(g, nu), 600, 300);
+        for (l, (a, b)) in closed
+            .coefficients()
+            .iter()
+            .zip(quadrature.coefficients())
+            .enumerate()
+        {
+            assert!((a - b).abs() < 1e-9, "g {g}, chi_{l}: {a} against {b}");
+        }
+        for k in 0..=20 {
+            let nu = -1.0 + 0.1 * f64::from(k);
+            let (series, exact) = (closed.eval(nu), henyey_greenstein(g, nu));
+            assert!(
+                (series - exact).abs() < 1e-9 * exact,
+                "g {g}, nu {nu}: {series} against {exact}"
+            );
+        }
+    }
+}

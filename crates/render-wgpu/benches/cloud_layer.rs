@@ -27,9 +27,7 @@ use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::ModelSettings;
-use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
-use atmosphere_core::optics::phase::henyey_greenstein;
 use glam::DVec3;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::layer_inputs::LayerInputs;
@@ -124,12 +122,7 @@ fn main() {
     let mut renderer = Renderer::headless().expect("a GPU adapter");
     let cover = GeneratedCover::new(CoverParameters::default()).unwrap();
     let grid = CoverGrid::rasterize(1024, 512, |p| cover.cover(p)).unwrap();
-    let rule = gauss_legendre(600);
-    let values: Vec<f64> = rule
-        .iter()
-        .map(|&(nu, _)| henyey_greenstein(0.85, nu))
-        .collect();
-    let series = LegendreSeries::from_gauss_rule(&rule, &values, 300);
+    let series = LegendreSeries::henyey_greenstein(0.85, 300);
     let orders = ScatteringOrders::new(&vec![series; 3]).unwrap();
     let gpu = renderer.gpu();
     let inputs = LayerInputs::new(gpu, &grid, &orders).unwrap();

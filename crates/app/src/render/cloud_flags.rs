@@ -14,9 +14,7 @@ use atmosphere_core::clouds::layer::settings::{
     MIN_THICKNESS_M,
 };
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::numerics::gauss_legendre_rule::gauss_legendre;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
-use atmosphere_core::optics::phase::henyey_greenstein;
 use clap::Args;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
 use render_wgpu::{Frame, Renderer};
@@ -168,14 +166,9 @@ fn image_cover(path: &Path, channel: &str) -> anyhow::Result<CoverGrid> {
 
 /// The layer's multiple-scattering tables at 680, 550 and 440 nm: Riley et al. 2004's
 /// A_n and F_n of a Henyey-Greenstein function with the droplets' asymmetry, from its
-/// Legendre series (exact to degree 300 at g = 0.87: chi_l = g^l < 1e-18).
+/// Legendre series chi_l = g^l (cut at degree 300, where g^l < 1e-18 at g = 0.87).
 pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
-    let rule = gauss_legendre(600);
-    let values: Vec<f64> = rule
-        .iter()
-        .map(|&(nu, _)| henyey_greenstein(DROPLET_ASYMMETRY, nu))
-        .collect();
-    let series = LegendreSeries::from_gauss_rule(&rule, &values, 300);
+    let series = LegendreSeries::henyey_greenstein(DROPLET_ASYMMETRY, 300);
     Ok(ScatteringOrders::new(&vec![series; 3])?)
 }
 

@@ -44,6 +44,12 @@ impl LegendreSeries {
         LegendreSeries { coefficients: chi }
     }
 
+    /// The series of Henyey and Greenstein's (1941) phase function of asymmetry `g` in
+    /// (-1, 1), to `degree`: chi_l = g^l exactly.
+    pub fn henyey_greenstein(g: f64, degree: usize) -> LegendreSeries {
+        LegendreSeries::from_coefficients((0..=degree).map(|l| g.powi(l as i32)).collect())
+    }
+
     /// A series from its coefficients (chi_0 is taken as 1).
     pub fn from_coefficients(mut coefficients: Vec<f64>) -> LegendreSeries {
         if coefficients.is_empty() {

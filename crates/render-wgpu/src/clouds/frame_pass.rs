@@ -69,11 +69,6 @@ impl CloudTargets {
         }
     }
 
-    /// (width, height) in pixels.
-    pub fn size(&self) -> (u32, u32) {
-        (self.full.width(), self.full.height())
-    }
-
     /// Views of the second run's surface, for its `PassIo`.
     pub fn front_surface(&self) -> [wgpu::TextureView; 2] {
         [

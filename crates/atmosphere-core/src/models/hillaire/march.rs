@@ -95,13 +95,11 @@ impl<'a> ViewMarch<'a> {
             let (s_r, s_m, extinction) = self.medium.coefficients(rho, w);
             let (t_seg, integral) = segment_weight(extinction, dt);
             let single = self.sun[w] * (s_r * self.phase_rayleigh + s_m * self.phase_mie);
-            let multiple = match (self.multiple, self.medium.diffuse) {
+            let scaled = self.medium.diffuse.map(|d| coefficients(d, rho, w));
+            let multiple = match (self.multiple, scaled) {
                 (None, _) => 0.0,
                 (Some(ms), None) if ms.order == 0 => self.psi[w] * (s_r + s_m),
-                (Some(_), Some(diffuse)) => {
-                    let (s_r, s_m, _) = coefficients(diffuse, rho, w);
-                    self.psi[w] * (s_r + s_m)
-                }
+                (Some(_), Some((s_r, s_m, _))) => self.psi[w] * (s_r + s_m),
                 (Some(ms), None) => {
                     let psi = std::array::from_fn(|l| {
                         if l < moments::blocks(ms.order) {
@@ -114,11 +112,10 @@ impl<'a> ViewMarch<'a> {
                     moments::source(psi, ms.order, angles, &ms.phase_moments, s_r, s_m)
                 }
             };
-            match self.medium.diffuse {
+            match scaled {
                 None => self.radiance[w] += self.throughput[w] * (single + multiple) * integral,
-                Some(diffuse) => {
-                    let (t_light, integral_light) =
-                        segment_weight(coefficients(diffuse, rho, w).2, dt);
+                Some((_, _, scaled_extinction)) => {
+                    let (t_light, integral_light) = segment_weight(scaled_extinction, dt);
                     self.radiance[w] +=
                         self.diffuse_throughput[w] * (single + multiple) * integral_light;
                     self.diffuse_throughput[w] *= t_light;

@@ -40,7 +40,7 @@ pub struct Medium<'a> {
     /// Mie density is then taken as 0, which changes no sum (its coefficients are 0).
     pub mie: bool,
     /// The coefficients that orders two and up see along a view ray, when they differ
-    /// from `spectra`: the similarity-scaled medium (`similarity.rs`, `ms_similarity`).
+    /// from `spectra`: the similarity-scaled medium (`similarity.rs`, the setting `ms_delta`).
     pub diffuse: Option<&'a Spectra>,
 }
 

@@ -7,6 +7,8 @@
 use num_complex::Complex64;
 use thiserror::Error;
 
+use crate::optics::refractive_index::tabulated::interpolate;
+
 /// Vacuum wavelength (nm), n, k: Warren and Brandt 2008.
 const WARREN_BRANDT_2008: [(f64, f64, f64); 64] = [
     (300.0, 1.3339, 2e-11),
@@ -91,15 +93,7 @@ pub fn ice_refractive_index(wavelength_nm: f64) -> Result<Complex64, OutsideIceT
     if !(lo..=hi).contains(&wavelength_nm) {
         return Err(OutsideIceTable(wavelength_nm));
     }
-    let i = WARREN_BRANDT_2008
-        .windows(2)
-        .position(|w| wavelength_nm <= w[1].0)
-        .unwrap_or(WARREN_BRANDT_2008.len() - 2);
-    let ((w0, n0, k0), (w1, n1, k1)) = (WARREN_BRANDT_2008[i], WARREN_BRANDT_2008[i + 1]);
-    let t = (wavelength_nm - w0) / (w1 - w0);
-    let n = n0 + t * (n1 - n0);
-    let k = (k0.ln() + t * (k1.ln() - k0.ln())).exp();
-    Ok(Complex64::new(n, k))
+    Ok(interpolate(&WARREN_BRANDT_2008, wavelength_nm))
 }
 
 #[cfg(test)]

@@ -2,4 +2,5 @@
 //! (k >= 0 absorbs), at a vacuum wavelength.
 
 pub mod ice;
+pub mod tabulated;
 pub mod water;

@@ -5,6 +5,8 @@
 use num_complex::Complex64;
 use thiserror::Error;
 
+use crate::optics::refractive_index::tabulated::interpolate;
+
 /// Vacuum wavelength (nm), n, k: Hale and Querry 1973, Table I.
 const HALE_QUERRY_1973: [(f64, f64, f64); 33] = [
     (200.0, 1.396, 1.10e-7),
@@ -58,18 +60,7 @@ pub fn water_refractive_index(wavelength_nm: f64) -> Result<Complex64, OutsideWa
     if !(lo..=hi).contains(&wavelength_nm) {
         return Err(OutsideWaterTable(wavelength_nm));
     }
-    if let Some(&(_, n, k)) = HALE_QUERRY_1973.iter().find(|row| row.0 == wavelength_nm) {
-        return Ok(Complex64::new(n, k));
-    }
-    let i = HALE_QUERRY_1973
-        .windows(2)
-        .position(|w| wavelength_nm <= w[1].0)
-        .unwrap_or(HALE_QUERRY_1973.len() - 2);
-    let ((l0, n0, k0), (l1, n1, k1)) = (HALE_QUERRY_1973[i], HALE_QUERRY_1973[i + 1]);
-    let t = (wavelength_nm - l0) / (l1 - l0);
-    let n = n0 + t * (n1 - n0);
-    let k = (k0.ln() + t * (k1.ln() - k0.ln())).exp();
-    Ok(Complex64::new(n, k))
+    Ok(interpolate(&HALE_QUERRY_1973, wavelength_nm))
 }
 
 #[cfg(test)]
