@@ -142,6 +142,12 @@ impl AngleRange {
     pub fn angles_deg(&self) -> impl Iterator<Item = f64> + '_ {
         (0..self.count).map(|i| self.start + self.step * i as f64)
     }
+
+    /// The cosines of the angles, in order: the scattering angles as Mie's functions
+    /// take them.
+    pub fn cosines(&self) -> Vec<f64> {
+        self.angles_deg().map(|a| a.to_radians().cos()).collect()
+    }
 }
 
 pub fn parse_angles(text: &str) -> Result<AngleRange, String> {

@@ -49,11 +49,7 @@ pub fn compute(args: &PhaseArgs) -> anyhow::Result<(String, Vec<WavelengthResult
              --wavelengths"
         );
     }
-    let cosines: Vec<f64> = args
-        .angles_deg
-        .angles_deg()
-        .map(|a| a.to_radians().cos())
-        .collect();
+    let cosines = args.angles_deg.cosines();
     // The radii run in parallel within each wavelength.
     let results = args
         .wavelengths

@@ -41,11 +41,7 @@ pub fn compute(args: &PhaseArgs) -> anyhow::Result<(String, Vec<WavelengthResult
         .collect::<anyhow::Result<Vec<_>>>()?;
     check_work(args, &distribution)?;
 
-    let cosines: Vec<f64> = args
-        .angles_deg
-        .angles_deg()
-        .map(|a| a.to_radians().cos())
-        .collect();
+    let cosines = args.angles_deg.cosines();
     let results = args
         .wavelengths
         .par_iter()
