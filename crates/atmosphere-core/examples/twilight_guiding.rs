@@ -50,7 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             None,
         )?;
         let path = ViewPath::new(&a, &ray, Fineness::VIEW)?;
-        let single = single_scattering(&a, &spectra, &path, ray.sun_direction)[0];
+        let single = single_scattering(&a, &spectra, &path, ray.sun_direction, None)[0];
         for guiding in [Guiding::Off, Guiding::TowardsLitAir] {
             let mut sampler = Sampler::new(7);
             let start = Instant::now();

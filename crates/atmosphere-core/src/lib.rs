@@ -15,4 +15,5 @@ pub mod models;
 pub mod numerics;
 pub mod optics;
 pub mod reference;
+pub mod shafts;
 pub mod sun_position;

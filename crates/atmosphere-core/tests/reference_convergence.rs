@@ -39,12 +39,14 @@ fn single_scattering_quadrature_has_converged() {
             &spectra,
             &ViewPath::new(&a, &ray, Fineness::VIEW).unwrap(),
             sun,
+            None,
         );
         let fine = single_scattering(
             &a,
             &spectra,
             &ViewPath::new(&a, &ray, Fineness::VIEW.halved()).unwrap(),
             sun,
+            None,
         );
         for w in 0..3 {
             let rel = (coarse[w] - fine[w]).abs() / fine[w].max(1e-30);

@@ -43,7 +43,7 @@ fn estimate(
     .unwrap();
     let path = ViewPath::new(a, &ray, Fineness::VIEW).unwrap();
     let spectra = Spectra::new(a, &[550.0]);
-    let single = single_scattering(a, &spectra, &path, ray.sun_direction)[0];
+    let single = single_scattering(a, &spectra, &path, ray.sun_direction, None)[0];
     let mut sampler = Sampler::new(seed);
     let e =
         reference.multiple_scattering(&path, ray.sun_direction, 0, single, guiding, &mut sampler);

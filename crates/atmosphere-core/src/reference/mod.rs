@@ -42,6 +42,7 @@ use crate::numerics::sampling::{Sampler, mix_seed};
 use crate::optics::column::{Fineness, optical_depth};
 use crate::optics::phase_sampling::PhaseSampler;
 use crate::optics::transmittance_table::TransmittanceTable;
+use crate::shafts::SunVisibility;
 
 /// Size of the columns table for the sun's transmittance in Monte Carlo events.
 const MC_TABLE_SIZE: (usize, usize) = (512, 128);
@@ -224,9 +225,22 @@ impl SkyModel for Reference {
     }
 
     fn radiance(&self, ray: &ViewRay) -> Result<RayRadiance, ModelError> {
+        self.radiance_shadowed(ray, None)
+    }
+}
+
+impl Reference {
+    /// The radiance of `ray` with the terrain's shadow `shadow` in the air: its single
+    /// scattering sees the sun through it at every quadrature node; the higher orders,
+    /// by Monte Carlo, are left unshadowed (docs/shafts.md).
+    pub fn radiance_shadowed(
+        &self,
+        ray: &ViewRay,
+        shadow: Option<&dyn SunVisibility>,
+    ) -> Result<RayRadiance, ModelError> {
         let path = ViewPath::new(&self.atmosphere, ray, Fineness::VIEW)?;
         let sun = ray.sun_direction.normalize();
-        let single = single_scattering(&self.atmosphere, &self.base.spectra, &path, sun);
+        let single = single_scattering(&self.atmosphere, &self.base.spectra, &path, sun, shadow);
         let transmittance = self
             .base
             .spectra

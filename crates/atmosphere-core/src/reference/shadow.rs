@@ -351,7 +351,7 @@ mod tests {
             let std_error = ((sum_sq / n as f64 - mean * mean) / n as f64).sqrt();
             let spectra = Spectra::new(&earth, &[550.0]);
             let path = ViewPath::new(&earth, &ray, Fineness::VIEW).unwrap();
-            let exact = single_scattering(&earth, &spectra, &path, ray.sun_direction)[0];
+            let exact = single_scattering(&earth, &spectra, &path, ray.sun_direction, None)[0];
             eprintln!(
                 "{altitude} {view_zenith} {sun_zenith}: {mean:e} +- {std_error:e} vs {exact:e}, one-sample rel std {:.2}",
                 std_error * (n as f64).sqrt() / mean

@@ -1,0 +1,231 @@
+//! The terrain's shadow in the air (`atmosphere_core::shafts`) against closed forms: a
+//! straight ridge on the sphere with a low sun, whose shadow boundary is a line-ridge
+//! intersection; flat ground, which shadows nothing with the sun up; and the reference's
+//! shadowed single scattering against its unshadowed value from the shadow's top.
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::reference::Reference;
+use atmosphere_core::shafts::{GnomonicGrid, HeightFieldShadow, Relief, ShadowMap, SunVisibility};
+use glam::DVec3;
+
+const RADIUS_M: f64 = 6_360_000.0;
+/// The ridge's crest: its sunward top edge lies this far north of the site, m.
+const CREST_M: f64 = 10_000.0;
+const RIDGE_HEIGHT_M: f64 = 2_000.0;
+const RIDGE_TOP_WIDTH_M: f64 = 2_000.0;
+/// The sun's elevation over the site, degrees, due north.
+const SUN_ELEVATION_DEG: f64 = 5.0;
+
+/// A ridge along the parallels (the site is at latitude 0, longitude 0, x up, z north):
+/// a trapezoid in latitude, flanks of slope 1, a flat top from `CREST_M` northwards.
+struct Ridge;
+
+impl Relief for Ridge {
+    fn elevation_m(&self, d: DVec3) -> f64 {
+        let north_m = d.z.asin() * RADIUS_M;
+        let rise = RIDGE_HEIGHT_M - (CREST_M - north_m);
+        let fall = RIDGE_HEIGHT_M - (north_m - CREST_M - RIDGE_TOP_WIDTH_M);
+        rise.min(fall).clamp(0.0, RIDGE_HEIGHT_M)
+    }
+    fn elevation_bound_m(&self) -> f64 {
+        RIDGE_HEIGHT_M
+    }
+}
+
+struct Flat;
+
+impl Relief for Flat {
+    fn elevation_m(&self, _: DVec3) -> f64 {
+        0.0
+    }
+    fn elevation_bound_m(&self) -> f64 {
+        0.0
+    }
+}
+
+fn sun(elevation_deg: f64) -> DVec3 {
+    let e = elevation_deg.to_radians();
+    DVec3::new(e.sin(), 0.0, e.cos())
+}
+
+/// The point `north_m` north of the site (along the meridian) at `altitude_m`.
+fn point(north_m: f64, altitude_m: f64) -> DVec3 {
+    let phi = north_m / RADIUS_M;
+    (RADIUS_M + altitude_m) * DVec3::new(phi.cos(), 0.0, phi.sin())
+}
+
+/// Closed form: the ray from `p` to the sun, in the meridian plane, meets the crest's
+/// radius line (the direction of the ridge's sunward top edge); the point is shadowed
+/// when it passes below the ridge's top there.
+fn shadowed_exactly(p: DVec3, s: DVec3) -> bool {
+    let phi = CREST_M / RADIUS_M;
+    let u = DVec3::new(phi.cos(), 0.0, phi.sin());
+    let cross = |a: DVec3, b: DVec3| a.x * b.z - a.z * b.x;
+    let t = -cross(u, p) / cross(u, s);
+    (p + t * s).length() < RADIUS_M + RIDGE_HEIGHT_M
+}
+
+/// The altitude of the shadow's top over the point `north_m` north of the site, by
+/// bisection of `shadowed` (true below the boundary).
+fn boundary_m(north_m: f64, shadowed: impl Fn(f64) -> bool) -> f64 {
+    let (mut low, mut high) = (0.0, RIDGE_HEIGHT_M);
+    for _ in 0..40 {
+        let mid = 0.5 * (low + high);
+        if shadowed(mid) {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    0.5 * (low + high)
+}
+
+fn ridge_map(cell_m: f64, size: usize) -> ShadowMap {
+    let grid = GnomonicGrid::new(DVec3::X, RADIUS_M, cell_m, size);
+    ShadowMap::new(
+        grid,
+        &grid.sample(|d| Ridge.elevation_m(d)),
+        sun(SUN_ELEVATION_DEG),
+    )
+}
+
+#[test]
+fn the_march_finds_the_ridge_shadow_boundary_of_the_closed_form() {
+    let s = sun(SUN_ELEVATION_DEG);
+    let march = HeightFieldShadow::new(Ridge, RADIUS_M);
+    for north_m in [0.0, 4_000.0, 7_500.0] {
+        let exact = boundary_m(north_m, |a| shadowed_exactly(point(north_m, a), s));
+        // The flank's foot is at 8 km: every point here is south of the ridge.
+        assert!(exact > 0.0 && exact < RIDGE_HEIGHT_M, "{north_m}: {exact}");
+        // Within the march's shortest step times the ray's slope, and a margin.
+        for (altitude, lit) in [(exact - 10.0, 0.0), (exact + 10.0, 1.0)] {
+            let v = march.sun_visible(point(north_m, altitude), s);
+            assert_eq!(
+                v, lit,
+                "{north_m} m north at {altitude} m (boundary {exact} m)"
+            );
+        }
+    }
+    // High above the crest, and just above the ridge's flat top.
+    assert_eq!(march.sun_visible(point(0.0, 3_000.0), s), 1.0);
+    assert_eq!(march.sun_visible(point(CREST_M + 1_000.0, 2_010.0), s), 1.0);
+}
+
+#[test]
+fn the_shadow_map_finds_the_same_boundary_within_a_cell() {
+    let s = sun(SUN_ELEVATION_DEG);
+    let cell_m = 100.0;
+    let map = ridge_map(cell_m, 256);
+    // The map's boundary: the top S, sampled at cell centres and interpolated; the
+    // crest falls between samples, lowering S by at most a cell of the flank's slope.
+    let tolerance_m = cell_m * (1.0 + SUN_ELEVATION_DEG.to_radians().tan()) + 1.0;
+    let mut worst = 0.0f64;
+    for k in 0..=15 {
+        let north_m = -7_000.0 + 1_000.0 * f64::from(k);
+        let exact = boundary_m(north_m, |a| shadowed_exactly(point(north_m, a), s));
+        let mapped = boundary_m(north_m, |a| map.sun_visible(point(north_m, a), s) < 1.0);
+        worst = worst.max((mapped - exact).abs());
+        assert!(
+            (mapped - exact).abs() < tolerance_m,
+            "{north_m} m north: map {mapped} m, exact {exact} m"
+        );
+        // Below the boundary by more than the penumbra band: dark.
+        let below = mapped - f64::from(map.band_m) - 1.0;
+        assert_eq!(map.sun_visible(point(north_m, below), s), 0.0);
+    }
+    println!("largest boundary error of the 100 m map: {worst:.1} m");
+    // Outside the grid (the map knows nothing there): lit.
+    assert_eq!(map.sun_visible(point(-20_000.0, 10.0), s), 1.0);
+}
+
+#[test]
+fn flat_ground_shadows_nothing_with_the_sun_up() {
+    let march = HeightFieldShadow::new(Flat, RADIUS_M);
+    let grid = GnomonicGrid::new(DVec3::X, RADIUS_M, 200.0, 64);
+    for elevation_deg in [0.5, 5.0, 30.0, 89.0] {
+        let s = sun(elevation_deg);
+        let map = ShadowMap::new(grid, &grid.sample(|_| 0.0), s);
+        for north_m in [-6_000.0, 0.0, 3_000.0] {
+            for altitude in [0.0, 1.0, 100.0, 5_000.0] {
+                let p = point(north_m, altitude);
+                assert_eq!(march.sun_visible(p, s), 1.0, "{elevation_deg} {altitude}");
+                assert_eq!(map.sun_visible(p, s), 1.0, "{elevation_deg} {altitude}");
+            }
+        }
+    }
+}
+
+/// Single scattering only, at one wavelength.
+fn single_reference(a: &Atmosphere) -> Reference {
+    let settings = ModelSettings {
+        wavelengths_nm: vec![550.0],
+        max_orders: Some(1),
+        ..ModelSettings::default()
+    };
+    Reference::prepare(a, &settings).unwrap()
+}
+
+/// A vertical ray from inside the shadow gets only the light of its lit part: its
+/// radiance is the transmittance up to the shadow's top times the unshadowed radiance
+/// of the same ray from there. The quadrature's panels do not end at the boundary: the
+/// stated tolerance covers the cut panel.
+#[test]
+fn the_reference_sees_only_the_lit_part_of_a_ray_through_the_shadow() {
+    let a = Atmosphere::preset("earth").unwrap();
+    let reference = single_reference(&a);
+    let s = sun(SUN_ELEVATION_DEG);
+    let march = HeightFieldShadow::new(Ridge, a.bottom_radius_m);
+    let north_m = 4_000.0;
+    let top = boundary_m(north_m, |h| shadowed_exactly(point(north_m, h), s));
+    let ray = |altitude: f64, max: Option<f64>| ViewRay {
+        origin_m: point(north_m, altitude),
+        direction: point(north_m, 0.0).normalize(),
+        sun_direction: s,
+        max_distance_m: max,
+    };
+    let camera_m = 300.0;
+    let shadowed = reference
+        .radiance_shadowed(&ray(camera_m, None), Some(&march))
+        .unwrap();
+    let unshadowed = reference.radiance(&ray(camera_m, None)).unwrap();
+    let from_top = reference.radiance(&ray(top, None)).unwrap();
+    let below = reference
+        .radiance(&ray(camera_m, Some(top - camera_m)))
+        .unwrap();
+    let expected = below.transmittance[0] * from_top.radiance[0];
+    let error = (shadowed.radiance[0] - expected).abs() / expected;
+    println!(
+        "shadowed {:e}, expected {expected:e}, unshadowed {:e}: error {error:e}",
+        shadowed.radiance[0], unshadowed.radiance[0]
+    );
+    assert!(error < 5e-3, "relative error {error:e}");
+    assert!(shadowed.radiance[0] < 0.95 * unshadowed.radiance[0]);
+}
+
+/// A sun hidden from every point leaves no single scattering in the air: a ray to space
+/// is black, whatever the atmosphere.
+#[test]
+fn a_sun_hidden_everywhere_leaves_the_air_dark() {
+    struct Hidden;
+    impl SunVisibility for Hidden {
+        fn sun_visible(&self, _: DVec3, _: DVec3) -> f64 {
+            0.0
+        }
+    }
+    let a = Atmosphere::preset("earth").unwrap();
+    let reference = single_reference(&a);
+    let ray = ViewRay {
+        origin_m: point(0.0, 1_000.0),
+        direction: DVec3::new(0.5, 0.0, -0.5f64.sqrt() * 1.0).normalize(),
+        sun_direction: sun(20.0),
+        max_distance_m: None,
+    };
+    let lit = reference.radiance(&ray).unwrap().radiance[0];
+    let dark = reference
+        .radiance_shadowed(&ray, Some(&Hidden))
+        .unwrap()
+        .radiance[0];
+    assert!(lit > 0.0);
+    assert_eq!(dark, 0.0);
+}
