@@ -66,9 +66,9 @@ fn shadowed_exactly(p: DVec3, s: DVec3) -> bool {
     (p + t * s).length() < RADIUS_M + RIDGE_HEIGHT_M
 }
 
-/// The altitude of the shadow's top over the point `north_m` north of the site, by
-/// bisection of `shadowed` (true below the boundary).
-fn boundary_m(north_m: f64, shadowed: impl Fn(f64) -> bool) -> f64 {
+/// The altitude of the shadow's top, by bisection of `shadowed` (a function of the
+/// altitude, true below the boundary).
+fn boundary_m(shadowed: impl Fn(f64) -> bool) -> f64 {
     let (mut low, mut high) = (0.0, RIDGE_HEIGHT_M);
     for _ in 0..40 {
         let mid = 0.5 * (low + high);
@@ -95,7 +95,7 @@ fn the_march_finds_the_ridge_shadow_boundary_of_the_closed_form() {
     let s = sun(SUN_ELEVATION_DEG);
     let march = HeightFieldShadow::new(Ridge, RADIUS_M);
     for north_m in [0.0, 4_000.0, 7_500.0] {
-        let exact = boundary_m(north_m, |a| shadowed_exactly(point(north_m, a), s));
+        let exact = boundary_m(|a| shadowed_exactly(point(north_m, a), s));
         // The flank's foot is at 8 km: every point here is south of the ridge.
         assert!(exact > 0.0 && exact < RIDGE_HEIGHT_M, "{north_m}: {exact}");
         // Within the march's shortest step times the ray's slope, and a margin.
@@ -123,8 +123,8 @@ fn the_shadow_map_finds_the_same_boundary_within_a_cell() {
     let mut worst = 0.0f64;
     for k in 0..=15 {
         let north_m = -7_000.0 + 1_000.0 * f64::from(k);
-        let exact = boundary_m(north_m, |a| shadowed_exactly(point(north_m, a), s));
-        let mapped = boundary_m(north_m, |a| map.sun_visible(point(north_m, a), s) < 1.0);
+        let exact = boundary_m(|a| shadowed_exactly(point(north_m, a), s));
+        let mapped = boundary_m(|a| map.sun_visible(point(north_m, a), s) < 1.0);
         worst = worst.max((mapped - exact).abs());
         assert!(
             (mapped - exact).abs() < tolerance_m,
@@ -177,7 +177,7 @@ fn the_reference_sees_only_the_lit_part_of_a_ray_through_the_shadow() {
     let s = sun(SUN_ELEVATION_DEG);
     let march = HeightFieldShadow::new(Ridge, a.bottom_radius_m);
     let north_m = 4_000.0;
-    let top = boundary_m(north_m, |h| shadowed_exactly(point(north_m, h), s));
+    let top = boundary_m(|h| shadowed_exactly(point(north_m, h), s));
     let ray = |altitude: f64, max: Option<f64>| ViewRay {
         origin_m: point(north_m, altitude),
         direction: point(north_m, 0.0).normalize(),
