@@ -27,6 +27,9 @@ use crate::gpu::timer::GpuTimer;
 use crate::post::luminance::LuminancePass;
 use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
+use crate::shafts::terrain::frame_map::FrameShadow;
+use crate::shafts::terrain::planner::why_no_shafts;
+use crate::shafts::terrain::shadow_texture::ShadowTexture;
 use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
 use crate::sky::sky_pass::{FrameRecorder, SkyPass};
@@ -71,6 +74,11 @@ pub struct Renderer {
     cloud_inputs: Option<(LayerInputs, f64)>,
     /// The cloud steps, compiled when a frame first has clouds.
     cloud_pass: Option<CloudFramePass>,
+    /// The terrain's shadow map for light shafts, and its copy on the GPU.
+    shadow: FrameShadow,
+    shadow_texture: ShadowTexture,
+    /// Whether the planner leaves out shafts that cannot change the image.
+    prune_shafts: bool,
 }
 
 fn target(
@@ -116,6 +124,9 @@ impl Renderer {
             clouds: None,
             cloud_inputs: None,
             cloud_pass: None,
+            shadow: FrameShadow::default(),
+            shadow_texture: ShadowTexture::new(&gpu),
+            prune_shafts: true,
             gpu,
         })
     }
@@ -194,6 +205,17 @@ impl Renderer {
         Ok(())
     }
 
+    /// Whether the planner leaves out light shafts that cannot change the image (on by
+    /// default; off only to show that leaving them out changes nothing).
+    pub fn set_prune_shafts(&mut self, prune: bool) {
+        self.prune_shafts = prune;
+    }
+
+    /// The terrain's shadow map of the last frame with light shafts (`None` before any).
+    pub fn shadow_map(&self) -> Option<&atmosphere_core::shafts::ShadowMap> {
+        self.shadow.map()
+    }
+
     /// Bytes of GPU memory held by the tables of the models used so far.
     pub fn table_bytes(&self) -> u64 {
         self.models.iter().map(|(_, m)| m.table_bytes()).sum()
@@ -268,6 +290,36 @@ impl Renderer {
             _ => false,
         };
         let has_surface = surface.is_some() || draws_terrain;
+        // Light shafts (docs/shafts.md): the shadow map of the drawn terrain.
+        let shadow = match (frame.terrain, self.terrain.as_ref()) {
+            (Some(options), Some(terrain)) if draws_terrain && options.shafts => {
+                let sun = frame.sun_direction.normalize();
+                let radius_m = frame.atmosphere.bottom_radius_m;
+                let (camera, relief) = (frame.camera_position_m, terrain.surface());
+                let map = self.shadow.update(camera, sun, radius_m, relief);
+                match why_no_shafts(frame, map).filter(|_| self.prune_shafts) {
+                    Some(why) => {
+                        plan.skip("shafts", why);
+                        None
+                    }
+                    None => Some(map),
+                }
+            }
+            (Some(options), _) => {
+                plan.skip(
+                    "shafts",
+                    if options.shafts {
+                        "no terrain in view"
+                    } else {
+                        "shafts off"
+                    },
+                );
+                None
+            }
+            (None, _) => None,
+        };
+        let shaft_samples = atmosphere_core::models::hillaire::shafts::SHAFT_SAMPLES as u32;
+        self.shadow_texture.upload(&self.gpu, shadow, shaft_samples);
         // The cloud layer's march (docs/clouds.md, "Clouds in frames"): run unless the
         // planner shows it cannot change the image.
         let clouds_step = match &self.clouds {
@@ -359,6 +411,7 @@ impl Renderer {
             surface: &surface_views,
             has_surface,
             has_sea,
+            shadow: &self.shadow_texture,
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         if let Some(terrain) = self.terrain.as_ref().filter(|_| draws_terrain) {

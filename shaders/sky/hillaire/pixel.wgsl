@@ -14,7 +14,9 @@
 // - ground: albedo / pi (T_sun max(mu_s, 0) + E_sky(mu_s)) times the transmittance; a
 //   surface: `add_surface` with `hillaire_surface_irradiance`; the sea: `add_sea`
 //   (`common/sea_surface.wgsl`) with the sky along the mirror direction marched;
-// - the limb-darkened sun disk times the transmittance where the ray reaches space.
+// - the limb-darkened sun disk times the transmittance where the ray reaches space;
+// - with light shafts, less the single scattering the terrain's shadow takes out
+//   (`shafts_loss`, `sky/hillaire/shafts.wgsl`; `models/hillaire/shafts.rs`).
 // Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three channels to the HDR target,
 // clamped to the largest finite f16. The transmittance table, the sky view and the volume
 // are read through the texture unit's linear filter where the device filters Rgba32Float
@@ -28,12 +30,13 @@
 #import common/sea_surface.wgsl
 #import common/table_sampling.wgsl
 #import common/surface_columns.wgsl
+#import sky/hillaire/shafts.wgsl
 
 @group(0) @binding(5) var ground_irradiance: texture_2d<f32>;
 @group(0) @binding(6) var sky_view: texture_2d<f32>;
 @group(0) @binding(7) var aerial_radiance: texture_3d<f32>;
 @group(0) @binding(8) var aerial_transmittance: texture_3d<f32>;
-@group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(11) var hdr: texture_storage_2d<rgba16float, write>;
 
 // The fractional texel position of a grid position, for a filtered read: the two rows
 // are neighbours in storage, in either order.
@@ -180,6 +183,7 @@ fn hillaire_radiance(direction: vec3<f32>, object_m: f32, tables: bool, march: b
         m = march_run(view_ray(s.q, s.r_mu, s.start_dot_sun, nu), s.length,
             hillaire.march_samples);
     }
+    m.radiance -= shafts_loss(s, direction, nu);
     m = with_ground(m, s, nu);
     out.radiance = max(m.radiance * atmosphere.solar_irradiance.xyz, vec3<f32>(0.0));
     out.transmittance = clamp(m.throughput, vec3<f32>(0.0), vec3<f32>(1.0));

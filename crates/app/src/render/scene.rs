@@ -89,6 +89,10 @@ pub struct Scene {
     /// [default: false].
     #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
     pub terrain: Option<bool>,
+    /// Light shafts, the terrain's shadow in the air (`on` or `off`; with --terrain only)
+    /// [default: on].
+    #[arg(long, value_name = "ON_OFF", value_parser = parse_on_off)]
+    pub shafts: Option<bool>,
     /// Vertical exaggeration of the terrain, in (0, 100] [default: 1].
     #[arg(long, value_name = "K")]
     pub exaggeration: Option<f64>,
@@ -157,6 +161,7 @@ impl Scene {
             latitude_deg: flags.latitude_deg.or(self.latitude_deg),
             longitude_deg: flags.longitude_deg.or(self.longitude_deg),
             terrain: flags.terrain.or(self.terrain),
+            shafts: flags.shafts.or(self.shafts),
             exaggeration: flags.exaggeration.or(self.exaggeration),
             wind_m_s: flags.wind_m_s.or(self.wind_m_s),
             set,
@@ -187,6 +192,7 @@ impl Scene {
             latitude_deg: self.latitude_deg,
             longitude_deg: self.longitude_deg,
             terrain: Some(self.terrain.unwrap_or(false)),
+            shafts: Some(self.shafts.unwrap_or(true)),
             exaggeration: Some(self.exaggeration.unwrap_or(1.0)),
             wind_m_s: Some(self.wind_m_s.unwrap_or(DEFAULT_WIND_M_S)),
             set: self.set.clone(),
@@ -273,6 +279,7 @@ impl Scene {
                 Some(TerrainOptions {
                     exaggeration,
                     wind_m_s,
+                    shafts: s.shafts.unwrap_or(true),
                     ..TerrainOptions::default()
                 })
             }
@@ -536,5 +543,14 @@ mod tests {
             Output::from_path(Path::new("a.EXR")).unwrap(),
             Output::Exr("a.EXR".into())
         );
+    }
+}
+
+/// `on` or `off` (also `true` or `false`) as a switch, for `--shafts`.
+fn parse_on_off(text: &str) -> Result<bool, String> {
+    match text {
+        "on" | "true" => Ok(true),
+        "off" | "false" => Ok(false),
+        _ => Err(format!("{text:?} is not a switch: use on or off")),
     }
 }

@@ -317,6 +317,14 @@ fn terrain(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         );
         ui.add_enabled(
             settings.terrain,
+            egui::Checkbox::new(&mut settings.shafts, "Light shafts"),
+        )
+        .on_hover_text(
+            "The mountains' shadows in the air: the sun's visibility past the terrain at \
+             the sky model's samples (hillaire; docs/shafts.md)",
+        );
+        ui.add_enabled(
+            settings.terrain,
             egui::Slider::new(&mut settings.exaggeration, 1.0..=MAX_EXAGGERATION)
                 .logarithmic(true)
                 .text("exaggeration"),

@@ -106,6 +106,8 @@ pub struct ViewerSettings {
     pub exposure_mode: ExposureMode,
     /// Draw the Earth's terrain over the planet (an Earth-sized one only).
     pub terrain: bool,
+    /// Light shafts: the terrain's shadow in the air (docs/shafts.md).
+    pub shafts: bool,
     /// Vertical exaggeration of the terrain (1 = true scale).
     pub exaggeration: f64,
     /// Wind speed over the sea, m/s (the glint's roughness), in
@@ -135,6 +137,7 @@ impl Default for ViewerSettings {
             exposure_ev100: 14.0,
             exposure_mode: ExposureMode::default(),
             terrain: true,
+            shafts: true,
             exaggeration: 1.0,
             wind_m_s: DEFAULT_WIND_M_S,
             clouds: CloudSettings::default(),
@@ -361,6 +364,7 @@ impl ViewerSettings {
                 wind_m_s: self.wind_m_s,
                 // A frame of the viewer never waits for terrain work.
                 wait_for_chunks: false,
+                shafts: self.shafts,
             }),
             atmosphere,
         })

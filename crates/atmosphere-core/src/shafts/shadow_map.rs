@@ -30,6 +30,9 @@ pub struct ShadowMap {
     /// Width of the penumbra below `S` over which the visibility falls from 1 to 0, m:
     /// the rise of the sun's ray over one cell, between 1 m and one cell.
     pub band_m: f32,
+    /// Cells whose air holds shadow (`S` above the relief): none, and the terrain casts
+    /// no shadow into the air over the grid.
+    pub shadowing_cells: usize,
 }
 
 impl ShadowMap {
@@ -47,11 +50,13 @@ impl ShadowMap {
             sweep(&grid, heights, &mut tops, sun, (sx, sy));
         }
         let max_top_m = tops.iter().fold(f32::MIN, |m, &t| m.max(t));
+        let shadowing_cells = tops.iter().zip(heights).filter(|(t, h)| t > h).count();
         ShadowMap {
             grid,
             tops_m: tops,
             max_top_m,
             band_m,
+            shadowing_cells,
         }
     }
 

@@ -61,6 +61,9 @@ pub struct TerrainOptions {
     /// the rest while a worker builds it (off: the viewer, whose frames never wait;
     /// docs/terrain.md, "No popping").
     pub wait_for_chunks: bool,
+    /// Light shafts: the terrain's shadow in the air, in the models that have them
+    /// (docs/shafts.md).
+    pub shafts: bool,
 }
 
 /// The largest vertical exaggeration: the Earth's relief times 100 reaches 880 km, far
@@ -73,6 +76,7 @@ impl Default for TerrainOptions {
             exaggeration: 1.0,
             wind_m_s: DEFAULT_WIND_M_S,
             wait_for_chunks: true,
+            shafts: true,
         }
     }
 }

@@ -14,6 +14,7 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::uniform_buffer;
+use crate::shafts::terrain::shadow_texture::ShadowTexture;
 use crate::sky::steps::{PassStep, SkyPlan};
 
 /// The frame's atmosphere in the GPU's layout, once the frame's wavelengths are checked
@@ -42,6 +43,8 @@ pub struct PassIo<'a> {
     pub has_surface: bool,
     /// Whether that surface holds sea (`shaders/common/sea_surface.wgsl`).
     pub has_sea: bool,
+    /// The terrain's shadow map for light shafts (a placeholder with them off).
+    pub shadow: &'a ShadowTexture,
 }
 
 /// Where one step of a model records its work: the GPU, what the frame's steps read and
@@ -64,6 +67,7 @@ pub struct StandaloneInputs {
     frame: wgpu::Buffer,
     hdr: wgpu::Texture,
     surface: [wgpu::TextureView; 2],
+    shadow: ShadowTexture,
 }
 
 impl StandaloneInputs {
@@ -82,6 +86,7 @@ impl StandaloneInputs {
                 view_formats: &[],
             }),
             surface: SurfaceBuffer::new(gpu, 1, 1).views(),
+            shadow: ShadowTexture::new(gpu),
         };
         gpu.write_uniform(&inputs.atmosphere, atmosphere);
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
@@ -97,6 +102,7 @@ impl StandaloneInputs {
             surface: &self.surface,
             has_surface: false,
             has_sea: false,
+            shadow: &self.shadow,
         }
     }
 }

@@ -549,6 +549,11 @@ impl TerrainPass {
     pub fn elevation_m(&self, direction: DVec3) -> f64 {
         self.surface.elevation_m(direction)
     }
+
+    /// The drawn surface: the relief whose shadow the light shafts show.
+    pub fn surface(&self) -> &TerrainSurface<Arc<RefinedHeights>> {
+        &self.surface
+    }
 }
 
 /// The near plane for a camera `clearance_m` above the terrain below it: half of it, so

@@ -9,6 +9,7 @@
 //! orbit often use `k` of 10 to 50 to show it. Normals come from the chunk meshes
 //! (`chunk_mesh.rs`).
 
+use atmosphere_core::shafts::Relief;
 use glam::DVec3;
 
 use super::height_field::HeightField;
@@ -59,6 +60,17 @@ impl<H: HeightField> TerrainSurface<H> {
     /// A bound on `|elevation_m|`.
     pub fn elevation_bound_m(&self) -> f64 {
         self.exaggeration.abs() * self.heights.max_abs_height_m()
+    }
+}
+
+/// The drawn relief, as the terrain's shadow in the air sees it (docs/shafts.md).
+impl<H: HeightField> Relief for TerrainSurface<H> {
+    fn elevation_m(&self, direction: DVec3) -> f64 {
+        TerrainSurface::elevation_m(self, direction)
+    }
+
+    fn elevation_bound_m(&self) -> f64 {
+        self.elevation_bound_m()
     }
 }
 

@@ -20,6 +20,7 @@ pub mod moments;
 pub mod multiple_scattering;
 pub mod rows;
 pub mod settings;
+pub mod shafts;
 pub mod similarity;
 pub mod sky_view;
 pub mod view_cache;
@@ -47,6 +48,7 @@ use crate::optics::geometry::ray_hits_ground;
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
+use crate::shafts::ShadowMap;
 
 /// The inputs of the paper's Psi_ms: extinction, scattering (part of the extinction
 /// inputs) and the ground's albedo; not the Mie phase function (isotropic there) nor the
@@ -80,6 +82,8 @@ pub struct Hillaire {
     multiple: Option<MultipleScattering>,
     ground: Option<GroundIrradiance>,
     views: ViewCache,
+    /// The terrain's shadow in the air, when light shafts are on (`shafts.rs`).
+    shadow: Option<ShadowMap>,
 }
 
 impl Hillaire {
@@ -107,6 +111,7 @@ impl Hillaire {
             multiple: None,
             ground: None,
             views: ViewCache::new(settings.view_cache),
+            shadow: None,
         };
         model.scale_medium();
         model.build_multiple_scattering();
@@ -116,6 +121,11 @@ impl Hillaire {
 
     pub fn settings(&self) -> &HillaireSettings {
         &self.settings
+    }
+
+    /// The terrain's shadow the view rays see from now on (`None`: no light shafts).
+    pub fn set_terrain_shadow(&mut self, shadow: Option<ShadowMap>) {
+        self.shadow = shadow;
     }
 
     /// The medium as the ray marches see it.
@@ -375,6 +385,11 @@ impl SkyModel for Hillaire {
         } else {
             self.march(&segment)
         };
+        if let Some(map) = &self.shadow {
+            let mut lost = vec![0.0; n];
+            shafts::shadowed_single(&self.medium(), &segment, map, &mut lost);
+            radiance.iter_mut().zip(&lost).for_each(|(l, d)| *l -= d);
+        }
         for (l, e) in radiance.iter_mut().zip(&self.base.spectra.solar_irradiance) {
             *l *= e;
         }

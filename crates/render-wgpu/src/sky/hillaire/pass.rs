@@ -16,6 +16,7 @@ use crate::gpu::pipeline::{
     uniform_entry,
 };
 use crate::gpu::readback::read_texture;
+use crate::shafts::terrain::uniform::ShadowMapUniform;
 use crate::sky::hillaire::step::HillaireStep;
 use crate::sky::hillaire::tables::{Source, Table, Tables};
 use crate::sky::hillaire::uniform::HillaireUniform;
@@ -84,6 +85,9 @@ impl HillairePass {
             sampling.texture_entry(6, D2),
             sampling.texture_entry(7, D3),
             sampling.texture_entry(8, D3),
+            // The terrain's shadow map for light shafts (`sky/hillaire/shafts.wgsl`).
+            texture_entry(9, D2),
+            uniform_entry(10, size_of::<ShadowMapUniform>()),
         ];
         let pass = |entry| {
             PixelPass::new(
@@ -313,7 +317,13 @@ impl ModelPass for HillairePass {
                     &t.aerial_transmittance,
                 ]
                 .map(|t| t.create_view(&Default::default()));
-                let tables = views.each_ref().map(wgpu::BindingResource::TextureView);
+                let shadow = cx.io.shadow.view();
+                let mut tables: Vec<_> = views
+                    .iter()
+                    .chain([&shadow])
+                    .map(wgpu::BindingResource::TextureView)
+                    .collect();
+                tables.push(cx.io.shadow.params().as_entire_binding());
                 self.pass[self.variant].encode(cx, &self.params, &tables);
             }
         }
