@@ -218,7 +218,7 @@ fn on_limb(frame: &Frame, column: u32, row: u32) -> bool {
 /// The CPU's radiance of a pixel: the model, ending on the pixel's surface where it has
 /// one (`radiance_with_surface`), plus the transmitted sun disk where the ray reaches
 /// space.
-fn cpu_pixel(
+pub fn cpu_pixel(
     model: &dyn SkyModel,
     frame: &Frame,
     column: u32,

@@ -12,7 +12,9 @@
 //!
 //! `S(c')` interpolated linearly between its two neighbouring cells. Beyond the grid's
 //! sunward edge nothing casts a shadow. The sun's azimuth is the grid centre's; the
-//! sphere's curvature enters through the local `e`.
+//! sphere's curvature enters through the local `e`. Cells over which nothing casts a
+//! shadow store `h - cell` instead of `h`, so that the air just above the drawn surface,
+//! which may dip below the samples' interpolation, is not taken for shadow.
 
 use glam::DVec3;
 
@@ -49,8 +51,18 @@ impl ShadowMap {
         if horizontal > 1e-9 {
             sweep(&grid, heights, &mut tops, sun, (sx, sy));
         }
+        // Where the relief casts no shadow, the air a cell's height below the sampled
+        // relief still sees the sun: the drawn surface between samples may lie that far
+        // below their interpolation, and its air must not count as shadowed.
+        let mut shadowing_cells = 0;
+        for (t, h) in tops.iter_mut().zip(heights) {
+            if *t > *h {
+                shadowing_cells += 1;
+            } else {
+                *t = h - grid.cell_m as f32;
+            }
+        }
         let max_top_m = tops.iter().fold(f32::MIN, |m, &t| m.max(t));
-        let shadowing_cells = tops.iter().zip(heights).filter(|(t, h)| t > h).count();
         ShadowMap {
             grid,
             tops_m: tops,

@@ -28,3 +28,76 @@ pub fn why_no_shafts(frame: &Frame, map: &ShadowMap) -> Option<&'static str> {
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use atmosphere_core::atmosphere::Atmosphere;
+    use atmosphere_core::models::sky_model::ModelSettings;
+    use atmosphere_core::shafts::GnomonicGrid;
+    use glam::DVec3;
+
+    use super::*;
+    use crate::frame::look_orientation;
+
+    /// A hillaire frame at `altitude_m` on the z axis looking along `forward`.
+    fn frame(altitude_m: f64, forward: DVec3) -> Frame {
+        let a = Atmosphere::preset("earth").unwrap();
+        let hint = if forward.z.abs() > 0.9 { DVec3::X } else { DVec3::Z };
+        Frame {
+            camera_position_m: DVec3::Z * (a.bottom_radius_m + altitude_m),
+            orientation: look_orientation(forward, hint).unwrap(),
+            vertical_fov_deg: 40.0,
+            sun_direction: DVec3::new(0.1, 0.0, 0.05).normalize(),
+            atmosphere: a,
+            model: ModelId::Hillaire,
+            settings: ModelSettings::default(),
+            exposure_ev100: 14.0,
+            width: 32,
+            height: 18,
+            terrain: None,
+        }
+    }
+
+    /// The shadow of a 1 km block in the middle of a 64-cell grid under a low sun.
+    fn block_map(sun: DVec3) -> ShadowMap {
+        let grid = GnomonicGrid::new(DVec3::Z, 6_360_000.0, 100.0, 64);
+        let heights: Vec<f32> = (0..64 * 64)
+            .map(|k| {
+                if (k % 64, k / 64) == (32, 32) {
+                    1_000.0
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        ShadowMap::new(grid, &heights, sun)
+    }
+
+    #[test]
+    fn shafts_run_only_where_shadowed_air_may_be_seen() {
+        let sun = frame(0.0, DVec3::X).sun_direction;
+        let map = block_map(sun);
+        assert!(map.shadowing_cells > 0);
+        // Below the shadow's top looking at the horizon: may see it.
+        assert_eq!(why_no_shafts(&frame(500.0, DVec3::X), &map), None);
+        // 20 km up looking at the zenith: no ray comes down to 1 km.
+        let up = frame(20_000.0, DVec3::new(0.01, 0.0, 1.0));
+        assert_eq!(why_no_shafts(&up, &map), Some("no shadowed air in view"));
+        // 20 km up looking down: it may.
+        assert_eq!(why_no_shafts(&frame(20_000.0, -DVec3::Z), &map), None);
+        // The sun overhead: the block casts no shadow into the air.
+        let overhead = block_map(DVec3::Z);
+        assert_eq!(overhead.shadowing_cells, 0);
+        assert_eq!(
+            why_no_shafts(&frame(500.0, DVec3::X), &overhead),
+            Some("nothing casts a shadow into the air")
+        );
+        // A model without shafts.
+        let mut nishita = frame(500.0, DVec3::X);
+        nishita.model = ModelId::Nishita;
+        assert_eq!(
+            why_no_shafts(&nishita, &map),
+            Some("the model has no light shafts")
+        );
+    }
+}
