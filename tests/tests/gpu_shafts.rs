@@ -74,6 +74,7 @@ fn shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
     };
     let frame = alps(64, 36, 86.0);
     let (dark, surface) = render(&mut renderer, &with_shafts(&frame, true));
+    let dark_ldr = renderer.read_ldr().unwrap();
     let map = renderer.shadow_map().expect("the frame had shafts").clone();
     assert!(
         map.shadowing_cells > 0,
@@ -81,6 +82,13 @@ fn shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
     );
     let shadowed = cpu_model(&frame, &renderer, true);
     let (lit, lit_surface) = render(&mut renderer, &with_shafts(&frame, false));
+    let lit_ldr = renderer.read_ldr().unwrap();
+    let changed = dark_ldr
+        .iter()
+        .zip(&lit_ldr)
+        .filter(|(a, b)| a != b)
+        .count();
+    println!("{changed} displayed pixels changed");
     assert_eq!(surface, lit_surface);
     let unshadowed = cpu_model(&frame, &renderer, false);
     let (mut worst, mut darkened) = (0.0f64, 0);

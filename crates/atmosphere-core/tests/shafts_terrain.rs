@@ -82,12 +82,13 @@ fn boundary_m(shadowed: impl Fn(f64) -> bool) -> f64 {
 }
 
 fn ridge_map(cell_m: f64, size: usize) -> ShadowMap {
-    let grid = GnomonicGrid::new(DVec3::X, RADIUS_M, cell_m, size);
+    let grid = GnomonicGrid::new(DVec3::X, RADIUS_M, cell_m, size).unwrap();
     ShadowMap::new(
         grid,
         &grid.sample(|d| Ridge.elevation_m(d)),
         sun(SUN_ELEVATION_DEG),
     )
+    .unwrap()
 }
 
 #[test]
@@ -142,10 +143,10 @@ fn the_shadow_map_finds_the_same_boundary_within_a_cell() {
 #[test]
 fn flat_ground_shadows_nothing_with_the_sun_up() {
     let march = HeightFieldShadow::new(Flat, RADIUS_M);
-    let grid = GnomonicGrid::new(DVec3::X, RADIUS_M, 200.0, 64);
+    let grid = GnomonicGrid::new(DVec3::X, RADIUS_M, 200.0, 64).unwrap();
     for elevation_deg in [0.5, 5.0, 30.0, 89.0] {
         let s = sun(elevation_deg);
-        let map = ShadowMap::new(grid, &grid.sample(|_| 0.0), s);
+        let map = ShadowMap::new(grid, &grid.sample(|_| 0.0), s).unwrap();
         for north_m in [-6_000.0, 0.0, 3_000.0] {
             for altitude in [0.0, 1.0, 100.0, 5_000.0] {
                 let p = point(north_m, altitude);
@@ -228,4 +229,23 @@ fn a_sun_hidden_everywhere_leaves_the_air_dark() {
         .radiance[0];
     assert!(lit > 0.0);
     assert_eq!(dark, 0.0);
+}
+
+#[test]
+fn bad_grids_and_maps_are_refused_by_name() {
+    let message = |e: atmosphere_core::models::error::ModelError| e.to_string();
+    let grid = |centre, cell_m, size| GnomonicGrid::new(centre, RADIUS_M, cell_m, size);
+    assert!(message(grid(DVec3::ZERO, 100.0, 64).unwrap_err()).contains("centre"));
+    assert!(message(grid(DVec3::X, 0.0, 64).unwrap_err()).contains("cell_m 0"));
+    assert!(message(grid(DVec3::X, f64::NAN, 64).unwrap_err()).contains("cell_m NaN"));
+    assert!(message(grid(DVec3::X, 100.0, 1).unwrap_err()).contains("size 1 outside 2..=8192"));
+    let g = grid(DVec3::X, 100.0, 4).unwrap();
+    let e = ShadowMap::new(g, &[0.0; 15], DVec3::Z).unwrap_err();
+    assert!(message(e).contains("15 heights for 4 x 4 cells"));
+    let mut heights = [0.0f32; 16];
+    heights[3] = f32::INFINITY;
+    let e = ShadowMap::new(g, &heights, DVec3::Z).unwrap_err();
+    assert!(message(e).contains("height 3 is inf"));
+    let e = ShadowMap::new(g, &[0.0; 16], DVec3::ZERO).unwrap_err();
+    assert!(message(e).contains("sun"));
 }

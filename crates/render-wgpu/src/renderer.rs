@@ -296,7 +296,7 @@ impl Renderer {
                 let sun = frame.sun_direction.normalize();
                 let radius_m = frame.atmosphere.bottom_radius_m;
                 let (camera, relief) = (frame.camera_position_m, terrain.surface());
-                let map = self.shadow.update(camera, sun, radius_m, relief);
+                let map = self.shadow.update(camera, sun, radius_m, relief)?;
                 match why_no_shafts(frame, map).filter(|_| self.prune_shafts) {
                     Some(why) => {
                         plan.skip("shafts", why);

@@ -344,6 +344,15 @@ impl Output {
     }
 }
 
+/// `on` or `off` (also `true` or `false`) as a switch, for `--shafts`.
+fn parse_on_off(text: &str) -> Result<bool, String> {
+    match text {
+        "on" | "true" => Ok(true),
+        "off" | "false" => Ok(false),
+        _ => Err(format!("{text:?} is not a switch: use on or off")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -544,13 +553,15 @@ mod tests {
             Output::Exr("a.EXR".into())
         );
     }
-}
 
-/// `on` or `off` (also `true` or `false`) as a switch, for `--shafts`.
-fn parse_on_off(text: &str) -> Result<bool, String> {
-    match text {
-        "on" | "true" => Ok(true),
-        "off" | "false" => Ok(false),
-        _ => Err(format!("{text:?} is not a switch: use on or off")),
+    #[test]
+    fn the_shafts_switch_reads_on_and_off_and_names_anything_else() {
+        assert_eq!(parse_on_off("on"), Ok(true));
+        assert_eq!(parse_on_off("off"), Ok(false));
+        let e = parse_on_off("maybe").unwrap_err();
+        assert!(
+            e.contains("\"maybe\" is not a switch: use on or off"),
+            "{e}"
+        );
     }
 }

@@ -6,6 +6,11 @@
 
 use glam::DVec3;
 
+use crate::models::error::ModelError;
+
+/// Cells per side a grid may have.
+pub const GRID_SIZE_RANGE: std::ops::RangeInclusive<usize> = 2..=8192;
+
 /// The grid: `size` x `size` cells of `cell_m`, centred on `up`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GnomonicGrid {
@@ -33,21 +38,39 @@ pub struct GridPoint {
 }
 
 impl GnomonicGrid {
-    /// The grid of `size` cells of `cell_m` centred on the unit direction `centre`.
-    pub fn new(centre: DVec3, radius_m: f64, cell_m: f64, size: usize) -> GnomonicGrid {
-        let up = centre.normalize();
+    /// The grid of `size` cells of `cell_m` centred on the direction `centre` over a
+    /// sphere of `radius_m`; an error names a value out of its range.
+    pub fn new(
+        centre: DVec3,
+        radius_m: f64,
+        cell_m: f64,
+        size: usize,
+    ) -> Result<GnomonicGrid, ModelError> {
+        let bad = |what: String| Err(ModelError::Settings(format!("shadow grid: {what}")));
+        let Some(up) = centre.try_normalize() else {
+            return bad(format!("centre {centre} is not a direction"));
+        };
+        if !(radius_m.is_finite() && radius_m > 0.0) {
+            return bad(format!("radius_m {radius_m} must be finite and > 0"));
+        }
+        if !(cell_m.is_finite() && cell_m > 0.0) {
+            return bad(format!("cell_m {cell_m} must be finite and > 0"));
+        }
+        if !GRID_SIZE_RANGE.contains(&size) {
+            return bad(format!("size {size} outside {GRID_SIZE_RANGE:?}"));
+        }
         let east = DVec3::Z
             .cross(up)
             .try_normalize()
             .unwrap_or_else(|| DVec3::X.cross(up).normalize());
-        GnomonicGrid {
+        Ok(GnomonicGrid {
             up,
             east,
             north: up.cross(east),
             radius_m,
             cell_m,
             size,
-        }
+        })
     }
 
     /// The tangent-plane coordinate of cell `i`'s centre, m.

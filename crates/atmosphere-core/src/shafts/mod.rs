@@ -14,7 +14,7 @@ mod relief;
 mod shadow_map;
 mod sun_visibility;
 
-pub use gnomonic_grid::GnomonicGrid;
+pub use gnomonic_grid::{GRID_SIZE_RANGE, GnomonicGrid};
 pub use height_field_shadow::HeightFieldShadow;
 pub use relief::Relief;
 pub use shadow_map::ShadowMap;

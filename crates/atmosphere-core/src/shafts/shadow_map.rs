@@ -20,6 +20,7 @@ use glam::DVec3;
 
 use super::gnomonic_grid::GnomonicGrid;
 use super::sun_visibility::SunVisibility;
+use crate::models::error::ModelError;
 
 /// The shadow volume's top over a grid, for one sun direction.
 #[derive(Clone, Debug, PartialEq)]
@@ -39,10 +40,20 @@ pub struct ShadowMap {
 
 impl ShadowMap {
     /// The shadow of `heights` (per cell, row by row, m, as `GnomonicGrid::sample` gives
-    /// them) for the unit sun direction `sun`.
-    pub fn new(grid: GnomonicGrid, heights: &[f32], sun: DVec3) -> ShadowMap {
+    /// them) for the sun direction `sun`; an error names a wrong count of heights, a
+    /// height that is not finite or a sun that is not a direction.
+    pub fn new(grid: GnomonicGrid, heights: &[f32], sun: DVec3) -> Result<ShadowMap, ModelError> {
         let n = grid.size;
-        assert_eq!(heights.len(), n * n, "one height per cell");
+        let bad = |what: String| Err(ModelError::Settings(format!("shadow map: {what}")));
+        if heights.len() != n * n {
+            return bad(format!("{} heights for {n} x {n} cells", heights.len()));
+        }
+        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
+            return bad(format!("height {i} is {}", heights[i]));
+        }
+        let Some(sun) = sun.try_normalize() else {
+            return bad(format!("sun {sun} is not a direction"));
+        };
         let (sx, sy) = (sun.dot(grid.east), sun.dot(grid.north));
         let horizontal = sx.hypot(sy);
         let centre_tan = sun.dot(grid.up) / horizontal.max(1e-12);
@@ -63,13 +74,13 @@ impl ShadowMap {
             }
         }
         let max_top_m = tops.iter().fold(f32::MIN, |m, &t| m.max(t));
-        ShadowMap {
+        Ok(ShadowMap {
             grid,
             tops_m: tops,
             max_top_m,
             band_m,
             shadowing_cells,
-        }
+        })
     }
 
     /// `S` at fractional cell coordinates inside the grid (bilinear).

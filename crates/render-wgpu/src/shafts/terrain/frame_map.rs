@@ -3,6 +3,7 @@
 //! when the camera leaves the grid's middle or changes scale, and the shadow's tops are
 //! swept again when the sun or the heights change.
 
+use atmosphere_core::models::error::ModelError;
 use atmosphere_core::shafts::{GnomonicGrid, Relief, ShadowMap};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -36,14 +37,15 @@ pub struct FrameShadow {
 
 impl FrameShadow {
     /// The shadow map of `relief` for a camera at `camera_m` (planet-centred) and the
-    /// unit sun direction `sun`, on the sphere of radius `radius_m`.
+    /// unit sun direction `sun`, on the sphere of radius `radius_m`; an error names what
+    /// the map cannot take (a relief whose height is not finite).
     pub fn update<R: Relief + Sync>(
         &mut self,
         camera_m: DVec3,
         sun: DVec3,
         radius_m: f64,
         relief: &R,
-    ) -> &ShadowMap {
+    ) -> Result<&ShadowMap, ModelError> {
         let cell_m = cell_for_altitude(camera_m.length() - radius_m, radius_m);
         let up = camera_m.normalize();
         let width_m = cell_m * MAP_CELLS as f64;
@@ -55,7 +57,7 @@ impl FrameShadow {
         let resampled = match &self.heights {
             Some((grid, _)) if fits(grid) => false,
             _ => {
-                let grid = GnomonicGrid::new(up, radius_m, cell_m, MAP_CELLS);
+                let grid = GnomonicGrid::new(up, radius_m, cell_m, MAP_CELLS)?;
                 self.heights = Some((grid, sample(&grid, relief)));
                 true
             }
@@ -63,9 +65,9 @@ impl FrameShadow {
         let (grid, heights) = self.heights.as_ref().expect("sampled above");
         let stale = resampled || self.map.as_ref().is_none_or(|(s, _)| *s != sun);
         if stale {
-            self.map = Some((sun, ShadowMap::new(*grid, heights, sun)));
+            self.map = Some((sun, ShadowMap::new(*grid, heights, sun)?));
         }
-        &self.map.as_ref().expect("swept above").1
+        Ok(&self.map.as_ref().expect("swept above").1)
     }
 
     /// The last map made (`None` before any).

@@ -42,7 +42,11 @@ mod tests {
     /// A hillaire frame at `altitude_m` on the z axis looking along `forward`.
     fn frame(altitude_m: f64, forward: DVec3) -> Frame {
         let a = Atmosphere::preset("earth").unwrap();
-        let hint = if forward.z.abs() > 0.9 { DVec3::X } else { DVec3::Z };
+        let hint = if forward.z.abs() > 0.9 {
+            DVec3::X
+        } else {
+            DVec3::Z
+        };
         Frame {
             camera_position_m: DVec3::Z * (a.bottom_radius_m + altitude_m),
             orientation: look_orientation(forward, hint).unwrap(),
@@ -60,7 +64,7 @@ mod tests {
 
     /// The shadow of a 1 km block in the middle of a 64-cell grid under a low sun.
     fn block_map(sun: DVec3) -> ShadowMap {
-        let grid = GnomonicGrid::new(DVec3::Z, 6_360_000.0, 100.0, 64);
+        let grid = GnomonicGrid::new(DVec3::Z, 6_360_000.0, 100.0, 64).unwrap();
         let heights: Vec<f32> = (0..64 * 64)
             .map(|k| {
                 if (k % 64, k / 64) == (32, 32) {
@@ -70,7 +74,7 @@ mod tests {
                 }
             })
             .collect();
-        ShadowMap::new(grid, &heights, sun)
+        ShadowMap::new(grid, &heights, sun).unwrap()
     }
 
     #[test]
