@@ -322,6 +322,17 @@ fn hillaire_uniform_matches_its_wgsl_layout() {
 }
 
 #[test]
+fn shadow_map_uniform_matches_its_wgsl_layout() {
+    use render_wgpu::shafts::terrain::uniform::ShadowMapUniform;
+    assert_layout!(
+        "sky/hillaire/pixel.wgsl",
+        "ShadowMapParams",
+        ShadowMapUniform,
+        [east_cell, north_band, up_top, size]
+    );
+}
+
+#[test]
 fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
     use render_wgpu::sky::oneil::{OneilTableUniform, OneilUniform};
     use render_wgpu::sky::riley::RileyUniform;
