@@ -1,6 +1,7 @@
 //! Light shafts on the planet (`render_wgpu::shafts::terrain`, `shaders/sky/hillaire/
-//! shafts.wgsl`) against their CPU twin (`atmosphere_core::models::hillaire::shafts` with
-//! the renderer's own shadow map), that the shadow darkens the rays through it by the
+//! shafts.wgsl`, `shaders/sky/nishita/pixel.wgsl`) against their CPU twins
+//! (`atmosphere_core::models::hillaire::shafts`, `models::nishita`, with the renderer's
+//! own shadow map), that the shadow darkens the rays through it by the
 //! CPU's ratio, and that the planner's pruning changes nothing.
 //!
 //! Needs a GPU adapter (lavapipe will do); see `gpu_hillaire_parity.rs`.
@@ -11,6 +12,9 @@ use std::path::Path;
 
 use atmos::render::scene::Scene;
 use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
+use atmosphere_core::models::sky_model::SkyModel;
 use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::{Frame, Renderer};
 use support::{FLOOR, cpu_pixel, renderer_or_skip};
@@ -43,18 +47,28 @@ fn with_shafts(frame: &Frame, on: bool) -> Frame {
     f
 }
 
-/// The CPU's hillaire with the renderer's last shadow map (or none).
-fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Hillaire {
-    let mut model = Hillaire::prepare(
-        &frame.atmosphere,
-        &frame.settings,
-        HillaireSettings::default(),
-    )
-    .unwrap();
-    if shafts {
-        model.set_terrain_shadow(renderer.shadow_map().cloned());
+/// The CPU model of `frame` (hillaire or nishita) with the renderer's last shadow map
+/// (or none).
+fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Box<dyn SkyModel> {
+    let shadow = if shafts {
+        renderer.shadow_map().cloned()
+    } else {
+        None
+    };
+    let (a, s) = (&frame.atmosphere, &frame.settings);
+    match frame.model {
+        ModelId::Hillaire => {
+            let mut model = Hillaire::prepare(a, s, HillaireSettings::default()).unwrap();
+            model.set_terrain_shadow(shadow);
+            Box::new(model)
+        }
+        ModelId::Nishita => {
+            let mut model = Nishita::prepare(a, s, NishitaSettings::default()).unwrap();
+            model.set_terrain_shadow(shadow);
+            Box::new(model)
+        }
+        other => panic!("{other} has no light shafts"),
     }
-    model
 }
 
 /// Renders `frame`; its HDR pixels and surface.
@@ -68,11 +82,24 @@ fn render(renderer: &mut Renderer, frame: &Frame) -> (Vec<[f32; 4]>, Vec<Surface
 }
 
 #[test]
-fn shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
+fn hillaire_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
+    check_shafts(ModelId::Hillaire);
+}
+
+#[test]
+fn nishita_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
+    check_shafts(ModelId::Nishita);
+}
+
+/// `model`'s frame of the Alps with the sun 4 degrees up, with shafts, against the CPU
+/// within [`MAX_RELATIVE_ERROR`]; with and without, the GPU's ratio against the CPU's
+/// wherever the CPU's shadow takes out more than 2 %.
+fn check_shafts(model: ModelId) {
     let Some(mut renderer) = renderer_or_skip("shafts over the alps") else {
         return;
     };
-    let frame = alps(64, 36, 86.0);
+    let mut frame = alps(64, 36, 86.0);
+    frame.model = model;
     let (dark, surface) = render(&mut renderer, &with_shafts(&frame, true));
     let dark_ldr = renderer.read_ldr().unwrap();
     let map = renderer.shadow_map().expect("the frame had shafts").clone();
@@ -96,8 +123,8 @@ fn shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
         for column in 0..frame.width {
             let i = (row * frame.width + column) as usize;
             let texel = Some(&surface[i]);
-            let cpu = cpu_pixel(&shadowed, &frame, column, row, texel);
-            let cpu_lit = cpu_pixel(&unshadowed, &frame, column, row, texel);
+            let cpu = cpu_pixel(shadowed.as_ref(), &frame, column, row, texel);
+            let cpu_lit = cpu_pixel(unshadowed.as_ref(), &frame, column, row, texel);
             for c in 0..3 {
                 let (gpu, gpu_lit) = (f64::from(dark[i][c]), f64::from(lit[i][c]));
                 let error = (gpu - cpu[c]).abs() / cpu[c].max(FLOOR);
@@ -121,7 +148,9 @@ fn shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
             }
         }
     }
-    println!("worst relative error {worst:.2e}; {darkened} pixel channels darkened by > 2 %");
+    println!(
+        "{model}: worst relative error {worst:.2e}; {darkened} pixel channels darkened by > 2 %"
+    );
     assert!(darkened > 30, "only {darkened} pixel channels in shadow");
 }
 

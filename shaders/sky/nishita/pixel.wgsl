@@ -4,7 +4,8 @@
 // integrated along each view ray with N equal sub-segments, one sample at each midpoint
 // (Eq. 12); the sun's optical depth from the table g_l (the `columns` of
 // `sky/transmittance_table.wgsl`); the ground's Lambertian reflection of the transmitted
-// sun (Eq. 11). The frame around it (surface, sun disk, HDR target) is
+// sun (Eq. 11); with light shafts, each sample's single scattering times the sun's
+// visibility past the terrain (`shafts/terrain/shadow_map.wgsl`). The frame around it (surface, sun disk, HDR target) is
 // `common/shade_pixel.wgsl`. Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three
 // wavelengths of the uniform.
 
@@ -14,6 +15,7 @@
 #import common/phase.wgsl
 #import common/surface.wgsl
 #import common/shade_pixel.wgsl
+#import shafts/terrain/shadow_map.wgsl
 
 struct NishitaParams {
     view_samples: u32,
@@ -24,7 +26,10 @@ struct NishitaParams {
 
 @group(0) @binding(2) var<uniform> nishita: NishitaParams;
 @group(0) @binding(3) var g_l: texture_2d<f32>;
-@group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
+// The terrain's shadow map for light shafts (docs/shafts.md).
+@group(0) @binding(4) var shadow_tops: texture_2d<f32>;
+@group(0) @binding(5) var<uniform> shadow_map: ShadowMapParams;
+@group(0) @binding(6) var hdr: texture_storage_2d<rgba16float, write>;
 
 // `Nishita::radiance` for the view ray with unit `direction` from the camera and its
 // segment `s` in the atmosphere (`common/shade_pixel.wgsl`).
@@ -50,10 +55,15 @@ fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance
         if mu_sun < 0.0 && (radius * mu_sun) * (radius * mu_sun) - q >= 0.0 {
             continue;
         }
+        var visible = 1.0;
+        if shadow_map.size.y != 0u {
+            let position = s.start + t * direction;
+            visible = shadow_map_visible(shadow_tops, shadow_map, bottom, position, q / (radius + bottom));
+        }
         let sun_column = table_columns(g_l, q, mu_sun);
         let tau = optical_depth(to_sample) + optical_depth(sun_column);
-        let j = atmosphere.rayleigh_scattering_per_m.xyz * (rho.x * phase_r)
-            + atmosphere.mie_scattering_per_m.xyz * (rho.y * phase_m);
+        let j = atmosphere.rayleigh_scattering_per_m.xyz * (rho.x * phase_r * visible)
+            + atmosphere.mie_scattering_per_m.xyz * (rho.y * phase_m * visible);
         out.radiance += dt * exp(-tau) * j * atmosphere.solar_irradiance.xyz;
     }
     out.transmittance = exp(-optical_depth(view_column));

@@ -19,6 +19,7 @@ use crate::optics::geometry::ray_hits_ground;
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
+use crate::shafts::{ShadowMap, SunVisibility};
 
 /// The settings that trade accuracy for time.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -117,6 +118,8 @@ pub struct Nishita {
     base: ModelBase,
     settings: NishitaSettings,
     table: TransmittanceTable,
+    /// The terrain's shadow in the air, when light shafts are on (docs/shafts.md).
+    shadow: Option<ShadowMap>,
 }
 
 impl Nishita {
@@ -138,11 +141,18 @@ impl Nishita {
                 settings.table_angles,
                 settings.table_heights,
             ),
+            shadow: None,
         })
     }
 
     pub fn settings(&self) -> &NishitaSettings {
         &self.settings
+    }
+
+    /// The terrain's shadow the view samples test from now on (`None`: no light shafts):
+    /// each sample's single scattering times its sun visibility.
+    pub fn set_terrain_shadow(&mut self, shadow: Option<ShadowMap>) {
+        self.shadow = shadow;
     }
 
     pub fn table(&self) -> &TransmittanceTable {
@@ -227,8 +237,12 @@ impl SkyModel for Nishita {
             let Some(sun_column) = sun_column(&self.table, radius, mu_sun) else {
                 continue;
             };
-            let scatter_r = rho[0] * phase_r;
-            let scatter_m = rho[1] * phase_m;
+            let visible = self
+                .shadow
+                .as_ref()
+                .map_or(1.0, |m| m.sun_visible(position, sun));
+            let scatter_r = rho[0] * phase_r * visible;
+            let scatter_m = rho[1] * phase_m * visible;
             for w in 0..n_w {
                 let tau = optical_depth(to_sample, s.extinction[w])
                     + optical_depth(sun_column, s.extinction[w]);

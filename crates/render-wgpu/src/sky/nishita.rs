@@ -11,7 +11,8 @@ use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
-use crate::gpu::pipeline::{texture_entry, uniform_buffer};
+use crate::gpu::pipeline::{texture_entry, uniform_buffer, uniform_entry};
+use crate::shafts::terrain::uniform::ShadowMapUniform;
 use crate::sky::columns_table::ColumnsTable;
 use crate::sky::model_pass::{ModelPass, StepContext, frame_atmosphere};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
@@ -88,7 +89,11 @@ impl NishitaPass {
                 entry: "main",
                 label: "the nishita pass",
                 params_size: size_of::<NishitaUniform>(),
-                tables: &[texture_entry(3, wgpu::TextureViewDimension::D2)],
+                tables: &[
+                    texture_entry(3, wgpu::TextureViewDimension::D2),
+                    texture_entry(4, wgpu::TextureViewDimension::D2),
+                    uniform_entry(5, size_of::<ShadowMapUniform>()),
+                ],
                 sampling: None,
             },
         )?;
@@ -124,7 +129,12 @@ impl ModelPass for NishitaPass {
             NishitaStep::GL => self.g_l.encode(&self.atmosphere, cx),
             NishitaStep::Pass => {
                 let table = self.g_l.texture().create_view(&Default::default());
-                let tables = [wgpu::BindingResource::TextureView(&table)];
+                let shadow = cx.io.shadow.view();
+                let tables = [
+                    wgpu::BindingResource::TextureView(&table),
+                    wgpu::BindingResource::TextureView(&shadow),
+                    cx.io.shadow.params().as_entire_binding(),
+                ];
                 self.pass.encode(cx, &self.params, &tables);
             }
         }

@@ -10,7 +10,7 @@ use crate::frame::ground_in_view::ground_within;
 
 /// Why `frame` needs no shafts with the shadow map `map`, or `None` when it may.
 pub fn why_no_shafts(frame: &Frame, map: &ShadowMap) -> Option<&'static str> {
-    if frame.model != ModelId::Hillaire {
+    if !matches!(frame.model, ModelId::Hillaire | ModelId::Nishita) {
         return Some("the model has no light shafts");
     }
     if map.shadowing_cells == 0 {
@@ -97,10 +97,10 @@ mod tests {
             Some("nothing casts a shadow into the air")
         );
         // A model without shafts.
-        let mut nishita = frame(500.0, DVec3::X);
-        nishita.model = ModelId::Nishita;
+        let mut oneil = frame(500.0, DVec3::X);
+        oneil.model = ModelId::Oneil;
         assert_eq!(
-            why_no_shafts(&nishita, &map),
+            why_no_shafts(&oneil, &map),
             Some("the model has no light shafts")
         );
     }
