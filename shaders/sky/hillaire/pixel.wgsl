@@ -202,11 +202,13 @@ fn with_ground(m_in: ViewMarch, s: Segment, nu: f32) -> ViewMarch {
 }
 
 // The sky's radiance along the sea's mirror ray (`common/sea_surface.wgsl`): marched from
-// the sea point (the sky view and the volume hold the camera's rays only).
+// the sea point (the sky view and the volume hold the camera's rays only), less its
+// shafts as for the camera's rays.
 fn hillaire_mirror_sky(direction: vec3<f32>, s: Segment) -> vec3<f32> {
     let nu = dot(direction, frame.sun_direction.xyz);
     var m = march_run(view_ray(s.q, s.r_mu, s.start_dot_sun, nu), s.length,
         hillaire.march_samples);
+    m.radiance -= shafts_loss(s, direction, nu);
     m = with_ground(m, s, nu);
     return max(m.radiance * atmosphere.solar_irradiance.xyz, vec3<f32>(0.0));
 }
