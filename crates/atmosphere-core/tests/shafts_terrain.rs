@@ -249,3 +249,49 @@ fn bad_grids_and_maps_are_refused_by_name() {
     let e = ShadowMap::new(g, &[0.0; 16], DVec3::ZERO).unwrap_err();
     assert!(message(e).contains("sun"));
 }
+
+/// The hillaire model's shafts (`models::hillaire::shafts`: 32 samples, the shadow map)
+/// take out of a ray through the ridge's shadow the single scattering the reference
+/// takes out with the exact march: a ray 300 m up, 4 km south of the ridge, looking east
+/// along it, in shadow for its first 100 km or so (until the sphere's curvature lifts it
+/// out). The difference is the map's cells and the march's 8 km samples at the
+/// shadow's far end.
+#[test]
+fn hillaire_shafts_take_out_what_the_reference_does() {
+    use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
+    let a = Atmosphere::preset("earth").unwrap();
+    let settings = ModelSettings {
+        wavelengths_nm: vec![550.0],
+        max_orders: Some(1),
+        ..ModelSettings::default()
+    };
+    let s = sun(SUN_ELEVATION_DEG);
+    let ray = ViewRay {
+        origin_m: point(4_000.0, 300.0),
+        direction: DVec3::Y,
+        sun_direction: s,
+        max_distance_m: None,
+    };
+    let reference = single_reference(&a);
+    let march = HeightFieldShadow::new(Ridge, a.bottom_radius_m);
+    let exact = reference.radiance(&ray).unwrap().radiance[0]
+        - reference
+            .radiance_shadowed(&ray, Some(&march))
+            .unwrap()
+            .radiance[0];
+    let east = 100_000.0 / RADIUS_M;
+    let centre = DVec3::new(east.cos(), east.sin(), 0.0);
+    let grid = GnomonicGrid::new(centre, a.bottom_radius_m, 500.0, 512).unwrap();
+    let map = ShadowMap::new(grid, &grid.sample(|d| Ridge.elevation_m(d)), s).unwrap();
+    let mut hillaire = Hillaire::prepare(&a, &settings, HillaireSettings::default()).unwrap();
+    let lit = hillaire.radiance(&ray).unwrap().radiance[0];
+    hillaire.set_terrain_shadow(Some(map));
+    let taken = lit - hillaire.radiance(&ray).unwrap().radiance[0];
+    let error = (taken - exact).abs() / exact;
+    println!("taken out: hillaire {taken:e}, reference {exact:e} (of {lit:e}): {error:.3}");
+    assert!(
+        exact > 0.05 * lit,
+        "the shadow takes out {exact:e} of {lit:e}"
+    );
+    assert!(error < 0.03, "relative error {error}");
+}
