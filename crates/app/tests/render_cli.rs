@@ -238,6 +238,11 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "--wind-m-s: wind_m_s 30 is outside [0, 20] m/s",
         ),
         (
+            &[("--terrain", "true"), ("--shafts", "maybe")],
+            "frame.png",
+            "\"maybe\" is not a switch: use on or off",
+        ),
+        (
             &[("--clouds", "true"), ("--cloud-base-m", "-1")],
             "frame.png",
             "--cloud-base-m -1 must lie in [0, 20000]",
