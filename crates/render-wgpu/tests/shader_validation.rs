@@ -15,6 +15,7 @@ use render_wgpu::gpu::shaders;
 use render_wgpu::shafts::beams::gpu_scene::{
     BeamsUniform, LightUniform, NodeUniform, PrimitiveUniform, ShadowViewUniform,
 };
+use render_wgpu::shafts::beams::planes_pass::PlanesUniform;
 
 /// What the device offers shaders: WebGPU's defaults (naga's default capabilities).
 /// Add a capability here when `GpuContext` starts requesting the feature behind it.
@@ -459,6 +460,12 @@ fn beams_structs_match_their_wgsl_layouts() {
             counts,
             phase
         ]
+    );
+    assert_layout!(
+        "shafts/beams/planes.wgsl",
+        "PlanesParams",
+        PlanesUniform,
+        [planes_lattice_lights, spacing_m]
     );
     assert_layout!(
         "shafts/beams/march.wgsl",

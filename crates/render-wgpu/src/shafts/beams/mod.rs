@@ -7,6 +7,10 @@
 //! - [`limits`]: what the device must hold, checked before anything is made;
 //! - [`march_pass`]: the per-pixel ray march with shadow maps
 //!   (`shaders/shafts/beams/march.wgsl`), twin of `beams/methods/march.rs`;
+//! - [`planes_pass`]: the virtual planes of Dobashi, Yamamoto and Nishita 2000, drawn
+//!   as lattice meshes with additive blending (`shaders/shafts/beams/planes.wgsl`,
+//!   `ray_end.wgsl`), twin of `beams/methods/planes2000.rs`;
+//! - [`scene_buffers`]: the packed scene uploaded, read by every pass;
 //! - [`image`]: the rendered radiance, tone-mapped as a planet frame is, read back.
 //!
 //! The shadow maps are those the CPU march builds (a ray per texel), uploaded: the
@@ -16,3 +20,5 @@ pub mod gpu_scene;
 pub mod image;
 pub mod limits;
 pub mod march_pass;
+pub mod planes_pass;
+pub mod scene_buffers;
