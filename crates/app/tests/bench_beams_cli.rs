@@ -74,9 +74,9 @@ fn beam_variants_need_a_scene_and_a_method_on_the_gpu() {
             "--beams-scene",
             SPHERE,
             "--beams-variant",
-            "planes2000",
+            "qtable2002",
         ],
-        "--beams-variant planes2000: not yet on the GPU",
+        "--beams-variant qtable2002: not yet on the GPU",
     );
     atmos_fails_with(
         &[

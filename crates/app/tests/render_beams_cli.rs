@@ -65,7 +65,7 @@ fn beams_flags_that_do_not_apply_fail_clearly_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
     // (flags, output file, expected message)
     let cases: &[(&[&str], &str, &str)] = &[
-        (&["--model", "planes2000"], "a.png", "not yet on the GPU"),
+        (&["--model", "qtable2002"], "a.png", "not yet on the GPU"),
         (
             &["--model", "nishita"],
             "a.png",

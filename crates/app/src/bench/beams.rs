@@ -8,16 +8,14 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
-use atmosphere_core::beams::methods::march::March;
+use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::models::options::ModelOptions;
 use render_wgpu::Renderer;
 use render_wgpu::frame::Frame;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
-use render_wgpu::shafts::beams::gpu_scene::GpuScene;
-use render_wgpu::shafts::beams::limits::check_trips;
-use render_wgpu::shafts::beams::march_pass::MarchPass;
+use render_wgpu::shafts::beams::gpu_methods::PreparedBeams;
 
 use crate::bench::timing::{median, timed};
 use crate::progress::Progress;
@@ -27,6 +25,7 @@ use crate::render::beams::gpu_method;
 #[derive(Clone, Debug, PartialEq)]
 pub struct BeamVariant {
     pub label: String,
+    pub method: BeamMethodId,
     pub options: Vec<String>,
 }
 
@@ -37,9 +36,10 @@ impl BeamVariant {
         let Some(method) = words.next() else {
             bail!("--beams-variant '{text}': give a beam method, e.g. \"march steps=32\"");
         };
-        gpu_method("--beams-variant", Some(method))?;
+        let method = gpu_method("--beams-variant", Some(method))?;
         Ok(BeamVariant {
             label: text.split_whitespace().collect::<Vec<_>>().join(" "),
+            method,
             options: words.map(str::to_string).collect(),
         })
     }
@@ -76,22 +76,21 @@ pub fn measure(
     let mut scene =
         BeamScene::load(path).with_context(|| format!("--beams-scene {}", path.display()))?;
     (scene.camera.width_px, scene.camera.height_px) = size;
-    let pass = MarchPass::new(renderer.gpu())?;
     let mut out = Vec::new();
     for variant in variants {
         let settings = BeamSettings {
             wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
             options: ModelOptions::parse(&variant.options)?,
         };
-        let packed = GpuScene::new(&March::new(&scene, &settings)?);
-        check_trips(&packed)?;
+        let pass =
+            PreparedBeams::new(variant.method, &scene, &settings)?.renderer(renderer.gpu())?;
         let (mut gpu, mut wall, mut base_gpu, mut base_wall) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for k in 0..=frames {
             let (plan, base_ms) = timed(renderer, baseline)?;
             progress.inc();
             let start = Instant::now();
-            let (image, gpu_ms) = pass.render(renderer.gpu(), &packed)?;
+            let (image, gpu_ms) = pass.render(renderer.gpu())?;
             image.read_radiance(renderer.gpu())?;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             progress.inc();

@@ -4,6 +4,7 @@
 //!
 //! - [`gpu_scene`]: the scene packed for the shaders (lights, light maps, shadow maps,
 //!   occluders, phase function), relative to the camera;
+//! - [`gpu_methods`]: the methods on the GPU by id, prepared and rendered;
 //! - [`limits`]: what the device must hold, checked before anything is made;
 //! - [`march_pass`]: the per-pixel ray march with shadow maps
 //!   (`shaders/shafts/beams/march.wgsl`), twin of `beams/methods/march.rs`;
@@ -16,6 +17,7 @@
 //! The shadow maps are those the CPU march builds (a ray per texel), uploaded: the
 //! parity of GPU and CPU then rests on the march alone.
 
+pub mod gpu_methods;
 pub mod gpu_scene;
 pub mod image;
 pub mod limits;
