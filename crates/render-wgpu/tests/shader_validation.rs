@@ -16,6 +16,7 @@ use render_wgpu::shafts::beams::gpu_scene::{
     BeamsUniform, LightUniform, NodeUniform, PrimitiveUniform, ShadowViewUniform,
 };
 use render_wgpu::shafts::beams::planes_pass::PlanesUniform;
+use render_wgpu::shafts::beams::qtable_pass::QtableUniform;
 
 /// What the device offers shaders: WebGPU's defaults (naga's default capabilities).
 /// Add a capability here when `GpuContext` starts requesting the feature behind it.
@@ -466,6 +467,12 @@ fn beams_structs_match_their_wgsl_layouts() {
         "PlanesParams",
         PlanesUniform,
         [planes_lattice_lights, spacing_m]
+    );
+    assert_layout!(
+        "shafts/beams/qtable.wgsl",
+        "QtableParams",
+        QtableUniform,
+        [interval_m, ranges, nodes]
     );
     assert_layout!(
         "shafts/beams/march.wgsl",

@@ -49,8 +49,8 @@ pub fn gpu_method(flag: &str, model: Option<&str>) -> anyhow::Result<BeamMethodI
     })?;
     if !GPU_BEAM_METHODS.contains(&id) {
         bail!(
-            "{flag} {id}: not yet on the GPU (beam methods on the GPU: {}; `atmos probe \
-             --scene` computes the others on the CPU)",
+            "{flag} {id}: not on the GPU (beam methods on the GPU: {}; `atmos probe \
+             --scene` computes the {id} on the CPU)",
             BeamMethodId::list(&GPU_BEAM_METHODS)
         );
     }

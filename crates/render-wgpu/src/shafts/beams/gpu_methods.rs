@@ -6,6 +6,7 @@ use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::march::March;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::planes2000::Planes2000;
+use atmosphere_core::beams::methods::qtable2002::Qtable2002;
 use atmosphere_core::beams::scene::BeamScene;
 
 use crate::gpu::context::GpuContext;
@@ -15,15 +16,21 @@ use crate::shafts::beams::image::BeamImage;
 use crate::shafts::beams::limits::check_trips;
 use crate::shafts::beams::march_pass::MarchPass;
 use crate::shafts::beams::planes_pass::{GpuPlanes, PlanesPass};
+use crate::shafts::beams::qtable_pass::{GpuQtable, QtablePass};
 
 /// The beam methods the GPU renders.
-pub const GPU_BEAM_METHODS: [BeamMethodId; 2] = [BeamMethodId::March, BeamMethodId::Planes2000];
+pub const GPU_BEAM_METHODS: [BeamMethodId; 3] = [
+    BeamMethodId::March,
+    BeamMethodId::Planes2000,
+    BeamMethodId::Qtable2002,
+];
 
 /// A beams scene prepared and packed for one method's pass.
 #[derive(Clone, Debug, PartialEq)]
 pub enum PreparedBeams {
     March(GpuScene),
     Planes2000(GpuPlanes),
+    Qtable2002(GpuQtable),
 }
 
 impl PreparedBeams {
@@ -41,7 +48,10 @@ impl PreparedBeams {
             BeamMethodId::Planes2000 => {
                 PreparedBeams::Planes2000(GpuPlanes::new(&Planes2000::new(scene, settings)?))
             }
-            BeamMethodId::Reference | BeamMethodId::Qtable2002 => {
+            BeamMethodId::Qtable2002 => {
+                PreparedBeams::Qtable2002(GpuQtable::new(&Qtable2002::new(scene, settings)?))
+            }
+            BeamMethodId::Reference => {
                 return Err(RenderError::Unsupported(format!(
                     "beam method {id} (beam methods on the GPU: {})",
                     BeamMethodId::list(&GPU_BEAM_METHODS)
@@ -57,6 +67,7 @@ impl PreparedBeams {
         match self {
             PreparedBeams::March(scene) => scene,
             PreparedBeams::Planes2000(planes) => &planes.scene,
+            PreparedBeams::Qtable2002(qtable) => &qtable.scene,
         }
     }
 
@@ -73,6 +84,9 @@ impl PreparedBeams {
             PreparedBeams::Planes2000(planes) => {
                 BeamRenderer::Planes2000(PlanesPass::new(gpu)?, planes)
             }
+            PreparedBeams::Qtable2002(qtable) => {
+                BeamRenderer::Qtable2002(QtablePass::new(gpu)?, qtable)
+            }
         })
     }
 }
@@ -82,6 +96,7 @@ impl PreparedBeams {
 pub enum BeamRenderer {
     March(MarchPass, GpuScene),
     Planes2000(PlanesPass, GpuPlanes),
+    Qtable2002(QtablePass, GpuQtable),
 }
 
 impl BeamRenderer {
@@ -90,6 +105,7 @@ impl BeamRenderer {
         match self {
             BeamRenderer::March(pass, scene) => pass.render(gpu, scene),
             BeamRenderer::Planes2000(pass, planes) => pass.render(gpu, planes),
+            BeamRenderer::Qtable2002(pass, qtable) => pass.render(gpu, qtable),
         }
     }
 }

@@ -11,19 +11,15 @@ use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 use crate::gpu::context::GpuContext;
-use crate::gpu::error::{GpuError, RenderError};
-use crate::gpu::pipeline::{
-    ComputePipeline, in_stage, shader_module, storage_texture_entry, texel_groups, texture_2d,
-    texture_entry, uniform_entry,
-};
+use crate::gpu::error::RenderError;
+use crate::gpu::pipeline::{in_stage, ordered_bind_group, texture_entry, uniform_entry};
 use crate::gpu::timer::GpuTimer;
+use crate::shafts::beams::blended_planes::{BlendedPlanes, begin_planes_pass};
 use crate::shafts::beams::gpu_scene::GpuScene;
-use crate::shafts::beams::image::{BeamImage, RADIANCE_FORMAT};
+use crate::shafts::beams::image::BeamImage;
 use crate::shafts::beams::limits;
-use crate::shafts::beams::scene_buffers::{SceneBuffers, scene_entries};
-
-/// Where each pixel's ray ends, m.
-const RAY_END_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+use crate::shafts::beams::ray_end_pass::RayEndPass;
+use crate::shafts::beams::scene_buffers::SceneBuffers;
 
 /// The planes' own parameters (WGSL `PlanesParams`).
 #[repr(C)]
@@ -82,111 +78,30 @@ fn lattice_indices(n: u32) -> Vec<u32> {
 /// The planes' pipelines, made once per device.
 #[derive(Debug)]
 pub struct PlanesPass {
-    ray_end: ComputePipeline,
-    planes: wgpu::RenderPipeline,
-    scene_layout: wgpu::BindGroupLayout,
-    planes_layout: wgpu::BindGroupLayout,
+    ray_end: RayEndPass,
+    planes: BlendedPlanes,
 }
 
 impl PlanesPass {
     /// The pipelines; an error where the device cannot blend `Rgba32Float` targets.
     pub fn new(gpu: &GpuContext) -> Result<PlanesPass, RenderError> {
-        if !gpu
-            .device
-            .features()
-            .contains(wgpu::Features::FLOAT32_BLENDABLE)
-        {
-            return Err(RenderError::Unsupported(
-                "planes2000 sums its planes by blending into an Rgba32Float image; this \
-                 device lacks FLOAT32_BLENDABLE (use --model march)"
-                    .into(),
-            ));
-        }
-        let mut entries = scene_entries();
-        entries.push(storage_texture_entry(
-            10,
-            RAY_END_FORMAT,
-            wgpu::TextureViewDimension::D2,
-        ));
-        let ray_end = ComputePipeline::new(
-            gpu,
-            "shafts/beams/ray_end.wgsl",
-            "main",
-            "beams ray end",
-            &entries,
-        )?;
-        let device = &gpu.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let scene_entries: Vec<_> = scene_entries()
-            .into_iter()
-            .map(|e| in_stage(stages, e))
-            .collect();
-        let scene_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("beams planes scene"),
-            entries: &scene_entries,
-        });
-        let planes_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("beams planes"),
-            entries: &[
+        let planes = BlendedPlanes::new(
+            gpu,
+            "shafts/beams/planes.wgsl",
+            "beams planes2000",
+            &[
                 in_stage(stages, uniform_entry(0, size_of::<PlanesUniform>())),
                 in_stage(
                     wgpu::ShaderStages::FRAGMENT,
                     texture_entry(1, wgpu::TextureViewDimension::D2),
                 ),
             ],
-        });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("beams planes"),
-            bind_group_layouts: &[Some(&scene_layout), Some(&planes_layout)],
-            immediate_size: 0,
-        });
-        let module = shader_module(device, "shafts/beams/planes.wgsl")?;
-        let add = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        };
-        let planes = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("beams planes"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vertex"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: RADIANCE_FORMAT,
-                    blend: Some(wgpu::BlendState {
-                        color: add,
-                        alpha: add,
-                    }),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        if let Some(source) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Validation {
-                what: "the beams planes pipeline",
-                source,
-            }
-            .into());
-        }
+            &[],
+        )?;
         Ok(PlanesPass {
-            ray_end,
+            ray_end: RayEndPass::new(gpu)?,
             planes,
-            scene_layout,
-            planes_layout,
         })
     }
 
@@ -205,38 +120,31 @@ impl PlanesPass {
         let image = BeamImage::new(gpu, width, height);
         let device = &gpu.device;
         let buffers = SceneBuffers::new(gpu, scene);
-        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-        let ray_end = texture_2d(
-            device,
-            "beams ray end",
+        let timer = GpuTimer::new(gpu, 2);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let ray_end = self.ray_end.encode(
+            gpu,
+            &buffers,
             (width, height),
-            RAY_END_FORMAT,
-            usage,
+            &mut encoder,
+            timer.as_ref().map(|t| t.compute_writes(0)),
         );
         let ray_end_view = ray_end.create_view(&Default::default());
-        let mut resources: Vec<(u32, wgpu::BindingResource<'_>)> = buffers
-            .resources()
-            .into_iter()
-            .enumerate()
-            .map(|(b, r)| (b as u32, r))
-            .collect();
-        resources.push((10, wgpu::BindingResource::TextureView(&ray_end_view)));
-        let ray_end_group = self.ray_end.bind_group_numbered(gpu, &resources);
-        let scene_group = crate::gpu::pipeline::ordered_bind_group(
+        let scene_group = ordered_bind_group(
             device,
-            Some("beams planes scene"),
-            &self.scene_layout,
+            Some("beams planes2000 scene"),
+            &self.planes.scene_layout,
             &buffers.resources(),
         );
         let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("beams planes params"),
+            label: Some("beams planes2000 params"),
             contents: bytemuck::bytes_of(&planes.planes),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let planes_group = crate::gpu::pipeline::ordered_bind_group(
+        let own_group = ordered_bind_group(
             device,
-            Some("beams planes"),
-            &self.planes_layout,
+            Some("beams planes2000"),
+            &self.planes.own_layout,
             &[
                 uniform.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&ray_end_view),
@@ -248,41 +156,17 @@ impl PlanesPass {
             contents: bytemuck::cast_slice(&indices),
             usage: wgpu::BufferUsages::INDEX,
         });
-        let timer = GpuTimer::new(gpu, 2);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        self.ray_end.dispatch(
-            &mut encoder,
-            "beams ray end",
-            &ray_end_group,
-            texel_groups(&ray_end),
-            timer.as_ref().map(|t| t.compute_writes(0)),
-        );
         {
             let target = image.radiance.create_view(&Default::default());
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("beams planes"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color {
-                            r: 0.0,
-                            g: 0.0,
-                            b: 0.0,
-                            a: 1.0,
-                        }),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: timer.as_ref().map(|t| t.render_writes(1)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&self.planes);
+            let mut pass = begin_planes_pass(
+                &mut encoder,
+                "beams planes2000",
+                &target,
+                timer.as_ref().map(|t| t.render_writes(1)),
+            );
+            pass.set_pipeline(&self.planes.pipeline);
             pass.set_bind_group(0, &scene_group, &[]);
-            pass.set_bind_group(1, &planes_group, &[]);
+            pass.set_bind_group(1, &own_group, &[]);
             pass.set_index_buffer(index_buffer.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..indices.len() as u32, 0, 0..count * lights);
         }

@@ -245,6 +245,16 @@ impl Qtable2002 {
         &self.table
     }
 
+    /// The scene's lights and medium at the method's wavelengths.
+    pub fn scattering(&self) -> &InScattering {
+        &self.scattering
+    }
+
+    /// Each light's shadow map, in the scene's order.
+    pub fn shadow_maps(&self) -> &[ShadowMap] {
+        &self.shadow_maps
+    }
+
     /// Each light's planes and sub-plane counts.
     pub fn planes(&self) -> &[LightPlanes] {
         &self.planes
