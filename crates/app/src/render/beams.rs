@@ -118,6 +118,7 @@ pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::R
     };
     // Refused before the device is opened: the loops depend on the settings alone.
     let prepared = PreparedBeams::new(id, &scene, &settings)?;
+    eprintln!("plan: {}", prepared.plan);
     let gpu = GpuContext::headless()?;
     let renderer = prepared.renderer(&gpu)?;
     let start = Instant::now();

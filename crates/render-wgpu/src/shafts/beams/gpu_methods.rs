@@ -1,12 +1,14 @@
-//! The beam methods on the GPU, by their one id ([`BeamMethodId`]): each prepared on the
-//! CPU (its shadow maps, planes and tables) and packed without a device, then rendered
-//! by its pass.
+//! The beam methods on the GPU, by their one id ([`BeamMethodId`]): the frame's plan
+//! (atmosphere-core's `beams/plan.rs`: no work for a light that cannot reach the
+//! visible air), then each method prepared on the CPU (its shadow maps, planes and
+//! tables) for the lights drawn and packed without a device, then rendered by its pass.
 
 use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::march::March;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::planes2000::Planes2000;
 use atmosphere_core::beams::methods::qtable2002::Qtable2002;
+use atmosphere_core::beams::plan::BeamPlan;
 use atmosphere_core::beams::scene::BeamScene;
 
 use crate::gpu::context::GpuContext;
@@ -25,31 +27,59 @@ pub const GPU_BEAM_METHODS: [BeamMethodId; 3] = [
     BeamMethodId::Qtable2002,
 ];
 
-/// A beams scene prepared and packed for one method's pass.
+/// A beams scene packed for one method's pass.
 #[derive(Clone, Debug, PartialEq)]
-pub enum PreparedBeams {
+pub enum PackedBeams {
     March(GpuScene),
     Planes2000(GpuPlanes),
     Qtable2002(GpuQtable),
 }
 
+/// A beams scene planned, prepared and packed for one method's pass.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedBeams {
+    /// Which lights the frame draws and why the others are skipped.
+    pub plan: BeamPlan,
+    pub packed: PackedBeams,
+}
+
 impl PreparedBeams {
-    /// `scene` prepared for method `id` with `settings` (three wavelengths); an error
-    /// naming the method where it is not on the GPU.
+    /// `scene` planned and prepared for method `id` with `settings` (three
+    /// wavelengths); an error naming the method where it is not on the GPU.
     pub fn new(
         id: BeamMethodId,
         scene: &BeamScene,
         settings: &BeamSettings,
     ) -> Result<PreparedBeams, RenderError> {
-        let prepared = match id {
-            BeamMethodId::March => {
-                PreparedBeams::March(GpuScene::new(&March::new(scene, settings)?))
-            }
+        let plan = BeamPlan::new(scene, &settings.wavelengths_nm);
+        let prepared = PreparedBeams {
+            packed: PackedBeams::new(id, &plan.pruned(scene), settings)?,
+            plan,
+        };
+        prepared.packed.check_trips()?;
+        Ok(prepared)
+    }
+
+    /// The pass that renders it on `gpu`, made.
+    pub fn renderer(self, gpu: &GpuContext) -> Result<BeamRenderer, RenderError> {
+        self.packed.renderer(gpu)
+    }
+}
+
+impl PackedBeams {
+    /// `scene`, every light of it, prepared for method `id` with `settings`.
+    pub fn new(
+        id: BeamMethodId,
+        scene: &BeamScene,
+        settings: &BeamSettings,
+    ) -> Result<PackedBeams, RenderError> {
+        Ok(match id {
+            BeamMethodId::March => PackedBeams::March(GpuScene::new(&March::new(scene, settings)?)),
             BeamMethodId::Planes2000 => {
-                PreparedBeams::Planes2000(GpuPlanes::new(&Planes2000::new(scene, settings)?))
+                PackedBeams::Planes2000(GpuPlanes::new(&Planes2000::new(scene, settings)?))
             }
             BeamMethodId::Qtable2002 => {
-                PreparedBeams::Qtable2002(GpuQtable::new(&Qtable2002::new(scene, settings)?))
+                PackedBeams::Qtable2002(GpuQtable::new(&Qtable2002::new(scene, settings)?))
             }
             BeamMethodId::Reference => {
                 return Err(RenderError::Unsupported(format!(
@@ -57,17 +87,15 @@ impl PreparedBeams {
                     BeamMethodId::list(&GPU_BEAM_METHODS)
                 )));
             }
-        };
-        prepared.check_trips()?;
-        Ok(prepared)
+        })
     }
 
     /// The packed scene, which every method has.
     pub fn scene(&self) -> &GpuScene {
         match self {
-            PreparedBeams::March(scene) => scene,
-            PreparedBeams::Planes2000(planes) => &planes.scene,
-            PreparedBeams::Qtable2002(qtable) => &qtable.scene,
+            PackedBeams::March(scene) => scene,
+            PackedBeams::Planes2000(planes) => &planes.scene,
+            PackedBeams::Qtable2002(qtable) => &qtable.scene,
         }
     }
 
@@ -80,11 +108,11 @@ impl PreparedBeams {
     /// The pass that renders it on `gpu`, made.
     pub fn renderer(self, gpu: &GpuContext) -> Result<BeamRenderer, RenderError> {
         Ok(match self {
-            PreparedBeams::March(scene) => BeamRenderer::March(MarchPass::new(gpu)?, scene),
-            PreparedBeams::Planes2000(planes) => {
+            PackedBeams::March(scene) => BeamRenderer::March(MarchPass::new(gpu)?, scene),
+            PackedBeams::Planes2000(planes) => {
                 BeamRenderer::Planes2000(PlanesPass::new(gpu)?, planes)
             }
-            PreparedBeams::Qtable2002(qtable) => {
+            PackedBeams::Qtable2002(qtable) => {
                 BeamRenderer::Qtable2002(QtablePass::new(gpu)?, qtable)
             }
         })
