@@ -262,6 +262,10 @@ mod tests {
         let (cpu, gpu) = points(&rows, &variants);
         assert_eq!(cpu.len(), 2);
         assert!(gpu.is_empty());
+        let dir = tempfile::tempdir().unwrap();
+        let plot = dir.path().join("beams_error_vs_time.png");
+        crate::report::plot::draw(&plot, &BEAMS_CPU_AXIS, &cpu).unwrap();
+        assert!(std::fs::metadata(&plot).unwrap().len() > 1000);
     }
 
     #[test]

@@ -136,7 +136,10 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         let points: Vec<Point> = results.iter().filter_map(Point::gpu).collect();
         plot::draw(&args.out.join("error_vs_gpu_time.png"), &GPU_AXIS, &points)?;
     }
-    report_beams(args)?;
+    // The beams belong to the whole report: --model and --variant narrow it to skies.
+    if args.model.is_empty() && args.variant.is_empty() {
+        report_beams(args)?;
+    }
     eprintln!("report: wrote {}", args.out.join("README.md").display());
     Ok(())
 }
