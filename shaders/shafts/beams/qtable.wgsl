@@ -4,7 +4,8 @@
 //
 // One instance per light, plane interval k and sample j < m_k (the main plane, j = 0,
 // and its sub-planes, chosen on the CPU from f_l on the centre ray and epsilon) draws a
-// plane over the screen at depth d_k + j dt / m_k. Each fragment adds its share of the
+// plane at depth d_k + j dt / m_k over the rectangle of the screen that the light's
+// bounding volume projects to (section 4.2.1's pyramid to d0). Each fragment adds its share of the
 // interval's f_h f_l (Eq. 6): I_l H at its sample (Eq. 10's term: the light's
 // distribution, light map and shadow map) over the samples in front of the ray's end,
 // times f_l of the interval from the table (`q_table.wgsl`). Additive blending sums
@@ -31,11 +32,16 @@ fn vertex(
     @builtin(vertex_index) v: u32,
     @location(0) plane: vec4<u32>,
     @location(1) first_depth_m: f32,
+    @location(2) bounds: vec4<f32>,
 ) -> PlaneSample {
-    // One triangle over the whole screen.
-    let corner = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
+    // Two triangles over the rectangle [x0, y0, x1, y1]: its corners (0, 0), (1, 0),
+    // (1, 1), (0, 0), (1, 1), (0, 1).
+    let corners = array<vec2<f32>, 6>(
+        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0),
+        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0),
+    );
     var out: PlaneSample;
-    out.position = vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
+    out.position = vec4<f32>(mix(bounds.xy, bounds.zw, corners[v]), 0.0, 1.0);
     out.plane = plane;
     out.first_depth_m = first_depth_m;
     return out;

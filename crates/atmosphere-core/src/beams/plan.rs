@@ -11,6 +11,7 @@ use std::fmt;
 
 use glam::DVec3;
 
+use crate::beams::camera::Camera;
 use crate::beams::in_scattering::EXTINGUISHED_OPTICAL_DEPTH;
 use crate::beams::light::{Light, LightShape};
 use crate::beams::scene::BeamScene;
@@ -96,10 +97,10 @@ impl fmt::Display for BeamPlan {
     }
 }
 
-/// The corners of `light`'s bounding volume reaching `reach` m from it; `None` where it
-/// has none (an unbounded parallel beam, a cone too wide for a pyramid, an infinite
-/// reach).
-fn volume_corners(light: &Light, reach: f64) -> Option<Vec<DVec3>> {
+/// The corners of `light`'s bounding volume reaching `reach` m from it (Dobashi et al.
+/// 2002 section 4.2.1: a spot's pyramid over its cone); `None` where it has none (an
+/// unbounded parallel beam, a cone too wide for a pyramid, an infinite reach).
+pub fn volume_corners(light: &Light, reach: f64) -> Option<Vec<DVec3>> {
     if !reach.is_finite() {
         return None;
     }
@@ -148,6 +149,41 @@ fn volume_corners(light: &Light, reach: f64) -> Option<Vec<DVec3>> {
             half_size_m: None, ..
         } => None,
     }
+}
+
+/// The rectangle of the screen of `camera`, in normalised device coordinates
+/// [x0, y0, x1, y1] (x right, y up, -1 to 1), that holds the convex hull of `corners`,
+/// widened by a pixel on each side; the whole screen where a corner is not in front of
+/// the camera.
+pub fn screen_bounds(camera: &Camera, corners: &[DVec3]) -> [f64; 4] {
+    let tan_y = (0.5 * camera.vertical_fov_deg.to_radians()).tan();
+    let tan_x = tan_y * f64::from(camera.width_px) / f64::from(camera.height_px);
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for &p in corners {
+        let rel = p - camera.position_m;
+        let depth = rel.dot(camera.forward);
+        if depth <= 0.0 {
+            return [-1.0, -1.0, 1.0, 1.0];
+        }
+        let x = rel.dot(camera.right) / (depth * tan_x);
+        let y = rel.dot(camera.up) / (depth * tan_y);
+        b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+    }
+    let (px, py) = (
+        2.0 / f64::from(camera.width_px),
+        2.0 / f64::from(camera.height_px),
+    );
+    [
+        (b[0] - px).clamp(-1.0, 1.0),
+        (b[1] - py).clamp(-1.0, 1.0),
+        (b[2] + px).clamp(-1.0, 1.0),
+        (b[3] + py).clamp(-1.0, 1.0),
+    ]
 }
 
 /// Whether every corner of `light`'s volume lies outside one plane of the frustum.

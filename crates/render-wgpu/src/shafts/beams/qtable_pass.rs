@@ -1,6 +1,7 @@
 //! The q(u, v) table with adaptive sub-planes of Dobashi et al. 2002 section 4.2 on the
-//! GPU: the ray ends as for the virtual planes (`ray_end_pass.rs`), then one full-screen
-//! plane per light, plane interval and sample (main plane or sub-plane) drawn with
+//! GPU: the ray ends as for the virtual planes (`ray_end_pass.rs`), then one plane per
+//! light, plane interval and sample (main plane or sub-plane), over the part of the
+//! screen the light's bounding volume projects to, drawn with
 //! additive blending (`shaders/shafts/beams/qtable.wgsl`), f_l read from the table as a
 //! texture. The table, its interval and the sub-plane counts are the CPU's
 //! (atmosphere-core's `beams/methods/qtable2002/`, the twin), uploaded.
@@ -40,6 +41,9 @@ pub struct PlaneInstance {
     pub plane: [u32; 4],
     /// The light's first plane's depth along the view, m.
     pub first_depth_m: f32,
+    /// The part of the screen drawn, normalised device coordinates [x0, y0, x1, y1]:
+    /// the light's bounding volume (`Qtable2002::screen_bounds`).
+    pub bounds: [f32; 4],
 }
 
 /// A beams scene with the table and planes of a prepared CPU `qtable2002`.
@@ -75,10 +79,12 @@ impl GpuQtable {
             .collect();
         let mut instances = Vec::new();
         for (l, planes) in method.planes().iter().enumerate() {
+            let bounds = method.screen_bounds()[l].map(|v| v as f32);
             for (k, &m) in planes.samples.iter().enumerate() {
                 instances.extend((0..m).map(|j| PlaneInstance {
                     plane: [l as u32, k as u32, j as u32, m as u32],
                     first_depth_m: planes.first_depth_m as f32,
+                    bounds,
                 }));
             }
         }
@@ -115,7 +121,7 @@ impl QtablePass {
         let instance = wgpu::VertexBufferLayout {
             array_stride: size_of::<PlaneInstance>() as u64,
             step_mode: wgpu::VertexStepMode::Instance,
-            attributes: &wgpu::vertex_attr_array![0 => Uint32x4, 1 => Float32],
+            attributes: &wgpu::vertex_attr_array![0 => Uint32x4, 1 => Float32, 2 => Float32x4],
         };
         let planes = BlendedPlanes::new(
             gpu,
@@ -227,7 +233,7 @@ impl QtablePass {
                 pass.set_bind_group(0, &scene_group, &[]);
                 pass.set_bind_group(1, &own_group, &[]);
                 pass.set_vertex_buffer(0, instances.slice(..));
-                pass.draw(0..3, 0..qtable.instances.len() as u32);
+                pass.draw(0..6, 0..qtable.instances.len() as u32);
             }
         }
         if let Some(t) = &timer {
