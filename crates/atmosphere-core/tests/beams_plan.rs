@@ -1,13 +1,14 @@
 //! The planner's rule for beams scenes (`beams/plan.rs`): a light whose beam cannot
 //! reach the visible air, or any light in a medium that scatters nothing, gets no work;
 //! pruning changes no pixel, and a light outside the frustum that shines into it is
-//! kept.
+//! kept. And the q table's planes cover only their light's part of the screen.
 
 use std::path::Path;
 
 use atmosphere_core::atmosphere::spectral::Spectral;
 use atmosphere_core::beams::methods::id::BeamMethodId;
-use atmosphere_core::beams::methods::method::BeamSettings;
+use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
+use atmosphere_core::beams::methods::qtable2002::Qtable2002;
 use atmosphere_core::beams::methods::registry::prepare;
 use atmosphere_core::beams::plan::{BeamPlan, Skip};
 use atmosphere_core::beams::scene::BeamScene;
@@ -92,4 +93,27 @@ fn a_medium_that_scatters_nothing_skips_every_light() {
     assert_eq!(plan.lights, vec![Some(Skip::NothingScatters)]);
     assert!(image(&scene).iter().flatten().all(|&l| l == 0.0));
     assert!(plan.pruned(&scene).lights.is_empty());
+}
+
+#[test]
+fn the_q_tables_planes_cover_only_the_spots_pyramid_on_the_screen() {
+    // A wide frame, as the bench's 1280 x 720.
+    let mut scene = sphere_scene_with("");
+    (scene.camera.width_px, scene.camera.height_px) = (48, 27);
+    let settings = BeamSettings {
+        options: ModelOptions::parse(&["table_u=32", "table_v=32", "shadow_map_px=64"]).unwrap(),
+        ..BeamSettings::default()
+    };
+    let qtable = Qtable2002::new(&scene, &settings).unwrap();
+    let [x0, y0, x1, y1] = qtable.screen_bounds()[0];
+    // The pyramid from the spot 20 m up to the floor: narrower than the screen, its
+    // apex below the top edge.
+    assert!(-1.0 < x0 && x0 < 0.0 && 0.0 < x1 && x1 < 1.0, "{x0} {x1}");
+    assert!(y0 < 0.0 && 0.0 < y1 && y1 < 1.0, "{y0} {y1}");
+    // A ray beside it gets nothing, one through the middle its light.
+    let camera = &scene.camera;
+    let side = camera.ray(0.5, 13.5);
+    assert!(qtable.radiance(&side).unwrap().iter().all(|&l| l == 0.0));
+    let middle = camera.ray(24.0, 13.5);
+    assert!(qtable.radiance(&middle).unwrap()[1] > 0.0);
 }
