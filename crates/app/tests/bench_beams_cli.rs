@@ -23,6 +23,10 @@ fn beam_variants_are_timed_against_the_baseline_in_the_same_run() {
         "march steps=8 shadow_map_px=64",
         "--beams-variant",
         "march steps=64 shadow_map_px=64",
+        "--beams-variant",
+        "planes2000 planes=16 lattice=4 shadow_map_px=64",
+        "--beams-variant",
+        "qtable2002 table_u=16 table_v=16 shadow_map_px=64",
         "--width",
         "16",
         "--height",
@@ -44,6 +48,8 @@ fn beam_variants_are_timed_against_the_baseline_in_the_same_run() {
     for variant in [
         "march steps=8 shadow_map_px=64",
         "march steps=64 shadow_map_px=64",
+        "planes2000 planes=16 lattice=4 shadow_map_px=64",
+        "qtable2002 table_u=16 table_v=16 shadow_map_px=64",
     ] {
         let row = printed
             .lines()
@@ -74,9 +80,9 @@ fn beam_variants_need_a_scene_and_a_method_on_the_gpu() {
             "--beams-scene",
             SPHERE,
             "--beams-variant",
-            "planes2000",
+            "reference",
         ],
-        "--beams-variant planes2000: not yet on the GPU",
+        "--beams-variant reference: not on the GPU",
     );
     atmos_fails_with(
         &[

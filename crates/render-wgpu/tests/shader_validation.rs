@@ -15,6 +15,8 @@ use render_wgpu::gpu::shaders;
 use render_wgpu::shafts::beams::gpu_scene::{
     BeamsUniform, LightUniform, NodeUniform, PrimitiveUniform, ShadowViewUniform,
 };
+use render_wgpu::shafts::beams::planes_pass::PlanesUniform;
+use render_wgpu::shafts::beams::qtable_pass::QtableUniform;
 
 /// What the device offers shaders: WebGPU's defaults (naga's default capabilities).
 /// Add a capability here when `GpuContext` starts requesting the feature behind it.
@@ -470,6 +472,18 @@ fn beams_structs_match_their_wgsl_layouts() {
             counts,
             phase
         ]
+    );
+    assert_layout!(
+        "shafts/beams/planes.wgsl",
+        "PlanesParams",
+        PlanesUniform,
+        [planes_lattice_lights, spacing_m]
+    );
+    assert_layout!(
+        "shafts/beams/qtable.wgsl",
+        "QtableParams",
+        QtableUniform,
+        [interval_m, ranges, nodes]
     );
     assert_layout!(
         "shafts/beams/march.wgsl",

@@ -8,16 +8,14 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
-use atmosphere_core::beams::methods::march::March;
+use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::models::options::ModelOptions;
 use render_wgpu::Renderer;
 use render_wgpu::frame::Frame;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
-use render_wgpu::shafts::beams::gpu_scene::GpuScene;
-use render_wgpu::shafts::beams::limits::check_trips;
-use render_wgpu::shafts::beams::march_pass::MarchPass;
+use render_wgpu::shafts::beams::gpu_methods::PreparedBeams;
 
 use crate::bench::timing::{median, timed};
 use crate::progress::Progress;
@@ -27,6 +25,7 @@ use crate::render::beams::gpu_method;
 #[derive(Clone, Debug, PartialEq)]
 pub struct BeamVariant {
     pub label: String,
+    pub method: BeamMethodId,
     pub options: Vec<String>,
 }
 
@@ -37,9 +36,10 @@ impl BeamVariant {
         let Some(method) = words.next() else {
             bail!("--beams-variant '{text}': give a beam method, e.g. \"march steps=32\"");
         };
-        gpu_method("--beams-variant", Some(method))?;
+        let method = gpu_method("--beams-variant", Some(method))?;
         Ok(BeamVariant {
             label: text.split_whitespace().collect::<Vec<_>>().join(" "),
+            method,
             options: words.map(str::to_string).collect(),
         })
     }
@@ -56,15 +56,20 @@ pub struct BeamTimes {
     /// The baseline's medians over the frames interleaved with this variant's.
     pub baseline_gpu_ms: Option<f64>,
     pub baseline_wall_ms: f64,
+    /// The medians of the march at its defaults (128 steps) over the frames
+    /// interleaved with this variant's, where the adapter has timestamps.
+    pub march_gpu_ms: Option<f64>,
 }
 
-/// Frames the bench renders per beam variant (the warm-up pair included, two each).
+/// Frames the bench renders per beam variant (the warm-up triple included: the
+/// baseline, the variant and the default march each).
 pub fn frames_per_variant(frames: usize) -> usize {
-    2 * (1 + frames)
+    3 * (1 + frames)
 }
 
 /// Measures each of `variants` on the scene at `path` rendered at `size`, interleaved
-/// with `baseline` frames on `renderer`.
+/// with `baseline` frames on `renderer` and with frames of the march at its defaults
+/// (the beams' own baseline).
 pub fn measure(
     renderer: &mut Renderer,
     baseline: &Frame,
@@ -76,27 +81,36 @@ pub fn measure(
     let mut scene =
         BeamScene::load(path).with_context(|| format!("--beams-scene {}", path.display()))?;
     (scene.camera.width_px, scene.camera.height_px) = size;
-    let pass = MarchPass::new(renderer.gpu())?;
+    let march_settings = BeamSettings {
+        wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
+        options: ModelOptions::default(),
+    };
+    let march = PreparedBeams::new(BeamMethodId::March, &scene, &march_settings)?
+        .renderer(renderer.gpu())?;
     let mut out = Vec::new();
     for variant in variants {
         let settings = BeamSettings {
             wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
             options: ModelOptions::parse(&variant.options)?,
         };
-        let packed = GpuScene::new(&March::new(&scene, &settings)?);
-        check_trips(&packed)?;
-        let (mut gpu, mut wall, mut base_gpu, mut base_wall) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let pass =
+            PreparedBeams::new(variant.method, &scene, &settings)?.renderer(renderer.gpu())?;
+        let (mut gpu, mut wall, mut base_gpu, mut base_wall, mut march_gpu) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for k in 0..=frames {
             let (plan, base_ms) = timed(renderer, baseline)?;
             progress.inc();
             let start = Instant::now();
-            let (image, gpu_ms) = pass.render(renderer.gpu(), &packed)?;
+            let (image, gpu_ms) = pass.render(renderer.gpu())?;
             image.read_radiance(renderer.gpu())?;
             let ms = start.elapsed().as_secs_f64() * 1e3;
             progress.inc();
-            // The first pair warms up: shaders compile, buffers are first made.
+            let (march_image, march_ms) = march.render(renderer.gpu())?;
+            march_image.read_radiance(renderer.gpu())?;
+            progress.inc();
+            // The first triple warms up: shaders compile, buffers are first made.
             if k > 0 {
+                march_gpu.extend(march_ms);
                 gpu.extend(gpu_ms);
                 wall.push(ms);
                 base_gpu.extend(plan.total_gpu_ms());
@@ -110,6 +124,7 @@ pub fn measure(
             wall_ms: median(&wall).unwrap_or(f64::NAN),
             baseline_gpu_ms: timed_all(&base_gpu),
             baseline_wall_ms: median(&base_wall).unwrap_or(f64::NAN),
+            march_gpu_ms: timed_all(&march_gpu),
         });
     }
     Ok(out)
@@ -124,27 +139,31 @@ pub fn markdown(path: &Path, baseline: &str, results: &[BeamTimes]) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "\nBeams scene {}: each frame interleaved with a {baseline} frame (ground view); \
-         ratios of medians measured in the same run.\n",
+        "\nBeams scene {}: each frame interleaved with a {baseline} frame (ground view) \
+         and with a frame of the march at its defaults (128 steps); ratios of medians \
+         measured in the same run.\n",
         path.display()
     );
     let _ = writeln!(
         out,
-        "| beam method | GPU ms | wall ms | {baseline} GPU ms | {baseline} wall ms | GPU / {baseline} | wall / {baseline} |"
+        "| beam method | GPU ms | wall ms | {baseline} GPU ms | {baseline} wall ms | GPU / {baseline} | wall / {baseline} | march GPU ms | GPU / march |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
     for r in results {
         let gpu_ratio = r.gpu_ms.zip(r.baseline_gpu_ms).map(|(a, b)| a / b);
+        let march_ratio = r.gpu_ms.zip(r.march_gpu_ms).map(|(a, b)| a / b);
         let _ = writeln!(
             out,
-            "| {} | {} | {:.1} | {} | {:.1} | {} | {:.2} |",
+            "| {} | {} | {:.1} | {} | {:.1} | {} | {:.2} | {} | {} |",
             r.label,
             ms(r.gpu_ms),
             r.wall_ms,
             ms(r.baseline_gpu_ms),
             r.baseline_wall_ms,
             gpu_ratio.map_or_else(|| "-".to_string(), |x| format!("{x:.2}")),
-            r.wall_ms / r.baseline_wall_ms
+            r.wall_ms / r.baseline_wall_ms,
+            ms(r.march_gpu_ms),
+            march_ratio.map_or_else(|| "-".to_string(), |x| format!("{x:.2}"))
         );
     }
     out

@@ -9,7 +9,6 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::text_file::{TOML_LIMITS, read_text};
 use atmosphere_core::beams::methods::id::BeamMethodId;
-use atmosphere_core::beams::methods::march::March;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::models::options::ModelOptions;
@@ -17,9 +16,7 @@ use render_wgpu::GpuContext;
 use render_wgpu::frame::MAX_SIDE_PX;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::post::luminance::{log_average_luminance, luminance_weights};
-use render_wgpu::shafts::beams::gpu_scene::GpuScene;
-use render_wgpu::shafts::beams::limits::check_trips;
-use render_wgpu::shafts::beams::march_pass::MarchPass;
+use render_wgpu::shafts::beams::gpu_methods::{GPU_BEAM_METHODS, PreparedBeams};
 
 use crate::exposure_meter::metered_ev100;
 use crate::files::write_atomically;
@@ -28,9 +25,6 @@ use crate::render::scene::{EXPOSURE_EV100, Output, Scene};
 
 /// What an EXR of a beams scene holds.
 const EXR_UNITS: &str = "linear sRGB (IEC 61966-2-1, D65) in cd/m^2, from spectral radiance at 680, 550, 440 nm (CIE 1931)";
-
-/// The beam methods on the GPU.
-pub const GPU_METHODS: [BeamMethodId; 1] = [BeamMethodId::March];
 
 /// Whether the TOML file at `path` is a beams scene (it has `medium` or `lights`).
 pub fn is_beams_scene(path: &Path) -> anyhow::Result<bool> {
@@ -53,11 +47,11 @@ pub fn gpu_method(flag: &str, model: Option<&str>) -> anyhow::Result<BeamMethodI
             BeamMethodId::list(&BeamMethodId::ALL)
         )
     })?;
-    if !GPU_METHODS.contains(&id) {
+    if !GPU_BEAM_METHODS.contains(&id) {
         bail!(
-            "{flag} {id}: not yet on the GPU (beam methods on the GPU: {}; `atmos probe \
-             --scene` computes the others on the CPU)",
-            BeamMethodId::list(&GPU_METHODS)
+            "{flag} {id}: not on the GPU (beam methods on the GPU: {}; `atmos probe \
+             --scene` computes the {id} on the CPU)",
+            BeamMethodId::list(&GPU_BEAM_METHODS)
         );
     }
     Ok(id)
@@ -122,14 +116,13 @@ pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::R
         wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
         options: ModelOptions::parse(&f.set)?,
     };
-    let march = March::new(&scene, &settings)?;
-    let packed = GpuScene::new(&march);
     // Refused before the device is opened: the loops depend on the settings alone.
-    check_trips(&packed)?;
+    let prepared = PreparedBeams::new(id, &scene, &settings)?;
+    eprintln!("plan: {}", prepared.plan);
     let gpu = GpuContext::headless()?;
-    let pass = MarchPass::new(&gpu)?;
+    let renderer = prepared.renderer(&gpu)?;
     let start = Instant::now();
-    let (image, gpu_ms) = pass.render(&gpu, &packed)?;
+    let (image, gpu_ms) = renderer.render(&gpu)?;
     let radiance = image.read_radiance(&gpu)?;
     let elapsed = start.elapsed();
     let ev100 = match f.exposure {
@@ -156,7 +149,7 @@ pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::R
             write_atomically(exr, &exr_of_size(size, None, &text, &radiance)?)?;
         }
     }
-    let gpu_time = gpu_ms.map_or("no timestamps".into(), |ms| format!("march {ms:.1} ms"));
+    let gpu_time = gpu_ms.map_or("no timestamps".into(), |ms| format!("{id} {ms:.1} ms"));
     eprintln!(
         "{}x{} beams {id} frame on {} in {elapsed:.1?} (GPU: {gpu_time}; EV100 {ev100:.1}); wrote {}",
         size.0,

@@ -1,7 +1,9 @@
 //! `atmos report`: every model setting against the reference on a fixed set of views:
 //! error, build time, time per ray and memory, CPU and GPU frame times, as `README.md`,
-//! `error_vs_time.png`, `error_vs_gpu_time.png` and `errors.csv`.
+//! `error_vs_time.png`, `error_vs_gpu_time.png` and `errors.csv`; the light beams of
+//! the shipped beams scenes as `beams.md` and its plots (`beams.rs`).
 
+pub mod beams;
 pub mod error_table;
 pub mod gpu_time;
 pub mod judged_rays;
@@ -134,7 +136,44 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         let points: Vec<Point> = results.iter().filter_map(Point::gpu).collect();
         plot::draw(&args.out.join("error_vs_gpu_time.png"), &GPU_AXIS, &points)?;
     }
+    // The beams belong to the whole report: --model and --variant narrow it to skies.
+    if args.model.is_empty() && args.variant.is_empty() {
+        report_beams(args)?;
+    }
     eprintln!("report: wrote {}", args.out.join("README.md").display());
+    Ok(())
+}
+
+/// The beams section: `beams.md` and its two plots in the report's folder.
+fn report_beams(args: &ReportArgs) -> anyhow::Result<()> {
+    eprintln!("report: light beams on {} scenes", beams::BEAM_SCENES.len());
+    let gpu = if args.no_gpu {
+        None
+    } else {
+        Some(render_wgpu::GpuContext::headless()?)
+    };
+    let rows = beams::measure(
+        &beams::shipped_folder(),
+        &beams::BEAM_SCENES,
+        &beams::BEAM_VARIANTS,
+        beams::RAYS_ACROSS,
+        gpu.as_ref(),
+    )?;
+    let text = beams::markdown(&rows, beams::RAYS_ACROSS);
+    write_atomically(&args.out.join("beams.md"), text.as_bytes())?;
+    let (cpu, gpu_points) = beams::points(&rows, &beams::BEAM_VARIANTS);
+    plot::draw(
+        &args.out.join("beams_error_vs_time.png"),
+        &beams::BEAMS_CPU_AXIS,
+        &cpu,
+    )?;
+    if !gpu_points.is_empty() {
+        plot::draw(
+            &args.out.join("beams_error_vs_gpu_time.png"),
+            &beams::BEAMS_GPU_AXIS,
+            &gpu_points,
+        )?;
+    }
     Ok(())
 }
 

@@ -8,6 +8,7 @@ use anyhow::{Context, anyhow};
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
+use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::models::id::ModelId;
 
 use crate::report::measure::VariantResult;
@@ -39,11 +40,18 @@ pub const GPU_AXIS: TimeAxis = TimeAxis {
     unit: "x baseline",
 };
 
+/// What a point's colour tells: a sky model or a beam method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Series {
+    Sky(ModelId),
+    Beam(BeamMethodId),
+}
+
 /// One point of the plot.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Point {
     pub label: String,
-    pub model: ModelId,
+    pub series: Series,
     /// Frame time in the axis's unit.
     pub frame_time: f64,
     pub error_percent: f64,
@@ -54,7 +62,7 @@ impl Point {
     pub fn cpu(result: &VariantResult) -> Point {
         Point {
             label: result.variant.label(),
-            model: result.variant.model,
+            series: Series::Sky(result.variant.model),
             frame_time: result.frame_seconds(),
             error_percent: 100.0 * result.daytime.rms,
         }
@@ -106,8 +114,19 @@ fn staircase(front: &[Point], x_end: f64) -> Vec<(f64, f64)> {
     line
 }
 
-/// The colour of a model's points.
-fn model_color(model: ModelId) -> RGBColor {
+/// The colour of a series' points.
+fn series_color(series: Series) -> RGBColor {
+    let model = match series {
+        Series::Sky(model) => model,
+        Series::Beam(method) => {
+            return match method {
+                BeamMethodId::March => RGBColor(31, 119, 180),
+                BeamMethodId::Planes2000 => RGBColor(255, 127, 14),
+                BeamMethodId::Qtable2002 => RGBColor(44, 160, 44),
+                BeamMethodId::Reference => RGBColor(90, 90, 90),
+            };
+        }
+    };
     match model {
         ModelId::Nishita => RGBColor(31, 119, 180),
         ModelId::Oneil => RGBColor(255, 127, 14),
@@ -237,7 +256,7 @@ fn draw_to(
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
     let mut placer = LabelPlacer::default();
     for p in points {
-        let color = model_color(p.model);
+        let color = series_color(p.series);
         let at = (p.frame_time, p.error_percent);
         let offset = placer.place(chart.backend_coord(&at), p.label.chars().count());
         chart.draw_series(std::iter::once(
@@ -263,7 +282,7 @@ mod tests {
     fn point(label: &str, t: f64, e: f64) -> Point {
         Point {
             label: label.into(),
-            model: ModelId::Nishita,
+            series: Series::Sky(ModelId::Nishita),
             frame_time: t,
             error_percent: e,
         }

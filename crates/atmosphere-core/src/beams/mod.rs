@@ -25,6 +25,7 @@ pub mod medium;
 pub mod methods;
 pub mod occluder;
 pub mod occluders;
+pub mod plan;
 pub mod ray;
 pub mod scene;
 pub mod scene_file;

@@ -90,12 +90,15 @@ impl GpuContext {
 
 /// The device the passes want on `adapter`. Only what they need: storage textures of
 /// Rgba32Float are core WebGPU; filtering them is optional (samplers fall back to nearest
-/// or manual lerp), and so are the timestamps of pass timings.
+/// or manual lerp), and so are blending them (the beams' virtual planes need it and say
+/// so) and the timestamps of pass timings.
 pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
     wgpu::DeviceDescriptor {
         label: Some("atmos"),
         required_features: adapter.features()
-            & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TIMESTAMP_QUERY),
+            & (wgpu::Features::FLOAT32_FILTERABLE
+                | wgpu::Features::FLOAT32_BLENDABLE
+                | wgpu::Features::TIMESTAMP_QUERY),
         required_limits: device_limits(&adapter.limits()),
         ..Default::default()
     }

@@ -6,7 +6,9 @@
 //! I(theta_k, phi_k) xi(t_k) dt, dt the ray's spacing between planes). The smooth factor
 //! xi = sigma_s F(alpha) exp(-sigma_t (t + r)) / r^2 is computed at the `lattice` x
 //! `lattice` points of each plane, which span the camera's frustum, and interpolated
-//! bilinearly (the paper's Gouraud shading); the sharp factors, the light's intensity
+//! linearly over the two triangles of each lattice cell, split along the diagonal from
+//! its top-left to its bottom-right corner (the paper's Gouraud shading, as a rasteriser
+//! interpolates it: the GPU twin draws these triangles); the sharp factors, the light's intensity
 //! distribution with its cone and light map (the projected light-map texture) and the
 //! shadow (the shadow map, section 5.2), are evaluated at each sample. The planes belong
 //! to the scene's camera: rays must start at its position.
@@ -159,8 +161,25 @@ impl Planes2000 {
         xi
     }
 
-    /// xi of `light` at wavelength `w`, interpolated bilinearly on plane `k` at the
-    /// lattice coordinates (fi, fj).
+    /// The settings read from the options.
+    pub fn settings(&self) -> Planes2000Settings {
+        self.settings
+    }
+
+    /// The scene's lights and medium at the method's wavelengths.
+    pub fn scattering(&self) -> &InScattering {
+        &self.scattering
+    }
+
+    /// Each light's shadow map, in the scene's order.
+    pub fn shadow_maps(&self) -> &[ShadowMap] {
+        &self.shadow_maps
+    }
+
+    /// xi of `light` at wavelength `w` on plane `k` at the lattice coordinates
+    /// (fi, fj), linear over the cell's triangle that holds the point: (i0, j0),
+    /// (i0 + 1, j0), (i0 + 1, j0 + 1) where fi - i0 >= fj - j0, else (i0, j0),
+    /// (i0 + 1, j0 + 1), (i0, j0 + 1).
     fn xi_at(&self, k: usize, fi: f64, fj: f64, light: usize, w: usize) -> f64 {
         let n = self.settings.lattice;
         let (lights, wl) = (
@@ -175,8 +194,12 @@ impl Planes2000 {
         let at = |i: usize, j: usize| {
             f64::from(self.xi[(((k * n + j) * n + i) * lights + light) * wl + w])
         };
-        (at(i0, j0) * (1.0 - a) + at(i0 + 1, j0) * a) * (1.0 - b)
-            + (at(i0, j0 + 1) * (1.0 - a) + at(i0 + 1, j0 + 1) * a) * b
+        let (corner, diagonal) = (at(i0, j0), at(i0 + 1, j0 + 1));
+        if a >= b {
+            corner + a * (at(i0 + 1, j0) - corner) + b * (diagonal - at(i0 + 1, j0))
+        } else {
+            corner + b * (at(i0, j0 + 1) - corner) + a * (diagonal - at(i0, j0 + 1))
+        }
     }
 }
 

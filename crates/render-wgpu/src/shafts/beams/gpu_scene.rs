@@ -4,14 +4,15 @@
 //! as `shaders/shafts/beams/bindings.wgsl` declares them.
 //!
 //! Positions are relative to the camera (the camera sits at the origin), so that f32
-//! keeps the scene's detail wherever it is; the CPU twin is atmosphere-core's
-//! `beams/methods/march.rs` with everything it reads: `light.rs`, `light_map.rs`,
+//! keeps the scene's detail wherever it is; the CPU twins are atmosphere-core's
+//! `beams/methods/march.rs` and `beams/methods/planes2000.rs` with everything they read: `light.rs`, `light_map.rs`,
 //! `shadow_map.rs`, `occluder.rs`, `bvh.rs`, `optics/phase.rs`.
 
+use atmosphere_core::beams::in_scattering::InScattering;
 use atmosphere_core::beams::light::LightShape;
 use atmosphere_core::beams::methods::march::March;
 use atmosphere_core::beams::occluder::Primitive;
-use atmosphere_core::beams::shadow_map::Projection;
+use atmosphere_core::beams::shadow_map::{Projection, ShadowMap};
 use atmosphere_core::optics::phase::PhaseFunction;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
@@ -153,7 +154,20 @@ impl GpuScene {
     /// The scene of the prepared CPU march (its wavelengths three, its shadow maps
     /// built), its image the size of the scene's camera.
     pub fn new(march: &March) -> GpuScene {
-        let scattering = march.scattering();
+        GpuScene::from_parts(
+            march.scattering(),
+            march.shadow_maps(),
+            march.settings().steps as u32,
+        )
+    }
+
+    /// The scene of a prepared CPU method: its lights and medium at three wavelengths,
+    /// each light's shadow map, and `steps` for the march (the planes ignore it).
+    pub fn from_parts(
+        scattering: &InScattering,
+        shadow_maps: &[ShadowMap],
+        steps: u32,
+    ) -> GpuScene {
         let scene = &scattering.scene;
         let camera = &scene.camera;
         let eye = camera.position_m;
@@ -212,7 +226,7 @@ impl GpuScene {
                 out.light_texels
                     .extend(map.texels.iter().map(|t| [t[0], t[1], t[2], 0.0]));
             }
-            for view in march.shadow_maps()[i].views() {
+            for view in shadow_maps[i].views() {
                 out.views.push(shadow_view(
                     &view.projection,
                     eye,
@@ -278,12 +292,7 @@ impl GpuScene {
                     .get(k)
                     .map_or([0.0; 4], |w| [w[0] as f32, w[1] as f32, w[2] as f32, 0.0])
             }),
-            size_steps_lights: [
-                width,
-                height,
-                march.settings().steps as u32,
-                out.lights.len() as u32,
-            ],
+            size_steps_lights: [width, height, steps, out.lights.len() as u32],
             counts: [
                 out.primitives.len() as u32,
                 out.nodes.len() as u32,

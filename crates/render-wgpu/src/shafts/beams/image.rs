@@ -22,9 +22,10 @@ pub struct BeamImage {
 }
 
 impl BeamImage {
-    /// An image of `width` x `height` pixels for a pass to write.
+    /// An image of `width` x `height` pixels for a pass to write or draw into.
     pub fn new(gpu: &GpuContext, width: u32, height: u32) -> BeamImage {
         let usage = wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC;
         BeamImage {

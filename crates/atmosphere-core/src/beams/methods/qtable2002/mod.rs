@@ -16,7 +16,9 @@
 //! dt, leaving gaps off the screen's centre); an interval cut by an occluder counts its
 //! share of q and the mean of f_h over the samples in front of the occluder; the m_k
 //! samples are dt / m_k apart from the main plane (Eq. 10's dt / (m_k - 1) would put the
-//! last on the next main plane, counting it twice).
+//! last on the next main plane, counting it twice). A light's planes cover the part of
+//! the screen its bounding volume projects to (widened by a pixel), as the GPU draws
+//! them: rays outside it get nothing from that light.
 
 pub mod interval;
 pub mod planes;
@@ -27,6 +29,7 @@ use crate::beams::error::BeamError;
 use crate::beams::in_scattering::{EXTINGUISHED_OPTICAL_DEPTH, InScattering, light_map_rgb};
 use crate::beams::light::LightShape;
 use crate::beams::methods::method::{BeamMethod, BeamSettings};
+use crate::beams::plan::{screen_bounds, volume_corners};
 use crate::beams::ray::SceneRay;
 use crate::beams::scene::{BeamScene, DEFAULT_LIGHT_RADIUS_M};
 use crate::beams::shadow_map::ShadowMap;
@@ -152,6 +155,8 @@ pub struct Qtable2002 {
     camera: Camera,
     table: QTable,
     planes: Vec<LightPlanes>,
+    /// Each light's part of the screen (`plan::screen_bounds` of its bounding volume).
+    bounds: Vec<[f64; 4]>,
 }
 
 impl Qtable2002 {
@@ -174,14 +179,28 @@ impl Qtable2002 {
         let thinnest = scattering.medium.thinnest_extinction_per_m();
         let extinguished_m = (EXTINGUISHED_OPTICAL_DEPTH / thinnest).min(*D0_M.range.end());
         let camera = scene.camera.clone();
-        let depths: Vec<(f64, f64)> = scene
+        let d0: Vec<f64> = scene
             .lights
             .iter()
             .map(|light| {
-                let d0 = own.d0_m.unwrap_or_else(|| {
+                own.d0_m.unwrap_or_else(|| {
                     default_d0(light, &scene.occluders, extinguished_m).max(*D0_M.range.start())
-                });
-                volume_depths(light, d0, &camera, extinguished_m)
+                })
+            })
+            .collect();
+        let depths: Vec<(f64, f64)> = scene
+            .lights
+            .iter()
+            .zip(&d0)
+            .map(|(light, &d0)| volume_depths(light, d0, &camera, extinguished_m))
+            .collect();
+        let bounds = scene
+            .lights
+            .iter()
+            .zip(&d0)
+            .map(|(light, &d0)| match volume_corners(light, d0) {
+                Some(corners) => screen_bounds(&camera, &corners),
+                None => [-1.0, -1.0, 1.0, 1.0],
             })
             .collect();
         let extent = table_extent(scene, &camera, &depths, own.delta_max_m);
@@ -232,6 +251,7 @@ impl Qtable2002 {
             camera,
             table,
             planes,
+            bounds,
         })
     }
 
@@ -243,6 +263,22 @@ impl Qtable2002 {
     /// The table.
     pub fn table(&self) -> &QTable {
         &self.table
+    }
+
+    /// The scene's lights and medium at the method's wavelengths.
+    pub fn scattering(&self) -> &InScattering {
+        &self.scattering
+    }
+
+    /// Each light's shadow map, in the scene's order.
+    pub fn shadow_maps(&self) -> &[ShadowMap] {
+        &self.shadow_maps
+    }
+
+    /// Each light's part of the screen, normalised device coordinates [x0, y0, x1, y1]:
+    /// its planes are drawn there alone.
+    pub fn screen_bounds(&self) -> &[[f64; 4]] {
+        &self.bounds
     }
 
     /// Each light's planes and sub-plane counts.
@@ -341,7 +377,20 @@ impl BeamMethod for Qtable2002 {
         let dt_ray = self.table.interval_m() / cos_forward;
         let occluders = &self.scattering.scene.occluders;
         let mut f_h = vec![0.0; wl];
+        // Where the ray meets the screen, to test against each light's part of it.
+        let (tan_y, aspect) = (
+            (0.5 * cam.vertical_fov_deg.to_radians()).tan(),
+            f64::from(cam.width_px) / f64::from(cam.height_px),
+        );
+        let ndc = [
+            ray.direction.dot(cam.right) / (cos_forward * tan_y * aspect),
+            ray.direction.dot(cam.up) / (cos_forward * tan_y),
+        ];
         for (l, light) in self.scattering.scene.lights.iter().enumerate() {
+            let [x0, y0, x1, y1] = self.bounds[l];
+            if !(x0..=x1).contains(&ndc[0]) || !(y0..=y1).contains(&ndc[1]) {
+                continue;
+            }
             let planes = &self.planes[l];
             let emission = &self.scattering.emission[l];
             for (k, &m) in planes.samples.iter().enumerate() {

@@ -20,6 +20,7 @@ use crate::beams::camera::Camera;
 use crate::beams::light::{Light, LightShape};
 use crate::beams::medium::MediumSpectra;
 use crate::beams::occluders::Occluders;
+use crate::beams::plan::volume_corners;
 use crate::optics::phase::PhaseFunction;
 
 use super::interval::f_l;
@@ -129,43 +130,8 @@ impl LightPlanes {
 /// reaching `d0_m` from it, cut to [0, `extinguished_m`].
 pub fn volume_depths(light: &Light, d0_m: f64, camera: &Camera, extinguished_m: f64) -> (f64, f64) {
     let depth = |p: DVec3| (p - camera.position_m).dot(camera.forward);
-    let corners: Vec<DVec3> = match &light.shape {
-        LightShape::Spot {
-            position_m,
-            frame,
-            tan_cone,
-            ..
-        } => {
-            let mut c = vec![*position_m];
-            let side = d0_m * tan_cone;
-            for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
-                c.push(
-                    *position_m + frame.z * d0_m + frame.x * (sx * side) + frame.y * (sy * side),
-                );
-            }
-            c
-        }
-        LightShape::Point { position_m, .. } => (0..8)
-            .map(|i| {
-                let s = |bit: usize| if i & bit == 0 { -d0_m } else { d0_m };
-                *position_m + DVec3::new(s(1), s(2), s(4))
-            })
-            .collect(),
-        LightShape::Parallel {
-            position_m,
-            frame,
-            half_size_m: Some([hx, hy]),
-        } => (0..8)
-            .map(|i| {
-                let x = if i & 1 == 0 { -hx } else { *hx };
-                let y = if i & 2 == 0 { -hy } else { *hy };
-                let z = if i & 4 == 0 { 0.0 } else { d0_m };
-                *position_m + frame.x * x + frame.y * y + frame.z * z
-            })
-            .collect(),
-        LightShape::Parallel {
-            half_size_m: None, ..
-        } => return (0.0, d0_m.min(extinguished_m)),
+    let Some(corners) = volume_corners(light, d0_m) else {
+        return (0.0, d0_m.min(extinguished_m));
     };
     let (lo, hi) = corners
         .iter()

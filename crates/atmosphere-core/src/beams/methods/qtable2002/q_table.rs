@@ -102,6 +102,21 @@ impl QTable {
         self.values.iter().copied().fold(0.0, f64::max)
     }
 
+    /// Nodes along u and along v.
+    pub fn nodes(&self) -> [usize; 2] {
+        self.nodes
+    }
+
+    /// The ranges the nodes span evenly: asinh(u / dt) and ln v.
+    pub fn coordinate_ranges(&self) -> [(f64, f64); 2] {
+        [self.x_range, self.y_range]
+    }
+
+    /// q at (wavelength, v node, u node), row-major in that order, m^-2 sr^-1.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
     fn node_u(&self, i: usize) -> f64 {
         let a = i as f64 / (self.nodes[0] - 1) as f64;
         self.interval_m * (self.x_range.0 + a * (self.x_range.1 - self.x_range.0)).sinh()

@@ -1,0 +1,279 @@
+//! The beams section of `atmos report` (docs/beams.md, "In atmos report"): every beam
+//! method and setting against the reference on the shipped scenes. Per scene, the
+//! scene's camera at a few pixels (its aspect kept) gives the rays; each method's
+//! luminance there is compared with the reference's (relative RMS and largest
+//! |L - L_ref| / max(L_ref, 1 % of the brightest L_ref)), its CPU frame time is its
+//! preparation plus its time per ray times the pixels of a 1280 x 720 frame, and its
+//! GPU frame time is measured at 1280 x 720 where the method is on the GPU.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::Context;
+use atmosphere_core::beams::methods::id::BeamMethodId;
+use atmosphere_core::beams::methods::method::BeamSettings;
+use atmosphere_core::beams::methods::registry::prepare;
+use atmosphere_core::beams::scene::BeamScene;
+use atmosphere_core::color::SpectrumToColor;
+use atmosphere_core::models::options::ModelOptions;
+use render_wgpu::GpuContext;
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use render_wgpu::shafts::beams::gpu_methods::{GPU_BEAM_METHODS, PreparedBeams};
+
+use crate::report::plot::{Point, Series, TimeAxis};
+
+/// The shipped scenes (`assets/scenes/beams/`).
+pub const BEAM_SCENES: [&str; 4] = [
+    "sphere_spotlight.toml",
+    "teapot_spotlight.toml",
+    "stage_five_spots.toml",
+    "stained_glass_room.toml",
+];
+
+/// The settings the report measures: the march at two step counts, the papers'
+/// defaults and a cheaper setting of each.
+pub const BEAM_VARIANTS: [&str; 6] = [
+    "march steps=32",
+    "march steps=128",
+    "planes2000",
+    "planes2000 planes=50",
+    "qtable2002",
+    "qtable2002 epsilon=1",
+];
+
+/// Rays across each scene's camera in the report.
+pub const RAYS_ACROSS: u32 = 24;
+
+/// The folder of the shipped scenes.
+pub fn shipped_folder() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/scenes/beams")
+}
+
+/// The frame the times are for.
+pub const FRAME: (u32, u32) = (1280, 720);
+
+/// The CPU axis of the beams plot.
+pub const BEAMS_CPU_AXIS: TimeAxis = TimeAxis {
+    caption: "Beams: luminance error against frame time (CPU, one thread)",
+    description: "time of a 1280 x 720 frame on one CPU thread, s (mean over the scenes)",
+    unit: "s",
+};
+
+/// The GPU axis of the beams plot.
+pub const BEAMS_GPU_AXIS: TimeAxis = TimeAxis {
+    caption: "Beams: luminance error against frame time (GPU)",
+    description: "time of a 1280 x 720 GPU frame, ms (mean over the scenes)",
+    unit: "ms",
+};
+
+/// One setting on one scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BeamRow {
+    pub scene: String,
+    pub label: String,
+    pub method: BeamMethodId,
+    /// Relative RMS and largest relative error of luminance.
+    pub rms: f64,
+    pub max: f64,
+    pub cpu_frame_s: f64,
+    /// GPU time of a 1280 x 720 frame, ms, where measured.
+    pub gpu_ms: Option<f64>,
+}
+
+/// Measures `variants` on `scenes` (files in `folder`), `width` rays across each
+/// camera; GPU times on `gpu` when given.
+pub fn measure(
+    folder: &Path,
+    scenes: &[&str],
+    variants: &[&str],
+    width: u32,
+    gpu: Option<&GpuContext>,
+) -> anyhow::Result<Vec<BeamRow>> {
+    let color = SpectrumToColor::new(&RGB_WAVELENGTHS_NM)?;
+    let mut rows = Vec::new();
+    for name in scenes {
+        let path = folder.join(name);
+        let full = BeamScene::load(&path).with_context(|| path.display().to_string())?;
+        let mut scene = full.clone();
+        let aspect = f64::from(full.camera.height_px) / f64::from(full.camera.width_px);
+        scene.camera.width_px = width;
+        scene.camera.height_px = ((f64::from(width) * aspect).round() as u32).max(1);
+        let luminance = |id: BeamMethodId, options: &[String]| -> anyhow::Result<(Vec<f64>, f64)> {
+            let settings = BeamSettings {
+                wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
+                options: ModelOptions::parse(options)?,
+            };
+            let start = Instant::now();
+            let method = prepare(id, &scene, &settings)?;
+            let prepared_s = start.elapsed().as_secs_f64();
+            let camera = &scene.camera;
+            let start = Instant::now();
+            let mut out = Vec::new();
+            for y in 0..camera.height_px {
+                for x in 0..camera.width_px {
+                    let ray = camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    out.push(color.luminance_cd_m2(&method.radiance(&ray)?));
+                }
+            }
+            let per_ray = start.elapsed().as_secs_f64() / out.len() as f64;
+            Ok((out, prepared_s + per_ray * f64::from(FRAME.0 * FRAME.1)))
+        };
+        let (truth, _) = luminance(BeamMethodId::Reference, &[])?;
+        let floor = 0.01 * truth.iter().copied().fold(0.0, f64::max);
+        for variant in variants {
+            let mut words = variant.split_whitespace();
+            let method: BeamMethodId = words.next().unwrap_or_default().parse()?;
+            let options: Vec<String> = words.map(str::to_string).collect();
+            let (values, cpu_frame_s) = luminance(method, &options)?;
+            let errors: Vec<f64> = values
+                .iter()
+                .zip(&truth)
+                .map(|(l, t)| (l - t).abs() / t.max(floor))
+                .collect();
+            let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
+            let gpu_ms = match gpu {
+                Some(gpu) if GPU_BEAM_METHODS.contains(&method) => {
+                    gpu_frame_ms(gpu, &full, method, &options)?
+                }
+                _ => None,
+            };
+            rows.push(BeamRow {
+                scene: name.to_string(),
+                label: variant.to_string(),
+                method,
+                rms,
+                max: errors.iter().copied().fold(0.0, f64::max),
+                cpu_frame_s,
+                gpu_ms,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// The second of two 1280 x 720 frames of `method` on `scene`, ms (the first compiles
+/// and uploads); `None` without timestamps.
+fn gpu_frame_ms(
+    gpu: &GpuContext,
+    scene: &BeamScene,
+    method: BeamMethodId,
+    options: &[String],
+) -> anyhow::Result<Option<f64>> {
+    let mut scene = scene.clone();
+    (scene.camera.width_px, scene.camera.height_px) = FRAME;
+    let settings = BeamSettings {
+        wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
+        options: ModelOptions::parse(options)?,
+    };
+    let renderer = PreparedBeams::new(method, &scene, &settings)?.renderer(gpu)?;
+    renderer.render(gpu)?;
+    Ok(renderer.render(gpu)?.1)
+}
+
+/// The section's Markdown: one table row per scene and setting.
+pub fn markdown(rows: &[BeamRow], width: u32) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "## Light beams\n\nEach beam method and setting against the reference on the shipped \
+         scenes (`assets/scenes/beams/`), {width} rays across each camera: relative RMS and \
+         largest |L - L_ref| / max(L_ref, 1 % of the brightest L_ref) of luminance; CPU time \
+         of a 1280 x 720 frame on one thread (preparation plus time per ray); GPU time of a \
+         1280 x 720 frame (ms, `-` off the GPU or without timestamps). Plots: \
+         `beams_error_vs_time.png`, `beams_error_vs_gpu_time.png`.\n"
+    );
+    let _ = writeln!(
+        out,
+        "| scene | setting | RMS error % | max error % | CPU frame s | GPU frame ms |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    for r in rows {
+        let gpu = r
+            .gpu_ms
+            .map_or_else(|| "-".to_string(), |ms| format!("{ms:.1}"));
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.2} | {:.2} | {:.1} | {gpu} |",
+            r.scene,
+            r.label,
+            100.0 * r.rms,
+            100.0 * r.max,
+            r.cpu_frame_s
+        );
+    }
+    out
+}
+
+/// One point per setting, its error and time the means over the scenes: (CPU, GPU).
+pub fn points(rows: &[BeamRow], variants: &[&str]) -> (Vec<Point>, Vec<Point>) {
+    let (mut cpu, mut gpu) = (Vec::new(), Vec::new());
+    for variant in variants {
+        let own: Vec<&BeamRow> = rows.iter().filter(|r| r.label == *variant).collect();
+        let Some(first) = own.first() else {
+            continue;
+        };
+        let n = own.len() as f64;
+        let point = Point {
+            label: variant.to_string(),
+            series: Series::Beam(first.method),
+            frame_time: own.iter().map(|r| r.cpu_frame_s).sum::<f64>() / n,
+            error_percent: 100.0 * own.iter().map(|r| r.rms).sum::<f64>() / n,
+        };
+        let gpu_times: Option<Vec<f64>> = own.iter().map(|r| r.gpu_ms).collect();
+        if let Some(times) = gpu_times {
+            gpu.push(Point {
+                frame_time: times.iter().sum::<f64>() / n,
+                ..point.clone()
+            });
+        }
+        cpu.push(point);
+    }
+    (cpu, gpu)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn more_march_steps_come_closer_to_the_reference() {
+        let variants = ["march steps=4", "march steps=128"];
+        let rows = measure(
+            &shipped_folder(),
+            &["sphere_spotlight.toml"],
+            &variants,
+            6,
+            None,
+        )
+        .unwrap();
+        assert_eq!(rows.len(), 2);
+        assert!(
+            rows.iter()
+                .all(|r| r.rms.is_finite() && r.cpu_frame_s > 0.0)
+        );
+        assert!(rows[1].rms < rows[0].rms, "{rows:?}");
+        assert!(rows[0].max >= rows[0].rms);
+        let text = markdown(&rows, 6);
+        assert!(
+            text.contains("| sphere_spotlight.toml | march steps=128 |"),
+            "{text}"
+        );
+        let (cpu, gpu) = points(&rows, &variants);
+        assert_eq!(cpu.len(), 2);
+        assert!(gpu.is_empty());
+        let dir = tempfile::tempdir().unwrap();
+        let plot = dir.path().join("beams_error_vs_time.png");
+        crate::report::plot::draw(&plot, &BEAMS_CPU_AXIS, &cpu).unwrap();
+        assert!(std::fs::metadata(&plot).unwrap().len() > 1000);
+    }
+
+    #[test]
+    #[ignore = "slow: the reference and every setting on the four shipped scenes"]
+    fn every_setting_is_measured_on_every_shipped_scene() {
+        let rows = measure(&shipped_folder(), &BEAM_SCENES, &BEAM_VARIANTS, 12, None).unwrap();
+        assert_eq!(rows.len(), BEAM_SCENES.len() * BEAM_VARIANTS.len());
+        assert!(rows.iter().all(|r| r.rms.is_finite()));
+        println!("{}", markdown(&rows, 12));
+    }
+}

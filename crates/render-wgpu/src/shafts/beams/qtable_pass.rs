@@ -1,0 +1,249 @@
+//! The q(u, v) table with adaptive sub-planes of Dobashi et al. 2002 section 4.2 on the
+//! GPU: the ray ends as for the virtual planes (`ray_end_pass.rs`), then one plane per
+//! light, plane interval and sample (main plane or sub-plane), over the part of the
+//! screen the light's bounding volume projects to, drawn with
+//! additive blending (`shaders/shafts/beams/qtable.wgsl`), f_l read from the table as a
+//! texture. The table, its interval and the sub-plane counts are the CPU's
+//! (atmosphere-core's `beams/methods/qtable2002/`, the twin), uploaded.
+
+use atmosphere_core::beams::methods::qtable2002::Qtable2002;
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::RenderError;
+use crate::gpu::pipeline::{in_stage, ordered_bind_group, texture_entry, uniform_entry};
+use crate::gpu::timer::GpuTimer;
+use crate::shafts::beams::blended_planes::{BlendedPlanes, begin_planes_pass};
+use crate::shafts::beams::gpu_scene::GpuScene;
+use crate::shafts::beams::image::BeamImage;
+use crate::shafts::beams::limits;
+use crate::shafts::beams::ray_end_pass::RayEndPass;
+use crate::shafts::beams::scene_buffers::SceneBuffers;
+
+/// The table's parameters (WGSL `QtableParams`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct QtableUniform {
+    /// x: the plane interval dt, m.
+    pub interval_m: [f32; 4],
+    /// The ranges the nodes span evenly: asinh(u / dt) (x, y) and ln v (z, w).
+    pub ranges: [f32; 4],
+    /// Nodes along u and along v.
+    pub nodes: [u32; 4],
+}
+
+/// One drawn plane: an instance's vertex attributes (WGSL `vertex`'s inputs).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct PlaneInstance {
+    /// Light, plane interval k, sample j (0 the main plane), samples m_k.
+    pub plane: [u32; 4],
+    /// The light's first plane's depth along the view, m.
+    pub first_depth_m: f32,
+    /// The part of the screen drawn, normalised device coordinates [x0, y0, x1, y1]:
+    /// the light's bounding volume (`Qtable2002::screen_bounds`).
+    pub bounds: [f32; 4],
+}
+
+/// A beams scene with the table and planes of a prepared CPU `qtable2002`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GpuQtable {
+    pub scene: GpuScene,
+    pub uniform: QtableUniform,
+    /// q at the three wavelengths (xyz) per node, v rows of u nodes.
+    pub table: Vec<[f32; 4]>,
+    pub instances: Vec<PlaneInstance>,
+}
+
+impl GpuQtable {
+    /// The scene, table and planes of `method` (its wavelengths three).
+    pub fn new(method: &Qtable2002) -> GpuQtable {
+        let scene = GpuScene::from_parts(method.scattering(), method.shadow_maps(), 0);
+        let table = method.table();
+        let [nu, nv] = table.nodes();
+        let [x, y] = table.coordinate_ranges();
+        let values = table.values();
+        let layer = nu * nv;
+        let wavelengths = values.len() / layer;
+        let texels = (0..layer)
+            .map(|n| {
+                std::array::from_fn(|w| {
+                    if w < wavelengths {
+                        values[w * layer + n] as f32
+                    } else {
+                        0.0
+                    }
+                })
+            })
+            .collect();
+        let mut instances = Vec::new();
+        for (l, planes) in method.planes().iter().enumerate() {
+            let bounds = method.screen_bounds()[l].map(|v| v as f32);
+            for (k, &m) in planes.samples.iter().enumerate() {
+                instances.extend((0..m).map(|j| PlaneInstance {
+                    plane: [l as u32, k as u32, j as u32, m as u32],
+                    first_depth_m: planes.first_depth_m as f32,
+                    bounds,
+                }));
+            }
+        }
+        GpuQtable {
+            scene,
+            uniform: QtableUniform {
+                interval_m: [method.interval_m() as f32, 0.0, 0.0, 0.0],
+                ranges: [x.0, x.1, y.0, y.1].map(|v| v as f32),
+                nodes: [nu as u32, nv as u32, 0, 0],
+            },
+            table: texels,
+            instances,
+        }
+    }
+
+    /// The sub-planes drawn: instances past each interval's main plane.
+    pub fn subplane_count(&self) -> usize {
+        self.instances.iter().filter(|i| i.plane[2] > 0).count()
+    }
+}
+
+/// The table pass's pipelines, made once per device.
+#[derive(Debug)]
+pub struct QtablePass {
+    ray_end: RayEndPass,
+    planes: BlendedPlanes,
+}
+
+impl QtablePass {
+    /// The pipelines; an error where the device cannot blend `Rgba32Float` targets.
+    pub fn new(gpu: &GpuContext) -> Result<QtablePass, RenderError> {
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let dimension = wgpu::TextureViewDimension::D2;
+        let instance = wgpu::VertexBufferLayout {
+            array_stride: size_of::<PlaneInstance>() as u64,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &wgpu::vertex_attr_array![0 => Uint32x4, 1 => Float32, 2 => Float32x4],
+        };
+        let planes = BlendedPlanes::new(
+            gpu,
+            "shafts/beams/qtable.wgsl",
+            "beams qtable2002",
+            &[
+                in_stage(fragment, uniform_entry(0, size_of::<QtableUniform>())),
+                in_stage(fragment, texture_entry(1, dimension)),
+                in_stage(fragment, texture_entry(2, dimension)),
+            ],
+            &[Some(instance)],
+        )?;
+        Ok(QtablePass {
+            ray_end: RayEndPass::new(gpu)?,
+            planes,
+        })
+    }
+
+    /// Renders `qtable` after checking its scene and table against the device's limits;
+    /// the two passes' GPU time in milliseconds, together, where the device has
+    /// timestamps.
+    pub fn render(
+        &self,
+        gpu: &GpuContext,
+        qtable: &GpuQtable,
+    ) -> Result<(BeamImage, Option<f64>), RenderError> {
+        let scene = &qtable.scene;
+        let device = &gpu.device;
+        limits::check(scene, &device.limits())?;
+        let [nu, nv, ..] = qtable.uniform.nodes;
+        let side = device.limits().max_texture_dimension_2d;
+        if nu > side || nv > side {
+            return Err(RenderError::BeamsTooLarge(format!(
+                "the q table's {nu}x{nv} nodes exceed the device's largest texture side, {side} \
+                 (lower table_u or table_v)"
+            )));
+        }
+        let [width, height, ..] = scene.uniform.size_steps_lights;
+        let image = BeamImage::new(gpu, width, height);
+        let buffers = SceneBuffers::new(gpu, scene);
+        let table = device.create_texture_with_data(
+            &gpu.queue,
+            &wgpu::TextureDescriptor {
+                label: Some("beams q table"),
+                size: wgpu::Extent3d {
+                    width: nu,
+                    height: nv,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            bytemuck::cast_slice(&qtable.table),
+        );
+        let timer = GpuTimer::new(gpu, 2);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let ray_end = self.ray_end.encode(
+            gpu,
+            &buffers,
+            (width, height),
+            &mut encoder,
+            timer.as_ref().map(|t| t.compute_writes(0)),
+        );
+        let ray_end_view = ray_end.create_view(&Default::default());
+        let table_view = table.create_view(&Default::default());
+        let scene_group = ordered_bind_group(
+            device,
+            Some("beams qtable2002 scene"),
+            &self.planes.scene_layout,
+            &buffers.resources(),
+        );
+        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("beams qtable2002 params"),
+            contents: bytemuck::bytes_of(&qtable.uniform),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let own_group = ordered_bind_group(
+            device,
+            Some("beams qtable2002"),
+            &self.planes.own_layout,
+            &[
+                uniform.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&ray_end_view),
+                wgpu::BindingResource::TextureView(&table_view),
+            ],
+        );
+        let instances = (!qtable.instances.is_empty()).then(|| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("beams qtable2002 planes"),
+                contents: bytemuck::cast_slice(&qtable.instances),
+                usage: wgpu::BufferUsages::VERTEX,
+            })
+        });
+        {
+            let target = image.radiance.create_view(&Default::default());
+            let mut pass = begin_planes_pass(
+                &mut encoder,
+                "beams qtable2002",
+                &target,
+                timer.as_ref().map(|t| t.render_writes(1)),
+            );
+            if let Some(instances) = &instances {
+                pass.set_pipeline(&self.planes.pipeline);
+                pass.set_bind_group(0, &scene_group, &[]);
+                pass.set_bind_group(1, &own_group, &[]);
+                pass.set_vertex_buffer(0, instances.slice(..));
+                pass.draw(0..6, 0..qtable.instances.len() as u32);
+            }
+        }
+        if let Some(t) = &timer {
+            t.resolve(&mut encoder, 2);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        let ms = match &timer {
+            Some(t) => Some(t.read(gpu, 2)?.iter().sum()),
+            None => None,
+        };
+        Ok((image, ms))
+    }
+}

@@ -1,0 +1,93 @@
+// Entry passes: the sampling planes of Dobashi et al. 2002 section 4.2 with the q(u, v)
+// table, `vertex` and `fragment` (render-wgpu's `shafts/beams/qtable_pass.rs`). CPU
+// twin: atmosphere-core's `beams/methods/qtable2002/mod.rs` (`radiance`).
+//
+// One instance per light, plane interval k and sample j < m_k (the main plane, j = 0,
+// and its sub-planes, chosen on the CPU from f_l on the centre ray and epsilon) draws a
+// plane at depth d_k + j dt / m_k over the rectangle of the screen that the light's
+// bounding volume projects to (section 4.2.1's pyramid to d0). Each fragment adds its share of the
+// interval's f_h f_l (Eq. 6): I_l H at its sample (Eq. 10's term: the light's
+// distribution, light map and shadow map) over the samples in front of the ray's end,
+// times f_l of the interval from the table (`q_table.wgsl`). Additive blending sums
+// them. The interval on an oblique ray is dt / cos long; a plane within a thousandth of
+// the ray's length of its end is left out, as on the CPU.
+
+#import shafts/beams/bindings.wgsl
+#import shafts/beams/qtable_bindings.wgsl
+#import shafts/beams/occluders.wgsl
+#import shafts/beams/lights.wgsl
+#import shafts/beams/shadow_maps.wgsl
+#import shafts/beams/q_table.wgsl
+
+struct PlaneSample {
+    @builtin(position) position: vec4<f32>,
+    // Light, interval k, sample j, samples m_k.
+    @location(0) @interpolate(flat) plane: vec4<u32>,
+    // The light's first plane's depth, m.
+    @location(1) @interpolate(flat) first_depth_m: f32,
+}
+
+@vertex
+fn vertex(
+    @builtin(vertex_index) v: u32,
+    @location(0) plane: vec4<u32>,
+    @location(1) first_depth_m: f32,
+    @location(2) bounds: vec4<f32>,
+) -> PlaneSample {
+    // Two triangles over the rectangle [x0, y0, x1, y1]: its corners (0, 0), (1, 0),
+    // (1, 1), (0, 0), (1, 1), (0, 1).
+    let corners = array<vec2<f32>, 6>(
+        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0),
+        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0),
+    );
+    var out: PlaneSample;
+    out.position = vec4<f32>(mix(bounds.xy, bounds.zw, corners[v]), 0.0, 1.0);
+    out.plane = plane;
+    out.first_depth_m = first_depth_m;
+    return out;
+}
+
+@fragment
+fn fragment(in: PlaneSample) -> @location(0) vec4<f32> {
+    let size = vec2<f32>(params.size_steps_lights.xy);
+    let pixel = in.position.xy;
+    let sx = (2.0 * pixel.x / size.x - 1.0) * params.camera_right.w;
+    let sy = (1.0 - 2.0 * pixel.y / size.y) * params.camera_up.w;
+    let dir = normalize(params.camera_forward.xyz + params.camera_right.xyz * sx
+        + params.camera_up.xyz * sy);
+    let cos_forward = dot(dir, params.camera_forward.xyz);
+    let dt = qtable.interval_m.x;
+    let dt_ray = dt / cos_forward;
+    let t_k = (in.first_depth_m + f32(in.plane.y) * dt) / cos_forward;
+    let t_end = textureLoad(ray_end, vec2<i32>(pixel), 0).x;
+    if t_k >= t_end * (1.0 - 1e-3) {
+        discard;
+    }
+    let span = min(dt_ray, t_end - t_k);
+    let m = in.plane.w;
+    let spacing = dt_ray / f32(m);
+    let visible = clamp(u32(ceil(span / spacing)), 1u, m);
+    if in.plane.z >= visible {
+        discard;
+    }
+    let point = dir * (t_k + f32(in.plane.z) * spacing);
+    let light = lights[in.plane.x];
+    let path = light_path(light, point);
+    if !path.inside {
+        discard;
+    }
+    let seen = shadow_visibility(light, point, path.to_light, path.distance_m);
+    if seen <= 0.0 {
+        discard;
+    }
+    let axis_cosine = dot(-path.to_light, light.frame_z.xyz);
+    let profile = select(1.0, pow(axis_cosine, light.beam.z), light.kind == 1u);
+    let rgb = light_map_rgb(light, path.uv, path.wrap_u);
+    let transmission = vec3<f32>(
+        dot(params.channel_weights[0].xyz, rgb),
+        dot(params.channel_weights[1].xyz, rgb),
+        dot(params.channel_weights[2].xyz, rgb),
+    );
+    let f_h = light.emission.xyz * profile * transmission * seen / f32(visible);
+    return vec4<f32>(f_h * f_l(light, dir, t_k, span), 0.0);
+}

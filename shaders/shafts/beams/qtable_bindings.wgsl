@@ -1,0 +1,17 @@
+// Library: the bindings of the q(u, v) table pass beside the scene's (`bindings.wgsl`,
+// group 0), laid out as render-wgpu's `shafts/beams/qtable_pass.rs` packs them.
+
+struct QtableParams {
+    // x: the plane interval dt, m.
+    interval_m: vec4<f32>,
+    // The ranges the table's nodes span evenly: asinh(u / dt) (xy) and ln v (zw).
+    ranges: vec4<f32>,
+    // Nodes along u and along v.
+    nodes: vec4<u32>,
+}
+
+@group(1) @binding(0) var<uniform> qtable: QtableParams;
+// Where each pixel's ray ends, m (`ray_end.wgsl`).
+@group(1) @binding(1) var ray_end: texture_2d<f32>;
+// q(u, v) at the three wavelengths (rgb), m^-2 sr^-1: u across, v down.
+@group(1) @binding(2) var q_table: texture_2d<f32>;
