@@ -1,5 +1,8 @@
 //! The cloud layer in a renderer frame, on the GPU: the march of every pixel ended on the
-//! frame's surface (`shaders/clouds/frame_march.wgsl`), which also writes where each ray
+//! frame's surface (`shaders/clouds/frame_march.wgsl`), or, with a resolution divisor
+//! above 1, of a reduced image (`frame_march_reduced.wgsl`) brought to full size by the
+//! segment each ray marched (`frame_upsample.wgsl`, atmosphere-core's
+//! `clouds/layer/segment_upsample.rs`); either writes where each ray
 //! enters the cloud as the surface of the sky model's second run (albedo 0: the model's
 //! radiance in front of the cloud, its aerial perspective), and the composite of the
 //! cloud with the model's two runs into the HDR target
@@ -17,11 +20,14 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
+    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
+use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The reduced march's segments, (t0, t1) per ray.
+const SEGMENT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
 /// The images of one frame size the cloud steps write and read.
 #[derive(Debug)]
@@ -104,10 +110,13 @@ pub struct MarchScene<'a> {
     pub has_surface: bool,
 }
 
-/// The march and composite pipelines and their parameter buffers.
+/// The march (full or reduced, and the upsample) and composite pipelines and their
+/// parameter buffers.
 #[derive(Debug)]
 pub struct CloudFramePass {
     march: ComputePipeline,
+    march_reduced: ComputePipeline,
+    upsample: ComputePipeline,
     composite: ComputePipeline,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
@@ -125,6 +134,17 @@ impl CloudFramePass {
             storage_texture_entry(5, GEOMETRY_FORMAT, D2),
             uniform_entry(6, 16),
         ];
+        let reduced = [
+            march[0],
+            march[1],
+            march[2],
+            march[3],
+            march[4],
+            march[6],
+            storage_texture_entry(7, SEGMENT_FORMAT, D2),
+        ];
+        let mut upsample = march.to_vec();
+        upsample.extend([texture_entry(7, D2), texture_entry(8, D2)]);
         let composite = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -142,6 +162,20 @@ impl CloudFramePass {
                 "cloud frame march",
                 &march,
             )?,
+            march_reduced: ComputePipeline::new(
+                gpu,
+                "clouds/frame_march_reduced.wgsl",
+                "main",
+                "cloud frame reduced march",
+                &reduced,
+            )?,
+            upsample: ComputePipeline::new(
+                gpu,
+                "clouds/frame_upsample.wgsl",
+                "main",
+                "cloud frame upsample",
+                &upsample,
+            )?,
             composite: ComputePipeline::new(
                 gpu,
                 "clouds/frame_composite.wgsl",
@@ -155,7 +189,9 @@ impl CloudFramePass {
     }
 
     /// Records the march of `scene`'s pixels into `targets.cloud` and
-    /// `targets.front_geometry`.
+    /// `targets.front_geometry`: at full resolution, or reduced and brought to full size
+    /// when the settings' resolution divisor is above 1 (timed from the march's start to
+    /// the upsample's end).
     pub fn encode_march(
         &self,
         gpu: &GpuContext,
@@ -174,27 +210,81 @@ impl CloudFramePass {
         )?;
         gpu.write_uniform(&self.params, &params);
         gpu.write_uniform(&self.flags, &[u32::from(scene.has_surface), 0, 0, 0]);
-        let cover = scene.inputs.cover.create_view(&Default::default());
-        let cloud = targets.cloud.create_view(&Default::default());
-        let front = targets.front_geometry.create_view(&Default::default());
-        let bind_group = self.march.bind_group(
-            gpu,
-            &[
-                self.params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&cover),
-                scene.inputs.orders.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&cloud),
-                wgpu::BindingResource::TextureView(scene.surface),
-                wgpu::BindingResource::TextureView(&front),
-                self.flags.as_entire_binding(),
-            ],
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let cover = view(&scene.inputs.cover);
+        let cloud = view(&targets.cloud);
+        let front = view(&targets.front_geometry);
+        let shared = [
+            (0, self.params.as_entire_binding()),
+            (1, wgpu::BindingResource::TextureView(&cover)),
+            (2, scene.inputs.orders.as_entire_binding()),
+            (4, wgpu::BindingResource::TextureView(scene.surface)),
+            (6, self.flags.as_entire_binding()),
+        ];
+        let full = [
+            (3, wgpu::BindingResource::TextureView(&cloud)),
+            (5, wgpu::BindingResource::TextureView(&front)),
+        ];
+        let divisor = scene.clouds.settings.resolution_divisor;
+        if divisor <= 1 {
+            let bind_group = self
+                .march
+                .bind_group_numbered(gpu, &[shared.as_slice(), &full].concat());
+            self.march.dispatch(
+                encoder,
+                "cloud frame march",
+                &bind_group,
+                texel_groups(&targets.cloud),
+                timestamps,
+            );
+            return Ok(());
+        }
+        let size = reduced_size(frame.width, frame.height, divisor);
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let image = texture_2d(
+            &gpu.device,
+            "cloud reduced image",
+            size,
+            CLOUD_FORMAT,
+            usage,
         );
-        self.march.dispatch(
+        let segments = texture_2d(
+            &gpu.device,
+            "cloud reduced segments",
+            size,
+            SEGMENT_FORMAT,
+            usage,
+        );
+        let groups = texel_groups(&image);
+        let (image, segments) = (view(&image), view(&segments));
+        let (start, end) = split_timestamps(timestamps);
+        let reduced = [
+            (3, wgpu::BindingResource::TextureView(&image)),
+            (7, wgpu::BindingResource::TextureView(&segments)),
+        ];
+        let bind_group = self
+            .march_reduced
+            .bind_group_numbered(gpu, &[shared.as_slice(), &reduced].concat());
+        self.march_reduced.dispatch(
             encoder,
-            "cloud frame march",
+            "cloud frame reduced march",
+            &bind_group,
+            groups,
+            start,
+        );
+        let read = [
+            (7, wgpu::BindingResource::TextureView(&image)),
+            (8, wgpu::BindingResource::TextureView(&segments)),
+        ];
+        let bind_group = self
+            .upsample
+            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &read].concat());
+        self.upsample.dispatch(
+            encoder,
+            "cloud frame upsample",
             &bind_group,
             texel_groups(&targets.cloud),
-            timestamps,
+            end,
         );
         Ok(())
     }

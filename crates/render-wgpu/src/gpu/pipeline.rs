@@ -305,6 +305,31 @@ impl ComputePipeline {
     }
 }
 
+/// `timestamps` split over two passes recorded one after the other: the first writes the
+/// beginning, the second the end, so the two are timed as one.
+pub fn split_timestamps(
+    timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+) -> (
+    Option<wgpu::ComputePassTimestampWrites<'_>>,
+    Option<wgpu::ComputePassTimestampWrites<'_>>,
+) {
+    match timestamps {
+        Some(t) => (
+            Some(wgpu::ComputePassTimestampWrites {
+                query_set: t.query_set,
+                beginning_of_pass_write_index: t.beginning_of_pass_write_index,
+                end_of_pass_write_index: None,
+            }),
+            Some(wgpu::ComputePassTimestampWrites {
+                query_set: t.query_set,
+                beginning_of_pass_write_index: None,
+                end_of_pass_write_index: t.end_of_pass_write_index,
+            }),
+        ),
+        None => (None, None),
+    }
+}
+
 /// A model's pixel pass in two variants: one that reads the frame's surface buffer and
 /// one with `common/surface.wgsl`'s `SURFACE` constant false, which compiles every branch
 /// of the surface out. A software rasteriser (lavapipe) runs both sides of every branch,

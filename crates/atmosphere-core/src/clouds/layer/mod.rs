@@ -3,8 +3,8 @@
 //! profile and detail noise ([`profile`], [`field`]), Riley et al. 2004's
 //! multiple-scattering tables ([`orders`]), the ray march of a view ray ([`march`]), its
 //! interactive, offline and finest settings ([`presets`]), the reduced-resolution march's
-//! interpolation ([`upsample`]) and
-//! its compositing with a sky model's light ([`composite`]).
+//! interpolation ([`upsample`]), in frames
+//! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]).
 
 pub mod composite;
 pub mod field;
@@ -12,6 +12,7 @@ pub mod march;
 pub mod orders;
 pub mod presets;
 pub mod profile;
+pub mod segment_upsample;
 pub mod settings;
 pub mod shell;
 pub mod upsample;
