@@ -9,6 +9,7 @@ use anyhow::{Context, bail};
 use atmosphere_core::clouds::cover::generated::{CoverParameters, GeneratedCover};
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{
     LayerMethod, LayerSettings, MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M,
     MIN_THICKNESS_M,
@@ -54,6 +55,11 @@ pub struct CloudFlags {
     /// octaves (Wrenninge et al. 2013) [default: riley].
     #[arg(long = "cloud-method", value_name = "riley|octaves")]
     pub method: Option<String>,
+    /// The march's quality: interactive (20 steps at a third of the resolution, for
+    /// flight) or offline (128 steps, full resolution, for recordings) [default:
+    /// offline].
+    #[arg(long = "cloud-quality", value_name = "interactive|offline")]
+    pub quality: Option<String>,
 }
 
 impl CloudFlags {
@@ -71,6 +77,7 @@ impl CloudFlags {
             thickness_m: flags.thickness_m.or(self.thickness_m),
             density_per_m: flags.density_per_m.or(self.density_per_m),
             method: flags.method.or(self.method),
+            quality: flags.quality.or(self.quality),
         }
     }
 
@@ -93,6 +100,12 @@ impl CloudFlags {
                 .parse::<LayerMethod>()
                 .map_err(|e| anyhow::anyhow!("--cloud-method: {e}"))?,
             None => defaults.method,
+        };
+        let quality = match &self.quality {
+            Some(q) => q
+                .parse::<MarchQuality>()
+                .map_err(|e| anyhow::anyhow!("--cloud-quality: {e}"))?,
+            None => MarchQuality::Offline,
         };
         let settings = LayerSettings {
             base_m: within(
@@ -117,7 +130,7 @@ impl CloudFlags {
                 MAX_EXTINCTION_PER_M,
             )?,
             method,
-            ..defaults
+            ..quality.apply(defaults)
         };
         settings.check()?;
         Ok(Some(settings))
@@ -233,6 +246,22 @@ mod tests {
         assert_eq!(settings.base_m, 800.0);
         assert_eq!(settings.method, LayerMethod::Octaves);
         assert_eq!(settings.thickness_m, LayerSettings::default().thickness_m);
+        assert_eq!(
+            settings,
+            MarchQuality::Offline.apply(LayerSettings {
+                base_m: 800.0,
+                method: LayerMethod::Octaves,
+                ..LayerSettings::default()
+            })
+        );
+        let interactive = CloudFlags {
+            quality: Some("interactive".into()),
+            ..on()
+        };
+        assert_eq!(
+            interactive.settings().unwrap(),
+            Some(MarchQuality::Interactive.apply(LayerSettings::default()))
+        );
     }
 
     #[test]
@@ -265,6 +294,14 @@ mod tests {
         });
         assert!(
             e.contains("--cloud-method") && e.contains("riley, octaves"),
+            "{e}"
+        );
+        let e = error(CloudFlags {
+            quality: Some("best".into()),
+            ..on()
+        });
+        assert!(
+            e.contains("--cloud-quality") && e.contains("interactive, offline"),
             "{e}"
         );
         let e = CloudFlags {
