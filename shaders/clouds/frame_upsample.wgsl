@@ -3,12 +3,14 @@
 // `clouds/layer/segment_upsample.rs`, which states the rule). A pixel whose ray meets
 // no cloud before the surface is clear; otherwise it interpolates bilinearly between the
 // reduced rays that marched the same segment of the layer, within SEGMENT_TOLERANCE of
-// its own end, and marches its own ray where their weights sum to less than
+// its own end plus the length of optical depth DEPTH_TOLERANCE at the densest, and
+// marches its own ray where their weights sum to less than
 // MIN_SAME_WEIGHT (the edge of a mountain in front of or inside the cloud).
 
 #import clouds/frame_rays.wgsl
 
 const SEGMENT_TOLERANCE: f32 = 0.25;
+const DEPTH_TOLERANCE: f32 = 0.1;
 const MIN_SAME_WEIGHT: f32 = 0.25;
 
 // As in `frame_march.wgsl`.
@@ -39,6 +41,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let low = textureDimensions(reduced_image);
         let tx = axis_taps(id.x, size.x, low.x);
         let ty = axis_taps(id.y, size.y, low.y);
+        let allowed = SEGMENT_TOLERANCE * t.y + DEPTH_TOLERANCE / layer.medium.x;
         var sum = vec4<f32>(0.0);
         var weight = 0.0;
         for (var k = 0u; k < 4u; k++) {
@@ -47,7 +50,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 u32(select(ty.x, ty.y, second.y)));
             let w = select(1.0 - tx.z, tx.z, second.x) * select(1.0 - ty.z, ty.z, second.y);
             let s = textureLoad(reduced_segments, texel, 0).xy;
-            let same = s.y > 0.0 && abs(s.x - t.x) + abs(s.y - t.y) <= SEGMENT_TOLERANCE * t.y;
+            let same = s.y > 0.0 && abs(s.x - t.x) + abs(s.y - t.y) <= allowed;
             if w > 0.0 && same {
                 weight += w;
                 sum += w * textureLoad(reduced_image, texel, 0);

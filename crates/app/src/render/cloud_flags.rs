@@ -8,6 +8,7 @@ use std::path::Path;
 use anyhow::{Context, bail};
 use atmosphere_core::clouds::cover::generated::{CoverParameters, GeneratedCover};
 use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::droplets;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{
@@ -15,17 +16,14 @@ use atmosphere_core::clouds::layer::settings::{
     MIN_THICKNESS_M,
 };
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::optics::legendre_series::LegendreSeries;
 use clap::Args;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::{Frame, Renderer};
 use serde::{Deserialize, Serialize};
 
 /// The generated cover's grid: 2048 x 1024 texels (20 km at the equator).
 pub const GENERATED_GRID: (usize, usize) = (2048, 1024);
-/// The asymmetry of the droplets' phase function (lognormal, effective radius 10 um,
-/// 550 nm; docs/particles.md), which the layer's Henyey-Greenstein stand-in takes.
-pub const DROPLET_ASYMMETRY: f64 = 0.8654;
 
 /// The cloud flags; every one optional, the layer's defaults
 /// (`LayerSettings::default`) filling the rest.
@@ -177,12 +175,11 @@ fn image_cover(path: &Path, channel: &str) -> anyhow::Result<CoverGrid> {
     )?)
 }
 
-/// The layer's multiple-scattering tables at 680, 550 and 440 nm: Riley et al. 2004's
-/// A_n and F_n of a Henyey-Greenstein function with the droplets' asymmetry, from its
-/// Legendre series chi_l = g^l (cut at degree 300, where g^l < 1e-18 at g = 0.87).
+/// The layer's multiple-scattering tables at the renderer's wavelengths (680, 550 and
+/// 440 nm): Riley et al. 2004's A_n and F_n of the droplets' Lorenz-Mie phase function
+/// (atmosphere-core's `clouds/layer/droplets.rs`).
 pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
-    let series = LegendreSeries::henyey_greenstein(DROPLET_ASYMMETRY, 300);
-    Ok(ScatteringOrders::new(&vec![series; 3])?)
+    Ok(droplets::droplet_orders(&RGB_WAVELENGTHS_NM)?)
 }
 
 /// What a frame's clouds need besides the light: the layer's settings, its cover and its

@@ -108,6 +108,9 @@ pub struct MarchScene<'a> {
     /// The frame's surface geometry (`surface_buffer.rs`), read where `has_surface`.
     pub surface: &'a wgpu::TextureView,
     pub has_surface: bool,
+    /// Whether the model's second run (`cloud_front`) runs; without it the composite
+    /// takes no air in front of the cloud (the camera is inside the layer).
+    pub has_front: bool,
 }
 
 /// The march (full or reduced, and the upsample) and composite pipelines and their
@@ -153,6 +156,7 @@ impl CloudFramePass {
             texture_entry(4, D2),
             texture_entry(5, D2),
             storage_texture_entry(6, HDR_FORMAT, D2),
+            uniform_entry(7, 16),
         ];
         Ok(CloudFramePass {
             march: ComputePipeline::new(
@@ -209,7 +213,15 @@ impl CloudFramePass {
             scene.inputs.cover_size,
         )?;
         gpu.write_uniform(&self.params, &params);
-        gpu.write_uniform(&self.flags, &[u32::from(scene.has_surface), 0, 0, 0]);
+        gpu.write_uniform(
+            &self.flags,
+            &[
+                u32::from(scene.has_surface),
+                u32::from(scene.has_front),
+                0,
+                0,
+            ],
+        );
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let cover = view(&scene.inputs.cover);
         let cloud = view(&targets.cloud);
@@ -290,7 +302,7 @@ impl CloudFramePass {
     }
 
     /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and
-    /// `frame` uniforms.
+    /// `frame` uniforms (after [`CloudFramePass::encode_march`], whose flags it reads).
     pub fn encode_composite(
         &self,
         gpu: &GpuContext,
@@ -319,6 +331,7 @@ impl CloudFramePass {
                 wgpu::BindingResource::TextureView(cloud),
                 wgpu::BindingResource::TextureView(geometry),
                 wgpu::BindingResource::TextureView(out),
+                self.flags.as_entire_binding(),
             ],
         );
         self.composite.dispatch(

@@ -3,8 +3,10 @@
 //! [t0, t1] of the layer it marched (ended on the surface its nearest full pixel shows).
 //! A full pixel whose ray meets no cloud segment is clear; otherwise it takes the
 //! bilinear taps of `upsample.rs` whose segment is the same as its own, to within
-//! [`SEGMENT_TOLERANCE`] of its own end distance,
-//!     |t0_tap - t0| + |t1_tap - t1| <= SEGMENT_TOLERANCE t1,
+//! [`SEGMENT_TOLERANCE`] of its own end distance or a length whose optical depth at the
+//! layer's densest is [`DEPTH_TOLERANCE`] (segments of almost no cloud, such as rays
+//! that leave the layer's top at once, all match),
+//!     |t0_tap - t0| + |t1_tap - t1| <= SEGMENT_TOLERANCE t1 + DEPTH_TOLERANCE / sigma_max,
 //! their bilinear weights renormalised; where those weights sum to less than
 //! [`MIN_SAME_WEIGHT`] (a mountain's edge in front of or inside the cloud, the layer's
 //! rim) the pixel is marched itself. So the upsample interpolates only between rays that
@@ -15,26 +17,31 @@ use super::upsample::axis_taps;
 
 /// How far the segments of a tap and a pixel may differ, relative to the pixel's end.
 pub const SEGMENT_TOLERANCE: f64 = 0.25;
+/// The optical depth at the densest below which segments differ by too little cloud to
+/// matter.
+pub const DEPTH_TOLERANCE: f64 = 0.1;
 /// The least bilinear weight of matching taps for a pixel to be interpolated.
 pub const MIN_SAME_WEIGHT: f64 = 0.25;
 
 /// A ray's segment of the layer, (t0, t1) in m with t1 > t0 >= 0; `None`: no cloud.
 pub type Segment = Option<(f64, f64)>;
 
-/// Whether a tap that marched `tap` may stand for a pixel whose segment is `pixel`.
-pub fn same_segment(pixel: (f64, f64), tap: Segment) -> bool {
-    tap.is_some_and(|(t0, t1)| {
-        (t0 - pixel.0).abs() + (t1 - pixel.1).abs() <= SEGMENT_TOLERANCE * pixel.1
-    })
+/// Whether a tap that marched `tap` may stand for a pixel whose segment is `pixel`, in a
+/// layer whose densest extinction is `extinction_per_m`.
+pub fn same_segment(pixel: (f64, f64), tap: Segment, extinction_per_m: f64) -> bool {
+    let allowed = SEGMENT_TOLERANCE * pixel.1 + DEPTH_TOLERANCE / extinction_per_m;
+    tap.is_some_and(|(t0, t1)| (t0 - pixel.0).abs() + (t1 - pixel.1).abs() <= allowed)
 }
 
 /// The reduced march: [radiance x 3, transmittance] and the segment of each reduced
-/// pixel, row-major, of `size`.
+/// pixel, row-major, of `size`, through a layer whose densest extinction is
+/// `extinction_per_m`.
 #[derive(Clone, Copy, Debug)]
 pub struct ReducedMarch<'a> {
     pub image: &'a [[f64; 4]],
     pub segments: &'a [Segment],
     pub size: (u32, u32),
+    pub extinction_per_m: f64,
 }
 
 /// What full pixel (x, y), whose segment is `segment`, takes from `reduced`: the
@@ -58,7 +65,7 @@ pub fn interpolate(
     let mut weight = 0.0;
     for (i, j, w) in taps {
         let k = (j * lw + i) as usize;
-        if w > 0.0 && same_segment(segment, reduced.segments[k]) {
+        if w > 0.0 && same_segment(segment, reduced.segments[k], reduced.extinction_per_m) {
             weight += w;
             for (s, v) in sum.iter_mut().zip(reduced.image[k]) {
                 *s += w * v;
@@ -111,6 +118,7 @@ mod tests {
             image: &image,
             segments: &segments,
             size: (2, 1),
+            extinction_per_m: 1e-3,
         };
         let full = [
             Some((1_000.0, 2_000.0)),
