@@ -3,18 +3,16 @@
 // `clouds/layer/segment_upsample.rs`, which states the rule). A pixel whose ray meets
 // no cloud before the surface is clear; otherwise it interpolates bilinearly between the
 // reduced rays that marched the same segment of the layer, within SEGMENT_TOLERANCE of
-// its own end plus the length of optical depth DEPTH_TOLERANCE at the densest, and
-// marches its own ray where their weights sum to less than
-// MIN_SAME_WEIGHT (the edge of a mountain in front of or inside the cloud).
+// its own end plus the length of optical depth DEPTH_TOLERANCE at the densest; where
+// their weights sum to less than MIN_SAME_WEIGHT (the edge of a mountain in front of or
+// inside the cloud) it lists the pixel (`frame_list.wgsl`) for `frame_march_list.wgsl` to march.
 
-#import clouds/frame_rays.wgsl
+#import clouds/frame_list.wgsl
 
 const SEGMENT_TOLERANCE: f32 = 0.25;
 const DEPTH_TOLERANCE: f32 = 0.1;
 const MIN_SAME_WEIGHT: f32 = 0.25;
 
-// As in `frame_march.wgsl`.
-@group(0) @binding(5) var cloud_front: texture_storage_2d<rgba32float, write>;
 // The reduced march (`frame_march_reduced.wgsl`) and the segments it marched.
 @group(0) @binding(7) var reduced_image: texture_2d<f32>;
 @group(0) @binding(8) var reduced_segments: texture_2d<f32>;
@@ -56,13 +54,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 sum += w * textureLoad(reduced_image, texel, 0);
             }
         }
-        let o = layer.camera_m.xyz;
-        if weight >= MIN_SAME_WEIGHT {
-            result = sum / weight;
-        } else {
-            result = march_layer(o, d, t.x, t.y);
+        if weight < MIN_SAME_WEIGHT {
+            list_pixel(id.xy);
+            return;
         }
+        result = sum / weight;
         if result.a < 1.0 {
+            let o = layer.camera_m.xyz;
             front = vec4<f32>(normalize(o + d * t.x), t.x);
         }
     }

@@ -2,7 +2,8 @@
 //! frame's surface (`shaders/clouds/frame_march.wgsl`), or, with a resolution divisor
 //! above 1, of a reduced image (`frame_march_reduced.wgsl`) brought to full size by the
 //! segment each ray marched (`frame_upsample.wgsl`, atmosphere-core's
-//! `clouds/layer/segment_upsample.rs`); either writes where each ray
+//! `clouds/layer/segment_upsample.rs`), the pixels it cannot interpolate listed and
+//! marched by an indirect dispatch (`frame_march_list.wgsl`); either writes where each ray
 //! enters the cloud as the surface of the sky model's second run (albedo 0: the model's
 //! radiance in front of the cloud, its aerial perspective), and the composite of the
 //! cloud with the model's two runs into the HDR target
@@ -20,14 +21,17 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
-    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_buffer_entry,
+    storage_texture_entry, texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The reduced march's segments, (t0, t1) per ray.
 const SEGMENT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+/// The list of pixels to march (`shaders/clouds/frame_list.wgsl`): the count, then one
+/// u32 per pixel.
+const LIST_HEADER_BYTES: usize = 4;
 
 /// The images of one frame size the cloud steps write and read.
 #[derive(Debug)]
@@ -120,6 +124,7 @@ pub struct CloudFramePass {
     march: ComputePipeline,
     march_reduced: ComputePipeline,
     upsample: ComputePipeline,
+    march_list: ComputePipeline,
     composite: ComputePipeline,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
@@ -147,7 +152,14 @@ impl CloudFramePass {
             storage_texture_entry(7, SEGMENT_FORMAT, D2),
         ];
         let mut upsample = march.to_vec();
-        upsample.extend([texture_entry(7, D2), texture_entry(8, D2)]);
+        upsample.extend([
+            texture_entry(7, D2),
+            texture_entry(8, D2),
+            storage_buffer_entry(9, LIST_HEADER_BYTES + 4),
+            storage_buffer_entry(10, 12),
+        ]);
+        let mut list = march.to_vec();
+        list.push(storage_buffer_entry(9, LIST_HEADER_BYTES + 4));
         let composite = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -180,6 +192,13 @@ impl CloudFramePass {
                 "cloud frame upsample",
                 &upsample,
             )?,
+            march_list: ComputePipeline::new(
+                gpu,
+                "clouds/frame_march_list.wgsl",
+                "main",
+                "cloud frame listed march",
+                &list,
+            )?,
             composite: ComputePipeline::new(
                 gpu,
                 "clouds/frame_composite.wgsl",
@@ -195,7 +214,7 @@ impl CloudFramePass {
     /// Records the march of `scene`'s pixels into `targets.cloud` and
     /// `targets.front_geometry`: at full resolution, or reduced and brought to full size
     /// when the settings' resolution divisor is above 1 (timed from the march's start to
-    /// the upsample's end).
+    /// the listed pixels' end).
     pub fn encode_march(
         &self,
         gpu: &GpuContext,
@@ -284,9 +303,12 @@ impl CloudFramePass {
             groups,
             start,
         );
+        let (list, dispatch) = self.march_list_buffers(gpu, frame)?;
         let read = [
             (7, wgpu::BindingResource::TextureView(&image)),
             (8, wgpu::BindingResource::TextureView(&segments)),
+            (9, list.as_entire_binding()),
+            (10, dispatch.as_entire_binding()),
         ];
         let bind_group = self
             .upsample
@@ -296,9 +318,59 @@ impl CloudFramePass {
             "cloud frame upsample",
             &bind_group,
             texel_groups(&targets.cloud),
+            None,
+        );
+        let listed = [(9, list.as_entire_binding())];
+        let bind_group = self
+            .march_list
+            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &listed].concat());
+        self.march_list.dispatch_indirect(
+            encoder,
+            "cloud frame listed march",
+            &bind_group,
+            &dispatch,
             end,
         );
         Ok(())
+    }
+
+    /// An empty list of pixels to march for `frame`, with a place for each pixel, and its
+    /// indirect dispatch's workgroup counts (0, 1, 1).
+    fn march_list_buffers(
+        &self,
+        gpu: &GpuContext,
+        frame: &Frame,
+    ) -> Result<(wgpu::Buffer, wgpu::Buffer), RenderError> {
+        let pixels = frame.width as usize * frame.height as usize;
+        let bytes = LIST_HEADER_BYTES + 4 * pixels;
+        let limit = gpu.device.limits().max_storage_buffer_binding_size as usize;
+        if bytes > limit {
+            return Err(RenderError::Frame(format!(
+                "clouds at a reduced resolution: a {} x {} frame needs a list of {bytes} \
+                 bytes, over the device's storage binding limit of {limit}; use the offline \
+                 quality (resolution divisor 1) or a smaller frame",
+                frame.width, frame.height
+            )));
+        }
+        let buffer = |label, size: usize, usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | usage,
+                mapped_at_creation: false,
+            })
+        };
+        let list = buffer("cloud frame march list", bytes, wgpu::BufferUsages::empty());
+        let dispatch = buffer(
+            "cloud frame march list dispatch",
+            12,
+            wgpu::BufferUsages::INDIRECT,
+        );
+        gpu.queue
+            .write_buffer(&list, 0, bytemuck::cast_slice(&[0u32]));
+        gpu.queue
+            .write_buffer(&dispatch, 0, bytemuck::cast_slice(&[0u32, 1, 1]));
+        Ok((list, dispatch))
     }
 
     /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and
