@@ -142,6 +142,11 @@ mod tests {
         assert_eq!(out[4], [0.0, 0.0, 0.0, 1.0]);
         assert_eq!(out[5], [9.0, 9.0, 9.0, 0.0]);
         assert_eq!(marched, vec![5]);
+        // Rays that leave the layer's top at once: 1 m against 3 m of cloud matches
+        // where that is an optical depth below 0.1, not in a cloud 25 times denser.
+        assert!(same_segment((0.0, 1.0), Some((0.0, 3.0)), 0.04));
+        assert!(!same_segment((0.0, 1.0), Some((0.0, 3.0)), 1.0));
+        assert!(!same_segment((0.0, 1.0), None, 0.04));
         // Equal segments everywhere give upsample.rs's bilinear image.
         let same = [Some((1_000.0, 10_000.0)); 6];
         let reduced = ReducedMarch {
