@@ -20,6 +20,9 @@ const FRONT_STEPS: u32 = 32u;
 // w: the cloud's entry distance, m (0: the camera is inside it, or no cloud).
 @group(0) @binding(5) var cloud_front: texture_2d<f32>;
 @group(0) @binding(6) var hdr: texture_storage_2d<rgba16float, write>;
+// y: 1 when the model's second run wrote `front_image`, 0 when the camera is inside the
+// layer and it did not run (no air in front of the cloud; x is the march's).
+@group(0) @binding(7) var<uniform> composite_flags: vec4<u32>;
 
 // Transmittance of the atmosphere from the camera to `distance_m` along `direction`.
 fn front_transmittance(direction: vec3<f32>, distance_m: f32) -> vec3<f32> {
@@ -47,7 +50,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let entry_m = textureLoad(cloud_front, id.xy, 0).w;
         var front = vec3<f32>(0.0);
         var t_front = vec3<f32>(1.0);
-        if entry_m > 0.0 {
+        if entry_m > 0.0 && composite_flags.y == 1u {
             front = textureLoad(front_image, id.xy, 0).rgb;
             t_front = front_transmittance(pixel_direction(id.xy), entry_m);
         }

@@ -190,6 +190,11 @@ pub struct BenchArgs {
     /// path's fps].
     #[arg(long, requires = "flight", value_parser = clap::value_parser!(u32).range(1..=240))]
     pub flight_fps: Option<u32>,
+    /// Also time what the cloud layer at this march quality (interactive or offline;
+    /// repeat the flag) adds to a hillaire flight view at 2.9 km, each frame interleaved
+    /// with the frame without clouds (docs/clouds.md, "Cost").
+    #[arg(long, value_name = "interactive|offline", conflicts_with = "flight")]
+    pub clouds: Vec<String>,
 }
 
 /// The flags of `atmos record` (docs/recording.md).

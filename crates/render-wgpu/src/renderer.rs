@@ -8,7 +8,7 @@ use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::models::id::ModelId;
 
-use crate::clouds::frame_clouds::{FrameClouds, why_no_clouds};
+use crate::clouds::frame_clouds::{FrameClouds, why_no_clouds, why_nothing_in_front};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
 use crate::clouds::layer_inputs::LayerInputs;
 
@@ -345,8 +345,19 @@ impl Renderer {
         if clouds_step.is_some() && self.cloud_pass.is_none() {
             self.cloud_pass = Some(CloudFramePass::new(&self.gpu)?);
         }
-        // The model's second run ends on the cloud: a surface, whose passes it needs.
-        plan.surface = has_surface || clouds_step.is_some();
+        // The model's second run ends on the cloud: a surface, whose passes it needs;
+        // none runs with the camera inside the layer.
+        let front_needed = match (&self.clouds, clouds_step) {
+            (Some(clouds), Some(_)) => match why_nothing_in_front(frame, &clouds.settings) {
+                Some(why) => {
+                    plan.skip("cloud_front", why);
+                    false
+                }
+                None => true,
+            },
+            _ => false,
+        };
+        plan.surface = has_surface || front_needed;
         // The sea's variant of the pixel passes only where the surface holds sea.
         let has_sea = match surface {
             Some(texels) => texels.iter().any(|t| t.water && t.distance_m > 0.0),
@@ -391,10 +402,14 @@ impl Renderer {
             self.targets = Some(targets);
             return Err(e);
         }
+        // (march, the second run's first step, the composite).
         let cloud_steps = clouds_step.map(|march| {
-            plan.run("cloud_front", StepKind::Pass);
+            let front = front_needed.then(|| {
+                plan.run("cloud_front", StepKind::Pass);
+                plan.steps.len() as u32 - 1
+            });
             plan.run("cloud_composite", StepKind::Pass);
-            (march, plan.steps.len() as u32 - 2)
+            (march, front, plan.steps.len() as u32 - 1)
         });
         let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
@@ -422,7 +437,7 @@ impl Renderer {
                 timer.map(|t| t.render_writes(0)),
             );
         }
-        if let (Some((march, _)), Some(c), Some(pass), Some(clouds), Some((inputs, _))) = (
+        if let (Some((march, _, _)), Some(c), Some(pass), Some(clouds), Some((inputs, _))) = (
             cloud_steps,
             cloud_targets,
             &self.cloud_pass,
@@ -435,6 +450,7 @@ impl Renderer {
                 inputs,
                 surface: &surface_views[0],
                 has_surface,
+                has_front: front_needed,
             };
             let marched = pass.encode_march(
                 gpu,
@@ -454,33 +470,35 @@ impl Renderer {
             encoder: &mut encoder,
             timer,
         });
-        if let (Some((_, front)), Some(c), Some(pass)) =
+        if let (Some((_, front, composite)), Some(c), Some(pass)) =
             (cloud_steps, cloud_targets, &self.cloud_pass)
         {
-            let front_surface = c.front_surface();
-            let front_io = PassIo {
-                hdr: &c.front,
-                surface: &front_surface,
-                has_surface: true,
-                has_sea: false,
-                ..io
-            };
-            model.encode_passes(
-                &mut FrameRecorder {
-                    gpu,
-                    io: &front_io,
-                    encoder: &mut encoder,
-                    timer,
-                },
-                front,
-            );
+            if let Some(front) = front {
+                let front_surface = c.front_surface();
+                let front_io = PassIo {
+                    hdr: &c.front,
+                    surface: &front_surface,
+                    has_surface: true,
+                    has_sea: false,
+                    ..io
+                };
+                model.encode_passes(
+                    &mut FrameRecorder {
+                        gpu,
+                        io: &front_io,
+                        encoder: &mut encoder,
+                        timer,
+                    },
+                    front,
+                );
+            }
             pass.encode_composite(
                 gpu,
                 &mut encoder,
                 (&self.atmosphere, &self.frame),
                 c,
                 &targets.hdr,
-                timer.map(|t| t.compute_writes(front + 1)),
+                timer.map(|t| t.compute_writes(composite)),
             );
         }
         self.tone_map.encode(

@@ -6,6 +6,7 @@
 
 pub mod baseline;
 pub mod beams;
+pub mod clouds;
 pub mod flight;
 pub mod timing;
 pub mod variant;
@@ -17,6 +18,7 @@ use std::io::Write as _;
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::models::id::ModelId;
 use render_wgpu::Renderer;
 use render_wgpu::frame::Frame;
@@ -291,7 +293,16 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             .map(|text| beams::BeamVariant::parse(text))
             .collect::<anyhow::Result<Vec<_>>>()?,
     };
-    let variants = if args.beams_scene.is_some() && args.model.is_empty() && extra.is_empty() {
+    let cloud_qualities = args
+        .clouds
+        .iter()
+        .map(|q| {
+            q.parse::<MarchQuality>()
+                .map_err(|e| anyhow::anyhow!("--clouds: {e}"))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let only_extras = args.beams_scene.is_some() || !cloud_qualities.is_empty();
+    let variants = if only_extras && args.model.is_empty() && extra.is_empty() {
         vec![baseline()]
     } else {
         variants(&args.model, &extra)
@@ -299,8 +310,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let mut renderer = Renderer::headless()?;
     let adapter = renderer.gpu().adapter_summary();
     let per_variant = 1 + args.frames + BENCH_VIEWS.len() * (1 + args.frames);
-    let total =
-        variants.len() * per_variant + beam_variants.len() * beams::frames_per_variant(args.frames);
+    let total = variants.len() * per_variant
+        + beam_variants.len() * beams::frames_per_variant(args.frames)
+        + cloud_qualities.len() * clouds::frames_per_quality(args.frames);
     let progress = Progress::new("bench", "frames", total as u64);
     let mut results = Vec::new();
     for variant in &variants {
@@ -318,10 +330,22 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let size = ((args.width, args.height), args.frames);
         beam_results = beams::measure(&mut renderer, &base, path, &beam_variants, size, &progress)?;
     }
+    let size = ((args.width, args.height), args.frames);
+    let cloud_results = clouds::measure(
+        &mut renderer,
+        &atmosphere,
+        &cloud_qualities,
+        size,
+        &progress,
+    )?;
     progress.finish();
     let mut text = markdown(&adapter, args, &results);
     if let Some(path) = &args.beams_scene {
         text.push_str(&beams::markdown(path, BASELINE, &beam_results));
+    }
+    if !cloud_results.is_empty() {
+        let size = (args.width, args.height);
+        text.push_str(&clouds::markdown(&adapter, size, &cloud_results));
     }
     std::io::stdout().lock().write_all(text.as_bytes())?;
     if let Some(path) = &args.out {

@@ -8,23 +8,22 @@ use std::path::Path;
 use anyhow::{Context, bail};
 use atmosphere_core::clouds::cover::generated::{CoverParameters, GeneratedCover};
 use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::droplets;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{
     LayerMethod, LayerSettings, MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M,
     MIN_THICKNESS_M,
 };
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::optics::legendre_series::LegendreSeries;
 use clap::Args;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::{Frame, Renderer};
 use serde::{Deserialize, Serialize};
 
 /// The generated cover's grid: 2048 x 1024 texels (20 km at the equator).
 pub const GENERATED_GRID: (usize, usize) = (2048, 1024);
-/// The asymmetry of the droplets' phase function (lognormal, effective radius 10 um,
-/// 550 nm; docs/particles.md), which the layer's Henyey-Greenstein stand-in takes.
-pub const DROPLET_ASYMMETRY: f64 = 0.8654;
 
 /// The cloud flags; every one optional, the layer's defaults
 /// (`LayerSettings::default`) filling the rest.
@@ -54,6 +53,11 @@ pub struct CloudFlags {
     /// octaves (Wrenninge et al. 2013) [default: riley].
     #[arg(long = "cloud-method", value_name = "riley|octaves")]
     pub method: Option<String>,
+    /// The march's quality: interactive (20 steps at a third of the resolution, for
+    /// flight) or offline (128 steps, full resolution, for recordings) [default:
+    /// offline].
+    #[arg(long = "cloud-quality", value_name = "interactive|offline")]
+    pub quality: Option<String>,
 }
 
 impl CloudFlags {
@@ -71,6 +75,7 @@ impl CloudFlags {
             thickness_m: flags.thickness_m.or(self.thickness_m),
             density_per_m: flags.density_per_m.or(self.density_per_m),
             method: flags.method.or(self.method),
+            quality: flags.quality.or(self.quality),
         }
     }
 
@@ -93,6 +98,12 @@ impl CloudFlags {
                 .parse::<LayerMethod>()
                 .map_err(|e| anyhow::anyhow!("--cloud-method: {e}"))?,
             None => defaults.method,
+        };
+        let quality = match &self.quality {
+            Some(q) => q
+                .parse::<MarchQuality>()
+                .map_err(|e| anyhow::anyhow!("--cloud-quality: {e}"))?,
+            None => MarchQuality::Offline,
         };
         let settings = LayerSettings {
             base_m: within(
@@ -117,7 +128,7 @@ impl CloudFlags {
                 MAX_EXTINCTION_PER_M,
             )?,
             method,
-            ..defaults
+            ..quality.apply(defaults)
         };
         settings.check()?;
         Ok(Some(settings))
@@ -164,12 +175,11 @@ fn image_cover(path: &Path, channel: &str) -> anyhow::Result<CoverGrid> {
     )?)
 }
 
-/// The layer's multiple-scattering tables at 680, 550 and 440 nm: Riley et al. 2004's
-/// A_n and F_n of a Henyey-Greenstein function with the droplets' asymmetry, from its
-/// Legendre series chi_l = g^l (cut at degree 300, where g^l < 1e-18 at g = 0.87).
+/// The layer's multiple-scattering tables at the renderer's wavelengths (680, 550 and
+/// 440 nm): Riley et al. 2004's A_n and F_n of the droplets' Lorenz-Mie phase function
+/// (atmosphere-core's `clouds/layer/droplets.rs`).
 pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
-    let series = LegendreSeries::henyey_greenstein(DROPLET_ASYMMETRY, 300);
-    Ok(ScatteringOrders::new(&vec![series; 3])?)
+    Ok(droplets::droplet_orders(&RGB_WAVELENGTHS_NM)?)
 }
 
 /// What a frame's clouds need besides the light: the layer's settings, its cover and its
@@ -233,6 +243,22 @@ mod tests {
         assert_eq!(settings.base_m, 800.0);
         assert_eq!(settings.method, LayerMethod::Octaves);
         assert_eq!(settings.thickness_m, LayerSettings::default().thickness_m);
+        assert_eq!(
+            settings,
+            MarchQuality::Offline.apply(LayerSettings {
+                base_m: 800.0,
+                method: LayerMethod::Octaves,
+                ..LayerSettings::default()
+            })
+        );
+        let interactive = CloudFlags {
+            quality: Some("interactive".into()),
+            ..on()
+        };
+        assert_eq!(
+            interactive.settings().unwrap(),
+            Some(MarchQuality::Interactive.apply(LayerSettings::default()))
+        );
     }
 
     #[test]
@@ -265,6 +291,14 @@ mod tests {
         });
         assert!(
             e.contains("--cloud-method") && e.contains("riley, octaves"),
+            "{e}"
+        );
+        let e = error(CloudFlags {
+            quality: Some("best".into()),
+            ..on()
+        });
+        assert!(
+            e.contains("--cloud-quality") && e.contains("interactive, offline"),
             "{e}"
         );
         let e = CloudFlags {

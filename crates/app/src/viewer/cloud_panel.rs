@@ -1,5 +1,5 @@
 //! The side panel's "Clouds" section: the cloud layer on or off, its cover, base
-//! altitude, thickness, density and method (`cloud_settings.rs`).
+//! altitude, thickness, density, method and march quality (`cloud_settings.rs`).
 
 use atmosphere_core::clouds::layer::settings::{
     MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M, MIN_THICKNESS_M,
@@ -47,6 +47,18 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
                 .on_hover_text(
                     "riley: Riley et al. 2004's expected orders of scattering; octaves: \
                      Wrenninge et al. 2013's production approximation",
+                );
+            egui::ComboBox::from_label("quality")
+                .selected_text(clouds.quality.as_str())
+                .show_ui(ui, |ui| {
+                    for quality in ["interactive", "offline"] {
+                        ui.selectable_value(&mut clouds.quality, quality.to_string(), quality);
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "interactive: 20 steps at a third of the resolution, for flight; \
+                     offline: 128 steps at full resolution, for recordings",
                 );
         });
     });

@@ -2,6 +2,7 @@
 //! with the others, and their reading as `atmos render`'s cloud flags, which check them
 //! (docs/clouds.md, "Clouds in frames").
 
+use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
 use serde::{Deserialize, Serialize};
 
@@ -23,6 +24,8 @@ pub struct CloudSettings {
     pub density_per_m: f64,
     /// `riley` or `octaves`.
     pub method: String,
+    /// The march's quality, `interactive` or `offline`.
+    pub quality: String,
 }
 
 impl Default for CloudSettings {
@@ -35,6 +38,7 @@ impl Default for CloudSettings {
             thickness_m: layer.thickness_m,
             density_per_m: layer.extinction_per_m,
             method: layer.method.to_string(),
+            quality: MarchQuality::Interactive.to_string(),
         }
     }
 }
@@ -49,6 +53,7 @@ impl CloudSettings {
             thickness_m: Some(self.thickness_m),
             density_per_m: Some(self.density_per_m),
             method: Some(self.method.clone()),
+            quality: Some(self.quality.clone()),
         }
     }
 }
@@ -64,7 +69,7 @@ mod tests {
         clouds.on = true;
         assert_eq!(
             clouds.flags().settings().unwrap(),
-            Some(LayerSettings::default())
+            Some(MarchQuality::Interactive.apply(LayerSettings::default()))
         );
         clouds.thickness_m = 1.0;
         let e = clouds.flags().settings().unwrap_err().to_string();

@@ -17,6 +17,10 @@ pub const NO_CLOUD_IN_COVER: &str = "no cloud in the cover";
 /// Why the planner leaves a frame's cloud steps out when no pixel's ray meets the layer.
 pub const LAYER_NOT_IN_VIEW: &str = "the cloud layer is not in view";
 
+/// Why the planner leaves out the model's second run (`cloud_front`) when the camera is
+/// inside the layer: every ray enters the cloud at the camera, with no air in front.
+pub const CAMERA_IN_LAYER: &str = "the camera is inside the cloud layer";
+
 /// The cloud layer a frame shows: the layer's settings and the light on it (one value
 /// for the image, as the layer pass takes it). The cover and the multiple-scattering
 /// tables are uploaded once ([`crate::Renderer::set_cloud_inputs`]).
@@ -56,6 +60,16 @@ pub fn why_no_clouds(
     // A margin of 1e-6 rad keeps rays that graze the top in.
     let sphere = (top_m / r).asin();
     (off_centre - cone > sphere + 1e-6).then_some(LAYER_NOT_IN_VIEW)
+}
+
+/// Why `frame` needs no second run of its model in front of the cloud, if it does not:
+/// the camera lies between the layer's base and top, so every pixel's cloud starts at
+/// the camera (`frame_march.wgsl` writes an entry distance of 0 there, which the
+/// composite reads as no air in front).
+pub fn why_nothing_in_front(frame: &Frame, settings: &LayerSettings) -> Option<&'static str> {
+    let (base_m, top_m) = settings.radii_m(frame.atmosphere.bottom_radius_m);
+    let r = frame.camera_position_m.length();
+    (base_m <= r && r <= top_m).then_some(CAMERA_IN_LAYER)
 }
 
 /// The light of `model` (the frame's model on the CPU, at the GPU's three wavelengths)

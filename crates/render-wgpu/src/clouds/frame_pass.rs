@@ -1,5 +1,9 @@
 //! The cloud layer in a renderer frame, on the GPU: the march of every pixel ended on the
-//! frame's surface (`shaders/clouds/frame_march.wgsl`), which also writes where each ray
+//! frame's surface (`shaders/clouds/frame_march.wgsl`), or, with a resolution divisor
+//! above 1, of a reduced image (`frame_march_reduced.wgsl`) brought to full size by the
+//! segment each ray marched (`frame_upsample.wgsl`, atmosphere-core's
+//! `clouds/layer/segment_upsample.rs`), the pixels it cannot interpolate listed and
+//! marched by an indirect dispatch (`frame_march_list.wgsl`); either writes where each ray
 //! enters the cloud as the surface of the sky model's second run (albedo 0: the model's
 //! radiance in front of the cloud, its aerial perspective), and the composite of the
 //! cloud with the model's two runs into the HDR target
@@ -17,11 +21,17 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_buffer_entry,
+    storage_texture_entry, texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
+use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The reduced march's segments, (t0, t1) per ray.
+const SEGMENT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+/// The list of pixels to march (`shaders/clouds/frame_list.wgsl`): the count, then one
+/// u32 per pixel.
+const LIST_HEADER_BYTES: usize = 4;
 
 /// The images of one frame size the cloud steps write and read.
 #[derive(Debug)]
@@ -102,12 +112,19 @@ pub struct MarchScene<'a> {
     /// The frame's surface geometry (`surface_buffer.rs`), read where `has_surface`.
     pub surface: &'a wgpu::TextureView,
     pub has_surface: bool,
+    /// Whether the model's second run (`cloud_front`) runs; without it the composite
+    /// takes no air in front of the cloud (the camera is inside the layer).
+    pub has_front: bool,
 }
 
-/// The march and composite pipelines and their parameter buffers.
+/// The march (full or reduced, and the upsample) and composite pipelines and their
+/// parameter buffers.
 #[derive(Debug)]
 pub struct CloudFramePass {
     march: ComputePipeline,
+    march_reduced: ComputePipeline,
+    upsample: ComputePipeline,
+    march_list: ComputePipeline,
     composite: ComputePipeline,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
@@ -125,6 +142,24 @@ impl CloudFramePass {
             storage_texture_entry(5, GEOMETRY_FORMAT, D2),
             uniform_entry(6, 16),
         ];
+        let reduced = [
+            march[0],
+            march[1],
+            march[2],
+            march[3],
+            march[4],
+            march[6],
+            storage_texture_entry(7, SEGMENT_FORMAT, D2),
+        ];
+        let mut upsample = march.to_vec();
+        upsample.extend([
+            texture_entry(7, D2),
+            texture_entry(8, D2),
+            storage_buffer_entry(9, LIST_HEADER_BYTES + 4),
+            storage_buffer_entry(10, 12),
+        ]);
+        let mut list = march.to_vec();
+        list.push(storage_buffer_entry(9, LIST_HEADER_BYTES + 4));
         let composite = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -133,6 +168,7 @@ impl CloudFramePass {
             texture_entry(4, D2),
             texture_entry(5, D2),
             storage_texture_entry(6, HDR_FORMAT, D2),
+            uniform_entry(7, 16),
         ];
         Ok(CloudFramePass {
             march: ComputePipeline::new(
@@ -141,6 +177,27 @@ impl CloudFramePass {
                 "main",
                 "cloud frame march",
                 &march,
+            )?,
+            march_reduced: ComputePipeline::new(
+                gpu,
+                "clouds/frame_march_reduced.wgsl",
+                "main",
+                "cloud frame reduced march",
+                &reduced,
+            )?,
+            upsample: ComputePipeline::new(
+                gpu,
+                "clouds/frame_upsample.wgsl",
+                "main",
+                "cloud frame upsample",
+                &upsample,
+            )?,
+            march_list: ComputePipeline::new(
+                gpu,
+                "clouds/frame_march_list.wgsl",
+                "main",
+                "cloud frame listed march",
+                &list,
             )?,
             composite: ComputePipeline::new(
                 gpu,
@@ -155,7 +212,9 @@ impl CloudFramePass {
     }
 
     /// Records the march of `scene`'s pixels into `targets.cloud` and
-    /// `targets.front_geometry`.
+    /// `targets.front_geometry`: at full resolution, or reduced and brought to full size
+    /// when the settings' resolution divisor is above 1 (timed from the march's start to
+    /// the listed pixels' end).
     pub fn encode_march(
         &self,
         gpu: &GpuContext,
@@ -173,34 +232,149 @@ impl CloudFramePass {
             scene.inputs.cover_size,
         )?;
         gpu.write_uniform(&self.params, &params);
-        gpu.write_uniform(&self.flags, &[u32::from(scene.has_surface), 0, 0, 0]);
-        let cover = scene.inputs.cover.create_view(&Default::default());
-        let cloud = targets.cloud.create_view(&Default::default());
-        let front = targets.front_geometry.create_view(&Default::default());
-        let bind_group = self.march.bind_group(
-            gpu,
+        gpu.write_uniform(
+            &self.flags,
             &[
-                self.params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&cover),
-                scene.inputs.orders.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&cloud),
-                wgpu::BindingResource::TextureView(scene.surface),
-                wgpu::BindingResource::TextureView(&front),
-                self.flags.as_entire_binding(),
+                u32::from(scene.has_surface),
+                u32::from(scene.has_front),
+                0,
+                0,
             ],
         );
-        self.march.dispatch(
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let cover = view(&scene.inputs.cover);
+        let cloud = view(&targets.cloud);
+        let front = view(&targets.front_geometry);
+        let shared = [
+            (0, self.params.as_entire_binding()),
+            (1, wgpu::BindingResource::TextureView(&cover)),
+            (2, scene.inputs.orders.as_entire_binding()),
+            (4, wgpu::BindingResource::TextureView(scene.surface)),
+            (6, self.flags.as_entire_binding()),
+        ];
+        let full = [
+            (3, wgpu::BindingResource::TextureView(&cloud)),
+            (5, wgpu::BindingResource::TextureView(&front)),
+        ];
+        let divisor = scene.clouds.settings.resolution_divisor;
+        if divisor <= 1 {
+            let bind_group = self
+                .march
+                .bind_group_numbered(gpu, &[shared.as_slice(), &full].concat());
+            self.march.dispatch(
+                encoder,
+                "cloud frame march",
+                &bind_group,
+                texel_groups(&targets.cloud),
+                timestamps,
+            );
+            return Ok(());
+        }
+        let size = reduced_size(frame.width, frame.height, divisor);
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let image = texture_2d(
+            &gpu.device,
+            "cloud reduced image",
+            size,
+            CLOUD_FORMAT,
+            usage,
+        );
+        let segments = texture_2d(
+            &gpu.device,
+            "cloud reduced segments",
+            size,
+            SEGMENT_FORMAT,
+            usage,
+        );
+        let groups = texel_groups(&image);
+        let (image, segments) = (view(&image), view(&segments));
+        let (start, end) = split_timestamps(timestamps);
+        let reduced = [
+            (3, wgpu::BindingResource::TextureView(&image)),
+            (7, wgpu::BindingResource::TextureView(&segments)),
+        ];
+        let bind_group = self
+            .march_reduced
+            .bind_group_numbered(gpu, &[shared.as_slice(), &reduced].concat());
+        self.march_reduced.dispatch(
             encoder,
-            "cloud frame march",
+            "cloud frame reduced march",
+            &bind_group,
+            groups,
+            start,
+        );
+        let (list, dispatch) = self.march_list_buffers(gpu, frame)?;
+        let read = [
+            (7, wgpu::BindingResource::TextureView(&image)),
+            (8, wgpu::BindingResource::TextureView(&segments)),
+            (9, list.as_entire_binding()),
+            (10, dispatch.as_entire_binding()),
+        ];
+        let bind_group = self
+            .upsample
+            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &read].concat());
+        self.upsample.dispatch(
+            encoder,
+            "cloud frame upsample",
             &bind_group,
             texel_groups(&targets.cloud),
-            timestamps,
+            None,
+        );
+        let listed = [(9, list.as_entire_binding())];
+        let bind_group = self
+            .march_list
+            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &listed].concat());
+        self.march_list.dispatch_indirect(
+            encoder,
+            "cloud frame listed march",
+            &bind_group,
+            &dispatch,
+            end,
         );
         Ok(())
     }
 
+    /// An empty list of pixels to march for `frame`, with a place for each pixel, and its
+    /// indirect dispatch's workgroup counts (0, 1, 1).
+    fn march_list_buffers(
+        &self,
+        gpu: &GpuContext,
+        frame: &Frame,
+    ) -> Result<(wgpu::Buffer, wgpu::Buffer), RenderError> {
+        let pixels = frame.width as usize * frame.height as usize;
+        let bytes = LIST_HEADER_BYTES + 4 * pixels;
+        let limit = gpu.device.limits().max_storage_buffer_binding_size as usize;
+        if bytes > limit {
+            return Err(RenderError::Frame(format!(
+                "clouds at a reduced resolution: a {} x {} frame needs a list of {bytes} \
+                 bytes, over the device's storage binding limit of {limit}; use the offline \
+                 quality (resolution divisor 1) or a smaller frame",
+                frame.width, frame.height
+            )));
+        }
+        let buffer = |label, size: usize, usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | usage,
+                mapped_at_creation: false,
+            })
+        };
+        let list = buffer("cloud frame march list", bytes, wgpu::BufferUsages::empty());
+        let dispatch = buffer(
+            "cloud frame march list dispatch",
+            12,
+            wgpu::BufferUsages::INDIRECT,
+        );
+        gpu.queue
+            .write_buffer(&list, 0, bytemuck::cast_slice(&[0u32]));
+        gpu.queue
+            .write_buffer(&dispatch, 0, bytemuck::cast_slice(&[0u32, 1, 1]));
+        Ok((list, dispatch))
+    }
+
     /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and
-    /// `frame` uniforms.
+    /// `frame` uniforms (after [`CloudFramePass::encode_march`], whose flags it reads).
     pub fn encode_composite(
         &self,
         gpu: &GpuContext,
@@ -229,6 +403,7 @@ impl CloudFramePass {
                 wgpu::BindingResource::TextureView(cloud),
                 wgpu::BindingResource::TextureView(geometry),
                 wgpu::BindingResource::TextureView(out),
+                self.flags.as_entire_binding(),
             ],
         );
         self.composite.dispatch(

@@ -9,8 +9,8 @@ use crate::clouds::layer_uniform::LayerUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
+    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
 use atmosphere_core::clouds::layer::upsample::reduced_size;
@@ -81,21 +81,7 @@ impl CloudLayerPass {
             IMAGE_FORMAT,
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
         );
-        let (start, end) = match timestamps {
-            Some(t) => (
-                Some(wgpu::ComputePassTimestampWrites {
-                    query_set: t.query_set,
-                    beginning_of_pass_write_index: t.beginning_of_pass_write_index,
-                    end_of_pass_write_index: None,
-                }),
-                Some(wgpu::ComputePassTimestampWrites {
-                    query_set: t.query_set,
-                    beginning_of_pass_write_index: None,
-                    end_of_pass_write_index: t.end_of_pass_write_index,
-                }),
-            ),
-            None => (None, None),
-        };
+        let (start, end) = split_timestamps(timestamps);
         self.march(gpu, encoder, inputs, &reduced, start);
         let source = reduced.create_view(&Default::default());
         let target = image.create_view(&Default::default());

@@ -303,6 +303,50 @@ impl ComputePipeline {
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(groups[0], groups[1], groups[2]);
     }
+
+    /// Records one dispatch whose workgroup counts the GPU reads from `indirect` (three
+    /// u32 at offset 0), timed by `timestamps` when given.
+    pub fn dispatch_indirect(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        label: &str,
+        bind_group: &wgpu::BindGroup,
+        indirect: &wgpu::Buffer,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(label),
+            timestamp_writes: timestamps,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups_indirect(indirect, 0);
+    }
+}
+
+/// `timestamps` split over two passes recorded one after the other: the first writes the
+/// beginning, the second the end, so the two are timed as one.
+pub fn split_timestamps(
+    timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+) -> (
+    Option<wgpu::ComputePassTimestampWrites<'_>>,
+    Option<wgpu::ComputePassTimestampWrites<'_>>,
+) {
+    match timestamps {
+        Some(t) => (
+            Some(wgpu::ComputePassTimestampWrites {
+                query_set: t.query_set,
+                beginning_of_pass_write_index: t.beginning_of_pass_write_index,
+                end_of_pass_write_index: None,
+            }),
+            Some(wgpu::ComputePassTimestampWrites {
+                query_set: t.query_set,
+                beginning_of_pass_write_index: None,
+                end_of_pass_write_index: t.end_of_pass_write_index,
+            }),
+        ),
+        None => (None, None),
+    }
 }
 
 /// A model's pixel pass in two variants: one that reads the frame's surface buffer and

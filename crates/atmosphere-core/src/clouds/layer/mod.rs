@@ -1,17 +1,20 @@
 //! The cloud layer around the planet, seen near and from inside: its settings
 //! ([`settings`]), the shell it fills ([`shell`]), its density from the cover, a vertical
 //! profile and detail noise ([`profile`], [`field`]), Riley et al. 2004's
-//! multiple-scattering tables ([`orders`]), the ray march of a view ray ([`march`]), its
+//! multiple-scattering tables ([`orders`]) of the droplets' Mie phase function
+//! ([`droplets`]), the ray march of a view ray ([`march`]), its
 //! interactive, offline and finest settings ([`presets`]), the reduced-resolution march's
-//! interpolation ([`upsample`]) and
-//! its compositing with a sky model's light ([`composite`]).
+//! interpolation ([`upsample`]), in frames
+//! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]).
 
 pub mod composite;
+pub mod droplets;
 pub mod field;
 pub mod march;
 pub mod orders;
 pub mod presets;
 pub mod profile;
+pub mod segment_upsample;
 pub mod settings;
 pub mod shell;
 pub mod upsample;

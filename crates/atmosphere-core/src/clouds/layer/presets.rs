@@ -4,7 +4,11 @@
 //! each costs and how far it lies from the finest is measured in `docs/clouds.md`
 //! ("Cost").
 
+use std::fmt;
+use std::str::FromStr;
+
 use super::settings::{LayerSettings, MAX_DETAIL_OCTAVES, MAX_SHADOW_STEPS, MAX_STEPS};
+use crate::clouds::error::CloudError;
 
 /// A quality of the cloud layer's march.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,5 +77,49 @@ impl MarchQuality {
             resolution_divisor: m.resolution_divisor,
             ..settings
         }
+    }
+}
+
+impl fmt::Display for MarchQuality {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            MarchQuality::Interactive => "interactive",
+            MarchQuality::Offline => "offline",
+            MarchQuality::Finest => "finest",
+        })
+    }
+}
+
+/// A user's choice: `interactive` or `offline` (the finest march is for measurements,
+/// minutes a frame, and not offered).
+impl FromStr for MarchQuality {
+    type Err = CloudError;
+
+    fn from_str(s: &str) -> Result<Self, CloudError> {
+        match s {
+            "interactive" => Ok(MarchQuality::Interactive),
+            "offline" => Ok(MarchQuality::Offline),
+            other => Err(CloudError(format!(
+                "cloud quality {other:?} is not one of interactive, offline"
+            ))),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_offered_qualities_read_back_and_others_are_named() {
+        for q in [MarchQuality::Interactive, MarchQuality::Offline] {
+            assert_eq!(q.to_string().parse::<MarchQuality>().unwrap(), q);
+            assert!(q.apply(LayerSettings::default()).check().is_ok());
+        }
+        let e = "finest".parse::<MarchQuality>().unwrap_err().to_string();
+        assert!(
+            e.contains("\"finest\"") && e.contains("interactive, offline"),
+            "{e}"
+        );
     }
 }

@@ -20,15 +20,25 @@ pub fn marched_coordinate(index: u32, reduced: u32, full: u32) -> f64 {
     (f64::from(index) + 0.5) * f64::from(full) / f64::from(reduced) - 0.5
 }
 
+/// The two reduced pixels that full pixel `x` of an axis of `full` pixels reads from an
+/// axis of `reduced` pixels, and the weight of the second.
+pub fn axis_taps(x: u32, full: u32, reduced: u32) -> (u32, u32, f64) {
+    let u = ((f64::from(x) + 0.5) * f64::from(reduced) / f64::from(full) - 0.5)
+        .clamp(0.0, f64::from(reduced - 1));
+    let i0 = u.floor() as u32;
+    (i0, (i0 + 1).min(reduced - 1), u - f64::from(i0))
+}
+
+/// The full pixel nearest to the fractional pixel coordinate `x` on an axis of `full`
+/// pixels: where a reduced ray reads the frame's surface.
+pub fn nearest_pixel(x: f64, full: u32) -> u32 {
+    (x + 0.5).floor().clamp(0.0, f64::from(full - 1)) as u32
+}
+
 /// The full `width` x `height` image from the reduced image `low` of `low_size`.
 pub fn upsample(low: &[[f64; 4]], low_size: (u32, u32), width: u32, height: u32) -> Vec<[f64; 4]> {
     let (lw, lh) = low_size;
-    let taps = |x: u32, full: u32, reduced: u32| {
-        let u = ((f64::from(x) + 0.5) * f64::from(reduced) / f64::from(full) - 0.5)
-            .clamp(0.0, f64::from(reduced - 1));
-        let i0 = u.floor() as u32;
-        (i0, (i0 + 1).min(reduced - 1), u - f64::from(i0))
-    };
+    let taps = axis_taps;
     let mut image = Vec::with_capacity((width * height) as usize);
     for y in 0..height {
         let (j0, j1, fy) = taps(y, height, lh);

@@ -1,0 +1,160 @@
+//! `atmos bench --clouds QUALITY`: what the cloud layer adds to a hillaire frame of a
+//! flight view at 2.9 km (inside the default layer, 100 m below its top) over the
+//! generated cover, against the
+//! hillaire sky pass. Each frame with clouds is interleaved with the same frame without
+//! them, so that the difference is measured under the same load; the difference of each
+//! pair's wall-clock times is the clouds' cost (on a CPU adapter such as lavapipe the
+//! cloud steps' timestamps are not to be trusted: docs/clouds.md, "Cost"). Medians of
+//! `--frames` pairs after a warm-up pair.
+
+use std::fmt::Write as _;
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
+use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use render_wgpu::Renderer;
+use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::frame::{Frame, LocalView, location_rotation};
+
+use crate::bench::timing::{median, timed};
+use crate::progress::Progress;
+use crate::render::cloud_flags::{CloudFlags, droplet_orders};
+
+/// The flight view: 2.9 km over the Atlantic at (25 N, 30 W), looking 2 degrees below the
+/// horizon towards azimuth 200 (from north towards east), the sun 30 degrees up at
+/// azimuth 120.
+const FLIGHT: LocalView = LocalView {
+    altitude_m: 2_900.0,
+    view_zenith_deg: 92.0,
+    view_azimuth_deg: -200.0,
+    sun_zenith_deg: 60.0,
+    sun_azimuth_deg: -120.0,
+};
+const LATITUDE_DEG: f64 = 25.0;
+const LONGITUDE_DEG: f64 = -30.0;
+
+/// What one quality measured, ms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CloudTimes {
+    pub quality: MarchQuality,
+    /// Median of the pairs' differences of wall-clock time, clouds less none.
+    pub added_wall_ms: f64,
+    /// Median wall-clock time of the frame without clouds.
+    pub clear_wall_ms: f64,
+    /// Median GPU time of the hillaire pass in the frames without clouds.
+    pub sky_pass_ms: Option<f64>,
+}
+
+/// The hillaire frame of the flight view in `atmosphere` at `size`.
+fn flight_frame(atmosphere: &Atmosphere, size: (u32, u32)) -> Frame {
+    let place = location_rotation(LATITUDE_DEG, LONGITUDE_DEG);
+    let atmosphere = atmosphere.clone();
+    Frame {
+        camera_position_m: place * FLIGHT.position_m(atmosphere.bottom_radius_m),
+        orientation: place * FLIGHT.orientation(),
+        vertical_fov_deg: 60.0,
+        sun_direction: place * FLIGHT.sun_direction(),
+        atmosphere,
+        model: ModelId::Hillaire,
+        settings: Default::default(),
+        exposure_ev100: 14.0,
+        width: size.0,
+        height: size.1,
+        terrain: None,
+    }
+}
+
+/// Frames the bench renders per quality (the warm-up pair included, two each).
+pub fn frames_per_quality(frames: usize) -> usize {
+    2 * (1 + frames)
+}
+
+/// Measures each of `qualities` on `renderer` in `atmosphere` at `size`, `frames` pairs
+/// each.
+pub fn measure(
+    renderer: &mut Renderer,
+    atmosphere: &Atmosphere,
+    qualities: &[MarchQuality],
+    (size, frames): ((u32, u32), usize),
+    progress: &Progress,
+) -> anyhow::Result<Vec<CloudTimes>> {
+    let frame = flight_frame(atmosphere, size);
+    let cover = CloudFlags::default().cover_grid()?;
+    renderer.set_cloud_inputs(&cover, &droplet_orders()?)?;
+    let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
+    let mut out = Vec::new();
+    for &quality in qualities {
+        let settings = quality.apply(LayerSettings::default());
+        let clouds = FrameClouds {
+            settings,
+            light: frame_light(model.as_ref(), &frame, &settings)?,
+            prune: true,
+        };
+        let (mut added, mut clear, mut sky) = (Vec::new(), Vec::new(), Vec::new());
+        for k in 0..=frames {
+            renderer.set_clouds(None)?;
+            let (plan, clear_ms) = timed(renderer, &frame)?;
+            progress.inc();
+            renderer.set_clouds(Some(clouds.clone()))?;
+            let (cloudy, cloudy_ms) = timed(renderer, &frame)?;
+            progress.inc();
+            anyhow::ensure!(
+                cloudy.runs("clouds"),
+                "the flight view's plan has no clouds: {cloudy}"
+            );
+            // The first pair warms up: shaders compile, tables are built.
+            if k > 0 {
+                added.push(cloudy_ms - clear_ms);
+                clear.push(clear_ms);
+                sky.extend(
+                    plan.steps
+                        .iter()
+                        .find(|s| s.name == "hillaire")
+                        .and_then(|s| s.gpu_ms),
+                );
+            }
+        }
+        out.push(CloudTimes {
+            quality,
+            added_wall_ms: median(&added).unwrap_or(f64::NAN),
+            clear_wall_ms: median(&clear).unwrap_or(f64::NAN),
+            sky_pass_ms: (sky.len() == frames).then(|| median(&sky)).flatten(),
+        });
+    }
+    renderer.set_clouds(None)?;
+    Ok(out)
+}
+
+/// The Markdown table of `results`.
+pub fn markdown(adapter: &str, (width, height): (u32, u32), results: &[CloudTimes]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "\nClouds on {adapter}, {width}x{height} px: a hillaire frame 2.9 km up at \
+         ({LATITUDE_DEG} N, {} W) over the generated cover, each frame with clouds \
+         interleaved with the same frame without; medians.\n",
+        -LONGITUDE_DEG
+    );
+    let _ = writeln!(
+        out,
+        "| cloud quality | added wall ms | frame without clouds, wall ms | added / frame without clouds | hillaire pass, GPU ms | added / hillaire pass |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    for r in results {
+        let ratio = r.sky_pass_ms.map(|s| r.added_wall_ms / s);
+        let _ = writeln!(
+            out,
+            "| {} | {:.1} | {:.1} | {:.2} | {} | {} |",
+            r.quality,
+            r.added_wall_ms,
+            r.clear_wall_ms,
+            r.added_wall_ms / r.clear_wall_ms,
+            r.sky_pass_ms
+                .map_or_else(|| "-".into(), |v| format!("{v:.1}")),
+            ratio.map_or_else(|| "-".into(), |x| format!("{x:.2}"))
+        );
+    }
+    out
+}
