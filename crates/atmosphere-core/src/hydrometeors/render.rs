@@ -1,0 +1,138 @@
+//! Rain and ice volumes in a sky model's frame on the CPU: the specification of
+//! render-wgpu's `precipitation/` pass. Single scattering (Riley et al. 2004, section
+//! 4.2.3, Eq. 26 with the first order only): along a view ray's interval [t0, t1] in a
+//! homogeneous volume of extinction beta (albedo 1), in MARCH_STEPS equal steps of
+//! length dt, each step adds
+//!     T_v(t_k) (1 - e^(-beta dt)) [P_c(theta) E_sun e^(-beta s_k) + E_sky / (2 pi)],
+//! where T_v(t_k) is the volume's transmittance from t0 to the step's start, P_c the
+//! phase function at the frame's wavelengths (`channel_phase.rs`) at the scattering
+//! angle theta between the sun and the view, E_sun the sun's irradiance through the
+//! atmosphere (one value per volume, at its `light_point`), s_k the sun's path inside the
+//! volume from the step's middle, and E_sky / (2 pi) the sky's irradiance on a
+//! horizontal plane scattered isotropically (a uniform upper hemisphere of radiance
+//! E_sky / pi, half of all directions). The volume is composited over the model's pixel
+//! L_full (its surface and sun included) as
+//!     L = T_v L_full + T_front L_v,
+//! with T_front the atmosphere's transmittance from the camera to t0 (its columns by the
+//! midpoint rule over FRONT_STEPS steps). The atmosphere's light in front of the volume
+//! is dimmed with the rest of L_full by T_v: a simplification of the cloud composite
+//! (`clouds/layer/composite.rs`) that needs no second run of the model. Several volumes
+//! composite from the farthest entry to the nearest.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::channel_phase::ChannelPhase;
+use super::volumes::Volume;
+use crate::atmosphere::Atmosphere;
+use crate::optics::column::{densities, optical_depth};
+
+/// Steps of the march through a volume, and of the atmosphere's columns in front of it.
+pub const MARCH_STEPS: usize = 24;
+pub const FRONT_STEPS: usize = 32;
+
+/// The light on a volume at the frame's three wavelengths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeLight {
+    /// Unit vector towards the sun.
+    pub sun_direction: DVec3,
+    /// The sun's irradiance on a plane facing it, through the atmosphere, W m^-2 nm^-1.
+    pub sun_irradiance: [f64; 3],
+    /// The sky's irradiance on a horizontal plane, W m^-2 nm^-1.
+    pub sky_irradiance: [f64; 3],
+}
+
+/// A volume with its phase function and light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LitVolume {
+    pub volume: Volume,
+    pub phase: ChannelPhase,
+    pub light: VolumeLight,
+}
+
+/// What a view ray meets in one volume: its entry distance, radiance and transmittance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeSegment {
+    pub entry_m: f64,
+    pub radiance: [f64; 3],
+    pub transmittance: f64,
+}
+
+/// The march of the ray from `origin` along the unit `direction` (ended at
+/// `max_distance_m`) through `lit`, if it meets it.
+pub fn march(
+    lit: &LitVolume,
+    origin: DVec3,
+    direction: DVec3,
+    max_distance_m: f64,
+) -> Option<VolumeSegment> {
+    let (t0, t1) = lit.volume.segment(origin, direction, max_distance_m)?;
+    let beta = lit.volume.extinction_per_m;
+    let dt = (t1 - t0) / MARCH_STEPS as f64;
+    let step_transmittance = (-beta * dt).exp();
+    let cos_theta = direction.dot(lit.light.sun_direction).clamp(-1.0, 1.0);
+    let p = lit.phase.value_at(cos_theta.acos().to_degrees());
+    let mut radiance = [0.0; 3];
+    let mut t_v = 1.0;
+    for k in 0..MARCH_STEPS {
+        let x = origin + direction * (t0 + (k as f64 + 0.5) * dt);
+        let sun_path = lit.volume.exit_distance(x, lit.light.sun_direction);
+        let sun = (-beta * sun_path).exp();
+        let weight = t_v * (1.0 - step_transmittance);
+        for c in 0..3 {
+            radiance[c] += weight
+                * (p[c] * lit.light.sun_irradiance[c] * sun
+                    + lit.light.sky_irradiance[c] / (2.0 * PI));
+        }
+        t_v *= step_transmittance;
+    }
+    Some(VolumeSegment {
+        entry_m: t0,
+        radiance,
+        transmittance: t_v,
+    })
+}
+
+/// The atmosphere's transmittance at `extinction` (per species, at the frame's three
+/// wavelengths) from `origin` over `distance_m` along the unit `direction`.
+pub fn front_transmittance(
+    atmosphere: &Atmosphere,
+    extinction: &[[f64; 3]; 3],
+    origin: DVec3,
+    direction: DVec3,
+    distance_m: f64,
+) -> [f64; 3] {
+    let dt = distance_m / FRONT_STEPS as f64;
+    let mut column = [0.0; 3];
+    for k in 0..FRONT_STEPS {
+        let x = origin + direction * ((k as f64 + 0.5) * dt);
+        let rho = densities(atmosphere, x.length() - atmosphere.bottom_radius_m);
+        for s in 0..3 {
+            column[s] += dt * rho[s];
+        }
+    }
+    extinction.map(|e| (-optical_depth(column, e)).exp())
+}
+
+/// The model's pixel `full` with `volumes` composited over it for the ray from `origin`
+/// along the unit `direction`, ended at `max_distance_m` (its surface, or infinity).
+pub fn composite(
+    atmosphere: &Atmosphere,
+    extinction: &[[f64; 3]; 3],
+    volumes: &[LitVolume],
+    origin: DVec3,
+    direction: DVec3,
+    max_distance_m: f64,
+    full: [f64; 3],
+) -> [f64; 3] {
+    let mut met: Vec<VolumeSegment> = volumes
+        .iter()
+        .filter_map(|v| march(v, origin, direction, max_distance_m))
+        .collect();
+    met.sort_by(|a, b| b.entry_m.total_cmp(&a.entry_m));
+    met.iter().fold(full, |behind, s| {
+        let front = front_transmittance(atmosphere, extinction, origin, direction, s.entry_m);
+        std::array::from_fn(|c| s.transmittance * behind[c] + front[c] * s.radiance[c])
+    })
+}
