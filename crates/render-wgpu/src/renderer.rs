@@ -6,6 +6,7 @@
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
 
 use crate::clouds::frame_clouds::{FrameClouds, why_no_clouds};
@@ -27,6 +28,8 @@ use crate::gpu::timer::GpuTimer;
 use crate::post::luminance::LuminancePass;
 use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
+use crate::precipitation::volume_uniform::MAX_VOLUMES;
+use crate::precipitation::volumes_pass::{VolumesPass, VolumesScene};
 use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
 use crate::sky::sky_pass::{FrameRecorder, SkyPass};
@@ -71,6 +74,10 @@ pub struct Renderer {
     cloud_inputs: Option<(LayerInputs, f64)>,
     /// The cloud steps, compiled when a frame first has clouds.
     cloud_pass: Option<CloudFramePass>,
+    /// Rain and ice volumes frames show ([`Renderer::set_volumes`]), and their pass,
+    /// compiled when a frame first has one.
+    volumes: Vec<LitVolume>,
+    volumes_pass: Option<VolumesPass>,
 }
 
 fn target(
@@ -116,6 +123,8 @@ impl Renderer {
             clouds: None,
             cloud_inputs: None,
             cloud_pass: None,
+            volumes: Vec::new(),
+            volumes_pass: None,
             gpu,
         })
     }
@@ -191,6 +200,20 @@ impl Renderer {
                 .map_err(|e| RenderError::Frame(e.to_string()))?;
         }
         self.clouds = clouds;
+        Ok(())
+    }
+
+    /// The rain shafts and cirrus layers of the frames that follow (at most two), lit and
+    /// with their phase tables at the frame's wavelengths, composited over every model
+    /// (docs/optics-rendering.md); empty: none.
+    pub fn set_volumes(&mut self, volumes: Vec<LitVolume>) -> Result<(), RenderError> {
+        if volumes.len() > MAX_VOLUMES {
+            return Err(RenderError::Frame(format!(
+                "{} rain and ice volumes; a frame holds at most {MAX_VOLUMES}",
+                volumes.len()
+            )));
+        }
+        self.volumes = volumes;
         Ok(())
     }
 
@@ -344,6 +367,19 @@ impl Renderer {
             plan.run("cloud_composite", StepKind::Pass);
             (march, plan.steps.len() as u32 - 2)
         });
+        let volumes_step = (!self.volumes.is_empty()).then(|| {
+            plan.run("volumes", StepKind::Pass);
+            plan.steps.len() as u32 - 1
+        });
+        if volumes_step.is_some() && self.volumes_pass.is_none() {
+            match VolumesPass::new(gpu) {
+                Ok(pass) => self.volumes_pass = Some(pass),
+                Err(e) => {
+                    self.targets = Some(targets);
+                    return Err(e.into());
+                }
+            }
+        }
         let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
 
@@ -429,6 +465,26 @@ impl Renderer {
                 &targets.hdr,
                 timer.map(|t| t.compute_writes(front + 1)),
             );
+        }
+        if let (Some(step), Some(pass)) = (volumes_step, self.volumes_pass.as_mut()) {
+            let scene = VolumesScene {
+                frame,
+                volumes: &self.volumes,
+                uniforms: (&self.atmosphere, &self.frame),
+                surface: &surface_views[0],
+                has_surface,
+            };
+            let encoded = pass.encode(
+                gpu,
+                &mut encoder,
+                &scene,
+                &targets.hdr,
+                timer.map(|t| t.compute_writes(step)),
+            );
+            if let Err(e) = encoded {
+                self.targets = Some(targets);
+                return Err(e);
+            }
         }
         self.tone_map.encode(
             gpu,

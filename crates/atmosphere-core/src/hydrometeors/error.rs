@@ -23,6 +23,8 @@ pub enum HydrometeorError {
     Ice(#[from] IcePhaseError),
     #[error("colour: {0}")]
     Color(#[from] ColorError),
+    #[error("the sky model lighting a volume: {0}")]
+    Model(String),
     #[error("refractive index at {0} nm: outside the tables")]
     RefractiveIndex(f64),
 }

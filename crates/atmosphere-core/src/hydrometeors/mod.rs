@@ -14,6 +14,7 @@ pub mod channel_phase;
 pub mod drop_rays;
 pub mod error;
 pub mod render;
+pub mod scene;
 pub mod spectral_phase;
 pub mod sun_disk_blur;
 pub mod volumes;

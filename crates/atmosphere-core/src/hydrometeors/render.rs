@@ -26,6 +26,9 @@ use glam::DVec3;
 use super::channel_phase::ChannelPhase;
 use super::volumes::Volume;
 use crate::atmosphere::Atmosphere;
+use crate::clouds::layer::composite::light_at;
+use crate::models::error::ModelError;
+use crate::models::sky_model::SkyModel;
 use crate::optics::column::{densities, optical_depth};
 
 /// Steps of the march through a volume, and of the atmosphere's columns in front of it.
@@ -134,5 +137,33 @@ pub fn composite(
     met.iter().fold(full, |behind, s| {
         let front = front_transmittance(atmosphere, extinction, origin, direction, s.entry_m);
         std::array::from_fn(|c| s.transmittance * behind[c] + front[c] * s.radiance[c])
+    })
+}
+
+/// The light of `model` (at its wavelengths, which must be three) on `volume` seen from
+/// `camera_m`: the sun through the atmosphere and the sky at the volume's `light_point`
+/// (`clouds/layer/composite.rs`, `light_at`).
+pub fn light_of(
+    model: &dyn SkyModel,
+    volume: &Volume,
+    camera_m: DVec3,
+    sun_direction: DVec3,
+) -> Result<VolumeLight, ModelError> {
+    let sun = sun_direction
+        .try_normalize()
+        .ok_or_else(|| ModelError::Settings("the sun direction must be non-zero".into()))?;
+    let light = light_at(model, volume.light_point(camera_m), sun)?;
+    let three = |v: &[f64]| -> Result<[f64; 3], ModelError> {
+        v.try_into().map_err(|_| {
+            ModelError::Settings(format!(
+                "volumes are lit at three wavelengths, the model answers {}",
+                v.len()
+            ))
+        })
+    };
+    Ok(VolumeLight {
+        sun_direction: sun,
+        sun_irradiance: three(&light.sun_irradiance)?,
+        sky_irradiance: three(&light.sky_irradiance)?,
     })
 }
