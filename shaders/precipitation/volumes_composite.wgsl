@@ -2,8 +2,8 @@
 // `precipitation/volumes_pass.rs`). CPU twin: atmosphere-core's `hydrometeors/render.rs`,
 // which states the method: single scattering in MARCH_STEPS steps, the phase function at
 // the frame's wavelengths from the buffer (linear between bin centres), the sun's path in
-// the volume, the sky's light isotropic; L = T_v L_full + T_front L_v, farthest volume
-// first.
+// the volume, the sky's light isotropic; with L_front = (1 - T_front) L_full,
+// L = L_front + T_v (L_full - L_front) + T_front L_v, farthest volume first.
 
 #import common/frame_params.wgsl
 #import precipitation/volume_params.wgsl
@@ -117,7 +117,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var out = textureLoad(full_image, id.xy, 0).rgb;
     for (var i = 0u; i < n; i++) {
         let front = front_transmittance(d, met[i].entry);
-        out = met[i].transmittance * out + front * met[i].radiance;
+        out = out * (1.0 - front * (1.0 - met[i].transmittance)) + front * met[i].radiance;
     }
     textureStore(hdr, id.xy, vec4<f32>(min(out, vec3<f32>(F16_MAX)), 1.0));
 }

@@ -6,6 +6,7 @@ pub mod cloud_flags;
 pub mod image_files;
 pub mod scene;
 pub mod sun_disk_clip;
+pub mod volume_flags;
 
 use std::time::Instant;
 
@@ -52,6 +53,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if let Some(clouds) = &clouds {
         clouds.set_up(&mut renderer, &frame)?;
     }
+    let volumes = scene.volumes.lit_volumes(&frame)?;
+    renderer.set_volumes(volumes)?;
     let start = Instant::now();
     let plan = renderer.render(&frame)?;
     let elapsed = start.elapsed();

@@ -12,11 +12,13 @@
 //! horizontal plane scattered isotropically (a uniform upper hemisphere of radiance
 //! E_sky / pi, half of all directions). The volume is composited over the model's pixel
 //! L_full (its surface and sun included) as
-//!     L = T_v L_full + T_front L_v,
-//! with T_front the atmosphere's transmittance from the camera to t0 (its columns by the
-//! midpoint rule over FRONT_STEPS steps). The atmosphere's light in front of the volume
-//! is dimmed with the rest of L_full by T_v: a simplification of the cloud composite
-//! (`clouds/layer/composite.rs`) that needs no second run of the model. Several volumes
+//!     L = L_front + T_v (L_full - L_front) + T_front L_v,   L_front = (1 - T_front) L_full,
+//! Riley et al. 2004's (section 5) split of the atmosphere in front of and behind the
+//! volume, with T_front the atmosphere's transmittance from the camera to t0 (its columns
+//! by the midpoint rule over FRONT_STEPS steps) and the light in front of the volume
+//! taken as the fraction 1 - T_front of the whole ray's: exact where the atmosphere's
+//! source function is uniform along the ray, and it needs no second run of the model
+//! (the cloud composite, `clouds/layer/composite.rs`, runs one). Several volumes
 //! composite from the farthest entry to the nearest.
 
 use std::f64::consts::PI;
@@ -136,7 +138,9 @@ pub fn composite(
     met.sort_by(|a, b| b.entry_m.total_cmp(&a.entry_m));
     met.iter().fold(full, |behind, s| {
         let front = front_transmittance(atmosphere, extinction, origin, direction, s.entry_m);
-        std::array::from_fn(|c| s.transmittance * behind[c] + front[c] * s.radiance[c])
+        std::array::from_fn(|c| {
+            behind[c] * (1.0 - front[c] * (1.0 - s.transmittance)) + front[c] * s.radiance[c]
+        })
     })
 }
 

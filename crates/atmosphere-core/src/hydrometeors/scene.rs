@@ -57,7 +57,7 @@ impl Default for CirrusSettings {
             optical_depth: 0.3,
             crystal_radius_um: 20.0,
             crystal_length_um: 80.0,
-            rays: 100_000,
+            rays: 1_000_000,
         }
     }
 }
