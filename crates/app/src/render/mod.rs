@@ -45,6 +45,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let frame = scene.frame()?;
     let earth_data = args.earth_data.source()?;
     let clouds = CloudInputs::load(&scene.clouds)?;
+    let volumes = scene.volumes.lit_volumes(&frame)?;
     if let Some(warning) = sun_disk_clip_warning(&frame.atmosphere) {
         eprintln!("warning: {warning}");
     }
@@ -53,7 +54,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if let Some(clouds) = &clouds {
         clouds.set_up(&mut renderer, &frame)?;
     }
-    let volumes = scene.volumes.lit_volumes(&frame)?;
     renderer.set_volumes(volumes)?;
     let start = Instant::now();
     let plan = renderer.render(&frame)?;
