@@ -39,7 +39,10 @@ pub fn measure(
     let frame = scene.frame()?;
     let volumes = scene.volumes.lit_volumes(&frame)?;
     if volumes.is_empty() {
-        anyhow::bail!("--optics-scene {}: the scene has no rain or cirrus", path.display());
+        anyhow::bail!(
+            "--optics-scene {}: the scene has no rain or cirrus",
+            path.display()
+        );
     }
     let model = frame.model.to_string();
     // A first frame of each builds the tables and pipelines.
@@ -52,7 +55,12 @@ pub fn measure(
         renderer.set_volumes(Vec::new())?;
         let (plan, ms) = timed(renderer, &frame)?;
         without.push(ms);
-        sky.extend(plan.steps.iter().filter(|s| s.name == model).filter_map(|s| s.gpu_ms));
+        sky.extend(
+            plan.steps
+                .iter()
+                .filter(|s| s.name == model)
+                .filter_map(|s| s.gpu_ms),
+        );
         renderer.set_volumes(volumes.clone())?;
         with.push(timed(renderer, &frame)?.1);
     }
@@ -64,7 +72,12 @@ pub fn measure(
 }
 
 /// The Markdown table of `times` for the scene at `path`.
-pub fn markdown(path: &std::path::Path, adapter: &str, size: (u32, u32), times: &OpticsTimes) -> String {
+pub fn markdown(
+    path: &std::path::Path,
+    adapter: &str,
+    size: (u32, u32),
+    times: &OpticsTimes,
+) -> String {
     let volumes = times.with_ms - times.without_ms;
     let (sky, ratio) = match times.sky_pass_ms {
         Some(s) => (format!("{s:.1}"), format!("{:.2}", volumes / s)),

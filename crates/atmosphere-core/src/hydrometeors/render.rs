@@ -15,7 +15,7 @@
 //!     L = L_front + T_v (L_full - L_front) + T_front L_v,   L_front = (1 - T_front) L_full,
 //! Riley et al. 2004's (section 5) split of the atmosphere in front of and behind the
 //! volume, with T_front the atmosphere's transmittance from the camera to t0 (its columns
-//! by the midpoint rule over FRONT_STEPS steps) and the light in front of the volume
+//! by the midpoint rule over FRONT_STEPS steps in s, t = t0 s^2) and the light in front of the volume
 //! taken as the fraction 1 - T_front of the whole ray's: exact where the atmosphere's
 //! source function is uniform along the ray, and it needs no second run of the model
 //! (the cloud composite, `clouds/layer/composite.rs`, runs one). Several volumes
@@ -34,8 +34,8 @@ use crate::models::sky_model::SkyModel;
 use crate::optics::column::{densities, optical_depth};
 
 /// Steps of the march through a volume, and of the atmosphere's columns in front of it.
-pub const MARCH_STEPS: usize = 24;
-pub const FRONT_STEPS: usize = 32;
+pub const MARCH_STEPS: usize = 12;
+pub const FRONT_STEPS: usize = 8;
 
 /// The light on a volume at the frame's three wavelengths.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -108,13 +108,16 @@ pub fn front_transmittance(
     direction: DVec3,
     distance_m: f64,
 ) -> [f64; 3] {
-    let dt = distance_m / FRONT_STEPS as f64;
+    // t = distance s^2: the midpoint rule in s, its steps short near the camera, where
+    // the air is densest.
+    let ds = 1.0 / FRONT_STEPS as f64;
     let mut column = [0.0; 3];
     for k in 0..FRONT_STEPS {
-        let x = origin + direction * ((k as f64 + 0.5) * dt);
+        let s = (k as f64 + 0.5) * ds;
+        let x = origin + direction * (distance_m * s * s);
         let rho = densities(atmosphere, x.length() - atmosphere.bottom_radius_m);
-        for s in 0..3 {
-            column[s] += dt * rho[s];
+        for c in 0..3 {
+            column[c] += 2.0 * distance_m * s * ds * rho[c];
         }
     }
     extinction.map(|e| (-optical_depth(column, e)).exp())
