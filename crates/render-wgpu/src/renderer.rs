@@ -28,6 +28,7 @@ use crate::gpu::timer::GpuTimer;
 use crate::post::luminance::LuminancePass;
 use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
+use crate::precipitation::in_view::why_no_volumes;
 use crate::precipitation::volume_uniform::MAX_VOLUMES;
 use crate::precipitation::volumes_pass::{VolumesPass, VolumesScene};
 use crate::sky::model_pass::PassIo;
@@ -367,10 +368,15 @@ impl Renderer {
             plan.run("cloud_composite", StepKind::Pass);
             (march, plan.steps.len() as u32 - 2)
         });
-        let volumes_step = (!self.volumes.is_empty()).then(|| {
+        let volumes_step = if self.volumes.is_empty() {
+            None
+        } else if let Some(why) = why_no_volumes(frame, &self.volumes) {
+            plan.skip("volumes", why);
+            None
+        } else {
             plan.run("volumes", StepKind::Pass);
-            plan.steps.len() as u32 - 1
-        });
+            Some(plan.steps.len() as u32 - 1)
+        };
         if volumes_step.is_some() && self.volumes_pass.is_none() {
             match VolumesPass::new(gpu) {
                 Ok(pass) => self.volumes_pass = Some(pass),
