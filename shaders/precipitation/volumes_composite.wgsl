@@ -31,8 +31,8 @@ fn phase_at(v: VolumeParams, angle_deg: f32) -> vec3<f32> {
 
 // The angle between unit vectors `a` and `b`, degrees, within 2e-8 rad: Abramowitz and
 // Stegun 1964, Eq. 4.4.46, arccos x = sqrt(1 - x) P7(x) on [0, 1], with 1 -+ cos taken
-// as |a -+ b|^2 / 2 so that nothing cancels. The shader's own acos may be off by
-// 1e-4 rad, which the bows' sharp edges show.
+// as |a -+ b|^2 / 2 so that nothing cancels. The shader's own acos is not accurate
+// enough at the bows' sharp edges (docs/optics-rendering.md).
 fn angle_deg(a: vec3<f32>, b: vec3<f32>) -> f32 {
     let c = clamp(dot(a, b), -1.0, 1.0);
     let x = abs(c);

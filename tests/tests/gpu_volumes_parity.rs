@@ -7,8 +7,8 @@
 //!
 //! Tolerance: each pixel within 0.5 % of itself plus 0.1 % of the frame's brightest
 //! value: the march and the atmosphere's columns in front of the volumes in f32, and the
-//! f16 image written. The scattering angle is computed without the shader's acos, whose
-//! error (up to 1e-4 rad on lavapipe) put the bow's sharp red edge 4 % off.
+//! f16 image written. The scattering angle is computed without the shader's acos, which
+//! put the bow's sharp red edge out of this tolerance (docs/optics-rendering.md).
 //!
 //! Needs a GPU adapter (lavapipe will do); see `support`.
 

@@ -86,7 +86,7 @@ fn geometric_optics_agrees_with_lorenz_mie_away_from_the_bows() {
     // the rain's geometric optics (the same for every drop size but for diffraction,
     // negligible past 20 degrees), both averaged over 4 degrees around each angle. At
     // 110 and 170 degrees Lorenz-Mie's surface waves and glory, which geometric optics
-    // lacks, still add 20 % at these sizes; they fade as x grows.
+    // lacks, still matter at these sizes (docs/optics-rendering.md); they fade as x grows.
     let distribution = SizeDistribution::lognormal(50e-6, 0.1).unwrap();
     let m = water_refractive_index(550.0).unwrap();
     let checks = [(30.0, 0.03), (60.0, 0.04), (90.0, 0.1), (150.0, 0.1)];
