@@ -386,6 +386,17 @@ impl Renderer {
                 }
             }
         }
+        if let (Some(_), Some(pass)) = (volumes_step, self.volumes_pass.as_mut()) {
+            pass.fit(gpu, (frame.width, frame.height));
+        }
+        // With volumes, the model's pixels (or the cloud composite) go to the volumes
+        // pass's image and that pass writes the HDR target.
+        let volumes_full = self
+            .volumes_pass
+            .as_ref()
+            .filter(|_| volumes_step.is_some())
+            .and_then(VolumesPass::full);
+        let before_volumes = volumes_full.unwrap_or(&targets.hdr);
         let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
 
@@ -397,7 +408,7 @@ impl Renderer {
         let io = PassIo {
             atmosphere: &self.atmosphere,
             frame: &self.frame,
-            hdr: cloud_targets.map_or(&targets.hdr, |c| &c.full),
+            hdr: cloud_targets.map_or(before_volumes, |c| &c.full),
             surface: &surface_views,
             has_surface,
             has_sea,
@@ -468,11 +479,11 @@ impl Renderer {
                 &mut encoder,
                 (&self.atmosphere, &self.frame),
                 c,
-                &targets.hdr,
+                before_volumes,
                 timer.map(|t| t.compute_writes(front + 1)),
             );
         }
-        if let (Some(step), Some(pass)) = (volumes_step, self.volumes_pass.as_mut()) {
+        if let (Some(step), Some(pass)) = (volumes_step, self.volumes_pass.as_ref()) {
             let scene = VolumesScene {
                 frame,
                 volumes: &self.volumes,

@@ -1,6 +1,7 @@
 //! The pass that composites a frame's rain and ice volumes over its pixels
-//! (`shaders/precipitation/volumes_composite.wgsl`): it reads a copy of the model's HDR
-//! image and the frame's surface distances and writes the HDR target.
+//! (`shaders/precipitation/volumes_composite.wgsl`): it reads the model's HDR image,
+//! which the model writes into this pass's own image in frames with volumes, and the
+//! frame's surface distances, and writes the HDR target.
 
 use atmosphere_core::hydrometeors::render::LitVolume;
 use wgpu::util::DeviceExt;
@@ -30,12 +31,12 @@ pub struct VolumesScene<'a> {
     pub has_surface: bool,
 }
 
-/// The composite pipeline, its uniform and the copy of the model's image it reads.
+/// The composite pipeline, its uniform and the image of the model's pixels it reads.
 #[derive(Debug)]
 pub struct VolumesPass {
     pipeline: ComputePipeline,
     params: wgpu::Buffer,
-    /// The model's pixels, copied from the HDR target (remade when the size changes).
+    /// The model's pixels (remade when the size changes).
     full: Option<wgpu::Texture>,
 }
 
@@ -64,9 +65,29 @@ impl VolumesPass {
         })
     }
 
-    /// Records the copy of `hdr` and the composite of `scene`'s volumes into it.
+    /// Makes the image the model's pixels go to ([`VolumesPass::full`]) for frames of
+    /// `size`, unless it has that size.
+    pub fn fit(&mut self, gpu: &GpuContext, size: (u32, u32)) {
+        if self.full.as_ref().map(|t| (t.width(), t.height())) != Some(size) {
+            self.full = Some(texture_2d(
+                &gpu.device,
+                "volumes full",
+                size,
+                HDR_FORMAT,
+                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            ));
+        }
+    }
+
+    /// The image the frame's model (or its cloud composite) writes for this pass to read,
+    /// made by [`VolumesPass::fit`]; `None` before it.
+    pub fn full(&self) -> Option<&wgpu::Texture> {
+        self.full.as_ref()
+    }
+
+    /// Records the composite of `scene`'s volumes over [`VolumesPass::full`] into `hdr`.
     pub fn encode(
-        &mut self,
+        &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         scene: &VolumesScene<'_>,
@@ -83,18 +104,9 @@ impl VolumesPass {
                 contents: bytemuck::cast_slice(&bins),
                 usage: wgpu::BufferUsages::STORAGE,
             });
-        let size = (hdr.width(), hdr.height());
-        let full = match self.full.take() {
-            Some(t) if (t.width(), t.height()) == size => t,
-            _ => texture_2d(
-                &gpu.device,
-                "volumes full",
-                size,
-                HDR_FORMAT,
-                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            ),
-        };
-        encoder.copy_texture_to_texture(hdr.as_image_copy(), full.as_image_copy(), hdr.size());
+        let full = self.full.as_ref().ok_or_else(|| {
+            RenderError::Frame("the volumes pass has no image of the frame's size".into())
+        })?;
         let full_view = full.create_view(&Default::default());
         let out = hdr.create_view(&Default::default());
         let bind_group = self.pipeline.bind_group(
@@ -116,7 +128,6 @@ impl VolumesPass {
             texel_groups(hdr),
             timestamps,
         );
-        self.full = Some(full);
         Ok(())
     }
 }
