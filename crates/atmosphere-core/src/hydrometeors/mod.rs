@@ -4,7 +4,8 @@
 //! disc ([`sun_disk_blur`]) and reduced to a frame's three wavelengths through the CIE
 //! functions ([`channel_phase`]); a rain shaft and a cirrus layer ([`volumes`]) lit by a
 //! sky model's sun in single scattering and composited over the model's frame
-//! ([`render`]), the twin of render-wgpu's `precipitation/`.
+//! ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
+//! around a camera from a scene's settings.
 //!
 //! Conventions, once: scattering angles from the sun's direction of travel (0: forward,
 //! 180: back towards the sun, the antisolar point); phase functions in sr^-1 with unit
