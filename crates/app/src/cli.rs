@@ -178,6 +178,11 @@ pub struct BenchArgs {
     /// steps=32" (repeat the flag; keys in docs/beams/) [default: march].
     #[arg(long, value_name = "METHOD KEY=VALUE ...", requires = "beams_scene")]
     pub beams_variant: Vec<String>,
+    /// A scene with rain or cirrus (docs/optics-rendering.md): time its frames at
+    /// --width x --height with and without the volumes, interleaved, instead of the
+    /// models' tables.
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["beams_scene", "flight"])]
+    pub optics_scene: Option<PathBuf>,
     /// Also write the tables to this Markdown file (atomically).
     #[arg(long, value_name = "FILE.md")]
     pub out: Option<PathBuf>,

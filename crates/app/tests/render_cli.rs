@@ -260,6 +260,31 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "frame.png",
             "--cloud-cover /nonexistent/c.png:g",
         ),
+        (
+            &[("--rain", "true"), ("--rain-rate-mm-h", "0")],
+            "frame.png",
+            "--rain: rain: rain rate (mm/h) = 0 is outside [0.1, 300]",
+        ),
+        (
+            &[("--rain", "true"), ("--rain-radius-m", "5")],
+            "frame.png",
+            "rain shaft radius (m) 5 is outside [10, 50000] m",
+        ),
+        (
+            &[("--cirrus", "true"), ("--cirrus-optical-depth", "20")],
+            "frame.png",
+            "--cirrus: cirrus optical depth 20 is outside [0, 10]",
+        ),
+        (
+            &[("--cirrus", "true"), ("--cirrus-rays", "5")],
+            "frame.png",
+            "ice rays per wavelength 5 is outside [1e4, 1e8]",
+        ),
+        (
+            &[("--rain", "true"), ("--optics-wavelengths", "1000")],
+            "frame.png",
+            "--optics-wavelengths 1000 must lie in [3, 128]",
+        ),
     ];
     for (overrides, name, message) in cases {
         let out = dir.path().join(name);

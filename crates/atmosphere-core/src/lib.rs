@@ -11,6 +11,7 @@ pub mod beams;
 pub mod clouds;
 pub mod color;
 pub mod geo;
+pub mod hydrometeors;
 pub mod models;
 pub mod numerics;
 pub mod optics;

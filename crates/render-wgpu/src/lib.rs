@@ -8,6 +8,7 @@
 //!   registry that makes them;
 //! - [`terrain`]: the planet's relief and colour, drawn into the frame's surface;
 //! - [`clouds`]: the cloud layer's ray march;
+//! - [`precipitation`]: rain shafts and cirrus layers composited over a frame;
 //! - [`post`]: tone mapping and the luminance measured for exposure;
 //! - [`Renderer`] ties them: tables are kept between frames and rebuilt only when an
 //!   input they depend on changed, as the frame's plan says (docs/rendering.md).
@@ -19,6 +20,7 @@ pub mod clouds;
 pub mod frame;
 pub mod gpu;
 pub mod post;
+pub mod precipitation;
 pub mod renderer;
 pub mod shafts;
 pub mod sky;

@@ -6,6 +6,7 @@
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
 
 use crate::clouds::frame_clouds::{FrameClouds, why_no_clouds, why_nothing_in_front};
@@ -30,6 +31,9 @@ use crate::post::tone_map_pass::ToneMapPass;
 use crate::shafts::terrain::frame_map::FrameShadow;
 use crate::shafts::terrain::planner::why_no_shafts;
 use crate::shafts::terrain::shadow_texture::ShadowTexture;
+use crate::precipitation::in_view::why_no_volumes;
+use crate::precipitation::volume_uniform::MAX_VOLUMES;
+use crate::precipitation::volumes_pass::{VolumesPass, VolumesScene};
 use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
 use crate::sky::sky_pass::{FrameRecorder, SkyPass};
@@ -79,6 +83,10 @@ pub struct Renderer {
     shadow_texture: ShadowTexture,
     /// Whether the planner leaves out shafts that cannot change the image.
     prune_shafts: bool,
+    /// Rain and ice volumes frames show ([`Renderer::set_volumes`]), and their pass,
+    /// compiled when a frame first has one.
+    volumes: Vec<LitVolume>,
+    volumes_pass: Option<VolumesPass>,
 }
 
 fn target(
@@ -127,6 +135,8 @@ impl Renderer {
             shadow: FrameShadow::default(),
             shadow_texture: ShadowTexture::new(&gpu),
             prune_shafts: true,
+            volumes: Vec::new(),
+            volumes_pass: None,
             gpu,
         })
     }
@@ -214,6 +224,20 @@ impl Renderer {
     /// The terrain's shadow map of the last frame with light shafts (`None` before any).
     pub fn shadow_map(&self) -> Option<&atmosphere_core::shafts::ShadowMap> {
         self.shadow.map()
+    }
+
+    /// The rain shafts and cirrus layers of the frames that follow (at most two), lit and
+    /// with their phase tables at the frame's wavelengths, composited over every model
+    /// (docs/optics-rendering.md); empty: none.
+    pub fn set_volumes(&mut self, volumes: Vec<LitVolume>) -> Result<(), RenderError> {
+        if volumes.len() > MAX_VOLUMES {
+            return Err(RenderError::Frame(format!(
+                "{} rain and ice volumes; a frame holds at most {MAX_VOLUMES}",
+                volumes.len()
+            )));
+        }
+        self.volumes = volumes;
+        Ok(())
     }
 
     /// Bytes of GPU memory held by the tables of the models used so far.
@@ -411,6 +435,35 @@ impl Renderer {
             plan.run("cloud_composite", StepKind::Pass);
             (march, front, plan.steps.len() as u32 - 1)
         });
+        let volumes_step = if self.volumes.is_empty() {
+            None
+        } else if let Some(why) = why_no_volumes(frame, &self.volumes) {
+            plan.skip("volumes", why);
+            None
+        } else {
+            plan.run("volumes", StepKind::Pass);
+            Some(plan.steps.len() as u32 - 1)
+        };
+        if volumes_step.is_some() && self.volumes_pass.is_none() {
+            match VolumesPass::new(gpu) {
+                Ok(pass) => self.volumes_pass = Some(pass),
+                Err(e) => {
+                    self.targets = Some(targets);
+                    return Err(e.into());
+                }
+            }
+        }
+        if let (Some(_), Some(pass)) = (volumes_step, self.volumes_pass.as_mut()) {
+            pass.fit(gpu, (frame.width, frame.height));
+        }
+        // With volumes, the model's pixels (or the cloud composite) go to the volumes
+        // pass's image and that pass writes the HDR target.
+        let volumes_full = self
+            .volumes_pass
+            .as_ref()
+            .filter(|_| volumes_step.is_some())
+            .and_then(VolumesPass::full);
+        let before_volumes = volumes_full.unwrap_or(&targets.hdr);
         let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
 
@@ -422,7 +475,7 @@ impl Renderer {
         let io = PassIo {
             atmosphere: &self.atmosphere,
             frame: &self.frame,
-            hdr: cloud_targets.map_or(&targets.hdr, |c| &c.full),
+            hdr: cloud_targets.map_or(before_volumes, |c| &c.full),
             surface: &surface_views,
             has_surface,
             has_sea,
@@ -497,9 +550,29 @@ impl Renderer {
                 &mut encoder,
                 (&self.atmosphere, &self.frame),
                 c,
-                &targets.hdr,
+                before_volumes,
                 timer.map(|t| t.compute_writes(composite)),
             );
+        }
+        if let (Some(step), Some(pass)) = (volumes_step, self.volumes_pass.as_ref()) {
+            let scene = VolumesScene {
+                frame,
+                volumes: &self.volumes,
+                uniforms: (&self.atmosphere, &self.frame),
+                surface: &surface_views[0],
+                has_surface,
+            };
+            let encoded = pass.encode(
+                gpu,
+                &mut encoder,
+                &scene,
+                &targets.hdr,
+                timer.map(|t| t.compute_writes(step)),
+            );
+            if let Err(e) = encoded {
+                self.targets = Some(targets);
+                return Err(e);
+            }
         }
         self.tone_map.encode(
             gpu,

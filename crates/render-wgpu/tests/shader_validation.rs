@@ -540,3 +540,20 @@ fn cloud_layer_uniform_matches_its_wgsl_layout() {
         ]
     );
 }
+
+#[test]
+fn volume_uniforms_match_their_wgsl_layouts() {
+    use render_wgpu::precipitation::volume_uniform::{VolumeUniform, VolumesUniform};
+    assert_layout!(
+        "precipitation/volumes_composite.wgsl",
+        "VolumeParams",
+        VolumeUniform,
+        [kind, axis, place, medium, sun_irradiance, sky_irradiance]
+    );
+    assert_layout!(
+        "precipitation/volumes_composite.wgsl",
+        "VolumesParams",
+        VolumesUniform,
+        [count, volumes]
+    );
+}

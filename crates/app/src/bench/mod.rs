@@ -8,6 +8,7 @@ pub mod baseline;
 pub mod beams;
 pub mod clouds;
 pub mod flight;
+pub mod optics;
 pub mod timing;
 pub mod variant;
 pub mod views;
@@ -268,6 +269,18 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let adapter = renderer.gpu().adapter_summary();
         let frames = flight::measure(&mut renderer, &flight_frames)?;
         let text = flight::markdown(path, &adapter, size, &frames);
+        std::io::stdout().lock().write_all(text.as_bytes())?;
+        if let Some(out) = &args.out {
+            write_atomically(out, text.as_bytes())?;
+        }
+        return Ok(());
+    }
+    if let Some(path) = &args.optics_scene {
+        let size = (args.width, args.height);
+        let mut renderer = Renderer::headless()?;
+        let adapter = renderer.gpu().adapter_summary();
+        let times = optics::measure(&mut renderer, path, size, args.frames)?;
+        let text = optics::markdown(path, &adapter, size, &times);
         std::io::stdout().lock().write_all(text.as_bytes())?;
         if let Some(out) = &args.out {
             write_atomically(out, text.as_bytes())?;

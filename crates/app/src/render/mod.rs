@@ -6,6 +6,7 @@ pub mod cloud_flags;
 pub mod image_files;
 pub mod scene;
 pub mod sun_disk_clip;
+pub mod volume_flags;
 
 use std::time::Instant;
 
@@ -44,6 +45,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let frame = scene.frame()?;
     let earth_data = args.earth_data.source()?;
     let clouds = CloudInputs::load(&scene.clouds)?;
+    let volumes = scene.volumes.lit_volumes(&frame)?;
     if let Some(warning) = sun_disk_clip_warning(&frame.atmosphere) {
         eprintln!("warning: {warning}");
     }
@@ -52,6 +54,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if let Some(clouds) = &clouds {
         clouds.set_up(&mut renderer, &frame)?;
     }
+    renderer.set_volumes(volumes)?;
     let start = Instant::now();
     let plan = renderer.render(&frame)?;
     let elapsed = start.elapsed();

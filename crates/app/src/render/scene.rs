@@ -23,6 +23,7 @@ use render_wgpu::{Frame, Renderer};
 use serde::{Deserialize, Serialize};
 
 use super::cloud_flags::CloudFlags;
+use super::volume_flags::VolumeFlags;
 use crate::location_flags::{LocationFlags, check_lat_lon};
 
 /// Zenith angles (view and sun), degrees: beyond them an angle would be wrapped.
@@ -109,6 +110,10 @@ pub struct Scene {
     #[command(flatten)]
     #[serde(default, skip_serializing_if = "CloudFlags::is_empty")]
     pub clouds: CloudFlags,
+    /// Rain and ice volumes (`--rain`, `--cirrus` and their flags; a `[volumes]` table).
+    #[command(flatten)]
+    #[serde(default, skip_serializing_if = "VolumeFlags::is_empty")]
+    pub volumes: VolumeFlags,
 }
 
 impl Scene {
@@ -166,6 +171,7 @@ impl Scene {
             wind_m_s: flags.wind_m_s.or(self.wind_m_s),
             set,
             clouds: self.clouds.overridden_by(flags.clouds),
+            volumes: self.volumes.overridden_by(flags.volumes),
         }
     }
 
@@ -197,6 +203,7 @@ impl Scene {
             wind_m_s: Some(self.wind_m_s.unwrap_or(DEFAULT_WIND_M_S)),
             set: self.set.clone(),
             clouds: self.clouds.clone(),
+            volumes: self.volumes.clone(),
         })
     }
 

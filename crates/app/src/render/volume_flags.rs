@@ -1,0 +1,155 @@
+//! Rain and ice volumes of a scene (`atmos render --rain`, `--cirrus` and their flags,
+//! or a scene file's `[volumes]` table): a rain shaft ahead of the camera and a cirrus
+//! layer, each setting checked against its range with errors naming the flag; and the
+//! lit volumes the renderer composites (docs/optics-rendering.md).
+
+use anyhow::{Context, bail};
+use atmosphere_core::hydrometeors::render::LitVolume;
+use atmosphere_core::hydrometeors::scene::{
+    CirrusSettings, DEFAULT_WAVELENGTHS, RainShaftSettings, lit_volume,
+};
+use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
+use atmosphere_core::models::registry::prepare;
+use clap::Args;
+use render_wgpu::Frame;
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use serde::{Deserialize, Serialize};
+
+/// The volume flags; every one optional, the settings' defaults filling the rest.
+#[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VolumeFlags {
+    /// A rain shaft ahead of the camera, Marshall-Palmer drops (the rainbows) [default:
+    /// false].
+    #[arg(long = "rain", value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
+    pub rain: Option<bool>,
+    /// Rain rate, mm/h, in [0.1, 300] [default: 5].
+    #[arg(long = "rain-rate-mm-h", value_name = "MM_H")]
+    pub rain_rate_mm_h: Option<f64>,
+    /// Distance from the camera to the shaft's axis, along the view's horizontal
+    /// direction, m, in [0, 100000] [default: 3000].
+    #[arg(long = "rain-distance-m", value_name = "M")]
+    pub rain_distance_m: Option<f64>,
+    /// The shaft's radius, m, in [10, 50000] [default: 2000].
+    #[arg(long = "rain-radius-m", value_name = "M")]
+    pub rain_radius_m: Option<f64>,
+    /// The shaft's height above the ground, m, in [100, 20000] [default: 4000].
+    #[arg(long = "rain-height-m", value_name = "M")]
+    pub rain_height_m: Option<f64>,
+    /// A cirrus layer of hexagonal ice columns, randomly oriented (the 22 and 46 degree
+    /// halos) [default: false].
+    #[arg(long = "cirrus", value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
+    pub cirrus: Option<bool>,
+    /// The layer's base above the ground, m, in [1000, 20000] [default: 8000].
+    #[arg(long = "cirrus-base-m", value_name = "M")]
+    pub cirrus_base_m: Option<f64>,
+    /// The layer's thickness, m, in [10, 10000] [default: 1000].
+    #[arg(long = "cirrus-thickness-m", value_name = "M")]
+    pub cirrus_thickness_m: Option<f64>,
+    /// The layer's vertical optical depth, in [0, 10] [default: 0.3].
+    #[arg(long = "cirrus-optical-depth", value_name = "TAU")]
+    pub cirrus_optical_depth: Option<f64>,
+    /// The columns' radius (axis to edge) and length, um, each in [1, 10000], the
+    /// aspect ratio length / (2 radius) in [0.01, 100] [default: 20 and 80].
+    #[arg(long = "cirrus-crystal-radius-um", value_name = "UM")]
+    pub cirrus_crystal_radius_um: Option<f64>,
+    #[arg(long = "cirrus-crystal-length-um", value_name = "UM")]
+    pub cirrus_crystal_length_um: Option<f64>,
+    /// Rays traced through the crystals per wavelength, in [1e4, 1e8] (fewer show the
+    /// rays' noise as rings around the sun) [default: 1000000].
+    #[arg(long = "cirrus-rays", value_name = "N")]
+    pub cirrus_rays: Option<usize>,
+    /// Wavelengths the volumes' phase functions are computed at, across 380-720 nm, in
+    /// [3, 128] [default: 32].
+    #[arg(long = "optics-wavelengths", value_name = "N")]
+    pub wavelengths: Option<usize>,
+}
+
+impl VolumeFlags {
+    /// Whether no field is set (the scene file then has no `[volumes]` table).
+    pub fn is_empty(&self) -> bool {
+        *self == VolumeFlags::default()
+    }
+
+    /// These flags with every field that `flags` sets replaced.
+    pub fn overridden_by(self, flags: VolumeFlags) -> VolumeFlags {
+        VolumeFlags {
+            rain: flags.rain.or(self.rain),
+            rain_rate_mm_h: flags.rain_rate_mm_h.or(self.rain_rate_mm_h),
+            rain_distance_m: flags.rain_distance_m.or(self.rain_distance_m),
+            rain_radius_m: flags.rain_radius_m.or(self.rain_radius_m),
+            rain_height_m: flags.rain_height_m.or(self.rain_height_m),
+            cirrus: flags.cirrus.or(self.cirrus),
+            cirrus_base_m: flags.cirrus_base_m.or(self.cirrus_base_m),
+            cirrus_thickness_m: flags.cirrus_thickness_m.or(self.cirrus_thickness_m),
+            cirrus_optical_depth: flags.cirrus_optical_depth.or(self.cirrus_optical_depth),
+            cirrus_crystal_radius_um: flags
+                .cirrus_crystal_radius_um
+                .or(self.cirrus_crystal_radius_um),
+            cirrus_crystal_length_um: flags
+                .cirrus_crystal_length_um
+                .or(self.cirrus_crystal_length_um),
+            cirrus_rays: flags.cirrus_rays.or(self.cirrus_rays),
+            wavelengths: flags.wavelengths.or(self.wavelengths),
+        }
+    }
+
+    /// The rain shaft's settings when on.
+    pub fn rain_settings(&self) -> Option<RainShaftSettings> {
+        let d = RainShaftSettings::default();
+        (self.rain == Some(true)).then(|| RainShaftSettings {
+            distance_m: self.rain_distance_m.unwrap_or(d.distance_m),
+            radius_m: self.rain_radius_m.unwrap_or(d.radius_m),
+            height_m: self.rain_height_m.unwrap_or(d.height_m),
+            rain_rate_mm_h: self.rain_rate_mm_h.unwrap_or(d.rain_rate_mm_h),
+        })
+    }
+
+    /// The cirrus layer's settings when on.
+    pub fn cirrus_settings(&self) -> Option<CirrusSettings> {
+        let d = CirrusSettings::default();
+        (self.cirrus == Some(true)).then(|| CirrusSettings {
+            base_m: self.cirrus_base_m.unwrap_or(d.base_m),
+            thickness_m: self.cirrus_thickness_m.unwrap_or(d.thickness_m),
+            optical_depth: self.cirrus_optical_depth.unwrap_or(d.optical_depth),
+            crystal_radius_um: self.cirrus_crystal_radius_um.unwrap_or(d.crystal_radius_um),
+            crystal_length_um: self.cirrus_crystal_length_um.unwrap_or(d.crystal_length_um),
+            rays: self.cirrus_rays.unwrap_or(d.rays),
+        })
+    }
+
+    /// The volumes of `frame`, lit by its model on the CPU; errors name the flag.
+    pub fn lit_volumes(&self, frame: &Frame) -> anyhow::Result<Vec<LitVolume>> {
+        let wavelengths = self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS);
+        let [lo, hi] = WAVELENGTH_COUNT_RANGE;
+        if !(lo..=hi).contains(&(wavelengths as f64)) {
+            bail!("--optics-wavelengths {wavelengths} must lie in [{lo}, {hi}]");
+        }
+        let (rain, cirrus) = (self.rain_settings(), self.cirrus_settings());
+        if rain.is_none() && cirrus.is_none() {
+            return Ok(Vec::new());
+        }
+        let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
+        let ground = frame.atmosphere.bottom_radius_m;
+        let camera = frame.camera_position_m;
+        let view = (camera, frame.sun_direction);
+        let optics = (wavelengths, frame.atmosphere.sun.angular_radius_rad);
+        let mut volumes = Vec::new();
+        if let Some(rain) = rain {
+            let forward = frame.axes()[2];
+            let volume = rain.volume(camera, forward, ground).context("--rain")?;
+            volumes.push(
+                lit_volume(model.as_ref(), volume, view, optics, RGB_WAVELENGTHS_NM)
+                    .context("--rain")?,
+            );
+        }
+        if let Some(cirrus) = cirrus {
+            let volume = cirrus.volume(ground).context("--cirrus")?;
+            volumes.push(
+                lit_volume(model.as_ref(), volume, view, optics, RGB_WAVELENGTHS_NM)
+                    .context("--cirrus")?,
+            );
+        }
+        Ok(volumes)
+    }
+}

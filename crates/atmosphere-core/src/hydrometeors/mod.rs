@@ -1,0 +1,21 @@
+//! Rain and ice crystals as volumes in planet scenes: their phase functions at many
+//! wavelengths, fast enough to render with ([`spectral_phase`]: rain by geometric optics,
+//! [`drop_rays`]; ice by the crystal ray tracer of `optics/ice/`), seen with the sun's
+//! disc ([`sun_disk_blur`]) and reduced to a frame's three wavelengths through the CIE
+//! functions ([`channel_phase`]); a rain shaft and a cirrus layer ([`volumes`]) lit by a
+//! sky model's sun in single scattering and composited over the model's frame
+//! ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
+//! around a camera from a scene's settings.
+//!
+//! Conventions, once: scattering angles from the sun's direction of travel (0: forward,
+//! 180: back towards the sun, the antisolar point); phase functions in sr^-1 with unit
+//! integral over the sphere, tabulated at the centres of equal bins of angle.
+
+pub mod channel_phase;
+pub mod drop_rays;
+pub mod error;
+pub mod render;
+pub mod scene;
+pub mod spectral_phase;
+pub mod sun_disk_blur;
+pub mod volumes;

@@ -1,0 +1,176 @@
+//! Rain and ice volumes in a sky model's frame on the CPU: the specification of
+//! render-wgpu's `precipitation/` pass. Single scattering (Riley et al. 2004, section
+//! 4.2.3, Eq. 26 with the first order only): along a view ray's interval [t0, t1] in a
+//! homogeneous volume of extinction beta (albedo 1), in MARCH_STEPS equal steps of
+//! length dt, each step adds
+//!     T_v(t_k) (1 - e^(-beta dt)) [P_c(theta) E_sun e^(-beta s_k) + E_sky / (2 pi)],
+//! where T_v(t_k) is the volume's transmittance from t0 to the step's start, P_c the
+//! phase function at the frame's wavelengths (`channel_phase.rs`) at the scattering
+//! angle theta between the sun and the view, E_sun the sun's irradiance through the
+//! atmosphere (one value per volume, at its `light_point`), s_k the sun's path inside the
+//! volume from the step's middle, and E_sky / (2 pi) the sky's irradiance on a
+//! horizontal plane scattered isotropically (a uniform upper hemisphere of radiance
+//! E_sky / pi, half of all directions). The volume is composited over the model's pixel
+//! L_full (its surface and sun included) as
+//!     L = L_front + T_v (L_full - L_front) + T_front L_v,   L_front = (1 - T_front) L_full,
+//! Riley et al. 2004's (section 5) split of the atmosphere in front of and behind the
+//! volume, with T_front the atmosphere's transmittance from the camera to t0 (its columns
+//! by the midpoint rule over FRONT_STEPS steps in s, t = t0 s^2) and the light in front of the volume
+//! taken as the fraction 1 - T_front of the whole ray's: exact where the atmosphere's
+//! source function is uniform along the ray, and it needs no second run of the model
+//! (the cloud composite, `clouds/layer/composite.rs`, runs one). Several volumes
+//! composite from the farthest entry to the nearest.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::channel_phase::ChannelPhase;
+use super::volumes::Volume;
+use crate::atmosphere::Atmosphere;
+use crate::clouds::layer::composite::light_at;
+use crate::models::error::ModelError;
+use crate::models::sky_model::SkyModel;
+use crate::optics::column::{densities, optical_depth};
+
+/// Steps of the march through a volume, and of the atmosphere's columns in front of it.
+pub const MARCH_STEPS: usize = 12;
+pub const FRONT_STEPS: usize = 8;
+
+/// The light on a volume at the frame's three wavelengths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeLight {
+    /// Unit vector towards the sun.
+    pub sun_direction: DVec3,
+    /// The sun's irradiance on a plane facing it, through the atmosphere, W m^-2 nm^-1.
+    pub sun_irradiance: [f64; 3],
+    /// The sky's irradiance on a horizontal plane, W m^-2 nm^-1.
+    pub sky_irradiance: [f64; 3],
+}
+
+/// A volume with its phase function and light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LitVolume {
+    pub volume: Volume,
+    pub phase: ChannelPhase,
+    pub light: VolumeLight,
+}
+
+/// What a view ray meets in one volume: its entry distance, radiance and transmittance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeSegment {
+    pub entry_m: f64,
+    pub radiance: [f64; 3],
+    pub transmittance: f64,
+}
+
+/// The march of the ray from `origin` along the unit `direction` (ended at
+/// `max_distance_m`) through `lit`, if it meets it.
+pub fn march(
+    lit: &LitVolume,
+    origin: DVec3,
+    direction: DVec3,
+    max_distance_m: f64,
+) -> Option<VolumeSegment> {
+    let (t0, t1) = lit.volume.segment(origin, direction, max_distance_m)?;
+    let beta = lit.volume.extinction_per_m;
+    let dt = (t1 - t0) / MARCH_STEPS as f64;
+    let step_transmittance = (-beta * dt).exp();
+    let cos_theta = direction.dot(lit.light.sun_direction).clamp(-1.0, 1.0);
+    let p = lit.phase.value_at(cos_theta.acos().to_degrees());
+    let mut radiance = [0.0; 3];
+    let mut t_v = 1.0;
+    for k in 0..MARCH_STEPS {
+        let x = origin + direction * (t0 + (k as f64 + 0.5) * dt);
+        let sun_path = lit.volume.exit_distance(x, lit.light.sun_direction);
+        let sun = (-beta * sun_path).exp();
+        let weight = t_v * (1.0 - step_transmittance);
+        for c in 0..3 {
+            radiance[c] += weight
+                * (p[c] * lit.light.sun_irradiance[c] * sun
+                    + lit.light.sky_irradiance[c] / (2.0 * PI));
+        }
+        t_v *= step_transmittance;
+    }
+    Some(VolumeSegment {
+        entry_m: t0,
+        radiance,
+        transmittance: t_v,
+    })
+}
+
+/// The atmosphere's transmittance at `extinction` (per species, at the frame's three
+/// wavelengths) from `origin` over `distance_m` along the unit `direction`.
+pub fn front_transmittance(
+    atmosphere: &Atmosphere,
+    extinction: &[[f64; 3]; 3],
+    origin: DVec3,
+    direction: DVec3,
+    distance_m: f64,
+) -> [f64; 3] {
+    // t = distance s^2: the midpoint rule in s, its steps short near the camera, where
+    // the air is densest.
+    let ds = 1.0 / FRONT_STEPS as f64;
+    let mut column = [0.0; 3];
+    for k in 0..FRONT_STEPS {
+        let s = (k as f64 + 0.5) * ds;
+        let x = origin + direction * (distance_m * s * s);
+        let rho = densities(atmosphere, x.length() - atmosphere.bottom_radius_m);
+        for c in 0..3 {
+            column[c] += 2.0 * distance_m * s * ds * rho[c];
+        }
+    }
+    extinction.map(|e| (-optical_depth(column, e)).exp())
+}
+
+/// The model's pixel `full` with `volumes` composited over it for the ray from `origin`
+/// along the unit `direction`, ended at `max_distance_m` (its surface, or infinity).
+pub fn composite(
+    atmosphere: &Atmosphere,
+    extinction: &[[f64; 3]; 3],
+    volumes: &[LitVolume],
+    origin: DVec3,
+    direction: DVec3,
+    max_distance_m: f64,
+    full: [f64; 3],
+) -> [f64; 3] {
+    let mut met: Vec<VolumeSegment> = volumes
+        .iter()
+        .filter_map(|v| march(v, origin, direction, max_distance_m))
+        .collect();
+    met.sort_by(|a, b| b.entry_m.total_cmp(&a.entry_m));
+    met.iter().fold(full, |behind, s| {
+        let front = front_transmittance(atmosphere, extinction, origin, direction, s.entry_m);
+        std::array::from_fn(|c| {
+            behind[c] * (1.0 - front[c] * (1.0 - s.transmittance)) + front[c] * s.radiance[c]
+        })
+    })
+}
+
+/// The light of `model` (at its wavelengths, which must be three) on `volume` seen from
+/// `camera_m`: the sun through the atmosphere and the sky at the volume's `light_point`
+/// (`clouds/layer/composite.rs`, `light_at`).
+pub fn light_of(
+    model: &dyn SkyModel,
+    volume: &Volume,
+    camera_m: DVec3,
+    sun_direction: DVec3,
+) -> Result<VolumeLight, ModelError> {
+    let sun = sun_direction
+        .try_normalize()
+        .ok_or_else(|| ModelError::Settings("the sun direction must be non-zero".into()))?;
+    let light = light_at(model, volume.light_point(camera_m), sun)?;
+    let three = |v: &[f64]| -> Result<[f64; 3], ModelError> {
+        v.try_into().map_err(|_| {
+            ModelError::Settings(format!(
+                "volumes are lit at three wavelengths, the model answers {}",
+                v.len()
+            ))
+        })
+    };
+    Ok(VolumeLight {
+        sun_direction: sun,
+        sun_irradiance: three(&light.sun_irradiance)?,
+        sky_irradiance: three(&light.sky_irradiance)?,
+    })
+}

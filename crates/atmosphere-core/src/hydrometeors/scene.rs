@@ -1,0 +1,134 @@
+//! A rain shaft and a cirrus layer as a scene gives them (command-line flags, scene
+//! files, the viewer), each setting with its range: placed around the camera, made into
+//! volumes, given phase tables at the frame's wavelengths and lit by a sky model.
+
+use glam::DVec3;
+
+use super::channel_phase::ChannelPhase;
+use super::error::{HydrometeorError, check_range};
+use super::render::{LitVolume, light_of};
+use super::spectral_phase::{Particles, SpectralPhase};
+use super::volumes::Volume;
+use crate::models::sky_model::SkyModel;
+
+/// The range of the shaft's distance from the camera, m.
+pub const SHAFT_DISTANCE_RANGE_M: [f64; 2] = [0.0, 100_000.0];
+/// Wavelengths the phase tables are built at by default: doubling them changes the
+/// rain's table by less than 1 % (docs/optics-rendering.md).
+pub const DEFAULT_WAVELENGTHS: usize = 32;
+
+/// A rain shaft standing `distance_m` from the camera along a horizontal direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RainShaftSettings {
+    pub distance_m: f64,
+    pub radius_m: f64,
+    pub height_m: f64,
+    pub rain_rate_mm_h: f64,
+}
+
+impl Default for RainShaftSettings {
+    fn default() -> Self {
+        RainShaftSettings {
+            distance_m: 3_000.0,
+            radius_m: 2_000.0,
+            height_m: 4_000.0,
+            rain_rate_mm_h: 5.0,
+        }
+    }
+}
+
+/// A cirrus layer of hexagonal ice columns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CirrusSettings {
+    pub base_m: f64,
+    pub thickness_m: f64,
+    pub optical_depth: f64,
+    pub crystal_radius_um: f64,
+    pub crystal_length_um: f64,
+    /// Rays traced per wavelength.
+    pub rays: usize,
+}
+
+impl Default for CirrusSettings {
+    fn default() -> Self {
+        CirrusSettings {
+            base_m: 8_000.0,
+            thickness_m: 1_000.0,
+            optical_depth: 0.3,
+            crystal_radius_um: 20.0,
+            crystal_length_um: 80.0,
+            rays: 1_000_000,
+        }
+    }
+}
+
+impl RainShaftSettings {
+    /// The shaft around the vertical through the ground `distance_m` from `camera_m`
+    /// along `horizontal` (any direction: its part along the vertical is removed).
+    pub fn volume(
+        &self,
+        camera_m: DVec3,
+        horizontal: DVec3,
+        ground_radius_m: f64,
+    ) -> Result<Volume, HydrometeorError> {
+        check_range(
+            "rain shaft distance (m)",
+            self.distance_m,
+            SHAFT_DISTANCE_RANGE_M,
+            "[0, 100000] m",
+        )?;
+        let up = camera_m.normalize();
+        let along = (horizontal - up * horizontal.dot(up))
+            .try_normalize()
+            .unwrap_or_else(|| up.any_orthonormal_vector());
+        let foot = (camera_m + along * self.distance_m).normalize() * ground_radius_m;
+        Volume::rain_shaft(
+            foot,
+            ground_radius_m,
+            self.radius_m,
+            self.height_m,
+            self.rain_rate_mm_h,
+        )
+    }
+}
+
+impl CirrusSettings {
+    pub fn particles(&self) -> Particles {
+        Particles::Ice {
+            radius_m: self.crystal_radius_um * 1e-6,
+            length_m: self.crystal_length_um * 1e-6,
+            rays: self.rays,
+        }
+    }
+
+    pub fn volume(&self, ground_radius_m: f64) -> Result<Volume, HydrometeorError> {
+        Volume::cirrus(
+            ground_radius_m,
+            self.base_m,
+            self.thickness_m,
+            self.optical_depth,
+            self.particles(),
+        )
+    }
+}
+
+/// `volume` with its phase table at `wavelengths` wavelengths (seen with a sun of
+/// angular radius `sun_radius_rad`) reduced to `channels_nm`, lit by `model` from
+/// `camera_m` with the sun towards `sun_direction`.
+pub fn lit_volume(
+    model: &dyn SkyModel,
+    volume: Volume,
+    (camera_m, sun_direction): (DVec3, DVec3),
+    (wavelengths, sun_radius_rad): (usize, f64),
+    channels_nm: [f64; 3],
+) -> Result<LitVolume, HydrometeorError> {
+    let spectral = SpectralPhase::build(&volume.particles, wavelengths, sun_radius_rad)?;
+    let phase = ChannelPhase::new(&spectral, channels_nm)?;
+    let light = light_of(model, &volume, camera_m, sun_direction)
+        .map_err(|e| HydrometeorError::Model(e.to_string()))?;
+    Ok(LitVolume {
+        volume,
+        phase,
+        light,
+    })
+}

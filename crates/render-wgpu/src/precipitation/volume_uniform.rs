@@ -1,0 +1,116 @@
+//! The Rust twin of `VolumesParams` in `shaders/precipitation/volume_params.wgsl` (the
+//! naga test checks the layout): a frame's lit volumes relative to its camera in f32, and
+//! their phase tables at the frame's wavelengths packed in one buffer.
+
+use atmosphere_core::hydrometeors::render::LitVolume;
+use atmosphere_core::hydrometeors::volumes::Shape;
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+
+use crate::gpu::error::RenderError;
+
+/// The most volumes a frame holds.
+pub const MAX_VOLUMES: usize = 2;
+const KIND_SHAFT: u32 = 1;
+const KIND_LAYER: u32 = 2;
+
+/// WGSL `VolumeParams`, 96 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct VolumeUniform {
+    /// x: kind (1 shaft, 2 layer); y: its first bin in the phase buffer; z: its bins.
+    pub kind: [u32; 4],
+    /// Shaft: xyz the unit axis, w the radius, m.
+    pub axis: [f32; 4],
+    /// Shaft: xyz the camera relative to the axis's foot, w the height, m. Layer: r^2 -
+    /// R^2 of the camera for the base, top and ground radii, m^2.
+    pub place: [f32; 4],
+    /// x: extinction, m^-1; y: the bins' width, degrees.
+    pub medium: [f32; 4],
+    pub sun_irradiance: [f32; 4],
+    pub sky_irradiance: [f32; 4],
+}
+
+/// WGSL `VolumesParams`, 208 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct VolumesUniform {
+    /// x: how many volumes; y: 1 when the frame's rays end on its surface.
+    pub count: [u32; 4],
+    pub volumes: [VolumeUniform; MAX_VOLUMES],
+}
+
+fn rgb(v: [f64; 3]) -> [f32; 4] {
+    [v[0] as f32, v[1] as f32, v[2] as f32, 0.0]
+}
+
+/// The uniform of `volumes` seen from `camera_m`, and the phase buffer's bins (rgb, 0).
+pub fn pack(
+    volumes: &[LitVolume],
+    camera_m: DVec3,
+    has_surface: bool,
+) -> Result<(VolumesUniform, Vec<[f32; 4]>), RenderError> {
+    if volumes.len() > MAX_VOLUMES {
+        return Err(RenderError::Frame(format!(
+            "{} rain and ice volumes; a frame holds at most {MAX_VOLUMES}",
+            volumes.len()
+        )));
+    }
+    let mut uniform = VolumesUniform {
+        count: [volumes.len() as u32, u32::from(has_surface), 0, 0],
+        ..Default::default()
+    };
+    let mut bins = Vec::new();
+    for (slot, lit) in uniform.volumes.iter_mut().zip(volumes) {
+        let values = &lit.phase.values;
+        if values.len() < 2 {
+            return Err(RenderError::Frame(
+                "a volume's phase table has fewer than 2 bins".into(),
+            ));
+        }
+        let r2 = camera_m.length_squared();
+        let (kind, axis, place) = match lit.volume.shape {
+            Shape::Shaft {
+                axis,
+                ground_radius_m,
+                radius_m,
+                height_m,
+            } => {
+                let p = camera_m - axis * ground_radius_m;
+                (
+                    KIND_SHAFT,
+                    [axis.x as f32, axis.y as f32, axis.z as f32, radius_m as f32],
+                    [p.x as f32, p.y as f32, p.z as f32, height_m as f32],
+                )
+            }
+            Shape::Layer(shell) => (
+                KIND_LAYER,
+                [0.0; 4],
+                [
+                    (r2 - shell.base_radius_m.powi(2)) as f32,
+                    (r2 - shell.top_radius_m.powi(2)) as f32,
+                    (r2 - shell.ground_radius_m.powi(2)) as f32,
+                    0.0,
+                ],
+            ),
+        };
+        *slot = VolumeUniform {
+            kind: [kind, bins.len() as u32, values.len() as u32, 0],
+            axis,
+            place,
+            medium: [
+                lit.volume.extinction_per_m as f32,
+                lit.phase.bin_deg as f32,
+                0.0,
+                0.0,
+            ],
+            sun_irradiance: rgb(lit.light.sun_irradiance),
+            sky_irradiance: rgb(lit.light.sky_irradiance),
+        };
+        bins.extend(values.iter().map(|v| rgb(*v)));
+    }
+    if bins.is_empty() {
+        bins.push([0.0; 4]);
+    }
+    Ok((uniform, bins))
+}

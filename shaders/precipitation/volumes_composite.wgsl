@@ -1,0 +1,125 @@
+// Entry pass: rain and ice volumes composited over a frame's pixels (render-wgpu's
+// `precipitation/volumes_pass.rs`). CPU twin: atmosphere-core's `hydrometeors/render.rs`,
+// which states the method: single scattering in MARCH_STEPS steps, the phase function at
+// the frame's wavelengths from the buffer (linear between bin centres), the sun's path in
+// the volume, the sky's light isotropic; with L_front = (1 - T_front) L_full,
+// L = L_front + T_v (L_full - L_front) + T_front L_v, farthest volume first.
+
+#import common/frame_params.wgsl
+#import precipitation/volume_params.wgsl
+
+const MARCH_STEPS: u32 = 12u;
+const FRONT_STEPS: u32 = 8u;
+const TWO_PI: f32 = 6.283185307;
+
+@group(0) @binding(2) var<uniform> volumes: VolumesParams;
+// Every volume's phase function, rgb per bin.
+@group(0) @binding(3) var<storage, read> phase: array<vec4<f32>>;
+@group(0) @binding(4) var full_image: texture_2d<f32>;
+// w: the distance to the frame's surface, m (0: none).
+@group(0) @binding(5) var surface: texture_2d<f32>;
+@group(0) @binding(6) var hdr: texture_storage_2d<rgba16float, write>;
+
+fn phase_at(v: VolumeParams, angle_deg: f32) -> vec3<f32> {
+    let last = f32(v.kind.z - 1u);
+    let x = clamp(angle_deg / v.medium.y - 0.5, 0.0, last);
+    let i = min(u32(floor(x)), v.kind.z - 2u);
+    let f = x - f32(i);
+    let first = v.kind.y + i;
+    return mix(phase[first].rgb, phase[first + 1u].rgb, f);
+}
+
+// The angle between unit vectors `a` and `b`, degrees, within 2e-8 rad: Abramowitz and
+// Stegun 1964, Eq. 4.4.46, arccos x = sqrt(1 - x) P7(x) on [0, 1], with 1 -+ cos taken
+// as |a -+ b|^2 / 2 so that nothing cancels. The shader's own acos is not accurate
+// enough at the bows' sharp edges (docs/optics-rendering.md).
+fn angle_deg(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    let c = clamp(dot(a, b), -1.0, 1.0);
+    let x = abs(c);
+    let p = 1.5707963050 + x * (-0.2145988016 + x * (0.0889789874 + x * (-0.0501743046
+        + x * (0.0308918810 + x * (-0.0170881256 + x * (0.0066700901 - x * 0.0012624911))))));
+    if c >= 0.0 {
+        let e = a - b;
+        return degrees(sqrt(0.5 * dot(e, e)) * p);
+    }
+    let e = a + b;
+    return degrees(3.141592654 - sqrt(0.5 * dot(e, e)) * p);
+}
+
+// The atmosphere's transmittance from the camera over `distance_m` along `d`.
+fn front_transmittance(d: vec3<f32>, distance_m: f32) -> vec3<f32> {
+    let camera = frame.camera_m.xyz;
+    // t = distance s^2: the midpoint rule in s, steps short near the camera.
+    let ds = 1.0 / f32(FRONT_STEPS);
+    var column = vec3<f32>(0.0);
+    for (var k = 0u; k < FRONT_STEPS; k++) {
+        let s = (f32(k) + 0.5) * ds;
+        let x = camera + d * (distance_m * s * s);
+        column += 2.0 * distance_m * s * ds * densities(length(x) - atmosphere.bottom_radius_m);
+    }
+    return exp(-optical_depth(column));
+}
+
+struct Met {
+    entry: f32,
+    radiance: vec3<f32>,
+    transmittance: f32,
+}
+
+fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
+    let camera = frame.camera_m.xyz;
+    let sun = frame.sun_direction.xyz;
+    let b = dot(camera, d);
+    let beta = v.medium.x;
+    let dt = (t.y - t.x) / f32(MARCH_STEPS);
+    let step_t = exp(-beta * dt);
+    let p = phase_at(v, angle_deg(d, sun));
+    var radiance = vec3<f32>(0.0);
+    var t_v = 1.0;
+    for (var k = 0u; k < MARCH_STEPS; k++) {
+        let s = t.x + (f32(k) + 0.5) * dt;
+        let lit = exp(-beta * sun_path(v, d, b, s, camera, sun));
+        radiance += t_v * (1.0 - step_t)
+            * (p * v.sun_irradiance.xyz * lit + v.sky_irradiance.xyz / TWO_PI);
+        t_v *= step_t;
+    }
+    return Met(t.x, radiance, t_v);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size_px.xy) {
+        return;
+    }
+    let d = pixel_direction(id.xy);
+    var max_t = 3.0e38;
+    if volumes.count.y == 1u {
+        let distance = textureLoad(surface, id.xy, 0).w;
+        if distance > 0.0 {
+            max_t = distance;
+        }
+    }
+    let b = dot(frame.camera_m.xyz, d);
+    var met: array<Met, MAX_VOLUMES>;
+    var n = 0u;
+    for (var i = 0u; i < min(volumes.count.x, MAX_VOLUMES); i++) {
+        let v = volumes.volumes[i];
+        let t = volume_segment(v, d, b, max_t);
+        if t.x != NO_HIT {
+            met[n] = march(v, d, t);
+            n++;
+        }
+    }
+    // Farthest entry first.
+    if n == 2u && met[0].entry < met[1].entry {
+        let near = met[0];
+        met[0] = met[1];
+        met[1] = near;
+    }
+    var out = textureLoad(full_image, id.xy, 0).rgb;
+    for (var i = 0u; i < n; i++) {
+        let front = front_transmittance(d, met[i].entry);
+        out = out * (1.0 - front * (1.0 - met[i].transmittance)) + front * met[i].radiance;
+    }
+    textureStore(hdr, id.xy, vec4<f32>(min(out, vec3<f32>(F16_MAX)), 1.0));
+}

@@ -1,0 +1,162 @@
+//! Rain and ice volumes composited into `Renderer` frames (`precipitation/`,
+//! `shaders/precipitation/`) against their CPU twin, atmosphere-core's
+//! `hydrometeors/render.rs`, on 64 x 36 frames of two models: a rain shaft and a cirrus
+//! layer over the model's own GPU pixels (the frame rendered without them), with a wall
+//! in front of the shaft over the left quarter; no volume leaves the frame exactly as
+//! it was; more than two volumes are refused by name.
+//!
+//! Tolerance: each pixel within 0.5 % of itself plus 0.1 % of the frame's brightest
+//! value: the march and the atmosphere's columns in front of the volumes in f32, and the
+//! f16 image written. The scattering angle is computed without the shader's acos, which
+//! put the bow's sharp red edge out of this tolerance (docs/optics-rendering.md).
+//!
+//! Needs a GPU adapter (lavapipe will do); see `support`.
+
+mod support;
+
+use atmosphere_core::atmosphere::spectra::Spectra;
+use atmosphere_core::hydrometeors::render::{LitVolume, composite};
+use atmosphere_core::hydrometeors::scene::{CirrusSettings, RainShaftSettings, lit_volume};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use glam::DVec3;
+use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
+use render_wgpu::frame::surface_buffer::SurfaceTexel;
+use render_wgpu::frame::{Frame, look_orientation};
+
+const RELATIVE: f64 = 0.005;
+const OF_BRIGHTEST: f64 = 0.001;
+const WALL_COLUMNS: u32 = 16;
+const WALL_M: f32 = 800.0;
+
+/// 2 m above (0 N, 0 E), looking 10 degrees up towards the antisolar azimuth, the sun 30
+/// degrees up behind the camera.
+fn frame(model: ModelId) -> Frame {
+    let atmosphere = atmosphere_core::atmosphere::Atmosphere::preset("earth").unwrap();
+    let up = DVec3::X;
+    let pitch = 10f64.to_radians();
+    let forward = DVec3::new(pitch.sin(), pitch.cos(), 0.0);
+    let sun = 30f64.to_radians();
+    Frame {
+        camera_position_m: up * (atmosphere.bottom_radius_m + 2.0),
+        orientation: look_orientation(forward, up).unwrap(),
+        vertical_fov_deg: 70.0,
+        sun_direction: DVec3::new(sun.sin(), -sun.cos(), 0.0),
+        atmosphere,
+        model,
+        settings: Default::default(),
+        exposure_ev100: 14.0,
+        width: 64,
+        height: 36,
+        terrain: None,
+    }
+}
+
+fn volumes(frame: &Frame) -> Vec<LitVolume> {
+    let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
+    let ground = frame.atmosphere.bottom_radius_m;
+    let view = (frame.camera_position_m, frame.sun_direction);
+    let optics = (16, frame.atmosphere.sun.angular_radius_rad);
+    let shaft = RainShaftSettings::default()
+        .volume(frame.camera_position_m, DVec3::Y, ground)
+        .unwrap();
+    let cirrus = CirrusSettings {
+        rays: 20_000,
+        ..CirrusSettings::default()
+    }
+    .volume(ground)
+    .unwrap();
+    [shaft, cirrus]
+        .into_iter()
+        .map(|v| lit_volume(model.as_ref(), v, view, optics, RGB_WAVELENGTHS_NM).unwrap())
+        .collect()
+}
+
+fn wall(frame: &Frame) -> Vec<SurfaceTexel> {
+    let mut texels = Vec::new();
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            texels.push(if column < WALL_COLUMNS {
+                let d = frame.pixel_ray(column, row).direction;
+                SurfaceTexel {
+                    normal: (-d).as_vec3().to_array(),
+                    distance_m: WALL_M,
+                    albedo: [0.3, 0.25, 0.2],
+                    water: false,
+                }
+            } else {
+                SurfaceTexel::default()
+            });
+        }
+    }
+    texels
+}
+
+#[test]
+fn volumes_match_the_cpu_composite_for_two_models() {
+    let Some(mut renderer) = support::renderer_or_skip("volumes parity") else {
+        return;
+    };
+    for model_id in [ModelId::Nishita, ModelId::Hillaire] {
+        let frame = frame(model_id);
+        let surface = wall(&frame);
+        renderer.set_volumes(Vec::new()).unwrap();
+        let plan = renderer.render_with_surface(&frame, &surface).unwrap();
+        assert!(plan.steps.iter().all(|s| s.name != "volumes"));
+        let without = renderer.read_hdr().unwrap();
+        let lit = volumes(&frame);
+        renderer.set_volumes(lit.clone()).unwrap();
+        let plan = renderer.render_with_surface(&frame, &surface).unwrap();
+        assert!(plan.steps.iter().any(|s| s.name == "volumes"));
+        let with = renderer.read_hdr().unwrap();
+        let spectra = Spectra::new(&frame.atmosphere, &RGB_WAVELENGTHS_NM);
+        let extinction: [[f64; 3]; 3] = std::array::from_fn(|c| spectra.extinction[c]);
+        let mut cpu = Vec::new();
+        for row in 0..frame.height {
+            for column in 0..frame.width {
+                let i = (row * frame.width + column) as usize;
+                let ray = frame.pixel_ray(column, row);
+                let end = if column < WALL_COLUMNS {
+                    f64::from(WALL_M)
+                } else {
+                    f64::INFINITY
+                };
+                let full = std::array::from_fn(|c| f64::from(without[i][c]));
+                cpu.push(composite(
+                    &frame.atmosphere,
+                    &extinction,
+                    &lit,
+                    ray.origin_m,
+                    ray.direction,
+                    end,
+                    full,
+                ));
+            }
+        }
+        let brightest = cpu.iter().flatten().fold(0.0f64, |m, v| m.max(*v));
+        let (mut changed, mut worst) = (0, 0.0f64);
+        for (i, (c, g)) in cpu.iter().zip(&with).enumerate() {
+            for k in 0..3 {
+                let gpu = f64::from(g[k]);
+                let error = (gpu - c[k]).abs() / (RELATIVE * c[k].abs() + OF_BRIGHTEST * brightest);
+                worst = worst.max(error);
+                assert!(
+                    error <= 1.0,
+                    "{model_id} pixel {i} channel {k}: GPU {gpu}, CPU {}",
+                    c[k]
+                );
+                if (c[k] - f64::from(without[i][k])).abs() > 0.01 * c[k].abs() {
+                    changed += 1;
+                }
+            }
+        }
+        // The volumes change most of the frame: the test compares something.
+        assert!(changed > cpu.len(), "{model_id}: {changed} values changed");
+        eprintln!("{model_id}: worst error {worst:.3} of the tolerance");
+    }
+    assert!(
+        renderer
+            .set_volumes(vec![volumes(&frame(ModelId::Nishita))[0].clone(); 3])
+            .is_err()
+    );
+}
