@@ -197,6 +197,36 @@ fn twilight_frames_match_the_cpu_with_the_twilight_mappings() {
     }
 }
 
+/// The sun to 18 deg below the horizon (min_mu_s = -0.31), u_mu_s continued linearly
+/// below the paper's -0.2 (`mu_s_knee`).
+const KNEE: [&str; 6] = [
+    "r=8",
+    "mu=32",
+    "mu_s=16",
+    "nu=8",
+    "min_mu_s=-0.31",
+    "mu_s_knee=true",
+];
+
+#[test]
+fn tables_and_frames_match_the_cpu_with_the_mu_s_knee() {
+    let Some(gpu) = gpu_or_skip("bruneton mu_s knee") else {
+        return;
+    };
+    let errors = compare_tables(&gpu, "earth", &KNEE);
+    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let mut toward_the_sun = view(2.0, 80.0, 106.0);
+    toward_the_sun.sun_azimuth_deg = 10.0;
+    for (name, v) in [
+        ("the sun 16 deg down", toward_the_sun),
+        ("civil twilight", view(2.0, 80.0, 96.0)),
+    ] {
+        let f = frame("earth", settings(&KNEE), v, 90.0, 48, 27);
+        check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
+    }
+}
+
 #[test]
 fn the_sun_disk_is_refused_on_the_gpu_naming_it() {
     let Some(gpu) = gpu_or_skip("bruneton sun disk") else {

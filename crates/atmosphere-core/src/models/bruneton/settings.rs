@@ -47,6 +47,9 @@ pub struct BrunetonSettings {
     /// quadrature of n x n directions about each texel's view direction with the exact
     /// phase function (`mie_quadrature.rs`).
     pub mie_directions: usize,
+    /// S read geometrically along mu_s between texels whose sun is below the horizontal
+    /// (`Table4::rendered_at`), instead of linearly (the paper) everywhere.
+    pub geometric_mu_s: bool,
 }
 
 impl Default for BrunetonSettings {
@@ -67,6 +70,7 @@ impl Default for BrunetonSettings {
             order_limit: 32,
             sun_disk: false,
             mie_directions: 0,
+            geometric_mu_s: false,
         }
     }
 }
@@ -106,12 +110,14 @@ pub const MIE_DIRECTIONS: Setting<usize> = setting("mie_directions", 0..=64);
 /// Keys of the switches (`true` or `false`).
 pub const NU_BY_ANGLE: &str = "nu_by_angle";
 pub const SUN_DISK: &str = "sun_disk";
+pub const MU_S_KNEE: &str = "mu_s_knee";
+pub const GEOMETRIC_MU_S: &str = "geometric_mu_s";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
-    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `sun_disk`, `mie_directions`; the paper's values where
-    /// absent.
+    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`, `sun_disk`, `mie_directions`,
+    /// `geometric_mu_s`; the paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -123,6 +129,7 @@ impl BrunetonSettings {
                     angles: AngleMapping {
                         min_mu_s: o.number(&MIN_MU_S, d.scattering_size.angles.min_mu_s)?,
                         nu_by_angle: o.flag(NU_BY_ANGLE, d.scattering_size.angles.nu_by_angle)?,
+                        mu_s_knee: o.flag(MU_S_KNEE, d.scattering_size.angles.mu_s_knee)?,
                     },
                 },
                 irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),
@@ -135,6 +142,7 @@ impl BrunetonSettings {
                 order_limit: o.count(&ORDER_LIMIT, d.order_limit as usize)? as u32,
                 sun_disk: o.flag(SUN_DISK, d.sun_disk)?,
                 mie_directions: o.count(&MIE_DIRECTIONS, d.mie_directions)?,
+                geometric_mu_s: o.flag(GEOMETRIC_MU_S, d.geometric_mu_s)?,
                 ..d
             })
         })
