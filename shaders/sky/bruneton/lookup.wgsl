@@ -9,24 +9,10 @@
 @group(0) @binding(7) var single_mie: texture_3d<f32>;
 @group(0) @binding(8) var multiple: texture_3d<f32>;
 
-// Between texels a and b along mu_s at weight w of b (`along_mu_s`): linear, or with
-// `geometric` a (b / a)^w per channel where both are positive.
-fn along_mu_s(a: vec3<f32>, b: vec3<f32>, w: f32, geometric: bool) -> vec3<f32> {
-    let linear = mix(a, b, w);
-    if !geometric {
-        return linear;
-    }
-    let positive = a > vec3<f32>(0.0) & b > vec3<f32>(0.0);
-    let ratio = select(vec3<f32>(1.0), b / a, positive);
-    return select(linear, a * exp2(w * log2(ratio)), positive);
-}
-
 // Bilinear interpolation over (r, mu_s) of row imu in nu slice `inu` of a scattering
-// texture; along mu_s geometric with `geometric_mu_s` between texels whose sun is below
-// the horizontal (`Table4::rendered_at`).
+// texture; along mu_s geometric where `geometric_pair` says so (`Table4::at_position`).
 fn texture_row(table: texture_3d<f32>, p: Position, imu: u32, inu: u32) -> vec3<f32> {
-    let upper = mu_s_from_u(texel_unit(p.mu_s.i + 1u, bruneton.mu_s_size));
-    let geometric = bruneton.geometric_mu_s == 1u && upper <= 0.0;
+    let geometric = geometric_pair(p.mu_s.i);
     var out = vec3<f32>(0.0);
     for (var dr = 0u; dr < 2u; dr++) {
         let w_r = select(1.0 - p.r.w, p.r.w, dr == 1u);

@@ -159,6 +159,32 @@ fn mu_s_from_u(u: f32) -> f32 {
     return c + g / linear.x;
 }
 
+// Whether S is read geometrically between mu_s texels i and i + 1
+// (`AngleMapping::geometric_pair`): `geometric_mu_s` and both suns below the horizontal.
+fn geometric_pair(i: u32) -> bool {
+    return bruneton.geometric_mu_s == 1u && i + 1u < bruneton.mu_s_size
+        && mu_s_from_u(texel_unit(i + 1u, bruneton.mu_s_size)) <= 0.0;
+}
+
+// The same for E's mu_s texels (`AngleMapping::irradiance_geometric_pair`).
+fn irradiance_geometric_pair(i: u32) -> bool {
+    let n = bruneton.irradiance_mu_s_size;
+    let upper = bruneton.min_mu_s + texel_unit(i + 1u, n) * (1.0 - bruneton.min_mu_s);
+    return bruneton.geometric_mu_s == 1u && i + 1u < n && upper <= 0.0;
+}
+
+// Between texels a and b along mu_s at weight w of b (`tables::along_mu_s`): linear, or
+// with `geometric` a (b / a)^w per channel where both are positive.
+fn along_mu_s(a: vec3<f32>, b: vec3<f32>, w: f32, geometric: bool) -> vec3<f32> {
+    let linear = mix(a, b, w);
+    if !geometric {
+        return linear;
+    }
+    let positive = a > vec3<f32>(0.0) & b > vec3<f32>(0.0);
+    let ratio = select(vec3<f32>(1.0), b / a, positive);
+    return select(linear, a * exp2(w * log2(ratio)), positive);
+}
+
 // u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi with `nu_by_angle`
 // (`AngleMapping::u_nu`).
 fn u_nu(nu: f32) -> f32 {

@@ -184,20 +184,13 @@ impl Bruneton {
 
     /// S(x, v, s) of one group per unit solar irradiance: all orders, phase functions
     /// applied (paper section 4, "Angular precision": C* and C_M).
-    fn scattered(
-        &self,
-        tables: &Tables,
-        p: &[(usize, f64); 4],
-        nu: f64,
-        mie_phase: f64,
-    ) -> [f64; 3] {
-        let geometric = self.settings.geometric_mu_s;
-        let a = tables.single_rayleigh.rendered_at(p, geometric);
-        let c = tables.multiple.rendered_at(p, geometric);
+    fn scattered(tables: &Tables, p: &[(usize, f64); 4], nu: f64, mie_phase: f64) -> [f64; 3] {
+        let a = tables.single_rayleigh.at_position(p);
+        let c = tables.multiple.at_position(p);
         let pr = rayleigh(nu);
         let mut l = [0, 1, 2].map(|k| pr * a[k] + c[k]);
         if let Some(mie) = &tables.single_mie {
-            let b = mie.rendered_at(p, geometric);
+            let b = mie.at_position(p);
             for k in 0..3 {
                 l[k] += mie_phase * b[k];
             }
@@ -352,10 +345,10 @@ impl SkyModel for Bruneton {
         for (g, tables) in self.groups.iter().enumerate() {
             let solar =
                 [0, 1, 2].map(|k| self.base.spectra.solar_irradiance[(3 * g + k).min(n - 1)]);
-            let mut l = self.scattered(tables, &p, nu, mie_phase);
+            let mut l = Self::scattered(tables, &p, nu, mie_phase);
             let t = tables.channels.transmittance(column);
             if let Some(q) = &end {
-                let l_end = self.scattered(tables, q, nu, mie_phase);
+                let l_end = Self::scattered(tables, q, nu, mie_phase);
                 for k in 0..3 {
                     l[k] -= t[k] * l_end[k];
                 }

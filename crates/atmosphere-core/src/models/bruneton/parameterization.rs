@@ -132,6 +132,10 @@ pub struct AngleMapping {
     /// start at `min_mu_s` ([`AngleMapping::u_mu_s`]). No effect when `min_mu_s` is not
     /// below -0.2.
     pub mu_s_knee: bool,
+    /// S and E read geometrically along mu_s between two texels whose suns are both
+    /// below the horizontal (`tables::along_mu_s`), while building and rendering; linearly
+    /// (the paper) everywhere otherwise.
+    pub geometric_mu_s: bool,
 }
 
 impl AngleMapping {
@@ -140,6 +144,7 @@ impl AngleMapping {
         min_mu_s: PAPER_MIN_MU_S,
         nu_by_angle: false,
         mu_s_knee: false,
+        geometric_mu_s: false,
     };
 
     /// The lowest sun cosine of the paper's curve: `min_mu_s`, or the knee (-0.2) when
@@ -192,6 +197,16 @@ impl AngleMapping {
         } else {
             c + g / slope
         }
+    }
+
+    /// Whether S is read geometrically between mu_s texels `i` and `i + 1` of `n`.
+    pub fn geometric_pair(&self, i: usize, n: usize) -> bool {
+        self.geometric_mu_s && i + 1 < n && self.mu_s_from_u(texel_unit(i + 1, n)) <= 0.0
+    }
+
+    /// Whether E is read geometrically between its mu_s texels `i` and `i + 1` of `n`.
+    pub fn irradiance_geometric_pair(&self, i: usize, n: usize) -> bool {
+        self.geometric_mu_s && i + 1 < n && self.irradiance_mu_s(texel_unit(i + 1, n)) <= 0.0
     }
 
     /// u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi.

@@ -47,9 +47,6 @@ pub struct BrunetonSettings {
     /// quadrature of n x n directions about each texel's view direction with the exact
     /// phase function (`mie_quadrature.rs`).
     pub mie_directions: usize,
-    /// S read geometrically along mu_s between texels whose sun is below the horizontal
-    /// (`Table4::rendered_at`), instead of linearly (the paper) everywhere.
-    pub geometric_mu_s: bool,
 }
 
 impl Default for BrunetonSettings {
@@ -70,7 +67,6 @@ impl Default for BrunetonSettings {
             order_limit: 32,
             sun_disk: false,
             mie_directions: 0,
-            geometric_mu_s: false,
         }
     }
 }
@@ -130,6 +126,8 @@ impl BrunetonSettings {
                         min_mu_s: o.number(&MIN_MU_S, d.scattering_size.angles.min_mu_s)?,
                         nu_by_angle: o.flag(NU_BY_ANGLE, d.scattering_size.angles.nu_by_angle)?,
                         mu_s_knee: o.flag(MU_S_KNEE, d.scattering_size.angles.mu_s_knee)?,
+                        geometric_mu_s: o
+                            .flag(GEOMETRIC_MU_S, d.scattering_size.angles.geometric_mu_s)?,
                     },
                 },
                 irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),
@@ -142,7 +140,6 @@ impl BrunetonSettings {
                 order_limit: o.count(&ORDER_LIMIT, d.order_limit as usize)? as u32,
                 sun_disk: o.flag(SUN_DISK, d.sun_disk)?,
                 mie_directions: o.count(&MIE_DIRECTIONS, d.mie_directions)?,
-                geometric_mu_s: o.flag(GEOMETRIC_MU_S, d.geometric_mu_s)?,
                 ..d
             })
         })

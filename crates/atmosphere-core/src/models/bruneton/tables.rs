@@ -5,7 +5,7 @@
 
 use crate::atmosphere::Atmosphere;
 use crate::models::bruneton::parameterization::{
-    IrradianceMapping, Radii, ScatteringSize, axis, table_position, texel_unit,
+    IrradianceMapping, Radii, ScatteringSize, axis, table_position,
 };
 use crate::optics::column::densities;
 
@@ -26,7 +26,7 @@ impl Table4 {
 
     /// Trilinear interpolation over (r, mu, mu_s) in nu slice `inu`: eight texels (the
     /// next texel of each axis exists, see [`axis`]); along mu_s geometric instead where
-    /// `geometric` (see [`along_mu_s`]).
+    /// `geometric` ([`along_mu_s`]).
     fn slice(&self, p: &[(usize, f64); 4], inu: usize, geometric: bool) -> [f64; 3] {
         let s = &self.size;
         let (ir, wr) = p[0];
@@ -46,25 +46,12 @@ impl Table4 {
         out
     }
 
-    /// Quadrilinear interpolation at a table position (see [`table_position`]).
+    /// Quadrilinear interpolation at a table position (see [`table_position`]); along
+    /// mu_s geometric between texels whose suns are below the horizontal where the
+    /// mapping asks for it ([`AngleMapping::geometric_pair`](crate::models::bruneton::parameterization::AngleMapping::geometric_pair)).
     pub fn at_position(&self, p: &[(usize, f64); 4]) -> [f64; 3] {
-        self.interpolate(p, false)
-    }
-
-    /// The rendered look-up at a table position: [`Table4::at_position`], or with
-    /// `geometric_mu_s` geometric along mu_s between two texels whose sun is below the
-    /// horizontal (see [`along_mu_s`]).
-    pub fn rendered_at(&self, p: &[(usize, f64); 4], geometric_mu_s: bool) -> [f64; 3] {
-        let (imus, _) = p[2];
-        let upper = self
-            .size
-            .angles
-            .mu_s_from_u(texel_unit(imus + 1, self.size.mu_s));
-        self.interpolate(p, geometric_mu_s && upper <= 0.0)
-    }
-
-    fn interpolate(&self, p: &[(usize, f64); 4], geometric: bool) -> [f64; 3] {
         let (inu, wnu) = p[3];
+        let geometric = self.size.angles.geometric_pair(p[2].0, self.size.mu_s);
         let lo = self.slice(p, inu, geometric);
         if wnu == 0.0 {
             return lo;
@@ -145,17 +132,18 @@ impl IrradianceTable {
         let (x_r, x_mu_s) = m.unit_from_r_mu_s(r, mu_s);
         let (ir, wr) = axis(x_r, m.r_size);
         let (im, wm) = axis(x_mu_s, m.mu_s_size);
+        let geometric = m.angles.irradiance_geometric_pair(im, m.mu_s_size);
         let mut out = [0.0; 3];
         for (dr, a) in [(0, 1.0 - wr), (1, wr)] {
-            for (dm, b) in [(0, 1.0 - wm), (1, wm)] {
-                let w = a * b;
-                if w == 0.0 {
-                    continue;
-                }
-                let v = self.data[m.index(ir + dr, im + dm)];
-                for k in 0..3 {
-                    out[k] += w * v[k] as f64;
-                }
+            if a == 0.0 {
+                continue;
+            }
+            let (low, high) = (
+                self.data[m.index(ir + dr, im)],
+                self.data[m.index(ir + dr, (im + 1).min(m.mu_s_size - 1))],
+            );
+            for k in 0..3 {
+                out[k] += a * along_mu_s(low[k] as f64, high[k] as f64, wm, geometric);
             }
         }
         out

@@ -70,7 +70,7 @@ pub struct BrunetonUniform {
     /// (`AngleMapping::mu_s_knee`).
     pub mu_s_knee: u32,
     /// 1 when S is read geometrically along mu_s between texels whose sun is below the
-    /// horizontal (`BrunetonSettings::geometric_mu_s`).
+    /// horizontal (`AngleMapping::geometric_mu_s`).
     pub geometric_mu_s: u32,
 }
 
@@ -130,7 +130,7 @@ impl BrunetonUniform {
             mie_directions: u(settings.mie_directions),
             store_chunk_texels: chunks.chunk_texels,
             mu_s_knee: u32::from(s.angles.mu_s_knee),
-            geometric_mu_s: u32::from(settings.geometric_mu_s),
+            geometric_mu_s: u32::from(s.angles.geometric_mu_s),
         }
     }
 }
