@@ -63,8 +63,15 @@ fn parameterization_round_trips() {
     let twilight = AngleMapping {
         min_mu_s: -0.35,
         nu_by_angle: true,
+        mu_s_knee: false,
+        geometric_mu_s: false,
     };
-    for angles in [AngleMapping::PAPER, twilight] {
+    let knee = AngleMapping {
+        min_mu_s: -0.31,
+        mu_s_knee: true,
+        ..AngleMapping::PAPER
+    };
+    for angles in [AngleMapping::PAPER, twilight, knee] {
         let lowest = angles.min_mu_s;
         for &mu_s in &[lowest, -0.2, -0.1, 0.0, 0.5, 1.0] {
             assert!(
@@ -83,6 +90,32 @@ fn parameterization_round_trips() {
     // The paper's u_mu_s = (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)).
     let paper = |mu_s: f64| (1.0 - (-3.0 * mu_s - 0.6f64).exp()) / (1.0 - (-3.6f64).exp());
     assert!((AngleMapping::PAPER.u_mu_s(0.3) - paper(0.3)).abs() < 1e-15);
+    // With the knee, above -0.2 u_mu_s is the paper's curve squeezed into
+    // [g0 / (g0 - 1)... 1]: (paper - g0) / (1 - g0), g0 = -3 (0.11) / (1 - exp(-3.6)) the
+    // linear part's value at -0.31; below, u_mu_s is linear with the curve's slope.
+    let g0 = -3.0 * 0.11 / (1.0 - (-3.6f64).exp());
+    for &mu_s in &[-0.2, -0.1, 0.0, 0.3, 1.0] {
+        let squeezed = (paper(mu_s) - g0) / (1.0 - g0);
+        assert!((knee.u_mu_s(mu_s) - squeezed).abs() < 1e-12, "{mu_s}");
+    }
+    let slope =
+        |m: &AngleMapping, mu_s: f64| (m.u_mu_s(mu_s + 1e-7) - m.u_mu_s(mu_s - 1e-7)) / 2e-7;
+    let at_knee = slope(&knee, -0.2);
+    for &mu_s in &[-0.3, -0.25, -0.2 - 1e-5, -0.2 + 1e-5] {
+        assert!((slope(&knee, mu_s) / at_knee - 1.0).abs() < 1e-3, "{mu_s}");
+    }
+    // The knee changes nothing where min_mu_s is not below -0.2.
+    let high = AngleMapping {
+        min_mu_s: -0.15,
+        ..AngleMapping::PAPER
+    };
+    let high_knee = AngleMapping {
+        mu_s_knee: true,
+        ..high
+    };
+    for &mu_s in &[-0.15, -0.1, 0.2] {
+        assert_eq!(high.u_mu_s(mu_s), high_knee.u_mu_s(mu_s));
+    }
     // By angle, u_nu is linear in the scattering angle: 90 deg in the middle.
     assert!((twilight.u_nu(0.0) - 0.5).abs() < 1e-15);
     assert!((twilight.u_nu(0.5) - 2.0 / 3.0).abs() < 1e-12);
@@ -425,6 +458,13 @@ fn suns_below_the_papers_range_are_resolved_with_a_lower_min_mu_s() {
     eprintln!("103 / 106 deg: paper {p103:e} / {p106:e}, min_mu_s=-0.35 {l103:e} / {l106:e}");
     assert!(p103 / p106 < 1.1, "{p103} {p106}");
     assert!(l103 / l106 > 3.0 && l106 > 0.0, "{l103} {l106}");
+    // The linear extension below -0.2 down to -0.31 (the sun 18 deg down) resolves them
+    // too, and agrees with the shifted curve within the error of either's mu_s axis.
+    let knee = small_with(&["min_mu_s=-0.31", "mu_s_knee=true"]);
+    let (k103, k106) = (towards_the_sun(&knee, 103.0), towards_the_sun(&knee, 106.0));
+    eprintln!("103 / 106 deg: min_mu_s=-0.31 mu_s_knee=true {k103:e} / {k106:e}");
+    assert!(k103 / k106 > 3.0 && k106 > 0.0, "{k103} {k106}");
+    assert!((k103 / l103 - 1.0).abs() < 0.3, "{k103} {l103}");
 }
 
 #[test]
@@ -453,4 +493,44 @@ fn the_sun_disk_lights_the_ground_while_its_centre_is_just_below_the_horizon() {
     // High up the disk and the point agree.
     let (p, d) = (at(&point_sun, -0.3), at(&disk, -0.3));
     assert!((p - d).abs() < 1e-3 * p, "{p} {d}");
+}
+
+#[test]
+fn geometric_interpolation_along_mu_s_follows_the_twilight_sky() {
+    use atmosphere_core::models::bruneton::tables::along_mu_s;
+    // Exact for an exponential, equal to the texels at their ends, linear where a texel
+    // is not positive.
+    let (a, b) = (2.0, 2.0 * (-1.5f64).exp());
+    assert!((along_mu_s(a, b, 0.4, true) - 2.0 * (-0.6f64).exp()).abs() < 1e-12);
+    assert_eq!(along_mu_s(a, b, 0.0, true), a);
+    assert!((along_mu_s(a, b, 1.0, true) - b).abs() < 1e-15);
+    assert_eq!(along_mu_s(a, 0.0, 0.25, true), 1.5);
+    // The sky towards the sun 10 deg up from the ground, the sun 3-10 deg below the
+    // horizon: S of 16 sun-angle texels against 128 (the same method resolved along
+    // mu_s), linearly and geometrically between texels.
+    let fine = small_with(&["mu_s=128"]);
+    let linear = small_with(&[]);
+    let geometric = small_with(&["geometric_mu_s=true"]);
+    let (mut e_linear, mut e_geometric) = (0.0, 0.0);
+    let suns: Vec<f64> = (0..15).map(|i| 93.0 + 0.5 * i as f64).collect();
+    for &sun in &suns {
+        let truth = towards_the_sun(&fine, sun);
+        e_linear += (towards_the_sun(&linear, sun) / truth - 1.0).powi(2);
+        e_geometric += (towards_the_sun(&geometric, sun) / truth - 1.0).powi(2);
+    }
+    let rms = |e: f64| 100.0 * (e / suns.len() as f64).sqrt();
+    eprintln!(
+        "twilight, 16 mu_s texels against 128: linear {:.2} %, geometric {:.2} % RMS",
+        rms(e_linear),
+        rms(e_geometric)
+    );
+    assert!(rms(e_geometric) < 0.5 * rms(e_linear));
+    // Towards a sun above the horizontal (every look-up and node of the ray and its
+    // texels above it) nothing changes.
+    for sun in [30.0, 60.0, 89.0] {
+        assert_eq!(
+            towards_the_sun(&linear, sun),
+            towards_the_sun(&geometric, sun)
+        );
+    }
 }

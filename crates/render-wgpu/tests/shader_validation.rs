@@ -434,7 +434,9 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             min_mu_s,
             nu_by_angle,
             mie_directions,
-            store_chunk_texels
+            store_chunk_texels,
+            mu_s_knee,
+            geometric_mu_s
         ]
     );
     assert_layout!(

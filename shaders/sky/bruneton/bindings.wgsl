@@ -59,6 +59,10 @@ struct BrunetonParams {
     mie_directions: u32,
     // Texels of the store each of its bindings covers (the last may cover fewer).
     store_chunk_texels: u32,
+    // 1 when u_mu_s continues the paper's curve linearly below -0.2.
+    mu_s_knee: u32,
+    // 1 when S is read geometrically along mu_s below the horizontal.
+    geometric_mu_s: u32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

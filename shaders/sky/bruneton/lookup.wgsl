@@ -10,15 +10,16 @@
 @group(0) @binding(8) var multiple: texture_3d<f32>;
 
 // Bilinear interpolation over (r, mu_s) of row imu in nu slice `inu` of a scattering
-// texture.
+// texture; along mu_s geometric where `geometric_pair` says so (`Table4::at_position`).
 fn texture_row(table: texture_3d<f32>, p: Position, imu: u32, inu: u32) -> vec3<f32> {
+    let geometric = geometric_pair(p.mu_s.i);
     var out = vec3<f32>(0.0);
     for (var dr = 0u; dr < 2u; dr++) {
         let w_r = select(1.0 - p.r.w, p.r.w, dr == 1u);
         let at = texture_texel(p.r.i + dr, imu, p.mu_s.i, inu);
         let a = textureLoad(table, at, 0).xyz;
         let b = textureLoad(table, at + vec3<u32>(1u, 0u, 0u), 0).xyz;
-        out += w_r * mix(a, b, p.mu_s.w);
+        out += w_r * along_mu_s(a, b, p.mu_s.w, geometric);
     }
     return out;
 }

@@ -2,7 +2,8 @@
 // model's tables and their texels: the GPU twin of atmosphere-core's
 // `bruneton/parameterization.rs` (u_r = rho / H; u_mu from the distance to the ray's end
 // mapped over its range at r, one half of the mu axis per side of the horizon; u_mu_s =
-// (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s))); u_nu = (1 + nu) / 2 or,
+// (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s))), or with `mu_s_knee`
+// the paper's curve from -0.2 continued linearly below it; u_nu = (1 + nu) / 2 or,
 // with `nu_by_angle`, 1 - acos(nu) / pi; E linear in r and mu_s).
 //
 // Radii enter as q = r^2 - bottom^2 (and r mu) rather than r alone: in f32 a radius near
@@ -117,18 +118,71 @@ fn mu_from_x(q: f32, r: f32, x: f32, ground: bool) -> f32 {
     return clamp((horizon_sq() - q - end * end) / (2.0 * r * end), -1.0, 1.0);
 }
 
-// u_mu_s = (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s)))
-// (`AngleMapping::u_mu_s`): the paper's curve at its min_mu_s = -0.2.
+// u_mu_s (`AngleMapping::u_mu_s`): the paper's curve g = (1 - exp(-3 (mu_s - c))) /
+// (1 - exp(-3 (1 - c))), c = min_mu_s (the paper's at -0.2); with `mu_s_knee` and
+// min_mu_s below -0.2, c = -0.2 and below it g continues linearly with its slope there,
+// u_mu_s = (g - g(min_mu_s)) / (1 - g(min_mu_s)).
+fn mu_s_curve_start() -> f32 {
+    if bruneton.mu_s_knee == 1u {
+        return max(bruneton.min_mu_s, -0.2);
+    }
+    return bruneton.min_mu_s;
+}
+
 fn mu_s_norm() -> f32 {
-    return 1.0 - exp(-3.0 * (1.0 - bruneton.min_mu_s));
+    return 1.0 - exp(-3.0 * (1.0 - mu_s_curve_start()));
+}
+
+// The linear part's slope and its value at min_mu_s (0 when it is empty).
+fn mu_s_linear_part() -> vec2<f32> {
+    let slope = 3.0 / mu_s_norm();
+    return vec2<f32>(slope, slope * (bruneton.min_mu_s - mu_s_curve_start()));
 }
 
 fn u_mu_s(mu_s: f32) -> f32 {
-    return clamp((1.0 - exp(-3.0 * (mu_s - bruneton.min_mu_s))) / mu_s_norm(), 0.0, 1.0);
+    let c = mu_s_curve_start();
+    let linear = mu_s_linear_part();
+    var g = linear.x * (mu_s - c);
+    if mu_s >= c {
+        g = (1.0 - exp(-3.0 * (mu_s - c))) / mu_s_norm();
+    }
+    return clamp((g - linear.y) / (1.0 - linear.y), 0.0, 1.0);
 }
 
 fn mu_s_from_u(u: f32) -> f32 {
-    return -log(1.0 - u * mu_s_norm()) / 3.0 + bruneton.min_mu_s;
+    let c = mu_s_curve_start();
+    let linear = mu_s_linear_part();
+    let g = linear.y + u * (1.0 - linear.y);
+    if g >= 0.0 {
+        return -log(1.0 - g * mu_s_norm()) / 3.0 + c;
+    }
+    return c + g / linear.x;
+}
+
+// Whether S is read geometrically between mu_s texels i and i + 1
+// (`AngleMapping::geometric_pair`): `geometric_mu_s` and both suns below the horizontal.
+fn geometric_pair(i: u32) -> bool {
+    return bruneton.geometric_mu_s == 1u && i + 1u < bruneton.mu_s_size
+        && mu_s_from_u(texel_unit(i + 1u, bruneton.mu_s_size)) <= 0.0;
+}
+
+// The same for E's mu_s texels (`AngleMapping::irradiance_geometric_pair`).
+fn irradiance_geometric_pair(i: u32) -> bool {
+    let n = bruneton.irradiance_mu_s_size;
+    let upper = bruneton.min_mu_s + texel_unit(i + 1u, n) * (1.0 - bruneton.min_mu_s);
+    return bruneton.geometric_mu_s == 1u && i + 1u < n && upper <= 0.0;
+}
+
+// Between texels a and b along mu_s at weight w of b (`tables::along_mu_s`): linear, or
+// with `geometric` a (b / a)^w per channel where both are positive.
+fn along_mu_s(a: vec3<f32>, b: vec3<f32>, w: f32, geometric: bool) -> vec3<f32> {
+    let linear = mix(a, b, w);
+    if !geometric {
+        return linear;
+    }
+    let positive = a > vec3<f32>(0.0) & b > vec3<f32>(0.0);
+    let ratio = select(vec3<f32>(1.0), b / a, positive);
+    return select(linear, a * exp2(w * log2(ratio)), positive);
 }
 
 // u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi with `nu_by_angle`

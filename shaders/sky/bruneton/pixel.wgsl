@@ -30,15 +30,16 @@
 
 // `IrradianceTable::lookup` on the ground (q = 0, as `irradiance_at`): the table's first
 // row, the only one with weight there, interpolated along mu_s alone (two texel reads,
-// or one filtered; the same value).
+// or one filtered where the interpolation is linear; the same value).
 fn ground_irradiance_at(mu_s: f32) -> vec3<f32> {
     let am = axis(irradiance_x_mu_s(mu_s), bruneton.irradiance_mu_s_size);
-    if FILTERED_TABLES {
+    let geometric = irradiance_geometric_pair(am.i);
+    if FILTERED_TABLES && !geometric {
         return sample_2d(irradiance, vec2<f32>(f32(am.i) + am.w, 0.0));
     }
     let low = textureLoad(irradiance, vec2<u32>(am.i, 0u), 0).xyz;
     let high = textureLoad(irradiance, vec2<u32>(am.i + 1u, 0u), 0).xyz;
-    return mix(low, high, am.w);
+    return along_mu_s(low, high, am.w, geometric);
 }
 
 // Row imu, nu slice inu of scattering texture `k` (0 single Rayleigh, 1 single Mie, 2

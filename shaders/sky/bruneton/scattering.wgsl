@@ -46,8 +46,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let node = ray_node(ray, i, n, &column, &previous);
         let p = table_position(node.q, node.r, ray.r_mu + node.t, 0.0, 0.0, ray.ground);
         let s = axis(u_mu_s(node_sun_cosine(ray, node, tx.mu_s, tx.nu)), bruneton.mu_s_size);
-        let a = mix(plane_entry(p, s.i, nu_axis.i), plane_entry(p, s.i + 1u, nu_axis.i), s.w);
-        let b = mix(plane_entry(p, s.i, nu_axis.i + 1u), plane_entry(p, s.i + 1u, nu_axis.i + 1u), s.w);
+        let geometric = geometric_pair(s.i);
+        let a = along_mu_s(plane_entry(p, s.i, nu_axis.i), plane_entry(p, s.i + 1u, nu_axis.i), s.w, geometric);
+        let b = along_mu_s(plane_entry(p, s.i, nu_axis.i + 1u), plane_entry(p, s.i + 1u, nu_axis.i + 1u), s.w, geometric);
         sum += node.weighted_transmittance * mix(a, b, nu_axis.w);
     }
     store_write(bruneton.delta_s_offset + index, vec4<f32>(sum, 0.0));

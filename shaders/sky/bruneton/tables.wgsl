@@ -7,15 +7,17 @@
 #import sky/bruneton/parameterization.wgsl
 #import common/transmittance_lookup.wgsl
 
-// Trilinear interpolation over (r, mu, mu_s) in nu slice `inu` (`Table4::slice`).
+// Trilinear interpolation over (r, mu, mu_s) in nu slice `inu` (`Table4::slice`), along
+// mu_s geometric where `geometric_pair` says so.
 fn table4_slice(base: u32, p: Position, inu: u32) -> vec3<f32> {
+    let geometric = geometric_pair(p.mu_s.i);
     var out = vec3<f32>(0.0);
     for (var dm = 0u; dm < 2u; dm++) {
         let wm = select(1.0 - p.mu.w, p.mu.w, dm == 1u);
         for (var dr = 0u; dr < 2u; dr++) {
             let w_r = select(1.0 - p.r.w, p.r.w, dr == 1u);
             let i = base + table_index(p.r.i + dr, p.mu.i + dm, p.mu_s.i, inu);
-            out += (wm * w_r) * mix(store_read(i).xyz, store_read(i + 1u).xyz, p.mu_s.w);
+            out += (wm * w_r) * along_mu_s(store_read(i).xyz, store_read(i + 1u).xyz, p.mu_s.w, geometric);
         }
     }
     return out;
@@ -39,8 +41,9 @@ fn irradiance_at(base: u32, q: f32, r: f32, mu_s: f32) -> vec3<f32> {
     let ar = axis(x_r, bruneton.irradiance_r_size);
     let am = axis(x_mu_s, bruneton.irradiance_mu_s_size);
     let i = base + ar.i * bruneton.irradiance_mu_s_size + am.i;
-    let lower = mix(store_read(i).xyz, store_read(i + 1u).xyz, am.w);
-    let upper = mix(store_read(i + bruneton.irradiance_mu_s_size).xyz, store_read(i + bruneton.irradiance_mu_s_size + 1u).xyz, am.w);
+    let geometric = irradiance_geometric_pair(am.i);
+    let lower = along_mu_s(store_read(i).xyz, store_read(i + 1u).xyz, am.w, geometric);
+    let upper = along_mu_s(store_read(i + bruneton.irradiance_mu_s_size).xyz, store_read(i + bruneton.irradiance_mu_s_size + 1u).xyz, am.w, geometric);
     return mix(lower, upper, ar.w);
 }
 

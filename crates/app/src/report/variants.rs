@@ -75,6 +75,17 @@ pub fn report_variants() -> Vec<Variant> {
             &["min_mu_s=-0.35", "nu_by_angle=true"],
         ),
         Variant::new(ModelId::Bruneton, None, &["sun_disk=true"]),
+        Variant::new(ModelId::Bruneton, None, &["geometric_mu_s=true"]),
+        Variant::new(
+            ModelId::Bruneton,
+            None,
+            &[
+                "min_mu_s=-0.31",
+                "mu_s_knee=true",
+                "mu_s=43",
+                "geometric_mu_s=true",
+            ],
+        ),
         Variant::new(
             ModelId::Bruneton,
             None,

@@ -8,8 +8,9 @@
 //!   rho = sqrt(r^2 - Rg^2) and Delta = r^2 mu^2 - rho^2. u_mu is refined as in
 //!   Bruneton 2017: the distance d to the ray's end is mapped from its range at r
 //!   ([r - Rg, rho] to the ground, [Rt - r, rho + H] to the top) rather than from
-//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]); u_mu_s and u_nu may start at another
-//!   lowest sun cosine and run linearly in the scattering angle ([`AngleMapping`]);
+//!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]); u_mu_s may start at another lowest
+//!   sun cosine (the curve shifted, or continued linearly below -0.2) and u_nu run
+//!   linearly in the scattering angle ([`AngleMapping`]);
 //! - irradiance E(r, mu_s): linear in r over [Rg, Rt] and in mu_s over [-0.2, 1] (the
 //!   paper's implementation; [min_mu_s, 1] in general).
 //!
@@ -126,6 +127,15 @@ pub struct AngleMapping {
     /// (the paper's (1 + nu) / 2): the paper's first texel spans the 44 degrees of the
     /// forward lobe, where multiple scattering in haze and twilight varies most.
     pub nu_by_angle: bool,
+    /// Below the paper's -0.2 (the knee), u_mu_s continues the paper's curve linearly
+    /// with its slope there, down to `min_mu_s`, instead of shifting the whole curve to
+    /// start at `min_mu_s` ([`AngleMapping::u_mu_s`]). No effect when `min_mu_s` is not
+    /// below -0.2.
+    pub mu_s_knee: bool,
+    /// S and E read geometrically along mu_s between two texels whose suns are both
+    /// below the horizontal (`tables::along_mu_s`), while building and rendering; linearly
+    /// (the paper) everywhere otherwise.
+    pub geometric_mu_s: bool,
 }
 
 impl AngleMapping {
@@ -133,23 +143,70 @@ impl AngleMapping {
     pub const PAPER: AngleMapping = AngleMapping {
         min_mu_s: PAPER_MIN_MU_S,
         nu_by_angle: false,
+        mu_s_knee: false,
+        geometric_mu_s: false,
     };
 
-    /// 1 - exp(-3 (1 - min_mu_s)): the normalisation of u_mu_s.
-    fn mu_s_norm(&self) -> f64 {
-        1.0 - (-3.0 * (1.0 - self.min_mu_s)).exp()
+    /// The lowest sun cosine of the paper's curve: `min_mu_s`, or the knee (-0.2) when
+    /// the mapping is linear below it.
+    fn curve_start(&self) -> f64 {
+        if self.mu_s_knee {
+            self.min_mu_s.max(PAPER_MIN_MU_S)
+        } else {
+            self.min_mu_s
+        }
     }
 
-    /// u_mu_s = (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s))), clamped
-    /// to [0, 1]: the paper's (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)) at its
-    /// min_mu_s = -0.2, and the same curve shifted to start at another.
+    /// 1 - exp(-3 (1 - c)), c the curve's start: the normalisation of the curve.
+    fn mu_s_norm(&self) -> f64 {
+        1.0 - (-3.0 * (1.0 - self.curve_start())).exp()
+    }
+
+    /// The curve's slope at its start, 3 / (1 - exp(-3 (1 - c))), and the value of the
+    /// linear part at `min_mu_s` (negative; 0 when the linear part is empty).
+    fn linear_part(&self) -> (f64, f64) {
+        let slope = 3.0 / self.mu_s_norm();
+        (slope, slope * (self.min_mu_s - self.curve_start()))
+    }
+
+    /// u_mu_s. The paper's curve g(mu_s) = (1 - exp(-3 (mu_s - c))) / (1 - exp(-3 (1 - c))),
+    /// c = -0.2, is the paper's (1 - exp(-3 mu_s - 0.6)) / (1 - exp(-3.6)); without the
+    /// knee c = min_mu_s (the curve shifted) and u_mu_s = g. With it, below c,
+    /// g continues as g'(c) (mu_s - c), and u_mu_s = (g - g(min_mu_s)) / (1 - g(min_mu_s)):
+    /// twilight's sky dims by about e per 0.02 of mu_s below the horizon at a rate that
+    /// hardly changes, so texels evenly spaced there (at the paper's densest spacing)
+    /// serve it, while above -0.2 the paper's curve keeps its shape. Clamped to [0, 1].
     pub fn u_mu_s(&self, mu_s: f64) -> f64 {
-        ((1.0 - (-3.0 * (mu_s - self.min_mu_s)).exp()) / self.mu_s_norm()).clamp(0.0, 1.0)
+        let c = self.curve_start();
+        let (slope, lowest) = self.linear_part();
+        let g = if mu_s >= c {
+            (1.0 - (-3.0 * (mu_s - c)).exp()) / self.mu_s_norm()
+        } else {
+            slope * (mu_s - c)
+        };
+        ((g - lowest) / (1.0 - lowest)).clamp(0.0, 1.0)
     }
 
     /// Inverse of [`AngleMapping::u_mu_s`].
     pub fn mu_s_from_u(&self, u: f64) -> f64 {
-        -(1.0 - u * self.mu_s_norm()).ln() / 3.0 + self.min_mu_s
+        let c = self.curve_start();
+        let (slope, lowest) = self.linear_part();
+        let g = lowest + u * (1.0 - lowest);
+        if g >= 0.0 {
+            -(1.0 - g * self.mu_s_norm()).ln() / 3.0 + c
+        } else {
+            c + g / slope
+        }
+    }
+
+    /// Whether S is read geometrically between mu_s texels `i` and `i + 1` of `n`.
+    pub fn geometric_pair(&self, i: usize, n: usize) -> bool {
+        self.geometric_mu_s && i + 1 < n && self.mu_s_from_u(texel_unit(i + 1, n)) <= 0.0
+    }
+
+    /// Whether E is read geometrically between its mu_s texels `i` and `i + 1` of `n`.
+    pub fn irradiance_geometric_pair(&self, i: usize, n: usize) -> bool {
+        self.geometric_mu_s && i + 1 < n && self.irradiance_mu_s(texel_unit(i + 1, n)) <= 0.0
     }
 
     /// u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi.

@@ -106,12 +106,14 @@ pub const MIE_DIRECTIONS: Setting<usize> = setting("mie_directions", 0..=64);
 /// Keys of the switches (`true` or `false`).
 pub const NU_BY_ANGLE: &str = "nu_by_angle";
 pub const SUN_DISK: &str = "sun_disk";
+pub const MU_S_KNEE: &str = "mu_s_knee";
+pub const GEOMETRIC_MU_S: &str = "geometric_mu_s";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
-    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `sun_disk`, `mie_directions`; the paper's values where
-    /// absent.
+    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`, `sun_disk`, `mie_directions`,
+    /// `geometric_mu_s`; the paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -123,6 +125,9 @@ impl BrunetonSettings {
                     angles: AngleMapping {
                         min_mu_s: o.number(&MIN_MU_S, d.scattering_size.angles.min_mu_s)?,
                         nu_by_angle: o.flag(NU_BY_ANGLE, d.scattering_size.angles.nu_by_angle)?,
+                        mu_s_knee: o.flag(MU_S_KNEE, d.scattering_size.angles.mu_s_knee)?,
+                        geometric_mu_s: o
+                            .flag(GEOMETRIC_MU_S, d.scattering_size.angles.geometric_mu_s)?,
                     },
                 },
                 irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),

@@ -8,7 +8,7 @@ use crate::models::bruneton::builder::{Builder, to_f32};
 use crate::models::bruneton::parameterization::{
     AngleMapping, axis, table_position, texel_parameters,
 };
-use crate::models::bruneton::tables::Table4;
+use crate::models::bruneton::tables::{Table4, along_mu_s};
 use crate::optics::geometry::radius_at;
 
 /// One trapezoid node of a texel row's ray (see `Builder::ray_nodes`).
@@ -206,6 +206,11 @@ impl Builder<'_> {
         let size = self.settings.scattering_size;
         let per_node = size.nu * size.mu_s;
         let mu_s_axis = MuSAxis::new(size.mu_s, &size.angles);
+        // Which pairs of neighbouring mu_s texels Delta J is read between geometrically
+        // (`geometric_mu_s`: both suns below the horizontal; `along_mu_s`).
+        let geometric: Vec<bool> = (0..size.mu_s)
+            .map(|i| size.angles.geometric_pair(i, size.mu_s))
+            .collect();
         self.map_rays(false, |nodes, texels, out| {
             // Delta J at each node over (nu, mu_s). The table holds mu_s fastest, then r,
             // so the two r corners of a nu slice are neighbouring runs of mu_s texels.
@@ -250,8 +255,17 @@ impl Builder<'_> {
                     let lo = &plane[inu * size.mu_s + imus..];
                     let hi = &plane[(inu + 1) * size.mu_s + imus..];
                     for k in 0..3 {
-                        let a = lo[0][k] + wmus * (lo[1][k] - lo[0][k]);
-                        let b = hi[0][k] + wmus * (hi[1][k] - hi[0][k]);
+                        let (a, b) = if geometric[imus] {
+                            let g = |x: f32, y: f32| {
+                                along_mu_s(f64::from(x), f64::from(y), f64::from(wmus), true) as f32
+                            };
+                            (g(lo[0][k], lo[1][k]), g(hi[0][k], hi[1][k]))
+                        } else {
+                            (
+                                lo[0][k] + wmus * (lo[1][k] - lo[0][k]),
+                                hi[0][k] + wmus * (hi[1][k] - hi[0][k]),
+                            )
+                        };
                         sum[k] += t[k] * (a + wnu * (b - a));
                     }
                 }

@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout, StoreTable};
 use crate::sky::bruneton::store_chunks::StoreChunks;
 
-/// WGSL `BrunetonParams`, 132 bytes: the sizes of the tables and of the sphere integrals,
+/// WGSL `BrunetonParams`, 140 bytes: the sizes of the tables and of the sphere integrals,
 /// the store's offsets (texels), and what the build depends on besides the atmosphere.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -66,6 +66,12 @@ pub struct BrunetonUniform {
     pub mie_directions: u32,
     /// Texels of the store each of its bindings covers (`store_chunks.rs`).
     pub store_chunk_texels: u32,
+    /// 1 when u_mu_s continues the paper's curve linearly below -0.2
+    /// (`AngleMapping::mu_s_knee`).
+    pub mu_s_knee: u32,
+    /// 1 when S is read geometrically along mu_s between texels whose sun is below the
+    /// horizontal (`AngleMapping::geometric_mu_s`).
+    pub geometric_mu_s: u32,
 }
 
 impl BrunetonUniform {
@@ -123,6 +129,8 @@ impl BrunetonUniform {
             nu_by_angle: u32::from(s.angles.nu_by_angle),
             mie_directions: u(settings.mie_directions),
             store_chunk_texels: chunks.chunk_texels,
+            mu_s_knee: u32::from(s.angles.mu_s_knee),
+            geometric_mu_s: u32::from(s.angles.geometric_mu_s),
         }
     }
 }
