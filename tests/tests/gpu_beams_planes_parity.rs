@@ -7,15 +7,14 @@
 
 mod support;
 
-use std::path::Path;
-
-use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
+use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::planes2000::Planes2000;
 use atmosphere_core::beams::occluder::Primitive;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::models::options::ModelOptions;
 use render_wgpu::GpuContext;
 use render_wgpu::shafts::beams::planes_pass::{GpuPlanes, PlanesPass};
+use support::beams::{check_relative, cpu_pixels, gpu_pixels, shipped_scene};
 use support::gpu_or_skip;
 
 /// Largest |L_gpu - L_cpu| / max(L_cpu, floor) of a pixel and wavelength, the floor
@@ -23,16 +22,6 @@ use support::gpu_or_skip;
 /// sums over the planes, xi interpolated by the rasteriser against the CPU's
 /// interpolation over the same triangles (docs/beams/planes2000.md).
 const MAX_RELATIVE_ERROR: f64 = 2e-3;
-
-fn scene(name: &str, width: u32, height: u32) -> BeamScene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/scenes/beams")
-        .join(name);
-    let mut scene = BeamScene::load(&path).unwrap();
-    scene.camera.width_px = width;
-    scene.camera.height_px = height;
-    scene
-}
 
 fn planes(scene: &BeamScene) -> Planes2000 {
     let settings = BeamSettings {
@@ -45,44 +34,11 @@ fn planes(scene: &BeamScene) -> Planes2000 {
 /// Radiance at the three wavelengths per pixel, row by row: (CPU, GPU).
 fn both(gpu: &GpuContext, pass: &PlanesPass, scene: &BeamScene) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
     let method = planes(scene);
-    let camera = &scene.camera;
-    let cpu = (0..camera.height_px)
-        .flat_map(|y| (0..camera.width_px).map(move |x| (x, y)))
-        .map(|(x, y)| {
-            let l = method
-                .radiance(&camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
-                .unwrap();
-            [l[0], l[1], l[2]]
-        })
-        .collect();
     let (image, _) = pass.render(gpu, &GpuPlanes::new(&method)).unwrap();
-    let gpu_pixels = image
-        .read_radiance(gpu)
-        .unwrap()
-        .into_iter()
-        .map(|p| [p[0], p[1], p[2]].map(f64::from))
-        .collect();
-    (cpu, gpu_pixels)
-}
-
-/// Checks the tolerance on every pixel; returns the largest relative error.
-fn check(name: &str, cpu: &[[f64; 3]], gpu: &[[f64; 3]]) -> f64 {
-    let floor: [f64; 3] =
-        std::array::from_fn(|k| 1e-3 * cpu.iter().map(|p| p[k]).fold(0.0, f64::max));
-    assert!(floor.iter().all(|&f| f > 0.0), "{name}: a black image");
-    let mut worst = 0.0f64;
-    for (i, (c, g)) in cpu.iter().zip(gpu).enumerate() {
-        let e = (0..3)
-            .map(|k| (g[k] - c[k]).abs() / c[k].max(floor[k]))
-            .fold(0.0, f64::max);
-        assert!(
-            e <= MAX_RELATIVE_ERROR,
-            "{name}: pixel {i}: GPU {g:?}, CPU {c:?}"
-        );
-        worst = worst.max(e);
-    }
-    println!("{name}: largest relative error {worst:.2e}");
-    worst
+    (
+        cpu_pixels(&method, scene),
+        gpu_pixels(image.read_radiance(gpu).unwrap()),
+    )
 }
 
 #[test]
@@ -97,8 +53,8 @@ fn gpu_planes_match_the_cpu_planes_on_the_shipped_scenes() {
         ("stained_glass_room.toml", 64, 48),
         ("teapot_spotlight.toml", 64, 48),
     ] {
-        let (cpu, gpu_pixels) = both(&gpu, &pass, &scene(name, width, height));
-        check(name, &cpu, &gpu_pixels);
+        let (cpu, gpu_pixels) = both(&gpu, &pass, &shipped_scene(name, width, height));
+        check_relative(name, &cpu, &gpu_pixels, MAX_RELATIVE_ERROR);
     }
 }
 
@@ -108,7 +64,7 @@ fn the_sphere_darkens_the_air_in_its_shadow_on_the_gpu_planes_as_on_the_cpu() {
         return;
     };
     let pass = PlanesPass::new(&gpu).unwrap();
-    let with = scene("sphere_spotlight.toml", 40, 60);
+    let with = shipped_scene("sphere_spotlight.toml", 40, 60);
     let mut without = with.clone();
     without
         .occluders

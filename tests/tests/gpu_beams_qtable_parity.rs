@@ -7,30 +7,19 @@
 
 mod support;
 
-use std::path::Path;
-
-use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
+use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::qtable2002::Qtable2002;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::models::options::ModelOptions;
 use render_wgpu::GpuContext;
 use render_wgpu::shafts::beams::qtable_pass::{GpuQtable, QtablePass};
+use support::beams::{check_relative, cpu_pixels, gpu_pixels, shipped_scene};
 use support::gpu_or_skip;
 
 /// Largest |L_gpu - L_cpu| / max(L_cpu, floor) of a pixel and wavelength, the floor
 /// 1e-3 of the image's brightest value at that wavelength: the same table read in f32
 /// against f64, the same samples and shadow maps (docs/beams/qtable2002.md).
 const MAX_RELATIVE_ERROR: f64 = 2e-3;
-
-fn scene(name: &str, width: u32, height: u32) -> BeamScene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/scenes/beams")
-        .join(name);
-    let mut scene = BeamScene::load(&path).unwrap();
-    scene.camera.width_px = width;
-    scene.camera.height_px = height;
-    scene
-}
 
 fn qtable(scene: &BeamScene, epsilon: &str) -> Qtable2002 {
     let settings = BeamSettings {
@@ -49,44 +38,11 @@ fn both(
     method: &Qtable2002,
     scene: &BeamScene,
 ) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
-    let camera = &scene.camera;
-    let cpu = (0..camera.height_px)
-        .flat_map(|y| (0..camera.width_px).map(move |x| (x, y)))
-        .map(|(x, y)| {
-            let l = method
-                .radiance(&camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
-                .unwrap();
-            [l[0], l[1], l[2]]
-        })
-        .collect();
     let (image, _) = pass.render(gpu, &GpuQtable::new(method)).unwrap();
-    let gpu_pixels = image
-        .read_radiance(gpu)
-        .unwrap()
-        .into_iter()
-        .map(|p| [p[0], p[1], p[2]].map(f64::from))
-        .collect();
-    (cpu, gpu_pixels)
-}
-
-/// Checks the tolerance on every pixel; returns the largest relative error.
-fn check(name: &str, cpu: &[[f64; 3]], gpu: &[[f64; 3]]) -> f64 {
-    let floor: [f64; 3] =
-        std::array::from_fn(|k| 1e-3 * cpu.iter().map(|p| p[k]).fold(0.0, f64::max));
-    assert!(floor.iter().all(|&f| f > 0.0), "{name}: a black image");
-    let mut worst = 0.0f64;
-    for (i, (c, g)) in cpu.iter().zip(gpu).enumerate() {
-        let e = (0..3)
-            .map(|k| (g[k] - c[k]).abs() / c[k].max(floor[k]))
-            .fold(0.0, f64::max);
-        assert!(
-            e <= MAX_RELATIVE_ERROR,
-            "{name}: pixel {i}: GPU {g:?}, CPU {c:?}"
-        );
-        worst = worst.max(e);
-    }
-    println!("{name}: largest relative error {worst:.2e}");
-    worst
+    (
+        cpu_pixels(method, scene),
+        gpu_pixels(image.read_radiance(gpu).unwrap()),
+    )
 }
 
 #[test]
@@ -101,10 +57,10 @@ fn gpu_qtable_matches_the_cpu_qtable_on_the_shipped_scenes() {
         ("stained_glass_room.toml", 64, 48),
         ("teapot_spotlight.toml", 64, 48),
     ] {
-        let s = scene(name, width, height);
+        let s = shipped_scene(name, width, height);
         let method = qtable(&s, "epsilon=0.01");
         let (cpu, gpu_pixels) = both(&gpu, &pass, &method, &s);
-        check(name, &cpu, &gpu_pixels);
+        check_relative(name, &cpu, &gpu_pixels, MAX_RELATIVE_ERROR);
     }
 }
 
@@ -114,7 +70,7 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
         return;
     };
     let pass = QtablePass::new(&gpu).unwrap();
-    let s = scene("sphere_spotlight.toml", 40, 60);
+    let s = shipped_scene("sphere_spotlight.toml", 40, 60);
     let with = qtable(&s, "epsilon=0.01");
     let packed = GpuQtable::new(&with);
     let cpu_count: usize = with.planes().iter().map(|p| p.subplane_count()).sum();
@@ -137,8 +93,13 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
     assert_eq!(GpuQtable::new(&without).subplane_count(), 0);
     let (cpu_with, gpu_with) = both(&gpu, &pass, &with, &s);
     let (cpu_without, gpu_without) = both(&gpu, &pass, &without, &s);
-    check("with sub-planes", &cpu_with, &gpu_with);
-    check("without sub-planes", &cpu_without, &gpu_without);
+    check_relative("with sub-planes", &cpu_with, &gpu_with, MAX_RELATIVE_ERROR);
+    check_relative(
+        "without sub-planes",
+        &cpu_without,
+        &gpu_without,
+        MAX_RELATIVE_ERROR,
+    );
     let changed = cpu_with
         .iter()
         .zip(&cpu_without)

@@ -18,6 +18,7 @@
 
 pub mod clouds;
 pub mod frame;
+pub mod frame_targets;
 pub mod gpu;
 pub mod post;
 pub mod precipitation;

@@ -9,30 +9,29 @@ use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
 
-use crate::clouds::frame_clouds::{FrameClouds, why_no_clouds, why_nothing_in_front};
+use crate::clouds::frame_clouds::{FrameClouds, plan_clouds};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
 use crate::clouds::layer_inputs::LayerInputs;
 
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::frame::plan::{FramePlan, StepKind};
-use crate::frame::surface_buffer::{SurfaceBuffer, SurfaceTexel};
+use crate::frame::surface_buffer::SurfaceTexel;
 use crate::frame::uniform::FrameUniform;
+use crate::frame_targets::Targets;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
-use crate::gpu::formats::HDR_FORMAT;
-use crate::gpu::formats::LDR_FORMAT;
-use crate::gpu::pipeline::{texture_2d, uniform_buffer};
+use crate::gpu::pipeline::uniform_buffer;
 use crate::gpu::readback::read_texture;
 use crate::gpu::timer::GpuTimer;
 use crate::post::luminance::LuminancePass;
 use crate::post::tone_map::ToneMap;
 use crate::post::tone_map_pass::ToneMapPass;
-use crate::precipitation::in_view::why_no_volumes;
+use crate::precipitation::in_view::plan_volumes;
 use crate::precipitation::volume_uniform::MAX_VOLUMES;
 use crate::precipitation::volumes_pass::{VolumesPass, VolumesScene};
 use crate::shafts::terrain::frame_map::FrameShadow;
-use crate::shafts::terrain::planner::why_no_shafts;
+use crate::shafts::terrain::planner::plan_shafts;
 use crate::shafts::terrain::shadow_texture::ShadowTexture;
 use crate::sky::model_pass::PassIo;
 use crate::sky::registry;
@@ -42,16 +41,6 @@ use crate::terrain::pass::TerrainPass;
 
 /// Most steps a frame runs (table builds and passes), for the timer.
 const MAX_STEPS: u32 = 24;
-
-/// The HDR and display targets of one image size, and the surface the rays end on.
-#[derive(Debug)]
-struct Targets {
-    hdr: wgpu::Texture,
-    ldr: wgpu::Texture,
-    surface: SurfaceBuffer,
-    /// The cloud steps' images, made when a frame of this size first has clouds.
-    clouds: Option<CloudTargets>,
-}
 
 /// Renders frames; see the module documentation.
 #[derive(Debug)]
@@ -87,26 +76,6 @@ pub struct Renderer {
     /// compiled when a frame first has one.
     volumes: Vec<LitVolume>,
     volumes_pass: Option<VolumesPass>,
-}
-
-fn target(
-    gpu: &GpuContext,
-    label: &str,
-    format: wgpu::TextureFormat,
-    frame: &Frame,
-) -> wgpu::Texture {
-    let usage = if format == HDR_FORMAT {
-        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING
-    } else {
-        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING
-    };
-    texture_2d(
-        &gpu.device,
-        label,
-        (frame.width, frame.height),
-        format,
-        usage | wgpu::TextureUsages::COPY_SRC,
-    )
 }
 
 impl Renderer {
@@ -315,72 +284,29 @@ impl Renderer {
         };
         let has_surface = surface.is_some() || draws_terrain;
         // Light shafts (docs/shafts.md): the shadow map of the drawn terrain.
-        let shadow = match (frame.terrain, self.terrain.as_ref()) {
-            (Some(options), Some(terrain)) if draws_terrain && options.shafts => {
-                let sun = frame.sun_direction.normalize();
-                let radius_m = frame.atmosphere.bottom_radius_m;
-                let (camera, relief) = (frame.camera_position_m, terrain.surface());
-                let map = self.shadow.update(camera, sun, radius_m, relief)?;
-                match why_no_shafts(frame, map).filter(|_| self.prune_shafts) {
-                    Some(why) => {
-                        plan.skip("shafts", why);
-                        None
-                    }
-                    None => Some(map),
-                }
-            }
-            (Some(options), _) => {
-                plan.skip(
-                    "shafts",
-                    if options.shafts {
-                        "no terrain in view"
-                    } else {
-                        "shafts off"
-                    },
-                );
-                None
-            }
-            (None, _) => None,
-        };
+        let relief = self
+            .terrain
+            .as_ref()
+            .filter(|_| draws_terrain)
+            .map(|t| t.surface());
+        let shadow = plan_shafts(
+            frame,
+            relief,
+            &mut self.shadow,
+            self.prune_shafts,
+            &mut plan,
+        )?;
         let shaft_samples = atmosphere_core::models::hillaire::shafts::SHAFT_SAMPLES as u32;
         self.shadow_texture.upload(&self.gpu, shadow, shaft_samples);
         // The cloud layer's march (docs/clouds.md, "Clouds in frames"): run unless the
         // planner shows it cannot change the image.
-        let clouds_step = match &self.clouds {
-            Some(clouds) => {
-                let Some((_, max_cover)) = &self.cloud_inputs else {
-                    return Err(RenderError::Frame(
-                        "clouds are on but no cloud cover was given (set_cloud_inputs)".into(),
-                    ));
-                };
-                match why_no_clouds(frame, &clouds.settings, *max_cover).filter(|_| clouds.prune) {
-                    Some(why) => {
-                        plan.skip("clouds", why);
-                        None
-                    }
-                    None => {
-                        plan.run("clouds", StepKind::Pass);
-                        Some(plan.steps.len() as u32 - 1)
-                    }
-                }
-            }
-            None => None,
-        };
+        let max_cover = self.cloud_inputs.as_ref().map(|(_, max)| *max);
+        let (clouds_step, front_needed) =
+            plan_clouds(frame, self.clouds.as_ref(), max_cover, &mut plan)?;
         if clouds_step.is_some() && self.cloud_pass.is_none() {
             self.cloud_pass = Some(CloudFramePass::new(&self.gpu)?);
         }
-        // The model's second run ends on the cloud: a surface, whose passes it needs;
-        // none runs with the camera inside the layer.
-        let front_needed = match (&self.clouds, clouds_step) {
-            (Some(clouds), Some(_)) => match why_nothing_in_front(frame, &clouds.settings) {
-                Some(why) => {
-                    plan.skip("cloud_front", why);
-                    false
-                }
-                None => true,
-            },
-            _ => false,
-        };
+        // The model's second run ends on the cloud: a surface, whose passes it needs.
         plan.surface = has_surface || front_needed;
         // The sea's variant of the pixel passes only where the surface holds sea.
         let has_sea = match surface {
@@ -391,12 +317,7 @@ impl Renderer {
         let tone_map = ToneMap::new(RGB_WAVELENGTHS_NM, frame.exposure_ev100)?.uniform();
         let mut targets = match self.targets.take() {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,
-            _ => Targets {
-                hdr: target(&self.gpu, "hdr", HDR_FORMAT, frame),
-                ldr: target(&self.gpu, "ldr", LDR_FORMAT, frame),
-                surface: SurfaceBuffer::new(&self.gpu, frame.width, frame.height),
-                clouds: None,
-            },
+            _ => Targets::new(&self.gpu, frame.width, frame.height),
         };
         if clouds_step.is_some() && targets.clouds.is_none() {
             targets.clouds = Some(CloudTargets::new(&self.gpu, frame.width, frame.height));
@@ -435,15 +356,7 @@ impl Renderer {
             plan.run("cloud_composite", StepKind::Pass);
             (march, front, plan.steps.len() as u32 - 1)
         });
-        let volumes_step = if self.volumes.is_empty() {
-            None
-        } else if let Some(why) = why_no_volumes(frame, &self.volumes) {
-            plan.skip("volumes", why);
-            None
-        } else {
-            plan.run("volumes", StepKind::Pass);
-            Some(plan.steps.len() as u32 - 1)
-        };
+        let volumes_step = plan_volumes(frame, &self.volumes, &mut plan);
         if volumes_step.is_some() && self.volumes_pass.is_none() {
             match VolumesPass::new(gpu) {
                 Ok(pass) => self.volumes_pass = Some(pass),

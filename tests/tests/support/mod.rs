@@ -10,6 +10,7 @@
 //! Each test file that declares `mod support;` uses only part of it.
 #![allow(dead_code)]
 
+pub mod beams;
 #[path = "../../../crates/app/tests/common/skip.rs"]
 mod skip;
 

@@ -8,6 +8,7 @@ use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::volumes::Shape;
 
 use crate::frame::Frame;
+use crate::frame::plan::{FramePlan, StepKind};
 
 /// Why the planner leaves the volumes pass out when no volume is in view.
 pub const NO_VOLUME_IN_VIEW: &str = "no rain or ice volume in view";
@@ -130,4 +131,18 @@ mod tests {
             Some(NO_VOLUME_IN_VIEW)
         );
     }
+}
+
+/// The volumes' step of `frame` in `plan`: its index, or `None` when there are no
+/// volumes or none is in view (the reason recorded).
+pub fn plan_volumes(frame: &Frame, volumes: &[LitVolume], plan: &mut FramePlan) -> Option<u32> {
+    if volumes.is_empty() {
+        return None;
+    }
+    if let Some(why) = why_no_volumes(frame, volumes) {
+        plan.skip("volumes", why);
+        return None;
+    }
+    plan.run("volumes", StepKind::Pass);
+    Some(plan.steps.len() as u32 - 1)
 }

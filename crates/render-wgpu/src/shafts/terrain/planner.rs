@@ -3,10 +3,50 @@
 //! that some pixel may see keeps the shafts.
 
 use atmosphere_core::models::id::ModelId;
-use atmosphere_core::shafts::ShadowMap;
+use atmosphere_core::shafts::{Relief, ShadowMap};
 
 use crate::frame::Frame;
 use crate::frame::ground_in_view::ground_within;
+use crate::frame::plan::FramePlan;
+use crate::gpu::error::RenderError;
+use crate::shafts::terrain::frame_map::FrameShadow;
+
+/// The shadow map of the frame's drawn terrain (`relief`, `None` when none is drawn)
+/// for its light shafts, or `None` with the reason recorded in `plan`: shafts off, no
+/// terrain in view, or the planner's rule ([`why_no_shafts`], applied when `prune`).
+pub fn plan_shafts<'a, R: Relief + Sync>(
+    frame: &Frame,
+    relief: Option<&R>,
+    shadow: &'a mut FrameShadow,
+    prune: bool,
+    plan: &mut FramePlan,
+) -> Result<Option<&'a ShadowMap>, RenderError> {
+    let Some(options) = frame.terrain else {
+        return Ok(None);
+    };
+    let relief = match relief {
+        Some(relief) if options.shafts => relief,
+        _ => {
+            let why = if options.shafts {
+                "no terrain in view"
+            } else {
+                "shafts off"
+            };
+            plan.skip("shafts", why);
+            return Ok(None);
+        }
+    };
+    let sun = frame.sun_direction.normalize();
+    let radius_m = frame.atmosphere.bottom_radius_m;
+    let map = shadow.update(frame.camera_position_m, sun, radius_m, relief)?;
+    match why_no_shafts(frame, map).filter(|_| prune) {
+        Some(why) => {
+            plan.skip("shafts", why);
+            Ok(None)
+        }
+        None => Ok(Some(map)),
+    }
+}
 
 /// Why `frame` needs no shafts with the shadow map `map`, or `None` when it may.
 pub fn why_no_shafts(frame: &Frame, map: &ShadowMap) -> Option<&'static str> {
