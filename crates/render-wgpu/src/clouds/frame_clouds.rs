@@ -97,6 +97,39 @@ pub fn frame_light(
     Ok(light_at(model, vertical * (0.5 * (base_m + top_m)), sun)?)
 }
 
+/// The cloud steps of `frame` in `plan`: the march's step index (`None`: no clouds, or
+/// pruned with the reason recorded when `clouds.prune`), and whether the model's second
+/// run in front of the cloud is needed ([`why_nothing_in_front`]). `max_cover` is the
+/// cover's largest value, `None` when no cover was given.
+pub fn plan_clouds(
+    frame: &Frame,
+    clouds: Option<&FrameClouds>,
+    max_cover: Option<f64>,
+    plan: &mut FramePlan,
+) -> Result<(Option<u32>, bool), RenderError> {
+    let Some(clouds) = clouds else {
+        return Ok((None, false));
+    };
+    let Some(max_cover) = max_cover else {
+        return Err(RenderError::Frame(
+            "clouds are on but no cloud cover was given (set_cloud_inputs)".into(),
+        ));
+    };
+    if let Some(why) = why_no_clouds(frame, &clouds.settings, max_cover).filter(|_| clouds.prune) {
+        plan.skip("clouds", why);
+        return Ok((None, false));
+    }
+    plan.run("clouds", StepKind::Pass);
+    let march = plan.steps.len() as u32 - 1;
+    match why_nothing_in_front(frame, &clouds.settings) {
+        Some(why) => {
+            plan.skip("cloud_front", why);
+            Ok((Some(march), false))
+        }
+        None => Ok((Some(march), true)),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -170,38 +203,5 @@ mod tests {
             ..settings
         };
         assert_eq!(why_no_clouds(&f, &empty, 1.0), Some(NO_CLOUD_IN_COVER));
-    }
-}
-
-/// The cloud steps of `frame` in `plan`: the march's step index (`None`: no clouds, or
-/// pruned with the reason recorded when `clouds.prune`), and whether the model's second
-/// run in front of the cloud is needed ([`why_nothing_in_front`]). `max_cover` is the
-/// cover's largest value, `None` when no cover was given.
-pub fn plan_clouds(
-    frame: &Frame,
-    clouds: Option<&FrameClouds>,
-    max_cover: Option<f64>,
-    plan: &mut FramePlan,
-) -> Result<(Option<u32>, bool), RenderError> {
-    let Some(clouds) = clouds else {
-        return Ok((None, false));
-    };
-    let Some(max_cover) = max_cover else {
-        return Err(RenderError::Frame(
-            "clouds are on but no cloud cover was given (set_cloud_inputs)".into(),
-        ));
-    };
-    if let Some(why) = why_no_clouds(frame, &clouds.settings, max_cover).filter(|_| clouds.prune) {
-        plan.skip("clouds", why);
-        return Ok((None, false));
-    }
-    plan.run("clouds", StepKind::Pass);
-    let march = plan.steps.len() as u32 - 1;
-    match why_nothing_in_front(frame, &clouds.settings) {
-        Some(why) => {
-            plan.skip("cloud_front", why);
-            Ok((Some(march), false))
-        }
-        None => Ok((Some(march), true)),
     }
 }

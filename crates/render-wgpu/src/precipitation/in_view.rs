@@ -47,6 +47,20 @@ pub fn why_no_volumes(frame: &Frame, volumes: &[LitVolume]) -> Option<&'static s
     (!volumes.iter().any(|v| in_view(frame, v))).then_some(NO_VOLUME_IN_VIEW)
 }
 
+/// The volumes' step of `frame` in `plan`: its index, or `None` when there are no
+/// volumes or none is in view (the reason recorded).
+pub fn plan_volumes(frame: &Frame, volumes: &[LitVolume], plan: &mut FramePlan) -> Option<u32> {
+    if volumes.is_empty() {
+        return None;
+    }
+    if let Some(why) = why_no_volumes(frame, volumes) {
+        plan.skip("volumes", why);
+        return None;
+    }
+    plan.run("volumes", StepKind::Pass);
+    Some(plan.steps.len() as u32 - 1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,18 +145,4 @@ mod tests {
             Some(NO_VOLUME_IN_VIEW)
         );
     }
-}
-
-/// The volumes' step of `frame` in `plan`: its index, or `None` when there are no
-/// volumes or none is in view (the reason recorded).
-pub fn plan_volumes(frame: &Frame, volumes: &[LitVolume], plan: &mut FramePlan) -> Option<u32> {
-    if volumes.is_empty() {
-        return None;
-    }
-    if let Some(why) = why_no_volumes(frame, volumes) {
-        plan.skip("volumes", why);
-        return None;
-    }
-    plan.run("volumes", StepKind::Pass);
-    Some(plan.steps.len() as u32 - 1)
 }
