@@ -15,9 +15,7 @@
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/planes_bindings.wgsl
-#import shafts/beams/occluders.wgsl
-#import shafts/beams/lights.wgsl
-#import shafts/beams/shadow_maps.wgsl
+#import shafts/beams/plane_light.wgsl
 #import shafts/beams/phase.wgsl
 
 struct LatticePoint {
@@ -99,24 +97,10 @@ fn fragment(in: LatticePoint) -> @location(0) vec4<f32> {
         discard;
     }
     let point = dir * t;
-    let light = lights[in.light];
-    let path = light_path(light, point);
-    if !path.inside {
+    let lit = plane_light(lights[in.light], point);
+    if !lit.lit {
         discard;
     }
-    let seen = shadow_visibility(light, point, path.to_light, path.distance_m);
-    if seen <= 0.0 {
-        discard;
-    }
-    // A spot's cos^n falloff (the profile of `Light::beam`); the 1 / r^2 is in xi.
-    let axis_cosine = dot(-path.to_light, light.frame_z.xyz);
-    let profile = select(1.0, pow(axis_cosine, light.beam.z), light.kind == 1u);
-    let rgb = light_map_rgb(light, path.uv, path.wrap_u);
-    let transmission = vec3<f32>(
-        dot(params.channel_weights[0].xyz, rgb),
-        dot(params.channel_weights[1].xyz, rgb),
-        dot(params.channel_weights[2].xyz, rgb),
-    );
     let dt = planes.spacing_m.x / cos_forward;
-    return vec4<f32>(light.emission.xyz * profile * transmission * seen * in.xi * dt, 0.0);
+    return vec4<f32>(lit.light * in.xi * dt, 0.0);
 }

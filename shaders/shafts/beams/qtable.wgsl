@@ -14,9 +14,7 @@
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/qtable_bindings.wgsl
-#import shafts/beams/occluders.wgsl
-#import shafts/beams/lights.wgsl
-#import shafts/beams/shadow_maps.wgsl
+#import shafts/beams/plane_light.wgsl
 #import shafts/beams/q_table.wgsl
 
 struct PlaneSample {
@@ -72,22 +70,10 @@ fn fragment(in: PlaneSample) -> @location(0) vec4<f32> {
     }
     let point = dir * (t_k + f32(in.plane.z) * spacing);
     let light = lights[in.plane.x];
-    let path = light_path(light, point);
-    if !path.inside {
+    let lit = plane_light(light, point);
+    if !lit.lit {
         discard;
     }
-    let seen = shadow_visibility(light, point, path.to_light, path.distance_m);
-    if seen <= 0.0 {
-        discard;
-    }
-    let axis_cosine = dot(-path.to_light, light.frame_z.xyz);
-    let profile = select(1.0, pow(axis_cosine, light.beam.z), light.kind == 1u);
-    let rgb = light_map_rgb(light, path.uv, path.wrap_u);
-    let transmission = vec3<f32>(
-        dot(params.channel_weights[0].xyz, rgb),
-        dot(params.channel_weights[1].xyz, rgb),
-        dot(params.channel_weights[2].xyz, rgb),
-    );
-    let f_h = light.emission.xyz * profile * transmission * seen / f32(visible);
+    let f_h = lit.light / f32(visible);
     return vec4<f32>(f_h * f_l(light, dir, t_k, span), 0.0);
 }

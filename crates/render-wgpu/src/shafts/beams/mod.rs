@@ -16,6 +16,8 @@
 //!   `beams/methods/qtable2002/`;
 //! - [`ray_end_pass`]: where each pixel's ray ends, the planes' depth test;
 //! - [`blended_planes`]: the additive render pipeline the plane methods share;
+//! - [`planes_frame`]: one frame of a plane method: the scene uploaded, the ray end,
+//!   both bind groups, the additive pass and its GPU time;
 //! - [`scene_buffers`]: the packed scene uploaded, read by every pass;
 //! - [`image`]: the rendered radiance, tone-mapped as a planet frame is, read back.
 //!
@@ -28,6 +30,7 @@ pub mod gpu_scene;
 pub mod image;
 pub mod limits;
 pub mod march_pass;
+pub mod planes_frame;
 pub mod planes_pass;
 pub mod qtable_pass;
 pub mod ray_end_pass;

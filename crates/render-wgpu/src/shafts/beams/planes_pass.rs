@@ -12,14 +12,12 @@ use wgpu::util::DeviceExt;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
-use crate::gpu::pipeline::{in_stage, ordered_bind_group, texture_entry, uniform_entry};
-use crate::gpu::timer::GpuTimer;
-use crate::shafts::beams::blended_planes::{BlendedPlanes, begin_planes_pass};
+use crate::gpu::pipeline::{in_stage, texture_entry, uniform_entry};
+use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
-use crate::shafts::beams::limits;
+use crate::shafts::beams::planes_frame::PlanesFrame;
 use crate::shafts::beams::ray_end_pass::RayEndPass;
-use crate::shafts::beams::scene_buffers::SceneBuffers;
 
 /// The planes' own parameters (WGSL `PlanesParams`).
 #[repr(C)]
@@ -113,72 +111,29 @@ impl PlanesPass {
         gpu: &GpuContext,
         planes: &GpuPlanes,
     ) -> Result<(BeamImage, Option<f64>), RenderError> {
-        let scene = &planes.scene;
-        limits::check(scene, &gpu.device.limits())?;
-        let [width, height, ..] = scene.uniform.size_steps_lights;
         let [count, n, lights, _] = planes.planes.planes_lattice_lights;
-        let image = BeamImage::new(gpu, width, height);
-        let device = &gpu.device;
-        let buffers = SceneBuffers::new(gpu, scene);
-        let timer = GpuTimer::new(gpu, 2);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let ray_end = self.ray_end.encode(
+        let mut frame = PlanesFrame::begin(
             gpu,
-            &buffers,
-            (width, height),
-            &mut encoder,
-            timer.as_ref().map(|t| t.compute_writes(0)),
-        );
-        let ray_end_view = ray_end.create_view(&Default::default());
-        let scene_group = ordered_bind_group(
-            device,
-            Some("beams planes2000 scene"),
-            &self.planes.scene_layout,
-            &buffers.resources(),
-        );
-        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("beams planes2000 params"),
-            contents: bytemuck::bytes_of(&planes.planes),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let own_group = ordered_bind_group(
-            device,
-            Some("beams planes2000"),
-            &self.planes.own_layout,
-            &[
-                uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&ray_end_view),
-            ],
-        );
+            &self.ray_end,
+            &self.planes,
+            "beams planes2000",
+            &planes.scene,
+            bytemuck::bytes_of(&planes.planes),
+            &[],
+        )?;
         let indices = lattice_indices(n);
-        let index_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("beams lattice"),
-            contents: bytemuck::cast_slice(&indices),
-            usage: wgpu::BufferUsages::INDEX,
-        });
-        {
-            let target = image.radiance.create_view(&Default::default());
-            let mut pass = begin_planes_pass(
-                &mut encoder,
-                "beams planes2000",
-                &target,
-                timer.as_ref().map(|t| t.render_writes(1)),
-            );
-            pass.set_pipeline(&self.planes.pipeline);
-            pass.set_bind_group(0, &scene_group, &[]);
-            pass.set_bind_group(1, &own_group, &[]);
+        let index_buffer = gpu
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("beams lattice"),
+                contents: bytemuck::cast_slice(&indices),
+                usage: wgpu::BufferUsages::INDEX,
+            });
+        frame.draw(|pass| {
             pass.set_index_buffer(index_buffer.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..indices.len() as u32, 0, 0..count * lights);
-        }
-        if let Some(t) = &timer {
-            t.resolve(&mut encoder, 2);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        let ms = match &timer {
-            Some(t) => Some(t.read(gpu, 2)?.iter().sum()),
-            None => None,
-        };
-        Ok((image, ms))
+        });
+        frame.finish(gpu)
     }
 }
 

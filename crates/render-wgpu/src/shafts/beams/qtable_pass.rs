@@ -12,14 +12,12 @@ use wgpu::util::DeviceExt;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
-use crate::gpu::pipeline::{in_stage, ordered_bind_group, texture_entry, uniform_entry};
-use crate::gpu::timer::GpuTimer;
-use crate::shafts::beams::blended_planes::{BlendedPlanes, begin_planes_pass};
+use crate::gpu::pipeline::{in_stage, texture_entry, uniform_entry};
+use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
-use crate::shafts::beams::limits;
+use crate::shafts::beams::planes_frame::PlanesFrame;
 use crate::shafts::beams::ray_end_pass::RayEndPass;
-use crate::shafts::beams::scene_buffers::SceneBuffers;
 
 /// The table's parameters (WGSL `QtableParams`).
 #[repr(C)]
@@ -140,7 +138,7 @@ impl QtablePass {
         })
     }
 
-    /// Renders `qtable` after checking its scene and table against the device's limits;
+    /// Renders `qtable` after checking its table and scene against the device's limits;
     /// the two passes' GPU time in milliseconds, together, where the device has
     /// timestamps.
     pub fn render(
@@ -148,9 +146,7 @@ impl QtablePass {
         gpu: &GpuContext,
         qtable: &GpuQtable,
     ) -> Result<(BeamImage, Option<f64>), RenderError> {
-        let scene = &qtable.scene;
         let device = &gpu.device;
-        limits::check(scene, &device.limits())?;
         let [nu, nv, ..] = qtable.uniform.nodes;
         let side = device.limits().max_texture_dimension_2d;
         if nu > side || nv > side {
@@ -159,9 +155,6 @@ impl QtablePass {
                  (lower table_u or table_v)"
             )));
         }
-        let [width, height, ..] = scene.uniform.size_steps_lights;
-        let image = BeamImage::new(gpu, width, height);
-        let buffers = SceneBuffers::new(gpu, scene);
         let table = device.create_texture_with_data(
             &gpu.queue,
             &wgpu::TextureDescriptor {
@@ -181,38 +174,16 @@ impl QtablePass {
             wgpu::util::TextureDataOrder::LayerMajor,
             bytemuck::cast_slice(&qtable.table),
         );
-        let timer = GpuTimer::new(gpu, 2);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let ray_end = self.ray_end.encode(
-            gpu,
-            &buffers,
-            (width, height),
-            &mut encoder,
-            timer.as_ref().map(|t| t.compute_writes(0)),
-        );
-        let ray_end_view = ray_end.create_view(&Default::default());
         let table_view = table.create_view(&Default::default());
-        let scene_group = ordered_bind_group(
-            device,
-            Some("beams qtable2002 scene"),
-            &self.planes.scene_layout,
-            &buffers.resources(),
-        );
-        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("beams qtable2002 params"),
-            contents: bytemuck::bytes_of(&qtable.uniform),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let own_group = ordered_bind_group(
-            device,
-            Some("beams qtable2002"),
-            &self.planes.own_layout,
-            &[
-                uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&ray_end_view),
-                wgpu::BindingResource::TextureView(&table_view),
-            ],
-        );
+        let mut frame = PlanesFrame::begin(
+            gpu,
+            &self.ray_end,
+            &self.planes,
+            "beams qtable2002",
+            &qtable.scene,
+            bytemuck::bytes_of(&qtable.uniform),
+            &[wgpu::BindingResource::TextureView(&table_view)],
+        )?;
         let instances = (!qtable.instances.is_empty()).then(|| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("beams qtable2002 planes"),
@@ -220,30 +191,12 @@ impl QtablePass {
                 usage: wgpu::BufferUsages::VERTEX,
             })
         });
-        {
-            let target = image.radiance.create_view(&Default::default());
-            let mut pass = begin_planes_pass(
-                &mut encoder,
-                "beams qtable2002",
-                &target,
-                timer.as_ref().map(|t| t.render_writes(1)),
-            );
+        frame.draw(|pass| {
             if let Some(instances) = &instances {
-                pass.set_pipeline(&self.planes.pipeline);
-                pass.set_bind_group(0, &scene_group, &[]);
-                pass.set_bind_group(1, &own_group, &[]);
                 pass.set_vertex_buffer(0, instances.slice(..));
                 pass.draw(0..6, 0..qtable.instances.len() as u32);
             }
-        }
-        if let Some(t) = &timer {
-            t.resolve(&mut encoder, 2);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        let ms = match &timer {
-            Some(t) => Some(t.read(gpu, 2)?.iter().sum()),
-            None => None,
-        };
-        Ok((image, ms))
+        });
+        frame.finish(gpu)
     }
 }
