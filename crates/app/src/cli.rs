@@ -60,6 +60,12 @@ pub struct ViewArgs {
     /// play it.
     #[arg(long, value_name = "PATH.toml")]
     pub path: Option<PathBuf>,
+    /// Show this beams scene (docs/beams.md) instead of the planet.
+    #[arg(long, value_name = "FILE.toml", conflicts_with = "path")]
+    pub beams_scene: Option<PathBuf>,
+    /// The beam method for --beams-scene: march, planes2000 or qtable2002 [default: march].
+    #[arg(long, value_name = "METHOD", requires = "beams_scene")]
+    pub beams_method: Option<String>,
     /// Where and how to start, over the saved (or default) settings.
     #[command(flatten)]
     pub start: StartView,

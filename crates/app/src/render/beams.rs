@@ -57,6 +57,18 @@ pub fn gpu_method(flag: &str, model: Option<&str>) -> anyhow::Result<BeamMethodI
     Ok(id)
 }
 
+/// `exposure`, or where none is given the EV100 the log-average luminance of
+/// `radiance` (at 680, 550 and 440 nm) asks for, as `atmos record` meters a frame.
+pub fn exposure_ev100(exposure: Option<f64>, radiance: &[[f32; 4]]) -> anyhow::Result<f64> {
+    Ok(match exposure {
+        Some(ev) => ev,
+        None => metered_ev100(log_average_luminance(
+            luminance_weights(RGB_WAVELENGTHS_NM)?,
+            radiance,
+        )),
+    })
+}
+
 /// The planet flags given with a beams scene, which has no use for them.
 fn planet_flags(f: &Scene) -> Vec<&'static str> {
     [
@@ -125,13 +137,7 @@ pub fn run(path: &Path, f: &Scene, model: Option<&str>, out: &Path) -> anyhow::R
     let (image, gpu_ms) = renderer.render(&gpu)?;
     let radiance = image.read_radiance(&gpu)?;
     let elapsed = start.elapsed();
-    let ev100 = match f.exposure {
-        Some(ev) => ev,
-        None => metered_ev100(log_average_luminance(
-            luminance_weights(RGB_WAVELENGTHS_NM)?,
-            &radiance,
-        )),
-    };
+    let ev100 = exposure_ev100(f.exposure, &radiance)?;
     let size = (scene.camera.width_px, scene.camera.height_px);
     let mut text = vec![
         ("atmos:beam_method", id.to_string()),

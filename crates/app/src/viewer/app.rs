@@ -15,6 +15,8 @@ use render_wgpu::frame::plan::FramePlan;
 use render_wgpu::{Frame, GpuContext, Renderer};
 
 use crate::cli::ViewArgs;
+use crate::viewer::beams_mode::BeamsMode;
+use crate::viewer::beams_panel;
 use crate::viewer::cloud_settings::CloudSettings;
 use crate::viewer::cloud_state::CloudState;
 use crate::viewer::exposure::{AutoExposure, ExposureMode};
@@ -69,6 +71,8 @@ pub struct ViewerApp {
     args: ViewArgs,
     frames_shown: u32,
     failure: Arc<Mutex<Option<anyhow::Error>>>,
+    /// A beams scene shown instead of the planet, when chosen.
+    beams: BeamsMode,
 }
 
 impl std::fmt::Debug for ViewerApp {
@@ -117,7 +121,19 @@ impl ViewerApp {
             path.file = file.display().to_string();
             path.play_pause();
         }
+        let mut beams = BeamsMode::new();
+        if let Some(file) = &args.beams_scene {
+            if !beams.state.open(file) {
+                anyhow::bail!("--beams-scene: {}", beams.state.message);
+            }
+            let method =
+                crate::render::beams::gpu_method("--beams-method", args.beams_method.as_deref())?;
+            if let Some(edit) = beams.state.edit.as_mut() {
+                edit.method = method;
+            }
+        }
         Ok(ViewerApp {
+            beams,
             path,
             flight: settings.flight(),
             settings,
@@ -230,10 +246,15 @@ impl ViewerApp {
         if self.frames_shown > frames {
             return; // closing
         }
-        if let (Some(path), Some(frame)) = (&self.args.screenshot, &self.last_frame) {
-            let saved = screenshot::save_png(&self.renderer, frame, path)
-                .with_context(|| format!("cannot save the screenshot {}", path.display()));
-            match saved {
+        if let Some(path) = &self.args.screenshot {
+            let saved = if self.beams.state.active {
+                self.beams.save_png(path)
+            } else if let Some(frame) = &self.last_frame {
+                screenshot::save_png(&self.renderer, frame, path)
+            } else {
+                Err(anyhow::anyhow!("nothing rendered"))
+            };
+            match saved.with_context(|| format!("cannot save the screenshot {}", path.display())) {
                 Ok(()) => eprintln!("atmos view: saved {}", path.display()),
                 Err(e) => {
                     if let Ok(mut failure) = self.failure.lock() {
@@ -297,16 +318,33 @@ impl eframe::App for ViewerApp {
             table_bytes: self.renderer.table_bytes(),
             adapter: &self.adapter,
         };
+        let beams = &mut self.beams;
         let actions = egui::Panel::left("settings")
             .default_size(320.0)
             .show(ui, |ui| {
-                panel::show(
-                    ui,
-                    &mut self.settings,
-                    &mut self.path,
-                    &stats,
-                    &self.message,
-                )
+                beams_panel::scene_choice(ui, &mut beams.state, &beams.shipped);
+                if beams.state.active {
+                    let size = beams.shown.as_ref().map_or((0, 0), |p| p.size);
+                    let frame = (beams.frame_ms, size);
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        beams_panel::show(
+                            ui,
+                            &mut beams.state,
+                            &beams.view.stats,
+                            &beams.error,
+                            frame,
+                        );
+                    });
+                    panel::Actions::default()
+                } else {
+                    panel::show(
+                        ui,
+                        &mut self.settings,
+                        &mut self.path,
+                        &stats,
+                        &self.message,
+                    )
+                }
             })
             .inner;
         if self.settings.camera_position_m != before.camera_position_m
@@ -323,6 +361,15 @@ impl eframe::App for ViewerApp {
             let drag = response.drag_delta();
             input.yaw_rad = f64::from(drag.x) * LOOK_RAD_PER_POINT;
             input.pitch_rad = -f64::from(drag.y) * LOOK_RAD_PER_POINT;
+            if self.beams.state.active {
+                let moving = self.beams.fly(&input, dt) || response.dragged();
+                let size = render_size(size, ctx.pixels_per_point(), moving);
+                self.beams.paint(ui, self.renderer.gpu(), size, rect);
+                if moving {
+                    ctx.request_repaint();
+                }
+                return;
+            }
             let radius = self.settings.bottom_radius_m();
             // The camera stays above the terrain drawn (the renderer's heights; none before
             // its first frame with terrain, or with terrain off).

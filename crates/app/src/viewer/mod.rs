@@ -12,9 +12,18 @@
 //! keyframe of the view), [`path_editor`] (the keyframes, path files and playback) and
 //! [`path_panel`] (the panel's "Camera path" section); [`cloud_settings`],
 //! [`cloud_panel`] and [`cloud_state`] (the cloud layer's settings, its panel section,
-//! and what the renderer is given for it).
+//! and what the renderer is given for it); [`beams_edit`], [`beams_state`],
+//! [`beams_camera`], [`beams_view`], [`beams_mode`] and [`beams_panel`] (a beams scene
+//! instead of the planet: the file and its edits, the scene choice, the fly camera, the
+//! frame rendered, the view's part of the app, and the panel's sections).
 
 pub mod app;
+pub mod beams_camera;
+pub mod beams_edit;
+pub mod beams_mode;
+pub mod beams_panel;
+pub mod beams_state;
+pub mod beams_view;
 pub mod cloud_panel;
 pub mod cloud_settings;
 pub mod cloud_state;
@@ -51,6 +60,10 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     args.earth_data.source()?;
     if let Some(path) = &args.path {
         crate::camera_path::CameraPath::load(path)?;
+    }
+    if let Some(path) = &args.beams_scene {
+        crate::render::beams::gpu_method("--beams-method", args.beams_method.as_deref())?;
+        beams_edit::BeamsEdit::load(path).map_err(|e| anyhow::anyhow!("--beams-scene: {e}"))?;
     }
     let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
         .iter()

@@ -60,8 +60,17 @@ impl BeamScene {
             file: file.to_string(),
             reason: e.to_string(),
         })?;
-        let check = Check { file, folder };
-        check.scene(&parsed)
+        BeamScene::from_file(&parsed, file, folder)
+    }
+
+    /// The scene of a parsed (or edited) file, checked as a file's text is, named
+    /// `file` in messages, its paths relative to `folder`.
+    pub fn from_file(
+        parsed: &SceneFile,
+        file: &str,
+        folder: &Path,
+    ) -> Result<BeamScene, BeamError> {
+        Check { file, folder }.scene(parsed)
     }
 }
 

@@ -137,3 +137,43 @@ impl BeamRenderer {
         }
     }
 }
+
+/// The passes of the methods on the GPU, each made the first time its method renders:
+/// an interactive view re-prepares its scene as it changes without remaking pipelines.
+#[derive(Debug, Default)]
+pub struct BeamPasses {
+    march: Option<MarchPass>,
+    planes: Option<PlanesPass>,
+    qtable: Option<QtablePass>,
+}
+
+impl BeamPasses {
+    /// One frame of `packed` by its method's pass (made now if it was not); its GPU
+    /// time in milliseconds where the device has timestamps. The same image as
+    /// [`BeamRenderer::render`] of the same packing.
+    pub fn render(
+        &mut self,
+        gpu: &GpuContext,
+        packed: &PackedBeams,
+    ) -> Result<(BeamImage, Option<f64>), RenderError> {
+        match packed {
+            PackedBeams::March(scene) => {
+                made(&mut self.march, || MarchPass::new(gpu))?.render(gpu, scene)
+            }
+            PackedBeams::Planes2000(planes) => {
+                made(&mut self.planes, || PlanesPass::new(gpu))?.render(gpu, planes)
+            }
+            PackedBeams::Qtable2002(qtable) => {
+                made(&mut self.qtable, || QtablePass::new(gpu))?.render(gpu, qtable)
+            }
+        }
+    }
+}
+
+/// The pass in `slot`, made by `make` where there is none yet.
+fn made<P, E>(slot: &mut Option<P>, make: impl FnOnce() -> Result<P, E>) -> Result<&P, E> {
+    Ok(match slot {
+        Some(pass) => pass,
+        None => slot.insert(make()?),
+    })
+}
