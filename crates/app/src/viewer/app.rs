@@ -255,7 +255,12 @@ impl ViewerApp {
                 Err(anyhow::anyhow!("nothing rendered"))
             };
             match saved.with_context(|| format!("cannot save the screenshot {}", path.display())) {
-                Ok(()) => eprintln!("atmos view: saved {}", path.display()),
+                Ok(()) => {
+                    if self.beams.state.active {
+                        eprintln!("atmos view: {}", self.beams.summary());
+                    }
+                    eprintln!("atmos view: saved {}", path.display())
+                }
                 Err(e) => {
                     if let Ok(mut failure) = self.failure.lock() {
                         *failure = Some(e);

@@ -104,6 +104,25 @@ impl BeamsMode {
         }
     }
 
+    /// The last frame's method, plan, steps and times in one line.
+    pub fn summary(&self) -> String {
+        let stats = &self.view.stats;
+        let method = self.state.edit.as_ref().map(|e| e.method.to_string());
+        let (w, h) = self.shown.as_ref().map_or((0, 0), |p| p.size);
+        let gpu = stats
+            .gpu_ms
+            .map_or("no timestamps".into(), |ms| format!("{ms:.1} ms"));
+        format!(
+            "beams {} at {w}x{h}: plan {}; steps: {}; prepared in {:.1} ms, GPU {gpu}, \
+             frame {:.1} ms",
+            method.unwrap_or_default(),
+            stats.plan,
+            stats.steps,
+            stats.prepare_ms,
+            self.frame_ms
+        )
+    }
+
     /// The frame shown as a PNG at `path`.
     pub fn save_png(&self, path: &Path) -> anyhow::Result<()> {
         let Some(shown) = &self.shown else {
