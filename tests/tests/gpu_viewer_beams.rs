@@ -80,3 +80,42 @@ fn the_viewers_beams_frame_is_atmos_renders_image() {
         assert!(sum(&darker.pixels) < sum(&shown.pixels), "{id}");
     }
 }
+
+#[test]
+fn the_viewer_shows_the_planners_skips_and_names_a_refused_setting_once() {
+    let Some(gpu) = gpu_or_skip("viewer beams") else {
+        return;
+    };
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/beams/sphere_spotlight.toml");
+    let mut state = BeamsState::default();
+    assert!(state.open(&path), "{}", state.message);
+    let edit = state.edit.as_mut().unwrap();
+    edit.density = 0.0;
+    edit.settings = "steps=16 shadow_map_px=64".into();
+    let (scene, settings) = state.frame_scene(32, 18).unwrap();
+    let mut view = BeamsView::default();
+    let id = state.edit.as_ref().unwrap().method;
+    let shown = view
+        .render(&gpu, &scene, id, &settings, Some(0.0))
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        view.stats.plan,
+        "lights[0] skipped (the medium scatters nothing)"
+    );
+    assert!(shown.pixels.iter().all(|p| p[..3] == [0, 0, 0]));
+    // A setting the method refuses: named, and the same error again without preparing.
+    state.edit.as_mut().unwrap().settings = "steps=0".into();
+    let (scene, settings) = state.frame_scene(32, 18).unwrap();
+    let first = view
+        .render(&gpu, &scene, id, &settings, None)
+        .unwrap_err()
+        .to_string();
+    assert!(first.contains("steps"), "{first}");
+    let again = view
+        .render(&gpu, &scene, id, &settings, None)
+        .unwrap_err()
+        .to_string();
+    assert_eq!(first, again);
+}
