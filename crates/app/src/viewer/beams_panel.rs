@@ -15,49 +15,51 @@ use crate::viewer::beams_view::BeamsStats;
 
 /// The "Scene" section: the planet, a shipped beams scene of `shipped`, or a file.
 pub fn scene_choice(ui: &mut egui::Ui, state: &mut BeamsState, shipped: &[PathBuf]) {
-    ui.collapsing("Scene", |ui| {
-        let current = match (&state.edit, state.active) {
-            (Some(edit), true) => file_name(&edit.path),
-            _ => "planet".to_string(),
-        };
-        let mut chosen: Option<Option<PathBuf>> = None;
-        egui::ComboBox::from_label("scene")
-            .selected_text(current)
-            .show_ui(ui, |ui| {
-                if ui.selectable_label(!state.active, "planet").clicked() {
-                    chosen = Some(None);
-                }
-                for path in shipped {
-                    let shown =
-                        state.active && state.edit.as_ref().is_some_and(|e| e.path == *path);
-                    if ui.selectable_label(shown, file_name(path)).clicked() {
-                        chosen = Some(Some(path.clone()));
+    egui::CollapsingHeader::new("Scene")
+        .default_open(true)
+        .show(ui, |ui| {
+            let current = match (&state.edit, state.active) {
+                (Some(edit), true) => file_name(&edit.path),
+                _ => "planet".to_string(),
+            };
+            let mut chosen: Option<Option<PathBuf>> = None;
+            egui::ComboBox::from_label("scene")
+                .selected_text(current)
+                .show_ui(ui, |ui| {
+                    if ui.selectable_label(!state.active, "planet").clicked() {
+                        chosen = Some(None);
                     }
-                }
-            })
-            .response
-            .on_hover_text(
-                "planet: the atmosphere of the other sections; a beams scene: lights through \
+                    for path in shipped {
+                        let shown =
+                            state.active && state.edit.as_ref().is_some_and(|e| e.path == *path);
+                        if ui.selectable_label(shown, file_name(path)).clicked() {
+                            chosen = Some(Some(path.clone()));
+                        }
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "planet: the atmosphere of the other sections; a beams scene: lights through \
                  fog with shadows in the air (docs/beams.md)",
-            );
-        ui.horizontal(|ui| {
-            ui.text_edit_singleline(&mut state.path_field)
-                .on_hover_text("A beams scene file (TOML, docs/beams.md)");
-            if ui.button("open").clicked() {
-                chosen = Some(Some(PathBuf::from(state.path_field.trim())));
+                );
+            ui.horizontal(|ui| {
+                ui.text_edit_singleline(&mut state.path_field)
+                    .on_hover_text("A beams scene file (TOML, docs/beams.md)");
+                if ui.button("open").clicked() {
+                    chosen = Some(Some(PathBuf::from(state.path_field.trim())));
+                }
+            });
+            match chosen {
+                Some(None) => state.show_planet(),
+                Some(Some(path)) => {
+                    state.open(&path);
+                }
+                None => {}
+            }
+            if !state.message.is_empty() {
+                ui.colored_label(egui::Color32::LIGHT_RED, &state.message);
             }
         });
-        match chosen {
-            Some(None) => state.show_planet(),
-            Some(Some(path)) => {
-                state.open(&path);
-            }
-            None => {}
-        }
-        if !state.message.is_empty() {
-            ui.colored_label(egui::Color32::LIGHT_RED, &state.message);
-        }
-    });
 }
 
 fn file_name(path: &Path) -> String {
@@ -79,23 +81,25 @@ pub fn show(
     let Some(edit) = state.edit.as_mut() else {
         return;
     };
-    ui.collapsing("Beam method", |ui| {
-        egui::ComboBox::from_label("method")
-            .selected_text(edit.method.to_string())
-            .show_ui(ui, |ui| {
-                for id in GPU_BEAM_METHODS {
-                    ui.selectable_value(&mut edit.method, id, id.to_string());
-                }
-            })
-            .response
-            .on_hover_text(method_help(edit.method));
-        ui.horizontal(|ui| {
-            ui.label("settings");
-            ui.text_edit_singleline(&mut edit.settings).on_hover_text(
-                "key=value separated by spaces, e.g. steps=64 (docs/beams/<method>.md)",
-            );
+    egui::CollapsingHeader::new("Beam method")
+        .default_open(true)
+        .show(ui, |ui| {
+            egui::ComboBox::from_label("method")
+                .selected_text(edit.method.to_string())
+                .show_ui(ui, |ui| {
+                    for id in GPU_BEAM_METHODS {
+                        ui.selectable_value(&mut edit.method, id, id.to_string());
+                    }
+                })
+                .response
+                .on_hover_text(method_help(edit.method));
+            ui.horizontal(|ui| {
+                ui.label("settings");
+                ui.text_edit_singleline(&mut edit.settings).on_hover_text(
+                    "key=value separated by spaces, e.g. steps=64 (docs/beams/<method>.md)",
+                );
+            });
         });
-    });
     ui.collapsing("Medium", |ui| {
         ui.add(
             egui::Slider::new(&mut edit.density, DENSITY_RANGE[0]..=DENSITY_RANGE[1])
@@ -123,27 +127,29 @@ pub fn show(
             ui.label(format!("metered EV100 {:.2}", stats.ev100));
         }
     });
-    ui.collapsing("Beams stats", |ui| {
-        let (ms, (w, h)) = frame;
-        ui.label(format!("frame {ms:.1} ms at {w}x{h}"))
-            .on_hover_text("Wall time of the last frame that changed, and its size");
-        ui.label(format!("plan: {}", stats.plan)).on_hover_text(
-            "The planner (atmosphere-core's beams/plan.rs): a light whose beam stays outside \
+    egui::CollapsingHeader::new("Beams stats")
+        .default_open(true)
+        .show(ui, |ui| {
+            let (ms, (w, h)) = frame;
+            ui.label(format!("frame {ms:.1} ms at {w}x{h}"))
+                .on_hover_text("Wall time of the last frame that changed, and its size");
+            ui.label(format!("plan: {}", stats.plan)).on_hover_text(
+                "The planner (atmosphere-core's beams/plan.rs): a light whose beam stays outside \
              the view, or in a medium that scatters nothing, is skipped",
-        );
-        ui.label(format!("steps: {}", stats.steps));
-        let gpu = stats
-            .gpu_ms
-            .map_or("no timestamps".into(), |ms| format!("{ms:.1} ms"));
-        ui.label(format!(
-            "prepared on the CPU in {:.1} ms; GPU {gpu}",
-            stats.prepare_ms
-        ))
-        .on_hover_text(
-            "Preparing (plan, shadow maps, planes, tables) runs only when the scene, camera, \
+            );
+            ui.label(format!("steps: {}", stats.steps));
+            let gpu = stats
+                .gpu_ms
+                .map_or("no timestamps".into(), |ms| format!("{ms:.1} ms"));
+            ui.label(format!(
+                "prepared on the CPU in {:.1} ms; GPU {gpu}",
+                stats.prepare_ms
+            ))
+            .on_hover_text(
+                "Preparing (plan, shadow maps, planes, tables) runs only when the scene, camera, \
              size, method or settings change; the GPU time is of the method's passes",
-        );
-    });
+            );
+        });
     if !error.is_empty() {
         ui.colored_label(egui::Color32::LIGHT_RED, error);
     }
