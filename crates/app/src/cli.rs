@@ -66,6 +66,10 @@ pub struct ViewArgs {
     /// The beam method for --beams-scene: march, planes2000 or qtable2002 [default: march].
     #[arg(long, value_name = "METHOD", requires = "beams_scene")]
     pub beams_method: Option<String>,
+    /// A setting of the beam method for --beams-scene, KEY=VALUE (repeat the flag; keys
+    /// in docs/beams/).
+    #[arg(long, value_name = "KEY=VALUE", requires = "beams_scene")]
+    pub beams_set: Vec<String>,
     /// Where and how to start, over the saved (or default) settings.
     #[command(flatten)]
     pub start: StartView,

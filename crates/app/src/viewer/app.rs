@@ -130,6 +130,7 @@ impl ViewerApp {
                 crate::render::beams::gpu_method("--beams-method", args.beams_method.as_deref())?;
             if let Some(edit) = beams.state.edit.as_mut() {
                 edit.method = method;
+                edit.settings = args.beams_set.join(" ");
             }
         }
         Ok(ViewerApp {

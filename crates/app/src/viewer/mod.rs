@@ -63,7 +63,11 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.beams_scene {
         crate::render::beams::gpu_method("--beams-method", args.beams_method.as_deref())?;
-        beams_edit::BeamsEdit::load(path).map_err(|e| anyhow::anyhow!("--beams-scene: {e}"))?;
+        let mut edit =
+            beams_edit::BeamsEdit::load(path).map_err(|e| anyhow::anyhow!("--beams-scene: {e}"))?;
+        edit.settings = args.beams_set.join(" ");
+        edit.beam_settings()
+            .map_err(|e| anyhow::anyhow!("--beams-set: {e}"))?;
     }
     let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
         .iter()
