@@ -25,6 +25,7 @@ use super::cube_sphere::direction;
 use super::geomorph::{MorphEnds, morph_role, target_pair, vertex_factor};
 use super::height_field::HeightField;
 use super::lod::SelectedChunk;
+use super::normal_map::NormalMap;
 use super::stitching::stitched_indices;
 use super::surface::TerrainSurface;
 
@@ -52,6 +53,8 @@ pub struct ChunkMesh {
     pub morph_heights_m: Vec<f32>,
     /// Counter-clockwise triangles (seen from outside), stitched to coarser neighbours.
     pub indices: Vec<u32>,
+    /// The relief's normals finer than the mesh (`normal_map.rs`).
+    pub normal_map: NormalMap,
 }
 
 /// Point (i, j) of a chunk's grid extended by one cell on every side (`side` points
@@ -126,6 +129,7 @@ impl ChunkMesh {
             morph_offsets,
             morph_heights_m,
             indices: stitched_indices(cells, chunk.coarser),
+            normal_map: NormalMap::build(surface, key, cells),
         }
     }
 
