@@ -129,7 +129,9 @@ impl ChunkMesh {
             morph_offsets,
             morph_heights_m,
             indices: stitched_indices(cells, chunk.coarser),
-            normal_map: NormalMap::build(surface, key, cells),
+            normal_map: NormalMap::build_sharing(surface, key, cells, |i, j| {
+                grid_point(&grid, side, i, j)
+            }),
         }
     }
 

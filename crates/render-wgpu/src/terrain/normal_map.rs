@@ -35,17 +35,40 @@ pub struct NormalMap {
 }
 
 impl NormalMap {
-    /// The map of chunk `key`, meshed with `cells` cells along a side, on `surface`.
+    /// The map of chunk `key`, meshed with `cells` cells along a side, on `surface`,
+    /// every texel corner evaluated.
     pub fn build<H: HeightField>(
         surface: &TerrainSurface<H>,
         key: ChunkKey,
         cells: u32,
     ) -> NormalMap {
         let texels = TEXELS_PER_CELL * cells;
+        let per_cell = i64::from(TEXELS_PER_CELL);
+        let vertex = |i: i64, j: i64| {
+            let (u, v) = key.vertex_uv(texels, per_cell * i, per_cell * j);
+            surface.position_m(direction(key.face, u, v))
+        };
+        NormalMap::build_sharing(surface, key, cells, vertex)
+    }
+
+    /// The same map, taking the texel corners that are mesh vertices, (2i, 2j), from
+    /// `vertex(i, j)` (the mesh's positions, planet-centred, which are the same bits):
+    /// a quarter of the corners are not evaluated again.
+    pub fn build_sharing<H: HeightField>(
+        surface: &TerrainSurface<H>,
+        key: ChunkKey,
+        cells: u32,
+        vertex: impl Fn(i64, i64) -> DVec3,
+    ) -> NormalMap {
+        let texels = TEXELS_PER_CELL * cells;
         let side = texels as usize + 1;
+        let per_cell = i64::from(TEXELS_PER_CELL);
         let corners: Vec<DVec3> = (0..=texels as i64)
             .flat_map(|b| (0..=texels as i64).map(move |a| (a, b)))
             .map(|(a, b)| {
+                if a % per_cell == 0 && b % per_cell == 0 {
+                    return vertex(a / per_cell, b / per_cell);
+                }
                 let (u, v) = key.vertex_uv(texels, a, b);
                 surface.position_m(direction(key.face, u, v))
             })
@@ -192,6 +215,19 @@ mod tests {
         // slope reaches 10 sin(0.76 pi) / 152.4 m = 0.0446: 2.55 deg.
         let max_tilt = tilts.iter().copied().fold(0.0, f64::max).to_degrees();
         assert!((max_tilt - 2.55).abs() < 0.1, "{max_tilt}");
+    }
+
+    #[test]
+    fn the_mesh_vertices_shared_give_the_same_map_bit_for_bit() {
+        use super::super::chunk_mesh::ChunkMesh;
+        use super::super::lod::SelectedChunk;
+        let surface = TerrainSurface::new(Ripples, R);
+        let chunk = SelectedChunk {
+            key: key(),
+            coarser: [false; 4],
+        };
+        let mesh = ChunkMesh::build(&surface, &chunk, 8);
+        assert_eq!(mesh.normal_map, NormalMap::build(&surface, key(), 8));
     }
 
     #[test]
