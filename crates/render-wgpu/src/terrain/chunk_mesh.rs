@@ -212,6 +212,18 @@ mod tests {
         }
     }
 
+    #[test]
+    fn the_normal_map_built_with_the_mesh_vertices_equals_the_one_evaluated_alone() {
+        let surface = TerrainSurface::new(Waves, R);
+        let key = ChunkKey::root(super::super::cube_sphere::Face(2)).children()[3].children()[0];
+        let chunk = SelectedChunk {
+            key,
+            coarser: [false; 4],
+        };
+        let mesh = ChunkMesh::build(&surface, &chunk, 8);
+        assert_eq!(mesh.normal_map, NormalMap::build(&surface, key, 8));
+    }
+
     fn bits(p: DVec3) -> [u64; 3] {
         p.to_array().map(f64::to_bits)
     }

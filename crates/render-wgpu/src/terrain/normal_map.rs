@@ -218,19 +218,6 @@ mod tests {
     }
 
     #[test]
-    fn the_mesh_vertices_shared_give_the_same_map_bit_for_bit() {
-        use super::super::chunk_mesh::ChunkMesh;
-        use super::super::lod::SelectedChunk;
-        let surface = TerrainSurface::new(Ripples, R);
-        let chunk = SelectedChunk {
-            key: key(),
-            coarser: [false; 4],
-        };
-        let mesh = ChunkMesh::build(&surface, &chunk, 8);
-        assert_eq!(mesh.normal_map, NormalMap::build(&surface, key(), 8));
-    }
-
-    #[test]
     fn samples_between_texel_centres_are_bilinear_and_clamped_at_the_edges() {
         let map = NormalMap {
             texels: 2,

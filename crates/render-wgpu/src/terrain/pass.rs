@@ -4,8 +4,8 @@
 //!
 //! Each frame: the quadtree's chunks for the camera ([`select_chunks`], screen-space
 //! error), those whose bounding sphere meets the view pyramid ([`Frustum`]), their meshes
-//! (built on first use and kept while drawn, `chunk_cache.rs`; a changed exaggeration
-//! rebuilds them), and one draw per chunk with its `origin - camera` offset computed in
+//! and normal maps (built on first use and kept while drawn, `chunk_cache.rs`; a changed
+//! exaggeration rebuilds them), and one draw per chunk with its `origin - camera` offset computed in
 //! f64 and its morph ends (`geomorph.rs`). Offline (`TerrainOptions::wait_for_chunks`)
 //! the frame builds every missing mesh in parallel before drawing, so its image depends
 //! on nothing but the frame; interactive, the meshes are built off the render thread
