@@ -7,7 +7,8 @@
 // below 0 (the refined coastline, `sea_colour.rs`); the land's colour gets rock on steep
 // slopes and snow above the season's snow line (`land_albedo`). CPU twins: the meshes
 // are built by render-wgpu's `terrain/`; the projection is `Frame::pixel_ray`'s; the
-// land's colour is atmosphere-core's `geo/land_cover.rs`. No paper.
+// land's colour is atmosphere-core's `geo/land_cover.rs`; the normal map's sample and
+// fade are `terrain/normal_map.rs`'s. No paper.
 //
 // Camera-relative: a vertex is its chunk's offset `origin - camera` (f64 on the CPU,
 // rounded to f32) plus its f32 offset from the origin, so positions near the camera are
@@ -24,7 +25,7 @@ struct TerrainParams {
     up: vec4<f32>,
     forward: vec4<f32>,
     // x: the near plane's distance, m; y: where a morph begins, as a fraction of its end
-    // (`geomorph.rs`'s MORPH_START).
+    // (`geomorph.rs`'s MORPH_START); z: pixels per radian (the normal maps' fade).
     near: vec4<f32>,
     // rgb: the water's albedo.
     sea_albedo: vec4<f32>,
@@ -41,7 +42,8 @@ struct TerrainParams {
 struct Chunk {
     // xyz: the chunk's origin minus the camera, m.
     offset: vec4<f32>,
-    // xyz: the chunk's origin, planet-centred, m (for latitude and longitude).
+    // xyz: the chunk's origin, planet-centred, m (for latitude and longitude); w: a
+    // normal-map texel's side, m.
     origin: vec4<f32>,
     // x, y: where the chunk's own and its coarser neighbours' morphs end, m (0: none);
     // z: the edges bordering a coarser chunk as bits (1 << Edge: u min, u max, v min,
@@ -53,6 +55,10 @@ struct Chunk {
 @group(0) @binding(1) var<storage, read> chunks: array<Chunk>;
 @group(0) @binding(2) var colour_map: texture_2d<f32>;
 @group(0) @binding(3) var colour_sampler: sampler;
+// The drawn chunk's normal map (`normal_map.rs`): xyz the refined relief's normal at
+// twice the mesh's resolution, clamped bilinear.
+@group(1) @binding(0) var normal_map: texture_2d<f32>;
+@group(1) @binding(1) var normal_sampler: sampler;
 
 const TAU: f32 = 6.28318530717959;
 const PI: f32 = 3.14159265358979;
@@ -66,6 +72,10 @@ struct VertexOut {
     @location(2) normal: vec3<f32>,
     // The height field's height, m (below 0: water).
     @location(3) height: f32,
+    // The chunk coordinate (i, j) / cells of the vertex, for the normal map.
+    @location(4) chunk_uv: vec2<f32>,
+    // A normal-map texel's side, m.
+    @location(5) @interpolate(flat) texel: f32,
 }
 
 // Geomorphing (render-wgpu's `terrain/geomorph.rs`, `morph_factor` and `morph_role`;
@@ -109,6 +119,9 @@ fn vertex_main(
     out.planet = c.origin.xyz + position;
     out.normal = normal;
     out.height = height;
+    let cells = u32(c.morph.w);
+    out.chunk_uv = vec2<f32>(f32(index % (cells + 1u)), f32(index / (cells + 1u))) / c.morph.w;
+    out.texel = c.origin.w;
     return out;
 }
 
@@ -150,9 +163,15 @@ fn fragment_main(in: VertexOut) -> SurfaceOut {
     let uv = map_uv(in.planet);
     let colour = textureSampleGrad(colour_map, colour_sampler, uv,
         unwrap_derivative(dpdx(uv)), unwrap_derivative(dpdy(uv)));
-    let normal = normalize(in.normal);
+    // The normal map where its texels cover 2 pixels or more, the mesh's normal where
+    // they cover 1 or less (`normal_map::detail_weight`, `shading_normal`).
+    let distance = length(in.relative);
+    let weight = clamp(in.texel * terrain.near.z / distance - 1.0, 0.0, 1.0);
+    let mesh = normalize(in.normal);
+    let map = normalize(textureSample(normal_map, normal_sampler, in.chunk_uv).xyz);
+    let normal = normalize(mesh + (map - mesh) * weight);
     var out: SurfaceOut;
-    out.geometry = vec4<f32>(normal, length(in.relative));
+    out.geometry = vec4<f32>(normal, distance);
     let water = in.height < 0.0;
     let land = land_albedo(colour.rgb, in.planet, in.height, normal);
     out.albedo = select(vec4<f32>(land, 1.0), vec4<f32>(terrain.sea_albedo.rgb, 0.0), water);

@@ -22,6 +22,7 @@ use render_wgpu::terrain::chunk_key::ChunkKey;
 use render_wgpu::terrain::geo_grid::lat_lon;
 use render_wgpu::terrain::geomorph::MorphEnds;
 use render_wgpu::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
+use render_wgpu::terrain::normal_map::{detail_weight, shading_normal, texel_size_m};
 use render_wgpu::terrain::sea_colour::open_sea_albedo;
 use render_wgpu::terrain::{ChunkMesh, EarthData, HeightField, RefinedHeights, TerrainSurface};
 use support::{frame, renderer_or_skip};
@@ -107,10 +108,11 @@ impl CpuTerrain {
         }
     }
 
-    /// Nearest hit: distance, interpolated unit normal, hit point, interpolated height of
-    /// the height field.
-    fn cast(&mut self, origin: DVec3, dir: DVec3) -> Option<(f64, DVec3, DVec3, f64)> {
-        let mut best: Option<(f64, DVec3, DVec3, f64)> = None;
+    /// Nearest hit: distance, shading normal (the interpolated mesh normal with the
+    /// normal map's detail), hit point, interpolated height of the height field, and the
+    /// detail: how far the shading normal is from the mesh's.
+    fn cast(&mut self, origin: DVec3, dir: DVec3) -> Option<(f64, DVec3, DVec3, f64, f64)> {
+        let mut best: Option<(f64, DVec3, DVec3, f64, f64)> = None;
         for chunk in &self.chunks {
             let mesh = self
                 .meshes
@@ -134,10 +136,23 @@ impl CpuTerrain {
                 {
                     let n =
                         [0, 1, 2].map(|k| glam::Vec3::from(mesh.normals[t[k] as usize]).as_dvec3());
-                    let normal = (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize();
+                    let interpolated = n[0] * (1.0 - u - v) + n[1] * u + n[2] * v;
+                    // The normal map at the chunk coordinate (i, j) / cells, faded by the
+                    // texel's size in pixels (`normal_map.rs`).
+                    let cells = mesh.cells;
+                    let chunk_uv = [0, 1, 2].map(|k| {
+                        let (i, j) = (t[k] % (cells + 1), t[k] / (cells + 1));
+                        DVec3::new(f64::from(i), f64::from(j), 0.0) / f64::from(cells)
+                    });
+                    let st = chunk_uv[0] * (1.0 - u - v) + chunk_uv[1] * u + chunk_uv[2] * v;
+                    let map = mesh.normal_map.sample(st.x, st.y);
+                    let texel = texel_size_m(self.surface.radius_m, cells, chunk.key.level);
+                    let weight = detail_weight(texel, self.view.pixels_per_radian, d);
+                    let normal = shading_normal(interpolated, map, weight);
                     let h = [0, 1, 2].map(|k| mesh.morphed_height_m(t[k], m[k]));
                     let height = h[0] * (1.0 - u - v) + h[1] * u + h[2] * v;
-                    best = Some((d, normal, origin + dir * d, height));
+                    let detail = (normal - interpolated.normalize()).length();
+                    best = Some((d, normal, origin + dir * d, height, detail));
                 }
             }
         }
@@ -151,8 +166,12 @@ impl CpuTerrain {
 /// against an exact ray), at most `max_edge_fraction` of them. `near_albedo`: whether
 /// some hits lie within 20 km, where the albedo is compared with the full-resolution map,
 /// or with the water's albedo where the interpolated height is below 0. Returns the
-/// numbers of water pixels and of land pixels under rock or snow compared (`None`: no
-/// GPU, skipped).
+/// numbers of water pixels, of land pixels under rock or snow, and of pixels whose
+/// normal the normal map turns by more than [`MIN_DETAIL`] from the mesh's, compared
+/// (`None`: no GPU, skipped).
+/// A normal's change by the normal map that counts as detail (about 1.1 deg).
+const MIN_DETAIL: f64 = 0.02;
+
 fn check_surface(
     name: &str,
     f: &Frame,
@@ -160,7 +179,7 @@ fn check_surface(
     max_distance: f64,
     max_edge_fraction: f64,
     near_albedo: bool,
-) -> Option<(usize, usize)> {
+) -> Option<(usize, usize, usize)> {
     let mut renderer = renderer_or_skip(name)?;
     let plan = renderer.render(f).unwrap();
     assert!(plan.runs("terrain"), "{plan}");
@@ -170,7 +189,7 @@ fn check_surface(
     let heights = &cpu.surface.heights;
     let sea = open_sea_albedo(&colours, &heights.data, heights.mask.as_ref());
     let snow_line = SnowLine::for_declination(f.sun_direction.normalize().z.asin());
-    let (mut water, mut covered) = (0, 0);
+    let (mut water, mut covered, mut detailed) = (0, 0, 0);
     let (mut compared, mut edges, mut worst_distance, mut worst_normal, mut worst_albedo) =
         (0, 0, 0.0f64, 0.0f64, 0.0f64);
     let mut albedos = 0;
@@ -179,7 +198,8 @@ fn check_surface(
             let texel = texels[(row * f.width + column) as usize];
             let ray = f.pixel_ray(column, row);
             let hit = cpu.cast(ray.origin_m, ray.direction);
-            let Some((distance, normal, point, height)) = hit.filter(|_| texel.distance_m > 0.0)
+            let Some((distance, normal, point, height, detail)) =
+                hit.filter(|_| texel.distance_m > 0.0)
             else {
                 if hit.is_some() != (texel.distance_m > 0.0) {
                     edges += 1;
@@ -187,6 +207,7 @@ fn check_surface(
                 continue;
             };
             compared += 1;
+            detailed += usize::from(detail > MIN_DETAIL);
             let gpu_distance = f64::from(texel.distance_m);
             worst_distance = worst_distance.max((gpu_distance - distance).abs() / distance);
             let gpu_normal = glam::Vec3::from(texel.normal).as_dvec3();
@@ -242,12 +263,16 @@ fn check_surface(
         worst_distance < max_distance,
         "{name}: distance {worst_distance:e}"
     );
-    // The rasteriser interpolates the normal linearly; the CPU the same, then normalises.
+    // The rasteriser interpolates the normal linearly; the CPU the same, then normalises;
+    // the normal map's f16 texels and the sampler's filter weights add theirs.
     assert!(worst_normal < 2e-3, "{name}: normal {worst_normal:e}");
     // Bilinear sRGB filtering in 8 bits against the CPU's f64.
     assert!(worst_albedo < 6e-3, "{name}: albedo {worst_albedo:e}");
-    println!("{name}: {water} water pixels, {covered} under rock or snow");
-    Some((water, covered))
+    println!(
+        "{name}: {water} water pixels, {covered} under rock or snow, {detailed} shaded by the \
+         normal map's detail"
+    );
+    Some((water, covered, detailed))
 }
 
 #[test]
@@ -257,7 +282,25 @@ fn terrain_over_the_alps_matches_the_cpu_meshes() {
     let counts = check_surface("Alps from 11 km", &f, 3, 4e-5, 0.05, true);
     // No sea; rock and snow on the near slopes.
     assert!(
-        counts.is_none_or(|(water, covered)| water == 0 && covered > 10),
+        counts.is_none_or(|(water, covered, _)| water == 0 && covered > 10),
+        "{counts:?}"
+    );
+}
+
+#[test]
+fn the_normal_maps_detail_shades_the_ground_two_metres_up_as_the_cpu_says() {
+    // 2 m above a slope of the Pennine Alps (the 2 m golden's place), looking down it: the
+    // normal map turns the shading normal away from the mesh's within its cells; without
+    // the map on the GPU its normals would miss the CPU's by as much.
+    let mut f = terrain_frame(46.0, 7.8, view(0.0, 97.0, 40.0), 60.0, 64, 36);
+    f.terrain = Some(TerrainOptions::default());
+    let up = f.camera_position_m.normalize();
+    let cpu = CpuTerrain::new(&f);
+    let ground = cpu.surface.elevation_m(up);
+    f.camera_position_m = up * (f.atmosphere.bottom_radius_m + ground + 2.0);
+    let counts = check_surface("2 m over the Alps", &f, 2, 1.2e-4, 0.05, true);
+    assert!(
+        counts.is_none_or(|(_, _, detailed)| detailed > 100),
         "{counts:?}"
     );
 }
@@ -274,7 +317,7 @@ fn terrain_a_metre_above_the_ground_matches_the_cpu_meshes() {
     // Rays graze metre-scale facets a few metres away, geomorphing within the band: the
     // GPU's f32 morph departs from the CPU's by a fraction of a millimetre there.
     let counts = check_surface("1.5 m over the Sahara", &f, 2, 1.2e-4, 0.05, true);
-    assert!(counts.is_none_or(|(water, _)| water == 0), "{counts:?}");
+    assert!(counts.is_none_or(|(water, ..)| water == 0), "{counts:?}");
 }
 
 #[test]

@@ -193,6 +193,15 @@ pub struct BenchArgs {
     /// models' tables.
     #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["beams_scene", "flight"])]
     pub optics_scene: Option<PathBuf>,
+    /// A scene with terrain, e.g. assets/scenes/default.toml: time its terrain pass
+    /// against its model's sky pass in the same frames at --width x --height, instead of
+    /// the models' tables (docs/terrain.md, "Cost of the refinement").
+    #[arg(
+        long,
+        value_name = "FILE.toml",
+        conflicts_with_all = ["beams_scene", "flight", "optics_scene"]
+    )]
+    pub terrain_scene: Option<PathBuf>,
     /// Also write the tables to this Markdown file (atomically).
     #[arg(long, value_name = "FILE.md")]
     pub out: Option<PathBuf>,

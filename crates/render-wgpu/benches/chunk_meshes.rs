@@ -1,8 +1,9 @@
 //! What the refined relief costs on the CPU: building the chunk meshes of the default
 //! scene's view (3 km above the Pennine Alps, 1280 x 720, 60 degrees) on the refined
 //! heights against the same chunks on the data's bilinear heights, and choosing the
-//! chunks (`select_chunks`) on each, on one thread; rounds interleaved, medians, and
-//! their ratio, so the machine's load cancels.
+//! chunks (`select_chunks`) on each, on one thread; and the refined mesh's normal map
+//! (`normal_map.rs`, part of the mesh) alone; rounds interleaved, medians, and their
+//! ratios, so the machine's load cancels.
 //!
 //! Run: `cargo bench -p render-wgpu --bench chunk_meshes`.
 
@@ -10,6 +11,7 @@ use std::time::Instant;
 
 use render_wgpu::terrain::geo_grid::direction;
 use render_wgpu::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
+use render_wgpu::terrain::normal_map::NormalMap;
 use render_wgpu::terrain::{ChunkMesh, EarthData, HeightField, TerrainSurface};
 
 const ROUNDS: usize = 5;
@@ -57,8 +59,8 @@ fn main() {
         sample.len(),
         refined_lod.cells
     );
-    let (mut mesh_plain, mut mesh_fine, mut select_plain, mut select_fine) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut mesh_plain, mut mesh_fine, mut select_plain, mut select_fine, mut map_fine) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for _ in 0..ROUNDS {
         let build = |surface: &dyn Fn(&SelectedChunk) -> ChunkMesh| {
             time(|| {
@@ -71,6 +73,8 @@ fn main() {
         };
         mesh_plain.push(build(&|c| ChunkMesh::build(&plain, c, refined_lod.cells)));
         mesh_fine.push(build(&|c| ChunkMesh::build(&fine, c, refined_lod.cells)));
+        let maps = |c: &&SelectedChunk| NormalMap::build(&fine, c.key, refined_lod.cells);
+        map_fine.push(time(|| sample.iter().map(|c| maps(c).normals.len()).sum::<usize>()).0);
         select_plain.push(time(|| select(&refined_lod, &|d| plain.elevation_m(d))).0);
         select_fine.push(time(|| select(&refined_lod, &|d| fine.elevation_m(d))).0);
     }
@@ -80,6 +84,11 @@ fn main() {
     println!(
         "chunk mesh, refined heights: {mf:.3} ms per chunk (x{:.1})",
         mf / mp
+    );
+    let map = per_chunk(map_fine);
+    println!(
+        "the normal map alone, every corner evaluated: {map:.3} ms per chunk ({:.0} % of the refined mesh with its map)",
+        100.0 * map / mf
     );
     let (sp, sf) = (median(select_plain) * 1e3, median(select_fine) * 1e3);
     println!("select_chunks, data's heights: {sp:.1} ms");

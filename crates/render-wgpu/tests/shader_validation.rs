@@ -279,12 +279,18 @@ fn frame_nishita_and_tone_map_uniforms_match_their_wgsl_layouts() {
 
 #[test]
 fn terrain_uniform_matches_its_wgsl_layout() {
-    use render_wgpu::terrain::pass::TerrainUniform;
+    use render_wgpu::terrain::terrain_pipeline::{ChunkUniform, TerrainUniform};
     assert_layout!(
         "terrain/terrain.wgsl",
         "TerrainParams",
         TerrainUniform,
         [right, up, forward, near, sea_albedo, snow_line, rock, snow]
+    );
+    assert_layout!(
+        "terrain/terrain.wgsl",
+        "Chunk",
+        ChunkUniform,
+        [offset, origin, morph]
     );
 }
 

@@ -9,6 +9,7 @@ pub mod beams;
 pub mod clouds;
 pub mod flight;
 pub mod optics;
+pub mod terrain;
 pub mod timing;
 pub mod variant;
 pub mod views;
@@ -269,6 +270,19 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let adapter = renderer.gpu().adapter_summary();
         let frames = flight::measure(&mut renderer, &flight_frames)?;
         let text = flight::markdown(path, &adapter, size, &frames);
+        std::io::stdout().lock().write_all(text.as_bytes())?;
+        if let Some(out) = &args.out {
+            write_atomically(out, text.as_bytes())?;
+        }
+        return Ok(());
+    }
+    if let Some(path) = &args.terrain_scene {
+        let size = (args.width, args.height);
+        let frame = terrain::scene_frame(path, size)?;
+        let mut renderer = Renderer::headless()?;
+        let adapter = renderer.gpu().adapter_summary();
+        let times = terrain::measure(&mut renderer, &frame, args.frames)?;
+        let text = terrain::markdown(path, &adapter, size, &times);
         std::io::stdout().lock().write_all(text.as_bytes())?;
         if let Some(out) = &args.out {
             write_atomically(out, text.as_bytes())?;

@@ -11,6 +11,7 @@ use wgpu::util::DeviceExt;
 use crate::gpu::context::GpuContext;
 use crate::terrain::chunk_key::ChunkKey;
 use crate::terrain::chunk_mesh::ChunkMesh;
+use crate::terrain::normal_texture::NormalTextures;
 
 /// Chunks unused for this many frames leave the cache.
 pub const KEEP_FRAMES: u64 = 240;
@@ -32,6 +33,8 @@ pub struct Vertex {
 #[derive(Debug)]
 pub struct GpuChunk {
     pub vertices: wgpu::Buffer,
+    /// The chunk's normal map (`normal_map.rs`), the terrain shader's group 1.
+    pub normal_map: wgpu::BindGroup,
     pub origin_m: DVec3,
     /// Bounding sphere of the mesh's vertices (centre, radius), m.
     pub bounds: (DVec3, f64),
@@ -84,8 +87,14 @@ impl ChunkCache {
             .retain(|k, c| k.level == 0 || frame - c.last_used < KEEP_FRAMES);
     }
 
-    /// Uploads `mesh`, used in `frame`.
-    pub fn insert(&mut self, gpu: &GpuContext, mesh: &ChunkMesh, frame: u64) {
+    /// Uploads `mesh` and its normal map, used in `frame`.
+    pub fn insert(
+        &mut self,
+        gpu: &GpuContext,
+        normal_textures: &NormalTextures,
+        mesh: &ChunkMesh,
+        frame: u64,
+    ) {
         let vertices: Vec<Vertex> = (0..mesh.positions.len())
             .map(|k| Vertex {
                 position: mesh.positions[k],
@@ -106,6 +115,7 @@ impl ChunkCache {
             mesh.key,
             GpuChunk {
                 vertices: buffer,
+                normal_map: normal_textures.upload(gpu, &mesh.normal_map),
                 origin_m: mesh.origin_m,
                 bounds: (mesh.origin_m, radius),
                 max_radius_m,

@@ -25,6 +25,7 @@ use super::cube_sphere::direction;
 use super::geomorph::{MorphEnds, morph_role, target_pair, vertex_factor};
 use super::height_field::HeightField;
 use super::lod::SelectedChunk;
+use super::normal_map::NormalMap;
 use super::stitching::stitched_indices;
 use super::surface::TerrainSurface;
 
@@ -52,6 +53,8 @@ pub struct ChunkMesh {
     pub morph_heights_m: Vec<f32>,
     /// Counter-clockwise triangles (seen from outside), stitched to coarser neighbours.
     pub indices: Vec<u32>,
+    /// The relief's normals finer than the mesh (`normal_map.rs`).
+    pub normal_map: NormalMap,
 }
 
 /// Point (i, j) of a chunk's grid extended by one cell on every side (`side` points
@@ -126,6 +129,9 @@ impl ChunkMesh {
             morph_offsets,
             morph_heights_m,
             indices: stitched_indices(cells, chunk.coarser),
+            normal_map: NormalMap::build_sharing(surface, key, cells, |i, j| {
+                grid_point(&grid, side, i, j)
+            }),
         }
     }
 
@@ -204,6 +210,18 @@ mod tests {
         fn sample_spacing_rad(&self) -> f64 {
             1e-3
         }
+    }
+
+    #[test]
+    fn the_normal_map_built_with_the_mesh_vertices_equals_the_one_evaluated_alone() {
+        let surface = TerrainSurface::new(Waves, R);
+        let key = ChunkKey::root(super::super::cube_sphere::Face(2)).children()[3].children()[0];
+        let chunk = SelectedChunk {
+            key,
+            coarser: [false; 4],
+        };
+        let mesh = ChunkMesh::build(&surface, &chunk, 8);
+        assert_eq!(mesh.normal_map, NormalMap::build(&surface, key, 8));
     }
 
     fn bits(p: DVec3) -> [u64; 3] {

@@ -28,12 +28,15 @@ pub mod land_mask;
 pub mod lod;
 pub mod map_error;
 pub mod map_image;
+pub mod normal_map;
+pub mod normal_texture;
 pub mod pass;
 pub mod refined_heights;
 pub mod relief_amplitude;
 pub mod sea_colour;
 pub mod stitching;
 pub mod surface;
+pub mod terrain_pipeline;
 
 pub use chunk_mesh::ChunkMesh;
 pub use colour_map::ColourMap;

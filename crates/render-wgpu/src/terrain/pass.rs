@@ -4,8 +4,8 @@
 //!
 //! Each frame: the quadtree's chunks for the camera ([`select_chunks`], screen-space
 //! error), those whose bounding sphere meets the view pyramid ([`Frustum`]), their meshes
-//! (built on first use and kept while drawn, `chunk_cache.rs`; a changed exaggeration
-//! rebuilds them), and one draw per chunk with its `origin - camera` offset computed in
+//! and normal maps (built on first use and kept while drawn, `chunk_cache.rs`; a changed
+//! exaggeration rebuilds them), and one draw per chunk with its `origin - camera` offset computed in
 //! f64 and its morph ends (`geomorph.rs`). Offline (`TerrainOptions::wait_for_chunks`)
 //! the frame builds every missing mesh in parallel before drawing, so its image depends
 //! on nothing but the frame; interactive, the meshes are built off the render thread
@@ -23,19 +23,15 @@ use std::sync::Arc;
 use atmosphere_core::geo::land_cover::{
     ROCK_ALBEDO, ROCK_SLOPE_COS, SNOW_ALBEDO, SNOW_BAND_M, SnowLine,
 };
-use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::frame::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT, SurfaceBuffer};
+use crate::frame::surface_buffer::SurfaceBuffer;
 use crate::frame::{Frame, TerrainOptions};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
-use crate::gpu::pipeline::{
-    buffer, float_texture_entry, in_stage, one_group_layout, ordered_bind_group,
-    read_only_storage_buffer_entry, shader_module, texture_2d, uniform_buffer, uniform_entry,
-};
-use crate::terrain::chunk_cache::{ChunkCache, Vertex, buffer_with};
+use crate::gpu::pipeline::{buffer, ordered_bind_group, texture_2d, uniform_buffer};
+use crate::terrain::chunk_cache::{ChunkCache, buffer_with};
 use crate::terrain::chunk_cover::cover;
 use crate::terrain::chunk_key::ChunkKey;
 use crate::terrain::chunk_mesh::ChunkMesh;
@@ -48,46 +44,18 @@ use crate::terrain::geomorph::{MORPH_START, MorphEnds};
 use crate::terrain::height_field::HeightField;
 use crate::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
 use crate::terrain::map_error::MapError;
+use crate::terrain::normal_map::texel_size_m;
+use crate::terrain::normal_texture::NormalTextures;
 use crate::terrain::refined_heights::RefinedHeights;
 use crate::terrain::sea_colour::open_sea_albedo;
 use crate::terrain::stitching::stitched_indices;
 use crate::terrain::surface::TerrainSurface;
-
-const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+use crate::terrain::terrain_pipeline::{
+    ChunkUniform, DEPTH_FORMAT, TerrainUniform, terrain_pipeline,
+};
 
 /// The smallest near plane, m.
 const MIN_NEAR_M: f64 = 0.05;
-
-/// WGSL `TerrainParams`, 128 bytes.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct TerrainUniform {
-    pub right: [f32; 4],
-    pub up: [f32; 4],
-    pub forward: [f32; 4],
-    pub near: [f32; 4],
-    /// rgb: the water's albedo (`sea_colour.rs`).
-    pub sea_albedo: [f32; 4],
-    /// The season's snow line (atmosphere-core's `geo::land_cover::SnowLine`): x its
-    /// height at the thermal equator, m; y its fall to the pole, m; z the thermal
-    /// equator's latitude, rad; w the band over which snow sets in, m.
-    pub snow_line: [f32; 4],
-    /// rgb: rock's albedo; w: the slope cosine where rock sets in.
-    pub rock: [f32; 4],
-    /// rgb: snow's albedo; w: the slope cosine past which all is rock.
-    pub snow: [f32; 4],
-}
-
-/// WGSL `Chunk`, 48 bytes.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-struct ChunkUniform {
-    offset: [f32; 4],
-    origin: [f32; 4],
-    /// x, y: where the chunk's own and its coarser neighbours' morphs end, m
-    /// (`geomorph::MorphEnds`); z: the coarser edges as bits (`1 << Edge`); w: cells.
-    morph: [f32; 4],
-}
 
 /// How the chosen chunks of the last prepared frame stand.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -114,6 +82,7 @@ pub struct TerrainPass {
     lod: LodSettings,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
+    normal_textures: NormalTextures,
     params: wgpu::Buffer,
     colour: wgpu::TextureView,
     sampler: wgpu::Sampler,
@@ -170,69 +139,8 @@ impl TerrainPass {
         }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let colour = upload_colour(gpu, &colours);
-        let module = shader_module(device, "terrain/terrain.wgsl")?;
-        use wgpu::ShaderStages as S;
-        let (layout, pipeline_layout) = one_group_layout(
-            device,
-            "terrain",
-            &[
-                in_stage(
-                    S::VERTEX | S::FRAGMENT,
-                    uniform_entry(0, size_of::<TerrainUniform>()),
-                ),
-                in_stage(
-                    S::VERTEX,
-                    read_only_storage_buffer_entry(1, size_of::<ChunkUniform>()),
-                ),
-                in_stage(
-                    S::FRAGMENT,
-                    float_texture_entry(2, wgpu::TextureViewDimension::D2, true),
-                ),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: S::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        );
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("terrain"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vertex_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![
-                        0 => Float32x3, 1 => Float32x3, 2 => Float32, 3 => Float32x3, 4 => Float32
-                    ],
-                })],
-            },
-            primitive: wgpu::PrimitiveState {
-                front_face: wgpu::FrontFace::Ccw,
-                cull_mode: Some(wgpu::Face::Back),
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fragment_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(GEOMETRY_FORMAT.into()), Some(ALBEDO_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let normal_textures = NormalTextures::new(device);
+        let (layout, pipeline) = terrain_pipeline(device, &normal_textures.layout)?;
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("colour map"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -257,6 +165,7 @@ impl TerrainPass {
             lod,
             pipeline,
             layout,
+            normal_textures,
             params,
             colour,
             sampler,
@@ -335,6 +244,7 @@ impl TerrainPass {
         let (half_w, half_h) = frame.half_extent();
         let frustum = Frustum::new(camera, [right, up, forward], half_w, half_h);
         let lowest_ray_m = frustum.lowest_radius_m();
+        let with_w = |c: [f64; 3], w: f64| [c[0] as f32, c[1] as f32, c[2] as f32, w as f32];
         self.draws.clear();
         self.water_in_view = false;
         let mut uniforms = Vec::new();
@@ -358,7 +268,10 @@ impl TerrainPass {
                 .sum::<u32>();
             uniforms.push(ChunkUniform {
                 offset: v4(gpu_chunk.origin_m - camera),
-                origin: v4(gpu_chunk.origin_m),
+                origin: with_w(
+                    gpu_chunk.origin_m.to_array(),
+                    texel_size_m(radius_m, self.lod.cells, chunk.key.level),
+                ),
                 morph: [
                     ends.own_m as f32,
                     ends.edge_m as f32,
@@ -392,12 +305,16 @@ impl TerrainPass {
         // The season: the sun's declination, its planet-fixed direction's latitude.
         let declination = frame.sun_direction.normalize().z.clamp(-1.0, 1.0).asin();
         let line = SnowLine::for_declination(declination);
-        let with_w = |c: [f64; 3], w: f64| [c[0] as f32, c[1] as f32, c[2] as f32, w as f32];
         let params = TerrainUniform {
             right: v4(right / half_w),
             up: v4(up / half_h),
             forward: v4(forward),
-            near: [near_plane_m(clearance) as f32, MORPH_START as f32, 0.0, 0.0],
+            near: [
+                near_plane_m(clearance) as f32,
+                MORPH_START as f32,
+                view.pixels_per_radian as f32,
+                0.0,
+            ],
             sea_albedo: [sea[0], sea[1], sea[2], 1.0],
             snow_line: [
                 line.at_equator_m as f32,
@@ -426,7 +343,8 @@ impl TerrainPass {
             .map(|chunk| ChunkMesh::build(surface, chunk, cells))
             .collect();
         for mesh in &built {
-            self.chunks.insert(gpu, mesh, self.frame_number);
+            self.chunks
+                .insert(gpu, &self.normal_textures, mesh, self.frame_number);
         }
     }
 
@@ -436,7 +354,8 @@ impl TerrainPass {
     fn build_off_thread(&mut self, gpu: &GpuContext, selected: &[SelectedChunk], camera: DVec3) {
         for mesh in self.worker.finished() {
             if !self.chunks.contains(mesh.key) {
-                self.chunks.insert(gpu, &mesh, self.frame_number);
+                self.chunks
+                    .insert(gpu, &self.normal_textures, &mesh, self.frame_number);
             }
         }
         let roots: Vec<SelectedChunk> = Face::ALL
@@ -531,6 +450,7 @@ impl TerrainPass {
         for (instance, draw) in self.draws.iter().enumerate() {
             let chunk = self.chunks.get(draw.key).expect("drawn chunks are cached");
             let (indices, count) = &self.indices[&draw.coarser];
+            pass.set_bind_group(1, &chunk.normal_map, &[]);
             pass.set_vertex_buffer(0, chunk.vertices.slice(..));
             pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
             let instance = instance as u32;
