@@ -3,6 +3,7 @@
 //! layer, each setting checked against its range with errors naming the flag; and the
 //! lit volumes the renderer composites (docs/optics-rendering.md).
 
+use crate::table_cache_dir::table_cache;
 use anyhow::{Context, bail};
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::scene::{
@@ -134,20 +135,35 @@ impl VolumeFlags {
         let camera = frame.camera_position_m;
         let view = (camera, frame.sun_direction);
         let optics = (wavelengths, frame.atmosphere.sun.angular_radius_rad);
+        let cache = table_cache();
         let mut volumes = Vec::new();
         if let Some(rain) = rain {
             let forward = frame.axes()[2];
             let volume = rain.volume(camera, forward, ground).context("--rain")?;
             volumes.push(
-                lit_volume(model.as_ref(), volume, view, optics, RGB_WAVELENGTHS_NM)
-                    .context("--rain")?,
+                lit_volume(
+                    model.as_ref(),
+                    volume,
+                    view,
+                    optics,
+                    RGB_WAVELENGTHS_NM,
+                    &cache,
+                )
+                .context("--rain")?,
             );
         }
         if let Some(cirrus) = cirrus {
             let volume = cirrus.volume(ground).context("--cirrus")?;
             volumes.push(
-                lit_volume(model.as_ref(), volume, view, optics, RGB_WAVELENGTHS_NM)
-                    .context("--cirrus")?,
+                lit_volume(
+                    model.as_ref(),
+                    volume,
+                    view,
+                    optics,
+                    RGB_WAVELENGTHS_NM,
+                    &cache,
+                )
+                .context("--cirrus")?,
             );
         }
         Ok(volumes)

@@ -10,6 +10,7 @@ use super::render::{LitVolume, light_of};
 use super::spectral_phase::{Particles, SpectralPhase};
 use super::volumes::Volume;
 use crate::models::sky_model::SkyModel;
+use crate::table_cache::TableCache;
 
 /// The range of the shaft's distance from the camera, m.
 pub const SHAFT_DISTANCE_RANGE_M: [f64; 2] = [0.0, 100_000.0];
@@ -113,16 +114,18 @@ impl CirrusSettings {
 }
 
 /// `volume` with its phase table at `wavelengths` wavelengths (seen with a sun of
-/// angular radius `sun_radius_rad`) reduced to `channels_nm`, lit by `model` from
-/// `camera_m` with the sun towards `sun_direction`.
+/// angular radius `sun_radius_rad`, kept in `cache`) reduced to `channels_nm`, lit by
+/// `model` from `camera_m` with the sun towards `sun_direction`.
 pub fn lit_volume(
     model: &dyn SkyModel,
     volume: Volume,
     (camera_m, sun_direction): (DVec3, DVec3),
     (wavelengths, sun_radius_rad): (usize, f64),
     channels_nm: [f64; 3],
+    cache: &TableCache,
 ) -> Result<LitVolume, HydrometeorError> {
-    let spectral = SpectralPhase::build(&volume.particles, wavelengths, sun_radius_rad)?;
+    let spectral =
+        SpectralPhase::build_cached(&volume.particles, wavelengths, sun_radius_rad, cache)?;
     let phase = ChannelPhase::new(&spectral, channels_nm)?;
     let light = light_of(model, &volume, camera_m, sun_direction)
         .map_err(|e| HydrometeorError::Model(e.to_string()))?;

@@ -4,7 +4,8 @@
 //! ray tracer of `optics/ice/` (randomly oriented hexagonal crystals, the same rays at
 //! every wavelength so that the halos' colours are not the rays' noise). Each wavelength
 //! is tabulated in bins of [`BIN_DEG`] and averaged over the sun's disc
-//! ([`super::sun_disk_blur`]).
+//! ([`super::sun_disk_blur`]). [`SpectralPhase::build_cached`] keeps the tables in a
+//! [`TableCache`] between runs.
 
 use std::f64::consts::PI;
 
@@ -19,6 +20,7 @@ use crate::optics::ice::phase_table::{RaySettings, ice_phase_table};
 use crate::optics::mie::marshall_palmer::{MarshallPalmer, RADIUS_RANGE_M};
 use crate::optics::refractive_index::ice::ice_refractive_index;
 use crate::optics::refractive_index::water::water_refractive_index;
+use crate::table_cache::TableCache;
 
 /// The width of the tables' angle bins, degrees: a fifth of the sun's radius.
 pub const BIN_DEG: f64 = 0.05;
@@ -32,6 +34,8 @@ pub const ICE_RAYS_RANGE: [f64; 2] = [1e4, 1e8];
 pub const SUN_RADIUS_RANGE_RAD: [f64; 2] = [0.0, 0.05];
 /// Radii of the rain's diffraction average.
 const RAIN_DIFFRACTION_RADII: usize = 64;
+/// The seed of the ice's rays (the same at every wavelength).
+const ICE_SEED: u64 = 14;
 
 /// The particles of a volume.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -85,6 +89,28 @@ fn integral_of(phase: &[f64], bin_deg: f64) -> f64 {
         .enumerate()
         .map(|(b, p)| p * bin_solid_angle(b as f64 * bin_deg, (b + 1) as f64 * bin_deg))
         .sum()
+}
+
+/// The particles, wavelength count and sun radius checked, by name and range.
+fn check_settings(
+    particles: &Particles,
+    count: usize,
+    sun_radius_rad: f64,
+) -> Result<(), HydrometeorError> {
+    particles.check()?;
+    check_range(
+        "wavelength count",
+        count as f64,
+        WAVELENGTH_COUNT_RANGE,
+        "[3, 128]",
+    )?;
+    check_range(
+        "sun radius (rad)",
+        sun_radius_rad,
+        SUN_RADIUS_RANGE_RAD,
+        "[0, 0.05]",
+    )?;
+    Ok(())
 }
 
 impl Particles {
@@ -151,7 +177,7 @@ impl Particles {
                 let settings = RaySettings {
                     rays,
                     bin_deg,
-                    seed: 14,
+                    seed: ICE_SEED,
                 };
                 let table =
                     ice_phase_table(&crystal, m, wavelength_m, Orientation::Random, settings)?;
@@ -169,19 +195,7 @@ impl SpectralPhase {
         count: usize,
         sun_radius_rad: f64,
     ) -> Result<SpectralPhase, HydrometeorError> {
-        particles.check()?;
-        check_range(
-            "wavelength count",
-            count as f64,
-            WAVELENGTH_COUNT_RANGE,
-            "[3, 128]",
-        )?;
-        check_range(
-            "sun radius (rad)",
-            sun_radius_rad,
-            SUN_RADIUS_RANGE_RAD,
-            "[0, 0.05]",
-        )?;
+        check_settings(particles, count, sun_radius_rad)?;
         let wavelengths = wavelengths_nm(count);
         let phase = wavelengths
             .par_iter()
@@ -200,6 +214,34 @@ impl SpectralPhase {
             .collect::<Result<Vec<_>, HydrometeorError>>()?;
         Ok(SpectralPhase {
             wavelengths_nm: wavelengths,
+            bin_deg: BIN_DEG,
+            phase,
+        })
+    }
+
+    /// [`SpectralPhase::build`] through `cache`, keyed by the particles, the wavelengths,
+    /// the sun's radius, the bins and the methods' fixed settings.
+    pub fn build_cached(
+        particles: &Particles,
+        count: usize,
+        sun_radius_rad: f64,
+        cache: &TableCache,
+    ) -> Result<SpectralPhase, HydrometeorError> {
+        check_settings(particles, count, sun_radius_rad)?;
+        let key = format!(
+            "{particles:?} wavelengths={count} sun_radius_rad={sun_radius_rad:?} \
+             bin_deg={BIN_DEG:?} rain_diffraction_radii={RAIN_DIFFRACTION_RADII} \
+             ice_seed={ICE_SEED}"
+        );
+        let phase = cache.load_or_build("spectral-phase", &key, || {
+            SpectralPhase::build(particles, count, sun_radius_rad).map(|t| t.phase)
+        })?;
+        let bins = (180.0 / BIN_DEG).round() as usize;
+        if phase.len() != count || phase.iter().any(|p| p.len() != bins) {
+            return SpectralPhase::build(particles, count, sun_radius_rad);
+        }
+        Ok(SpectralPhase {
+            wavelengths_nm: wavelengths_nm(count),
             bin_deg: BIN_DEG,
             phase,
         })
