@@ -65,7 +65,7 @@ fn volumes(frame: &Frame) -> Vec<LitVolume> {
         rays: 20_000,
         ..CirrusSettings::default()
     }
-    .volume(ground)
+    .volume(ground, 20.0)
     .unwrap();
     [shaft, cirrus]
         .into_iter()

@@ -149,7 +149,7 @@ fn the_cirrus_shows_the_halos_at_22_and_46_degrees() {
         rays: 200_000,
         ..CirrusSettings::default()
     }
-    .volume(s.atmosphere.bottom_radius_m)
+    .volume(s.atmosphere.bottom_radius_m, 20.0)
     .unwrap();
     let lit = lit_volume(
         s.model.as_ref(),

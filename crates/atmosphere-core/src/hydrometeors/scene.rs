@@ -38,7 +38,9 @@ impl Default for RainShaftSettings {
     }
 }
 
-/// A cirrus layer of hexagonal ice columns.
+/// A cirrus layer of hexagonal ice crystals: randomly oriented, or, with
+/// `plates_tilt_deg`, plates falling with their c-axis vertical within that tilt spread
+/// (sundogs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CirrusSettings {
     pub base_m: f64,
@@ -48,6 +50,8 @@ pub struct CirrusSettings {
     pub crystal_length_um: f64,
     /// Rays traced per wavelength.
     pub rays: usize,
+    /// The falling plates' tilt spread, degrees; `None`: random orientations.
+    pub plates_tilt_deg: Option<f64>,
 }
 
 impl Default for CirrusSettings {
@@ -59,6 +63,7 @@ impl Default for CirrusSettings {
             crystal_radius_um: 20.0,
             crystal_length_um: 80.0,
             rays: 1_000_000,
+            plates_tilt_deg: None,
         }
     }
 }
@@ -94,21 +99,38 @@ impl RainShaftSettings {
 }
 
 impl CirrusSettings {
-    pub fn particles(&self) -> Particles {
-        Particles::Ice {
-            radius_m: self.crystal_radius_um * 1e-6,
-            length_m: self.crystal_length_um * 1e-6,
-            rays: self.rays,
+    /// The crystals, falling plates lit by the sun at `sun_elevation_deg`.
+    pub fn particles(&self, sun_elevation_deg: f64) -> Particles {
+        let (radius_m, length_m) = (self.crystal_radius_um * 1e-6, self.crystal_length_um * 1e-6);
+        match self.plates_tilt_deg {
+            None => Particles::Ice {
+                radius_m,
+                length_m,
+                rays: self.rays,
+            },
+            Some(tilt_spread_deg) => Particles::Plates {
+                radius_m,
+                length_m,
+                rays: self.rays,
+                tilt_spread_deg,
+                sun_elevation_deg,
+            },
         }
     }
 
-    pub fn volume(&self, ground_radius_m: f64) -> Result<Volume, HydrometeorError> {
+    /// The layer over ground of radius `ground_radius_m`, the sun at `sun_elevation_deg`
+    /// above the camera's horizon (it matters to falling plates only).
+    pub fn volume(
+        &self,
+        ground_radius_m: f64,
+        sun_elevation_deg: f64,
+    ) -> Result<Volume, HydrometeorError> {
         Volume::cirrus(
             ground_radius_m,
             self.base_m,
             self.thickness_m,
             self.optical_depth,
-            self.particles(),
+            self.particles(sun_elevation_deg),
         )
     }
 }
