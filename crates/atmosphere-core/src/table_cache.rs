@@ -15,6 +15,7 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The version of the files' layout and of the methods of the tables they hold.
 pub const FORMAT_VERSION: u32 = 1;
@@ -177,13 +178,17 @@ impl TableCache {
     }
 }
 
-/// Writes `bytes` to `path` through a temporary file beside it, renamed into place.
+/// Writes `bytes` to `path` through a temporary file beside it, renamed into place; the
+/// temporary file's name is the process's and the write's own, so that concurrent
+/// writers of one table never share it.
 fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    static WRITES: AtomicU64 = AtomicU64::new(0);
     if let Some(dir) = path.parent() {
         fs::create_dir_all(dir)?;
     }
     let mut partial = path.as_os_str().to_owned();
-    partial.push(format!(".{}.partial", std::process::id()));
+    let write = WRITES.fetch_add(1, Ordering::Relaxed);
+    partial.push(format!(".{}-{write}.partial", std::process::id()));
     let partial = PathBuf::from(partial);
     fs::write(&partial, bytes)?;
     fs::rename(&partial, path).inspect_err(|_| {

@@ -55,6 +55,24 @@ fn a_second_load_reads_the_file_bit_for_bit_without_building() {
 }
 
 #[test]
+fn writers_of_one_table_at_once_leave_one_whole_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let cache = TableCache::at(dir.path());
+    std::thread::scope(|scope| {
+        for _ in 0..4 {
+            scope.spawn(|| {
+                let rows = load(&cache, "k", &Cell::new(0));
+                assert_eq!(bits(&rows), bits(&awkward_rows()));
+            });
+        }
+    });
+    let builds = Cell::new(0);
+    assert_eq!(bits(&load(&cache, "k", &builds)), bits(&awkward_rows()));
+    assert_eq!(builds.get(), 0);
+    assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+#[test]
 fn a_corrupt_cut_or_foreign_file_is_built_again_and_rewritten() {
     let dir = tempfile::tempdir().unwrap();
     let cache = TableCache::at(dir.path());
