@@ -12,7 +12,8 @@
 //! keyframe of the view), [`path_editor`] (the keyframes, path files and playback) and
 //! [`path_panel`] (the panel's "Camera path" section); [`cloud_settings`],
 //! [`cloud_panel`] and [`cloud_state`] (the cloud layer's settings, its panel section,
-//! and what the renderer is given for it).
+//! and what the renderer is given for it); [`optics_settings`], [`optics_panel`] and
+//! [`optics_state`] (the rain shaft and cirrus layer, alike).
 
 pub mod app;
 pub mod cloud_panel;
@@ -23,6 +24,9 @@ pub mod exposure;
 pub mod flight;
 pub mod frame_times;
 pub mod model_error;
+pub mod optics_panel;
+pub mod optics_settings;
+pub mod optics_state;
 pub mod panel;
 pub mod path_capture;
 pub mod path_editor;
