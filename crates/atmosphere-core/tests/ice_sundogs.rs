@@ -1,7 +1,7 @@
 //! Sundogs: falling hexagonal plates' phase function over the sky (`sky_table.rs`) has
 //! its brightest azimuth at the sun's elevation where the 60 degree prism's projected
-//! ray deviates least, by Bravais's effective index; it integrates to 1; bad input is
-//! named.
+//! ray deviates least, by Bravais's effective index; it integrates to 1, the sun
+//! overhead too; bad input is named.
 
 use atmosphere_core::optics::ice::crystal::HexagonalPrism;
 use atmosphere_core::optics::ice::phase_table::RaySettings;
@@ -109,6 +109,14 @@ fn with_the_suns_disc_and_tilted_plates_the_sundog_stays_within_half_a_degree() 
     let row = |h: f64| ((h + 90.0) / t.grid.elevation_bin_deg) as usize;
     let at = |h: f64| t.phase[row(h) * columns + column];
     assert!(at(20.25) > 20.0 * at(30.25), "{} {}", at(20.25), at(30.25));
+}
+
+#[test]
+fn the_sun_overhead_gives_a_finite_normalised_table() {
+    let t = table(90.0, 1.0, 0.004675);
+    assert!((integral(&t) - 1.0).abs() < 1e-9, "{}", integral(&t));
+    assert!(t.phase.iter().all(|p| p.is_finite() && *p >= 0.0));
+    assert!(t.hits > 0);
 }
 
 #[test]
