@@ -347,13 +347,14 @@ impl SpectralPhase {
         })
     }
 
-    /// The integral over the sphere of wavelength `w`'s table (bins times their solid
-    /// angles).
+    /// The integral over the sphere of wavelength `w`'s table by angle (bins times their
+    /// solid angles).
     pub fn integral(&self, w: usize) -> f64 {
         integral_of(&self.phase[w], self.bin_deg)
     }
 
-    /// Wavelength `w`'s value at `angle_deg`, linear between bin centres.
+    /// Wavelength `w`'s value at `angle_deg` in a table by angle, linear between bin
+    /// centres.
     pub fn value_at(&self, w: usize, angle_deg: f64) -> f64 {
         let p = &self.phase[w];
         let x = (angle_deg / self.bin_deg - 0.5).clamp(0.0, (p.len() - 1) as f64);
