@@ -10,7 +10,9 @@ const KIND_LAYER: u32 = 2u;
 const NO_HIT: f32 = -1.0;
 
 struct VolumeParams {
-    // x: KIND_SHAFT or KIND_LAYER; y: its first bin in the phase buffer; z: bins.
+    // x: KIND_SHAFT or KIND_LAYER; y: its first bin in the phase buffer; z: bins;
+    // w: 0 for a table by scattering angle, else its azimuth columns (a table over the
+    // sky, row-major, elevation rows from -90 degrees).
     kind: vec4<u32>,
     // Shaft: xyz the unit vertical axis, w the radius, m.
     axis: vec4<f32>,
@@ -18,7 +20,8 @@ struct VolumeParams {
     // Layer: x, y: r^2 - R^2 of the camera for the base and top radii (f64 on the CPU),
     // z: the same for the ground, m^2.
     place: vec4<f32>,
-    // x: extinction, m^-1; y: the phase bins' width, degrees.
+    // x: extinction, m^-1; y: the phase bins' width (over the sky: the elevation
+    // bins'), z: over the sky, the azimuth bins' width, degrees.
     medium: vec4<f32>,
     // The sun's irradiance through the atmosphere and the sky's horizontal irradiance,
     // W m^-2 nm^-1, per channel.

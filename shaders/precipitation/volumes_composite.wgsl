@@ -1,7 +1,8 @@
 // Entry pass: rain and ice volumes composited over a frame's pixels (render-wgpu's
 // `precipitation/volumes_pass.rs`). CPU twin: atmosphere-core's `hydrometeors/render.rs`,
 // which states the method: single scattering in MARCH_STEPS steps, the phase function at
-// the frame's wavelengths from the buffer (linear between bin centres), the sun's path in
+// the frame's wavelengths from the buffer (linear between bin centres; by scattering
+// angle, or over the sky for falling plates), the sun's path in
 // the volume, the sky's light isotropic; with L_front = (1 - T_front) L_full,
 // L = L_front + T_v (L_full - L_front) + T_front L_v, farthest volume first.
 
@@ -27,6 +28,33 @@ fn phase_at(v: VolumeParams, angle_deg: f32) -> vec3<f32> {
     let f = x - f32(i);
     let first = v.kind.y + i;
     return mix(phase[first].rgb, phase[first + 1u].rgb, f);
+}
+
+// The value for light seen along `d` from a table over the sky: bilinear in the
+// elevation above the camera's horizon and the azimuth from the sun's (atan2, as the CPU
+// twin's `sky_angles_deg`), linear between bin centres.
+fn sky_phase_at(v: VolumeParams, d: vec3<f32>, sun: vec3<f32>) -> vec3<f32> {
+    let up = normalize(frame.camera_m.xyz);
+    let z = dot(d, up);
+    let flat = d - up * z;
+    let sun_flat = sun - up * dot(sun, up);
+    let elevation = degrees(atan2(z, length(flat)));
+    var azimuth = 0.0;
+    if length(flat) * length(sun_flat) >= 1e-12 {
+        azimuth = degrees(atan2(abs(dot(cross(flat, sun_flat), up)), dot(flat, sun_flat)));
+    }
+    let columns = v.kind.w;
+    let rows = v.kind.z / columns;
+    let x = clamp((elevation + 90.0) / v.medium.y - 0.5, 0.0, f32(rows - 1u));
+    let y = clamp(azimuth / v.medium.z - 0.5, 0.0, f32(columns - 1u));
+    let i = min(u32(floor(x)), rows - 2u);
+    let j = min(u32(floor(y)), columns - 2u);
+    let s = x - f32(i);
+    let t = y - f32(j);
+    let first = v.kind.y + i * columns + j;
+    let low = mix(phase[first].rgb, phase[first + 1u].rgb, t);
+    let high = mix(phase[first + columns].rgb, phase[first + columns + 1u].rgb, t);
+    return mix(low, high, s);
 }
 
 // The angle between unit vectors `a` and `b`, degrees, within 2e-8 rad: Abramowitz and
@@ -73,7 +101,12 @@ fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
     let beta = v.medium.x;
     let dt = (t.y - t.x) / f32(MARCH_STEPS);
     let step_t = exp(-beta * dt);
-    let p = phase_at(v, angle_deg(d, sun));
+    var p: vec3<f32>;
+    if v.kind.w == 0u {
+        p = phase_at(v, angle_deg(d, sun));
+    } else {
+        p = sky_phase_at(v, d, sun);
+    }
     var radiance = vec3<f32>(0.0);
     var t_v = 1.0;
     for (var k = 0u; k < MARCH_STEPS; k++) {

@@ -19,6 +19,7 @@ use atmosphere_core::hydrometeors::render::{LitVolume, composite};
 use atmosphere_core::hydrometeors::scene::{CirrusSettings, RainShaftSettings, lit_volume};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
+use atmosphere_core::table_cache::TableCache;
 use glam::DVec3;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::frame::surface_buffer::SurfaceTexel;
@@ -64,11 +65,21 @@ fn volumes(frame: &Frame) -> Vec<LitVolume> {
         rays: 20_000,
         ..CirrusSettings::default()
     }
-    .volume(ground)
+    .volume(ground, 20.0)
     .unwrap();
     [shaft, cirrus]
         .into_iter()
-        .map(|v| lit_volume(model.as_ref(), v, view, optics, RGB_WAVELENGTHS_NM).unwrap())
+        .map(|v| {
+            lit_volume(
+                model.as_ref(),
+                v,
+                view,
+                optics,
+                RGB_WAVELENGTHS_NM,
+                &TableCache::off(),
+            )
+            .unwrap()
+        })
         .collect()
 }
 

@@ -18,6 +18,7 @@ pub mod record;
 pub mod render;
 pub mod report;
 pub mod stability;
+pub mod table_cache_dir;
 pub mod viewer;
 
 use std::ffi::OsString;

@@ -281,6 +281,20 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "ice rays per wavelength 5 is outside [1e4, 1e8]",
         ),
         (
+            &[("--cirrus", "true"), ("--cirrus-tilt-deg", "2")],
+            "frame.png",
+            "--cirrus-tilt-deg is the falling plates' tilt: it needs --cirrus-plates",
+        ),
+        (
+            &[
+                ("--cirrus", "true"),
+                ("--cirrus-plates", "true"),
+                ("--cirrus-tilt-deg", "40"),
+            ],
+            "frame.png",
+            "tilt spread 40 deg is outside [0, 30] deg",
+        ),
+        (
             &[("--rain", "true"), ("--optics-wavelengths", "1000")],
             "frame.png",
             "--optics-wavelengths 1000 must lie in [3, 128]",

@@ -18,3 +18,4 @@ pub mod optics;
 pub mod reference;
 pub mod shafts;
 pub mod sun_position;
+pub mod table_cache;

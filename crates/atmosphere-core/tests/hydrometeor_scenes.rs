@@ -11,6 +11,7 @@ use atmosphere_core::hydrometeors::scene::{CirrusSettings, RainShaftSettings, li
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{SkyModel, ViewRay};
+use atmosphere_core::table_cache::TableCache;
 use glam::DVec3;
 
 const FRAME_NM: [f64; 3] = [680.0, 550.0, 440.0];
@@ -102,6 +103,7 @@ fn the_rain_shaft_shows_both_bows_and_the_dark_band_between() {
         (s.camera, s.sun),
         (16, 0.004675),
         FRAME_NM,
+        &TableCache::off(),
     )
     .unwrap();
     // Up the antisolar azimuth (+Y) from 5 to 28 degrees: 35 to 58 from the antisolar point.
@@ -147,7 +149,7 @@ fn the_cirrus_shows_the_halos_at_22_and_46_degrees() {
         rays: 200_000,
         ..CirrusSettings::default()
     }
-    .volume(s.atmosphere.bottom_radius_m)
+    .volume(s.atmosphere.bottom_radius_m, 20.0)
     .unwrap();
     let lit = lit_volume(
         s.model.as_ref(),
@@ -155,6 +157,7 @@ fn the_cirrus_shows_the_halos_at_22_and_46_degrees() {
         (s.camera, s.sun),
         (16, 0.004675),
         FRAME_NM,
+        &TableCache::off(),
     )
     .unwrap();
     // Up the sun's azimuth (-Y) from 25 to 75 degrees: 5 to 55 from the sun.

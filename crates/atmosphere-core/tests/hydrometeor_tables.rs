@@ -142,6 +142,7 @@ fn a_phase_function_equal_at_every_wavelength_keeps_its_values_in_a_frame() {
         phase: vec![grey.clone(); wavelengths.len()],
         wavelengths_nm: wavelengths,
         bin_deg: 0.05,
+        sky: None,
     };
     let channels = ChannelPhase::new(&table, FRAME_NM).unwrap();
     for (v, g) in channels.values.iter().zip(&grey) {

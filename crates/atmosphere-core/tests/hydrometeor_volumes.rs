@@ -70,6 +70,7 @@ fn the_march_keeps_the_slabs_closed_forms() {
         volume,
         phase: ChannelPhase {
             bin_deg: 0.05,
+            sky: None,
             values: vec![[1.0 / (4.0 * PI); 3]; 3600],
         },
         light: VolumeLight {

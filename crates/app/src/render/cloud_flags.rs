@@ -22,6 +22,8 @@ use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::{Frame, Renderer};
 use serde::{Deserialize, Serialize};
 
+use crate::table_cache_dir::table_cache;
+
 /// The generated cover's grid: 2048 x 1024 texels (20 km at the equator).
 pub const GENERATED_GRID: (usize, usize) = (2048, 1024);
 
@@ -177,9 +179,12 @@ fn image_cover(path: &Path, channel: &str) -> anyhow::Result<CoverGrid> {
 
 /// The layer's multiple-scattering tables at the renderer's wavelengths (680, 550 and
 /// 440 nm): Riley et al. 2004's A_n and F_n of the droplets' Lorenz-Mie phase function
-/// (atmosphere-core's `clouds/layer/droplets.rs`).
+/// (atmosphere-core's `clouds/layer/droplets.rs`), kept in the table cache.
 pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
-    Ok(droplets::droplet_orders(&RGB_WAVELENGTHS_NM)?)
+    Ok(droplets::droplet_orders_cached(
+        &RGB_WAVELENGTHS_NM,
+        &table_cache(),
+    )?)
 }
 
 /// What a frame's clouds need besides the light: the layer's settings, its cover and its

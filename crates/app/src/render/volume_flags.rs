@@ -3,6 +3,7 @@
 //! layer, each setting checked against its range with errors naming the flag; and the
 //! lit volumes the renderer composites (docs/optics-rendering.md).
 
+use crate::table_cache_dir::table_cache;
 use anyhow::{Context, bail};
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::scene::{
@@ -14,6 +15,9 @@ use clap::Args;
 use render_wgpu::Frame;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use serde::{Deserialize, Serialize};
+
+/// The falling plates' tilt spread when `--cirrus-tilt-deg` is not given, degrees.
+pub const DEFAULT_PLATES_TILT_DEG: f64 = 1.0;
 
 /// The volume flags; every one optional, the settings' defaults filling the rest.
 #[derive(Clone, Debug, Default, PartialEq, Args, Serialize, Deserialize)]
@@ -59,6 +63,15 @@ pub struct VolumeFlags {
     /// rays' noise as rings around the sun) [default: 1000000].
     #[arg(long = "cirrus-rays", value_name = "N")]
     pub cirrus_rays: Option<usize>,
+    /// The crystals are plates falling with their c-axis vertical (sundogs, the
+    /// parhelic circle) instead of randomly oriented; the sun must be above the horizon
+    /// [default: false].
+    #[arg(long = "cirrus-plates", value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
+    pub cirrus_plates: Option<bool>,
+    /// The falling plates' tilt spread (standard deviation of each tilt component),
+    /// degrees, in [0, 30] [default: 1].
+    #[arg(long = "cirrus-tilt-deg", value_name = "DEG")]
+    pub cirrus_tilt_deg: Option<f64>,
     /// Wavelengths the volumes' phase functions are computed at, across 380-720 nm, in
     /// [3, 128] [default: 32].
     #[arg(long = "optics-wavelengths", value_name = "N")]
@@ -90,6 +103,8 @@ impl VolumeFlags {
                 .cirrus_crystal_length_um
                 .or(self.cirrus_crystal_length_um),
             cirrus_rays: flags.cirrus_rays.or(self.cirrus_rays),
+            cirrus_plates: flags.cirrus_plates.or(self.cirrus_plates),
+            cirrus_tilt_deg: flags.cirrus_tilt_deg.or(self.cirrus_tilt_deg),
             wavelengths: flags.wavelengths.or(self.wavelengths),
         }
     }
@@ -115,6 +130,8 @@ impl VolumeFlags {
             crystal_radius_um: self.cirrus_crystal_radius_um.unwrap_or(d.crystal_radius_um),
             crystal_length_um: self.cirrus_crystal_length_um.unwrap_or(d.crystal_length_um),
             rays: self.cirrus_rays.unwrap_or(d.rays),
+            plates_tilt_deg: (self.cirrus_plates == Some(true))
+                .then(|| self.cirrus_tilt_deg.unwrap_or(DEFAULT_PLATES_TILT_DEG)),
         })
     }
 
@@ -125,6 +142,9 @@ impl VolumeFlags {
         if !(lo..=hi).contains(&(wavelengths as f64)) {
             bail!("--optics-wavelengths {wavelengths} must lie in [{lo}, {hi}]");
         }
+        if self.cirrus_tilt_deg.is_some() && self.cirrus_plates != Some(true) {
+            bail!("--cirrus-tilt-deg is the falling plates' tilt: it needs --cirrus-plates");
+        }
         let (rain, cirrus) = (self.rain_settings(), self.cirrus_settings());
         if rain.is_none() && cirrus.is_none() {
             return Ok(Vec::new());
@@ -134,20 +154,44 @@ impl VolumeFlags {
         let camera = frame.camera_position_m;
         let view = (camera, frame.sun_direction);
         let optics = (wavelengths, frame.atmosphere.sun.angular_radius_rad);
+        let cache = table_cache();
         let mut volumes = Vec::new();
         if let Some(rain) = rain {
             let forward = frame.axes()[2];
             let volume = rain.volume(camera, forward, ground).context("--rain")?;
             volumes.push(
-                lit_volume(model.as_ref(), volume, view, optics, RGB_WAVELENGTHS_NM)
-                    .context("--rain")?,
+                lit_volume(
+                    model.as_ref(),
+                    volume,
+                    view,
+                    optics,
+                    RGB_WAVELENGTHS_NM,
+                    &cache,
+                )
+                .context("--rain")?,
             );
         }
         if let Some(cirrus) = cirrus {
-            let volume = cirrus.volume(ground).context("--cirrus")?;
+            let up = camera.normalize();
+            let sun_elevation_deg = frame
+                .sun_direction
+                .dot(up)
+                .clamp(-1.0, 1.0)
+                .asin()
+                .to_degrees();
+            let volume = cirrus
+                .volume(ground, sun_elevation_deg)
+                .context("--cirrus")?;
             volumes.push(
-                lit_volume(model.as_ref(), volume, view, optics, RGB_WAVELENGTHS_NM)
-                    .context("--cirrus")?,
+                lit_volume(
+                    model.as_ref(),
+                    volume,
+                    view,
+                    optics,
+                    RGB_WAVELENGTHS_NM,
+                    &cache,
+                )
+                .context("--cirrus")?,
             );
         }
         Ok(volumes)

@@ -22,6 +22,8 @@ use crate::viewer::cloud_state::CloudState;
 use crate::viewer::exposure::{AutoExposure, ExposureMode};
 use crate::viewer::flight::{FlightInput, FlightSettings, FlightState};
 use crate::viewer::frame_times::FrameTimes;
+use crate::viewer::optics_settings::OpticsSettings;
+use crate::viewer::optics_state::OpticsState;
 use crate::viewer::panel::{self, Stats};
 use crate::viewer::path_editor::PathEditor;
 use crate::viewer::screenshot;
@@ -59,6 +61,9 @@ pub struct ViewerApp {
     /// The cloud settings of the last frame rendered (the frame does not hold them).
     last_clouds: Option<CloudSettings>,
     clouds: CloudState,
+    /// The rain and cirrus of the last frame rendered.
+    last_optics: Option<OpticsSettings>,
+    optics: OpticsState,
     last_plan: Option<FramePlan>,
     auto_exposure: AutoExposure,
     frame_ms: f64,
@@ -144,6 +149,8 @@ impl ViewerApp {
             last_frame: None,
             last_clouds: None,
             clouds: CloudState::default(),
+            last_optics: None,
+            optics: OpticsState::default(),
             last_plan: None,
             auto_exposure: AutoExposure::default(),
             frame_ms: 0.0,
@@ -193,6 +200,7 @@ impl ViewerApp {
     fn render(&mut self, frame: Frame) -> anyhow::Result<()> {
         if self.last_frame.as_ref() == Some(&frame)
             && self.last_clouds.as_ref() == Some(&self.settings.clouds)
+            && self.last_optics.as_ref() == Some(&self.settings.optics)
             && !self.building()
         {
             return Ok(());
@@ -201,6 +209,9 @@ impl ViewerApp {
         self.clouds
             .apply(&mut self.renderer, &frame, &self.settings.clouds)?;
         self.last_clouds = Some(self.settings.clouds.clone());
+        self.optics
+            .apply(&mut self.renderer, &frame, &self.settings.optics)?;
+        self.last_optics = Some(self.settings.optics.clone());
         let plan = self.renderer.render(&frame)?;
         self.frame_ms = start.elapsed().as_secs_f64() * 1e3;
         self.frame_times.push(self.frame_ms);

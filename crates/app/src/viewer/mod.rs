@@ -12,10 +12,11 @@
 //! keyframe of the view), [`path_editor`] (the keyframes, path files and playback) and
 //! [`path_panel`] (the panel's "Camera path" section); [`cloud_settings`],
 //! [`cloud_panel`] and [`cloud_state`] (the cloud layer's settings, its panel section,
-//! and what the renderer is given for it); [`beams_edit`], [`beams_state`],
-//! [`beams_camera`], [`beams_view`], [`beams_mode`] and [`beams_panel`] (a beams scene
-//! instead of the planet: the file and its edits, the scene choice, the fly camera, the
-//! frame rendered, the view's part of the app, and the panel's sections).
+//! and what the renderer is given for it); [`optics_settings`], [`optics_panel`] and
+//! [`optics_state`] (the rain shaft and cirrus layer, alike); [`beams_edit`],
+//! [`beams_state`], [`beams_camera`], [`beams_view`], [`beams_mode`] and [`beams_panel`]
+//! (a beams scene instead of the planet: the file and its edits, the scene choice, the
+//! fly camera, the frame rendered, the view's part of the app, and the panel's sections).
 
 pub mod app;
 pub mod beams_camera;
@@ -32,6 +33,9 @@ pub mod exposure;
 pub mod flight;
 pub mod frame_times;
 pub mod model_error;
+pub mod optics_panel;
+pub mod optics_settings;
+pub mod optics_state;
 pub mod panel;
 pub mod path_capture;
 pub mod path_editor;

@@ -14,6 +14,7 @@ use atmosphere_core::sun_position::days_in_month;
 use crate::viewer::cloud_panel;
 use crate::viewer::exposure::ExposureMode;
 use crate::viewer::model_error;
+use crate::viewer::optics_panel;
 use crate::viewer::path_editor::PathEditor;
 use crate::viewer::path_panel;
 use crate::viewer::settings::{
@@ -56,6 +57,7 @@ pub fn show(
         atmosphere(ui, settings);
         terrain(ui, settings);
         cloud_panel::show(ui, &mut settings.clouds);
+        optics_panel::show(ui, &mut settings.optics);
         model(ui, settings);
         actions.screenshot = image(ui, settings);
         path_panel::show(ui, path, settings);

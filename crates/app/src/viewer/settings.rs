@@ -19,6 +19,7 @@ use crate::viewer::cloud_settings::CloudSettings;
 use crate::viewer::default_view;
 use crate::viewer::exposure::ExposureMode;
 use crate::viewer::flight::{FlightState, local_frame};
+use crate::viewer::optics_settings::OpticsSettings;
 use crate::viewer::sun_clock::{SunClock, SunMode};
 
 /// The atmosphere presets of the panel's combo box.
@@ -115,6 +116,8 @@ pub struct ViewerSettings {
     pub wind_m_s: f64,
     /// The cloud layer (the panel's "Clouds" section).
     pub clouds: CloudSettings,
+    /// The rain shaft and cirrus layer (the panel's "Rain and ice" section).
+    pub optics: OpticsSettings,
 }
 
 impl Default for ViewerSettings {
@@ -141,6 +144,7 @@ impl Default for ViewerSettings {
             exaggeration: 1.0,
             wind_m_s: DEFAULT_WIND_M_S,
             clouds: CloudSettings::default(),
+            optics: OpticsSettings::default(),
         };
         settings.reset_view();
         settings

@@ -80,13 +80,13 @@ pub fn geometric_bins(n: f64, bins: usize, bin_deg: f64) -> Vec<f64> {
             }
             hist
         })
-        .reduce(
-            || vec![0.0; bins],
-            |mut a, b| {
-                a.iter_mut().zip(&b).for_each(|(a, b)| *a += b);
-                a
-            },
-        )
+        .collect::<Vec<_>>()
+        .iter()
+        // Summed in order, so that every build gives the same table to the bit.
+        .fold(vec![0.0; bins], |mut a, b| {
+            a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+            a
+        })
 }
 
 /// The diffraction weight per bin (summing to 1) of discs of `ka` = k times radius,

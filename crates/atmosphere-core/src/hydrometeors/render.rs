@@ -6,7 +6,8 @@
 //!     T_v(t_k) (1 - e^(-beta dt)) [P_c(theta) E_sun e^(-beta s_k) + E_sky / (2 pi)],
 //! where T_v(t_k) is the volume's transmittance from t0 to the step's start, P_c the
 //! phase function at the frame's wavelengths (`channel_phase.rs`) at the scattering
-//! angle theta between the sun and the view, E_sun the sun's irradiance through the
+//! angle theta between the sun and the view (falling plates: at the view's elevation
+//! and azimuth from the sun about the camera's vertical), E_sun the sun's irradiance through the
 //! atmosphere (one value per volume, at its `light_point`), s_k the sun's path inside the
 //! volume from the step's middle, and E_sky / (2 pi) the sky's irradiance on a
 //! horizontal plane scattered isotropically (a uniform upper hemisphere of radiance
@@ -76,8 +77,10 @@ pub fn march(
     let beta = lit.volume.extinction_per_m;
     let dt = (t1 - t0) / MARCH_STEPS as f64;
     let step_transmittance = (-beta * dt).exp();
-    let cos_theta = direction.dot(lit.light.sun_direction).clamp(-1.0, 1.0);
-    let p = lit.phase.value_at(cos_theta.acos().to_degrees());
+    let up = origin.normalize_or(DVec3::Z);
+    let p = lit
+        .phase
+        .value_toward(direction, lit.light.sun_direction, up);
     let mut radiance = [0.0; 3];
     let mut t_v = 1.0;
     for k in 0..MARCH_STEPS {

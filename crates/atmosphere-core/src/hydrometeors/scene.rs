@@ -10,6 +10,7 @@ use super::render::{LitVolume, light_of};
 use super::spectral_phase::{Particles, SpectralPhase};
 use super::volumes::Volume;
 use crate::models::sky_model::SkyModel;
+use crate::table_cache::TableCache;
 
 /// The range of the shaft's distance from the camera, m.
 pub const SHAFT_DISTANCE_RANGE_M: [f64; 2] = [0.0, 100_000.0];
@@ -37,7 +38,9 @@ impl Default for RainShaftSettings {
     }
 }
 
-/// A cirrus layer of hexagonal ice columns.
+/// A cirrus layer of hexagonal ice crystals: randomly oriented, or, with
+/// `plates_tilt_deg`, plates falling with their c-axis vertical within that tilt spread
+/// (sundogs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CirrusSettings {
     pub base_m: f64,
@@ -47,6 +50,8 @@ pub struct CirrusSettings {
     pub crystal_length_um: f64,
     /// Rays traced per wavelength.
     pub rays: usize,
+    /// The falling plates' tilt spread, degrees; `None`: random orientations.
+    pub plates_tilt_deg: Option<f64>,
 }
 
 impl Default for CirrusSettings {
@@ -58,6 +63,7 @@ impl Default for CirrusSettings {
             crystal_radius_um: 20.0,
             crystal_length_um: 80.0,
             rays: 1_000_000,
+            plates_tilt_deg: None,
         }
     }
 }
@@ -93,36 +99,55 @@ impl RainShaftSettings {
 }
 
 impl CirrusSettings {
-    pub fn particles(&self) -> Particles {
-        Particles::Ice {
-            radius_m: self.crystal_radius_um * 1e-6,
-            length_m: self.crystal_length_um * 1e-6,
-            rays: self.rays,
+    /// The crystals, falling plates lit by the sun at `sun_elevation_deg`.
+    pub fn particles(&self, sun_elevation_deg: f64) -> Particles {
+        let (radius_m, length_m) = (self.crystal_radius_um * 1e-6, self.crystal_length_um * 1e-6);
+        match self.plates_tilt_deg {
+            None => Particles::Ice {
+                radius_m,
+                length_m,
+                rays: self.rays,
+            },
+            Some(tilt_spread_deg) => Particles::Plates {
+                radius_m,
+                length_m,
+                rays: self.rays,
+                tilt_spread_deg,
+                sun_elevation_deg,
+            },
         }
     }
 
-    pub fn volume(&self, ground_radius_m: f64) -> Result<Volume, HydrometeorError> {
+    /// The layer over ground of radius `ground_radius_m`, the sun at `sun_elevation_deg`
+    /// above the camera's horizon (it matters to falling plates only).
+    pub fn volume(
+        &self,
+        ground_radius_m: f64,
+        sun_elevation_deg: f64,
+    ) -> Result<Volume, HydrometeorError> {
         Volume::cirrus(
             ground_radius_m,
             self.base_m,
             self.thickness_m,
             self.optical_depth,
-            self.particles(),
+            self.particles(sun_elevation_deg),
         )
     }
 }
 
 /// `volume` with its phase table at `wavelengths` wavelengths (seen with a sun of
-/// angular radius `sun_radius_rad`) reduced to `channels_nm`, lit by `model` from
-/// `camera_m` with the sun towards `sun_direction`.
+/// angular radius `sun_radius_rad`, kept in `cache`) reduced to `channels_nm`, lit by
+/// `model` from `camera_m` with the sun towards `sun_direction`.
 pub fn lit_volume(
     model: &dyn SkyModel,
     volume: Volume,
     (camera_m, sun_direction): (DVec3, DVec3),
     (wavelengths, sun_radius_rad): (usize, f64),
     channels_nm: [f64; 3],
+    cache: &TableCache,
 ) -> Result<LitVolume, HydrometeorError> {
-    let spectral = SpectralPhase::build(&volume.particles, wavelengths, sun_radius_rad)?;
+    let spectral =
+        SpectralPhase::build_cached(&volume.particles, wavelengths, sun_radius_rad, cache)?;
     let phase = ChannelPhase::new(&spectral, channels_nm)?;
     let light = light_of(model, &volume, camera_m, sun_direction)
         .map_err(|e| HydrometeorError::Model(e.to_string()))?;

@@ -105,7 +105,7 @@ impl Volume {
 
     /// A cirrus layer from `base_m` to `base_m + thickness_m` above the ground of
     /// `ground_radius_m`, of vertical optical depth `optical_depth`, of ice crystals
-    /// `crystals` ([`Particles::Ice`]).
+    /// `crystals` ([`Particles::Ice`] or [`Particles::Plates`]).
     pub fn cirrus(
         ground_radius_m: f64,
         base_m: f64,

@@ -96,6 +96,7 @@ mod tests {
             volume: Volume::rain_shaft(foot, ground_m, 1_000.0, 3_000.0, 5.0).unwrap(),
             phase: ChannelPhase {
                 bin_deg: 90.0,
+                sky: None,
                 values: vec![[0.1; 3]; 2],
             },
             light: VolumeLight {

@@ -18,14 +18,17 @@ const KIND_LAYER: u32 = 2;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VolumeUniform {
-    /// x: kind (1 shaft, 2 layer); y: its first bin in the phase buffer; z: its bins.
+    /// x: kind (1 shaft, 2 layer); y: its first bin in the phase buffer; z: its bins;
+    /// w: 0 for a table by scattering angle, else its azimuth columns (a table over the
+    /// sky, row-major, elevation rows).
     pub kind: [u32; 4],
     /// Shaft: xyz the unit axis, w the radius, m.
     pub axis: [f32; 4],
     /// Shaft: xyz the camera relative to the axis's foot, w the height, m. Layer: r^2 -
     /// R^2 of the camera for the base, top and ground radii, m^2.
     pub place: [f32; 4],
-    /// x: extinction, m^-1; y: the bins' width, degrees.
+    /// x: extinction, m^-1; y: the bins' width (over the sky: the elevation bins'),
+    /// z: over the sky, the azimuth bins' width, degrees.
     pub medium: [f32; 4],
     pub sun_irradiance: [f32; 4],
     pub sky_irradiance: [f32; 4],
@@ -94,14 +97,33 @@ pub fn pack(
                 ],
             ),
         };
+        let (bin_deg, columns, azimuth_bin_deg) = match lit.phase.sky {
+            None => (lit.phase.bin_deg, 0, 0.0),
+            Some(grid) => {
+                if grid.elevation_bins() < 2
+                    || grid.azimuth_bins() < 2
+                    || values.len() != grid.elevation_bins() * grid.azimuth_bins()
+                {
+                    return Err(RenderError::Frame(
+                        "a volume's sky phase table does not fill its grid of at least 2 x 2"
+                            .into(),
+                    ));
+                }
+                (
+                    grid.elevation_bin_deg,
+                    grid.azimuth_bins() as u32,
+                    grid.azimuth_bin_deg,
+                )
+            }
+        };
         *slot = VolumeUniform {
-            kind: [kind, bins.len() as u32, values.len() as u32, 0],
+            kind: [kind, bins.len() as u32, values.len() as u32, columns],
             axis,
             place,
             medium: [
                 lit.volume.extinction_per_m as f32,
-                lit.phase.bin_deg as f32,
-                0.0,
+                bin_deg as f32,
+                azimuth_bin_deg as f32,
                 0.0,
             ],
             sun_irradiance: rgb(lit.light.sun_irradiance),

@@ -2,7 +2,9 @@
 //! radius 10 um (sigma 0.1), a typical stratocumulus droplet (docs/particles.md), whose
 //! Lorenz-Mie phase function at each wavelength, as a Legendre series, makes Riley et
 //! al. 2004's A_n and F_n tables (`orders.rs`; A_1 is the phase function itself, with
-//! its forward peak, the cloudbow near 140 degrees and the glory at 180 degrees).
+//! its forward peak, the cloudbow near 140 degrees and the glory at 180 degrees). The
+//! series take tens of seconds to build; [`droplet_orders_cached`] keeps them in a
+//! [`TableCache`].
 
 use crate::clouds::error::CloudError;
 use crate::clouds::layer::orders::ScatteringOrders;
@@ -10,6 +12,7 @@ use crate::optics::legendre_series::LegendreSeries;
 use crate::optics::mie::legendre::mie_legendre_series;
 use crate::optics::mie::size_distribution::SizeDistribution;
 use crate::optics::refractive_index::water::water_refractive_index;
+use crate::table_cache::TableCache;
 
 /// The droplets' effective radius, m.
 pub const EFFECTIVE_RADIUS_M: f64 = 10e-6;
@@ -35,6 +38,32 @@ pub fn droplet_orders(wavelengths_nm: &[f64]) -> Result<ScatteringOrders, CloudE
         .iter()
         .map(|&w| droplet_series(w))
         .collect::<Result<Vec<_>, _>>()?;
+    ScatteringOrders::new(&series)
+}
+
+/// [`droplet_orders`] with the Legendre series kept in `cache`, keyed by the droplets'
+/// distribution, the tolerance and the wavelengths.
+pub fn droplet_orders_cached(
+    wavelengths_nm: &[f64],
+    cache: &TableCache,
+) -> Result<ScatteringOrders, CloudError> {
+    let key = format!(
+        "lognormal effective_radius_m={EFFECTIVE_RADIUS_M:?} sigma={SIGMA:?} \
+         tolerance={TOLERANCE:?} wavelengths_nm={wavelengths_nm:?}"
+    );
+    let rows = cache.load_or_build("droplet-series", &key, || {
+        wavelengths_nm
+            .iter()
+            .map(|&w| droplet_series(w).map(|s| s.coefficients().to_vec()))
+            .collect::<Result<Vec<_>, _>>()
+    })?;
+    if rows.len() != wavelengths_nm.len() || rows.iter().any(Vec::is_empty) {
+        return droplet_orders(wavelengths_nm);
+    }
+    let series: Vec<LegendreSeries> = rows
+        .into_iter()
+        .map(LegendreSeries::from_coefficients)
+        .collect();
     ScatteringOrders::new(&series)
 }
 

@@ -73,13 +73,7 @@ impl Orientation {
                 tilt_spread_deg,
                 sun_elevation_deg,
             } => {
-                let spread = tilt_spread_deg.to_radians();
-                let (tx, ty) = gaussian_pair(sampler);
-                let axis = DVec3::new(spread * tx, spread * ty, 1.0).normalize();
-                let (e1, e2) = orthonormal_basis(axis);
-                let turn = 2.0 * PI * sampler.uniform();
-                let a = turn.cos() * e1 + turn.sin() * e2;
-                let b = axis.cross(a);
+                let [a, b, axis] = plate_frame(tilt_spread_deg, sampler);
                 // Light from the sun, travelling down and away from it.
                 let e = sun_elevation_deg.to_radians();
                 let d = DVec3::new(-e.cos(), 0.0, -e.sin());
@@ -87,6 +81,19 @@ impl Orientation {
             }
         }
     }
+}
+
+/// The axes of a falling plate's frame in the sky's (z up): the c-axis vertical but for
+/// two normal tilt components of standard deviation `tilt_spread_deg`, turned at random
+/// about it; a direction's coordinates in the crystal are its dot products with them.
+pub fn plate_frame(tilt_spread_deg: f64, sampler: &mut Sampler) -> [DVec3; 3] {
+    let spread = tilt_spread_deg.to_radians();
+    let (tx, ty) = gaussian_pair(sampler);
+    let axis = DVec3::new(spread * tx, spread * ty, 1.0).normalize();
+    let (e1, e2) = orthonormal_basis(axis);
+    let turn = 2.0 * PI * sampler.uniform();
+    let a = turn.cos() * e1 + turn.sin() * e2;
+    [a, axis.cross(a), axis]
 }
 
 /// Two independent standard normal numbers (Box and Muller 1958).

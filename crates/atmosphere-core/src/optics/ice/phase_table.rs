@@ -23,12 +23,12 @@ use thiserror::Error;
 
 use super::crystal::HexagonalPrism;
 use super::diffraction::airy_pattern;
-use super::orientation::Orientation;
+use super::orientation::{Orientation, OrientationError};
 use super::ray_tracer::{IceOptics, trace};
 use crate::numerics::sampling::{Sampler, mix_seed, orthonormal_basis};
 
 /// Rays per batch (one seeded stream each).
-const BATCH: usize = 4096;
+pub(super) const BATCH: usize = 4096;
 /// Orientations averaged for the diffraction pattern, and points per bin integrating it.
 const DIFFRACTION_ORIENTATIONS: usize = 256;
 const POINTS_PER_BIN: usize = 8;
@@ -50,6 +50,10 @@ pub enum IcePhaseError {
     RefractiveIndex { re: f64, im: f64 },
     #[error("wavelength {0} nm must be finite and positive")]
     Wavelength(f64),
+    #[error("sun radius {0} rad is outside [0, 0.05] rad")]
+    SunRadius(f64),
+    #[error("oriented plates: {0}")]
+    Orientation(#[from] OrientationError),
 }
 
 /// How many rays, the bin width and the seed.
@@ -107,7 +111,7 @@ impl IcePhaseTable {
 }
 
 /// 2 pi (cos a - cos b) for a bin from `a_deg` to `b_deg`.
-fn bin_solid_angle(a_deg: f64, b_deg: f64) -> f64 {
+pub(super) fn bin_solid_angle(a_deg: f64, b_deg: f64) -> f64 {
     2.0 * PI * (a_deg.to_radians().cos() - b_deg.to_radians().cos())
 }
 
@@ -164,7 +168,7 @@ fn trace_batch(
 
 /// The diffraction part per bin (summing to 1) and its mean cosine, averaged over
 /// orientations drawn as the rays' are, each weighted by its projected area.
-fn diffraction_bins(
+pub(super) fn diffraction_bins(
     crystal: &HexagonalPrism,
     wavenumber: f64,
     orientation: Orientation,

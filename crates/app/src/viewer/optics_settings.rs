@@ -1,0 +1,107 @@
+//! The viewer's rain and cirrus settings (the panel's "Rain and ice" section), kept
+//! between runs with the others, and their reading as `atmos render`'s volume flags,
+//! which check them (docs/optics-rendering.md, "Settings and their ranges").
+
+use atmosphere_core::hydrometeors::scene::{CirrusSettings, RainShaftSettings};
+use serde::{Deserialize, Serialize};
+
+use crate::render::volume_flags::VolumeFlags;
+
+/// The wavelengths of the viewer's phase tables: half `atmos render`'s, so that a first
+/// build keeps the window waiting half as long (docs/optics-rendering.md: 16 change the
+/// rain's table by a few per cent from 32).
+pub const VIEWER_WAVELENGTHS: usize = 16;
+/// Rays per wavelength of the viewer's cirrus: a fifth of `atmos render`'s, for the
+/// same reason (fainter rings of noise around the sun show).
+pub const VIEWER_CIRRUS_RAYS: usize = 200_000;
+
+/// The panel's rain and cirrus settings; fields missing from older stored settings take
+/// their defaults (both off).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct OpticsSettings {
+    /// A rain shaft ahead of the camera, placed when it is turned on or changed.
+    pub rain: bool,
+    /// mm/h, in [0.1, 300].
+    pub rain_rate_mm_h: f64,
+    /// From the camera to the shaft's axis, m, in [0, 100000].
+    pub rain_distance_m: f64,
+    /// A cirrus layer of randomly oriented ice columns.
+    pub cirrus: bool,
+    /// The layer's base above the ground, m, in [1000, 20000].
+    pub cirrus_base_m: f64,
+    /// Vertical optical depth, in [0, 10].
+    pub cirrus_optical_depth: f64,
+}
+
+impl Default for OpticsSettings {
+    fn default() -> OpticsSettings {
+        let (rain, cirrus) = (RainShaftSettings::default(), CirrusSettings::default());
+        OpticsSettings {
+            rain: false,
+            rain_rate_mm_h: rain.rain_rate_mm_h,
+            rain_distance_m: rain.distance_m,
+            cirrus: false,
+            cirrus_base_m: cirrus.base_m,
+            cirrus_optical_depth: cirrus.optical_depth,
+        }
+    }
+}
+
+impl OpticsSettings {
+    /// Whether either volume is on.
+    pub fn any(&self) -> bool {
+        self.rain || self.cirrus
+    }
+
+    /// The same settings as `atmos render`'s flags.
+    pub fn flags(&self) -> VolumeFlags {
+        VolumeFlags {
+            rain: Some(self.rain),
+            rain_rate_mm_h: Some(self.rain_rate_mm_h),
+            rain_distance_m: Some(self.rain_distance_m),
+            cirrus: Some(self.cirrus),
+            cirrus_base_m: Some(self.cirrus_base_m),
+            cirrus_optical_depth: Some(self.cirrus_optical_depth),
+            cirrus_rays: Some(VIEWER_CIRRUS_RAYS),
+            wavelengths: Some(VIEWER_WAVELENGTHS),
+            ..VolumeFlags::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_defaults_are_the_volumes_and_bad_values_are_named() {
+        let mut optics = OpticsSettings::default();
+        assert!(!optics.any());
+        assert_eq!(optics.flags().rain_settings(), None);
+        assert_eq!(optics.flags().cirrus_settings(), None);
+        optics.rain = true;
+        optics.cirrus = true;
+        assert_eq!(
+            optics.flags().rain_settings(),
+            Some(RainShaftSettings::default())
+        );
+        assert_eq!(
+            optics.flags().cirrus_settings(),
+            Some(CirrusSettings {
+                rays: VIEWER_CIRRUS_RAYS,
+                ..CirrusSettings::default()
+            })
+        );
+        optics.cirrus_optical_depth = 20.0;
+        let cirrus = optics.flags().cirrus_settings().unwrap();
+        let e = cirrus.volume(6_360e3, 20.0).unwrap_err().to_string();
+        assert!(e.contains("cirrus optical depth 20"), "{e}");
+        let stored: OpticsSettings = toml::from_str("rain = true").unwrap();
+        assert!(stored.rain && !stored.cirrus);
+        assert_eq!(
+            stored.rain_rate_mm_h,
+            RainShaftSettings::default().rain_rate_mm_h
+        );
+    }
+}
