@@ -200,6 +200,11 @@ pub struct BenchArgs {
     /// with the frame without clouds (docs/clouds.md, "Cost").
     #[arg(long, value_name = "interactive|offline", conflicts_with = "flight")]
     pub clouds: Vec<String>,
+    /// A scene with terrain (e.g. assets/scenes/default.toml): time its frames at --width
+    /// x --height with and without light shafts, interleaved, instead of the models'
+    /// tables: the sky pass's GPU time with shafts over without (docs/shafts.md, "Cost").
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["beams_scene", "flight", "optics_scene"])]
+    pub shafts_scene: Option<PathBuf>,
 }
 
 /// The flags of `atmos record` (docs/recording.md).

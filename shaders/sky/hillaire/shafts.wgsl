@@ -1,6 +1,6 @@
 // Library: light shafts in the hillaire pass, the single scattering the terrain's shadow
 // takes out of a view segment. CPU twin: atmosphere-core's `models/hillaire/shafts.rs`
-// (`shadowed_single`, `shaft_reach_m`); method: docs/shafts.md. Bindings 9 and 10 of
+// (`shadowed_single`, `shaft_span_m`, `shaft_samples`); method: docs/shafts.md. Bindings 9 and 10 of
 // the pass: the shadow map's tops (R32Float) and its parameters.
 
 #import sky/hillaire/medium.wgsl
@@ -10,37 +10,66 @@
 @group(0) @binding(9) var shadow_tops: texture_2d<f32>;
 @group(0) @binding(10) var<uniform> shadow_map: ShadowMapParams;
 
-// `shaft_reach_m`: from the segment's start to where it last leaves the sphere of the
-// shadow volume's top, at most the map's width and the segment; (r - top)(r + top)
-// written as q - h (2 bottom + h) for f32.
-fn shaft_reach(s: Segment) -> f32 {
+// The part of a segment where the shadow can be (`shaft_span_m`): x, y the distances
+// from the start where it enters and leaves the sphere of the shadow volume's top, at
+// most the map's width and the segment; y <= x when it never dips below it.
+// (r - top)(r + top) is written as q - h (2 bottom + h) for f32.
+fn shaft_span(s: Segment) -> vec2<f32> {
     let h = shadow_map.up_top.w;
-    let disc = s.r_mu * s.r_mu - (s.q - h * (2.0 * atmosphere.bottom_radius_m + h));
+    let above = s.q - h * (2.0 * atmosphere.bottom_radius_m + h);
+    let disc = s.r_mu * s.r_mu - above;
     if disc < 0.0 {
-        return 0.0;
+        return vec2<f32>(0.0);
+    }
+    let exit = -s.r_mu + sqrt(disc);
+    var entry = 0.0;
+    if above > 0.0 && exit > 0.0 {
+        entry = above / exit;
     }
     let width = shadow_map.east_cell.w * f32(shadow_map.size.x);
-    return clamp(-s.r_mu + sqrt(disc), 0.0, min(s.length, width));
+    return vec2<f32>(entry, min(exit, min(s.length, width)));
 }
 
-// `shadowed_single`: per unit solar irradiance, in `size.z` equal segments of the reach.
+// `shaft_samples`: two per cell of the map, within the fewest and the most.
+fn shaft_samples(span: f32) -> u32 {
+    let per_cell = u32(ceil(2.0 * span / shadow_map.east_cell.w));
+    return min(max(per_cell, shadow_map.size.w), shadow_map.size.z);
+}
+
+// The transmittance from the segment's start to `entry` along it, a descending ray read
+// looking up from both ends in the columns table (`segment_column` with `ground`).
+fn shaft_entry_transmittance(s: Segment, entry: f32) -> vec3<f32> {
+    if entry <= 0.0 {
+        return vec3<f32>(1.0);
+    }
+    let bottom = atmosphere.bottom_radius_m;
+    let r = sqrt(bottom * bottom + s.q);
+    let q_e = s.q + entry * (entry + 2.0 * s.r_mu);
+    let r_e = sqrt(bottom * bottom + q_e);
+    let near = read_table_columns(transmittance_columns, s.q, clamp(-s.r_mu / r, -1.0, 1.0));
+    let far = read_table_columns(transmittance_columns, q_e, clamp(-(s.r_mu + entry) / r_e, -1.0, 1.0));
+    return exp(-optical_depth(max(far - near, vec3<f32>(0.0))));
+}
+
+// `shadowed_single`: per unit solar irradiance, in `shaft_samples` equal segments of the
+// span.
 fn shafts_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
     var loss = vec3<f32>(0.0);
     if shadow_map.size.y == 0u {
         return loss;
     }
-    let reach = shaft_reach(s);
-    if reach <= 0.0 {
+    let span = shaft_span(s);
+    if span.y <= span.x {
         return loss;
     }
-    let samples = shadow_map.size.z;
-    let dt = reach / f32(samples);
+    let samples = shaft_samples(span.y - span.x);
+    let dt = (span.y - span.x) / f32(samples);
     let phase_r = rayleigh_phase(nu);
     let phase_m = mie_phase(nu);
     let bottom = atmosphere.bottom_radius_m;
-    var throughput = vec3<f32>(1.0);
+    var throughput = shaft_entry_transmittance(s, span.x);
     for (var k = 0u; k < samples; k++) {
-        let t = (f32(k) + 0.5) * dt;
+        let t = span.x + (f32(k) + 0.5) * dt;
         let p = point_along(s.q, s.r_mu, s.start_dot_sun, nu, t);
         let rho = medium_densities(p.q);
         let altitude = p.q / (p.r + bottom);
