@@ -1,7 +1,8 @@
 //! Light shafts on the planet (`render_wgpu::shafts::terrain`, `shaders/sky/hillaire/
-//! shafts.wgsl`, `shaders/sky/nishita/pixel.wgsl`, `shaders/sky/oneil/pixel.wgsl`)
-//! against their CPU twins (`atmosphere_core::models::hillaire::shafts`,
-//! `models::nishita`, `models::oneil`, with the renderer's own shadow map), that the
+//! shafts.wgsl`, `shaders/sky/nishita/pixel.wgsl`, `shaders/sky/oneil/pixel.wgsl`,
+//! `shaders/sky/bruneton/pixel.wgsl`) against their CPU twins
+//! (`atmosphere_core::models::hillaire::shafts`, `models::nishita`, `models::oneil`,
+//! `models::bruneton::shafts`, with the renderer's own shadow map), that the
 //! shadow darkens the rays through it by the CPU's ratio, and that the planner's pruning
 //! changes nothing.
 //!
@@ -12,6 +13,7 @@ mod support;
 use std::path::Path;
 
 use atmos::render::scene::Scene;
+use atmosphere_core::models::bruneton::Bruneton;
 use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
@@ -49,7 +51,7 @@ fn with_shafts(frame: &Frame, on: bool) -> Frame {
     f
 }
 
-/// The CPU model of `frame` (hillaire, nishita or oneil) with the renderer's last shadow map
+/// The CPU model of `frame` (hillaire, nishita, oneil or bruneton) with the renderer's last shadow map
 /// (or none).
 fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Box<dyn SkyModel> {
     let shadow = if shafts {
@@ -71,6 +73,11 @@ fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Box<dyn SkyMod
         }
         ModelId::Oneil => {
             let mut model = Oneil::prepare(a, s, OneilSettings::default()).unwrap();
+            model.set_terrain_shadow(shadow);
+            Box::new(model)
+        }
+        ModelId::Bruneton => {
+            let mut model = Bruneton::prepare(a, s).unwrap();
             model.set_terrain_shadow(shadow);
             Box::new(model)
         }
@@ -101,6 +108,11 @@ fn nishita_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio(
 #[test]
 fn oneil_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
     check_shafts(ModelId::Oneil);
+}
+
+#[test]
+fn bruneton_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
+    check_shafts(ModelId::Bruneton);
 }
 
 /// `model`'s frame of the Alps with the sun 4 degrees up, with shafts, against the CPU

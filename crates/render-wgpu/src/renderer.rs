@@ -7,8 +7,8 @@
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::hydrometeors::render::LitVolume;
-use atmosphere_core::models::hillaire::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 use atmosphere_core::models::id::ModelId;
+use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
 use crate::clouds::frame_clouds::{FrameClouds, plan_clouds};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};

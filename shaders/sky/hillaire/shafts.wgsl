@@ -1,40 +1,15 @@
 // Library: light shafts in the hillaire pass, the single scattering the terrain's shadow
 // takes out of a view segment. CPU twin: atmosphere-core's `models/hillaire/shafts.rs`
-// (`shadowed_single`, `shaft_span_m`, `shaft_samples`); method: docs/shafts.md. Bindings 9 and 10 of
-// the pass: the shadow map's tops (R32Float) and its parameters.
+// (`shadowed_single`; the span and its samples: `shafts/terrain/view_span.wgsl`);
+// method: docs/shafts.md. Bindings 9 and 10 of the pass: the shadow map's tops (R32Float)
+// and its parameters.
 
 #import sky/hillaire/medium.wgsl
 #import common/frame_params.wgsl
-#import shafts/terrain/shadow_map.wgsl
+#import shafts/terrain/view_span.wgsl
 
 @group(0) @binding(9) var shadow_tops: texture_2d<f32>;
 @group(0) @binding(10) var<uniform> shadow_map: ShadowMapParams;
-
-// The part of a segment where the shadow can be (`shaft_span_m`): x, y the distances
-// from the start where it enters and leaves the sphere of the shadow volume's top, at
-// most the map's width and the segment; y <= x when it never dips below it.
-// (r - top)(r + top) is written as q - h (2 bottom + h) for f32.
-fn shaft_span(s: Segment) -> vec2<f32> {
-    let h = shadow_map.up_top.w;
-    let above = s.q - h * (2.0 * atmosphere.bottom_radius_m + h);
-    let disc = s.r_mu * s.r_mu - above;
-    if disc < 0.0 {
-        return vec2<f32>(0.0);
-    }
-    let exit = -s.r_mu + sqrt(disc);
-    var entry = 0.0;
-    if above > 0.0 && exit > 0.0 {
-        entry = above / exit;
-    }
-    let width = shadow_map.east_cell.w * f32(shadow_map.size.x);
-    return vec2<f32>(entry, min(exit, min(s.length, width)));
-}
-
-// `shaft_samples`: two per cell of the map, within the fewest and the most.
-fn shaft_samples(span: f32) -> u32 {
-    let per_cell = u32(ceil(2.0 * span / shadow_map.east_cell.w));
-    return min(max(per_cell, shadow_map.size.w), shadow_map.size.z);
-}
 
 // The transmittance from the segment's start to `entry` along it, a descending ray read
 // looking up from both ends in the columns table (`segment_column` with `ground`).
@@ -58,11 +33,11 @@ fn shafts_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
     if shadow_map.size.y == 0u {
         return loss;
     }
-    let span = shaft_span(s);
+    let span = shaft_span(shadow_map, s);
     if span.y <= span.x {
         return loss;
     }
-    let samples = shaft_samples(span.y - span.x);
+    let samples = shaft_samples(shadow_map, span.y - span.x);
     let dt = (span.y - span.x) / f32(samples);
     let phase_r = rayleigh_phase(nu);
     let phase_m = mie_phase(nu);

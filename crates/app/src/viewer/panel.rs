@@ -321,7 +321,8 @@ fn terrain(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         )
         .on_hover_text(
             "The mountains' shadows in the air: the sun's visibility past the terrain at \
-             the sky model's samples (hillaire, nishita and oneil; docs/shafts.md)",
+             the sky model's samples, or their length for bruneton (all but dobashi and \
+             riley; docs/shafts.md)",
         );
         ui.add_enabled(
             settings.terrain,

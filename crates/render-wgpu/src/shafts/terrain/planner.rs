@@ -52,7 +52,7 @@ pub fn plan_shafts<'a, R: Relief + Sync>(
 pub fn why_no_shafts(frame: &Frame, map: &ShadowMap) -> Option<&'static str> {
     if !matches!(
         frame.model,
-        ModelId::Hillaire | ModelId::Nishita | ModelId::Oneil
+        ModelId::Hillaire | ModelId::Nishita | ModelId::Oneil | ModelId::Bruneton
     ) {
         return Some("the model has no light shafts");
     }
