@@ -10,13 +10,12 @@
 //!
 //! `w_k` the segment integral of Hillaire 2020's march (`medium.rs`, `segment_weight`),
 //! over the part of the segment below the shadow volume's top only
-//! (`shafts::shaft_span_m`): a
-//! camera above that top enters it after `T(x, x_entry)`, the difference of two columns
-//! of the transmittance table (Bruneton and Neyret 2008, section 4). The part is cut in
-//! two samples per cell of the map it spans, at least `MIN_SHAFT_SAMPLES` and at most
-//! `SHAFT_SAMPLES` equal segments (`shafts::shaft_samples`). Orders two and up (Psi_ms) stay
-//! unshadowed, and so does the similarity scaling's light path: the true medium's
-//! transmittances are used.
+//! (`shafts::shaft_span_m`): a camera above that top enters it after `T(x, x_entry)`,
+//! the difference of two columns of the transmittance table (Bruneton and Neyret 2008,
+//! section 4). The part is cut in two samples per cell of the map it spans, at least
+//! `MIN_SHAFT_SAMPLES` and at most `SHAFT_SAMPLES` equal segments
+//! (`shafts::shaft_samples`). Orders two and up (Psi_ms) stay unshadowed, and so does the
+//! similarity scaling's light path: the true medium's transmittances are used.
 
 use crate::models::hillaire::medium::{Medium, point_along, segment_weight};
 use crate::optics::column::optical_depth;
