@@ -1,8 +1,10 @@
 //! Light shafts on the planet (`render_wgpu::shafts::terrain`, `shaders/sky/hillaire/
-//! shafts.wgsl`, `shaders/sky/nishita/pixel.wgsl`) against their CPU twins
-//! (`atmosphere_core::models::hillaire::shafts`, `models::nishita`, with the renderer's
-//! own shadow map), that the shadow darkens the rays through it by the
-//! CPU's ratio, and that the planner's pruning changes nothing.
+//! shafts.wgsl`, `shaders/sky/nishita/pixel.wgsl`, `shaders/sky/oneil/pixel.wgsl`,
+//! `shaders/sky/bruneton/pixel.wgsl`) against their CPU twins
+//! (`atmosphere_core::models::hillaire::shafts`, `models::nishita`, `models::oneil`,
+//! `models::bruneton::shafts`, with the renderer's own shadow map), that the
+//! shadow darkens the rays through it by the CPU's ratio, and that the planner's pruning
+//! changes nothing.
 //!
 //! Needs a GPU adapter (lavapipe will do); see `gpu_hillaire_parity.rs`.
 
@@ -11,16 +13,18 @@ mod support;
 use std::path::Path;
 
 use atmos::render::scene::Scene;
+use atmosphere_core::models::bruneton::Bruneton;
 use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
+use atmosphere_core::models::oneil::{Oneil, OneilSettings};
 use atmosphere_core::models::sky_model::SkyModel;
 use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::{Frame, Renderer};
 use support::{FLOOR, cpu_pixel, renderer_or_skip};
 
 /// Largest |L_gpu - L_cpu| / max(L_cpu, FLOOR) per pixel and channel with the shafts on:
-/// hillaire's own parity (2e-3: the f16 store, the tables' f32 error) plus the shadow
+/// the models' own parity (2e-3: the f16 store, the tables' f32 error) plus the shadow
 /// test in f32, whose altitude and grid position carry about 0.5 m of rounding against
 /// a penumbra band of at least 1 m, and the GPU's terrain surface distance; measured on
 /// lavapipe: see the printed worst error.
@@ -47,7 +51,7 @@ fn with_shafts(frame: &Frame, on: bool) -> Frame {
     f
 }
 
-/// The CPU model of `frame` (hillaire or nishita) with the renderer's last shadow map
+/// The CPU model of `frame` (hillaire, nishita, oneil or bruneton) with the renderer's last shadow map
 /// (or none).
 fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Box<dyn SkyModel> {
     let shadow = if shafts {
@@ -64,6 +68,16 @@ fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Box<dyn SkyMod
         }
         ModelId::Nishita => {
             let mut model = Nishita::prepare(a, s, NishitaSettings::default()).unwrap();
+            model.set_terrain_shadow(shadow);
+            Box::new(model)
+        }
+        ModelId::Oneil => {
+            let mut model = Oneil::prepare(a, s, OneilSettings::default()).unwrap();
+            model.set_terrain_shadow(shadow);
+            Box::new(model)
+        }
+        ModelId::Bruneton => {
+            let mut model = Bruneton::prepare(a, s).unwrap();
             model.set_terrain_shadow(shadow);
             Box::new(model)
         }
@@ -89,6 +103,16 @@ fn hillaire_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio
 #[test]
 fn nishita_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
     check_shafts(ModelId::Nishita);
+}
+
+#[test]
+fn oneil_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
+    check_shafts(ModelId::Oneil);
+}
+
+#[test]
+fn bruneton_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
+    check_shafts(ModelId::Bruneton);
 }
 
 /// `model`'s frame of the Alps with the sun 4 degrees up, with shafts, against the CPU

@@ -219,6 +219,11 @@ pub struct BenchArgs {
     /// with the frame without clouds (docs/clouds.md, "Cost").
     #[arg(long, value_name = "interactive|offline", conflicts_with = "flight")]
     pub clouds: Vec<String>,
+    /// A scene with terrain (e.g. assets/scenes/default.toml): time its frames at --width
+    /// x --height with and without light shafts, interleaved, instead of the models'
+    /// tables: the sky pass's GPU time with shafts over without (docs/shafts.md, "Cost").
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["beams_scene", "flight", "optics_scene"])]
+    pub shafts_scene: Option<PathBuf>,
 }
 
 /// The flags of `atmos record` (docs/recording.md).
@@ -432,6 +437,36 @@ pub struct ProbeArgs {
     /// Where to write the CSV of results (atomically) [default: stdout].
     #[arg(long, value_name = "FILE.csv")]
     pub output: Option<PathBuf>,
+    /// Place the rays over the Earth's relief at --latitude-deg, --longitude-deg, the sun
+    /// at --sun-azimuth-deg and each view at that azimuth plus view_sun_azimuth_deg, so
+    /// that the terrain's shadow in the air reaches them (light shafts: reference,
+    /// hillaire, nishita, oneil, bruneton; docs/shafts.md).
+    #[arg(long, requires_all = ["latitude_deg", "longitude_deg", "sun_azimuth_deg"], conflicts_with = "scene")]
+    pub terrain: bool,
+    /// With --terrain: the rays' latitude, degrees north, in [-90, 90].
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        requires = "terrain"
+    )]
+    pub latitude_deg: Option<f64>,
+    /// With --terrain: the rays' longitude, degrees east, in [-180, 180].
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        requires = "terrain"
+    )]
+    pub longitude_deg: Option<f64>,
+    /// With --terrain: the sun's azimuth, degrees from north towards east, in [-360, 360].
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        requires = "terrain"
+    )]
+    pub sun_azimuth_deg: Option<f64>,
 }
 
 /// A sky model's or a beam method's name, checked against both lists (which one it must

@@ -13,6 +13,7 @@ pub mod location_flags;
 pub mod phase;
 pub mod probe;
 pub mod probe_scene;
+pub mod probe_terrain;
 pub mod progress;
 pub mod record;
 pub mod render;

@@ -26,6 +26,7 @@ use thiserror::Error;
 use crate::cli::ProbeArgs;
 use crate::csv_lines::{record_fields, record_lines};
 use crate::files::{check_writable, write_atomically};
+use crate::probe_terrain::{self, TerrainPlace};
 use crate::progress::map_with_progress;
 
 /// The columns every input needs, in the order of [`ViewRay::from_angles`].
@@ -296,9 +297,18 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     let file = args.input.display().to_string();
     let text = read_text(&args.input, CSV_LIMITS)?;
     let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
-    let model = prepare(model, &atmosphere, &settings)?;
-
-    let results = evaluate(model.as_ref(), &input.rows)
+    let (solar_irradiance, results) = match terrain_place(args)? {
+        Some(place) => {
+            let rays: Vec<ViewRay> = input.rows.iter().map(|row| row.ray).collect();
+            probe_terrain::evaluate(model, &atmosphere, &settings, &rays, &place)?
+        }
+        None => {
+            let model = prepare(model, &atmosphere, &settings)?;
+            let solar = model.solar_irradiance_w_m2_nm().to_vec();
+            (solar, evaluate(model.as_ref(), &input.rows))
+        }
+    };
+    let results = results
         .into_iter()
         .zip(&input.rows)
         .map(|(result, row)| {
@@ -313,13 +323,31 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     let labels: Vec<&str> = args.wavelengths.iter().map(|w| w.label.as_str()).collect();
     let table = Table {
         labels: &labels,
-        solar_irradiance: model.solar_irradiance_w_m2_nm(),
+        solar_irradiance: &solar_irradiance,
         color: &color,
     };
     let text = table.write(&input, &results)?;
     match &args.output {
         Some(path) => write_atomically(path, &text),
         None => Ok(std::io::stdout().lock().write_all(&text)?),
+    }
+}
+
+/// The place of `--terrain`, checked, or `None` without it.
+fn terrain_place(args: &ProbeArgs) -> anyhow::Result<Option<TerrainPlace>> {
+    match (
+        args.terrain,
+        args.latitude_deg,
+        args.longitude_deg,
+        args.sun_azimuth_deg,
+    ) {
+        (true, Some(lat), Some(lon), Some(azimuth)) => {
+            Ok(Some(TerrainPlace::new(lat, lon, azimuth)?))
+        }
+        (true, ..) => {
+            anyhow::bail!("--terrain needs --latitude-deg, --longitude-deg and --sun-azimuth-deg")
+        }
+        (false, ..) => Ok(None),
     }
 }
 

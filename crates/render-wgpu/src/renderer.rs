@@ -8,6 +8,7 @@ use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
+use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
 use crate::clouds::frame_clouds::{FrameClouds, plan_clouds};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
@@ -296,7 +297,7 @@ impl Renderer {
             self.prune_shafts,
             &mut plan,
         )?;
-        let shaft_samples = atmosphere_core::models::hillaire::shafts::SHAFT_SAMPLES as u32;
+        let shaft_samples = (SHAFT_SAMPLES as u32, MIN_SHAFT_SAMPLES as u32);
         self.shadow_texture.upload(&self.gpu, shadow, shaft_samples);
         // The cloud layer's march (docs/clouds.md, "Clouds in frames"): run unless the
         // planner shows it cannot change the image.

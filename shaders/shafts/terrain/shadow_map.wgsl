@@ -13,7 +13,8 @@ struct ShadowMapParams {
     east_cell: vec4<f32>,
     north_band: vec4<f32>,
     up_top: vec4<f32>,
-    // x: cells per side; y: 1 when the frame has shafts; z: samples per view segment.
+    // x: cells per side; y: 1 when the frame has shafts; z, w: most and fewest samples
+    // per view segment.
     size: vec4<u32>,
 }
 

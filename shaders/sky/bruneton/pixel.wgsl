@@ -11,7 +11,9 @@
 // surface where it lies beyond the ground. A surface that cuts the ray short
 // (`Segment::cut`) subtracts T(x, x_o) S(x_o) looked up at its point x_o, and is lit by
 // `bruneton_surface_irradiance`; the sea adds `add_sea` (`common/sea_surface.wgsl`) with
-// the sky along its mirror ray from the 3D textures. The sun disk with limb darkening is added where the ray
+// the sky along its mirror ray from the 3D textures. With light shafts, the single
+// scattering of the ray's shadowed length is taken out by the shadow-length
+// approximation (section 5, Eq. 17-18; `shaft_loss`). The sun disk with limb darkening is added where the ray
 // reaches space, times its transmittance. The view slice, E and the transmittance
 // table are read through the texture unit's linear filter where the device filters
 // Rgba32Float (`common/table_sampling.wgsl`), else texel by texel.
@@ -22,11 +24,15 @@
 #import common/surface.wgsl
 #import common/sea_surface.wgsl
 #import common/table_sampling.wgsl
+#import shafts/terrain/view_span.wgsl
 
 @group(0) @binding(9) var hdr: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(10) var view_slice: texture_2d<f32>;
 // E, copied from the store by `sky/bruneton/scattering_texture.wgsl` (x = mu_s, y = r).
 @group(0) @binding(11) var irradiance: texture_2d<f32>;
+// The terrain's shadow map for light shafts (docs/shafts.md).
+@group(0) @binding(16) var shadow_tops: texture_2d<f32>;
+@group(0) @binding(17) var<uniform> shadow_map: ShadowMapParams;
 
 // `IrradianceTable::lookup` on the ground (q = 0, as `irradiance_at`): the table's first
 // row, the only one with weight there, interpolated along mu_s alone (two texel reads,
@@ -103,6 +109,45 @@ fn scattered(p: Position, nu: f32, inside: bool) -> vec3<f32> {
     return l;
 }
 
+// `ShaftRay::single_beyond` (atmosphere-core `bruneton/shafts.rs`): T(x, x_d) S|x_d, the
+// single scattering of the part of segment `s` beyond distance `d` seen from its start,
+// from the 3D textures; zero where x_d ends the segment on the ground or at the top.
+fn single_beyond(s: Segment, d: f32, nu: f32) -> vec3<f32> {
+    if d >= s.length && !s.cut {
+        return vec3<f32>(0.0);
+    }
+    let r = radius_of_q(s.q);
+    let q_d = q_along(s, d);
+    let r_d = radius_of_q(q_d);
+    let mu_s_d = clamp((s.start_dot_sun + d * nu) / r_d, -1.0, 1.0);
+    let p = table_position(q_d, r_d, s.r_mu + d, mu_s_d, nu, s.on_ground);
+    let ends = segment_ends(s.q, r, s.r_mu, d, s.on_ground);
+    let columns = read_table_columns(transmittance_columns, ends.x, ends.y)
+        - read_table_columns(transmittance_columns, ends.z, ends.w);
+    let t = exp(-optical_depth(max(columns, vec3<f32>(0.0))));
+    var single = rayleigh_phase(nu) * texture_lookup(single_rayleigh, p);
+    if bruneton.mie_on == 1u {
+        single += mie_phase(nu) * texture_lookup(single_mie, p);
+    }
+    return t * single;
+}
+
+// What the shadow takes out of segment `s` along unit `direction` (`shadowed_segment`
+// and `ShaftRay::single_taken_out`): its shadowed length l from the shadow map as one
+// segment at the far end of a ray that ends on the ground or an object (Eq. 17), at the
+// camera's end of one that ends in space (Eq. 18); T(x, x_a) S|x_a - T(x, x_b) S|x_b.
+fn shaft_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
+    let l = min(shadowed_length(shadow_tops, shadow_map, s, direction), s.length);
+    if l <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    var part = vec2<f32>(0.0, l);
+    if s.end != END_SPACE {
+        part = vec2<f32>(s.length - l, s.length);
+    }
+    return single_beyond(s, part.x, nu) - single_beyond(s, part.y, nu);
+}
+
 // `Bruneton::radiance` for the view ray with unit `direction` from the camera, ending on
 // an object at `object_m` (0: none); `inside`: the camera is inside the atmosphere and
 // the view slice holds S at its r and mu_s.
@@ -138,6 +183,7 @@ fn segment_radiance(direction: vec3<f32>, s: Segment, inside: bool) -> Radiance 
         let p_o = table_position(q_o, r_o, s.r_mu + s.length, mu_s_o, nu, s.on_ground);
         l -= t * scattered(p_o, nu, false);
     }
+    l -= shaft_loss(s, direction, nu);
     if s.end == END_GROUND {
         let mu_s_g = clamp((s.start_dot_sun + s.length * nu) / bottom, -1.0, 1.0);
         let sky = ground_irradiance_at(mu_s_g);

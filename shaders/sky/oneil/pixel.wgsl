@@ -5,7 +5,9 @@
 // (`sky/oneil/optical_depth_table.wgsl`) gives the densities (0 in the planet's shadow:
 // the sample is skipped) and the sun's columns; the columns back to the camera are the
 // difference of two lookups, sample point and camera in the same direction, reversed when
-// the point is above the camera (a camera in space stands at the entry point). The
+// the point is above the camera (a camera in space stands at the entry point). With light
+// shafts, each sample's single scattering times the sun's visibility past the terrain
+// (`shafts/terrain/shadow_map.wgsl`). The
 // ground's Lambertian reflection of the transmitted sun; the frame around it (surface, sun
 // disk, HDR target) is `common/shade_pixel.wgsl`. Ozone is not in the table, so not in
 // the optical depths, as on the CPU. Writes spectral radiance (W m^-2 sr^-1 nm^-1).
@@ -20,6 +22,7 @@
 #import common/surface.wgsl
 #import common/table_sampling.wgsl
 #import common/shade_pixel.wgsl
+#import shafts/terrain/shadow_map.wgsl
 
 struct OneilParams {
     samples: u32,
@@ -30,7 +33,10 @@ struct OneilParams {
 
 @group(0) @binding(2) var<uniform> oneil: OneilParams;
 @group(0) @binding(3) var optical_depth_table: texture_2d<f32>;
-@group(0) @binding(4) var hdr: texture_storage_2d<rgba16float, write>;
+// The terrain's shadow map for light shafts (docs/shafts.md).
+@group(0) @binding(4) var shadow_tops: texture_2d<f32>;
+@group(0) @binding(5) var<uniform> shadow_map: ShadowMapParams;
+@group(0) @binding(6) var hdr: texture_storage_2d<rgba16float, write>;
 
 // `OpticalDepthTable::lookup`: the four channels (Rayleigh density, Rayleigh column,
 // Mie density, Mie column) at `altitude_m` for a ray `angle` radians from the vertical,
@@ -103,8 +109,13 @@ fn model_radiance(direction: vec3<f32>, s: Segment, empty: Radiance) -> Radiance
         if light.x <= 0.0 && light.z <= 0.0 {
             continue; // in the planet's shadow
         }
-        let j = atmosphere.rayleigh_scattering_per_m.xyz * (light.x * phase_r)
-            + atmosphere.mie_scattering_per_m.xyz * (light.z * phase_m);
+        var visible = 1.0;
+        if shadow_map.size.y != 0u {
+            let position = s.start + t * direction;
+            visible = shadow_map_visible(shadow_tops, shadow_map, atmosphere.bottom_radius_m, position, altitude);
+        }
+        let j = atmosphere.rayleigh_scattering_per_m.xyz * (light.x * phase_r * visible)
+            + atmosphere.mie_scattering_per_m.xyz * (light.z * phase_m * visible);
         out.radiance += ds * j * atmosphere.solar_irradiance.xyz
             * exp(-depth(light.yw + to_camera));
     }

@@ -9,6 +9,7 @@ pub mod beams;
 pub mod clouds;
 pub mod flight;
 pub mod optics;
+pub mod shafts;
 pub mod terrain;
 pub mod timing;
 pub mod variant;
@@ -295,6 +296,21 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let adapter = renderer.gpu().adapter_summary();
         let times = optics::measure(&mut renderer, path, size, args.frames)?;
         let text = optics::markdown(path, &adapter, size, &times);
+        std::io::stdout().lock().write_all(text.as_bytes())?;
+        if let Some(out) = &args.out {
+            write_atomically(out, text.as_bytes())?;
+        }
+        return Ok(());
+    }
+    if let Some(path) = &args.shafts_scene {
+        let size = (args.width, args.height);
+        let mut renderer = Renderer::headless()?;
+        let adapter = renderer.gpu().adapter_summary();
+        let total = shafts::frames_per_scene(args.frames) as u64;
+        let progress = Progress::new("bench", "frames", total);
+        let times = shafts::measure(&mut renderer, path, (size, args.frames), &progress)?;
+        progress.finish();
+        let text = shafts::markdown(path, &adapter, size, &times);
         std::io::stdout().lock().write_all(text.as_bytes())?;
         if let Some(out) = &args.out {
             write_atomically(out, text.as_bytes())?;

@@ -323,7 +323,8 @@ fn terrain(ui: &mut egui::Ui, settings: &mut ViewerSettings) {
         )
         .on_hover_text(
             "The mountains' shadows in the air: the sun's visibility past the terrain at \
-             the sky model's samples (hillaire and nishita; docs/shafts.md)",
+             the sky model's samples, or their length for bruneton (all but dobashi and \
+             riley; docs/shafts.md)",
         );
         ui.add_enabled(
             settings.terrain,

@@ -15,7 +15,10 @@
 //! each, reads the density and the optical length to the sun from the table; the optical
 //! length back to the camera is the difference of two lookups (sample point and camera,
 //! same direction), with the direction reversed when the camera is above the point; a
-//! camera in space stands at the point where the ray enters the atmosphere. See
+//! camera in space stands at the point where the ray enters the atmosphere. With light
+//! shafts, each sample's single scattering is multiplied by the sun's visibility past
+//! the terrain from the frame's shadow map (`shafts::ShadowMap`), the shadow test at the
+//! samples of Dobashi, Yamamoto and Nishita 2002 (Eq. 12) applied to O'Neil's. See
 //! docs/models/oneil.md for the equations, the settings' sources and the measured errors.
 
 use std::f64::consts::PI;
@@ -33,6 +36,7 @@ use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::geometry::{distance_to_exit, ray_hits_ground};
 use crate::optics::surface_lighting::{SurfaceElement, add_ground_light};
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
+use crate::shafts::{ShadowMap, SunVisibility};
 
 /// What trades accuracy for time in O'Neil's model. `Default` is the paper's choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -256,6 +260,8 @@ pub struct Oneil {
     base: ModelBase,
     settings: OneilSettings,
     table: OpticalDepthTable,
+    /// The terrain's shadow in the air, when light shafts are on (docs/shafts.md).
+    shadow: Option<ShadowMap>,
 }
 
 impl Oneil {
@@ -278,7 +284,14 @@ impl Oneil {
                 oneil.table_angles,
                 oneil.table_ray_samples,
             ),
+            shadow: None,
         })
+    }
+
+    /// The terrain's shadow the view samples test from now on (`None`: no light shafts):
+    /// each sample's single scattering times its sun visibility.
+    pub fn set_terrain_shadow(&mut self, shadow: Option<ShadowMap>) {
+        self.shadow = shadow;
     }
 
     pub fn table(&self) -> &OpticalDepthTable {
@@ -391,6 +404,7 @@ impl SkyModel for Oneil {
             if rho_r <= 0.0 && rho_m <= 0.0 {
                 continue; // in the planet's shadow
             }
+            let visible = self.shadow.as_ref().map_or(1.0, |m| m.sun_visible(p, sun));
             let view = to_camera(p);
             let column = [
                 light[RAYLEIGH_LENGTH] + view[0],
@@ -401,6 +415,7 @@ impl SkyModel for Oneil {
                 if self.base.with_mie {
                     j += self.base.spectra.mie_scattering[w] * rho_m * phase_m;
                 }
+                j *= visible;
                 radiance[w] +=
                     ds * j * self.base.spectra.solar_irradiance[w] * (-depth(w, column)).exp();
             }

@@ -37,24 +37,37 @@ impl<R: Relief> HeightFieldShadow<R> {
     }
 }
 
-impl<R: Relief> SunVisibility for HeightFieldShadow<R> {
-    /// 0 where the straight ray to the sun's centre meets the relief, else 1.
-    fn sun_visible(&self, point_m: DVec3, sun: DVec3) -> f64 {
+impl<R: Relief> HeightFieldShadow<R> {
+    /// The distance from `origin_m` along the unit `direction` to where the straight ray
+    /// first meets the relief, m (past it by less than the shortest step); `None` where
+    /// it rises above the relief's top first.
+    pub fn first_hit_m(&self, origin_m: DVec3, direction: DVec3) -> Option<f64> {
         let top = self.relief.elevation_bound_m();
         let mut t = 0.0;
         for _ in 0..MAX_STEPS {
-            let q = point_m + t * sun;
+            let q = origin_m + t * direction;
             let r = q.length();
             let altitude = r - self.radius_m;
-            if altitude > top {
-                return 1.0;
+            if altitude > top && q.dot(direction) >= 0.0 {
+                return None;
             }
             let gap = altitude - self.relief.elevation_m(q / r);
             if gap < 0.0 {
-                return 0.0;
+                return Some(t);
             }
             t += (gap / self.slope_bound).max(self.min_step_m);
         }
-        1.0
+        None
+    }
+}
+
+impl<R: Relief> SunVisibility for HeightFieldShadow<R> {
+    /// 0 where the straight ray to the sun's centre meets the relief, else 1.
+    fn sun_visible(&self, point_m: DVec3, sun: DVec3) -> f64 {
+        if self.first_hit_m(point_m, sun).is_some() {
+            0.0
+        } else {
+            1.0
+        }
     }
 }

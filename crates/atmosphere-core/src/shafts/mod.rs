@@ -13,9 +13,14 @@ mod height_field_shadow;
 mod relief;
 mod shadow_map;
 mod sun_visibility;
+mod view_span;
 
 pub use gnomonic_grid::{GRID_SIZE_RANGE, GnomonicGrid};
 pub use height_field_shadow::HeightFieldShadow;
 pub use relief::Relief;
 pub use shadow_map::ShadowMap;
 pub use sun_visibility::SunVisibility;
+pub use view_span::{
+    MIN_SHAFT_SAMPLES, SHAFT_SAMPLES, segment_span_m, shadowed_length_m, shaft_samples,
+    shaft_span_m,
+};

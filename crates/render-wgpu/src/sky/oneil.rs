@@ -12,9 +12,11 @@ use crate::frame::plan::StepKind;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, uniform_buffer, uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
+    uniform_entry,
 };
 use crate::gpu::readback::read_texture;
+use crate::shafts::terrain::uniform::ShadowMapUniform;
 use crate::sky::model_pass::{ModelPass, StepContext};
 use crate::sky::pixel_pass::{PixelPass, PixelShader};
 use crate::sky::steps::{PassStep, SkyPlan};
@@ -205,7 +207,11 @@ impl OneilPass {
                 entry: "main",
                 label: "the oneil pass",
                 params_size: size_of::<OneilUniform>(),
-                tables: &[sampling.texture_entry(3, wgpu::TextureViewDimension::D2)],
+                tables: &[
+                    sampling.texture_entry(3, wgpu::TextureViewDimension::D2),
+                    texture_entry(4, wgpu::TextureViewDimension::D2),
+                    uniform_entry(5, size_of::<ShadowMapUniform>()),
+                ],
                 sampling: Some(&sampling),
             },
         )?;
@@ -262,7 +268,12 @@ impl ModelPass for OneilPass {
             }
             OneilStep::Pass => {
                 let view = table.pass.texture().create_view(&Default::default());
-                let tables = [wgpu::BindingResource::TextureView(&view)];
+                let shadow = cx.io.shadow.view();
+                let tables = [
+                    wgpu::BindingResource::TextureView(&view),
+                    wgpu::BindingResource::TextureView(&shadow),
+                    cx.io.shadow.params().as_entire_binding(),
+                ];
                 self.pass.encode(cx, &self.params, &tables);
             }
         }

@@ -12,8 +12,9 @@
 //! not its proportionality approximation), so that the Mie phase function is applied
 //! exactly per ray; single Rayleigh is stored without its phase function, and orders two
 //! and up as radiance. The sun disk itself is excluded. Tables hold radiance per unit
-//! solar irradiance, so that `update` rebuilds nothing for a new solar spectrum. See
-//! docs/models/bruneton.md.
+//! solar irradiance, so that `update` rebuilds nothing for a new solar spectrum. With
+//! light shafts, the single scattering of the shadowed length is taken out (`shafts.rs`,
+//! Eq. 17-18). See docs/models/bruneton.md.
 
 pub mod builder;
 pub mod channels;
@@ -22,6 +23,7 @@ pub mod mie_quadrature;
 pub mod parameterization;
 pub mod precompute;
 pub mod settings;
+pub mod shafts;
 pub mod sphere_integrals;
 pub mod sun_disk;
 pub mod tables;
@@ -39,6 +41,7 @@ use crate::models::bruneton::delta_m::DeltaM;
 use crate::models::bruneton::mie_quadrature::MieQuadrature;
 use crate::models::bruneton::parameterization::{Radii, table_position};
 use crate::models::bruneton::precompute::{OrderStats, Tables};
+use crate::models::bruneton::shafts::{ShaftRay, shadowed_segment};
 use crate::models::bruneton::sun_disk::visible_sun;
 use crate::models::bruneton::tables::{DensityTable, Table4};
 use crate::models::error::ModelError;
@@ -51,6 +54,7 @@ use crate::optics::phase::rayleigh;
 use crate::optics::surface_lighting::SurfaceElement;
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
+use crate::shafts::{ShadowMap, shadowed_length_m};
 
 /// The Bruneton 2008 model, prepared for one atmosphere.
 #[derive(Debug)]
@@ -67,6 +71,8 @@ pub struct Bruneton {
     /// wavelength).
     groups: Vec<Tables>,
     build_seconds: f64,
+    /// The terrain's shadow in the air, when light shafts are on (docs/shafts.md).
+    shadow: Option<ShadowMap>,
 }
 
 impl Bruneton {
@@ -109,6 +115,7 @@ impl Bruneton {
             transmittance,
             groups: Vec::new(),
             build_seconds: 0.0,
+            shadow: None,
         };
         let densities = DensityTable::new(atmosphere);
         let delta_m = model.delta_m();
@@ -119,6 +126,12 @@ impl Bruneton {
             .collect();
         model.build_seconds = start.elapsed().as_secs_f64();
         Ok(model)
+    }
+
+    /// The terrain's shadow the view rays see from now on (`None`: no light shafts): the
+    /// single scattering of the shadowed length taken out (`shafts.rs`).
+    pub fn set_terrain_shadow(&mut self, shadow: Option<ShadowMap>) {
+        self.shadow = shadow;
     }
 
     /// The wavelengths of each group of three (the last padded by repeating the last).
@@ -340,6 +353,22 @@ impl SkyModel for Bruneton {
             }
             _ => None,
         };
+        // Light shafts: the shadowed length as one segment (Eq. 17-18).
+        let shadowed = self
+            .shadow
+            .as_ref()
+            .map(|m| shadowed_length_m(&segment, m, bottom))
+            .filter(|l| *l > 0.0)
+            .map(|l| shadowed_segment(&segment, l));
+        let shaft_ray = ShaftRay {
+            radii: &self.radii,
+            transmittance: &self.transmittance,
+            segment: &segment,
+            mu_s,
+            nu,
+            ground,
+            mie_phase,
+        };
         let mut radiance = Vec::with_capacity(n);
         let mut transmittance = Vec::with_capacity(n);
         for (g, tables) in self.groups.iter().enumerate() {
@@ -351,6 +380,12 @@ impl SkyModel for Bruneton {
                 let l_end = Self::scattered(tables, q, nu, mie_phase);
                 for k in 0..3 {
                     l[k] -= t[k] * l_end[k];
+                }
+            }
+            if let Some(part) = shadowed {
+                let lost = shaft_ray.single_taken_out(tables, part);
+                for k in 0..3 {
+                    l[k] -= lost[k];
                 }
             }
             for k in 0..3 {

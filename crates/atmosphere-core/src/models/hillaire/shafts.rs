@@ -9,29 +9,19 @@
 //! `dL = sum_k T(x, x_k) (1 - V(x_k)) T_sun(x_k) (sigma_s,R p_R + sigma_s,M p_M) w_k`,
 //!
 //! `w_k` the segment integral of Hillaire 2020's march (`medium.rs`, `segment_weight`),
-//! over the part of the segment below the shadow volume's top, in `SHAFT_SAMPLES` equal
-//! segments. Orders two and up (Psi_ms) stay unshadowed, and so does the similarity
-//! scaling's light path: the true medium's transmittances are used.
+//! over the part of the segment below the shadow volume's top only
+//! (`shafts::shaft_span_m`): a camera above that top enters it after `T(x, x_entry)`,
+//! the difference of two columns of the transmittance table (Bruneton and Neyret 2008,
+//! section 4). The part is cut in two samples per cell of the map it spans, at least
+//! `MIN_SHAFT_SAMPLES` and at most `SHAFT_SAMPLES` equal segments
+//! (`shafts::shaft_samples`). Orders two and up (Psi_ms) stay unshadowed, and so does the
+//! similarity scaling's light path: the true medium's transmittances are used.
 
 use crate::models::hillaire::medium::{Medium, point_along, segment_weight};
+use crate::optics::column::optical_depth;
 use crate::optics::phase::rayleigh;
 use crate::optics::view_segment::ViewSegment;
-use crate::shafts::{ShadowMap, SunVisibility};
-
-/// Samples of the shadowed part of a view segment.
-pub const SHAFT_SAMPLES: usize = 32;
-
-/// How far along a segment (from its start) the shadow can reach: to where it last
-/// leaves the sphere of the shadow volume's top, at most the map's width; 0 when it
-/// never dips below it.
-pub fn shaft_reach_m(r: f64, mu: f64, length: f64, top_radius_m: f64, width_m: f64) -> f64 {
-    let r_mu = r * mu;
-    let disc = r_mu * r_mu - (r - top_radius_m) * (r + top_radius_m);
-    if disc < 0.0 {
-        return 0.0;
-    }
-    (-r_mu + disc.sqrt()).clamp(0.0, length.min(width_m))
-}
+use crate::shafts::{ShadowMap, SunVisibility, segment_span_m, shaft_samples};
 
 /// The single scattering per unit solar irradiance (sr^-1) that the shadow of `map`
 /// takes out of `segment`, per wavelength, into `out`.
@@ -43,12 +33,9 @@ pub fn shadowed_single(
 ) {
     out.fill(0.0);
     let bottom = medium.atmosphere.bottom_radius_m;
-    let width_m = map.grid.cell_m * map.grid.size as f64;
-    let top_radius_m = bottom + f64::from(map.max_top_m);
-    let reach = shaft_reach_m(segment.r, segment.mu, segment.length, top_radius_m, width_m);
-    if reach <= 0.0 {
+    let Some((entry, end)) = segment_span_m(segment, map, bottom) else {
         return;
-    }
+    };
     let sun = segment.sun_direction;
     let mu_s = (segment.start.dot(sun) / segment.r).clamp(-1.0, 1.0);
     let nu = segment.direction.dot(sun).clamp(-1.0, 1.0);
@@ -61,11 +48,17 @@ pub fn shadowed_single(
         },
     );
     let n = out.len();
-    let mut throughput = vec![1.0; n];
+    let above = medium
+        .transmittance
+        .segment_column(segment.r, segment.mu, entry, true);
+    let mut throughput: Vec<f64> = (0..n)
+        .map(|w| (-optical_depth(above, medium.spectra.extinction[w])).exp())
+        .collect();
     let mut sun_t = vec![0.0; n];
-    let dt = reach / SHAFT_SAMPLES as f64;
-    for k in 0..SHAFT_SAMPLES {
-        let t = (k as f64 + 0.5) * dt;
+    let samples = shaft_samples(end - entry, map.grid.cell_m);
+    let dt = (end - entry) / samples as f64;
+    for k in 0..samples {
+        let t = entry + (k as f64 + 0.5) * dt;
         let (r_t, mu_s_t) = point_along(segment.r, segment.mu, mu_s, nu, t);
         let rho = medium.densities(r_t);
         let shadow = 1.0 - map.sun_visible(segment.start + t * segment.direction, sun);

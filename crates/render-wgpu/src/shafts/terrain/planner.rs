@@ -50,7 +50,10 @@ pub fn plan_shafts<'a, R: Relief + Sync>(
 
 /// Why `frame` needs no shafts with the shadow map `map`, or `None` when it may.
 pub fn why_no_shafts(frame: &Frame, map: &ShadowMap) -> Option<&'static str> {
-    if !matches!(frame.model, ModelId::Hillaire | ModelId::Nishita) {
+    if !matches!(
+        frame.model,
+        ModelId::Hillaire | ModelId::Nishita | ModelId::Oneil | ModelId::Bruneton
+    ) {
         return Some("the model has no light shafts");
     }
     if map.shadowing_cells == 0 {
@@ -137,10 +140,10 @@ mod tests {
             Some("nothing casts a shadow into the air")
         );
         // A model without shafts.
-        let mut oneil = frame(500.0, DVec3::X);
-        oneil.model = ModelId::Oneil;
+        let mut riley = frame(500.0, DVec3::X);
+        riley.model = ModelId::Riley;
         assert_eq!(
-            why_no_shafts(&oneil, &map),
+            why_no_shafts(&riley, &map),
             Some("the model has no light shafts")
         );
     }

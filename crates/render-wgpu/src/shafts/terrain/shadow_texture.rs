@@ -23,9 +23,9 @@ impl ShadowTexture {
         ShadowTexture { texture, params }
     }
 
-    /// Uploads `map` (`None`: shafts off) for the frames that follow, `samples` per view
-    /// segment.
-    pub fn upload(&mut self, gpu: &GpuContext, map: Option<&ShadowMap>, samples: u32) {
+    /// Uploads `map` (`None`: shafts off) for the frames that follow, at most `samples.0`
+    /// and at least `samples.1` samples per view segment.
+    pub fn upload(&mut self, gpu: &GpuContext, map: Option<&ShadowMap>, samples: (u32, u32)) {
         let Some(map) = map else {
             gpu.write_uniform(&self.params, &ShadowMapUniform::default());
             return;

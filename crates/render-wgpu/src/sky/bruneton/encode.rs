@@ -4,7 +4,7 @@ use crate::frame::surface_buffer::{ALBEDO_BINDING, GEOMETRY_BINDING};
 use crate::gpu::context::GpuContext;
 use crate::gpu::pipeline::{ComputePipeline, texel_groups};
 use crate::sky::bruneton::bindings::bind_group;
-use crate::sky::bruneton::pipelines::Pipelines;
+use crate::sky::bruneton::pipelines::{Pipelines, SHADOW_MAP_BINDING, SHADOW_TOPS_BINDING};
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreTable};
 use crate::sky::bruneton::tables::Tables;
 use crate::sky::bruneton::workgroups::{FLAT, flat_groups};
@@ -141,6 +141,7 @@ impl StepEncoder<'_> {
         let render =
             if inside { &p.render_inside } else { &p.render }.variant(io.has_surface, io.has_sea);
         let [geometry, albedo] = io.surface;
+        let shadow = io.shadow.view();
         let surface = [
             (
                 GEOMETRY_BINDING,
@@ -148,6 +149,11 @@ impl StepEncoder<'_> {
             ),
             (ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)),
             self.sampling.sampler_binding(),
+            (
+                SHADOW_TOPS_BINDING,
+                wgpu::BindingResource::TextureView(&shadow),
+            ),
+            (SHADOW_MAP_BINDING, io.shadow.params().as_entire_binding()),
         ];
         let bind_group = self.scattering_bind_group(render, &[&hdr, &slice, &irradiance], &surface);
         let groups = texel_groups(io.hdr);

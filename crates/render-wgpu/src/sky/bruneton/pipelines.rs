@@ -12,9 +12,15 @@ use crate::gpu::pipeline::{
     ComputePipeline, PixelPipeline, storage_buffer_entry, storage_texture_entry, texture_entry,
     uniform_entry,
 };
+use crate::shafts::terrain::uniform::ShadowMapUniform;
 use crate::sky::bruneton::bindings::{COLUMNS_BINDING, shared_entries};
 use crate::sky::bruneton::order_state::OrderState;
 use crate::sky::table_sampling::TableSampling;
+
+/// The per-pixel pass's bindings of the terrain's shadow map for light shafts: its tops
+/// and its parameters (`sky/bruneton/pixel.wgsl`).
+pub const SHADOW_TOPS_BINDING: u32 = 16;
+pub const SHADOW_MAP_BINDING: u32 = 17;
 
 /// The pipelines of every step.
 #[derive(Debug)]
@@ -82,6 +88,8 @@ impl Pipelines {
                     sampling.texture_entry(10, D2),
                     sampling.texture_entry(11, D2),
                     sampling.sampler_entry(),
+                    texture_entry(SHADOW_TOPS_BINDING, D2),
+                    uniform_entry(SHADOW_MAP_BINDING, size_of::<ShadowMapUniform>()),
                 ],
             ]
             .concat(),
