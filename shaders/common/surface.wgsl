@@ -10,6 +10,7 @@
 #import common/frame_params.wgsl
 #import common/ground_ray.wgsl
 #import common/phase.wgsl
+#import clouds/sun_map_read.wgsl
 
 // xyz: outward unit normal; w: distance from the camera along the pixel's ray, m
 // (0: no surface in this pixel).
@@ -60,6 +61,8 @@ struct SurfaceElement {
     mu_s: f32,
     sun_cosine: f32,
     sky_view_factor: f32,
+    // The sun's transmittance through the cloud layer (its sun map; 1 without).
+    cloud_sun: f32,
 }
 
 // The element at planet-centred `point` with outward unit `normal`; a point above the
@@ -75,6 +78,7 @@ fn surface_element(point: vec3<f32>, normal: vec3<f32>) -> SurfaceElement {
     e.mu_s = clamp(dot(up, sun), -1.0, 1.0);
     e.sun_cosine = max(dot(normal, sun), 0.0);
     e.sky_view_factor = 0.5 * (1.0 + clamp(dot(normal, up), -1.0, 1.0));
+    e.cloud_sun = cloud_sun_transmittance(point);
     return e;
 }
 
@@ -84,9 +88,10 @@ fn planet_hides_sun(e: SurfaceElement) -> bool {
     return hits_ground(e.q, e.r * e.mu_s);
 }
 
-// E_sun T_sun max(n . s, 0) + E_sky (1 + n . up) / 2 (`SurfaceElement::irradiance`).
+// E_sun T_sun T_cloud max(n . s, 0) + E_sky (1 + n . up) / 2 (`SurfaceElement::irradiance`,
+// the cloud's T_cloud by `clouds/layer/shadowed_surface.rs`).
 fn element_irradiance(e: SurfaceElement, sun_transmittance: vec3<f32>, sky: vec3<f32>) -> vec3<f32> {
-    return atmosphere.solar_irradiance.xyz * sun_transmittance * e.sun_cosine
+    return atmosphere.solar_irradiance.xyz * sun_transmittance * e.sun_cosine * e.cloud_sun
         + sky * e.sky_view_factor;
 }
 

@@ -70,7 +70,7 @@ fn the_gpu_fills_the_sun_map_as_the_cpu_does() {
         steps: 24,
     };
     let camera_m = DVec3::X * (BOTTOM_M + 500.0);
-    let mut grid = CloudSunMap::grid_for(&layer, camera_m, &resolution).unwrap();
+    let mut grid = CloudSunMap::grid_for(layer.shell(), camera_m, &resolution).unwrap();
     grid.cell_m = 2_000.0;
     for elevation in [30.0, 8.0] {
         let s = sun(elevation);

@@ -82,7 +82,7 @@ fn errors(layer: &CloudLayer, map: &CloudSunMap, sun: DVec3) -> (f64, f64, f64) 
 
 fn map(layer: &CloudLayer, sun: DVec3, resolution: &SunMapResolution) -> CloudSunMap {
     let camera = DVec3::X * (BOTTOM_M + 500.0);
-    let mut grid = CloudSunMap::grid_for(layer, camera, resolution).unwrap();
+    let mut grid = CloudSunMap::grid_for(layer.shell(), camera, resolution).unwrap();
     // The test's points lie within 85 km of the camera's vertical: a smaller grid.
     grid.cell_m = 200_000.0 / resolution.cells as f64;
     CloudSunMap::new(layer, grid, sun, resolution).unwrap()
@@ -177,10 +177,11 @@ fn a_resolution_out_of_range_is_named() {
             "sun map steps",
         ),
     ] {
-        let e = CloudSunMap::grid_for(&smooth, DVec3::X * BOTTOM_M, &bad).unwrap_err();
+        let e = CloudSunMap::grid_for(smooth.shell(), DVec3::X * BOTTOM_M, &bad).unwrap_err();
         assert!(e.to_string().contains(name), "{e}");
     }
-    let grid = CloudSunMap::grid_for(&smooth, DVec3::X * BOTTOM_M, &Default::default()).unwrap();
+    let grid =
+        CloudSunMap::grid_for(smooth.shell(), DVec3::X * BOTTOM_M, &Default::default()).unwrap();
     let e = CloudSunMap::new(&smooth, grid, DVec3::ZERO, &Default::default()).unwrap_err();
     assert!(e.to_string().contains("sun"), "{e}");
 }

@@ -7,7 +7,7 @@
 //! interpolation ([`upsample`]), in frames
 //! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]); the
 //! sun's attenuation through the layer over the view's region, once a frame
-//! ([`sun_map`]).
+//! ([`sun_map`]), and the surface in its shadow ([`shadowed_surface`]).
 
 pub mod composite;
 pub mod droplets;
@@ -18,6 +18,7 @@ pub mod presets;
 pub mod profile;
 pub mod segment_upsample;
 pub mod settings;
+pub mod shadowed_surface;
 pub mod shell;
 pub mod sun_map;
 pub mod upsample;

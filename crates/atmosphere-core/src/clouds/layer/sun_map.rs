@@ -18,6 +18,7 @@
 use glam::DVec3;
 
 use super::field::CloudLayer;
+use super::shell::Shell;
 use crate::clouds::error::{CloudError, check_range};
 use crate::clouds::medium::CloudMedium;
 use crate::optics::geometry::distance_to_exit;
@@ -103,15 +104,15 @@ pub struct CloudSunMap {
 }
 
 impl CloudSunMap {
-    /// The grid of the map for a camera at `camera_m` (planet-centred) over `layer`;
-    /// an error names a resolution out of range or a camera at the planet's centre.
+    /// The grid of the map for a camera at `camera_m` (planet-centred) over the layer's
+    /// `shell`; an error names a resolution out of range or a camera at the planet's
+    /// centre.
     pub fn grid_for(
-        layer: &CloudLayer,
+        shell: &Shell,
         camera_m: DVec3,
         resolution: &SunMapResolution,
     ) -> Result<GnomonicGrid, CloudError> {
         resolution.check()?;
-        let shell = layer.shell();
         let altitude = camera_m.length() - shell.ground_radius_m;
         let top = shell.top_radius_m - shell.ground_radius_m;
         let width = 2.0 * half_width_m(shell.ground_radius_m, altitude, top);

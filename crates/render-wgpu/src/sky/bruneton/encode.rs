@@ -141,12 +141,15 @@ impl StepEncoder<'_> {
         let render =
             if inside { &p.render_inside } else { &p.render }.variant(io.has_surface, io.has_sea);
         let [geometry, albedo] = io.surface;
+        let [map, map_params] = io.sun_map.bindings();
         let surface = [
             (
                 GEOMETRY_BINDING,
                 wgpu::BindingResource::TextureView(geometry),
             ),
             (ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)),
+            map,
+            map_params,
             self.sampling.sampler_binding(),
         ];
         let bind_group = self.scattering_bind_group(render, &[&hdr, &slice, &irradiance], &surface);
