@@ -31,11 +31,7 @@ pub fn why_no_sun_map(frame: &Frame, has_surface: bool, shell: &Shell) -> Option
     }
     let up = frame.camera_position_m.normalize();
     let altitude = frame.camera_position_m.length() - shell.ground_radius_m;
-    let half = half_width_m(
-        shell.ground_radius_m,
-        altitude,
-        shell.top_radius_m - shell.ground_radius_m,
-    );
+    let half = half_width_m(shell.ground_radius_m, altitude);
     let below = half / shell.ground_radius_m + 2f64.to_radians();
     let elevation = frame
         .sun_direction

@@ -54,13 +54,11 @@ impl SunMapResolution {
     }
 }
 
-/// The half width of the map under a camera `altitude_m` above a planet of `radius_m`
-/// with the layer's top `top_m` above the ground: the camera's horizon plus the top's,
-/// the farthest a cloud that can shade a visible point of the ground lies (at least
-/// 10 km).
-pub fn half_width_m(radius_m: f64, altitude_m: f64, top_m: f64) -> f64 {
-    let horizon = |h: f64| (2.0 * radius_m * h.max(0.0)).sqrt();
-    (horizon(altitude_m) + horizon(top_m)).max(10_000.0)
+/// The half width of the map under a camera `altitude_m` above a planet of `radius_m`:
+/// the camera's horizon, beyond which no ground is seen, and 20 km for the sun's slant
+/// from a ground point to the cloud above it.
+pub fn half_width_m(radius_m: f64, altitude_m: f64) -> f64 {
+    (2.0 * radius_m * altitude_m.max(0.0)).sqrt() + 20_000.0
 }
 
 /// The optical depth from `point` towards the unit `sun` to the layer's shell boundary
@@ -114,8 +112,7 @@ impl CloudSunMap {
     ) -> Result<GnomonicGrid, CloudError> {
         resolution.check()?;
         let altitude = camera_m.length() - shell.ground_radius_m;
-        let top = shell.top_radius_m - shell.ground_radius_m;
-        let width = 2.0 * half_width_m(shell.ground_radius_m, altitude, top);
+        let width = 2.0 * half_width_m(shell.ground_radius_m, altitude);
         GnomonicGrid::new(
             camera_m,
             shell.base_radius_m,
