@@ -1,5 +1,5 @@
 // Library: the cloud layer's sun map read at a point (render-wgpu's
-// `clouds/sun_map_texture.rs` binds it at 32 and 33 of every model's pixel pass). CPU
+// `clouds/sun_map_texture.rs`; the per-pixel pass `sun_map_pixels.wgsl` reads it). CPU
 // twin: atmosphere-core's `clouds/layer/sun_map.rs` (`CloudSunMap::optical_depth`):
 // Dobashi, Yamamoto and Nishita 2002 section 5.4's attenuation textures, the optical
 // depth towards the sun through the layer at `levels` spheres of the shell over a
@@ -8,33 +8,27 @@
 // at its own direction, bilinearly in the grid and linearly in radius between levels; a
 // point above the top or off the grid sees no cloud.
 
-// WGSL `SunMapParams` (Rust `SunMapUniform`).
-struct SunMapParams {
-    // The grid's axes (planet-fixed, unit); w of the first: the cell's side on the base
-    // sphere, m.
-    east_cell: vec4<f32>,
-    north: vec4<f32>,
-    up: vec4<f32>,
-    // Unit vector towards the sun (xyz).
-    sun: vec4<f32>,
-    // Radii of the layer's base and top, m (z, w unused).
-    radii: vec4<f32>,
-    // Cells per side, levels, march steps per texel, 1 when the frame has the map.
-    counts: vec4<u32>,
-}
+#import clouds/sun_map_params.wgsl
 
 // Level k's optical depths in rows k n to k n + n - 1 (n cells per side).
-@group(0) @binding(32) var sun_map: texture_2d<f32>;
+@group(0) @binding(35) var sun_map: texture_2d<f32>;
 @group(0) @binding(33) var<uniform> sun_map_params: SunMapParams;
+
+// `x` clamped to [0, hi] (0 for NaN) and truncated: a software rasteriser runs the loads
+// of lanes that take no part, so every index stays inside the texture whatever `x` is.
+fn sun_map_index(x: f32, hi: u32) -> u32 {
+    return u32(min(select(0.0, x, x > 0.0), f32(hi)));
+}
 
 // Level `k`'s optical depth at fractional cell coordinates inside the grid (bilinear).
 fn sun_map_level(k: u32, column: f32, row: f32) -> f32 {
     let n = sun_map_params.counts.x;
-    let i = min(u32(column), n - 2u);
-    let j = min(u32(row), n - 2u);
+    let size = textureDimensions(sun_map);
+    let i = sun_map_index(column, size.x - 2u);
+    let j = sun_map_index(row, size.x - 2u);
     let a = column - f32(i);
     let b = row - f32(j);
-    let y = k * n + j;
+    let y = min(k * n + j, size.y - 2u);
     let s00 = textureLoad(sun_map, vec2<u32>(i, y), 0).x;
     let s10 = textureLoad(sun_map, vec2<u32>(i + 1u, y), 0).x;
     let s01 = textureLoad(sun_map, vec2<u32>(i, y + 1u), 0).x;
@@ -85,7 +79,7 @@ fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
     if column < 0.0 || row < 0.0 || column > last || row > last {
         return 1.0;
     }
-    let k = min(u32(x), m.counts.y - 1u);
+    let k = sun_map_index(x, max(m.counts.y, 1u) - 1u);
     let f = x - f32(k);
     let low = sun_map_level(k, column, row);
     var high = 0.0;

@@ -76,7 +76,7 @@ fn the_gpu_fills_the_sun_map_as_the_cpu_does() {
         let s = sun(elevation);
         let cpu = CloudSunMap::new(&layer, grid, s, &resolution).unwrap();
         let params = SunMapUniform::new(&grid, s, layer.shell().top_radius_m, &resolution);
-        texture.set(&gpu, Some(&params)).unwrap();
+        texture.set(&gpu, Some(&params), (1, 1)).unwrap();
         let camera = LayerCamera {
             position_m: camera_m,
             forward: DVec3::Y,

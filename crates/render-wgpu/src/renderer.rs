@@ -13,6 +13,7 @@ use crate::clouds::frame_clouds::{FrameClouds, plan_clouds};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
 use crate::clouds::frame_sun_map::FrameSunMap;
 use crate::clouds::layer_inputs::LayerInputs;
+use crate::clouds::sun_map_pass::PixelInputs;
 
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
@@ -425,14 +426,15 @@ impl Renderer {
                 has_surface,
                 has_front: front_needed,
             };
-            let map_writes = timer.zip(self.sun_map.step());
+            let pixels = PixelInputs {
+                atmosphere: &self.atmosphere,
+                frame: &self.frame,
+                geometry: &surface_views[0],
+            };
+            let writes = timer.zip(self.sun_map.step());
+            let writes = writes.map(|(t, s)| t.compute_writes(s));
             let marched = (self.sun_map)
-                .encode(
-                    gpu,
-                    &mut encoder,
-                    (frame, clouds, inputs),
-                    map_writes.map(|(t, s)| t.compute_writes(s)),
-                )
+                .encode(gpu, &mut encoder, (frame, clouds, inputs), pixels, writes)
                 .and_then(|()| {
                     let writes = timer.map(|t| t.compute_writes(march));
                     pass.encode_march(gpu, &mut encoder, &scene, c, writes)

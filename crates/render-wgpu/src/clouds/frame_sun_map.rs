@@ -10,7 +10,7 @@ use crate::clouds::frame_clouds::FrameClouds;
 use crate::clouds::frame_pass::frame_camera;
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::LayerUniform;
-use crate::clouds::sun_map_pass::SunMapPass;
+use crate::clouds::sun_map_pass::{PixelInputs, SunMapPass};
 use crate::clouds::sun_map_texture::{SunMapTexture, SunMapUniform};
 use crate::frame::Frame;
 use crate::frame::plan::{FramePlan, StepKind};
@@ -79,8 +79,9 @@ impl FrameSunMap {
         plan: &mut FramePlan,
     ) -> Result<(), RenderError> {
         self.step = None;
+        let pixels = (frame.width, frame.height);
         let Some((clouds, true)) = clouds else {
-            return self.texture.set(gpu, None);
+            return self.texture.set(gpu, None, pixels);
         };
         let ground = frame.atmosphere.bottom_radius_m;
         let (base, top) = clouds.settings.radii_m(ground);
@@ -91,7 +92,7 @@ impl FrameSunMap {
         };
         if let Some(why) = why_no_sun_map(frame, has_surface, &shell).filter(|_| clouds.prune) {
             plan.skip("cloud_shadow", why);
-            return self.texture.set(gpu, None);
+            return self.texture.set(gpu, None, pixels);
         }
         let to_error =
             |e: atmosphere_core::clouds::error::CloudError| RenderError::Frame(e.to_string());
@@ -102,7 +103,7 @@ impl FrameSunMap {
             .try_normalize()
             .ok_or_else(|| RenderError::Frame("sun direction must be non-zero".into()))?;
         let params = SunMapUniform::new(&grid, sun, top, &self.resolution);
-        self.texture.set(gpu, Some(&params))?;
+        self.texture.set(gpu, Some(&params), pixels)?;
         if self.pass.is_none() {
             self.pass = Some(SunMapPass::new(gpu)?);
         }
@@ -116,12 +117,14 @@ impl FrameSunMap {
         self.step
     }
 
-    /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover.
+    /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover
+    /// (timed by `timestamps`), then its read at each pixel's surface.
     pub fn encode(
         &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         scene: (&Frame, &FrameClouds, &LayerInputs),
+        pixels: PixelInputs<'_>,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), RenderError> {
         let (frame, clouds, inputs) = scene;
@@ -143,6 +146,7 @@ impl FrameSunMap {
             &self.texture,
             timestamps,
         );
+        pass.encode_pixels(gpu, encoder, pixels, &self.texture);
         Ok(())
     }
 }

@@ -1,8 +1,9 @@
 //! The cloud layer's sun map on the GPU (atmosphere-core's `clouds/layer/sun_map.rs`):
-//! its optical depths in an `R32Float` texture, level k in rows k n to k n + n - 1, and
-//! its parameters in a uniform, both bound at 32 and 33 of every model's pixel pass
-//! (`shaders/clouds/sun_map_read.wgsl`), which multiplies the surface's sun by the
-//! map's transmittance. A frame without the map binds a 2 x 2 texture with its flag off.
+//! its optical depths in an `R32Float` texture, level k in rows k n to k n + n - 1, its
+//! parameters in a uniform, and the map's transmittance at each pixel's surface
+//! (`shaders/clouds/sun_map_pixels.wgsl`), which every model's pixel pass binds at 32
+//! with the parameters at 33 (`shaders/common/surface.wgsl`) and multiplies its
+//! surface's sun by. A frame without the map binds small textures with the flag off.
 
 use atmosphere_core::clouds::layer::sun_map::SunMapResolution;
 use atmosphere_core::shafts::GnomonicGrid;
@@ -15,9 +16,12 @@ use crate::gpu::pipeline::{texture_2d, texture_entry, uniform_buffer, uniform_en
 
 /// The texture's format: one optical depth per texel.
 pub const SUN_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
-/// The bindings of the texture and its parameters in the pixel passes.
-pub const SUN_MAP_BINDING: u32 = 32;
+/// The bindings, in the model's pixel passes, of the per-pixel transmittance and of the
+/// parameters; in the per-pixel pass, of the per-pixel output and of the map.
+pub const PIXELS_BINDING: u32 = 32;
 pub const SUN_MAP_PARAMS_BINDING: u32 = 33;
+pub const PIXELS_OUT_BINDING: u32 = 34;
+pub const SUN_MAP_BINDING: u32 = 35;
 
 /// WGSL `SunMapParams`, 96 bytes; `counts[3] = 0` for a frame without the map.
 #[repr(C)]
@@ -62,33 +66,37 @@ impl SunMapUniform {
     }
 }
 
-/// The map's texture and parameters, as the pixel passes bind them.
+/// The map's texture, parameters and per-pixel transmittance.
 #[derive(Debug)]
 pub struct SunMapTexture {
     texture: wgpu::Texture,
-    view: wgpu::TextureView,
+    pixels: wgpu::Texture,
+    pixels_view: wgpu::TextureView,
     params: wgpu::Buffer,
 }
 
 impl SunMapTexture {
     /// The placeholder of frames without the map.
     pub fn new(gpu: &GpuContext) -> SunMapTexture {
-        let texture = map_texture(gpu, (2, 2));
+        let pixels = map_texture(gpu, "cloud sun map pixels", (1, 1));
         let params = uniform_buffer(&gpu.device, "cloud sun map", size_of::<SunMapUniform>());
         gpu.write_uniform(&params, &SunMapUniform::default());
         SunMapTexture {
-            view: texture.create_view(&Default::default()),
-            texture,
+            texture: map_texture(gpu, "cloud sun map", (2, 2)),
+            pixels_view: pixels.create_view(&Default::default()),
+            pixels,
             params,
         }
     }
 
     /// Writes `params` (`None`: the frames that follow have no map) and makes the
-    /// texture its size; an error names a map taller than the device's textures.
+    /// textures their sizes, the per-pixel one `pixels` (width, height); an error names a
+    /// map taller than the device's textures.
     pub fn set(
         &mut self,
         gpu: &GpuContext,
         params: Option<&SunMapUniform>,
+        pixels: (u32, u32),
     ) -> Result<(), RenderError> {
         let Some(params) = params else {
             gpu.write_uniform(&self.params, &SunMapUniform::default());
@@ -105,16 +113,24 @@ impl SunMapTexture {
             )));
         }
         if (self.texture.width(), self.texture.height()) != size {
-            self.texture = map_texture(gpu, size);
-            self.view = self.texture.create_view(&Default::default());
+            self.texture = map_texture(gpu, "cloud sun map", size);
+        }
+        if (self.pixels.width(), self.pixels.height()) != pixels {
+            self.pixels = map_texture(gpu, "cloud sun map pixels", pixels);
+            self.pixels_view = self.pixels.create_view(&Default::default());
         }
         gpu.write_uniform(&self.params, params);
         Ok(())
     }
 
-    /// The texture (the fill pass writes it; tests read it back).
+    /// The map (the fill pass writes it; tests read it back).
     pub fn texture(&self) -> &wgpu::Texture {
         &self.texture
+    }
+
+    /// The per-pixel transmittance (the per-pixel pass writes it).
+    pub fn pixels(&self) -> &wgpu::Texture {
+        &self.pixels
     }
 
     /// The parameters' buffer.
@@ -122,30 +138,30 @@ impl SunMapTexture {
         &self.params
     }
 
-    /// The layout entries of bindings 32 and 33.
+    /// The layout entries of bindings 32 and 33 of the models' pixel passes.
     pub fn layout_entries() -> [wgpu::BindGroupLayoutEntry; 2] {
         [
-            texture_entry(SUN_MAP_BINDING, wgpu::TextureViewDimension::D2),
+            texture_entry(PIXELS_BINDING, wgpu::TextureViewDimension::D2),
             uniform_entry(SUN_MAP_PARAMS_BINDING, size_of::<SunMapUniform>()),
         ]
     }
 
-    /// The resources of bindings 32 and 33.
+    /// The resources of bindings 32 and 33 of the models' pixel passes.
     pub fn bindings(&self) -> [(u32, wgpu::BindingResource<'_>); 2] {
         [
             (
-                SUN_MAP_BINDING,
-                wgpu::BindingResource::TextureView(&self.view),
+                PIXELS_BINDING,
+                wgpu::BindingResource::TextureView(&self.pixels_view),
             ),
             (SUN_MAP_PARAMS_BINDING, self.params.as_entire_binding()),
         ]
     }
 }
 
-fn map_texture(gpu: &GpuContext, size: (u32, u32)) -> wgpu::Texture {
+fn map_texture(gpu: &GpuContext, label: &str, size: (u32, u32)) -> wgpu::Texture {
     texture_2d(
         &gpu.device,
-        "cloud sun map",
+        label,
         size,
         SUN_MAP_FORMAT,
         wgpu::TextureUsages::STORAGE_BINDING
