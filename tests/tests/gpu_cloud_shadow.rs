@@ -16,14 +16,12 @@ mod support;
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::field::CloudLayer;
-use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_surface;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::optics::legendre_series::LegendreSeries;
 use atmosphere_core::optics::phase::PhaseFunction;
 use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
 use glam::DVec3;
@@ -36,14 +34,6 @@ use render_wgpu::frame::{Frame, look_orientation};
 const RELATIVE: f64 = 0.01;
 const RATIO: f64 = 0.01;
 const ALBEDO: f32 = 0.3;
-
-fn orders() -> ScatteringOrders {
-    let series: Vec<LegendreSeries> = [0.84, 0.85, 0.86]
-        .iter()
-        .map(|&g| LegendreSeries::henyey_greenstein(g, 300))
-        .collect();
-    ScatteringOrders::new(&series).unwrap()
-}
 
 /// A uniform cover broken by the detail noise at full strength into cloud a few km
 /// across; thin enough (extinction 0.001 m^-1) that the shadows are partial.
@@ -109,7 +99,7 @@ fn clouds(renderer: &mut Renderer, frame: &Frame, settings: &LayerSettings, prun
     let light = frame_light(model.as_ref(), frame, settings).unwrap();
     renderer
         .set_clouds(Some(FrameClouds {
-            settings: settings.clone(),
+            settings: *settings,
             light,
             prune,
         }))
@@ -121,7 +111,9 @@ fn clouds_shade_the_ground_as_the_cpu_twin_does() {
     let Some(mut renderer) = support::renderer_or_skip("cloud shadow") else {
         return;
     };
-    renderer.set_cloud_inputs(&cover(), &orders()).unwrap();
+    renderer
+        .set_cloud_inputs(&cover(), &support::clouds::orders())
+        .unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     for model_id in [ModelId::Nishita, ModelId::Hillaire] {
         let frame = frame(model_id);
@@ -186,7 +178,9 @@ fn cover_zero_leaves_the_ground_bit_for_bit_and_the_planner_says_why() {
     let Some(mut renderer) = support::renderer_or_skip("cloud shadow cover 0") else {
         return;
     };
-    renderer.set_cloud_inputs(&cover(), &orders()).unwrap();
+    renderer
+        .set_cloud_inputs(&cover(), &support::clouds::orders())
+        .unwrap();
     let frame = frame(ModelId::Nishita);
     let surface = ground(&frame);
     renderer.set_clouds(None).unwrap();

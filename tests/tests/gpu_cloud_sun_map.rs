@@ -11,12 +11,10 @@ mod support;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::march::CloudLight;
-use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::geo::equirectangular::lat_lon;
-use atmosphere_core::optics::legendre_series::LegendreSeries;
 use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::clouds::layer_inputs::LayerInputs;
@@ -36,14 +34,6 @@ fn cover() -> CoverGrid {
     .unwrap()
 }
 
-fn orders() -> ScatteringOrders {
-    let series: Vec<LegendreSeries> = [0.84, 0.85, 0.86]
-        .iter()
-        .map(|&g| LegendreSeries::henyey_greenstein(g, 300))
-        .collect();
-    ScatteringOrders::new(&series).unwrap()
-}
-
 fn sun(elevation_deg: f64) -> DVec3 {
     let e = elevation_deg.to_radians();
     DVec3::new(e.sin(), e.cos() * 0.6, e.cos() * 0.8)
@@ -55,7 +45,7 @@ fn the_gpu_fills_the_sun_map_as_the_cpu_does() {
         return;
     };
     let cover = cover();
-    let inputs = LayerInputs::new(&gpu, &cover, &orders()).unwrap();
+    let inputs = LayerInputs::new(&gpu, &cover, &support::clouds::orders()).unwrap();
     let pass = SunMapPass::new(&gpu).unwrap();
     let mut texture = SunMapTexture::new(&gpu);
     let settings = LayerSettings {
@@ -63,7 +53,7 @@ fn the_gpu_fills_the_sun_map_as_the_cpu_does() {
         ..LayerSettings::default()
     };
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
-    let layer = CloudLayer::new(settings.clone(), BOTTOM_M, cover, phase).unwrap();
+    let layer = CloudLayer::new(settings, BOTTOM_M, cover, phase).unwrap();
     let resolution = SunMapResolution {
         cells: 48,
         levels: 3,
