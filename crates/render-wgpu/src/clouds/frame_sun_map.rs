@@ -150,3 +150,49 @@ impl FrameSunMap {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use atmosphere_core::atmosphere::Atmosphere;
+    use atmosphere_core::models::id::ModelId;
+    use glam::DVec3;
+
+    use super::*;
+    use crate::frame::look_orientation;
+
+    /// A frame 1 km up on the x axis, the sun `elevation_deg` above its horizon.
+    fn frame(elevation_deg: f64) -> Frame {
+        let atmosphere = Atmosphere::preset("earth").unwrap();
+        let e = elevation_deg.to_radians();
+        Frame {
+            camera_position_m: DVec3::X * (atmosphere.bottom_radius_m + 1_000.0),
+            orientation: look_orientation(DVec3::Y, DVec3::X).unwrap(),
+            vertical_fov_deg: 50.0,
+            sun_direction: DVec3::new(e.sin(), e.cos(), 0.0),
+            atmosphere,
+            model: ModelId::Nishita,
+            settings: Default::default(),
+            exposure_ev100: 14.0,
+            width: 64,
+            height: 36,
+            terrain: None,
+        }
+    }
+
+    #[test]
+    fn the_map_is_left_out_without_a_surface_or_a_sun_over_it() {
+        let f = frame(30.0);
+        let ground = f.atmosphere.bottom_radius_m;
+        let shell = Shell {
+            ground_radius_m: ground,
+            base_radius_m: ground + 1_500.0,
+            top_radius_m: ground + 3_000.0,
+        };
+        assert_eq!(why_no_sun_map(&f, true, &shell), None);
+        assert_eq!(why_no_sun_map(&f, false, &shell), Some(NO_SURFACE));
+        // The map reaches 133 km, 1.2 degrees of arc, out: a sun 1 degree down still
+        // lights its far side; 10 degrees down lights none of it.
+        assert_eq!(why_no_sun_map(&frame(-1.0), true, &shell), None);
+        assert_eq!(why_no_sun_map(&frame(-10.0), true, &shell), Some(SUN_DOWN));
+    }
+}
