@@ -1,14 +1,13 @@
 //! The cloud layer's shadow on the surface in renderer frames (the sun map,
-//! `clouds/frame_sun_map.rs`, read by every model's `element_irradiance`) against the
-//! CPU twin (`clouds/layer/shadowed_surface.rs` with the CPU's map of the same grid), on
-//! 64 x 36 frames of the ground seen from 1 km up under the layer, the sun 30 degrees
-//! up: each value within 1 % of itself (the models' own parity is 0.2 %; the map's f32
-//! march differs from the CPU's by up to 0.003 in transmittance,
+//! `clouds/frame_sun_map.rs`, read at each pixel's surface and multiplied into every
+//! model's `element_irradiance`) against the CPU twin (`clouds/layer/shadowed_surface.rs`
+//! with the CPU's map of the same grid), on 64 x 36 frames of the ground seen from 1 km
+//! up under the layer, the sun 30 degrees up: each value within 1 % of itself (the
+//! models' own parity tolerance is 0.2 %; the map's f32 march adds its own,
 //! `gpu_cloud_sun_map.rs`). The shadow's ratio to the frame without clouds follows the
 //! CPU's within 0.01, a third of the pixels lie in shadows darker than 0.7 of it (a lost
 //! shadow fails), and the ratio spans more than 0.1 over the frame (a shadow of one value
-//! fails). Cover 0 run through the steps gives the frame without clouds bit
-//! for bit.
+//! fails). Cover 0 run through the steps gives the frame without clouds bit for bit.
 //!
 //! Needs a GPU adapter (lavapipe will do); see `support`.
 
