@@ -10,6 +10,7 @@
 #import common/frame_params.wgsl
 #import common/ground_ray.wgsl
 #import common/phase.wgsl
+#import clouds/sun_map_params.wgsl
 
 // xyz: outward unit normal; w: distance from the camera along the pixel's ray, m
 // (0: no surface in this pixel).
@@ -17,6 +18,15 @@
 // rgb: albedo (linear); a: 1 for a Lambertian surface, 0 for the sea
 // (`common/sea_surface.wgsl`), whose rgb is then the water body's albedo.
 @group(0) @binding(31) var surface_albedo: texture_2d<f32>;
+// The sun's transmittance through the cloud layer at each pixel's surface
+// (`clouds/sun_map_pixels.wgsl`), read where the sun map's flag (counts.w) is 1.
+@group(0) @binding(32) var surface_cloud_sun: texture_2d<f32>;
+@group(0) @binding(33) var<uniform> surface_sun_map: SunMapParams;
+
+// This pixel's cloud transmittance, set by `frame_surface`: the surface elements the
+// pass lights lie on the pixel's surface (the ground sphere of a pixel without one is
+// not shaded).
+var<private> pixel_cloud_sun: f32 = 1.0;
 
 // Whether the pipeline reads a surface at all (`PixelPipeline`): its variant without one
 // has every branch of the surface compiled out, as a software rasteriser runs both sides
@@ -49,6 +59,9 @@ fn frame_surface(px: vec2<u32>) -> Surface {
     let albedo = textureLoad(surface_albedo, px, 0);
     out.albedo = albedo.rgb;
     out.water = albedo.a < 0.5;
+    if out.present && surface_sun_map.counts.w == 1u {
+        pixel_cloud_sun = textureLoad(surface_cloud_sun, px, 0).x;
+    }
     return out;
 }
 
@@ -60,6 +73,8 @@ struct SurfaceElement {
     mu_s: f32,
     sun_cosine: f32,
     sky_view_factor: f32,
+    // The sun's transmittance through the cloud layer at the pixel's surface (1 without).
+    cloud_sun: f32,
 }
 
 // The element at planet-centred `point` with outward unit `normal`; a point above the
@@ -75,6 +90,7 @@ fn surface_element(point: vec3<f32>, normal: vec3<f32>) -> SurfaceElement {
     e.mu_s = clamp(dot(up, sun), -1.0, 1.0);
     e.sun_cosine = max(dot(normal, sun), 0.0);
     e.sky_view_factor = 0.5 * (1.0 + clamp(dot(normal, up), -1.0, 1.0));
+    e.cloud_sun = pixel_cloud_sun;
     return e;
 }
 
@@ -84,9 +100,10 @@ fn planet_hides_sun(e: SurfaceElement) -> bool {
     return hits_ground(e.q, e.r * e.mu_s);
 }
 
-// E_sun T_sun max(n . s, 0) + E_sky (1 + n . up) / 2 (`SurfaceElement::irradiance`).
+// E_sun T_sun T_cloud max(n . s, 0) + E_sky (1 + n . up) / 2 (`SurfaceElement::irradiance`,
+// the cloud's T_cloud by `clouds/layer/shadowed_surface.rs`).
 fn element_irradiance(e: SurfaceElement, sun_transmittance: vec3<f32>, sky: vec3<f32>) -> vec3<f32> {
-    return atmosphere.solar_irradiance.xyz * sun_transmittance * e.sun_cosine
+    return atmosphere.solar_irradiance.xyz * sun_transmittance * e.sun_cosine * e.cloud_sun
         + sky * e.sky_view_factor;
 }
 

@@ -1,11 +1,10 @@
 //! The cloud layer composited into `Renderer` frames (`clouds/frame_pass.rs`,
 //! `shaders/clouds/frame_march.wgsl` and `frame_composite.wgsl`) against its CPU twin,
 //! atmosphere-core's `clouds/layer/composite.rs`, on whole 48 x 27 frames of three
-//! models, with a surface in front of, inside and behind the cloud; the interactive
-//! preset's march at a third of the resolution against `segment_upsample.rs`, the
-//! mountain in front of the cloud left as without clouds; cover 0 leaves the
-//! frame exactly as without clouds; the planner's pruning changes nothing; bad input is
-//! named.
+//! models, with a surface in front of, inside and behind the cloud (in its shadow); the
+//! interactive preset's march at a third of the resolution against `segment_upsample.rs`,
+//! the mountain in front of the cloud left as at full resolution; cover 0 leaves the
+//! frame exactly as without clouds; pruning changes nothing; bad input is named.
 //!
 //! Tolerance: each pixel's radiance within 4 % of itself plus 1 % of the frame's
 //! brightest value, but for one value in a hundred, which may be off by four times that
@@ -29,15 +28,16 @@ use atmosphere_core::clouds::layer::segment_upsample::{
     ReducedMarch, Segment, upsample_by_segment,
 };
 use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_surface as shaded;
+use atmosphere_core::clouds::layer::sun_map::CloudSunMap;
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, nearest_pixel, reduced_size};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::geo::equirectangular::lat_lon;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
-use atmosphere_core::optics::legendre_series::LegendreSeries;
 use atmosphere_core::optics::phase::PhaseFunction;
-use atmosphere_core::optics::surface_lighting::{SurfaceHit, radiance_with_surface};
+use atmosphere_core::optics::surface_lighting::SurfaceHit;
 use glam::DVec3;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_clouds::{
@@ -53,16 +53,6 @@ const JUMP_FACTOR: f64 = 4.0;
 /// The columns of the frame with a surface ("a mountain"), 2 km from the camera.
 const MOUNTAIN_COLUMNS: u32 = 16;
 const MOUNTAIN_M: f32 = 2_000.0;
-
-/// Henyey-Greenstein tables, another g at each wavelength so that a swapped channel
-/// shows.
-fn orders() -> ScatteringOrders {
-    let series: Vec<LegendreSeries> = [0.84, 0.85, 0.86]
-        .iter()
-        .map(|&g| LegendreSeries::henyey_greenstein(g, 300))
-        .collect();
-    ScatteringOrders::new(&series).unwrap()
-}
 
 /// Cells about 15 km across near (0 N, 0 E), where the camera is, scaled by `scale`.
 fn cover(scale: f64) -> CoverGrid {
@@ -174,12 +164,13 @@ fn cpu_march(
 
 /// The CPU's composite of pixel (column, row) with `cloud` (where its ray enters the
 /// cloud and the cloud's [radiance x 3, transmittance]): `composite.rs` with the model's
-/// answers for the whole ray (ended on the surface) and for the ray ended at the cloud.
+/// answers for the whole ray (ended on the surface, in the shadow of `map`) and for the
+/// ray ended at the cloud.
 fn cpu_pixel(
     model: &dyn SkyModel,
     frame: &Frame,
     (column, row): (u32, u32),
-    texel: &SurfaceTexel,
+    (texel, map): (&SurfaceTexel, &CloudSunMap),
     cloud: Option<(f64, [f64; 4])>,
 ) -> RayRadiance {
     let ray = frame.pixel_ray(column, row);
@@ -189,7 +180,7 @@ fn cpu_pixel(
             normal: glam::Vec3::from_array(texel.normal).as_dvec3(),
             albedo: texel.stored_albedo().map(f64::from).to_vec(),
         };
-        radiance_with_surface(model, &frame.atmosphere, &ray, &hit).unwrap()
+        shaded(model, &frame.atmosphere, &ray, &hit, map).unwrap()
     } else {
         model.radiance(&ray).unwrap()
     };
@@ -247,6 +238,7 @@ fn cpu_frame(
     frame: &Frame,
     surface: &[SurfaceTexel],
 ) -> Vec<RayRadiance> {
+    let map = support::clouds::frame_sun_map(layer, frame);
     (0..frame.height)
         .flat_map(|row| (0..frame.width).map(move |column| (column, row)))
         .zip(surface)
@@ -256,7 +248,7 @@ fn cpu_frame(
                 let o_d = (ray.origin_m, ray.direction);
                 (s.0, cpu_march(layer, orders, light, o_d, s))
             });
-            cpu_pixel(model, frame, px, texel, cloud)
+            cpu_pixel(model, frame, px, (texel, &map), cloud)
         })
         .collect()
 }
@@ -266,7 +258,7 @@ fn inside_the_layer_the_second_run_is_skipped_and_the_frame_still_matches_the_cp
     let Some(mut renderer) = support::renderer_or_skip("cloud frames inside") else {
         return;
     };
-    let (orders, cover) = (orders(), cover(1.0));
+    let (orders, cover) = (support::clouds::orders(), cover(1.0));
     renderer.set_cloud_inputs(&cover, &orders).unwrap();
     let mut frame = frame(ModelId::Riley);
     frame.camera_position_m = DVec3::X * (frame.atmosphere.bottom_radius_m + 2_000.0);
@@ -306,7 +298,7 @@ fn composited_frames_match_the_cpu_composite_for_three_models() {
     let Some(mut renderer) = support::renderer_or_skip("cloud frames parity") else {
         return;
     };
-    let orders = orders();
+    let orders = support::clouds::orders();
     let cover = cover(1.0);
     renderer.set_cloud_inputs(&cover, &orders).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
@@ -375,7 +367,7 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
     let Some(mut renderer) = support::renderer_or_skip("cloud frames interactive") else {
         return;
     };
-    let orders = orders();
+    let orders = support::clouds::orders();
     let cover = cover(1.0);
     renderer.set_cloud_inputs(&cover, &orders).unwrap();
     let frame = frame(ModelId::Nishita);
@@ -387,16 +379,21 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
     let radius = frame.atmosphere.bottom_radius_m;
     let layer = CloudLayer::new(settings, radius, cover.clone(), phase).unwrap();
     let surface = mountain(&frame);
-    renderer.set_clouds(None).unwrap();
+    // The same layer marched at full resolution: in front of the cloud both frames keep
+    // the model's pixels, the surface in the cloud's shadow, as they are.
+    let full = LayerSettings {
+        resolution_divisor: 1,
+        ..settings
+    };
+    let clouds = |settings| FrameClouds {
+        settings,
+        light: light.clone(),
+        prune: true,
+    };
+    renderer.set_clouds(Some(clouds(full))).unwrap();
     renderer.render_with_surface(&frame, &surface).unwrap();
     let clear = renderer.read_hdr().unwrap();
-    renderer
-        .set_clouds(Some(FrameClouds {
-            settings,
-            light: light.clone(),
-            prune: true,
-        }))
-        .unwrap();
+    renderer.set_clouds(Some(clouds(settings))).unwrap();
     renderer.render_with_surface(&frame, &surface).unwrap();
     let gpu = renderer.read_hdr().unwrap();
 
@@ -451,13 +448,14 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
             cpu_march(&layer, &orders, &light, (ray.origin_m, ray.direction), s)
         },
     );
+    let map = support::clouds::frame_sun_map(&layer, &frame);
     let cpu: Vec<RayRadiance> = pixels
         .iter()
         .zip(&surface)
         .zip(full_segments.iter().zip(&clouds))
         .map(|((&px, texel), (segment, cloud))| {
             let cloud = segment.map(|s| (s.0, *cloud));
-            cpu_pixel(model.as_ref(), &frame, px, texel, cloud)
+            cpu_pixel(model.as_ref(), &frame, px, (texel, &map), cloud)
         })
         .collect();
     let (worst, outside) = assert_within_tolerance("interactive", &gpu, &cpu);
@@ -503,7 +501,9 @@ fn cover_zero_leaves_the_frame_exactly_as_without_clouds() {
     let Some(mut renderer) = support::renderer_or_skip("cloud frames cover 0") else {
         return;
     };
-    renderer.set_cloud_inputs(&cover(0.0), &orders()).unwrap();
+    renderer
+        .set_cloud_inputs(&cover(0.0), &support::clouds::orders())
+        .unwrap();
     let frame = frame(ModelId::Nishita);
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let light = frame_light(model.as_ref(), &frame, &settings()).unwrap();
@@ -530,7 +530,9 @@ fn pruning_a_layer_out_of_view_changes_nothing() {
     let Some(mut renderer) = support::renderer_or_skip("cloud frames pruning") else {
         return;
     };
-    renderer.set_cloud_inputs(&cover(1.0), &orders()).unwrap();
+    renderer
+        .set_cloud_inputs(&cover(1.0), &support::clouds::orders())
+        .unwrap();
     // 400 km up, looking 30 degrees above the horizon: the planet and the layer lie
     // below the frame.
     let mut frame = frame(ModelId::Nishita);

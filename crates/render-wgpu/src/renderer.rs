@@ -12,7 +12,9 @@ use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
 use crate::clouds::frame_clouds::{FrameClouds, plan_clouds};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
+use crate::clouds::frame_sun_map::FrameSunMap;
 use crate::clouds::layer_inputs::LayerInputs;
+use crate::clouds::sun_map_pass::PixelInputs;
 
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
@@ -68,6 +70,8 @@ pub struct Renderer {
     cloud_inputs: Option<(LayerInputs, f64)>,
     /// The cloud steps, compiled when a frame first has clouds.
     cloud_pass: Option<CloudFramePass>,
+    /// The clouds' attenuation of the sun, shading the surface.
+    sun_map: FrameSunMap,
     /// The terrain's shadow map for light shafts, and its copy on the GPU.
     shadow: FrameShadow,
     shadow_texture: ShadowTexture,
@@ -102,6 +106,7 @@ impl Renderer {
             clouds: None,
             cloud_inputs: None,
             cloud_pass: None,
+            sun_map: FrameSunMap::new(&gpu),
             shadow: FrameShadow::default(),
             shadow_texture: ShadowTexture::new(&gpu),
             prune_shafts: true,
@@ -307,6 +312,8 @@ impl Renderer {
         if clouds_step.is_some() && self.cloud_pass.is_none() {
             self.cloud_pass = Some(CloudFramePass::new(&self.gpu)?);
         }
+        let clouds_run = self.clouds.as_ref().map(|c| (c, clouds_step.is_some()));
+        (self.sun_map).plan(&self.gpu, frame, clouds_run, has_surface, &mut plan)?;
         // The model's second run ends on the cloud: a surface, whose passes it needs.
         plan.surface = has_surface || front_needed;
         // The sea's variant of the pixel passes only where the surface holds sea.
@@ -394,6 +401,7 @@ impl Renderer {
             has_surface,
             has_sea,
             shadow: &self.shadow_texture,
+            sun_map: self.sun_map.texture(),
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         if let Some(terrain) = self.terrain.as_ref().filter(|_| draws_terrain) {
@@ -419,13 +427,19 @@ impl Renderer {
                 has_surface,
                 has_front: front_needed,
             };
-            let marched = pass.encode_march(
-                gpu,
-                &mut encoder,
-                &scene,
-                c,
-                timer.map(|t| t.compute_writes(march)),
-            );
+            let pixels = PixelInputs {
+                atmosphere: &self.atmosphere,
+                frame: &self.frame,
+                geometry: &surface_views[0],
+            };
+            let writes = timer.zip(self.sun_map.step());
+            let writes = writes.map(|(t, s)| t.compute_writes(s));
+            let marched = (self.sun_map)
+                .encode(gpu, &mut encoder, (frame, clouds, inputs), pixels, writes)
+                .and_then(|()| {
+                    let writes = timer.map(|t| t.compute_writes(march));
+                    pass.encode_march(gpu, &mut encoder, &scene, c, writes)
+                });
             if let Err(e) = marched {
                 self.targets = Some(targets);
                 return Err(e);

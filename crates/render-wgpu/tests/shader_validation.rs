@@ -341,6 +341,17 @@ fn shadow_map_uniform_matches_its_wgsl_layout() {
 }
 
 #[test]
+fn cloud_sun_map_uniform_matches_its_wgsl_layout() {
+    use render_wgpu::clouds::sun_map_texture::SunMapUniform;
+    assert_layout!(
+        "clouds/sun_map_fill.wgsl",
+        "SunMapParams",
+        SunMapUniform,
+        [east_cell, north, up, sun, radii, counts]
+    );
+}
+
+#[test]
 fn riley_and_oneil_uniforms_match_their_wgsl_layouts() {
     use render_wgpu::sky::oneil::{OneilTableUniform, OneilUniform};
     use render_wgpu::sky::riley::RileyUniform;

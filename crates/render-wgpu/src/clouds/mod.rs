@@ -3,10 +3,15 @@
 //! [`layer_uniform`] holds the pass's parameters, [`layer_inputs`] the cover texture
 //! and the multiple-scattering tables, [`layer_pass`] the pass; [`frame_clouds`] the
 //! layer of a renderer frame and the planner's rule, [`frame_pass`] its march and its
-//! composite with the frame's sky model.
+//! composite with the frame's sky model; [`sun_map_texture`] and [`sun_map_pass`] the
+//! layer's attenuation of the sun over the view's region, which shades the surface,
+//! and [`frame_sun_map`] its place in a renderer frame.
 
 pub mod frame_clouds;
 pub mod frame_pass;
+pub mod frame_sun_map;
 pub mod layer_inputs;
 pub mod layer_pass;
 pub mod layer_uniform;
+pub mod sun_map_pass;
+pub mod sun_map_texture;

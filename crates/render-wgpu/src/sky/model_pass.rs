@@ -6,6 +6,7 @@
 //! its own resources follow, and its pixel pass reads the frame's surface at bindings 30
 //! and 31 (`common/surface.wgsl`; `crate::sky::pixel_pass`).
 
+use crate::clouds::sun_map_texture::SunMapTexture;
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM, check_wavelengths};
 use crate::frame::surface_buffer::SurfaceBuffer;
@@ -45,6 +46,9 @@ pub struct PassIo<'a> {
     pub has_sea: bool,
     /// The terrain's shadow map for light shafts (a placeholder with them off).
     pub shadow: &'a ShadowTexture,
+    /// The clouds' sun map, bound by every pixel pass at bindings 32 and 33 (a
+    /// placeholder without clouds).
+    pub sun_map: &'a SunMapTexture,
 }
 
 /// Where one step of a model records its work: the GPU, what the frame's steps read and
@@ -68,6 +72,7 @@ pub struct StandaloneInputs {
     hdr: wgpu::Texture,
     surface: [wgpu::TextureView; 2],
     shadow: ShadowTexture,
+    sun_map: SunMapTexture,
 }
 
 impl StandaloneInputs {
@@ -87,6 +92,7 @@ impl StandaloneInputs {
             }),
             surface: SurfaceBuffer::new(gpu, 1, 1).views(),
             shadow: ShadowTexture::new(gpu),
+            sun_map: SunMapTexture::new(gpu),
         };
         gpu.write_uniform(&inputs.atmosphere, atmosphere);
         let frame_uniform = FrameUniform::new(frame, RGB_WAVELENGTHS_NM);
@@ -103,6 +109,7 @@ impl StandaloneInputs {
             has_surface: false,
             has_sea: false,
             shadow: &self.shadow,
+            sun_map: &self.sun_map,
         }
     }
 }

@@ -4,9 +4,11 @@
 //! (`common/frame_params.wgsl`), the model's parameters at 2, the model's tables (and
 //! other inputs) from 3 on, the HDR target after them, the table sampler at its binding
 //! where tables are sampled (`common/table_sampling.wgsl`), and the frame's surface at 30
-//! and 31 (`common/surface.wgsl`). Each pass compiles in the two variants of a
+//! and 31 (`common/surface.wgsl`) with the clouds' sun map at 32 and 33
+//! (`clouds/sun_map_read.wgsl`). Each pass compiles in the two variants of a
 //! [`PixelPipeline`], with and without a surface.
 
+use crate::clouds::sun_map_texture::SunMapTexture;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::surface_buffer::{ALBEDO_BINDING, GEOMETRY_BINDING, SurfaceBuffer};
 use crate::frame::uniform::FrameUniform;
@@ -55,6 +57,7 @@ impl PixelPass {
         entries.extend_from_slice(shader.tables);
         entries.push(storage_texture_entry(hdr_binding, HDR_FORMAT, D2));
         entries.extend(SurfaceBuffer::layout_entries());
+        entries.extend(SunMapTexture::layout_entries());
         let mut constants = Vec::new();
         if let Some(sampling) = shader.sampling {
             entries.push(sampling.sampler_entry());
@@ -103,6 +106,7 @@ impl PixelPass {
             wgpu::BindingResource::TextureView(geometry),
         ));
         resources.push((ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)));
+        resources.extend(io.sun_map.bindings());
         if let Some(sampling) = &self.sampling {
             resources.push(sampling.sampler_binding());
         }

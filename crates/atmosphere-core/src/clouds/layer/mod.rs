@@ -5,7 +5,9 @@
 //! ([`droplets`]), the ray march of a view ray ([`march`]), its
 //! interactive, offline and finest settings ([`presets`]), the reduced-resolution march's
 //! interpolation ([`upsample`]), in frames
-//! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]).
+//! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]); the
+//! sun's attenuation through the layer over the view's region, once a frame
+//! ([`sun_map`]), and the surface in its shadow ([`shadowed_surface`]).
 
 pub mod composite;
 pub mod droplets;
@@ -16,5 +18,7 @@ pub mod presets;
 pub mod profile;
 pub mod segment_upsample;
 pub mod settings;
+pub mod shadowed_surface;
 pub mod shell;
+pub mod sun_map;
 pub mod upsample;

@@ -142,12 +142,15 @@ impl StepEncoder<'_> {
             if inside { &p.render_inside } else { &p.render }.variant(io.has_surface, io.has_sea);
         let [geometry, albedo] = io.surface;
         let shadow = io.shadow.view();
+        let [map, map_params] = io.sun_map.bindings();
         let surface = [
             (
                 GEOMETRY_BINDING,
                 wgpu::BindingResource::TextureView(geometry),
             ),
             (ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)),
+            map,
+            map_params,
             self.sampling.sampler_binding(),
             (
                 SHADOW_TOPS_BINDING,

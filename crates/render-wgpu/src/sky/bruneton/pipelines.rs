@@ -4,6 +4,7 @@
 use wgpu::TextureFormat::Rgba32Float;
 use wgpu::TextureViewDimension::{D2, D3};
 
+use crate::clouds::sun_map_texture::SunMapTexture;
 use crate::frame::surface_buffer::SurfaceBuffer;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
@@ -78,6 +79,7 @@ impl Pipelines {
         );
         // The pass may sample the columns table, the view slice and E.
         let surface_entries = SurfaceBuffer::layout_entries();
+        let sun_map_entries = SunMapTexture::layout_entries();
         let mut render_entries = with(
             &[
                 &scattering_textures[..],
@@ -85,6 +87,8 @@ impl Pipelines {
                     storage_texture_entry(9, HDR_FORMAT, D2),
                     surface_entries[0],
                     surface_entries[1],
+                    sun_map_entries[0],
+                    sun_map_entries[1],
                     sampling.texture_entry(10, D2),
                     sampling.texture_entry(11, D2),
                     sampling.sampler_entry(),

@@ -1,0 +1,198 @@
+//! The cloud layer's sun map in a renderer frame: the planner's rule for it
+//! ([`why_no_sun_map`]), its grid under the frame's camera, and its fill before the
+//! model's passes, which multiply the surface's sun by its transmittance (the clouds'
+//! shadows on the terrain; docs/clouds.md, "Cloud shadows").
+
+use atmosphere_core::clouds::layer::shell::Shell;
+use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution, half_width_m};
+
+use crate::clouds::frame_clouds::FrameClouds;
+use crate::clouds::frame_pass::frame_camera;
+use crate::clouds::layer_inputs::LayerInputs;
+use crate::clouds::layer_uniform::LayerUniform;
+use crate::clouds::sun_map_pass::{PixelInputs, SunMapPass};
+use crate::clouds::sun_map_texture::{SunMapTexture, SunMapUniform};
+use crate::frame::Frame;
+use crate::frame::plan::{FramePlan, StepKind};
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::RenderError;
+
+/// Why the planner leaves the sun map out of a frame whose rays end on no surface.
+pub const NO_SURFACE: &str = "no surface in view to shade";
+/// Why it leaves the map out when the sun is below the horizon all over the map.
+pub const SUN_DOWN: &str = "the sun is below the horizon over the map";
+
+/// Why `frame` needs no sun map when its cloud steps run: no surface takes the shadow,
+/// or the sun is more than the map's angular half width (and 2 degrees for the
+/// relief) below the camera's horizon, where no point of the map's region sees it.
+pub fn why_no_sun_map(frame: &Frame, has_surface: bool, shell: &Shell) -> Option<&'static str> {
+    if !has_surface {
+        return Some(NO_SURFACE);
+    }
+    let up = frame.camera_position_m.normalize();
+    let altitude = frame.camera_position_m.length() - shell.ground_radius_m;
+    let half = half_width_m(shell.ground_radius_m, altitude);
+    let below = half / shell.ground_radius_m + 2f64.to_radians();
+    let elevation = frame
+        .sun_direction
+        .normalize()
+        .dot(up)
+        .clamp(-1.0, 1.0)
+        .asin();
+    (elevation < -below).then_some(SUN_DOWN)
+}
+
+/// The frame's sun map: its texture (bound by every pixel pass), its fill pass (made on
+/// first use) and the step it runs as in this frame.
+#[derive(Debug)]
+pub struct FrameSunMap {
+    texture: SunMapTexture,
+    pass: Option<SunMapPass>,
+    resolution: SunMapResolution,
+    step: Option<u32>,
+}
+
+impl FrameSunMap {
+    pub fn new(gpu: &GpuContext) -> FrameSunMap {
+        FrameSunMap {
+            texture: SunMapTexture::new(gpu),
+            pass: None,
+            resolution: SunMapResolution::default(),
+            step: None,
+        }
+    }
+
+    /// The texture and parameters the pixel passes bind.
+    pub fn texture(&self) -> &SunMapTexture {
+        &self.texture
+    }
+
+    /// Plans the map of `frame`, whose cloud steps run when `clouds_run`, into `plan`
+    /// (`cloud_shadow`, or skipped with why by [`why_no_sun_map`] when the clouds
+    /// prune), and sets the parameters the pixel passes read.
+    pub fn plan(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        clouds: Option<(&FrameClouds, bool)>,
+        has_surface: bool,
+        plan: &mut FramePlan,
+    ) -> Result<(), RenderError> {
+        self.step = None;
+        let pixels = (frame.width, frame.height);
+        let Some((clouds, true)) = clouds else {
+            return self.texture.set(gpu, None, pixels);
+        };
+        let ground = frame.atmosphere.bottom_radius_m;
+        let (base, top) = clouds.settings.radii_m(ground);
+        let shell = Shell {
+            ground_radius_m: ground,
+            base_radius_m: base,
+            top_radius_m: top,
+        };
+        if let Some(why) = why_no_sun_map(frame, has_surface, &shell).filter(|_| clouds.prune) {
+            plan.skip("cloud_shadow", why);
+            return self.texture.set(gpu, None, pixels);
+        }
+        let to_error =
+            |e: atmosphere_core::clouds::error::CloudError| RenderError::Frame(e.to_string());
+        let grid = CloudSunMap::grid_for(&shell, frame.camera_position_m, &self.resolution)
+            .map_err(to_error)?;
+        let sun = frame
+            .sun_direction
+            .try_normalize()
+            .ok_or_else(|| RenderError::Frame("sun direction must be non-zero".into()))?;
+        let params = SunMapUniform::new(&grid, sun, top, &self.resolution);
+        self.texture.set(gpu, Some(&params), pixels)?;
+        if self.pass.is_none() {
+            self.pass = Some(SunMapPass::new(gpu)?);
+        }
+        plan.run("cloud_shadow", StepKind::Pass);
+        self.step = Some(plan.steps.len() as u32 - 1);
+        Ok(())
+    }
+
+    /// The planned step's index, if the map runs in this frame.
+    pub fn step(&self) -> Option<u32> {
+        self.step
+    }
+
+    /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover
+    /// (timed by `timestamps`), then its read at each pixel's surface.
+    pub fn encode(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: (&Frame, &FrameClouds, &LayerInputs),
+        pixels: PixelInputs<'_>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), RenderError> {
+        let (frame, clouds, inputs) = scene;
+        let (Some(_), Some(pass)) = (self.step, &self.pass) else {
+            return Ok(());
+        };
+        let layer = LayerUniform::new(
+            &frame_camera(frame),
+            &clouds.light,
+            &clouds.settings,
+            frame.atmosphere.bottom_radius_m,
+            inputs.cover_size,
+        )?;
+        pass.encode(
+            gpu,
+            encoder,
+            &layer,
+            &inputs.cover,
+            &self.texture,
+            timestamps,
+        );
+        pass.encode_pixels(gpu, encoder, pixels, &self.texture);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use atmosphere_core::atmosphere::Atmosphere;
+    use atmosphere_core::models::id::ModelId;
+    use glam::DVec3;
+
+    use super::*;
+    use crate::frame::look_orientation;
+
+    /// A frame 1 km up on the x axis, the sun `elevation_deg` above its horizon.
+    fn frame(elevation_deg: f64) -> Frame {
+        let atmosphere = Atmosphere::preset("earth").unwrap();
+        let e = elevation_deg.to_radians();
+        Frame {
+            camera_position_m: DVec3::X * (atmosphere.bottom_radius_m + 1_000.0),
+            orientation: look_orientation(DVec3::Y, DVec3::X).unwrap(),
+            vertical_fov_deg: 50.0,
+            sun_direction: DVec3::new(e.sin(), e.cos(), 0.0),
+            atmosphere,
+            model: ModelId::Nishita,
+            settings: Default::default(),
+            exposure_ev100: 14.0,
+            width: 64,
+            height: 36,
+            terrain: None,
+        }
+    }
+
+    #[test]
+    fn the_map_is_left_out_without_a_surface_or_a_sun_over_it() {
+        let f = frame(30.0);
+        let ground = f.atmosphere.bottom_radius_m;
+        let shell = Shell {
+            ground_radius_m: ground,
+            base_radius_m: ground + 1_500.0,
+            top_radius_m: ground + 3_000.0,
+        };
+        assert_eq!(why_no_sun_map(&f, true, &shell), None);
+        assert_eq!(why_no_sun_map(&f, false, &shell), Some(NO_SURFACE));
+        // The map reaches 133 km, 1.2 degrees of arc, out: a sun 1 degree down still
+        // lights its far side; 10 degrees down lights none of it.
+        assert_eq!(why_no_sun_map(&frame(-1.0), true, &shell), None);
+        assert_eq!(why_no_sun_map(&frame(-10.0), true, &shell), Some(SUN_DOWN));
+    }
+}

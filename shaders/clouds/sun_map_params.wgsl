@@ -1,0 +1,18 @@
+// Library: the parameters of the cloud layer's sun map (render-wgpu's
+// `clouds/sun_map_texture.rs`, whose layout the naga test checks), read by its fill and
+// per-pixel passes and, for its flag, by every model's pixel pass (`common/surface.wgsl`).
+
+// WGSL `SunMapParams` (Rust `SunMapUniform`).
+struct SunMapParams {
+    // The grid's axes (planet-fixed, unit); w of the first: the cell's side on the base
+    // sphere, m.
+    east_cell: vec4<f32>,
+    north: vec4<f32>,
+    up: vec4<f32>,
+    // Unit vector towards the sun (xyz).
+    sun: vec4<f32>,
+    // Radii of the layer's base and top, m (z, w unused).
+    radii: vec4<f32>,
+    // Cells per side, levels, march steps per texel, 1 when the frame has the map.
+    counts: vec4<u32>,
+}
