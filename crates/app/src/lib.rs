@@ -12,6 +12,7 @@ pub mod files;
 pub mod location_flags;
 pub mod phase;
 pub mod probe;
+pub mod probe_args;
 pub mod probe_scene;
 pub mod probe_terrain;
 pub mod progress;
@@ -21,6 +22,7 @@ pub mod report;
 pub mod stability;
 pub mod table_cache_dir;
 pub mod viewer;
+pub mod wavelength_flag;
 
 use std::ffi::OsString;
 

@@ -23,9 +23,9 @@ use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
 use thiserror::Error;
 
-use crate::cli::ProbeArgs;
 use crate::csv_lines::{record_fields, record_lines};
 use crate::files::{check_writable, write_atomically};
+use crate::probe_args::ProbeArgs;
 use crate::probe_terrain::{self, TerrainPlace};
 use crate::progress::map_with_progress;
 

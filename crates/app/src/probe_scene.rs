@@ -24,10 +24,10 @@ use atmosphere_core::models::options::ModelOptions;
 use glam::DVec3;
 use thiserror::Error;
 
-use crate::cli::ProbeArgs;
 use crate::csv_lines::{record_fields, record_lines};
 use crate::files::{check_writable, write_atomically};
 use crate::probe::{CSV_LIMITS, number};
+use crate::probe_args::ProbeArgs;
 use crate::progress::map_with_progress;
 
 /// The columns every scene input needs.
