@@ -42,16 +42,7 @@ pub fn radiance_with_surface(
     ray: &ViewRay,
     hit: &SurfaceHit,
 ) -> Result<RayRadiance, ModelError> {
-    check_hit("surface", hit.distance_m, &hit.albedo, model)?;
-    let ray = ViewRay {
-        max_distance_m: Some(hit.distance_m),
-        ..*ray
-    };
-    let mut answer = model.radiance(&ray)?;
-    let end = match ViewSegment::new(atmosphere, &ray)? {
-        Some(segment) => segment.end_point(),
-        None => ray.origin_m + ray.direction.normalize() * hit.distance_m,
-    };
+    let (mut answer, end) = path_to_surface(model, atmosphere, ray, hit)?;
     let irradiance = model.surface_irradiance(&SurfacePoint {
         point_m: end,
         normal: hit.normal,
@@ -61,6 +52,30 @@ pub fn radiance_with_surface(
         *l += answer.transmittance[w] * hit.albedo[w] / std::f64::consts::PI * irradiance[w];
     }
     Ok(answer)
+}
+
+/// The model's answer for `ray` ended at `hit`'s distance (`ViewRay::max_distance_m`),
+/// and the point where the lit surface is taken: where that segment ends (on the surface,
+/// or on the ground or the top of the atmosphere where those come first), or on the
+/// surface itself where it lies before the atmosphere. An error for a hit that is not
+/// ahead of the ray or whose albedo does not match the model's wavelengths.
+pub fn path_to_surface(
+    model: &dyn SkyModel,
+    atmosphere: &Atmosphere,
+    ray: &ViewRay,
+    hit: &SurfaceHit,
+) -> Result<(RayRadiance, DVec3), ModelError> {
+    check_hit("surface", hit.distance_m, &hit.albedo, model)?;
+    let ray = ViewRay {
+        max_distance_m: Some(hit.distance_m),
+        ..*ray
+    };
+    let answer = model.radiance(&ray)?;
+    let end = match ViewSegment::new(atmosphere, &ray)? {
+        Some(segment) => segment.end_point(),
+        None => ray.origin_m + ray.direction.normalize() * hit.distance_m,
+    };
+    Ok((answer, end))
 }
 
 /// Adds to `radiance` the ground at a view ray's end `end_m`, lit as a surface element

@@ -16,8 +16,7 @@ use super::sun_map::CloudSunMap;
 use crate::atmosphere::Atmosphere;
 use crate::models::error::ModelError;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
-use crate::optics::surface_lighting::{SurfaceHit, check_hit};
-use crate::optics::view_segment::ViewSegment;
+use crate::optics::surface_lighting::{SurfaceHit, path_to_surface};
 
 /// The radiance of `ray` ending on `hit`, its sun shaded by the cloud of `map` (see the
 /// module documentation); without cloud the answer of `radiance_with_surface`.
@@ -28,16 +27,7 @@ pub fn radiance_with_shadowed_surface(
     hit: &SurfaceHit,
     map: &CloudSunMap,
 ) -> Result<RayRadiance, ModelError> {
-    check_hit("surface", hit.distance_m, &hit.albedo, model)?;
-    let ray = ViewRay {
-        max_distance_m: Some(hit.distance_m),
-        ..*ray
-    };
-    let mut answer = model.radiance(&ray)?;
-    let end = match ViewSegment::new(atmosphere, &ray)? {
-        Some(segment) => segment.end_point(),
-        None => ray.origin_m + ray.direction.normalize() * hit.distance_m,
-    };
+    let (mut answer, end) = path_to_surface(model, atmosphere, ray, hit)?;
     let sun = ray.sun_direction.normalize();
     let element = |normal: DVec3| {
         model.surface_irradiance(&SurfacePoint {
