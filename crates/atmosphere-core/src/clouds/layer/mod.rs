@@ -7,8 +7,10 @@
 //! interpolation ([`upsample`]), in frames
 //! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]); the
 //! sun's attenuation through the layer over the view's region, once a frame
-//! ([`sun_map`]), and the surface in its shadow ([`shadowed_surface`]).
+//! ([`sun_map`]), the surface in its shadow ([`shadowed_surface`]) and the air under it
+//! ([`air_shadow`]).
 
+pub mod air_shadow;
 pub mod composite;
 pub mod droplets;
 pub mod field;

@@ -123,6 +123,11 @@ impl Hillaire {
         &self.settings
     }
 
+    /// The terrain's shadow the view rays see (`None`: no light shafts).
+    pub fn terrain_shadow(&self) -> Option<&ShadowMap> {
+        self.shadow.as_ref()
+    }
+
     /// The terrain's shadow the view rays see from now on (`None`: no light shafts).
     pub fn set_terrain_shadow(&mut self, shadow: Option<ShadowMap>) {
         self.shadow = shadow;

@@ -33,9 +33,29 @@ pub fn shadowed_single(
 ) {
     out.fill(0.0);
     let bottom = medium.atmosphere.bottom_radius_m;
-    let Some((entry, end)) = segment_span_m(segment, map, bottom) else {
+    if let Some(span) = segment_span_m(segment, map, bottom) {
+        let samples = shaft_samples(span.1 - span.0, map.grid.cell_m);
+        shadowed_single_over(medium, segment, map, span, samples, out);
+    }
+}
+
+/// The single scattering per unit solar irradiance (sr^-1) that the sun's invisibility
+/// `1 - V` of `visibility` takes out of the part `span` (distances from the segment's
+/// start, m) of `segment`, by `samples` equal segments, per wavelength, into `out`; the
+/// march of [`shadowed_single`] for any visibility (the terrain's, the cloud's).
+pub fn shadowed_single_over(
+    medium: &Medium<'_>,
+    segment: &ViewSegment,
+    visibility: &dyn SunVisibility,
+    span: (f64, f64),
+    samples: usize,
+    out: &mut [f64],
+) {
+    out.fill(0.0);
+    let (entry, end) = span;
+    if end <= entry || samples == 0 {
         return;
-    };
+    }
     let sun = segment.sun_direction;
     let mu_s = (segment.start.dot(sun) / segment.r).clamp(-1.0, 1.0);
     let nu = segment.direction.dot(sun).clamp(-1.0, 1.0);
@@ -55,13 +75,12 @@ pub fn shadowed_single(
         .map(|w| (-optical_depth(above, medium.spectra.extinction[w])).exp())
         .collect();
     let mut sun_t = vec![0.0; n];
-    let samples = shaft_samples(end - entry, map.grid.cell_m);
     let dt = (end - entry) / samples as f64;
     for k in 0..samples {
         let t = entry + (k as f64 + 0.5) * dt;
         let (r_t, mu_s_t) = point_along(segment.r, segment.mu, mu_s, nu, t);
         let rho = medium.densities(r_t);
-        let shadow = 1.0 - map.sun_visible(segment.start + t * segment.direction, sun);
+        let shadow = 1.0 - visibility.sun_visible(segment.start + t * segment.direction, sun);
         if shadow > 0.0 {
             medium.sun_transmittance(r_t, mu_s_t, &mut sun_t);
         }
