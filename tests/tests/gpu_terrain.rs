@@ -134,8 +134,12 @@ impl CpuTerrain {
                 if let Some((d, u, v)) = hit_triangle(origin, dir, p)
                     && best.is_none_or(|b| d < b.0)
                 {
-                    let n =
-                        [0, 1, 2].map(|k| glam::Vec3::from(mesh.normals[t[k] as usize]).as_dvec3());
+                    // Normals morphed towards the parent's with the vertices.
+                    let n = [0, 1, 2].map(|k| {
+                        let nm =
+                            mesh.normal_morph_factor(t[k], chunk.coarser, self.view.camera_m, ends);
+                        mesh.morphed_normal(t[k], nm)
+                    });
                     let interpolated = n[0] * (1.0 - u - v) + n[1] * u + n[2] * v;
                     // The normal map at the chunk coordinate (i, j) / cells, faded by the
                     // texel's size in pixels (`normal_map.rs`).
