@@ -78,11 +78,13 @@ struct VertexOut {
     @location(5) @interpolate(flat) texel: f32,
 }
 
-// Geomorphing (render-wgpu's `terrain/geomorph.rs`, `morph_factor` and `morph_role`;
-// Strugar 2009): the factor of vertex `index` of chunk `c`, `relative` to the camera, by
-// which it moves towards its morph target: 0 for its parent's vertices, the coarser
-// neighbour's factor for the even vertices of an edge bordering one, its own otherwise.
-fn morph_factor(c: Chunk, index: u32, relative: vec3<f32>) -> f32 {
+// Geomorphing (render-wgpu's `terrain/geomorph.rs`, `morph_factor`, `morph_role` and
+// `normal_factor`; Strugar 2009): the factors of vertex `index` of chunk `c`, `relative`
+// to the camera, by which it moves towards its morph target (x) and its normal towards
+// the target's, the parent's (y): the coarser neighbour's factor for the even vertices of
+// an edge bordering one, its own otherwise, but no move for the parent's other vertices
+// (whose normals still morph).
+fn morph_factors(c: Chunk, index: u32, relative: vec3<f32>) -> vec2<f32> {
     let cells = u32(c.morph.w);
     let i = index % (cells + 1u);
     let j = index / (cells + 1u);
@@ -90,10 +92,12 @@ fn morph_factor(c: Chunk, index: u32, relative: vec3<f32>) -> f32 {
     let on_coarser = (i == 0u && (mask & 1u) != 0u) || (i == cells && (mask & 2u) != 0u)
         || (j == 0u && (mask & 4u) != 0u) || (j == cells && (mask & 8u) != 0u);
     let odd = (i % 2u) == 1u || (j % 2u) == 1u;
-    let end = select(select(0.0, c.morph.y, on_coarser), c.morph.x, odd);
+    let edge = on_coarser && !odd;
+    let end = select(c.morph.x, c.morph.y, edge);
     let start = terrain.near.y;
     let m = clamp((length(relative) / end - start) / (1.0 - start), 0.0, 1.0);
-    return select(0.0, m, end > 0.0);
+    let normal_m = select(0.0, m, end > 0.0);
+    return vec2<f32>(select(0.0, normal_m, odd || edge), normal_m);
 }
 
 @vertex
@@ -106,9 +110,12 @@ fn vertex_main(
     // The morph target relative to the vertex.
     @location(3) morph_offset: vec3<f32>,
     @location(4) target_height: f32,
+    // The parent's normal at the morph target (`geomorph.rs`'s `normal_pair`).
+    @location(5) target_normal: vec3<f32>,
 ) -> VertexOut {
     let c = chunks[chunk];
-    let m = morph_factor(c, index, c.offset.xyz + own_position);
+    let factors = morph_factors(c, index, c.offset.xyz + own_position);
+    let m = factors.x;
     let position = own_position + m * morph_offset;
     let height = mix(own_height, target_height, m);
     let relative = c.offset.xyz + position;
@@ -117,7 +124,7 @@ fn vertex_main(
         terrain.near.x, dot(relative, terrain.forward.xyz));
     out.relative = relative;
     out.planet = c.origin.xyz + position;
-    out.normal = normal;
+    out.normal = normalize(mix(normal, target_normal, factors.y));
     out.height = height;
     let cells = u32(c.morph.w);
     out.chunk_uv = vec2<f32>(f32(index % (cells + 1u)), f32(index / (cells + 1u))) / c.morph.w;

@@ -110,9 +110,10 @@ impl CpuTerrain {
 
     /// Nearest hit: distance, shading normal (the interpolated mesh normal with the
     /// normal map's detail), hit point, interpolated height of the height field, and the
-    /// detail: how far the shading normal is from the mesh's.
-    fn cast(&mut self, origin: DVec3, dir: DVec3) -> Option<(f64, DVec3, DVec3, f64, f64)> {
-        let mut best: Option<(f64, DVec3, DVec3, f64, f64)> = None;
+    /// detail: how far the shading normal is from the mesh's, and how far it is from the
+    /// one with unmorphed mesh normals.
+    fn cast(&mut self, origin: DVec3, dir: DVec3) -> Option<(f64, DVec3, DVec3, f64, [f64; 2])> {
+        let mut best: Option<(f64, DVec3, DVec3, f64, [f64; 2])> = None;
         for chunk in &self.chunks {
             let mesh = self
                 .meshes
@@ -134,8 +135,12 @@ impl CpuTerrain {
                 if let Some((d, u, v)) = hit_triangle(origin, dir, p)
                     && best.is_none_or(|b| d < b.0)
                 {
-                    let n =
-                        [0, 1, 2].map(|k| glam::Vec3::from(mesh.normals[t[k] as usize]).as_dvec3());
+                    // Normals morphed towards the parent's with the vertices.
+                    let n = [0, 1, 2].map(|k| {
+                        let nm =
+                            mesh.normal_morph_factor(t[k], chunk.coarser, self.view.camera_m, ends);
+                        mesh.morphed_normal(t[k], nm)
+                    });
                     let interpolated = n[0] * (1.0 - u - v) + n[1] * u + n[2] * v;
                     // The normal map at the chunk coordinate (i, j) / cells, faded by the
                     // texel's size in pixels (`normal_map.rs`).
@@ -152,7 +157,10 @@ impl CpuTerrain {
                     let h = [0, 1, 2].map(|k| mesh.morphed_height_m(t[k], m[k]));
                     let height = h[0] * (1.0 - u - v) + h[1] * u + h[2] * v;
                     let detail = (normal - interpolated.normalize()).length();
-                    best = Some((d, normal, origin + dir * d, height, detail));
+                    let own = [0, 1, 2].map(|k| mesh.morphed_normal(t[k], 0.0));
+                    let own = own[0] * (1.0 - u - v) + own[1] * u + own[2] * v;
+                    let morphed = (normal - shading_normal(own, map, weight)).length();
+                    best = Some((d, normal, origin + dir * d, height, [detail, morphed]));
                 }
             }
         }
@@ -166,11 +174,15 @@ impl CpuTerrain {
 /// against an exact ray), at most `max_edge_fraction` of them. `near_albedo`: whether
 /// some hits lie within 20 km, where the albedo is compared with the full-resolution map,
 /// or with the water's albedo where the interpolated height is below 0. Returns the
-/// numbers of water pixels, of land pixels under rock or snow, and of pixels whose
-/// normal the normal map turns by more than [`MIN_DETAIL`] from the mesh's, compared
-/// (`None`: no GPU, skipped).
+/// numbers of water pixels, of land pixels under rock or snow, of pixels whose normal
+/// the normal map turns by more than [`MIN_DETAIL`] from the mesh's, and of pixels whose
+/// normal the mesh normals' morph turns by more than [`MAX_NORMAL`], compared (`None`:
+/// no GPU, skipped).
 /// A normal's change by the normal map that counts as detail (about 1.1 deg).
 const MIN_DETAIL: f64 = 0.02;
+
+/// The GPU's shading normal against the CPU's.
+const MAX_NORMAL: f64 = 2e-3;
 
 fn check_surface(
     name: &str,
@@ -179,7 +191,7 @@ fn check_surface(
     max_distance: f64,
     max_edge_fraction: f64,
     near_albedo: bool,
-) -> Option<(usize, usize, usize)> {
+) -> Option<(usize, usize, usize, usize)> {
     let mut renderer = renderer_or_skip(name)?;
     let plan = renderer.render(f).unwrap();
     assert!(plan.runs("terrain"), "{plan}");
@@ -189,7 +201,7 @@ fn check_surface(
     let heights = &cpu.surface.heights;
     let sea = open_sea_albedo(&colours, &heights.data, heights.mask.as_ref());
     let snow_line = SnowLine::for_declination(f.sun_direction.normalize().z.asin());
-    let (mut water, mut covered, mut detailed) = (0, 0, 0);
+    let (mut water, mut covered, mut detailed, mut turned) = (0, 0, 0, 0);
     let (mut compared, mut edges, mut worst_distance, mut worst_normal, mut worst_albedo) =
         (0, 0, 0.0f64, 0.0f64, 0.0f64);
     let mut albedos = 0;
@@ -198,7 +210,7 @@ fn check_surface(
             let texel = texels[(row * f.width + column) as usize];
             let ray = f.pixel_ray(column, row);
             let hit = cpu.cast(ray.origin_m, ray.direction);
-            let Some((distance, normal, point, height, detail)) =
+            let Some((distance, normal, point, height, [detail, morphed])) =
                 hit.filter(|_| texel.distance_m > 0.0)
             else {
                 if hit.is_some() != (texel.distance_m > 0.0) {
@@ -208,6 +220,8 @@ fn check_surface(
             };
             compared += 1;
             detailed += usize::from(detail > MIN_DETAIL);
+            // Pixels a GPU without the normals' morph would miss by more than the bound.
+            turned += usize::from(morphed > MAX_NORMAL);
             let gpu_distance = f64::from(texel.distance_m);
             worst_distance = worst_distance.max((gpu_distance - distance).abs() / distance);
             let gpu_normal = glam::Vec3::from(texel.normal).as_dvec3();
@@ -265,14 +279,14 @@ fn check_surface(
     );
     // The rasteriser interpolates the normal linearly; the CPU the same, then normalises;
     // the normal map's f16 texels and the sampler's filter weights add theirs.
-    assert!(worst_normal < 2e-3, "{name}: normal {worst_normal:e}");
+    assert!(worst_normal < MAX_NORMAL, "{name}: normal {worst_normal:e}");
     // Bilinear sRGB filtering in 8 bits against the CPU's f64.
     assert!(worst_albedo < 6e-3, "{name}: albedo {worst_albedo:e}");
     println!(
         "{name}: {water} water pixels, {covered} under rock or snow, {detailed} shaded by the \
-         normal map's detail"
+         normal map's detail, {turned} turned by the normals' morph by more than the bound"
     );
-    Some((water, covered, detailed))
+    Some((water, covered, detailed, turned))
 }
 
 #[test]
@@ -282,7 +296,7 @@ fn terrain_over_the_alps_matches_the_cpu_meshes() {
     let counts = check_surface("Alps from 11 km", &f, 3, 4e-5, 0.05, true);
     // No sea; rock and snow on the near slopes.
     assert!(
-        counts.is_none_or(|(water, covered, _)| water == 0 && covered > 10),
+        counts.is_none_or(|(water, covered, _, turned)| water == 0 && covered > 10 && turned > 0),
         "{counts:?}"
     );
 }
@@ -300,7 +314,7 @@ fn the_normal_maps_detail_shades_the_ground_two_metres_up_as_the_cpu_says() {
     f.camera_position_m = up * (f.atmosphere.bottom_radius_m + ground + 2.0);
     let counts = check_surface("2 m over the Alps", &f, 2, 1.2e-4, 0.05, true);
     assert!(
-        counts.is_none_or(|(_, _, detailed)| detailed > 100),
+        counts.is_none_or(|(_, _, detailed, _)| detailed > 100),
         "{counts:?}"
     );
 }

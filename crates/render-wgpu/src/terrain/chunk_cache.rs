@@ -17,8 +17,8 @@ use crate::terrain::normal_texture::NormalTextures;
 pub const KEEP_FRAMES: u64 = 240;
 
 /// A chunk's vertex on the GPU: position relative to the origin, the normal, the height
-/// field's height (below 0: water), and the morph target (relative to the vertex) and
-/// its height (`geomorph.rs`).
+/// field's height (below 0: water), and the morph target (relative to the vertex), its
+/// height and its normal (`geomorph.rs`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct Vertex {
@@ -27,6 +27,7 @@ pub struct Vertex {
     pub height: f32,
     pub morph_offset: [f32; 3],
     pub target_height: f32,
+    pub target_normal: [f32; 3],
 }
 
 /// A chunk's mesh on the GPU.
@@ -102,6 +103,7 @@ impl ChunkCache {
                 height: mesh.heights_m[k],
                 morph_offset: mesh.morph_offsets[k],
                 target_height: mesh.morph_heights_m[k],
+                target_normal: mesh.morph_normals[k],
             })
             .collect();
         let buffer = buffer_with(gpu, "terrain chunk", &vertices, wgpu::BufferUsages::VERTEX);

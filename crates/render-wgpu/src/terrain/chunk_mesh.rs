@@ -8,6 +8,10 @@
 //! it cannot show). Neighbouring chunks of the same level agree at shared vertices; a
 //! vertex shared with a coarser chunk gets each chunk's own normal.
 //!
+//! Each vertex also carries its morph target's normal (`geomorph.rs`): the parent's
+//! normal where the vertex's position morphs to, from central differences two cells
+//! apart (the parent's cells), so the grid reaches two cells beyond the chunk.
+//!
 //! Camera-relative rendering: positions are computed in f64, planet-centred, then stored
 //! as f32 offsets from the chunk's origin (its centre's point on the reference sphere).
 //! Each frame the renderer uploads `origin - camera` (computed in f64, then rounded to
@@ -22,7 +26,9 @@ use glam::DVec3;
 
 use super::chunk_key::ChunkKey;
 use super::cube_sphere::direction;
-use super::geomorph::{MorphEnds, morph_role, target_pair, vertex_factor};
+use super::geomorph::{
+    MorphEnds, morph_normal, morph_role, normal_factor, normal_pair, target_pair, vertex_factor,
+};
 use super::height_field::HeightField;
 use super::lod::SelectedChunk;
 use super::normal_map::NormalMap;
@@ -51,16 +57,23 @@ pub struct ChunkMesh {
     pub morph_offsets: Vec<[f32; 3]>,
     /// The height field's height at each morph target, metres.
     pub morph_heights_m: Vec<f32>,
+    /// Each vertex's morph target's unit normal: the parent's normal there, interpolated
+    /// as the parent's triangles interpolate it (`geomorph.rs`).
+    pub morph_normals: Vec<[f32; 3]>,
     /// Counter-clockwise triangles (seen from outside), stitched to coarser neighbours.
     pub indices: Vec<u32>,
     /// The relief's normals finer than the mesh (`normal_map.rs`).
     pub normal_map: NormalMap,
 }
 
-/// Point (i, j) of a chunk's grid extended by one cell on every side (`side` points
-/// along a row, (-1, -1) first).
+/// Cells by which a mesh's grid reaches beyond the chunk: one parent cell, for the
+/// parent's normals at the morph targets.
+const MARGIN: i64 = 2;
+
+/// Point (i, j) of a chunk's grid extended by [`MARGIN`] cells on every side (`side`
+/// points along a row, (-MARGIN, -MARGIN) first).
 fn grid_point<T: Copy>(grid: &[T], side: i64, i: i64, j: i64) -> T {
-    grid[((j + 1) * side + i + 1) as usize]
+    grid[((j + MARGIN) * side + i + MARGIN) as usize]
 }
 
 /// The unit direction of vertex (i, j) of a chunk with `cells` cells along a side.
@@ -78,10 +91,12 @@ impl ChunkMesh {
     ) -> ChunkMesh {
         let key = chunk.key;
         let origin_m = vertex_direction(key, cells, cells / 2, cells / 2) * surface.radius_m;
-        // Points on the grid one cell beyond the chunk on every side, for the normals.
-        let side = cells as i64 + 3;
-        let (grid, grid_heights): (Vec<DVec3>, Vec<f64>) = (-1..=cells as i64 + 1)
-            .flat_map(|j| (-1..=cells as i64 + 1).map(move |i| (i, j)))
+        // Points on the grid beyond the chunk on every side, for the normals.
+        let side = cells as i64 + 1 + 2 * MARGIN;
+        let reach = -MARGIN..=cells as i64 + MARGIN;
+        let (grid, grid_heights): (Vec<DVec3>, Vec<f64>) = reach
+            .clone()
+            .flat_map(|j| reach.clone().map(move |i| (i, j)))
             .map(|(i, j)| {
                 let (u, v) = key.vertex_uv(cells, i, j);
                 let d = direction(key.face, u, v);
@@ -95,6 +110,14 @@ impl ChunkMesh {
         let mut heights_m = Vec::with_capacity(count);
         let mut morph_offsets = Vec::with_capacity(count);
         let mut morph_heights_m = Vec::with_capacity(count);
+        let mut morph_normals = Vec::with_capacity(count);
+        let at = |(i, j): (i64, i64)| grid_point(&grid, side, i, j);
+        // The parent's normal at its vertex (i, j) of this grid (both even).
+        let parent_normal = |(i, j): (i64, i64)| {
+            (at((i + 2, j)) - at((i - 2, j)))
+                .cross(at((i, j + 2)) - at((i, j - 2)))
+                .normalize()
+        };
         for j in 0..=cells {
             for i in 0..=cells {
                 let (i, j) = (i as i64, j as i64);
@@ -117,6 +140,10 @@ impl ChunkMesh {
                     * (grid_point(&grid_heights, side, a.0, a.1)
                         + grid_point(&grid_heights, side, b.0, b.1));
                 morph_heights_m.push(height as f32);
+                let [a, b] =
+                    normal_pair(key, cells, i as u32, j as u32).map(|(i, j)| (i as i64, j as i64));
+                let target_normal = (parent_normal(a) + parent_normal(b)).normalize();
+                morph_normals.push(target_normal.as_vec3().to_array());
             }
         }
         ChunkMesh {
@@ -128,6 +155,7 @@ impl ChunkMesh {
             heights_m,
             morph_offsets,
             morph_heights_m,
+            morph_normals,
             indices: stitched_indices(cells, chunk.coarser),
             normal_map: NormalMap::build_sharing(surface, key, cells, |i, j| {
                 grid_point(&grid, side, i, j)
@@ -177,6 +205,32 @@ impl ChunkMesh {
         self.world_position_m(index) + offset * factor
     }
 
+    /// The morph factor of a vertex's normal ([`normal_factor`]; the vertex shader's
+    /// twin), as [`ChunkMesh::morph_factor`].
+    pub fn normal_morph_factor(
+        &self,
+        index: u32,
+        coarser: [bool; 4],
+        camera_m: DVec3,
+        ends: MorphEnds,
+    ) -> f64 {
+        let (i, j) = (index % (self.cells + 1), index / (self.cells + 1));
+        let role = morph_role(self.cells, coarser, i, j);
+        normal_factor(
+            role,
+            (self.world_position_m(index) - camera_m).length(),
+            ends,
+        )
+    }
+
+    /// A vertex's unit normal as the vertex shader morphs it by `factor`
+    /// ([`ChunkMesh::normal_morph_factor`]), in f64 from the f32 normals
+    /// ([`morph_normal`]).
+    pub fn morphed_normal(&self, index: u32, factor: f64) -> DVec3 {
+        let n = |v: &[[f32; 3]]| glam::Vec3::from_array(v[index as usize]).as_dvec3();
+        morph_normal(n(&self.normals), n(&self.morph_normals), factor)
+    }
+
     /// A vertex's height field height as the vertex shader morphs it by `factor`, m.
     pub fn morphed_height_m(&self, index: u32, factor: f64) -> f64 {
         let (own, target) = (
@@ -191,7 +245,7 @@ impl ChunkMesh {
 mod tests {
     use std::collections::{HashMap, HashSet};
 
-    use super::super::geomorph::morphed_vertex_m;
+    use super::super::geomorph::{morphed_vertex_m, switch_distance_m};
     use super::super::lod::{LodSettings, LodView, select_chunks};
     use super::*;
 
@@ -356,5 +410,83 @@ mod tests {
             let drawn = mesh.morphed_position_m(k, m);
             assert!((drawn - exact).length() < 2.4e-7 * (exact - origin).length() + 1e-9);
         }
+    }
+
+    /// Ripples 20 km long under cells of 5 and 10 km: a child's normals are far from its
+    /// parent's.
+    struct Ripples;
+
+    impl HeightField for Ripples {
+        fn height_m(&self, d: DVec3) -> f64 {
+            600.0 * (2000.0 * d.x).sin() * (1700.0 * d.y).cos() + 300.0 * (2300.0 * d.z).sin()
+        }
+        fn max_abs_height_m(&self) -> f64 {
+            900.0
+        }
+        fn sample_spacing_rad(&self) -> f64 {
+            1e-4
+        }
+    }
+
+    /// With the parent exactly at its switch distance, every vertex of its four children
+    /// has the normal the parent's triangles give it: the parent mesh's vertex normal at
+    /// an even-even vertex, the normalised mean of the two parent vertices' normals
+    /// around an odd one (within 1e-6, f32 normals); unmorphed they depart by up to 0.1. With
+    /// the camera at the parent's sphere they are their own.
+    #[test]
+    fn at_the_switch_distance_children_have_their_parents_normals() {
+        let surface = TerrainSurface::new(Ripples, R);
+        let cells = 8;
+        let settings = LodSettings {
+            cells,
+            ..LodSettings::new(R)
+        };
+        let mut parent = ChunkKey::root(super::super::cube_sphere::Face(1));
+        for _ in 0..7 {
+            parent = parent.children()[1];
+        }
+        let elevation = |d: DVec3| surface.elevation_m(d);
+        let (centre, radius) = settings.bounding_sphere(parent, &elevation);
+        let pixels = LodView::new(DVec3::ZERO, 360.0, 1.0);
+        let switch = switch_distance_m(&settings, &pixels, parent.level);
+        let camera = |distance: f64| centre + centre.normalize() * (radius + distance);
+        let whole = |key| SelectedChunk {
+            key,
+            coarser: [false; 4],
+        };
+        let parent_mesh = ChunkMesh::build(&surface, &whole(parent), cells);
+        let parent_normal = |(i, j): (u32, u32)| {
+            let k = j * (cells + 1) + i;
+            glam::Vec3::from_array(parent_mesh.normals[k as usize]).as_dvec3()
+        };
+        let (mut worst, mut unmorphed_best) = (0.0f64, f64::INFINITY);
+        let mut unmorphed_worst = 0.0f64;
+        for key in parent.children() {
+            let mesh = ChunkMesh::build(&surface, &whole(key), cells);
+            let ends = MorphEnds::of_level(&settings, &pixels, key.level);
+            // The child's grid point (i, j), both even, in the parent's grid.
+            let in_parent =
+                |(i, j): (u32, u32)| (((key.x & 1) * cells + i) / 2, ((key.y & 1) * cells + j) / 2);
+            for k in 0..mesh.normals.len() as u32 {
+                let (i, j) = (k % (cells + 1), k / (cells + 1));
+                let m = mesh.normal_morph_factor(k, [false; 4], camera(switch), ends);
+                assert_eq!(m, 1.0);
+                let [a, b] = normal_pair(key, cells, i, j).map(in_parent);
+                let expected = (parent_normal(a) + parent_normal(b)).normalize();
+                worst = worst.max((mesh.morphed_normal(k, m) - expected).length());
+                let own = mesh.morphed_normal(k, 0.0);
+                let off = (own - expected).length();
+                unmorphed_worst = unmorphed_worst.max(off);
+                if i % 2 == 1 || j % 2 == 1 {
+                    unmorphed_best = unmorphed_best.min(off);
+                }
+                let near = mesh.normal_morph_factor(k, [false; 4], camera(0.0), ends);
+                assert_eq!(mesh.morphed_normal(k, near), own);
+            }
+        }
+        eprintln!("morphed {worst:e}, unmorphed up to {unmorphed_worst:e}");
+        assert!(worst < 1e-6, "{worst}");
+        assert!(unmorphed_worst > 0.05, "{unmorphed_worst}");
+        assert!(unmorphed_best > 0.0, "{unmorphed_best}");
     }
 }

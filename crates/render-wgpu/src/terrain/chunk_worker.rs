@@ -148,6 +148,7 @@ mod tests {
             assert_eq!(mesh.positions, direct.positions);
             assert_eq!(mesh.normals, direct.normals);
             assert_eq!(mesh.morph_offsets, direct.morph_offsets);
+            assert_eq!(mesh.morph_normals, direct.morph_normals);
         }
     }
 

@@ -28,6 +28,16 @@
 //! shared vertices stay equal, bit for bit in f64. Since an even vertex's own target is
 //! itself, its slot in the mesh holds that edge target. Cells are a multiple of 4, so a
 //! chunk's corners are its grandparent's vertices and never move.
+//!
+//! Normals morph with their vertices ([`morph_normal`]): a vertex's normal blends, by the
+//! same factor, to the parent's normal at its target, which is the parent's vertex normal
+//! for an even-even vertex and the normalised mean of the two parent vertices' normals
+//! whose midpoint is its target otherwise (the parent's triangles interpolate normals
+//! linearly, and the shader normalises). At the switch a child's mesh normals are the
+//! parent's as its triangles shade them. The parent's own vertices do not move, but their
+//! normals blend with the chunk's own factor ([`normal_factor`]); on an edge bordering a
+//! coarser chunk an even vertex's normal blends, with the neighbour's factor, to the
+//! parent's normal at the vertex ([`normal_pair`]): normals there stay each chunk's own.
 
 use glam::DVec3;
 
@@ -81,7 +91,7 @@ pub fn morph_factor(distance_m: f64, end_m: f64) -> f64 {
 /// How a vertex morphs in a chunk drawn with the coarser edges `coarser`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MorphRole {
-    /// The parent's vertex: never moves.
+    /// The parent's vertex: never moves (its normal morphs with the chunk's own factor).
     Fixed,
     /// Towards its target with the chunk's own factor.
     Own,
@@ -166,6 +176,34 @@ pub fn morph(
 ) -> DVec3 {
     let m = vertex_factor(role, (position_m - camera_m).length(), ends);
     position_m + (target_m - position_m) * m
+}
+
+/// The morph factor of the normal of a vertex in the role `role`: its position's, but
+/// the chunk's own for the parent's vertices, which move no further than their normals.
+pub fn normal_factor(role: MorphRole, distance_m: f64, ends: MorphEnds) -> f64 {
+    match role {
+        MorphRole::Fixed => morph_factor(distance_m, ends.own_m),
+        _ => vertex_factor(role, distance_m, ends),
+    }
+}
+
+/// The grid points whose parent normals' normalised mean is the morph target's normal of
+/// vertex (i, j): [`target_pair`] for a vertex odd in either direction, the vertex itself
+/// for an even-even one (on an edge bordering a coarser chunk too, where its position
+/// moves to the edge target: the mesh serves every pattern of coarser edges).
+pub fn normal_pair(key: ChunkKey, cells: u32, i: u32, j: u32) -> [(u32, u32); 2] {
+    if i % 2 == 1 || j % 2 == 1 {
+        target_pair(key, cells, i, j)
+    } else {
+        [(i, j), (i, j)]
+    }
+}
+
+/// A vertex's unit normal `normal` blended by the morph factor `factor` towards its
+/// target's `target`: `normalize(n + m (t - n))`, the vertex shader's
+/// `normalize(mix(n, t, m))`.
+pub fn morph_normal(normal: DVec3, target: DVec3, factor: f64) -> DVec3 {
+    (normal + (target - normal) * factor).normalize()
 }
 
 /// The drawn position of vertex (i, j) of `chunk` on `surface`, all in f64: the

@@ -96,7 +96,8 @@ pub fn terrain_pipeline(
                 array_stride: size_of::<Vertex>() as u64,
                 step_mode: wgpu::VertexStepMode::Vertex,
                 attributes: &wgpu::vertex_attr_array![
-                    0 => Float32x3, 1 => Float32x3, 2 => Float32, 3 => Float32x3, 4 => Float32
+                    0 => Float32x3, 1 => Float32x3, 2 => Float32, 3 => Float32x3, 4 => Float32,
+                    5 => Float32x3
                 ],
             })],
         },
