@@ -24,9 +24,7 @@ use atmosphere_core::models::id::ModelId;
 use render_wgpu::Renderer;
 use render_wgpu::frame::LocalView;
 use render_wgpu::sky::registry::GPU_MODELS;
-use support::golden::{
-    Framing, Image, check_fails_shifted, compare, read_golden, updating, write_golden,
-};
+use support::golden::{Framing, Image, check_fails_shifted, check_or_update};
 use support::{frame_in, renderer_or_skip};
 
 const WIDTH: u32 = 160;
@@ -122,21 +120,12 @@ fn renders_match_the_golden_images() {
     let Some(mut renderer) = renderer_or_skip("golden images") else {
         return;
     };
-    let update = updating();
     let mut failures = Vec::new();
     for model in GPU_MODELS {
         for scene in scenes() {
             let name = format!("{model}_{}", scene.name);
             let image = render(&mut renderer, model, &scene);
-            if update {
-                write_golden(&name, &image.encoded, &scene.framing());
-                continue;
-            }
-            let framing = scene.framing();
-            match compare(&image, &read_golden(&name, &framing), &framing) {
-                Ok(line) => println!("{name}: {line}"),
-                Err(line) => failures.push(format!("{name}: {line}")),
-            }
+            check_or_update(&name, &image, &scene.framing(), &mut failures);
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

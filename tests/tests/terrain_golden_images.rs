@@ -22,9 +22,7 @@ use atmosphere_core::models::id::ModelId;
 use render_wgpu::Frame;
 use render_wgpu::frame::{LocalView, TerrainOptions, location_rotation};
 use render_wgpu::terrain::{EarthData, TerrainSurface};
-use support::golden::{
-    Framing, Image, check_fails_shifted, compare, read_golden, updating, write_golden,
-};
+use support::golden::{Framing, Image, check_fails_shifted, check_or_update};
 use support::{frame_in, renderer_or_skip};
 
 const WIDTH: u32 = 96;
@@ -153,15 +151,7 @@ fn terrain_renders_match_the_golden_images() {
         let plan = renderer.render(&scene.frame()).unwrap();
         assert!(plan.runs("terrain"), "{name}: {plan}");
         let image = Image::captured(&renderer, scene.ev100);
-        if updating() {
-            write_golden(&name, &image.encoded, &scene.framing());
-            continue;
-        }
-        let framing = scene.framing();
-        match compare(&image, &read_golden(&name, &framing), &framing) {
-            Ok(line) => println!("{name}: {line}"),
-            Err(line) => failures.push(format!("{name}: {line}")),
-        }
+        check_or_update(&name, &image, &scene.framing(), &mut failures);
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

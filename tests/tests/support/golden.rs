@@ -167,6 +167,20 @@ fn crop_pixels(framing: &Framing) -> impl Iterator<Item = usize> + '_ {
     })
 }
 
+/// Writes `image` as the golden `name` when updating (`updating`); otherwise compares
+/// it with the committed golden, printing the comparison or adding its failure to
+/// `failures`.
+pub fn check_or_update(name: &str, image: &Image, framing: &Framing, failures: &mut Vec<String>) {
+    if updating() {
+        write_golden(name, &image.encoded, framing);
+        return;
+    }
+    match compare(image, &read_golden(name, framing), framing) {
+        Ok(line) => println!("{name}: {line}"),
+        Err(line) => failures.push(format!("{name}: {line}")),
+    }
+}
+
 /// How `got` differs from `golden`, one line; `Err` with that line where the check fails.
 pub fn compare(got: &Image, golden: &[[u16; 3]], framing: &Framing) -> Result<String, String> {
     let (mut worst, mut differing) = (0, 0usize);

@@ -27,7 +27,8 @@ use glam::DVec3;
 use super::chunk_key::ChunkKey;
 use super::cube_sphere::direction;
 use super::geomorph::{
-    MorphEnds, morph_normal, morph_role, normal_factor, normal_pair, target_pair, vertex_factor,
+    MorphEnds, MorphRole, morph_normal, morph_role, normal_factor, normal_pair, target_pair,
+    vertex_factor,
 };
 use super::height_field::HeightField;
 use super::lod::SelectedChunk;
@@ -189,12 +190,22 @@ impl ChunkMesh {
         camera_m: DVec3,
         ends: MorphEnds,
     ) -> f64 {
+        let (role, distance_m) = self.role_and_distance(index, coarser, camera_m);
+        vertex_factor(role, distance_m, ends)
+    }
+
+    /// A vertex's part in the morph (`geomorph.rs`) with the coarser edges `coarser`, and
+    /// its distance from a camera at `camera_m`.
+    fn role_and_distance(
+        &self,
+        index: u32,
+        coarser: [bool; 4],
+        camera_m: DVec3,
+    ) -> (MorphRole, f64) {
         let (i, j) = (index % (self.cells + 1), index / (self.cells + 1));
-        let role = morph_role(self.cells, coarser, i, j);
-        vertex_factor(
-            role,
+        (
+            morph_role(self.cells, coarser, i, j),
             (self.world_position_m(index) - camera_m).length(),
-            ends,
         )
     }
 
@@ -214,13 +225,8 @@ impl ChunkMesh {
         camera_m: DVec3,
         ends: MorphEnds,
     ) -> f64 {
-        let (i, j) = (index % (self.cells + 1), index / (self.cells + 1));
-        let role = morph_role(self.cells, coarser, i, j);
-        normal_factor(
-            role,
-            (self.world_position_m(index) - camera_m).length(),
-            ends,
-        )
+        let (role, distance_m) = self.role_and_distance(index, coarser, camera_m);
+        normal_factor(role, distance_m, ends)
     }
 
     /// A vertex's unit normal as the vertex shader morphs it by `factor`
