@@ -168,6 +168,12 @@ impl CpuTerrain {
     }
 }
 
+/// A normal's change by the normal map that counts as detail (about 1.1 deg).
+const MIN_DETAIL: f64 = 0.02;
+
+/// The GPU's shading normal against the CPU's.
+const MAX_NORMAL: f64 = 2e-3;
+
 /// Compares every `step`-th pixel's surface texel with the CPU's hit (distances within
 /// `max_distance`, relative); pixels where one
 /// side sees terrain and the other not lie on silhouettes (the rasteriser's coverage
@@ -178,12 +184,6 @@ impl CpuTerrain {
 /// the normal map turns by more than [`MIN_DETAIL`] from the mesh's, and of pixels whose
 /// normal the mesh normals' morph turns by more than [`MAX_NORMAL`], compared (`None`:
 /// no GPU, skipped).
-/// A normal's change by the normal map that counts as detail (about 1.1 deg).
-const MIN_DETAIL: f64 = 0.02;
-
-/// The GPU's shading normal against the CPU's.
-const MAX_NORMAL: f64 = 2e-3;
-
 fn check_surface(
     name: &str,
     f: &Frame,

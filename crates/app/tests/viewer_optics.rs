@@ -39,10 +39,10 @@ fn the_rain_shaft_runs_the_volumes_pass_and_bad_settings_are_named() {
         rain_distance_m: 2_000.0,
         ..OpticsSettings::default()
     };
-    state.apply(&mut renderer, &frame, &rain).unwrap();
+    assert!(state.apply(&mut renderer, &frame, &rain).unwrap());
     assert!(ran_volumes(&renderer.render(&frame).unwrap()));
-    // Unchanged settings keep the volumes.
-    state.apply(&mut renderer, &frame, &rain).unwrap();
+    // Unchanged settings keep the volumes: they are not made again.
+    assert!(!state.apply(&mut renderer, &frame, &rain).unwrap());
     assert!(ran_volumes(&renderer.render(&frame).unwrap()));
     state
         .apply(&mut renderer, &frame, &OpticsSettings::default())

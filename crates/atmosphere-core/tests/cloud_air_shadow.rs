@@ -14,7 +14,7 @@ use atmosphere_core::models::hillaire::shafts::shadowed_single_over;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
 use atmosphere_core::optics::phase::rayleigh;
 use atmosphere_core::optics::view_segment::ViewSegment;
-use atmosphere_core::shafts::{GnomonicGrid, ShadowMap, SunVisibility};
+use atmosphere_core::shafts::{GnomonicGrid, SHAFT_SAMPLES, ShadowMap, SunVisibility};
 use glam::DVec3;
 
 const BOTTOM_M: f64 = 6_360_000.0;
@@ -146,7 +146,7 @@ fn a_gap_in_an_opaque_deck_keeps_the_light_of_the_lit_part_only() {
     let (span, samples) = air
         .span(&segment, medium.atmosphere.bottom_radius_m)
         .unwrap();
-    assert_eq!(samples, 32);
+    assert_eq!(samples, SHAFT_SAMPLES);
     let mut dense = vec![0.0; 3];
     shadowed_single_over(&medium, &segment, &air, span, 2_000, &mut dense);
     for w in 0..3 {

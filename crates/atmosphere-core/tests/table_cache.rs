@@ -131,7 +131,10 @@ fn the_rain_table_from_the_cache_is_the_table_built() {
     };
     let built = SpectralPhase::build(&rain, 3, 0.004675).unwrap();
     let cold = SpectralPhase::build_cached(&rain, 3, 0.004675, &cache).unwrap();
+    let written = modified_times(dir.path());
     let warm = SpectralPhase::build_cached(&rain, 3, 0.004675, &cache).unwrap();
+    // The warm load read the file: a rebuild would have written it again.
+    assert_eq!(modified_times(dir.path()), written);
     // Builds are deterministic, and the cache gives back their bits.
     assert!(bits(&cold.phase) == bits(&built.phase));
     assert!(bits(&warm.phase) == bits(&built.phase));
@@ -160,4 +163,24 @@ fn the_cloud_droplets_series_from_the_cache_are_those_built() {
     assert_eq!(warm, built);
     let e = droplet_orders_cached(&[1500.0], &cache).unwrap_err();
     assert!(e.to_string().contains("1500 nm"), "{e}");
+}
+
+/// Every file under `dir` with its modification time, sorted by path.
+fn modified_times(dir: &std::path::Path) -> Vec<(std::path::PathBuf, std::time::SystemTime)> {
+    let mut times = Vec::new();
+    let mut folders = vec![dir.to_path_buf()];
+    while let Some(folder) = folders.pop() {
+        for entry in fs::read_dir(&folder).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                folders.push(path);
+            } else {
+                let time = fs::metadata(&path).unwrap().modified().unwrap();
+                times.push((path, time));
+            }
+        }
+    }
+    times.sort();
+    assert!(!times.is_empty(), "no table file under {}", dir.display());
+    times
 }

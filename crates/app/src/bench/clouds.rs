@@ -18,7 +18,7 @@ use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
 use render_wgpu::frame::{Frame, LocalView, location_rotation};
 
-use crate::bench::timing::{median, timed};
+use crate::bench::timing::{median, step_gpu_ms, timed};
 use crate::progress::Progress;
 use crate::render::cloud_flags::{CloudFlags, droplet_orders};
 
@@ -108,12 +108,7 @@ pub fn measure(
             if k > 0 {
                 added.push(cloudy_ms - clear_ms);
                 clear.push(clear_ms);
-                sky.extend(
-                    plan.steps
-                        .iter()
-                        .find(|s| s.name == "hillaire")
-                        .and_then(|s| s.gpu_ms),
-                );
+                sky.extend(step_gpu_ms(&plan, "hillaire"));
             }
         }
         out.push(CloudTimes {

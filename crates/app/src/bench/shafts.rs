@@ -9,7 +9,7 @@ use render_wgpu::Renderer;
 use render_wgpu::frame::Frame;
 use render_wgpu::frame::plan::FramePlan;
 
-use super::timing::{median, timed};
+use super::timing::{median, step_gpu_ms, timed};
 use crate::progress::Progress;
 use crate::render::scene::Scene;
 
@@ -60,11 +60,7 @@ fn scene_frame(path: &std::path::Path, size: (u32, u32), on: bool) -> anyhow::Re
 
 /// The GPU time of the step named after the frame's model in `plan`.
 fn pass_ms(plan: &FramePlan, frame: &Frame) -> Option<f64> {
-    let model = frame.model.to_string();
-    plan.steps
-        .iter()
-        .find(|s| s.name == model)
-        .and_then(|s| s.gpu_ms)
+    step_gpu_ms(plan, &frame.model.to_string())
 }
 
 /// Renders the scene at `path` resized to `size`, `frames` pairs with and without shafts.

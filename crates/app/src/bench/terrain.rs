@@ -14,7 +14,7 @@ use render_wgpu::frame::Frame;
 
 use crate::render::scene::Scene;
 
-use super::timing::{median, timed};
+use super::timing::{median, step_gpu_ms, timed};
 
 /// What the scene's frames measured, ms.
 #[derive(Clone, Debug, PartialEq)]
@@ -63,13 +63,9 @@ pub fn measure(
     for _ in 0..frames {
         let (plan, wall_ms) = timed(renderer, frame)?;
         let gpu_ms = |name: &str| {
-            plan.steps
-                .iter()
-                .find(|s| s.name == name)
-                .and_then(|s| s.gpu_ms)
-                .with_context(|| {
-                    format!("the frame has no GPU time for its {name} pass (plan: {plan})")
-                })
+            step_gpu_ms(&plan, name).with_context(|| {
+                format!("the frame has no GPU time for its {name} pass (plan: {plan})")
+            })
         };
         let (t, s) = (gpu_ms("terrain")?, gpu_ms(&model)?);
         terrain.push(t);

@@ -22,3 +22,12 @@ pub fn timed(renderer: &mut Renderer, frame: &Frame) -> anyhow::Result<(FramePla
         .with_context(|| format!("rendering {}", frame.model))?;
     Ok((plan, start.elapsed().as_secs_f64() * 1e3))
 }
+
+/// The GPU time, ms, of the step named `name` in `plan`; `None` where it did not run or
+/// the adapter gives no timestamps.
+pub fn step_gpu_ms(plan: &FramePlan, name: &str) -> Option<f64> {
+    plan.steps
+        .iter()
+        .find(|s| s.name == name)
+        .and_then(|s| s.gpu_ms)
+}

@@ -54,13 +54,14 @@ pub struct OpticsState {
 
 impl OpticsState {
     /// Gives `renderer` the volumes of `settings` for `frame` (none when both are off);
-    /// an error names the setting at fault, and the renderer then holds none.
+    /// returns whether they were made again. An error names the setting at fault, and
+    /// the renderer then holds none.
     pub fn apply(
         &mut self,
         renderer: &mut Renderer,
         frame: &Frame,
         settings: &OpticsSettings,
-    ) -> anyhow::Result<()> {
+    ) -> anyhow::Result<bool> {
         let wanted = MadeFor {
             settings: settings.clone(),
             model: frame.model,
@@ -71,21 +72,21 @@ impl OpticsState {
         if !settings.any() {
             self.made_for = None;
             renderer.set_volumes(Vec::new())?;
-            return Ok(());
+            return Ok(false);
         }
         if self
             .made_for
             .as_ref()
             .is_some_and(|made| made.serves(&wanted))
         {
-            return Ok(());
+            return Ok(false);
         }
         self.made_for = None;
         renderer.set_volumes(Vec::new())?;
         let volumes = settings.flags().lit_volumes(frame)?;
         renderer.set_volumes(volumes)?;
         self.made_for = Some(wanted);
-        Ok(())
+        Ok(true)
     }
 }
 

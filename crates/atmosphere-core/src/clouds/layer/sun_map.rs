@@ -137,7 +137,12 @@ impl CloudSunMap {
         let n = grid.size;
         let mut depths = Vec::with_capacity(n * n * resolution.levels);
         for k in 0..resolution.levels {
-            let radius = level_radius(shell.base_radius_m, shell.top_radius_m, k, resolution);
+            let radius = level_radius(
+                shell.base_radius_m,
+                shell.top_radius_m,
+                k,
+                resolution.levels,
+            );
             for j in 0..n {
                 for i in 0..n {
                     let d = grid.direction(grid.cell_centre_m(i), grid.cell_centre_m(j));
@@ -211,7 +216,7 @@ impl CloudSunMap {
     }
 }
 
-/// The radius of level `k`, m.
-pub fn level_radius(base_m: f64, top_m: f64, k: usize, resolution: &SunMapResolution) -> f64 {
-    base_m + (top_m - base_m) * k as f64 / resolution.levels as f64
+/// The radius of level `k` of `levels`, m.
+pub fn level_radius(base_m: f64, top_m: f64, k: usize, levels: usize) -> f64 {
+    base_m + (top_m - base_m) * k as f64 / levels as f64
 }
