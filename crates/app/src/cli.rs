@@ -337,6 +337,30 @@ pub struct ReportArgs {
     /// so.
     #[arg(long)]
     pub no_gpu: bool,
+    /// Only this section (repeat the flag); every section when absent. `--model` and
+    /// `--variant` narrow the skies and leave out the others.
+    #[arg(long, value_enum)]
+    pub section: Vec<ReportSection>,
+}
+
+/// A section of `atmos report`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ReportSection {
+    /// The sky models on the report's views: README.md, errors.csv and its plots.
+    Skies,
+    /// The light beams of the shipped beams scenes: beams.md and its plots.
+    Beams,
+    /// The terrain's light shafts on the scenes with terrain: shafts.md and its plots.
+    Shafts,
+}
+
+impl ReportArgs {
+    /// Whether the report writes `section`.
+    pub fn writes(&self, section: ReportSection) -> bool {
+        let asked = self.section.is_empty() || self.section.contains(&section);
+        let skies_only = !(self.model.is_empty() && self.variant.is_empty());
+        asked && (section == ReportSection::Skies || !skies_only)
+    }
 }
 
 /// "16x9" -> (16, 9), each at least 1.
@@ -458,7 +482,36 @@ pub struct PhaseArgs {
 
 #[cfg(test)]
 mod tests {
-    use super::parse_utc;
+    use super::{Cli, Command, ReportSection, parse_utc};
+    use clap::Parser;
+
+    #[test]
+    fn report_sections_are_all_by_default_and_skies_alone_for_a_model() {
+        let sections = |args: &[&str]| {
+            let cli = Cli::try_parse_from([&["atmos", "report"], args].concat()).unwrap();
+            let Some(Command::Report(report)) = cli.command else {
+                panic!("not the report");
+            };
+            [
+                ReportSection::Skies,
+                ReportSection::Beams,
+                ReportSection::Shafts,
+            ]
+            .map(|s| report.writes(s))
+        };
+        assert_eq!(sections(&[]), [true, true, true]);
+        assert_eq!(sections(&["--section", "shafts"]), [false, false, true]);
+        assert_eq!(
+            sections(&["--section", "skies", "--section", "beams"]),
+            [true, true, false]
+        );
+        assert_eq!(sections(&["--model", "riley"]), [true, false, false]);
+        assert_eq!(
+            sections(&["--model", "riley", "--section", "shafts"]),
+            [false, false, false]
+        );
+        assert!(Cli::try_parse_from(["atmos", "report", "--section", "clouds"]).is_err());
+    }
 
     #[test]
     fn utc_times_are_read_and_bad_ones_named() {

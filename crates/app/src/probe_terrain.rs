@@ -15,6 +15,7 @@
 //! map a frame with its camera at the ray's origin would have (`FrameShadow`).
 
 use std::sync::Arc;
+use std::time::Instant;
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
@@ -179,6 +180,22 @@ fn ended_on_relief(
     }
 }
 
+/// Whether the rays see the terrain's shadow in the air: as `atmos probe --terrain` does,
+/// or not (the same placed and ended rays without shafts, as `atmos report` compares).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shadows {
+    Terrain,
+    Off,
+}
+
+/// Wall-clock seconds of one evaluation: the model's preparation (with the frame's
+/// shadow map where the rays see it), then the rays.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Timing {
+    pub prepare_s: f64,
+    pub rays_s: f64,
+}
+
 /// The solar irradiance of model `id` and its answers to `rays` (of the probe's local
 /// frame) placed at `place` over the relief, in the order of the rays.
 pub fn evaluate(
@@ -188,35 +205,68 @@ pub fn evaluate(
     rays: &[ViewRay],
     place: &TerrainPlace,
 ) -> anyhow::Result<Answers> {
-    let mut model = Shafted::prepare(id, atmosphere, settings)?;
+    Ok(evaluate_timed(id, atmosphere, settings, rays, place, Shadows::Terrain)?.0)
+}
+
+/// [`evaluate`] with or without the terrain's shadow, and how long it took.
+pub fn evaluate_timed(
+    id: ModelId,
+    atmosphere: &Atmosphere,
+    settings: &ModelSettings,
+    rays: &[ViewRay],
+    place: &TerrainPlace,
+    shadows: Shadows,
+) -> anyhow::Result<(Answers, Timing)> {
     let relief = earth_relief(atmosphere.bottom_radius_m)?;
     let march = HeightFieldShadow::new(relief.clone(), atmosphere.bottom_radius_m);
     let placed: Vec<ViewRay> = rays
         .iter()
         .map(|r| ended_on_relief(&march, place.placed(r)))
         .collect();
-    let results = match &model {
-        Shafted::Reference(reference) => map_with_progress("probe", "rays", &placed, |ray| {
-            check_above(&relief, ray)?;
-            reference.radiance_shadowed(ray, Some(&march))
-        }),
-        _ => {
-            let mut shadow = FrameShadow::default();
-            let mut out = Vec::with_capacity(placed.len());
-            for ray in &placed {
-                let answer = check_above(&relief, ray).and_then(|()| {
-                    let sun = ray.sun_direction.normalize();
-                    let map =
-                        shadow.update(ray.origin_m, sun, atmosphere.bottom_radius_m, &relief)?;
-                    model.set_terrain_shadow(map.clone());
-                    model.model().radiance(ray)
-                });
-                out.push(answer);
-            }
-            out
-        }
+    let start = Instant::now();
+    let mut model = Shafted::prepare(id, atmosphere, settings)?;
+    let mut shadow = FrameShadow::default();
+    let mut shadow_for = |ray: &ViewRay| {
+        let sun = ray.sun_direction.normalize();
+        shadow
+            .update(ray.origin_m, sun, atmosphere.bottom_radius_m, &relief)
+            .cloned()
     };
-    Ok((model.model().solar_irradiance_w_m2_nm().to_vec(), results))
+    // The frame's map is built once for the rays' camera: preparation, not ray time.
+    if shadows == Shadows::Terrain
+        && let Some(first) = placed.first()
+    {
+        shadow_for(first)?;
+    }
+    let prepare_s = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let results = if let Shafted::Reference(reference) = &model {
+        map_with_progress("probe", "rays", &placed, |ray| {
+            check_above(&relief, ray)?;
+            match shadows {
+                Shadows::Terrain => reference.radiance_shadowed(ray, Some(&march)),
+                Shadows::Off => reference.radiance(ray),
+            }
+        })
+    } else {
+        let mut out = Vec::with_capacity(placed.len());
+        for ray in &placed {
+            let answer = check_above(&relief, ray).and_then(|()| {
+                if shadows == Shadows::Terrain {
+                    model.set_terrain_shadow(shadow_for(ray)?);
+                }
+                model.model().radiance(ray)
+            });
+            out.push(answer);
+        }
+        out
+    };
+    let timing = Timing {
+        prepare_s,
+        rays_s: start.elapsed().as_secs_f64(),
+    };
+    let irradiance = model.model().solar_irradiance_w_m2_nm().to_vec();
+    Ok(((irradiance, results), timing))
 }
 
 #[cfg(test)]

@@ -32,6 +32,7 @@ use crate::camera_path::CameraPath;
 use crate::cli::BenchArgs;
 use crate::files::{check_writable, write_atomically};
 use crate::progress::Progress;
+use crate::render::scene::Scene;
 use baseline::{BASELINE, baseline};
 use timing::{median, timed};
 use variant::Variant;
@@ -308,7 +309,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let adapter = renderer.gpu().adapter_summary();
         let total = shafts::frames_per_scene(args.frames) as u64;
         let progress = Progress::new("bench", "frames", total);
-        let times = shafts::measure(&mut renderer, path, (size, args.frames), &progress)?;
+        let overrides = Scene {
+            width: Some(size.0),
+            height: Some(size.1),
+            ..Scene::default()
+        };
+        let times = shafts::measure(&mut renderer, path, (&overrides, args.frames), &progress)?;
         progress.finish();
         let text = shafts::markdown(path, &adapter, size, &times);
         std::io::stdout().lock().write_all(text.as_bytes())?;

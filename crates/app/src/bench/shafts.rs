@@ -36,13 +36,12 @@ pub fn frames_per_scene(frames: usize) -> usize {
     2 * (1 + frames)
 }
 
-/// The frame of the scene at `path` at `size` with shafts `on`; an error when the scene
-/// has no terrain.
-fn scene_frame(path: &std::path::Path, size: (u32, u32), on: bool) -> anyhow::Result<Frame> {
+/// The frame of the scene at `path` with the fields `overrides` sets and shafts `on`; an
+/// error when the scene has no terrain.
+fn scene_frame(path: &std::path::Path, overrides: &Scene, on: bool) -> anyhow::Result<Frame> {
     let scene = Scene::load(path)?
+        .overridden_by(overrides.clone())
         .overridden_by(Scene {
-            width: Some(size.0),
-            height: Some(size.1),
             shafts: Some(on),
             ..Scene::default()
         })
@@ -63,15 +62,16 @@ fn pass_ms(plan: &FramePlan, frame: &Frame) -> Option<f64> {
     step_gpu_ms(plan, &frame.model.to_string())
 }
 
-/// Renders the scene at `path` resized to `size`, `frames` pairs with and without shafts.
+/// Renders the scene at `path` with the fields `overrides` sets (size, model, settings),
+/// `frames` pairs with and without shafts.
 pub fn measure(
     renderer: &mut Renderer,
     path: &std::path::Path,
-    (size, frames): ((u32, u32), usize),
+    (overrides, frames): (&Scene, usize),
     progress: &Progress,
 ) -> anyhow::Result<ShaftTimes> {
-    let with = scene_frame(path, size, true)?;
-    let without = scene_frame(path, size, false)?;
+    let with = scene_frame(path, overrides, true)?;
+    let without = scene_frame(path, overrides, false)?;
     let (mut pass_with, mut pass_without) = (Vec::new(), Vec::new());
     let (mut wall_with, mut wall_without) = (Vec::new(), Vec::new());
     for k in 0..=frames {
@@ -141,7 +141,10 @@ mod tests {
             "model = \"hillaire\"\naltitude_m = 100.0\nsun_zenith_deg = 80.0\n",
         )
         .unwrap();
-        let error = format!("{:#}", scene_frame(&path, (64, 36), true).unwrap_err());
+        let error = format!(
+            "{:#}",
+            scene_frame(&path, &Scene::default(), true).unwrap_err()
+        );
         assert!(
             error.contains("--shafts-scene") && error.contains("no terrain"),
             "{error}"

@@ -1,7 +1,8 @@
 //! `atmos report`: every model setting against the reference on a fixed set of views:
 //! error, build time, time per ray and memory, CPU and GPU frame times, as `README.md`,
 //! `error_vs_time.png`, `error_vs_gpu_time.png` and `errors.csv`; the light beams of
-//! the shipped beams scenes as `beams.md` and its plots (`beams.rs`).
+//! the shipped beams scenes as `beams.md` and its plots (`beams.rs`); the terrain's light
+//! shafts as `shafts.md` and its plots (`shafts.rs`).
 
 pub mod beams;
 pub mod error_table;
@@ -11,6 +12,7 @@ pub mod markdown;
 pub mod measure;
 pub mod plot;
 pub mod reference_cache;
+pub mod shafts;
 pub mod variants;
 pub mod views;
 
@@ -21,15 +23,44 @@ use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::sky_model::ModelSettings;
 use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings};
 
-use crate::cli::ReportArgs;
+use crate::cli::{ReportArgs, ReportSection};
 use crate::files::write_atomically;
 use crate::report::markdown::{Provenance, write_report};
 use crate::report::measure::{Variant, measure};
 use crate::report::plot::{CPU_AXIS, GPU_AXIS, Point};
 use crate::report::variants::{DEFAULT_OUT, report_variants};
 
-/// Runs the report.
+/// Runs the report: the sections `--section` asks for.
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
+    let all = [
+        ReportSection::Skies,
+        ReportSection::Beams,
+        ReportSection::Shafts,
+    ];
+    if !all.iter().any(|s| args.writes(*s)) {
+        bail!(
+            "nothing to report: --model and --variant narrow the skies section, which --section leaves out"
+        );
+    }
+    fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    if args.writes(ReportSection::Skies) {
+        report_skies(args)?;
+    }
+    if args.reference_only {
+        return Ok(());
+    }
+    if args.writes(ReportSection::Beams) {
+        report_beams(args)?;
+    }
+    if args.writes(ReportSection::Shafts) {
+        report_shafts(args)?;
+    }
+    Ok(())
+}
+
+/// The sky models' section: `README.md`, `errors.csv` and the two plots.
+fn report_skies(args: &ReportArgs) -> anyhow::Result<()> {
     let (columns, rows) = args.rays;
     let views = views::report_views(columns, rows);
     let base = ModelSettings {
@@ -61,8 +92,6 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     if variants.is_empty() {
         bail!("no report settings for the models {:?}", args.model);
     }
-    fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
     for id in &args.recompute_view {
         if !views.iter().any(|v| v.id == id) {
             let known: Vec<&str> = views.iter().map(|v| v.id).collect();
@@ -136,10 +165,6 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         let points: Vec<Point> = results.iter().filter_map(Point::gpu).collect();
         plot::draw(&args.out.join("error_vs_gpu_time.png"), &GPU_AXIS, &points)?;
     }
-    // The beams belong to the whole report: --model and --variant narrow it to skies.
-    if args.model.is_empty() && args.variant.is_empty() {
-        report_beams(args)?;
-    }
     eprintln!("report: wrote {}", args.out.join("README.md").display());
     Ok(())
 }
@@ -177,6 +202,42 @@ fn report_beams(args: &ReportArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The light-shafts section: `shafts.md` and its two plots in the report's folder.
+fn report_shafts(args: &ReportArgs) -> anyhow::Result<()> {
+    eprintln!(
+        "report: light shafts on {} scenes",
+        shafts::SHAFT_SCENES.len()
+    );
+    let mut renderer = if args.no_gpu {
+        None
+    } else {
+        Some(render_wgpu::Renderer::headless()?)
+    };
+    let rows = shafts::measure(
+        &shafts::shipped_folder(),
+        &shafts::SHAFT_SCENES,
+        &shafts::SHAFT_VARIANTS,
+        args.rays,
+        renderer.as_mut(),
+    )?;
+    let text = shafts::markdown(&rows, args.rays);
+    write_atomically(&args.out.join("shafts.md"), text.as_bytes())?;
+    let (cpu, gpu_points) = shafts::points(&rows, &shafts::SHAFT_VARIANTS);
+    plot::draw(
+        &args.out.join("shafts_error_vs_time.png"),
+        &shafts::SHAFTS_CPU_AXIS,
+        &cpu,
+    )?;
+    if !gpu_points.is_empty() {
+        plot::draw(
+            &args.out.join("shafts_error_vs_gpu_time.png"),
+            &shafts::SHAFTS_GPU_AXIS,
+            &gpu_points,
+        )?;
+    }
+    Ok(())
+}
+
 /// The command that regenerates this report.
 fn command_line(args: &ReportArgs) -> String {
     let mut command = "cargo run --release -p atmos -- report".to_string();
@@ -194,6 +255,9 @@ fn command_line(args: &ReportArgs) -> String {
     }
     if args.no_gpu {
         command.push_str(" --no-gpu");
+    }
+    for section in &args.section {
+        command.push_str(&format!(" --section {section:?}").to_lowercase());
     }
     if args.twilight_max_paths != ReferenceSettings::default().max_paths {
         command.push_str(&format!(
