@@ -298,9 +298,9 @@ mod tests {
     /// km ended on the relief. One the terrain does not shadow: hillaire answers as the
     /// reference within 0.5 % (the same placed and ended ray). One that passes the valleys
     /// the low sun leaves in shadow: the exact march takes out more than a tenth of the
-    /// reference's single scattering, and hillaire with the frame's shadow map is within
-    /// 15 % of it: the map's 2 km cells lose the shadows of narrower valleys
-    /// (docs/shafts.md, "Probing").
+    /// reference's single scattering, and hillaire with the frame's cascaded shadow map is
+    /// within 6 % of it (a single map of 2 km cells, which loses the narrower valleys'
+    /// shadows, was 13 % off; docs/shafts.md, "Probing").
     #[test]
     fn hillaire_and_the_reference_answer_the_same_rays_over_the_alps() {
         let earth = Atmosphere::preset("earth").unwrap();
@@ -338,7 +338,7 @@ mod tests {
             taken.push((1.0 - reference[k] / lit, error));
         }
         assert!(taken[0].0.abs() < 1e-9 && taken[0].1 < 0.005, "{taken:?}");
-        assert!(taken[1].0 > 0.1 && taken[1].1 < 0.15, "{taken:?}");
+        assert!(taken[1].0 > 0.1 && taken[1].1 < 0.06, "{taken:?}");
     }
 
     #[test]

@@ -113,6 +113,45 @@ fn the_march_finds_the_ridge_shadow_boundary_of_the_closed_form() {
     assert_eq!(march.sun_visible(point(CREST_M + 1_000.0, 2_010.0), s), 1.0);
 }
 
+/// A cascade over the site: levels of 64 cells from 50 m (3.2 km wide, far south of the
+/// ridge) out to 400 m (25.6 km wide, holding the ridge). The ridge's shadow reaches the
+/// finest level only through its sweep's start from the outer levels: alone it would
+/// leave the site lit; nested, its boundary is the closed form's within the outermost
+/// cell. A level that does not nest is refused by name.
+#[test]
+fn a_nested_map_takes_the_shadow_of_a_ridge_beyond_its_edge() {
+    let s = sun(SUN_ELEVATION_DEG);
+    let level = |cell_m: f64| {
+        let grid = GnomonicGrid::new(DVec3::X, RADIUS_M, cell_m, 64).unwrap();
+        (grid, grid.sample(|d| Ridge.elevation_m(d)))
+    };
+    let (grid, heights) = level(400.0);
+    let mut map = ShadowMap::new(grid, &heights, s).unwrap();
+    for cell_m in [200.0, 100.0, 50.0] {
+        let (grid, heights) = level(cell_m);
+        map = ShadowMap::nested(grid, &heights, s, map).unwrap();
+    }
+    assert_eq!(map.levels().count(), 4);
+    assert_eq!(map.width_m(), 400.0 * 64.0);
+    let (grid, heights) = level(50.0);
+    let alone = ShadowMap::new(grid, &heights, s).unwrap();
+    let tolerance_m = 400.0 * (1.0 + SUN_ELEVATION_DEG.to_radians().tan()) + 1.0;
+    for north_m in [-1_000.0, 0.0, 1_000.0] {
+        let exact = boundary_m(|a| shadowed_exactly(point(north_m, a), s));
+        let mapped = boundary_m(|a| map.sun_visible(point(north_m, a), s) < 1.0);
+        assert!(
+            (mapped - exact).abs() < tolerance_m,
+            "{north_m} m north: cascade {mapped} m, exact {exact} m"
+        );
+        assert_eq!(alone.sun_visible(point(north_m, exact - 50.0), s), 1.0);
+        assert_eq!(map.sun_visible(point(north_m, exact - tolerance_m), s), 0.0);
+    }
+    let (grid, heights) = level(100.0);
+    let outer = ShadowMap::new(level(400.0).0, &level(400.0).1, s).unwrap();
+    let error = ShadowMap::nested(grid, &heights, s, outer).unwrap_err();
+    assert!(error.to_string().contains("cannot nest"), "{error}");
+}
+
 #[test]
 fn the_shadow_map_finds_the_same_boundary_within_a_cell() {
     let s = sun(SUN_ELEVATION_DEG);

@@ -336,7 +336,7 @@ fn shadow_map_uniform_matches_its_wgsl_layout() {
         "sky/hillaire/pixel.wgsl",
         "ShadowMapParams",
         ShadowMapUniform,
-        [east_cell, north_band, up_top, size]
+        [east_cell, north_slope, up_top, size]
     );
 }
 

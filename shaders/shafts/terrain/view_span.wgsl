@@ -7,8 +7,8 @@
 #import shafts/terrain/shadow_map.wgsl
 
 // `shaft_span_m`: x, y the distances from the segment's start where it enters and
-// leaves the sphere of the shadow volume's top (x = 0 from inside it), at most the map's
-// width and the segment; y <= x when it never dips below it. (r - top)(r + top) is
+// leaves the sphere of the shadow volume's top (x = 0 from inside it), at most the
+// outermost level's width and the segment; y <= x when it never dips below it. (r - top)(r + top) is
 // written as q - h (2 bottom + h) for f32.
 fn shaft_span(m: ShadowMapParams, s: Segment) -> vec2<f32> {
     let h = m.up_top.w;
@@ -22,7 +22,7 @@ fn shaft_span(m: ShadowMapParams, s: Segment) -> vec2<f32> {
     if above > 0.0 && exit > 0.0 {
         entry = above / exit;
     }
-    let width = m.east_cell.w * f32(m.size.x);
+    let width = shadow_map_width(m);
     return vec2<f32>(entry, min(exit, min(s.length, width)));
 }
 

@@ -16,7 +16,7 @@ pub const MIN_SHAFT_SAMPLES: usize = 4;
 
 /// The part of a segment (distances from its start, m) where the shadow can be: from
 /// where it enters the sphere of the shadow volume's top (0 from inside it) to where it
-/// last leaves it, at most the segment and the map's width; `None` when it never dips
+/// last leaves it, at most the segment and the (outermost) map's width; `None` when it never dips
 /// below that top. The entry is the product of the roots over the exit, exact for f32 on
 /// the GPU as well.
 pub fn shaft_span_m(
@@ -49,7 +49,7 @@ pub fn segment_span_m(
     map: &ShadowMap,
     bottom_radius_m: f64,
 ) -> Option<(f64, f64)> {
-    let width_m = map.grid.cell_m * map.grid.size as f64;
+    let width_m = map.width_m();
     let top_radius_m = bottom_radius_m + f64::from(map.max_top_m);
     shaft_span_m(segment.r, segment.mu, segment.length, top_radius_m, width_m)
 }

@@ -1,5 +1,6 @@
-//! The shadow map on the GPU: its tops in an R32Float texture (read texel by texel) and
-//! its parameters in a uniform buffer; a 2 x 2 placeholder with shafts off.
+//! The shadow map on the GPU: its levels' tops stacked in one R32Float texture, finest
+//! on top (read texel by texel), and its parameters in a uniform buffer; a 2 x 2
+//! placeholder with shafts off.
 
 use atmosphere_core::shafts::ShadowMap;
 
@@ -17,7 +18,7 @@ pub struct ShadowTexture {
 impl ShadowTexture {
     /// The placeholder of a frame without shafts.
     pub fn new(gpu: &GpuContext) -> ShadowTexture {
-        let texture = tops_texture(gpu, 2);
+        let texture = tops_texture(gpu, (2, 2));
         let params = uniform_buffer(&gpu.device, "shadow map", size_of::<ShadowMapUniform>());
         gpu.write_uniform(&params, &ShadowMapUniform::default());
         ShadowTexture { texture, params }
@@ -31,20 +32,25 @@ impl ShadowTexture {
             return;
         };
         let n = map.grid.size as u32;
-        if self.texture.width() != n {
-            self.texture = tops_texture(gpu, n);
+        let tops: Vec<f32> = map
+            .levels()
+            .flat_map(|m| m.tops_m.iter().copied())
+            .collect();
+        let rows = (tops.len() / n as usize) as u32;
+        if (self.texture.width(), self.texture.height()) != (n, rows) {
+            self.texture = tops_texture(gpu, (n, rows));
         }
         gpu.queue.write_texture(
             self.texture.as_image_copy(),
-            bytemuck::cast_slice(&map.tops_m),
+            bytemuck::cast_slice(&tops),
             wgpu::TexelCopyBufferLayout {
                 offset: 0,
                 bytes_per_row: Some(4 * n),
-                rows_per_image: Some(n),
+                rows_per_image: Some(rows),
             },
             wgpu::Extent3d {
                 width: n,
-                height: n,
+                height: rows,
                 depth_or_array_layers: 1,
             },
         );
@@ -62,12 +68,12 @@ impl ShadowTexture {
     }
 }
 
-fn tops_texture(gpu: &GpuContext, n: u32) -> wgpu::Texture {
+fn tops_texture(gpu: &GpuContext, (width, height): (u32, u32)) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("shadow map tops"),
         size: wgpu::Extent3d {
-            width: n,
-            height: n,
+            width,
+            height,
             depth_or_array_layers: 1,
         },
         mip_level_count: 1,

@@ -3,19 +3,20 @@
 use atmosphere_core::shafts::ShadowMap;
 use bytemuck::{Pod, Zeroable};
 
-/// The shadow map's grid and bounds, 64 bytes; all zero (with `size[1] = 0`) for a frame
-/// without shafts.
+/// The shadow map's grid (the finest level's; the levels share its centre and axes) and
+/// bounds, 64 bytes; all zero (with `size[1] = 0`) for a frame without shafts.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct ShadowMapUniform {
-    /// The grid's east axis; w: the cell's side, m.
+    /// The grid's east axis; w: the finest level's cell, m (each level out doubles it).
     pub east_cell: [f32; 4],
-    /// The grid's north axis; w: the penumbra band, m.
-    pub north_band: [f32; 4],
+    /// The grid's north axis; w: the tangent of the sun's elevation over the centre (a
+    /// level's penumbra band is its cell times it, between 1 m and the cell).
+    pub north_slope: [f32; 4],
     /// The grid's centre direction; w: the highest top S, m.
     pub up_top: [f32; 4],
-    /// Cells per side, 1 when the frame has shafts, most and fewest samples per view
-    /// segment.
+    /// Cells per side of each level, the levels (0 when the frame has no shafts), most
+    /// and fewest samples per view segment.
     pub size: [u32; 4],
 }
 
@@ -27,9 +28,14 @@ impl ShadowMapUniform {
         let v = |d: glam::DVec3, w: f32| [d.x as f32, d.y as f32, d.z as f32, w];
         ShadowMapUniform {
             east_cell: v(g.east, g.cell_m as f32),
-            north_band: v(g.north, map.band_m),
+            north_slope: v(g.north, map.sun_slope.clamp(-1e30, 1e30) as f32),
             up_top: v(g.up, map.max_top_m),
-            size: [g.size as u32, 1, samples.0, samples.1],
+            size: [
+                g.size as u32,
+                map.levels().count() as u32,
+                samples.0,
+                samples.1,
+            ],
         }
     }
 }
