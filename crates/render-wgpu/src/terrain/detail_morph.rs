@@ -107,7 +107,8 @@ mod tests {
 
     impl HeightField for Bumps {
         fn height_m(&self, d: DVec3) -> f64 {
-            1500.0 + 900.0 * (3000.0 * d.x).sin() * (2100.0 * d.y).cos()
+            1500.0
+                + 900.0 * (3000.0 * d.x).sin() * (2100.0 * d.y).cos()
                 + 400.0 * (5000.0 * d.z).sin()
         }
         fn max_abs_height_m(&self) -> f64 {
@@ -150,7 +151,11 @@ mod tests {
                     };
                     let (pa, pb) = (in_parent(a, child.x % 2), in_parent(b, child.y % 2));
                     let expected = own.normals[pb as usize * side as usize + pa as usize];
-                    assert_eq!(over.map.normals[b * n + a], expected, "{child:?} ({a}, {b})");
+                    assert_eq!(
+                        over.map.normals[b * n + a],
+                        expected,
+                        "{child:?} ({a}, {b})"
+                    );
                 }
             }
         }
