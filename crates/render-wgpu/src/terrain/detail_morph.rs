@@ -26,6 +26,9 @@ use super::chunk_key::ChunkKey;
 use super::geomorph::{MorphEnds, morph_factor};
 use super::normal_map::{NormalMap, TEXELS_PER_CELL};
 
+// A parent texel is one of the chunk's cells.
+const _: () = assert!(TEXELS_PER_CELL == 2);
+
 /// The parent's normal map over a chunk's area and one texel beyond it: texel (a, b)
 /// covers the chunk's mesh cell (a - 1, b - 1).
 #[derive(Clone, Debug, PartialEq)]
@@ -38,7 +41,6 @@ impl ParentNormalMap {
     /// The parent's map over chunk `key` of `cells` cells, from `grid(i, j)`, the chunk's
     /// surface at its grid point (i, j) (planet-centred, m) for i, j in -1 ..= cells + 1.
     pub fn build(key: ChunkKey, cells: u32, grid: impl Fn(i64, i64) -> DVec3) -> ParentNormalMap {
-        debug_assert_eq!(TEXELS_PER_CELL, 2, "a parent texel is a chunk cell");
         let texels = cells + 2;
         let last = i64::from(cells) + 1;
         // Beyond an edge that is the parent's own, the edge's texel again.
