@@ -8,7 +8,8 @@
 // slopes and snow above the season's snow line (`land_albedo`). CPU twins: the meshes
 // are built by render-wgpu's `terrain/`; the projection is `Frame::pixel_ray`'s; the
 // land's colour is atmosphere-core's `geo/land_cover.rs`; the normal map's sample and
-// fade are `terrain/normal_map.rs`'s. No paper.
+// fade are `terrain/normal_map.rs`'s, its morph towards the parent's map
+// `terrain/detail_morph.rs`'s. No paper but Strugar 2009's morph (below).
 //
 // Camera-relative: a vertex is its chunk's offset `origin - camera` (f64 on the CPU,
 // rounded to f32) plus its f32 offset from the origin, so positions near the camera are
@@ -59,6 +60,9 @@ struct Chunk {
 // twice the mesh's resolution, clamped bilinear.
 @group(1) @binding(0) var normal_map: texture_2d<f32>;
 @group(1) @binding(1) var normal_sampler: sampler;
+// The parent's normal map over the drawn chunk (`detail_morph.rs`): texel (a, b) is the
+// chunk's mesh cell (a - 1, b - 1), one texel beyond the chunk on every side.
+@group(1) @binding(2) var parent_map: texture_2d<f32>;
 
 const TAU: f32 = 6.28318530717959;
 const PI: f32 = 3.14159265358979;
@@ -76,6 +80,8 @@ struct VertexOut {
     @location(4) chunk_uv: vec2<f32>,
     // A normal-map texel's side, m.
     @location(5) @interpolate(flat) texel: f32,
+    // The chunk's own morph factor, by which its map blends towards the parent's.
+    @location(6) detail_morph: f32,
 }
 
 // Geomorphing (render-wgpu's `terrain/geomorph.rs`, `morph_factor`, `morph_role` and
@@ -83,8 +89,9 @@ struct VertexOut {
 // to the camera, by which it moves towards its morph target (x) and its normal towards
 // the target's, the parent's (y): the coarser neighbour's factor for the even vertices of
 // an edge bordering one, its own otherwise, but no move for the parent's other vertices
-// (whose normals still morph).
-fn morph_factors(c: Chunk, index: u32, relative: vec3<f32>) -> vec2<f32> {
+// (whose normals still morph); and the chunk's own factor at the vertex, the normal
+// map's (z, `detail_morph::detail_factor`).
+fn morph_factors(c: Chunk, index: u32, relative: vec3<f32>) -> vec3<f32> {
     let cells = u32(c.morph.w);
     let i = index % (cells + 1u);
     let j = index / (cells + 1u);
@@ -95,9 +102,12 @@ fn morph_factors(c: Chunk, index: u32, relative: vec3<f32>) -> vec2<f32> {
     let edge = on_coarser && !odd;
     let end = select(c.morph.x, c.morph.y, edge);
     let start = terrain.near.y;
-    let m = clamp((length(relative) / end - start) / (1.0 - start), 0.0, 1.0);
+    let distance = length(relative);
+    let m = clamp((distance / end - start) / (1.0 - start), 0.0, 1.0);
     let normal_m = select(0.0, m, end > 0.0);
-    return vec2<f32>(select(0.0, normal_m, odd || edge), normal_m);
+    let own = clamp((distance / c.morph.x - start) / (1.0 - start), 0.0, 1.0);
+    let detail_m = select(0.0, own, c.morph.x > 0.0);
+    return vec3<f32>(select(0.0, normal_m, odd || edge), normal_m, detail_m);
 }
 
 @vertex
@@ -129,6 +139,7 @@ fn vertex_main(
     let cells = u32(c.morph.w);
     out.chunk_uv = vec2<f32>(f32(index % (cells + 1u)), f32(index / (cells + 1u))) / c.morph.w;
     out.texel = c.origin.w;
+    out.detail_morph = factors.z;
     return out;
 }
 
@@ -170,12 +181,20 @@ fn fragment_main(in: VertexOut) -> SurfaceOut {
     let uv = map_uv(in.planet);
     let colour = textureSampleGrad(colour_map, colour_sampler, uv,
         unwrap_derivative(dpdx(uv)), unwrap_derivative(dpdy(uv)));
-    // The normal map where its texels cover 2 pixels or more, the mesh's normal where
-    // they cover 1 or less (`normal_map::detail_weight`, `shading_normal`).
+    // The normal map, blended towards the parent's over the chunk by the chunk's morph
+    // factor `m` (`detail_morph::morphed_detail`), where its texels (the parent's at
+    // m = 1, `morphed_texel_m`) cover 2 pixels or more, the mesh's normal where they
+    // cover 1 or less (`normal_map::detail_weight`, `shading_normal`).
     let distance = length(in.relative);
-    let weight = clamp(in.texel * terrain.near.z / distance - 1.0, 0.0, 1.0);
+    let m = in.detail_morph;
+    let texel = in.texel * (1.0 + m);
+    let weight = clamp(texel * terrain.near.z / distance - 1.0, 0.0, 1.0);
     let mesh = normalize(in.normal);
-    let map = normalize(textureSample(normal_map, normal_sampler, in.chunk_uv).xyz);
+    let own = normalize(textureSample(normal_map, normal_sampler, in.chunk_uv).xyz);
+    let side = f32(textureDimensions(parent_map).x);
+    let parent_uv = (in.chunk_uv * (side - 2.0) + 1.0) / side;
+    let parent = normalize(textureSample(parent_map, normal_sampler, parent_uv).xyz);
+    let map = normalize(mix(own, parent, m));
     let normal = normalize(mesh + (map - mesh) * weight);
     var out: SurfaceOut;
     out.geometry = vec4<f32>(normal, distance);

@@ -19,6 +19,7 @@ use glam::DVec3;
 use render_wgpu::Frame;
 use render_wgpu::frame::{LocalView, TerrainOptions, location_rotation};
 use render_wgpu::terrain::chunk_key::ChunkKey;
+use render_wgpu::terrain::detail_morph::{detail_factor, morphed_detail, morphed_texel_m};
 use render_wgpu::terrain::geo_grid::lat_lon;
 use render_wgpu::terrain::geomorph::MorphEnds;
 use render_wgpu::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
@@ -110,10 +111,10 @@ impl CpuTerrain {
 
     /// Nearest hit: distance, shading normal (the interpolated mesh normal with the
     /// normal map's detail), hit point, interpolated height of the height field, and the
-    /// detail: how far the shading normal is from the mesh's, and how far it is from the
-    /// one with unmorphed mesh normals.
-    fn cast(&mut self, origin: DVec3, dir: DVec3) -> Option<(f64, DVec3, DVec3, f64, [f64; 2])> {
-        let mut best: Option<(f64, DVec3, DVec3, f64, [f64; 2])> = None;
+    /// detail: how far the shading normal is from the mesh's, from the one with unmorphed
+    /// mesh normals, and from the one with the chunk's own map unmorphed.
+    fn cast(&mut self, origin: DVec3, dir: DVec3) -> Option<(f64, DVec3, DVec3, f64, [f64; 3])> {
+        let mut best: Option<(f64, DVec3, DVec3, f64, [f64; 3])> = None;
         for chunk in &self.chunks {
             let mesh = self
                 .meshes
@@ -150,17 +151,35 @@ impl CpuTerrain {
                         DVec3::new(f64::from(i), f64::from(j), 0.0) / f64::from(cells)
                     });
                     let st = chunk_uv[0] * (1.0 - u - v) + chunk_uv[1] * u + chunk_uv[2] * v;
-                    let map = mesh.normal_map.sample(st.x, st.y);
+                    // Blended towards the parent's map by the chunk's own morph factor
+                    // (`detail_morph.rs`).
+                    let dm = [0, 1, 2].map(|k| {
+                        let distance = (mesh.world_position_m(t[k]) - self.view.camera_m).length();
+                        detail_factor(distance, ends)
+                    });
+                    let dm = dm[0] * (1.0 - u - v) + dm[1] * u + dm[2] * v;
+                    let own_map = mesh.normal_map.sample(st.x, st.y);
+                    let map = morphed_detail(own_map, mesh.parent_map.sample(st.x, st.y), dm);
                     let texel = texel_size_m(self.surface.radius_m, cells, chunk.key.level);
-                    let weight = detail_weight(texel, self.view.pixels_per_radian, d);
+                    let p = self.view.pixels_per_radian;
+                    let weight = detail_weight(morphed_texel_m(texel, dm), p, d);
                     let normal = shading_normal(interpolated, map, weight);
+                    let unmorphed_map =
+                        shading_normal(interpolated, own_map, detail_weight(texel, p, d));
+                    let map_morphed = (normal - unmorphed_map).length();
                     let h = [0, 1, 2].map(|k| mesh.morphed_height_m(t[k], m[k]));
                     let height = h[0] * (1.0 - u - v) + h[1] * u + h[2] * v;
                     let detail = (normal - interpolated.normalize()).length();
                     let own = [0, 1, 2].map(|k| mesh.morphed_normal(t[k], 0.0));
                     let own = own[0] * (1.0 - u - v) + own[1] * u + own[2] * v;
                     let morphed = (normal - shading_normal(own, map, weight)).length();
-                    best = Some((d, normal, origin + dir * d, height, [detail, morphed]));
+                    best = Some((
+                        d,
+                        normal,
+                        origin + dir * d,
+                        height,
+                        [detail, morphed, map_morphed],
+                    ));
                 }
             }
         }
@@ -181,8 +200,9 @@ const MAX_NORMAL: f64 = 2e-3;
 /// some hits lie within 20 km, where the albedo is compared with the full-resolution map,
 /// or with the water's albedo where the interpolated height is below 0. Returns the
 /// numbers of water pixels, of land pixels under rock or snow, of pixels whose normal
-/// the normal map turns by more than [`MIN_DETAIL`] from the mesh's, and of pixels whose
-/// normal the mesh normals' morph turns by more than [`MAX_NORMAL`], compared (`None`:
+/// the normal map turns by more than [`MIN_DETAIL`] from the mesh's, of pixels whose
+/// normal the mesh normals' morph turns by more than [`MAX_NORMAL`], and of pixels whose
+/// normal the normal map's morph turns by more than [`MAX_NORMAL`], compared (`None`:
 /// no GPU, skipped).
 fn check_surface(
     name: &str,
@@ -191,7 +211,7 @@ fn check_surface(
     max_distance: f64,
     max_edge_fraction: f64,
     near_albedo: bool,
-) -> Option<(usize, usize, usize, usize)> {
+) -> Option<(usize, usize, usize, usize, usize)> {
     let mut renderer = renderer_or_skip(name)?;
     let plan = renderer.render(f).unwrap();
     assert!(plan.runs("terrain"), "{plan}");
@@ -201,7 +221,7 @@ fn check_surface(
     let heights = &cpu.surface.heights;
     let sea = open_sea_albedo(&colours, &heights.data, heights.mask.as_ref());
     let snow_line = SnowLine::for_declination(f.sun_direction.normalize().z.asin());
-    let (mut water, mut covered, mut detailed, mut turned) = (0, 0, 0, 0);
+    let (mut water, mut covered, mut detailed, mut turned, mut map_turned) = (0, 0, 0, 0, 0);
     let (mut compared, mut edges, mut worst_distance, mut worst_normal, mut worst_albedo) =
         (0, 0, 0.0f64, 0.0f64, 0.0f64);
     let mut albedos = 0;
@@ -210,7 +230,7 @@ fn check_surface(
             let texel = texels[(row * f.width + column) as usize];
             let ray = f.pixel_ray(column, row);
             let hit = cpu.cast(ray.origin_m, ray.direction);
-            let Some((distance, normal, point, height, [detail, morphed])) =
+            let Some((distance, normal, point, height, [detail, morphed, map_morphed])) =
                 hit.filter(|_| texel.distance_m > 0.0)
             else {
                 if hit.is_some() != (texel.distance_m > 0.0) {
@@ -222,6 +242,8 @@ fn check_surface(
             detailed += usize::from(detail > MIN_DETAIL);
             // Pixels a GPU without the normals' morph would miss by more than the bound.
             turned += usize::from(morphed > MAX_NORMAL);
+            // And without the normal map's morph.
+            map_turned += usize::from(map_morphed > MAX_NORMAL);
             let gpu_distance = f64::from(texel.distance_m);
             worst_distance = worst_distance.max((gpu_distance - distance).abs() / distance);
             let gpu_normal = glam::Vec3::from(texel.normal).as_dvec3();
@@ -284,9 +306,10 @@ fn check_surface(
     assert!(worst_albedo < 6e-3, "{name}: albedo {worst_albedo:e}");
     println!(
         "{name}: {water} water pixels, {covered} under rock or snow, {detailed} shaded by the \
-         normal map's detail, {turned} turned by the normals' morph by more than the bound"
+         normal map's detail, {turned} turned by the normals' morph and {map_turned} by the \
+         map's morph by more than the bound"
     );
-    Some((water, covered, detailed, turned))
+    Some((water, covered, detailed, turned, map_turned))
 }
 
 #[test]
@@ -296,7 +319,10 @@ fn terrain_over_the_alps_matches_the_cpu_meshes() {
     let counts = check_surface("Alps from 11 km", &f, 3, 4e-5, 0.05, true);
     // No sea; rock and snow on the near slopes.
     assert!(
-        counts.is_none_or(|(water, covered, _, turned)| water == 0 && covered > 10 && turned > 0),
+        counts.is_none_or(|(water, covered, _, turned, map_turned)| water == 0
+            && covered > 10
+            && turned > 0
+            && map_turned > 0),
         "{counts:?}"
     );
 }
@@ -314,7 +340,7 @@ fn the_normal_maps_detail_shades_the_ground_two_metres_up_as_the_cpu_says() {
     f.camera_position_m = up * (f.atmosphere.bottom_radius_m + ground + 2.0);
     let counts = check_surface("2 m over the Alps", &f, 2, 1.2e-4, 0.05, true);
     assert!(
-        counts.is_none_or(|(_, _, detailed, _)| detailed > 100),
+        counts.is_none_or(|(_, _, detailed, _, map_turned)| detailed > 100 && map_turned > 0),
         "{counts:?}"
     );
 }
@@ -331,7 +357,10 @@ fn terrain_a_metre_above_the_ground_matches_the_cpu_meshes() {
     // Rays graze metre-scale facets a few metres away, geomorphing within the band: the
     // GPU's f32 morph departs from the CPU's by a fraction of a millimetre there.
     let counts = check_surface("1.5 m over the Sahara", &f, 2, 1.2e-4, 0.05, true);
-    assert!(counts.is_none_or(|(water, ..)| water == 0), "{counts:?}");
+    assert!(
+        counts.is_none_or(|(water, _, _, _, map_turned)| water == 0 && map_turned > 0),
+        "{counts:?}"
+    );
 }
 
 #[test]

@@ -2,13 +2,16 @@
 //! scene's view (3 km above the Pennine Alps, 1280 x 720, 60 degrees) on the refined
 //! heights against the same chunks on the data's bilinear heights, and choosing the
 //! chunks (`select_chunks`) on each, on one thread; and the refined mesh's normal map
-//! (`normal_map.rs`, part of the mesh) alone; rounds interleaved, medians, and their
-//! ratios, so the machine's load cancels.
+//! (`normal_map.rs`, part of the mesh) alone, and the parent's map over a chunk
+//! (`detail_morph.rs`, part of the mesh) from the mesh's grid; rounds interleaved,
+//! medians, and their ratios, so the machine's load cancels.
 //!
 //! Run: `cargo bench -p render-wgpu --bench chunk_meshes`.
 
 use std::time::Instant;
 
+use render_wgpu::terrain::cube_sphere::direction as face_direction;
+use render_wgpu::terrain::detail_morph::ParentNormalMap;
 use render_wgpu::terrain::geo_grid::direction;
 use render_wgpu::terrain::lod::{LodSettings, LodView, SelectedChunk, select_chunks};
 use render_wgpu::terrain::normal_map::NormalMap;
@@ -61,6 +64,22 @@ fn main() {
     );
     let (mut mesh_plain, mut mesh_fine, mut select_plain, mut select_fine, mut map_fine) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    // Each chunk's grid points from -1 to cells + 1, which its mesh holds already.
+    let cells = refined_lod.cells;
+    let side = i64::from(cells) + 3;
+    let grids: Vec<Vec<glam::DVec3>> = sample
+        .iter()
+        .map(|c| {
+            (-1..=i64::from(cells) + 1)
+                .flat_map(|j| (-1..=i64::from(cells) + 1).map(move |i| (i, j)))
+                .map(|(i, j)| {
+                    let (u, v) = c.key.vertex_uv(cells, i, j);
+                    fine.position_m(face_direction(c.key.face, u, v))
+                })
+                .collect()
+        })
+        .collect();
+    let mut parent_maps = Vec::new();
     for _ in 0..ROUNDS {
         let build = |surface: &dyn Fn(&SelectedChunk) -> ChunkMesh| {
             time(|| {
@@ -75,6 +94,17 @@ fn main() {
         mesh_fine.push(build(&|c| ChunkMesh::build(&fine, c, refined_lod.cells)));
         let maps = |c: &&SelectedChunk| NormalMap::build(&fine, c.key, refined_lod.cells);
         map_fine.push(time(|| sample.iter().map(|c| maps(c).normals.len()).sum::<usize>()).0);
+        let parent_map = |c: &SelectedChunk, grid: &[glam::DVec3]| {
+            ParentNormalMap::build(c.key, cells, |i, j| grid[((j + 1) * side + i + 1) as usize])
+        };
+        let parents = || {
+            sample
+                .iter()
+                .zip(&grids)
+                .map(|(c, g)| parent_map(c, g).map.normals.len())
+                .sum::<usize>()
+        };
+        parent_maps.push(time(parents).0);
         select_plain.push(time(|| select(&refined_lod, &|d| plain.elevation_m(d))).0);
         select_fine.push(time(|| select(&refined_lod, &|d| fine.elevation_m(d))).0);
     }
@@ -89,6 +119,11 @@ fn main() {
     println!(
         "the normal map alone, every corner evaluated: {map:.3} ms per chunk ({:.0} % of the refined mesh with its map)",
         100.0 * map / mf
+    );
+    let parent = per_chunk(parent_maps);
+    println!(
+        "the parent's map over a chunk from the mesh's grid: {parent:.4} ms per chunk ({:.1} % of the refined mesh with its maps)",
+        100.0 * parent / mf
     );
     let (sp, sf) = (median(select_plain) * 1e3, median(select_fine) * 1e3);
     println!("select_chunks, data's heights: {sp:.1} ms");

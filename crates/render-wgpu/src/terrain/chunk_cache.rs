@@ -34,7 +34,8 @@ pub struct Vertex {
 #[derive(Debug)]
 pub struct GpuChunk {
     pub vertices: wgpu::Buffer,
-    /// The chunk's normal map (`normal_map.rs`), the terrain shader's group 1.
+    /// The chunk's normal map (`normal_map.rs`) and its parent's over it
+    /// (`detail_morph.rs`), the terrain shader's group 1.
     pub normal_map: wgpu::BindGroup,
     pub origin_m: DVec3,
     /// Bounding sphere of the mesh's vertices (centre, radius), m.
@@ -117,7 +118,7 @@ impl ChunkCache {
             mesh.key,
             GpuChunk {
                 vertices: buffer,
-                normal_map: normal_textures.upload(gpu, &mesh.normal_map),
+                normal_map: normal_textures.upload(gpu, &mesh.normal_map, &mesh.parent_map),
                 origin_m: mesh.origin_m,
                 bounds: (mesh.origin_m, radius),
                 max_radius_m,

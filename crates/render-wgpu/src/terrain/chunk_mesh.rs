@@ -26,6 +26,7 @@ use glam::DVec3;
 
 use super::chunk_key::ChunkKey;
 use super::cube_sphere::direction;
+use super::detail_morph::ParentNormalMap;
 use super::geomorph::{
     MorphEnds, MorphRole, morph_normal, morph_role, normal_factor, normal_pair, target_pair,
     vertex_factor,
@@ -65,6 +66,9 @@ pub struct ChunkMesh {
     pub indices: Vec<u32>,
     /// The relief's normals finer than the mesh (`normal_map.rs`).
     pub normal_map: NormalMap,
+    /// The parent's normal map over the chunk, the map's morph target
+    /// (`detail_morph.rs`).
+    pub parent_map: ParentNormalMap,
 }
 
 /// Cells by which a mesh's grid reaches beyond the chunk: one parent cell, for the
@@ -161,6 +165,7 @@ impl ChunkMesh {
             normal_map: NormalMap::build_sharing(surface, key, cells, |i, j| {
                 grid_point(&grid, side, i, j)
             }),
+            parent_map: ParentNormalMap::build(key, cells, |i, j| grid_point(&grid, side, i, j)),
         }
     }
 

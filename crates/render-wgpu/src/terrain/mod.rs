@@ -17,6 +17,7 @@ pub mod colour_map;
 pub mod colour_mips;
 pub mod colour_texture;
 pub mod cube_sphere;
+pub mod detail_morph;
 pub mod detail_noise;
 pub mod earth_data;
 pub mod frustum;
