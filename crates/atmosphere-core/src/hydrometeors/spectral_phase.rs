@@ -15,6 +15,7 @@ use rayon::prelude::*;
 
 use super::drop_rays::{diffraction_bins, geometric_bins};
 use super::error::{HydrometeorError, check_range};
+use super::mie_droplets::Droplets;
 use super::sun_disk_blur::blur_with_sun_disk;
 use crate::optics::ice::crystal::HexagonalPrism;
 use crate::optics::ice::orientation::Orientation;
@@ -58,6 +59,9 @@ pub enum Particles {
         length_m: f64,
         rays: usize,
     },
+    /// Lognormal water droplets by Lorenz-Mie theory ([`super::mie_droplets`]): small
+    /// rain drops (supernumerary bows) or cloud droplets (the glory, the cloudbow).
+    Droplets(Droplets),
     /// Hexagonal plates of a radius and length, m, falling with their c-axis vertical
     /// within a tilt spread, lit by the sun at an elevation (degrees), by `rays` rays per
     /// wavelength: a table over the sky's two angles.
@@ -146,6 +150,7 @@ impl Particles {
             Particles::Rain { rain_rate_mm_h } => {
                 MarshallPalmer::new(rain_rate_mm_h)?;
             }
+            Particles::Droplets(droplets) => droplets.check()?,
             Particles::Ice {
                 radius_m,
                 length_m,
@@ -250,6 +255,11 @@ impl Particles {
                     .map(|(g, d)| (g + d) / total)
                     .collect();
                 Ok(per_solid_angle(&weights, bin_deg))
+            }
+            Particles::Droplets(droplets) => {
+                let m = water_refractive_index(wavelength_nm)
+                    .map_err(|_| HydrometeorError::RefractiveIndex(wavelength_nm))?;
+                droplets.phase_bins(m, wavelength_m, bin_deg)
             }
             Particles::Ice {
                 radius_m,
