@@ -111,8 +111,8 @@ impl Droplets {
         let ripple_rad = PI / x_max;
         let bins = (180.0 / bin_deg).round() as usize;
         let bin_rad = bin_deg.to_radians();
-        let subsamples = ((SAMPLES_PER_RIPPLE * bin_rad / ripple_rad).ceil() as usize)
-            .clamp(1, MAX_SUBSAMPLES);
+        let subsamples =
+            ((SAMPLES_PER_RIPPLE * bin_rad / ripple_rad).ceil() as usize).clamp(1, MAX_SUBSAMPLES);
         // Each bin's sub-angles' cosines and weights (sin theta d theta over the bin's
         // solid angle / 2 pi).
         let angles: Vec<Vec<(f64, f64)>> = (0..bins)
