@@ -5,11 +5,12 @@ use std::f64::consts::PI;
 
 use atmosphere_core::hydrometeors::mie_droplets::Droplets;
 use atmosphere_core::hydrometeors::scene::{
-    DECK_RADII, DECK_SIGMA, SMALL_DROP_RADII, SMALL_DROP_SIGMA,
+    DECK_RADII, DECK_SIGMA, DeckSettings, RainShaftSettings, SMALL_DROP_RADII, SMALL_DROP_SIGMA,
 };
 use atmosphere_core::hydrometeors::spectral_phase::bin_solid_angle;
 use atmosphere_core::hydrometeors::sun_disk_blur::blur_with_sun_disk;
 use atmosphere_core::optics::refractive_index::water::water_refractive_index;
+use glam::DVec3;
 
 const BIN_DEG: f64 = 0.05;
 const SUN_RADIUS_RAD: f64 = 0.004675;
@@ -129,5 +130,55 @@ fn bad_droplet_settings_are_named() {
         let m = water_refractive_index(550.0).unwrap();
         let e = bad.phase_bins(m, 550e-9, BIN_DEG).unwrap_err().to_string();
         assert!(e.contains(name), "{e}");
+    }
+}
+
+#[test]
+fn bad_deck_and_small_drop_settings_are_named() {
+    let ground = 6_360e3;
+    for (deck, name) in [
+        (
+            DeckSettings {
+                droplet_radius_um: 60.0,
+                ..DeckSettings::default()
+            },
+            "deck droplet radius (um) 60",
+        ),
+        (
+            DeckSettings {
+                optical_depth: -1.0,
+                ..DeckSettings::default()
+            },
+            "deck optical depth -1",
+        ),
+        (
+            DeckSettings {
+                thickness_m: f64::INFINITY,
+                ..DeckSettings::default()
+            },
+            "deck thickness (m) inf",
+        ),
+        (
+            DeckSettings {
+                base_m: 30_000.0,
+                ..DeckSettings::default()
+            },
+            "deck base (m) 30000",
+        ),
+    ] {
+        let e = deck.volume(ground).unwrap_err().to_string();
+        assert!(e.contains(name), "{e}");
+    }
+    let camera = DVec3::X * (ground + 2.0);
+    for radius in [10.0, 1000.0, f64::NAN] {
+        let shaft = RainShaftSettings {
+            small_drop_radius_um: Some(radius),
+            ..RainShaftSettings::default()
+        };
+        let e = shaft
+            .volume(camera, DVec3::Y, ground)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("small drop radius (um)"), "{e}");
     }
 }
