@@ -26,11 +26,11 @@ pub const SMALL_DROP_SIGMA: f64 = 0.05;
 pub const SMALL_DROP_RADII: usize = 16;
 /// The range of a deck's droplet effective radius, um.
 pub const DECK_DROPLET_RADIUS_RANGE_UM: [f64; 2] = [2.0, 50.0];
-/// Cloud droplets: a lognormal of sigma 0.1, and the radii of its average (about one
-/// per unit of size parameter at 380 nm for 10 um, so that the glory's swings with size
-/// average out).
+/// Cloud droplets: a lognormal of sigma 0.1, and the radii of its average (about two
+/// per unit of size parameter at 380 nm for 10 um, so that the sharp resonances of the
+/// glory's swings with size average out).
 pub const DECK_SIGMA: f64 = 0.1;
-pub const DECK_RADII: usize = 128;
+pub const DECK_RADII: usize = 256;
 
 /// A rain shaft standing `distance_m` from the camera along a horizontal direction.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,6 +1,8 @@
-//! Phase functions of rain and ice at many wavelengths across the visible, seen with
-//! the sun's disc: what the bows and halos are rendered with. Rain by geometric optics
-//! ([`super::drop_rays`]) with the Marshall-Palmer (1948) drops' diffraction; ice by the
+//! Phase functions of rain, droplets and ice at many wavelengths across the visible,
+//! seen with the sun's disc: what the bows, glories and halos are rendered with. Rain by
+//! geometric optics ([`super::drop_rays`]) with the Marshall-Palmer (1948) drops'
+//! diffraction; small drops and cloud droplets by Lorenz-Mie ([`super::mie_droplets`]);
+//! ice by the
 //! ray tracer of `optics/ice/` (randomly oriented hexagonal crystals, the same rays at
 //! every wavelength so that the halos' colours are not the rays' noise). Each wavelength
 //! is tabulated in bins of [`BIN_DEG`] and averaged over the sun's disc
