@@ -13,9 +13,9 @@
 //! bin over its solid angle by the midpoint rule at sub-angles: a drop of size parameter
 //! x ripples in angle with a period of about pi / x rad (the rays reflected outside and
 //! refracted through it interfere), so a bin from 90 degrees on holds
-//! [`SAMPLES_PER_RIPPLE`] angles per period (at most [`MAX_SUBSAMPLES`]; forward of
+//! `SAMPLES_PER_RIPPLE` angles per period (at most `MAX_SUBSAMPLES`; forward of
 //! 90 degrees one, at its centre), and the forward peak (width about 1 / x) its own
-//! [`FORWARD_SUBSAMPLES`] in the first degree. What is left of the ripple the sun's disc
+//! `FORWARD_SUBSAMPLES` in the first degree. What is left of the ripple the sun's disc
 //! averages away (`sun_disk_blur.rs`).
 
 use std::f64::consts::PI;
