@@ -2,10 +2,9 @@
 //! seen with the sun's disc: what the bows, glories and halos are rendered with. Rain by
 //! geometric optics ([`super::drop_rays`]) with the Marshall-Palmer (1948) drops'
 //! diffraction; small drops and cloud droplets by Lorenz-Mie ([`super::mie_droplets`]);
-//! ice by the
-//! ray tracer of `optics/ice/` (randomly oriented hexagonal crystals, the same rays at
-//! every wavelength so that the halos' colours are not the rays' noise). Each wavelength
-//! is tabulated in bins of [`BIN_DEG`] and averaged over the sun's disc
+//! ice by the ray tracer of `optics/ice/` (randomly oriented hexagonal crystals, the
+//! same rays at every wavelength so that the halos' colours are not the rays' noise).
+//! Each wavelength is tabulated in bins of [`BIN_DEG`] and averaged over the sun's disc
 //! ([`super::sun_disk_blur`]). Falling plates (sundogs) scatter by azimuth too: their
 //! tables are over the sky's two angles ([`SKY_GRID`], `optics/ice/sky_table.rs`), the
 //! sun's disc in their rays. [`SpectralPhase::build_cached`] keeps the tables in a

@@ -2,8 +2,8 @@
 //! 2004, section 3.2: beta_ex = eta sigma_ex, Eq. 2): a rain shaft, a vertical cylinder
 //! of Marshall-Palmer rain standing on the ground, and a cirrus layer, a spherical shell
 //! of ice crystals of a vertical optical depth, and a deck of water droplets, a shell
-//! like the cirrus. Where a view ray crosses them and how far
-//! a ray from a point inside runs before it leaves.
+//! like the cirrus. Where a view ray crosses them and how far a ray from a point inside
+//! runs before it leaves.
 
 use glam::DVec3;
 
