@@ -1,11 +1,13 @@
 //! The shipped optics scenes (`assets/scenes/optics/`) load as frames with their
 //! volumes: the rainbow's rain shaft with the sun behind the camera, the halo's random
 //! columns and the sundogs' falling plates with the sun 20 degrees up, both sundogs in
-//! view.
+//! view; the small drops' shaft, and the glory's deck below the camera with the
+//! antisolar point at the view's centre and the cloudbow inside the frame.
 
 use std::path::{Path, PathBuf};
 
 use atmos::render::scene::Scene;
+use atmos::render::volume_flags::VolumeFlags;
 use glam::DVec3;
 
 fn scene(name: &str) -> PathBuf {
@@ -49,4 +51,34 @@ fn the_optics_scenes_hold_their_volumes_and_views() {
         let off = sundog.dot(forward).acos().to_degrees();
         assert!(off < 0.5 * frame.vertical_fov_deg, "{off}");
     }
+}
+
+#[test]
+fn the_droplet_scenes_hold_their_volumes_and_views() {
+    let small = Scene::load(&scene("rainbow_small_drops.toml")).unwrap();
+    small.frame().unwrap();
+    let shaft = small.volumes.rain_settings().unwrap();
+    assert_eq!(shaft.small_drop_radius_um, Some(150.0));
+
+    let glory = Scene::load(&scene("glory.toml")).unwrap();
+    let frame = glory.frame().unwrap();
+    let deck = glory.volumes.deck_settings().unwrap();
+    let altitude = frame.camera_position_m.length() - frame.atmosphere.bottom_radius_m;
+    assert!(altitude > deck.base_m + deck.thickness_m, "{altitude}");
+    // The antisolar point at the view's centre, the cloudbow (about 39 degrees from it)
+    // within half the vertical field of view.
+    let off = (-frame.sun_direction)
+        .dot(frame.axes()[2])
+        .acos()
+        .to_degrees();
+    assert!(off < 0.1, "{off}");
+    assert!(0.5 * frame.vertical_fov_deg > 40.0);
+
+    // The small drops' radius needs the shaft, and is refused by name outside its range.
+    let alone = VolumeFlags {
+        rain_small_drop_radius_um: Some(150.0),
+        ..VolumeFlags::default()
+    };
+    let e = alone.lit_volumes(&frame).unwrap_err().to_string();
+    assert!(e.contains("--rain-small-drop-radius-um"), "{e}");
 }

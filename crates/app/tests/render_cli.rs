@@ -295,6 +295,21 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "tilt spread 40 deg is outside [0, 30] deg",
         ),
         (
+            &[("--rain", "true"), ("--rain-small-drop-radius-um", "1000")],
+            "frame.png",
+            "--rain: small drop radius (um) 1000 is outside [50, 600] um",
+        ),
+        (
+            &[("--deck", "true"), ("--deck-droplet-radius-um", "60")],
+            "frame.png",
+            "--deck: deck droplet radius (um) 60 is outside [2, 50] um",
+        ),
+        (
+            &[("--deck", "true"), ("--deck-optical-depth", "-1")],
+            "frame.png",
+            "--deck: deck optical depth -1 is outside [0, 10]",
+        ),
+        (
             &[("--rain", "true"), ("--optics-wavelengths", "1000")],
             "frame.png",
             "--optics-wavelengths 1000 must lie in [3, 128]",

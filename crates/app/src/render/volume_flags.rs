@@ -1,13 +1,13 @@
 //! Rain and ice volumes of a scene (`atmos render --rain`, `--cirrus` and their flags,
 //! or a scene file's `[volumes]` table): a rain shaft ahead of the camera and a cirrus
-//! layer, each setting checked against its range with errors naming the flag; and the
+//! layer, a deck of cloud droplets below or around the camera, each setting checked against its range with errors naming the flag; and the
 //! lit volumes the renderer composites (docs/optics-rendering.md).
 
 use crate::table_cache_dir::table_cache;
 use anyhow::{Context, bail};
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::scene::{
-    CirrusSettings, DEFAULT_WAVELENGTHS, RainShaftSettings, lit_volume,
+    CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, lit_volume,
 };
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
 use atmosphere_core::models::registry::prepare;
@@ -40,6 +40,28 @@ pub struct VolumeFlags {
     /// The shaft's height above the ground, m, in [100, 20000] [default: 4000].
     #[arg(long = "rain-height-m", value_name = "M")]
     pub rain_height_m: Option<f64>,
+    /// Small drops of this effective radius, um, in [50, 600], by Lorenz-Mie (the
+    /// supernumerary bows) instead of Marshall-Palmer drops by geometric optics; the
+    /// rate still sets the shaft's extinction [default: off].
+    #[arg(long = "rain-small-drop-radius-um", value_name = "UM")]
+    pub rain_small_drop_radius_um: Option<f64>,
+    /// A deck of cloud droplets by Lorenz-Mie, in single scattering (the glory, the
+    /// cloudbow) [default: false].
+    #[arg(long = "deck", value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
+    pub deck: Option<bool>,
+    /// The deck's base above the ground, m, in [0, 20000] [default: 1000].
+    #[arg(long = "deck-base-m", value_name = "M")]
+    pub deck_base_m: Option<f64>,
+    /// The deck's thickness, m, in [10, 10000] [default: 500].
+    #[arg(long = "deck-thickness-m", value_name = "M")]
+    pub deck_thickness_m: Option<f64>,
+    /// The deck's vertical optical depth, in [0, 10] [default: 1].
+    #[arg(long = "deck-optical-depth", value_name = "TAU")]
+    pub deck_optical_depth: Option<f64>,
+    /// The deck droplets' effective radius, um, in [2, 50] (lognormal, sigma 0.1)
+    /// [default: 10].
+    #[arg(long = "deck-droplet-radius-um", value_name = "UM")]
+    pub deck_droplet_radius_um: Option<f64>,
     /// A cirrus layer of hexagonal ice columns, randomly oriented (the 22 and 46 degree
     /// halos) [default: false].
     #[arg(long = "cirrus", value_name = "BOOL", num_args = 0..=1, default_missing_value = "true")]
@@ -92,6 +114,14 @@ impl VolumeFlags {
             rain_distance_m: flags.rain_distance_m.or(self.rain_distance_m),
             rain_radius_m: flags.rain_radius_m.or(self.rain_radius_m),
             rain_height_m: flags.rain_height_m.or(self.rain_height_m),
+            rain_small_drop_radius_um: flags
+                .rain_small_drop_radius_um
+                .or(self.rain_small_drop_radius_um),
+            deck: flags.deck.or(self.deck),
+            deck_base_m: flags.deck_base_m.or(self.deck_base_m),
+            deck_thickness_m: flags.deck_thickness_m.or(self.deck_thickness_m),
+            deck_optical_depth: flags.deck_optical_depth.or(self.deck_optical_depth),
+            deck_droplet_radius_um: flags.deck_droplet_radius_um.or(self.deck_droplet_radius_um),
             cirrus: flags.cirrus.or(self.cirrus),
             cirrus_base_m: flags.cirrus_base_m.or(self.cirrus_base_m),
             cirrus_thickness_m: flags.cirrus_thickness_m.or(self.cirrus_thickness_m),
@@ -117,6 +147,18 @@ impl VolumeFlags {
             radius_m: self.rain_radius_m.unwrap_or(d.radius_m),
             height_m: self.rain_height_m.unwrap_or(d.height_m),
             rain_rate_mm_h: self.rain_rate_mm_h.unwrap_or(d.rain_rate_mm_h),
+            small_drop_radius_um: self.rain_small_drop_radius_um,
+        })
+    }
+
+    /// The droplet deck's settings when on.
+    pub fn deck_settings(&self) -> Option<DeckSettings> {
+        let d = DeckSettings::default();
+        (self.deck == Some(true)).then(|| DeckSettings {
+            base_m: self.deck_base_m.unwrap_or(d.base_m),
+            thickness_m: self.deck_thickness_m.unwrap_or(d.thickness_m),
+            optical_depth: self.deck_optical_depth.unwrap_or(d.optical_depth),
+            droplet_radius_um: self.deck_droplet_radius_um.unwrap_or(d.droplet_radius_um),
         })
     }
 
@@ -145,8 +187,15 @@ impl VolumeFlags {
         if self.cirrus_tilt_deg.is_some() && self.cirrus_plates != Some(true) {
             bail!("--cirrus-tilt-deg is the falling plates' tilt: it needs --cirrus-plates");
         }
-        let (rain, cirrus) = (self.rain_settings(), self.cirrus_settings());
-        if rain.is_none() && cirrus.is_none() {
+        if self.rain_small_drop_radius_um.is_some() && self.rain != Some(true) {
+            bail!("--rain-small-drop-radius-um is the rain shaft's drops: it needs --rain");
+        }
+        let (rain, cirrus, deck) = (
+            self.rain_settings(),
+            self.cirrus_settings(),
+            self.deck_settings(),
+        );
+        if rain.is_none() && cirrus.is_none() && deck.is_none() {
             return Ok(Vec::new());
         }
         let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
@@ -192,6 +241,20 @@ impl VolumeFlags {
                     &cache,
                 )
                 .context("--cirrus")?,
+            );
+        }
+        if let Some(deck) = deck {
+            let volume = deck.volume(ground).context("--deck")?;
+            volumes.push(
+                lit_volume(
+                    model.as_ref(),
+                    volume,
+                    view,
+                    optics,
+                    RGB_WAVELENGTHS_NM,
+                    &cache,
+                )
+                .context("--deck")?,
             );
         }
         Ok(volumes)

@@ -1,8 +1,10 @@
-//! Rain and ice crystals as volumes in planet scenes: their phase functions at many
-//! wavelengths, fast enough to render with ([`spectral_phase`]: rain by geometric optics,
-//! [`drop_rays`]; ice by the crystal ray tracer of `optics/ice/`), seen with the sun's
+//! Rain, water droplets and ice crystals as volumes in planet scenes: their phase
+//! functions at many wavelengths, fast enough to render with ([`spectral_phase`]: rain by
+//! geometric optics, [`drop_rays`]; small drops and cloud droplets by Lorenz-Mie,
+//! [`mie_droplets`]; ice by the crystal ray tracer of `optics/ice/`), seen with the sun's
 //! disc ([`sun_disk_blur`]) and reduced to a frame's three wavelengths through the CIE
-//! functions ([`channel_phase`]); a rain shaft and a cirrus layer ([`volumes`]) lit by a
+//! functions ([`channel_phase`]); a rain shaft, a cirrus layer and a droplet deck
+//! ([`volumes`]) lit by a
 //! sky model's sun in single scattering and composited over the model's frame
 //! ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
 //! around a camera from a scene's settings.
@@ -14,6 +16,7 @@
 pub mod channel_phase;
 pub mod drop_rays;
 pub mod error;
+pub mod mie_droplets;
 pub mod render;
 pub mod scene;
 pub mod spectral_phase;

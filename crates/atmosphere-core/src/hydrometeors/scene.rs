@@ -1,4 +1,4 @@
-//! A rain shaft and a cirrus layer as a scene gives them (command-line flags, scene
+//! A rain shaft, a cirrus layer and a droplet deck as a scene gives them (command-line flags, scene
 //! files, the viewer), each setting with its range: placed around the camera, made into
 //! volumes, given phase tables at the frame's wavelengths and lit by a sky model.
 
@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use super::channel_phase::ChannelPhase;
 use super::error::{HydrometeorError, check_range};
+use super::mie_droplets::Droplets;
 use super::render::{LitVolume, light_of};
 use super::spectral_phase::{Particles, SpectralPhase};
 use super::volumes::Volume;
@@ -17,6 +18,19 @@ pub const SHAFT_DISTANCE_RANGE_M: [f64; 2] = [0.0, 100_000.0];
 /// Wavelengths the phase tables are built at by default: doubling them changes the
 /// rain's table by less than 1 % (docs/optics-rendering.md).
 pub const DEFAULT_WAVELENGTHS: usize = 32;
+/// The range of small rain drops' effective radius, um (supernumerary bows).
+pub const SMALL_DROP_RADIUS_RANGE_UM: [f64; 2] = [50.0, 600.0];
+/// Small drops: a narrow lognormal, and the radii of its average (the drops' ripple in
+/// angle is averaged within each bin, so a few radii follow the bows' shift with size).
+pub const SMALL_DROP_SIGMA: f64 = 0.05;
+pub const SMALL_DROP_RADII: usize = 16;
+/// The range of a deck's droplet effective radius, um.
+pub const DECK_DROPLET_RADIUS_RANGE_UM: [f64; 2] = [2.0, 50.0];
+/// Cloud droplets: a lognormal of sigma 0.1, and the radii of its average (about two
+/// per unit of size parameter at 380 nm for 10 um, so that the sharp resonances of the
+/// glory's swings with size average out).
+pub const DECK_SIGMA: f64 = 0.1;
+pub const DECK_RADII: usize = 256;
 
 /// A rain shaft standing `distance_m` from the camera along a horizontal direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,6 +39,53 @@ pub struct RainShaftSettings {
     pub radius_m: f64,
     pub height_m: f64,
     pub rain_rate_mm_h: f64,
+    /// Small drops of this effective radius, um, by Lorenz-Mie (supernumerary bows)
+    /// instead of Marshall-Palmer drops by geometric optics; the rate still sets the
+    /// shaft's extinction.
+    pub small_drop_radius_um: Option<f64>,
+}
+
+/// A deck of cloud droplets (the glory, the cloudbow), a shell around the planet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeckSettings {
+    pub base_m: f64,
+    pub thickness_m: f64,
+    pub optical_depth: f64,
+    pub droplet_radius_um: f64,
+}
+
+impl Default for DeckSettings {
+    fn default() -> Self {
+        DeckSettings {
+            base_m: 1_000.0,
+            thickness_m: 500.0,
+            optical_depth: 1.0,
+            droplet_radius_um: 10.0,
+        }
+    }
+}
+
+impl DeckSettings {
+    /// The deck over ground of radius `ground_radius_m`.
+    pub fn volume(&self, ground_radius_m: f64) -> Result<Volume, HydrometeorError> {
+        check_range(
+            "deck droplet radius (um)",
+            self.droplet_radius_um,
+            DECK_DROPLET_RADIUS_RANGE_UM,
+            "[2, 50] um",
+        )?;
+        Volume::droplet_deck(
+            ground_radius_m,
+            self.base_m,
+            self.thickness_m,
+            self.optical_depth,
+            Droplets {
+                effective_radius_m: self.droplet_radius_um * 1e-6,
+                sigma: DECK_SIGMA,
+                radii: DECK_RADII,
+            },
+        )
+    }
 }
 
 impl Default for RainShaftSettings {
@@ -34,6 +95,7 @@ impl Default for RainShaftSettings {
             radius_m: 2_000.0,
             height_m: 4_000.0,
             rain_rate_mm_h: 5.0,
+            small_drop_radius_um: None,
         }
     }
 }
@@ -88,13 +150,27 @@ impl RainShaftSettings {
             .try_normalize()
             .unwrap_or_else(|| up.any_orthonormal_vector());
         let foot = (camera_m + along * self.distance_m).normalize() * ground_radius_m;
-        Volume::rain_shaft(
+        let mut shaft = Volume::rain_shaft(
             foot,
             ground_radius_m,
             self.radius_m,
             self.height_m,
             self.rain_rate_mm_h,
-        )
+        )?;
+        if let Some(radius_um) = self.small_drop_radius_um {
+            check_range(
+                "small drop radius (um)",
+                radius_um,
+                SMALL_DROP_RADIUS_RANGE_UM,
+                "[50, 600] um",
+            )?;
+            shaft.particles = Particles::Droplets(Droplets {
+                effective_radius_m: radius_um * 1e-6,
+                sigma: SMALL_DROP_SIGMA,
+                radii: SMALL_DROP_RADII,
+            });
+        }
+        Ok(shaft)
     }
 }
 

@@ -1,9 +1,10 @@
-//! Phase functions of rain and ice at many wavelengths across the visible, seen with
-//! the sun's disc: what the bows and halos are rendered with. Rain by geometric optics
-//! ([`super::drop_rays`]) with the Marshall-Palmer (1948) drops' diffraction; ice by the
-//! ray tracer of `optics/ice/` (randomly oriented hexagonal crystals, the same rays at
-//! every wavelength so that the halos' colours are not the rays' noise). Each wavelength
-//! is tabulated in bins of [`BIN_DEG`] and averaged over the sun's disc
+//! Phase functions of rain, droplets and ice at many wavelengths across the visible,
+//! seen with the sun's disc: what the bows, glories and halos are rendered with. Rain by
+//! geometric optics ([`super::drop_rays`]) with the Marshall-Palmer (1948) drops'
+//! diffraction; small drops and cloud droplets by Lorenz-Mie ([`super::mie_droplets`]);
+//! ice by the ray tracer of `optics/ice/` (randomly oriented hexagonal crystals, the
+//! same rays at every wavelength so that the halos' colours are not the rays' noise).
+//! Each wavelength is tabulated in bins of [`BIN_DEG`] and averaged over the sun's disc
 //! ([`super::sun_disk_blur`]). Falling plates (sundogs) scatter by azimuth too: their
 //! tables are over the sky's two angles ([`SKY_GRID`], `optics/ice/sky_table.rs`), the
 //! sun's disc in their rays. [`SpectralPhase::build_cached`] keeps the tables in a
@@ -15,6 +16,7 @@ use rayon::prelude::*;
 
 use super::drop_rays::{diffraction_bins, geometric_bins};
 use super::error::{HydrometeorError, check_range};
+use super::mie_droplets::Droplets;
 use super::sun_disk_blur::blur_with_sun_disk;
 use crate::optics::ice::crystal::HexagonalPrism;
 use crate::optics::ice::orientation::Orientation;
@@ -58,6 +60,9 @@ pub enum Particles {
         length_m: f64,
         rays: usize,
     },
+    /// Lognormal water droplets by Lorenz-Mie theory ([`super::mie_droplets`]): small
+    /// rain drops (supernumerary bows) or cloud droplets (the glory, the cloudbow).
+    Droplets(Droplets),
     /// Hexagonal plates of a radius and length, m, falling with their c-axis vertical
     /// within a tilt spread, lit by the sun at an elevation (degrees), by `rays` rays per
     /// wavelength: a table over the sky's two angles.
@@ -146,6 +151,7 @@ impl Particles {
             Particles::Rain { rain_rate_mm_h } => {
                 MarshallPalmer::new(rain_rate_mm_h)?;
             }
+            Particles::Droplets(droplets) => droplets.check()?,
             Particles::Ice {
                 radius_m,
                 length_m,
@@ -250,6 +256,11 @@ impl Particles {
                     .map(|(g, d)| (g + d) / total)
                     .collect();
                 Ok(per_solid_angle(&weights, bin_deg))
+            }
+            Particles::Droplets(droplets) => {
+                let m = water_refractive_index(wavelength_nm)
+                    .map_err(|_| HydrometeorError::RefractiveIndex(wavelength_nm))?;
+                droplets.phase_bins(m, wavelength_m, bin_deg)
             }
             Particles::Ice {
                 radius_m,

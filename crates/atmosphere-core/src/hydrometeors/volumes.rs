@@ -1,12 +1,14 @@
 //! The volumes rain and ice fill in a planet scene, homogeneous inside (Riley et al.
 //! 2004, section 3.2: beta_ex = eta sigma_ex, Eq. 2): a rain shaft, a vertical cylinder
 //! of Marshall-Palmer rain standing on the ground, and a cirrus layer, a spherical shell
-//! of ice crystals of a vertical optical depth. Where a view ray crosses them and how far
-//! a ray from a point inside runs before it leaves.
+//! of ice crystals of a vertical optical depth, and a deck of water droplets, a shell
+//! like the cirrus. Where a view ray crosses them and how far a ray from a point inside
+//! runs before it leaves.
 
 use glam::DVec3;
 
 use super::error::{HydrometeorError, check_range};
+use super::mie_droplets::Droplets;
 use super::spectral_phase::Particles;
 use crate::clouds::layer::shell::Shell;
 use crate::optics::mie::marshall_palmer::{MarshallPalmer, RADIUS_RANGE_M};
@@ -19,6 +21,11 @@ pub const SHAFT_HEIGHT_RANGE_M: [f64; 2] = [100.0, 20_000.0];
 pub const CIRRUS_BASE_RANGE_M: [f64; 2] = [1_000.0, 20_000.0];
 pub const CIRRUS_THICKNESS_RANGE_M: [f64; 2] = [10.0, 10_000.0];
 pub const CIRRUS_OPTICAL_DEPTH_RANGE: [f64; 2] = [0.0, 10.0];
+/// The ranges of a droplet deck's base altitude and thickness, m, and its vertical
+/// optical depth.
+pub const DECK_BASE_RANGE_M: [f64; 2] = [0.0, 20_000.0];
+pub const DECK_THICKNESS_RANGE_M: [f64; 2] = [10.0, 10_000.0];
+pub const DECK_OPTICAL_DEPTH_RANGE: [f64; 2] = [0.0, 10.0];
 /// Diameters of the rain's extinction integral.
 const EXTINCTION_DIAMETERS: usize = 256;
 
@@ -132,9 +139,9 @@ impl Volume {
             "[0, 10]",
         )?;
         crystals.check()?;
-        if let Particles::Rain { .. } = crystals {
+        if let Particles::Rain { .. } | Particles::Droplets(_) = crystals {
             return Err(HydrometeorError::Setting {
-                what: "cirrus particles (rain rate, mm/h)",
+                what: "cirrus particles (water drops)",
                 value: 0.0,
                 range: "ice crystals only",
             });
@@ -147,6 +154,41 @@ impl Volume {
             }),
             extinction_per_m: optical_depth / thickness_m,
             particles: crystals,
+        })
+    }
+
+    /// A deck of water droplets (a cloud seen in single scattering: its glory and
+    /// cloudbow) from `base_m` to `base_m + thickness_m` above the ground of
+    /// `ground_radius_m`, of vertical optical depth `optical_depth`.
+    pub fn droplet_deck(
+        ground_radius_m: f64,
+        base_m: f64,
+        thickness_m: f64,
+        optical_depth: f64,
+        droplets: Droplets,
+    ) -> Result<Volume, HydrometeorError> {
+        check_range("deck base (m)", base_m, DECK_BASE_RANGE_M, "[0, 20000] m")?;
+        check_range(
+            "deck thickness (m)",
+            thickness_m,
+            DECK_THICKNESS_RANGE_M,
+            "[10, 10000] m",
+        )?;
+        check_range(
+            "deck optical depth",
+            optical_depth,
+            DECK_OPTICAL_DEPTH_RANGE,
+            "[0, 10]",
+        )?;
+        droplets.check()?;
+        Ok(Volume {
+            shape: Shape::Layer(Shell {
+                ground_radius_m,
+                base_radius_m: ground_radius_m + base_m,
+                top_radius_m: ground_radius_m + base_m + thickness_m,
+            }),
+            extinction_per_m: optical_depth / thickness_m,
+            particles: Particles::Droplets(droplets),
         })
     }
 
