@@ -5,8 +5,8 @@
 //! interactive preset's march at a third of the resolution against `segment_upsample.rs`,
 //! the mountain in front of the cloud left as at full resolution; cover 0 leaves the
 //! frame exactly as without clouds; pruning changes nothing; bad input is named. The
-//! interactive preset's layer is lit by the frame's sun map (`sun_light = map`), its
-//! CPU twin by `march_in_sun_map` with the CPU's map.
+//! interactive frame's layer is lit by the frame's sun map (`sun_light = map`), its CPU
+//! twin by `march_in_sun_map` with the CPU's map.
 //!
 //! Tolerance: each pixel's radiance within 4 % of itself plus 1 % of the frame's
 //! brightest value, but for one value in a hundred, which may be off by four times that
@@ -29,7 +29,7 @@ use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::segment_upsample::{
     ReducedMarch, Segment, upsample_by_segment,
 };
-use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLight};
 use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_surface as shaded;
 use atmosphere_core::clouds::layer::sun_map::CloudSunMap;
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, nearest_pixel, reduced_size};
@@ -347,7 +347,10 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
     renderer.set_cloud_inputs(&cover, &orders).unwrap();
     let frame = frame(ModelId::Nishita);
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
-    let settings = MarchQuality::Interactive.apply(LayerSettings::default());
+    let settings = LayerSettings {
+        sun_light: SunLight::Map,
+        ..MarchQuality::Interactive.apply(LayerSettings::default())
+    };
     assert_eq!(settings.resolution_divisor, 3);
     let light = frame_light(model.as_ref(), &frame, &settings).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();

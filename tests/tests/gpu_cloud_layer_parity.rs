@@ -4,8 +4,8 @@
 //! both methods, over a cover with structure at the scale of the view; and the
 //! interactive and offline presets (`MarchQuality`), the interactive one marched at a third
 //! of the resolution and interpolated (`clouds/layer/upsample.rs`), whose distance from the
-//! full-resolution march is bounded too. A layer lit by the sun map (`sun_light = map`,
-//! the interactive preset's) reads a map filled on the GPU (`sun_map_fill.wgsl`) against
+//! full-resolution march is bounded too. A layer lit by the sun map (`sun_light = map`)
+//! reads a map filled on the GPU (`sun_map_fill.wgsl`) against
 //! `march_in_sun_map` with the CPU's map (`CloudSunMap`, of `SunMapResolution::LIT`), the
 //! two maps agreeing within 0.005 in transmittance (`gpu_cloud_sun_map.rs`).
 //!
@@ -356,6 +356,15 @@ fn the_presets_match_the_cpu_and_the_reduced_march_stays_near_the_full() {
             camera(2200.0, 0.0),
             25.0,
             interactive.apply(octaves),
+        ),
+        (
+            "interactive, inside, octaves, map",
+            camera(2200.0, 0.0),
+            25.0,
+            LayerSettings {
+                sun_light: SunLight::Map,
+                ..interactive.apply(octaves)
+            },
         ),
         (
             "interactive, above, riley",

@@ -14,9 +14,10 @@ use crate::clouds::error::CloudError;
 /// A quality of the cloud layer's march.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MarchQuality {
-    /// For flight: few view steps through one octave of detail, the sun's light from
-    /// the frame's sun map of the cover and profile alone (the noise's mean) in two
-    /// parts, a stop once 2 % of the light behind is left, one ray per 3 x 3 pixels.
+    /// For flight: few view steps through one octave of detail, a two-step shadow
+    /// march through the cover and profile alone (the noise's mean; the frame's sun map
+    /// instead cost more on lavapipe, docs/clouds.md "Cost"), a stop once 2 % of the
+    /// light behind is left, one ray per 3 x 3 pixels.
     Interactive,
     /// For recordings: more steps than the defaults and the full noise everywhere.
     Offline,
@@ -42,7 +43,7 @@ impl MarchQuality {
         match self {
             MarchQuality::Interactive => March {
                 steps: 20,
-                sun_light: SunLight::Map,
+                sun_light: SunLight::March,
                 shadow_steps: 2,
                 detail_octaves: 1,
                 shadow_octaves: 0,

@@ -50,9 +50,9 @@ impl SunMapResolution {
     /// the optical depth inside the layer is far from linear between 4 (the tests in
     /// `cloud_sun_light.rs`), with half the default's cells a side: as many samples.
     pub const LIT: SunMapResolution = SunMapResolution {
-        cells: 128,
+        cells: 64,
         levels: 16,
-        steps: 16,
+        steps: 8,
     };
 
     /// `Ok` when every field lies in its range, else an error naming it.
