@@ -226,6 +226,67 @@ fn lit_by_the_map_the_march_is_no_further_from_the_fine_march() {
     }
 }
 
+/// 25 times the default density, a camera inside the cloud and on its top, and a sun 10
+/// degrees below the horizon (the sky model's light, not tested here, darkens the night):
+/// finite, non-negative, bounded answers, opaque where dense.
+#[test]
+fn lit_by_the_map_dense_inside_and_night_stay_finite() {
+    let uniform = CoverGrid::from_values("overcast", 4, 2, vec![1.0; 8]).unwrap();
+    let orders = orders();
+    for method in [LayerMethod::Riley, LayerMethod::Octaves] {
+        for extinction_per_m in [0.04, 1.0] {
+            let settings = LayerSettings {
+                method,
+                extinction_per_m,
+                sun_light: SunLight::Map,
+                ..LayerSettings::default()
+            };
+            let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+            let layer = CloudLayer::new(settings, BOTTOM_M, uniform.clone(), phase).unwrap();
+            let top = BOTTOM_M + settings.base_m + settings.thickness_m;
+            let resolution = SunMapResolution {
+                cells: 16,
+                levels: 16,
+                steps: 8,
+            };
+            for (elevation, camera) in [(30.0, 2_200.0), (30.0, top - BOTTOM_M), (-10.0, 2_200.0)] {
+                let origin = DVec3::X * (BOTTOM_M + camera);
+                let s = sun(elevation, 40.0);
+                let grid = CloudSunMap::grid_for(layer.shell(), origin, &resolution).unwrap();
+                let map = CloudSunMap::new(&layer, grid, s, &resolution).unwrap();
+                for d in [DVec3::X, DVec3::Y, -DVec3::X] {
+                    let Some((t0, t1)) = layer.shell().first_segment(origin, d, f64::INFINITY)
+                    else {
+                        continue;
+                    };
+                    let ray = MarchRay {
+                        origin,
+                        direction: d,
+                        t0,
+                        t1,
+                    };
+                    let light = CloudLight {
+                        sun_direction: s,
+                        sun_irradiance: vec![1.0],
+                        sky_irradiance: vec![0.0],
+                        up: origin.normalize(),
+                    };
+                    let c = march_in_sun_map(&layer, &ray, &light, &orders, &settings, &map);
+                    let (l, t) = (c.radiance[0], c.transmittance[0]);
+                    let what = format!(
+                        "{method} {extinction_per_m} sun {elevation} at {camera} m along {d}"
+                    );
+                    assert!((0.0..10.0).contains(&l), "{what}: {l}");
+                    assert!((0.0..=1.0).contains(&t), "{what}: T {t}");
+                    if extinction_per_m == 1.0 && camera == 2_200.0 {
+                        assert!(t < 1e-3, "{what}: T {t}");
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn the_sun_light_setting_reads_back_and_others_are_named() {
     for s in [SunLight::March, SunLight::Map] {
