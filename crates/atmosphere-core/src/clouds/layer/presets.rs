@@ -16,8 +16,8 @@ use crate::clouds::error::CloudError;
 pub enum MarchQuality {
     /// For flight: few view steps through one octave of detail, a two-step shadow
     /// march through the cover and profile alone (the noise's mean; the frame's sun map
-    /// instead cost more on lavapipe, docs/clouds.md "Cost"), a stop once 2 % of the
-    /// light behind is left, one ray per 3 x 3 pixels.
+    /// instead costs no less, docs/clouds.md "The sun light from the sun map"), a stop
+    /// once 2 % of the light behind is left, one ray per 3 x 3 pixels.
     Interactive,
     /// For recordings: more steps than the defaults and the full noise everywhere.
     Offline,
