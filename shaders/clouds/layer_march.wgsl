@@ -3,9 +3,12 @@
 // at their middles, the energy-conserving step integral (Hillaire 2016), the sun by
 // Riley et al. 2004's expected orders (Eq. 22, 25, 26) or Wrenninge et al. 2013's
 // octaves, the sky as isotropic ambient, the shadow march through the density with
-// `noise.y` octaves, stopping below the transmittance `detail.z`.
+// `noise.y` octaves or, where `noise.w` is 1 (`sun_light = map`), the optical depth
+// read from the frame's sun map (`sun_map_read.wgsl`, Dobashi et al. 2002 section 5.4)
+// in `counts.y` equal parts, stopping below the transmittance `detail.z`.
 
 #import clouds/layer_medium.wgsl
+#import clouds/sun_map_read.wgsl
 
 const MAX_SHADOW_STEPS: u32 = 64u;
 
@@ -34,14 +37,22 @@ fn forward_fraction(n: u32) -> vec3<f32> {
 fn sun_source(p: vec3<f32>, nu: f32, albedo: f32) -> vec3<f32> {
     let s = layer.sun_direction.xyz;
     let steps = min(layer.counts.y, MAX_SHADOW_STEPS);
-    let length_m = layer_boundary(p, s);
-    let ds = length_m / f32(steps);
     var depths: array<f32, MAX_SHADOW_STEPS>;
     var tau = 0.0;
-    for (var k = 0u; k < steps; k++) {
-        let q = p + s * (length_m - (f32(k) + 0.5) * ds);
-        depths[k] = layer_extinction(q, layer.noise.y) * ds;
-        tau += depths[k];
+    if layer.noise.w == 1u {
+        tau = cloud_sun_optical_depth(p);
+        let part = tau / f32(steps);
+        for (var k = 0u; k < steps; k++) {
+            depths[k] = part;
+        }
+    } else {
+        let length_m = layer_boundary(p, s);
+        let ds = length_m / f32(steps);
+        for (var k = 0u; k < steps; k++) {
+            let q = p + s * (length_m - (f32(k) + 0.5) * ds);
+            depths[k] = layer_extinction(q, layer.noise.y) * ds;
+            tau += depths[k];
+        }
     }
     if layer.counts.z == 0u {
         var intensity = vec3<f32>(1.0);

@@ -27,7 +27,7 @@ struct LayerParams {
     // The cover grid's width and height, the image's width and height.
     sizes: vec4<u32>,
     // Octaves of detail noise read by the view march and by the shadow march, the
-    // resolution divisor (w unused).
+    // resolution divisor, the sun's light (0: a shadow march, 1: the sun map).
     noise: vec4<u32>,
 }
 

@@ -1,5 +1,6 @@
 // Library: the cloud layer's sun map read at a point (render-wgpu's
-// `clouds/sun_map_texture.rs`; the per-pixel pass `sun_map_pixels.wgsl` reads it). CPU
+// `clouds/sun_map_texture.rs`; the per-pixel pass `sun_map_pixels.wgsl` and, with
+// `sun_light = map`, the layer's march `layer_march.wgsl` read it). CPU
 // twin: atmosphere-core's `clouds/layer/sun_map.rs` (`CloudSunMap::optical_depth`):
 // Dobashi, Yamamoto and Nishita 2002 section 5.4's attenuation textures, the optical
 // depth towards the sun through the layer at `levels` spheres of the shell over a
@@ -41,15 +42,21 @@ fn sun_map_level(k: u32, column: f32, row: f32) -> f32 {
 // The sun's transmittance through the cloud from the planet-centred `p` (m); 1 when
 // the frame has no map.
 fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
+    return exp(-cloud_sun_optical_depth(p));
+}
+
+// The optical depth towards the sun through the cloud from the planet-centred `p` (m);
+// 0 when the frame has no map.
+fn cloud_sun_optical_depth(p: vec3<f32>) -> f32 {
     let m = sun_map_params;
     if m.counts.w == 0u {
-        return 1.0;
+        return 0.0;
     }
     let base = m.radii.x;
     let top = m.radii.y;
     let r = length(p);
     if r >= top {
-        return 1.0;
+        return 0.0;
     }
     var q = p;
     var x = 0.0;
@@ -68,7 +75,7 @@ fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
     }
     let along_up = dot(q, m.up.xyz);
     if along_up <= 0.0 {
-        return 1.0;
+        return 0.0;
     }
     let n = m.counts.x;
     let last = f32(n - 1u);
@@ -77,7 +84,7 @@ fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
     let column = dot(q, m.east_cell.xyz) * scale + centre;
     let row = dot(q, m.north.xyz) * scale + centre;
     if column < 0.0 || row < 0.0 || column > last || row > last {
-        return 1.0;
+        return 0.0;
     }
     let k = sun_map_index(x, max(m.counts.y, 1u) - 1u);
     let f = x - f32(k);
@@ -86,5 +93,5 @@ fn cloud_sun_transmittance(p: vec3<f32>) -> f32 {
     if k + 1u < m.counts.y {
         high = sun_map_level(k + 1u, column, row);
     }
-    return exp(-(low + f * (high - low)));
+    return low + f * (high - low);
 }

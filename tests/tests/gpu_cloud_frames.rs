@@ -4,7 +4,9 @@
 //! models, with a surface in front of, inside and behind the cloud (in its shadow); the
 //! interactive preset's march at a third of the resolution against `segment_upsample.rs`,
 //! the mountain in front of the cloud left as at full resolution; cover 0 leaves the
-//! frame exactly as without clouds; pruning changes nothing; bad input is named.
+//! frame exactly as without clouds; pruning changes nothing; bad input is named. The
+//! interactive frame's layer is lit by the frame's sun map (`sun_light = map`), its CPU
+//! twin by `march_in_sun_map` with the CPU's map.
 //!
 //! Tolerance: each pixel's radiance within 4 % of itself plus 1 % of the frame's
 //! brightest value, but for one value in a hundred, which may be off by four times that
@@ -21,13 +23,13 @@ mod support;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::composite::composite;
 use atmosphere_core::clouds::layer::field::CloudLayer;
-use atmosphere_core::clouds::layer::march::{CloudLight, CloudSegment, MarchRay, march};
+use atmosphere_core::clouds::layer::march::{CloudLight, CloudSegment};
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::segment_upsample::{
     ReducedMarch, Segment, upsample_by_segment,
 };
-use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLight};
 use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_surface as shaded;
 use atmosphere_core::clouds::layer::sun_map::CloudSunMap;
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, nearest_pixel, reduced_size};
@@ -46,6 +48,7 @@ use render_wgpu::clouds::frame_clouds::{
 use render_wgpu::clouds::frame_pass::frame_camera;
 use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::frame::{Frame, look_orientation};
+use support::clouds::cpu_march;
 
 const RELATIVE: f64 = 0.04;
 const OF_BRIGHTEST: f64 = 0.01;
@@ -134,34 +137,6 @@ fn pixel_segment(
         .first_segment(ray.origin_m, ray.direction, end)
 }
 
-/// The CPU march of `segment` of the ray from `o` along `d`: [radiance x 3,
-/// transmittance].
-fn cpu_march(
-    layer: &CloudLayer,
-    orders: &ScatteringOrders,
-    light: &CloudLight,
-    (o, d): (DVec3, DVec3),
-    (t0, t1): (f64, f64),
-) -> [f64; 4] {
-    let light = CloudLight {
-        up: (o + d * t0).normalize(),
-        ..light.clone()
-    };
-    let ray = MarchRay {
-        origin: o,
-        direction: d,
-        t0,
-        t1,
-    };
-    let c = march(layer, &ray, &light, orders, layer.settings());
-    [
-        c.radiance[0],
-        c.radiance[1],
-        c.radiance[2],
-        c.transmittance[0],
-    ]
-}
-
 /// The CPU's composite of pixel (column, row) with `cloud` (where its ray enters the
 /// cloud and the cloud's [radiance x 3, transmittance]): `composite.rs` with the model's
 /// answers for the whole ray (ended on the surface, in the shadow of `map`) and for the
@@ -246,7 +221,7 @@ fn cpu_frame(
             let ray = frame.pixel_ray(px.0, px.1);
             let cloud = pixel_segment(layer, frame, px, texel).map(|s| {
                 let o_d = (ray.origin_m, ray.direction);
-                (s.0, cpu_march(layer, orders, light, o_d, s))
+                (s.0, cpu_march(layer, orders, (light, &map), o_d, s))
             });
             cpu_pixel(model, frame, px, (texel, &map), cloud)
         })
@@ -372,13 +347,17 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
     renderer.set_cloud_inputs(&cover, &orders).unwrap();
     let frame = frame(ModelId::Nishita);
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
-    let settings = MarchQuality::Interactive.apply(LayerSettings::default());
+    let settings = LayerSettings {
+        sun_light: SunLight::Map,
+        ..MarchQuality::Interactive.apply(LayerSettings::default())
+    };
     assert_eq!(settings.resolution_divisor, 3);
     let light = frame_light(model.as_ref(), &frame, &settings).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     let radius = frame.atmosphere.bottom_radius_m;
     let layer = CloudLayer::new(settings, radius, cover.clone(), phase).unwrap();
     let surface = mountain(&frame);
+    let map = support::clouds::frame_sun_map(&layer, &frame);
     // The same layer marched at full resolution: in front of the cloud both frames keep
     // the model's pixels, the surface in the cloud's shadow, as they are.
     let full = LayerSettings {
@@ -418,7 +397,7 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
             };
             let segment = layer.shell().first_segment(camera.position_m, d, end);
             image.push(segment.map_or([0.0, 0.0, 0.0, 1.0], |s| {
-                cpu_march(&layer, &orders, &light, (camera.position_m, d), s)
+                cpu_march(&layer, &orders, (&light, &map), (camera.position_m, d), s)
             }));
             segments.push(segment);
         }
@@ -445,10 +424,15 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
         |x, y, s| {
             marched += 1;
             let ray = frame.pixel_ray(x, y);
-            cpu_march(&layer, &orders, &light, (ray.origin_m, ray.direction), s)
+            cpu_march(
+                &layer,
+                &orders,
+                (&light, &map),
+                (ray.origin_m, ray.direction),
+                s,
+            )
         },
     );
-    let map = support::clouds::frame_sun_map(&layer, &frame);
     let cpu: Vec<RayRadiance> = pixels
         .iter()
         .zip(&surface)

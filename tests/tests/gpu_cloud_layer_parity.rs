@@ -4,7 +4,10 @@
 //! both methods, over a cover with structure at the scale of the view; and the
 //! interactive and offline presets (`MarchQuality`), the interactive one marched at a third
 //! of the resolution and interpolated (`clouds/layer/upsample.rs`), whose distance from the
-//! full-resolution march is bounded too.
+//! full-resolution march is bounded too. A layer lit by the sun map (`sun_light = map`)
+//! reads a map filled on the GPU (`sun_map_fill.wgsl`) against
+//! `march_in_sun_map` with the CPU's map (`CloudSunMap`, of `SunMapResolution::LIT`), the
+//! two maps agreeing within 0.005 in transmittance (`gpu_cloud_sun_map.rs`).
 //!
 //! Tolerance: each pixel's radiance within 3 % of itself plus 1 % of the image's
 //! brightest pixel, but for one value in a hundred (of three per pixel), which may be
@@ -20,10 +23,11 @@ mod support;
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::field::CloudLayer;
-use atmosphere_core::clouds::layer::march::{CloudLight, MarchRay, march};
+use atmosphere_core::clouds::layer::march::{CloudLight, MarchRay, march, march_in_sun_map};
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
-use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLight};
+use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, reduced_size, upsample};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::geo::equirectangular::lat_lon;
@@ -33,6 +37,8 @@ use glam::DVec3;
 use render_wgpu::clouds::layer_inputs::LayerInputs;
 use render_wgpu::clouds::layer_pass::CloudLayerPass;
 use render_wgpu::clouds::layer_uniform::{LayerCamera, LayerUniform};
+use render_wgpu::clouds::sun_map_pass::SunMapPass;
+use render_wgpu::clouds::sun_map_texture::{SunMapTexture, SunMapUniform};
 
 const BOTTOM_M: f64 = 6_360_000.0;
 const RELATIVE: f64 = 0.03;
@@ -89,12 +95,35 @@ fn light(sun_elevation_deg: f64) -> CloudLight {
     }
 }
 
+/// The sun maps of `layer` under `camera` for `light`'s sun, on the CPU and filled on
+/// the GPU (with the layer's parameters `params`).
+fn sun_maps(
+    gpu: &render_wgpu::GpuContext,
+    inputs: &LayerInputs,
+    (layer, camera, light): (&CloudLayer, &LayerCamera, &CloudLight),
+    params: &LayerUniform,
+) -> (CloudSunMap, SunMapTexture) {
+    let resolution = SunMapResolution::LIT;
+    let grid = CloudSunMap::grid_for(layer.shell(), camera.position_m, &resolution).unwrap();
+    let sun = light.sun_direction;
+    let top = layer.shell().top_radius_m;
+    let uniform = SunMapUniform::new(&grid, sun, top, &resolution);
+    let cpu = CloudSunMap::new(layer, grid, sun, &resolution).unwrap();
+    let mut texture = SunMapTexture::new(gpu);
+    texture.set(gpu, Some(&uniform), (1, 1)).unwrap();
+    let mut encoder = gpu.device.create_command_encoder(&Default::default());
+    let fill = SunMapPass::new(gpu).unwrap();
+    fill.encode(gpu, &mut encoder, params, &inputs.cover, &texture, None);
+    gpu.queue.submit([encoder.finish()]);
+    (cpu, texture)
+}
+
 /// The CPU's [radiance x 3, transmittance] of every pixel: marched at the layer's
-/// resolution divisor and interpolated to full size.
+/// resolution divisor (lit through `map` when given) and interpolated to full size.
 fn cpu_image(
     layer: &CloudLayer,
     camera: &LayerCamera,
-    light: &CloudLight,
+    (light, map): (&CloudLight, Option<&CloudSunMap>),
     orders: &ScatteringOrders,
 ) -> Vec<[f64; 4]> {
     let (w, h) = reduced_size(
@@ -122,7 +151,11 @@ fn cpu_image(
                         t0,
                         t1,
                     };
-                    let c = march(layer, &ray, &light, orders, layer.settings());
+                    let s = layer.settings();
+                    let c = match map {
+                        Some(m) => march_in_sun_map(layer, &ray, &light, orders, s, m),
+                        None => march(layer, &ray, &light, orders, s),
+                    };
                     [
                         c.radiance[0],
                         c.radiance[1],
@@ -159,8 +192,17 @@ fn check_parity(
         (cover.width(), cover.height()),
     )
     .unwrap();
-    let gpu_image = pass.render(gpu, &params, inputs).unwrap();
-    let cpu = cpu_image(&layer, &camera, &light, &orders);
+    let maps = (settings.sun_light == SunLight::Map)
+        .then(|| sun_maps(gpu, inputs, (&layer, &camera, &light), &params));
+    let gpu_image = pass
+        .render(gpu, (&params, inputs), maps.as_ref().map(|m| &m.1))
+        .unwrap();
+    let cpu = cpu_image(
+        &layer,
+        &camera,
+        (&light, maps.as_ref().map(|m| &m.0)),
+        &orders,
+    );
     let brightest = cpu
         .iter()
         .flat_map(|p| p[..3].iter().copied())
@@ -213,30 +255,62 @@ fn the_gpu_march_matches_the_cpu_from_below_inside_and_above() {
     };
     let inputs = LayerInputs::new(&gpu, &cover(), &orders()).unwrap();
     let pass = CloudLayerPass::new(&gpu).unwrap();
+    let (march, map) = (SunLight::March, SunLight::Map);
     let views = [
-        ("below, riley", camera(10.0, 35.0), LayerMethod::Riley, 40.0),
+        (
+            "below, riley",
+            camera(10.0, 35.0),
+            LayerMethod::Riley,
+            40.0,
+            march,
+        ),
         (
             "inside, octaves",
             camera(2200.0, 0.0),
             LayerMethod::Octaves,
             25.0,
+            march,
         ),
         (
             "inside, riley, low sun",
             camera(2200.0, 5.0),
             LayerMethod::Riley,
             10.0,
+            march,
         ),
         (
             "above, riley",
             camera(5000.0, -30.0),
             LayerMethod::Riley,
             50.0,
+            march,
+        ),
+        (
+            "below, riley, map",
+            camera(10.0, 35.0),
+            LayerMethod::Riley,
+            40.0,
+            map,
+        ),
+        (
+            "inside, octaves, map",
+            camera(2200.0, 0.0),
+            LayerMethod::Octaves,
+            25.0,
+            map,
+        ),
+        (
+            "above, octaves, map, low sun",
+            camera(5000.0, -30.0),
+            LayerMethod::Octaves,
+            10.0,
+            map,
         ),
     ];
-    for (name, camera, method, sun_elevation) in views {
+    for (name, camera, method, sun_elevation, sun_light) in views {
         let settings = LayerSettings {
             method,
+            sun_light,
             steps: 32,
             shadow_steps: 6,
             ..LayerSettings::default()
@@ -284,6 +358,15 @@ fn the_presets_match_the_cpu_and_the_reduced_march_stays_near_the_full() {
             interactive.apply(octaves),
         ),
         (
+            "interactive, inside, octaves, map",
+            camera(2200.0, 0.0),
+            25.0,
+            LayerSettings {
+                sun_light: SunLight::Map,
+                ..interactive.apply(octaves)
+            },
+        ),
+        (
             "interactive, above, riley",
             camera(5000.0, -30.0),
             50.0,
@@ -319,7 +402,13 @@ fn the_presets_match_the_cpu_and_the_reduced_march_stays_near_the_full() {
             (2048, 1024),
         )
         .unwrap();
-        let reference = pass.render(&gpu, &params, &inputs).unwrap();
+        let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+        let layer = CloudLayer::new(full, BOTTOM_M, cover(), phase).unwrap();
+        let light = light(sun_elevation);
+        let maps = (full.sun_light == SunLight::Map)
+            .then(|| sun_maps(&gpu, &inputs, (&layer, &camera, &light), &params));
+        let map = maps.as_ref().map(|m| &m.1);
+        let reference = pass.render(&gpu, (&params, &inputs), map).unwrap();
         let (mut error, mut total) = (0.0, 0.0);
         for (p, q) in image.iter().zip(&reference) {
             for w in 0..3 {

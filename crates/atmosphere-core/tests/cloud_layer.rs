@@ -9,7 +9,7 @@ use atmosphere_core::clouds::layer::composite::radiance_with_clouds;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
-use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLight};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
@@ -32,6 +32,15 @@ fn layer(cover: f32, settings: LayerSettings) -> CloudLayer {
     let grid = CoverGrid::from_values("uniform cover", 4, 2, vec![cover; 8]).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     CloudLayer::new(settings, BOTTOM_M, grid, phase).unwrap()
+}
+
+/// The interactive preset with its sun's light from a shadow march: the composite here
+/// has no frame's sun map (`cloud_sun_light.rs` lights the layer through one).
+fn interactive(settings: LayerSettings) -> LayerSettings {
+    LayerSettings {
+        sun_light: SunLight::March,
+        ..MarchQuality::Interactive.apply(settings)
+    }
 }
 
 fn ray(altitude_m: f64, view_zenith_deg: f64, sun_zenith_deg: f64) -> ViewRay {
@@ -100,7 +109,7 @@ fn overcast_hides_the_sky_from_below_and_shines_from_above() {
 fn a_thousand_times_the_density_stays_finite_and_opaque() {
     let model = model();
     let orders = orders(model.wavelengths_nm().len());
-    let interactive = MarchQuality::Interactive.apply(LayerSettings::default());
+    let interactive = interactive(LayerSettings::default());
     for (method, base) in [
         (LayerMethod::Riley, LayerSettings::default()),
         (LayerMethod::Octaves, LayerSettings::default()),
@@ -139,7 +148,7 @@ fn inside_a_cloud_and_at_its_top_the_answers_are_finite_and_continuous() {
     let model = model();
     let orders = orders(model.wavelengths_nm().len());
     let default = LayerSettings::default();
-    for s in [default, MarchQuality::Interactive.apply(default)] {
+    for s in [default, interactive(default)] {
         let l = layer(1.0, s);
         let top = s.base_m + s.thickness_m;
         for view in [0.0, 60.0, 90.0, 120.0, 180.0] {
@@ -302,4 +311,16 @@ fn bad_settings_and_tables_are_refused_by_name() {
             .contains("cloud phase tables for 1 wavelengths"),
         "{e}"
     );
+    let lit = LayerSettings {
+        sun_light: SunLight::Map,
+        ..LayerSettings::default()
+    };
+    let e = radiance_with_clouds(
+        model.as_ref(),
+        &layer(1.0, lit),
+        &orders(model.wavelengths_nm().len()),
+        &ray(10.0, 0.0, 30.0),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("sun_light = map"), "{e}");
 }

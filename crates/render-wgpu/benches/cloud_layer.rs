@@ -3,7 +3,9 @@
 //! looking 10 degrees above the horizon, sun 30 degrees up) through the `Renderer` (its per-step GPU
 //! times), then the cloud layer pass of the same view over the generated cover: both
 //! methods at the default march (48 view, 8 shadow steps) and at the interactive preset
-//! (`MarchQuality`), and octaves at the offline preset (Riley's march does not converge
+//! (`MarchQuality`, whose sun light is the sun map's, filled before the march and timed
+//! with it), the interactive preset with a shadow march instead (`sun_light = march`),
+//! and octaves at the offline preset (Riley's march does not converge
 //! as its shadow steps shrink: `docs/clouds.md`, "Cost"); rounds interleaved, medians.
 //! The cloud pass is timed by the wall clock around its dispatch and read-back
 //! (lavapipe's timestamps around a lone compute pass read about 0.1 ms whatever it
@@ -24,7 +26,9 @@ use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
-use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLight};
+use atmosphere_core::clouds::layer::shell::Shell;
+use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::ModelSettings;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
@@ -33,6 +37,8 @@ use render_wgpu::Renderer;
 use render_wgpu::clouds::layer_inputs::LayerInputs;
 use render_wgpu::clouds::layer_pass::CloudLayerPass;
 use render_wgpu::clouds::layer_uniform::{LayerCamera, LayerUniform};
+use render_wgpu::clouds::sun_map_pass::SunMapPass;
+use render_wgpu::clouds::sun_map_texture::{SunMapTexture, SunMapUniform};
 use render_wgpu::frame::{Frame, LocalView};
 
 const ROUNDS: usize = 2;
@@ -72,6 +78,20 @@ fn rows() -> Vec<Row> {
             settings: MarchQuality::Interactive.apply(octaves),
         },
         Row {
+            name: "riley, interactive, shadow march",
+            settings: LayerSettings {
+                sun_light: SunLight::March,
+                ..MarchQuality::Interactive.apply(riley)
+            },
+        },
+        Row {
+            name: "octaves, interactive, shadow march",
+            settings: LayerSettings {
+                sun_light: SunLight::March,
+                ..MarchQuality::Interactive.apply(octaves)
+            },
+        },
+        Row {
             name: "octaves, offline",
             settings: MarchQuality::Offline.apply(octaves),
         },
@@ -90,6 +110,49 @@ fn error_against(image: &[[f32; 4]], finest: &[[f32; 4]]) -> (f64, f64) {
         worst_t = worst_t.max(f64::from((p[3] - q[3]).abs()));
     }
     (error / total, worst_t)
+}
+
+/// The sun map and its fill pass of a layer lit by it.
+struct SunMap<'a> {
+    pass: SunMapPass,
+    texture: SunMapTexture,
+    camera: &'a LayerCamera,
+    bottom_radius_m: f64,
+    cover: &'a wgpu::Texture,
+}
+
+impl SunMap<'_> {
+    /// Renders `params` of `settings`, filling the sun map first when the layer is lit by
+    /// it.
+    fn render(
+        &mut self,
+        pass: &CloudLayerPass,
+        gpu: &render_wgpu::GpuContext,
+        (params, inputs): (&LayerUniform, &LayerInputs),
+        settings: &LayerSettings,
+    ) -> Vec<[f32; 4]> {
+        if settings.sun_light == SunLight::March {
+            return pass.render(gpu, (params, inputs), None).unwrap();
+        }
+        let (base, top) = settings.radii_m(self.bottom_radius_m);
+        let shell = Shell {
+            ground_radius_m: self.bottom_radius_m,
+            base_radius_m: base,
+            top_radius_m: top,
+        };
+        let resolution = SunMapResolution::LIT;
+        let grid = CloudSunMap::grid_for(&shell, self.camera.position_m, &resolution).unwrap();
+        let [x, y, z, _] = params.sun_direction;
+        let sun = DVec3::new(f64::from(x), f64::from(y), f64::from(z));
+        let uniform = SunMapUniform::new(&grid, sun, top, &resolution);
+        self.texture.set(gpu, Some(&uniform), (1, 1)).unwrap();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        self.pass
+            .encode(gpu, &mut encoder, params, self.cover, &self.texture, None);
+        gpu.queue.submit([encoder.finish()]);
+        pass.render(gpu, (params, inputs), Some(&self.texture))
+            .unwrap()
+    }
 }
 
 fn median(mut values: Vec<f64>) -> f64 {
@@ -127,6 +190,7 @@ fn main() {
     let gpu = renderer.gpu();
     let inputs = LayerInputs::new(gpu, &grid, &orders).unwrap();
     let pass = CloudLayerPass::new(gpu).unwrap();
+    let (map_pass, map_texture) = (SunMapPass::new(gpu).unwrap(), SunMapTexture::new(gpu));
     let orientation = frame.orientation;
     let camera = LayerCamera {
         position_m: frame.camera_position_m,
@@ -142,6 +206,13 @@ fn main() {
         sun_irradiance: vec![1.3, 1.5, 1.4],
         sky_irradiance: vec![0.1, 0.2, 0.35],
         up: DVec3::Z,
+    };
+    let mut sun_map = SunMap {
+        pass: map_pass,
+        texture: map_texture,
+        camera: &camera,
+        bottom_radius_m: atmosphere.bottom_radius_m,
+        cover: &inputs.cover,
     };
     let rows = rows();
     let params_at = |settings: &LayerSettings, width: u32, height: u32| {
@@ -169,12 +240,13 @@ fn main() {
             let params = params_at(&settings, ERROR_WIDTH, ERROR_HEIGHT);
             finest.push((
                 method,
-                pass.render(renderer.gpu(), &params, &inputs).unwrap(),
+                pass.render(renderer.gpu(), (&params, &inputs), None)
+                    .unwrap(),
             ));
         }
         let reference = &finest.iter().find(|(m, _)| *m == method).unwrap().1;
         let params = params_at(&row.settings, ERROR_WIDTH, ERROR_HEIGHT);
-        let image = pass.render(renderer.gpu(), &params, &inputs).unwrap();
+        let image = sun_map.render(&pass, renderer.gpu(), (&params, &inputs), &row.settings);
         errors.push(error_against(&image, reference));
     }
     let mut sky_ms = Vec::new();
@@ -193,7 +265,7 @@ fn main() {
         for (k, row) in rows.iter().enumerate() {
             let params = params_at(&row.settings, WIDTH, HEIGHT);
             let start = Instant::now();
-            let pixels = pass.render(renderer.gpu(), &params, &inputs).unwrap();
+            let pixels = sun_map.render(&pass, renderer.gpu(), (&params, &inputs), &row.settings);
             cloud_ms[k].push(start.elapsed().as_secs_f64() * 1e3);
             clouded = pixels.iter().filter(|p| p[3] < 0.5).count();
         }

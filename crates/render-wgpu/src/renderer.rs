@@ -426,6 +426,7 @@ impl Renderer {
                 surface: &surface_views[0],
                 has_surface,
                 has_front: front_needed,
+                sun_map: self.sun_map.texture(),
             };
             let pixels = PixelInputs {
                 atmosphere: &self.atmosphere,

@@ -5,13 +5,15 @@
 //! them, so that the difference is measured under the same load; the difference of each
 //! pair's wall-clock times is the clouds' cost (on a CPU adapter such as lavapipe the
 //! cloud steps' timestamps are not to be trusted: docs/clouds.md, "Cost"). Medians of
-//! `--frames` pairs after a warm-up pair.
+//! `--frames` pairs after a warm-up pair. Each quality is measured with its preset's
+//! sun light and again with the other (`sun_light = march`, a shadow march per sample;
+//! `map`, the frame's sun map), for comparison.
 
 use std::fmt::Write as _;
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
-use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::layer::settings::{LayerSettings, SunLight};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use render_wgpu::Renderer;
@@ -39,6 +41,7 @@ const LONGITUDE_DEG: f64 = -30.0;
 #[derive(Clone, Debug, PartialEq)]
 pub struct CloudTimes {
     pub quality: MarchQuality,
+    pub sun_light: SunLight,
     /// Median of the pairs' differences of wall-clock time, clouds less none.
     pub added_wall_ms: f64,
     /// Median wall-clock time of the frame without clouds.
@@ -66,9 +69,27 @@ fn flight_frame(atmosphere: &Atmosphere, size: (u32, u32)) -> Frame {
     }
 }
 
-/// Frames the bench renders per quality (the warm-up pair included, two each).
-pub fn frames_per_quality(frames: usize) -> usize {
-    2 * (1 + frames)
+/// The settings the bench measures for `quality`: its preset, and the same with the
+/// other sun light.
+fn variants(quality: MarchQuality) -> [LayerSettings; 2] {
+    let settings = quality.apply(LayerSettings::default());
+    let other = match settings.sun_light {
+        SunLight::March => SunLight::Map,
+        SunLight::Map => SunLight::March,
+    };
+    [
+        settings,
+        LayerSettings {
+            sun_light: other,
+            ..settings
+        },
+    ]
+}
+
+/// Frames the bench renders for `quality` (the warm-up pair included, two each, for
+/// each of its variants).
+pub fn frames_per_quality(quality: MarchQuality, frames: usize) -> usize {
+    2 * (1 + frames) * variants(quality).len()
 }
 
 /// Measures each of `qualities` on `renderer` in `atmosphere` at `size`, `frames` pairs
@@ -85,8 +106,10 @@ pub fn measure(
     renderer.set_cloud_inputs(&cover, &droplet_orders()?)?;
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
     let mut out = Vec::new();
-    for &quality in qualities {
-        let settings = quality.apply(LayerSettings::default());
+    for (quality, settings) in qualities
+        .iter()
+        .flat_map(|&q| variants(q).into_iter().map(move |s| (q, s)))
+    {
         let clouds = FrameClouds {
             settings,
             light: frame_light(model.as_ref(), &frame, &settings)?,
@@ -113,6 +136,7 @@ pub fn measure(
         }
         out.push(CloudTimes {
             quality,
+            sun_light: settings.sun_light,
             added_wall_ms: median(&added).unwrap_or(f64::NAN),
             clear_wall_ms: median(&clear).unwrap_or(f64::NAN),
             sky_pass_ms: (sky.len() == frames).then(|| median(&sky)).flatten(),
@@ -134,15 +158,16 @@ pub fn markdown(adapter: &str, (width, height): (u32, u32), results: &[CloudTime
     );
     let _ = writeln!(
         out,
-        "| cloud quality | added wall ms | frame without clouds, wall ms | added / frame without clouds | hillaire pass, GPU ms | added / hillaire pass |"
+        "| cloud quality | sun light | added wall ms | frame without clouds, wall ms | added / frame without clouds | hillaire pass, GPU ms | added / hillaire pass |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     for r in results {
         let ratio = r.sky_pass_ms.map(|s| r.added_wall_ms / s);
         let _ = writeln!(
             out,
-            "| {} | {:.1} | {:.1} | {:.2} | {} | {} |",
+            "| {} | {} | {:.1} | {:.1} | {:.2} | {} | {} |",
             r.quality,
+            r.sun_light,
             r.added_wall_ms,
             r.clear_wall_ms,
             r.added_wall_ms / r.clear_wall_ms,

@@ -361,7 +361,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let per_variant = 1 + args.frames + BENCH_VIEWS.len() * (1 + args.frames);
     let total = variants.len() * per_variant
         + beam_variants.len() * beams::frames_per_variant(args.frames)
-        + cloud_qualities.len() * clouds::frames_per_quality(args.frames);
+        + cloud_qualities
+            .iter()
+            .map(|&q| clouds::frames_per_quality(q, args.frames))
+            .sum::<usize>();
     let progress = Progress::new("bench", "frames", total as u64);
     let mut results = Vec::new();
     for variant in &variants {

@@ -13,7 +13,7 @@ use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{
     LayerMethod, LayerSettings, MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M,
-    MIN_THICKNESS_M,
+    MIN_THICKNESS_M, SunLight,
 };
 use atmosphere_core::models::registry::prepare;
 use clap::Args;
@@ -60,6 +60,10 @@ pub struct CloudFlags {
     /// offline].
     #[arg(long = "cloud-quality", value_name = "interactive|offline")]
     pub quality: Option<String>,
+    /// Where the layer's sun light comes from: march (a shadow march from every sample)
+    /// or map (the frame's sun map, made once a frame) [default: march].
+    #[arg(long = "cloud-sun-light", value_name = "march|map")]
+    pub sun_light: Option<String>,
 }
 
 impl CloudFlags {
@@ -78,6 +82,7 @@ impl CloudFlags {
             density_per_m: flags.density_per_m.or(self.density_per_m),
             method: flags.method.or(self.method),
             quality: flags.quality.or(self.quality),
+            sun_light: flags.sun_light.or(self.sun_light),
         }
     }
 
@@ -131,6 +136,15 @@ impl CloudFlags {
             )?,
             method,
             ..quality.apply(defaults)
+        };
+        let settings = match &self.sun_light {
+            Some(s) => LayerSettings {
+                sun_light: s
+                    .parse::<SunLight>()
+                    .map_err(|e| anyhow::anyhow!("--cloud-sun-light: {e}"))?,
+                ..settings
+            },
+            None => settings,
         };
         settings.check()?;
         Ok(Some(settings))
@@ -264,6 +278,14 @@ mod tests {
             interactive.settings().unwrap(),
             Some(MarchQuality::Interactive.apply(LayerSettings::default()))
         );
+        let mapped = CloudFlags {
+            sun_light: Some("map".into()),
+            ..interactive
+        };
+        assert_eq!(
+            mapped.settings().unwrap().map(|s| s.sun_light),
+            Some(SunLight::Map)
+        );
     }
 
     #[test]
@@ -296,6 +318,14 @@ mod tests {
         });
         assert!(
             e.contains("--cloud-method") && e.contains("riley, octaves"),
+            "{e}"
+        );
+        let e = error(CloudFlags {
+            sun_light: Some("rays".into()),
+            ..on()
+        });
+        assert!(
+            e.contains("--cloud-sun-light") && e.contains("march, map"),
             "{e}"
         );
         let e = error(CloudFlags {

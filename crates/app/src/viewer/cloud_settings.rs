@@ -54,6 +54,7 @@ impl CloudSettings {
             density_per_m: Some(self.density_per_m),
             method: Some(self.method.clone()),
             quality: Some(self.quality.clone()),
+            sun_light: None,
         }
     }
 }

@@ -8,11 +8,13 @@
 //! radiance in front of the cloud, its aerial perspective), and the composite of the
 //! cloud with the model's two runs into the HDR target
 //! (`shaders/clouds/frame_composite.wgsl`). The compositing is atmosphere-core's
-//! `clouds/layer/composite.rs`.
+//! `clouds/layer/composite.rs`. With `sun_light = map` the marches read the frame's
+//! sun map (`clouds/frame_sun_map.rs`, filled before them) at 33 and 35.
 
 use crate::clouds::frame_clouds::FrameClouds;
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::{LayerCamera, LayerUniform};
+use crate::clouds::sun_map_texture::{SUN_MAP_BINDING, SunMapTexture};
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT};
@@ -115,6 +117,8 @@ pub struct MarchScene<'a> {
     /// Whether the model's second run (`cloud_front`) runs; without it the composite
     /// takes no air in front of the cloud (the camera is inside the layer).
     pub has_front: bool,
+    /// The frame's sun map, filled when the layer is lit by it.
+    pub sun_map: &'a SunMapTexture,
 }
 
 /// The march (full or reduced, and the upsample) and composite pipelines and their
@@ -141,6 +145,8 @@ impl CloudFramePass {
             texture_entry(4, D2),
             storage_texture_entry(5, GEOMETRY_FORMAT, D2),
             uniform_entry(6, 16),
+            SunMapTexture::layout_entries()[1],
+            texture_entry(SUN_MAP_BINDING, D2),
         ];
         let reduced = [
             march[0],
@@ -149,6 +155,8 @@ impl CloudFramePass {
             march[3],
             march[4],
             march[6],
+            march[7],
+            march[8],
             storage_texture_entry(7, SEGMENT_FORMAT, D2),
         ];
         let mut upsample = march.to_vec();
@@ -245,12 +253,15 @@ impl CloudFramePass {
         let cover = view(&scene.inputs.cover);
         let cloud = view(&targets.cloud);
         let front = view(&targets.front_geometry);
+        let map = view(scene.sun_map.texture());
         let shared = [
             (0, self.params.as_entire_binding()),
             (1, wgpu::BindingResource::TextureView(&cover)),
             (2, scene.inputs.orders.as_entire_binding()),
             (4, wgpu::BindingResource::TextureView(scene.surface)),
             (6, self.flags.as_entire_binding()),
+            scene.sun_map.bindings()[1].clone(),
+            (SUN_MAP_BINDING, wgpu::BindingResource::TextureView(&map)),
         ];
         let full = [
             (3, wgpu::BindingResource::TextureView(&cloud)),

@@ -1,8 +1,10 @@
 //! The cloud layer's sun map in a renderer frame: the planner's rule for it
 //! ([`why_no_sun_map`]), its grid under the frame's camera, and its fill before the
-//! model's passes, which multiply the surface's sun by its transmittance (the clouds'
-//! shadows on the terrain; docs/clouds.md, "Cloud shadows").
+//! cloud's march, which reads it with `sun_light = map`, and the model's passes, which
+//! multiply the surface's sun by its transmittance (the clouds' shadows on the terrain;
+//! docs/clouds.md, "Cloud shadows").
 
+use atmosphere_core::clouds::layer::settings::SunLight;
 use atmosphere_core::clouds::layer::shell::Shell;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution, half_width_m};
 
@@ -43,13 +45,13 @@ pub fn why_no_sun_map(frame: &Frame, has_surface: bool, shell: &Shell) -> Option
 }
 
 /// The frame's sun map: its texture (bound by every pixel pass), its fill pass (made on
-/// first use) and the step it runs as in this frame.
+/// first use), the step it runs as in this frame and whether a surface reads it.
 #[derive(Debug)]
 pub struct FrameSunMap {
     texture: SunMapTexture,
     pass: Option<SunMapPass>,
-    resolution: SunMapResolution,
     step: Option<u32>,
+    shades_surface: bool,
 }
 
 impl FrameSunMap {
@@ -57,8 +59,8 @@ impl FrameSunMap {
         FrameSunMap {
             texture: SunMapTexture::new(gpu),
             pass: None,
-            resolution: SunMapResolution::default(),
             step: None,
+            shades_surface: false,
         }
     }
 
@@ -69,7 +71,8 @@ impl FrameSunMap {
 
     /// Plans the map of `frame`, whose cloud steps run when `clouds_run`, into `plan`
     /// (`cloud_shadow`, or skipped with why by [`why_no_sun_map`] when the clouds
-    /// prune), and sets the parameters the pixel passes read.
+    /// prune; never skipped when the layer is lit by it, whose resolution is then
+    /// [`SunMapResolution::LIT`]), and sets the parameters the pixel passes read.
     pub fn plan(
         &mut self,
         gpu: &GpuContext,
@@ -79,6 +82,7 @@ impl FrameSunMap {
         plan: &mut FramePlan,
     ) -> Result<(), RenderError> {
         self.step = None;
+        self.shades_surface = has_surface;
         let pixels = (frame.width, frame.height);
         let Some((clouds, true)) = clouds else {
             return self.texture.set(gpu, None, pixels);
@@ -90,19 +94,26 @@ impl FrameSunMap {
             base_radius_m: base,
             top_radius_m: top,
         };
-        if let Some(why) = why_no_sun_map(frame, has_surface, &shell).filter(|_| clouds.prune) {
+        let lit = clouds.settings.sun_light == SunLight::Map;
+        let skip = why_no_sun_map(frame, has_surface, &shell).filter(|_| clouds.prune && !lit);
+        if let Some(why) = skip {
             plan.skip("cloud_shadow", why);
             return self.texture.set(gpu, None, pixels);
         }
+        let resolution = if lit {
+            SunMapResolution::LIT
+        } else {
+            SunMapResolution::default()
+        };
         let to_error =
             |e: atmosphere_core::clouds::error::CloudError| RenderError::Frame(e.to_string());
-        let grid = CloudSunMap::grid_for(&shell, frame.camera_position_m, &self.resolution)
+        let grid = CloudSunMap::grid_for(&shell, frame.camera_position_m, &resolution)
             .map_err(to_error)?;
         let sun = frame
             .sun_direction
             .try_normalize()
             .ok_or_else(|| RenderError::Frame("sun direction must be non-zero".into()))?;
-        let params = SunMapUniform::new(&grid, sun, top, &self.resolution);
+        let params = SunMapUniform::new(&grid, sun, top, &resolution);
         self.texture.set(gpu, Some(&params), pixels)?;
         if self.pass.is_none() {
             self.pass = Some(SunMapPass::new(gpu)?);
@@ -118,7 +129,8 @@ impl FrameSunMap {
     }
 
     /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover
-    /// (timed by `timestamps`), then its read at each pixel's surface.
+    /// (timed by `timestamps`), then its read at each pixel's surface where the frame
+    /// has one.
     pub fn encode(
         &self,
         gpu: &GpuContext,
@@ -146,7 +158,9 @@ impl FrameSunMap {
             &self.texture,
             timestamps,
         );
-        pass.encode_pixels(gpu, encoder, pixels, &self.texture);
+        if self.shades_surface {
+            pass.encode_pixels(gpu, encoder, pixels, &self.texture);
+        }
         Ok(())
     }
 }

@@ -3,7 +3,7 @@
 //! settings, in f32.
 
 use atmosphere_core::clouds::layer::march::CloudLight;
-use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLight};
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
@@ -68,7 +68,8 @@ pub struct LayerUniform {
     /// The cover grid's width and height, the image's width and height.
     pub sizes: [u32; 4],
     /// Octaves of detail noise of the view march and of the shadow march, the
-    /// resolution divisor, 0.
+    /// resolution divisor, the sun's light (0: a shadow march per sample, 1: the sun
+    /// map).
     pub noise: [u32; 4],
 }
 
@@ -152,7 +153,10 @@ impl LayerUniform {
                 settings.detail_octaves,
                 settings.shadow_octaves,
                 settings.resolution_divisor,
-                0,
+                match settings.sun_light {
+                    SunLight::March => 0,
+                    SunLight::Map => 1,
+                },
             ],
         })
     }

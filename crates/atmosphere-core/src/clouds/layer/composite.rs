@@ -12,12 +12,17 @@
 //! element facing the sun there has E(s) = E_sun T_sun + E_sky (1 + mu_s) / 2, one
 //! perpendicular to the sun and tilted towards the zenith E(n) = E_sky (1 + n . up) / 2
 //! (`optics/surface_lighting.rs`), which give E_sun T_sun and E_sky.
+//!
+//! The layer's sun light here is each sample's shadow march (`sun_light = march`); a
+//! layer lit by the frame's sun map (`sun_light = map`) is refused, since one ray has no
+//! frame: `march::march_in_sun_map` with the frame's map is that march's twin.
 
 use glam::DVec3;
 
 use super::field::CloudLayer;
 use super::march::{CloudLight, CloudSegment, MarchRay, march};
 use super::orders::ScatteringOrders;
+use super::settings::SunLight;
 use crate::models::error::ModelError;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 
@@ -36,6 +41,13 @@ pub fn radiance_with_clouds(
             "cloud phase tables for {} wavelengths, the model answers {waves}",
             orders.wavelengths()
         )));
+    }
+    if layer.settings().sun_light == SunLight::Map {
+        return Err(ModelError::Settings(
+            "cloud sun_light = map needs the frame's sun map (march_in_sun_map); this \
+             composite lights the layer by its shadow march (sun_light = march)"
+                .into(),
+        ));
     }
     let full = model.radiance(ray)?;
     let direction = ray.direction.normalize();

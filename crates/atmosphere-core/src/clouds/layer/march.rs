@@ -23,7 +23,13 @@
 //! E_sky / (2 pi) per steradian, dimmed by exp(-sigma h) with h the distance to the
 //! boundary straight up (one sample of the density above: the ambient's attenuation).
 //! The shadow march reads the medium's [`CloudMedium::light_extinction`] (for the layer,
-//! its density with `shadow_octaves` octaves of detail noise). The march stops once
+//! its density with `shadow_octaves` octaves of detail noise).
+//!
+//! With [`march_in_sun_map`] (the setting `sun_light = map`) the shadow march is
+//! replaced by a read of the frame's sun map (`sun_map.rs`), the optical depth tau
+//! towards the sun stored once a frame, after Dobashi, Yamamoto and Nishita 2002
+//! section 5.4's attenuation textures rendered from the sun; Riley's walk then takes tau
+//! in `shadow_steps` equal parts, as through a homogeneous path. The march stops once
 //! T_view < `min_transmittance`: what lies behind would add at most that fraction of
 //! its light.
 
@@ -31,6 +37,7 @@ use glam::DVec3;
 
 use super::orders::ScatteringOrders;
 use super::settings::{LayerMethod, LayerSettings, MAX_SHADOW_STEPS};
+use super::sun_map::CloudSunMap;
 use crate::clouds::medium::CloudMedium;
 
 /// Wrenninge et al. 2013's octave factors a (scattering), b (extinction), c (phase).
@@ -71,13 +78,51 @@ pub struct CloudSegment {
 }
 
 /// Marches `ray` through `medium` lit by `light`, with the multiple-scattering tables
-/// `orders` (one per wavelength of the light) and the method and steps of `settings`.
+/// `orders` (one per wavelength of the light) and the method and steps of `settings`,
+/// each sample's sun by its own shadow march (`sun_light = march`).
 pub fn march(
     medium: &impl CloudMedium,
     ray: &MarchRay,
     light: &CloudLight,
     orders: &ScatteringOrders,
     settings: &LayerSettings,
+) -> CloudSegment {
+    march_lit(medium, ray, light, orders, settings, |p| {
+        shadow_march(medium, p, light.sun_direction, settings)
+    })
+}
+
+/// [`march`] with each sample's optical depth towards the sun read from the frame's
+/// sun `map` (`sun_light = map`), cut into `shadow_steps` equal parts.
+pub fn march_in_sun_map(
+    medium: &impl CloudMedium,
+    ray: &MarchRay,
+    light: &CloudLight,
+    orders: &ScatteringOrders,
+    settings: &LayerSettings,
+    map: &CloudSunMap,
+) -> CloudSegment {
+    let parts = settings.shadow_steps.clamp(1, MAX_SHADOW_STEPS) as usize;
+    march_lit(medium, ray, light, orders, settings, |p| {
+        let mut depths = [0.0; MAX_SHADOW_STEPS as usize];
+        depths[..parts].fill(map.optical_depth(p) / parts as f64);
+        (depths, parts)
+    })
+}
+
+/// The optical depths of a path towards the sun, from the boundary inwards, and how
+/// many of them there are.
+type ShadowDepths = ([f64; MAX_SHADOW_STEPS as usize], usize);
+
+/// The march of the module's equations, with the sun's optical depths at a sample from
+/// `sun_depths`.
+fn march_lit(
+    medium: &impl CloudMedium,
+    ray: &MarchRay,
+    light: &CloudLight,
+    orders: &ScatteringOrders,
+    settings: &LayerSettings,
+    sun_depths: impl Fn(DVec3) -> ShadowDepths,
 ) -> CloudSegment {
     let waves = light.sun_irradiance.len();
     let mut radiance = vec![0.0; waves];
@@ -95,7 +140,8 @@ pub fn march(
         let weight = transmittance * (1.0 - step_t) * albedo;
         let up_depth = sigma * medium.distance_to_boundary(p, light.up);
         let sky = (-up_depth).exp() / (2.0 * std::f64::consts::PI);
-        let sun = sun_source(medium, p, light, orders, settings, nu, albedo);
+        let (depths, count) = sun_depths(p);
+        let sun = sun_source(&depths[..count], orders, settings, nu, albedo);
         for w in 0..waves {
             radiance[w] +=
                 weight * (light.sun_irradiance[w] * sun[w] + light.sky_irradiance[w] * sky);
@@ -111,32 +157,41 @@ pub fn march(
     }
 }
 
-/// J_sun / E_sun at `p` per wavelength, sr^-1 (the module's equations).
-fn sun_source(
+/// The optical depths of `shadow_steps` equal steps from `p` to the medium's boundary
+/// towards the unit `sun`, through its light extinction, from the boundary inwards.
+fn shadow_march(
     medium: &impl CloudMedium,
     p: DVec3,
-    light: &CloudLight,
+    sun: DVec3,
+    settings: &LayerSettings,
+) -> ShadowDepths {
+    let steps = settings.shadow_steps.min(MAX_SHADOW_STEPS) as usize;
+    let length = medium.distance_to_boundary(p, sun);
+    let ds = length / steps as f64;
+    let mut depths = [0.0; MAX_SHADOW_STEPS as usize];
+    for (k, depth) in depths.iter_mut().enumerate().take(steps) {
+        let q = p + sun * (length - (k as f64 + 0.5) * ds);
+        *depth = medium.light_extinction(q) * ds;
+    }
+    (depths, steps)
+}
+
+/// J_sun / E_sun per wavelength, sr^-1 (the module's equations), for the optical
+/// depths `depths` of the path towards the sun, from the boundary inwards.
+fn sun_source(
+    depths: &[f64],
     orders: &ScatteringOrders,
     settings: &LayerSettings,
     nu: f64,
     albedo: f64,
 ) -> Vec<f64> {
-    let steps = settings.shadow_steps.min(MAX_SHADOW_STEPS) as usize;
-    let length = medium.distance_to_boundary(p, light.sun_direction);
-    let ds = length / steps as f64;
-    // Optical depths of the shadow steps, from the boundary inwards.
-    let mut depths = [0.0; MAX_SHADOW_STEPS as usize];
-    for (k, depth) in depths.iter_mut().enumerate().take(steps) {
-        let q = p + light.sun_direction * (length - (k as f64 + 0.5) * ds);
-        *depth = medium.light_extinction(q) * ds;
-    }
-    let tau: f64 = depths[..steps].iter().sum();
+    let tau: f64 = depths.iter().sum();
     (0..orders.wavelengths())
         .map(|w| match settings.method {
             LayerMethod::Riley => {
                 let mut intensity = 1.0;
                 let mut walked = 0.0;
-                for &d in &depths[..steps] {
+                for &d in depths {
                     let n = albedo * walked;
                     let m = (n + 1.0 + d).floor() as usize;
                     let kept = albedo * orders.forward_fraction(w, m);

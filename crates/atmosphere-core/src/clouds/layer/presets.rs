@@ -1,5 +1,6 @@
-//! The march's quality presets: how many view and shadow steps, how many octaves of
-//! detail noise the eye and the sun's shadow rays read, and where the march stops. They
+//! The march's quality presets: how many view and shadow steps, whether the sun's
+//! light comes from a shadow march or the frame's sun map, how many octaves of detail
+//! noise the eye and the sun's shadow rays read, and where the march stops. They
 //! leave the cloud itself (where it lies, how dense, its light's method) as it is. What
 //! each costs and how far it lies from the finest is measured in `docs/clouds.md`
 //! ("Cost").
@@ -7,15 +8,16 @@
 use std::fmt;
 use std::str::FromStr;
 
-use super::settings::{LayerSettings, MAX_DETAIL_OCTAVES, MAX_SHADOW_STEPS, MAX_STEPS};
+use super::settings::{LayerSettings, MAX_DETAIL_OCTAVES, MAX_SHADOW_STEPS, MAX_STEPS, SunLight};
 use crate::clouds::error::CloudError;
 
 /// A quality of the cloud layer's march.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MarchQuality {
     /// For flight: few view steps through one octave of detail, a two-step shadow
-    /// march through the cover and profile alone (the noise's mean), a stop once 2 % of
-    /// the light behind is left, one ray per 3 x 3 pixels.
+    /// march through the cover and profile alone (the noise's mean; the frame's sun map
+    /// instead costs no less, docs/clouds.md "The sun light from the sun map"), a stop
+    /// once 2 % of the light behind is left, one ray per 3 x 3 pixels.
     Interactive,
     /// For recordings: more steps than the defaults and the full noise everywhere.
     Offline,
@@ -24,10 +26,11 @@ pub enum MarchQuality {
     Finest,
 }
 
-/// The view steps, shadow steps, view octaves, shadow octaves, stopping transmittance
-/// and resolution divisor of a quality.
+/// The view steps, sun light, shadow steps, view octaves, shadow octaves, stopping
+/// transmittance and resolution divisor of a quality.
 struct March {
     steps: u32,
+    sun_light: SunLight,
     shadow_steps: u32,
     detail_octaves: u32,
     shadow_octaves: u32,
@@ -40,6 +43,7 @@ impl MarchQuality {
         match self {
             MarchQuality::Interactive => March {
                 steps: 20,
+                sun_light: SunLight::March,
                 shadow_steps: 2,
                 detail_octaves: 1,
                 shadow_octaves: 0,
@@ -48,6 +52,7 @@ impl MarchQuality {
             },
             MarchQuality::Offline => March {
                 steps: 128,
+                sun_light: SunLight::March,
                 shadow_steps: 16,
                 detail_octaves: MAX_DETAIL_OCTAVES,
                 shadow_octaves: MAX_DETAIL_OCTAVES,
@@ -56,6 +61,7 @@ impl MarchQuality {
             },
             MarchQuality::Finest => March {
                 steps: MAX_STEPS,
+                sun_light: SunLight::March,
                 shadow_steps: MAX_SHADOW_STEPS,
                 detail_octaves: MAX_DETAIL_OCTAVES,
                 shadow_octaves: MAX_DETAIL_OCTAVES,
@@ -70,6 +76,7 @@ impl MarchQuality {
         let m = self.march();
         LayerSettings {
             steps: m.steps,
+            sun_light: m.sun_light,
             shadow_steps: m.shadow_steps,
             detail_octaves: m.detail_octaves,
             shadow_octaves: m.shadow_octaves,

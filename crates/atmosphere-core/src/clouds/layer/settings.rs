@@ -42,6 +42,40 @@ impl FromStr for LayerMethod {
     }
 }
 
+/// Where the march's sun light finds the optical depth towards the sun.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SunLight {
+    /// A shadow march of `shadow_steps` steps from every view sample towards the sun.
+    March,
+    /// The frame's sun map (`sun_map.rs`): the optical depth at every view sample read
+    /// from the map made once a frame, after Dobashi, Yamamoto and Nishita 2002
+    /// section 5.4's attenuation textures rendered from the sun.
+    Map,
+}
+
+impl fmt::Display for SunLight {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            SunLight::March => "march",
+            SunLight::Map => "map",
+        })
+    }
+}
+
+impl FromStr for SunLight {
+    type Err = CloudError;
+
+    fn from_str(s: &str) -> Result<Self, CloudError> {
+        match s {
+            "march" => Ok(SunLight::March),
+            "map" => Ok(SunLight::Map),
+            other => Err(CloudError(format!(
+                "cloud sun_light {other:?} is not one of march, map"
+            ))),
+        }
+    }
+}
+
 /// The lowest cloud base accepted, m above the ground.
 pub const MIN_BASE_M: f64 = 0.0;
 /// The highest cloud base accepted, m: the top of the troposphere's highest cirrus.
@@ -84,7 +118,11 @@ pub struct LayerSettings {
     pub method: LayerMethod,
     /// View steps per ray through the layer, in [1, 512].
     pub steps: u32,
-    /// Shadow steps towards the sun per view step, in [1, 64].
+    /// Where the sun's optical depth at a view sample comes from: its own shadow march
+    /// or the frame's sun map.
+    pub sun_light: SunLight,
+    /// Shadow steps towards the sun per view step, in [1, 64]; with the sun map, the
+    /// equal parts its optical depth is cut into for Riley's walk (Eq. 25).
     pub shadow_steps: u32,
     /// Riley et al. 2004's back-scattering term xi (Eq. 26), sr^-1, in [0, 1].
     pub backscatter_xi: f64,
@@ -114,6 +152,7 @@ impl Default for LayerSettings {
             detail_strength: 0.5,
             method: LayerMethod::Riley,
             steps: 48,
+            sun_light: SunLight::March,
             shadow_steps: 8,
             backscatter_xi: 0.05,
             octaves: 4,
