@@ -561,6 +561,29 @@ fn cloud_layer_uniform_matches_its_wgsl_layout() {
 }
 
 #[test]
+fn cloud_sphere_uniform_matches_its_wgsl_layout() {
+    use render_wgpu::clouds::spheres::sphere_uniform::SphereUniform;
+    assert_layout!(
+        "clouds/spheres/image.wgsl",
+        "SphereParams",
+        SphereUniform,
+        [
+            camera_m,
+            forward,
+            right,
+            up,
+            sun_direction,
+            sun_irradiance,
+            sky_irradiance,
+            radii_m,
+            medium,
+            counts,
+            grids
+        ]
+    );
+}
+
+#[test]
 fn volume_uniforms_match_their_wgsl_layouts() {
     use render_wgpu::precipitation::volume_uniform::{VolumeUniform, VolumesUniform};
     assert_layout!(
