@@ -31,9 +31,9 @@ struct SphereParams {
 // Cloud textures T_k: the vertical optical depth of shell k, [k][j][i] on the cover's
 // equirectangular grid (`clouds::spheres::cloud_textures`).
 @group(0) @binding(1) var<storage, read> cloud_depths: array<f32>;
-// Attenuation textures G_k: the optical depth towards the sun from sphere k, [k][j][i]
-// (`clouds::spheres::attenuation`).
-@group(0) @binding(2) var<storage, read> sun_depths: array<f32>;
+// Attenuation textures G_k: the sun's attenuation ratio exp(-tau) at sphere k,
+// [k][j][i] (`clouds::spheres::attenuation`).
+@group(0) @binding(2) var<storage, read> sun_ratios: array<f32>;
 // The droplets' phase function A_1 at ANGLES angles from 0 to 180 degrees, per
 // wavelength (`clouds::layer::orders::ScatteringOrders`'s first row).
 @group(0) @binding(3) var<storage, read> single_phase: array<f32>;
@@ -43,4 +43,4 @@ struct SphereParams {
 const ANGLES: u32 = 1024u;
 const PI: f32 = 3.14159265358979;
 // The optical depth of the planet's shadow (`attenuation::SHADOWED_DEPTH`).
-const SHADOWED_DEPTH: f32 = 100.0;
+const SHADOWED_DEPTH: f32 = 80.0;

@@ -49,24 +49,17 @@ fn cloud_depth(k: u32, p: vec3<f32>) -> f32 {
         cloud_depths[base + t.index.z], cloud_depths[base + t.index.w]));
 }
 
-// The optical depth towards the sun of sphere k at p's direction (G_k, bilinear).
+// The optical depth towards the sun of sphere k at p's direction: -ln of G_k's
+// bilinear attenuation ratio, at most SHADOWED_DEPTH.
 fn sun_depth(k: u32, p: vec3<f32>) -> f32 {
     let w = spheres.grids.z;
     let h = spheres.grids.w;
     let t = grid_taps(w, h, p);
     let base = k * w * h;
-    return dot(t.weight, vec4<f32>(
-        sun_depths[base + t.index.x], sun_depths[base + t.index.y],
-        sun_depths[base + t.index.z], sun_depths[base + t.index.w]));
-}
-
-// The vertical optical depth from the middle of shell k to the layer's top at p.
-fn depth_above(k: u32, p: vec3<f32>) -> f32 {
-    var d = cloud_depth(k, p) / 2.0;
-    for (var q = k + 1u; q < spheres.counts.x; q++) {
-        d += cloud_depth(q, p);
-    }
-    return d;
+    let ratio = dot(t.weight, vec4<f32>(
+        sun_ratios[base + t.index.x], sun_ratios[base + t.index.y],
+        sun_ratios[base + t.index.z], sun_ratios[base + t.index.w]));
+    return min(-log(max(ratio, exp(-SHADOWED_DEPTH))), SHADOWED_DEPTH);
 }
 
 // The two distances (near, far) where the line through a point at radius r with
@@ -136,10 +129,12 @@ fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32) -> vec4<
     let middle = (start + end) / 2.0;
     let sigma = cloud_depth(k, middle) / spheres.radii_m.w;
     let tau_v = sigma * (t1 - t0);
-    let alpha = 1.0 - exp(-tau_v);
     let tau_a = sun_depth_at(k, start, sigma);
     let tau_b = sun_depth_at(k, end, sigma);
-    let sky = alpha * exp(-depth_above(k, middle)) / (2.0 * PI);
+    let top = spheres.radii_m.y + spheres.radii_m.z;
+    let up_a = sigma * max(top - length(start), 0.0);
+    let up_b = sigma * max(top - length(end), 0.0);
+    let sky = exp(-up_a) * tau_v * exp_ratio(tau_v + up_b - up_a) / (2.0 * PI);
     let single = phase_a1(dot(d, spheres.sun_direction.xyz));
     var sun = vec3<f32>(0.0);
     var a = 1.0;

@@ -6,9 +6,12 @@
 //! summed over every interval of the sun's ray inside a shell (`shells.rs`) of that
 //! shell's mean extinction (`cloud_textures.rs`) times its length, the same sum the
 //! paper's blending forms, computed on the sphere's texture grid. A texel whose sun ray
-//! meets the ground lies in the planet's shadow and holds [`SHADOWED_DEPTH`]. The
-//! textures hold the optical depth tau rather than the ratio exp(-tau) since the
-//! octaves of the light (`field.rs`) read exp(-b^i tau).
+//! meets the ground lies in the planet's shadow and holds exp(-[`SHADOWED_DEPTH`]). As
+//! in the paper the texels hold the attenuation ratio exp(-tau), read bilinearly: where
+//! a texel's neighbours are clear and it is opaque, the ratio's interpolation passes
+//! light and the optical depth's would not (at 1,024 texels around the planet, a
+//! cloud's edge spans 40 km of one texel). The octaves of the light (`field.rs`) read
+//! tau = -ln of the interpolated ratio.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -19,8 +22,9 @@ use super::shells::Shells;
 use crate::clouds::error::CloudError;
 use crate::geo::equirectangular::{bilinear_taps, direction, lat_lon, texel_centre};
 
-/// The optical depth held in the planet's shadow (exp(-100) is no light).
-pub const SHADOWED_DEPTH: f64 = 100.0;
+/// The optical depth held in the planet's shadow: exp(-80) is no light, and still a
+/// normal f32 on the GPU.
+pub const SHADOWED_DEPTH: f64 = 80.0;
 
 /// The m attenuation textures of one sun direction.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,8 +33,8 @@ pub struct AttenuationTextures {
     height: usize,
     count: usize,
     sun_direction: DVec3,
-    /// `[k][j][i]`: optical depth towards the sun from texel (i, j) of sphere k.
-    depths: Vec<f32>,
+    /// `[k][j][i]`: the sun's attenuation ratio exp(-tau) at texel (i, j) of sphere k.
+    ratios: Vec<f32>,
 }
 
 impl AttenuationTextures {
@@ -50,14 +54,14 @@ impl AttenuationTextures {
         }
         let (width, height) = (settings.attenuation_width, settings.attenuation_height());
         let count = shells.count as usize;
-        let depths = (0..count * width * height)
+        let ratios = (0..count * width * height)
             .into_par_iter()
             .map(|n| {
                 let k = n / (width * height);
                 let texel = n % (width * height);
                 let (lat, lon) = texel_centre(width, height, texel % width, texel / width);
                 let point = direction(lat, lon) * shells.sphere_radius_m(k);
-                sun_depth(shells, clouds, point, sun_direction) as f32
+                (-sun_depth(shells, clouds, point, sun_direction)).exp() as f32
             })
             .collect();
         Ok(AttenuationTextures {
@@ -65,7 +69,7 @@ impl AttenuationTextures {
             height,
             count,
             sun_direction,
-            depths,
+            ratios,
         })
     }
 
@@ -83,18 +87,19 @@ impl AttenuationTextures {
 
     /// The texels, `[k][j][i]`, row-major, north first: what the GPU's buffer holds.
     pub fn values(&self) -> &[f32] {
-        &self.depths
+        &self.ratios
     }
 
     /// The optical depth towards the sun of sphere `k` at the planet-fixed `point`'s
-    /// direction, bilinear.
+    /// direction: -ln of the bilinear ratio, at most [`SHADOWED_DEPTH`].
     pub fn depth(&self, k: usize, point: DVec3) -> f64 {
         let (lat, lon) = lat_lon(point);
-        let layer = &self.depths[k.min(self.count - 1) * self.width * self.height..];
-        bilinear_taps(self.width, self.height, lat, lon)
+        let layer = &self.ratios[k.min(self.count - 1) * self.width * self.height..];
+        let ratio: f64 = bilinear_taps(self.width, self.height, lat, lon)
             .iter()
             .map(|&(n, w)| w * f64::from(layer[n]))
-            .sum()
+            .sum();
+        (-ratio.max((-SHADOWED_DEPTH).exp()).ln()).min(SHADOWED_DEPTH)
     }
 }
 

@@ -17,9 +17,11 @@
 //!     L_sun = albedo E_sun sum_i w_i exp(-b^i tau_a) tau_v E(tau_v + b^i (tau_b - tau_a)),
 //!     w_i = a^i (c^i A_1(theta) + (1 - c^i) / (4 pi)),  E(k) = (1 - exp(-k)) / k,
 //! A_1 the droplets' phase function (Riley et al. 2004's first order). One octave at a
-//! point is the paper's G_i times the phase function. The sky's light, as the layer's,
-//! is isotropic from above and dimmed by the vertical optical depth above the sphere:
-//!     L_sky = albedo E_sky alpha exp(-tau_up) / (2 pi).
+//! point is the paper's G_i times the phase function. The sky's light is the layer's
+//! (`layer/march.rs`): isotropic from above, E_sky / (2 pi) per steradian, dimmed by the
+//! local extinction times the distance up to the layer's top, here sigma_k (R_top - r),
+//! taken linearly between the crossing's ends (u_a to u_b) and integrated the same way:
+//!     L_sky = albedo E_sky / (2 pi) exp(-u_a) tau_v E(tau_v + u_b - u_a).
 
 use glam::DVec3;
 
@@ -106,12 +108,16 @@ impl CloudSpheres {
         let middle = (start + end) / 2.0;
         let sigma = self.clouds.extinction(k, middle);
         let tau_v = sigma * (crossing.t1 - crossing.t0);
-        let alpha = 1.0 - (-tau_v).exp();
         let sun = light.sun_direction;
         let tau_a = self.sun_depth_at(k, start, sigma, sun);
         let tau_b = self.sun_depth_at(k, end, sigma, sun);
+        let top = self.shells.base_radius_m + self.shells.thickness_m;
+        let (up_a, up_b) = (
+            sigma * (top - start.length()).max(0.0),
+            sigma * (top - end.length()).max(0.0),
+        );
         let sky =
-            alpha * (-self.clouds.depth_above(k, middle)).exp() / (2.0 * std::f64::consts::PI);
+            (-up_a).exp() * tau_v * exp_ratio(tau_v + up_b - up_a) / (2.0 * std::f64::consts::PI);
         let nu = direction.dot(sun);
         let isotropic = 1.0 / (4.0 * std::f64::consts::PI);
         let radiance = (0..light.sun_irradiance.len())

@@ -1,6 +1,6 @@
 //! What the cloud spheres pass reads besides its parameters, as storage buffers in the
-//! layout `shaders/clouds/spheres/params.wgsl` documents: the cloud textures T_k, the
-//! attenuation textures G_k (remade when the sun moves) and the droplets' phase function
+//! layout `shaders/clouds/spheres/params.wgsl` documents: the cloud textures T_k (optical
+//! depths), the attenuation textures G_k (ratios, remade when the sun moves) and the droplets' phase function
 //! A_1 at three wavelengths.
 
 use atmosphere_core::clouds::layer::orders::{ANGLES, ScatteringOrders};
@@ -14,7 +14,7 @@ use crate::gpu::error::RenderError;
 #[derive(Debug)]
 pub struct SphereInputs {
     pub cloud_depths: wgpu::Buffer,
-    pub sun_depths: wgpu::Buffer,
+    pub sun_ratios: wgpu::Buffer,
     pub single_phase: wgpu::Buffer,
 }
 
@@ -54,7 +54,7 @@ impl SphereInputs {
             .collect();
         Ok(SphereInputs {
             cloud_depths: upload("cloud sphere textures", spheres.clouds().values())?,
-            sun_depths: upload(
+            sun_ratios: upload(
                 "cloud sphere attenuation textures",
                 spheres.attenuation().values(),
             )?,

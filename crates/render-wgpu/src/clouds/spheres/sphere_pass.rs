@@ -61,7 +61,7 @@ impl CloudSpherePass {
             &[
                 self.params.as_entire_binding(),
                 inputs.cloud_depths.as_entire_binding(),
-                inputs.sun_depths.as_entire_binding(),
+                inputs.sun_ratios.as_entire_binding(),
                 inputs.single_phase.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&view),
             ],
