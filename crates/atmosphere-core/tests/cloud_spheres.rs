@@ -230,7 +230,7 @@ fn from_orbit_a_deck_outshines_the_ground_by_day_and_not_by_night() {
             cloudy.radiance[w] > 1.1 * clear.radiance[w],
             "{cloudy:?} {clear:?}"
         );
-        assert!(cloudy.transmittance[w] < 1e-6);
+        assert!(cloudy.transmittance[w] < 1e-4);
     }
     let night = ViewRay::from_angles(BOTTOM_M, 4e5, 175.0, 110.0, 30.0, None).unwrap();
     let s = spheres(&layer, 5, night.sun_direction);

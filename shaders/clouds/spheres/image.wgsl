@@ -7,9 +7,13 @@
 // Along a ray the radius falls to its closest approach and rises after it, so the
 // shells' first intervals, outermost first, then their second intervals, innermost
 // first, are the crossings in order of distance (`shells.rs` sorts them); each is
-// composited front to back.
+// composited front to back until the transmittance falls below MIN_TRANSMITTANCE.
 
 #import clouds/spheres/shade.wgsl
+
+// Below this transmittance the crossings behind are left out (`composite.rs`'s
+// MIN_TRANSMITTANCE).
+const MIN_TRANSMITTANCE: f32 = 1e-4;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -57,6 +61,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             let t0 = max(t.x, 0.0);
             let t1 = min(t.y, end);
+            if result.a < MIN_TRANSMITTANCE {
+                break;
+            }
             if t0 < t1 {
                 let c = shade_crossing(o, d, k, t0, t1);
                 result = vec4<f32>(result.rgb + result.a * c.rgb, result.a * c.a);

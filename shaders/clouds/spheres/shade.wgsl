@@ -128,6 +128,9 @@ fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32) -> vec4<
     let end = o + d * t1;
     let middle = (start + end) / 2.0;
     let sigma = cloud_depth(k, middle) / spheres.radii_m.w;
+    if sigma <= 0.0 {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
     let tau_v = sigma * (t1 - t0);
     let tau_a = sun_depth_at(k, start, sigma);
     let tau_b = sun_depth_at(k, end, sigma);

@@ -13,11 +13,16 @@
 //! two spheres seen through the spheres in front of it, each sphere's light through the
 //! model's transmittance and the spheres in front (its aerial perspective). With one
 //! crossing this is `layer/composite.rs`'s L_front + T_front L_cloud + T_cloud L_behind.
-//! The transmittance is the model's times the product of the T_k.
+//! The transmittance is the model's times the product of the T_k. Crossings behind
+//! spheres whose transmittance has fallen below [`MIN_TRANSMITTANCE`] are left out.
 
 use glam::DVec3;
 
 use super::field::CloudSpheres;
+
+/// The spheres' transmittance below which the crossings behind are left out: they could
+/// add at most that fraction of their light (the layer's march stops the same way).
+pub const MIN_TRANSMITTANCE: f64 = 1e-4;
 use crate::clouds::layer::composite::light_at;
 use crate::clouds::layer::march::{CloudLight, CloudSegment};
 use crate::clouds::layer::orders::ScatteringOrders;
@@ -54,10 +59,15 @@ pub fn radiance_with_spheres(
         return Ok(full);
     }
     let mut shaded = Vec::with_capacity(crossings.len());
+    let mut seen_cloud = 1.0;
     for crossing in &crossings {
+        if seen_cloud < MIN_TRANSMITTANCE {
+            break;
+        }
         let entry = ray.origin_m + direction * crossing.t0;
         let light = light_at(model, entry, sun)?;
         let cloud = spheres.shade(ray.origin_m, direction, crossing, &light, orders);
+        seen_cloud *= cloud.transmittance[0];
         shaded.push((crossing.t0, cloud));
     }
     if shaded
@@ -109,6 +119,9 @@ pub fn spheres_only(
         .shells()
         .crossings(origin, direction, max_distance_m);
     for crossing in &crossings {
+        if total.transmittance[0] < MIN_TRANSMITTANCE {
+            break;
+        }
         let cloud = spheres.shade(origin, direction, crossing, light, orders);
         for w in 0..waves {
             total.radiance[w] += total.transmittance[w] * cloud.radiance[w];

@@ -107,6 +107,13 @@ impl CloudSpheres {
         let end = origin + direction * crossing.t1;
         let middle = (start + end) / 2.0;
         let sigma = self.clouds.extinction(k, middle);
+        let waves = light.sun_irradiance.len();
+        if sigma <= 0.0 {
+            return CloudSegment {
+                radiance: vec![0.0; waves],
+                transmittance: vec![1.0; waves],
+            };
+        }
         let tau_v = sigma * (crossing.t1 - crossing.t0);
         let sun = light.sun_direction;
         let tau_a = self.sun_depth_at(k, start, sigma, sun);
@@ -120,7 +127,7 @@ impl CloudSpheres {
             (-up_a).exp() * tau_v * exp_ratio(tau_v + up_b - up_a) / (2.0 * std::f64::consts::PI);
         let nu = direction.dot(sun);
         let isotropic = 1.0 / (4.0 * std::f64::consts::PI);
-        let radiance = (0..light.sun_irradiance.len())
+        let radiance = (0..waves)
             .map(|w| {
                 let single = orders.distribution(w, 1, nu);
                 let sun_part: f64 = (0..self.octaves as i32)
@@ -135,7 +142,7 @@ impl CloudSpheres {
             .collect();
         CloudSegment {
             radiance,
-            transmittance: vec![(-tau_v).exp(); light.sun_irradiance.len()],
+            transmittance: vec![(-tau_v).exp(); waves],
         }
     }
 
