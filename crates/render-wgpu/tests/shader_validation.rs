@@ -536,8 +536,9 @@ fn beams_structs_match_their_wgsl_layouts() {
 }
 
 #[test]
-fn cloud_layer_uniform_matches_its_wgsl_layout() {
+fn cloud_uniforms_match_their_wgsl_layouts() {
     use render_wgpu::clouds::layer_uniform::LayerUniform;
+    use render_wgpu::clouds::spheres::sphere_uniform::SphereUniform;
     assert_layout!(
         "clouds/layer_image.wgsl",
         "LayerParams",
@@ -558,11 +559,6 @@ fn cloud_layer_uniform_matches_its_wgsl_layout() {
             noise
         ]
     );
-}
-
-#[test]
-fn cloud_sphere_uniform_matches_its_wgsl_layout() {
-    use render_wgpu::clouds::spheres::sphere_uniform::SphereUniform;
     assert_layout!(
         "clouds/spheres/image.wgsl",
         "SphereParams",
