@@ -98,15 +98,6 @@ impl CloudTextures {
     pub fn extinction(&self, k: usize, point: DVec3) -> f64 {
         self.depth(k, point) / self.shell_thickness_m
     }
-
-    /// The vertical optical depth at `point` from the middle of shell `k` to the top of
-    /// the layer: half of shell k's and all of those above.
-    pub fn depth_above(&self, k: usize, point: DVec3) -> f64 {
-        self.depth(k, point) / 2.0
-            + (k + 1..self.count)
-                .map(|q| self.depth(q, point))
-                .sum::<f64>()
-    }
 }
 
 /// int over shell `k` of `count` of P(x, c) dx at c = n / COVER_STEPS, n = 0 to
