@@ -536,8 +536,9 @@ fn beams_structs_match_their_wgsl_layouts() {
 }
 
 #[test]
-fn cloud_layer_uniform_matches_its_wgsl_layout() {
+fn cloud_uniforms_match_their_wgsl_layouts() {
     use render_wgpu::clouds::layer_uniform::LayerUniform;
+    use render_wgpu::clouds::spheres::sphere_uniform::SphereUniform;
     assert_layout!(
         "clouds/layer_image.wgsl",
         "LayerParams",
@@ -556,6 +557,24 @@ fn cloud_layer_uniform_matches_its_wgsl_layout() {
             counts,
             sizes,
             noise
+        ]
+    );
+    assert_layout!(
+        "clouds/spheres/image.wgsl",
+        "SphereParams",
+        SphereUniform,
+        [
+            camera_m,
+            forward,
+            right,
+            up,
+            sun_direction,
+            sun_irradiance,
+            sky_irradiance,
+            radii_m,
+            medium,
+            counts,
+            grids
         ]
     );
 }

@@ -13,4 +13,5 @@ pub mod medium;
 pub mod phase;
 pub mod slab;
 pub mod slab_transport;
+pub mod spheres;
 pub mod tracking;

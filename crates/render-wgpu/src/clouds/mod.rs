@@ -5,7 +5,8 @@
 //! layer of a renderer frame and the planner's rule, [`frame_pass`] its march and its
 //! composite with the frame's sky model; [`sun_map_texture`] and [`sun_map_pass`] the
 //! layer's attenuation of the sun over the view's region, which shades the surface,
-//! and [`frame_sun_map`] its place in a renderer frame.
+//! and [`frame_sun_map`] its place in a renderer frame; [`spheres`] the cloud spheres
+//! seen from far away.
 
 pub mod frame_clouds;
 pub mod frame_pass;
@@ -13,5 +14,6 @@ pub mod frame_sun_map;
 pub mod layer_inputs;
 pub mod layer_pass;
 pub mod layer_uniform;
+pub mod spheres;
 pub mod sun_map_pass;
 pub mod sun_map_texture;

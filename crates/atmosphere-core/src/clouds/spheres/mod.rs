@@ -1,0 +1,13 @@
+//! The cloud layer seen from far away as Dobashi, Yamamoto and Nishita 2002, section 5.4
+//! draw the Earth's clouds from space: m concentric cloud spheres through the layer
+//! ([`shells`], [`settings`]), each with a cloud texture of its part of the layer's cloud
+//! ([`cloud_textures`]) and an attenuation texture of the sun's light reaching it
+//! ([`attenuation`]), lit and crossed by view rays ([`field`]) and composited back to
+//! front with a sky model ([`composite`]).
+
+pub mod attenuation;
+pub mod cloud_textures;
+pub mod composite;
+pub mod field;
+pub mod settings;
+pub mod shells;

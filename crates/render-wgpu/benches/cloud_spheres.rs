@@ -1,0 +1,133 @@
+//! What the cloud spheres pass costs against the hillaire sky pass, in one run on one
+//! device at 1280 x 720: the hillaire frame of an orbit view (400 km up, looking 60
+//! degrees below the horizon, sun 40 degrees up) through the `Renderer` (its per-step
+//! GPU times), then the spheres pass of the same view over the generated cover at
+//! 2048 x 1024 (the default 5 spheres, attenuation textures of 1,024 x 512), rounds
+//! interleaved, medians. The spheres pass is timed by the wall clock around its dispatch
+//! and read-back (lavapipe's timestamps around a lone compute pass read about 0.1 ms
+//! whatever it does), so its ratio includes the read-back; the attenuation textures are
+//! made on the CPU once for the sun and timed apart.
+//!
+//! Run: `cargo bench -p render-wgpu --bench cloud_spheres` (on lavapipe:
+//! `WGPU_BACKEND=vulkan VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json`).
+
+use std::time::Instant;
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::clouds::cover::generated::{CoverParameters, GeneratedCover};
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::field::CloudLayer;
+use atmosphere_core::clouds::layer::march::CloudLight;
+use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::clouds::spheres::field::CloudSpheres;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::ModelSettings;
+use atmosphere_core::optics::legendre_series::LegendreSeries;
+use atmosphere_core::optics::phase::PhaseFunction;
+use glam::DVec3;
+use render_wgpu::Renderer;
+use render_wgpu::clouds::layer_uniform::LayerCamera;
+use render_wgpu::clouds::spheres::sphere_inputs::SphereInputs;
+use render_wgpu::clouds::spheres::sphere_pass::CloudSpherePass;
+use render_wgpu::clouds::spheres::sphere_uniform::SphereUniform;
+use render_wgpu::frame::{Frame, LocalView};
+
+const ROUNDS: usize = 3;
+const WIDTH: u32 = 1280;
+const HEIGHT: u32 = 720;
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+fn main() {
+    let view = LocalView {
+        altitude_m: 400_000.0,
+        view_zenith_deg: 150.0,
+        view_azimuth_deg: 0.0,
+        sun_zenith_deg: 50.0,
+        sun_azimuth_deg: 120.0,
+    };
+    let atmosphere = Atmosphere::preset("earth").unwrap();
+    let frame = Frame {
+        camera_position_m: view.position_m(atmosphere.bottom_radius_m),
+        orientation: view.orientation(),
+        vertical_fov_deg: 60.0,
+        sun_direction: view.sun_direction(),
+        atmosphere: atmosphere.clone(),
+        model: ModelId::Hillaire,
+        settings: ModelSettings::default(),
+        exposure_ev100: 14.0,
+        width: WIDTH,
+        height: HEIGHT,
+        terrain: None,
+    };
+    let mut renderer = Renderer::headless().expect("a GPU adapter");
+    let cover = GeneratedCover::new(CoverParameters::default()).unwrap();
+    let grid = CoverGrid::rasterize(2048, 1024, |p| cover.cover(p)).unwrap();
+    let settings = LayerSettings {
+        method: LayerMethod::Octaves,
+        ..LayerSettings::default()
+    };
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+    let layer = CloudLayer::new(settings, atmosphere.bottom_radius_m, grid, phase).unwrap();
+    let series = LegendreSeries::henyey_greenstein(0.85, 300);
+    let orders = ScatteringOrders::new(&vec![series; 3]).unwrap();
+    let start = Instant::now();
+    let spheres =
+        CloudSpheres::new(&layer, &SphereSettings::default(), frame.sun_direction).unwrap();
+    let textures_ms = start.elapsed().as_secs_f64() * 1e3;
+    let gpu = renderer.gpu();
+    let inputs = SphereInputs::new(gpu, &spheres, &orders).unwrap();
+    let pass = CloudSpherePass::new(gpu).unwrap();
+    let orientation = frame.orientation;
+    let camera = LayerCamera {
+        position_m: frame.camera_position_m,
+        forward: orientation * -DVec3::Z,
+        right: orientation * DVec3::X,
+        up: orientation * DVec3::Y,
+        fov_deg: 60.0,
+        width: WIDTH,
+        height: HEIGHT,
+    };
+    let light = CloudLight {
+        sun_direction: frame.sun_direction,
+        sun_irradiance: vec![1.3, 1.5, 1.4],
+        sky_irradiance: vec![0.1, 0.2, 0.35],
+        up: frame.camera_position_m.normalize(),
+    };
+    let params = SphereUniform::new(&camera, &light, &spheres).unwrap();
+    let (mut sky_ms, mut frame_ms, mut spheres_ms) = (Vec::new(), Vec::new(), Vec::new());
+    let mut clouded = 0;
+    for _ in 0..ROUNDS {
+        let start = Instant::now();
+        let plan = renderer.render(&frame).expect("the hillaire frame");
+        frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        let step = plan.steps.iter().find(|s| s.name == "hillaire");
+        sky_ms.push(
+            step.and_then(|s| s.gpu_ms)
+                .expect("the hillaire pass's GPU time"),
+        );
+        let start = Instant::now();
+        let pixels = pass.render(renderer.gpu(), &params, &inputs).unwrap();
+        spheres_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        clouded = pixels.iter().filter(|p| p[3] < 0.5).count();
+    }
+    let (sky, whole, spheres) = (median(sky_ms), median(frame_ms), median(spheres_ms));
+    println!(
+        "{}: hillaire pass {sky:.1} ms (GPU timer), whole hillaire frame {whole:.1} ms (wall \
+         clock, with read-back); {clouded} of {} pixels behind cloud (T < 0.5)",
+        renderer.gpu().adapter_summary(),
+        WIDTH * HEIGHT
+    );
+    println!(
+        "cloud spheres: {spheres:.1} ms (wall clock, with read-back), {:.3} x the hillaire \
+         pass, {:.3} x the whole frame; attenuation textures on the CPU {textures_ms:.0} ms",
+        spheres / sky,
+        spheres / whole
+    );
+}

@@ -1,0 +1,9 @@
+//! The cloud spheres on the GPU (Dobashi, Yamamoto and Nishita 2002, section 5.4; twin of
+//! atmosphere-core's `clouds/spheres/`): [`sphere_uniform`] the pass's parameters,
+//! [`sphere_inputs`] the cloud and attenuation textures and the droplets' phase function
+//! as storage buffers, [`sphere_pass`] the pass writing each pixel's radiance and
+//! transmittance of the spheres.
+
+pub mod sphere_inputs;
+pub mod sphere_pass;
+pub mod sphere_uniform;

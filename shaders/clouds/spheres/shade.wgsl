@@ -1,0 +1,156 @@
+// Library: the cloud spheres' textures, crossings and light, twin of atmosphere-core's
+// `clouds/spheres/shells.rs`, `cloud_textures.rs`, `attenuation.rs` (the read) and
+// `field.rs` (whose documentation holds the equations: Dobashi et al. 2002 section 5.4,
+// the light integrated over each crossing with Wrenninge et al. 2013's octaves).
+
+#import clouds/spheres/params.wgsl
+
+// The four texels around a point of a w x h equirectangular grid and their weights
+// (geo's `bilinear_taps`: wraps in longitude, clamps at the poles' rows).
+struct Taps {
+    index: vec4<u32>,
+    weight: vec4<f32>,
+}
+
+fn grid_taps(w: u32, h: u32, p: vec3<f32>) -> Taps {
+    let lat = atan2(p.z, length(p.xy));
+    let lon = atan2(p.y, p.x);
+    let x = (lon + PI) / (2.0 * PI) * f32(w) - 0.5;
+    let y = (0.5 * PI - lat) / PI * f32(h) - 0.5;
+    let x0 = floor(x);
+    let fx = x - x0;
+    let i0 = u32((i32(x0) % i32(w) + i32(w)) % i32(w));
+    let i1 = (i0 + 1u) % w;
+    var j0 = 0u;
+    var j1 = 0u;
+    var fy = 0.0;
+    if y >= f32(h) - 1.0 {
+        j0 = h - 1u;
+        j1 = h - 1u;
+    } else if y > 0.0 {
+        j0 = u32(floor(y));
+        j1 = j0 + 1u;
+        fy = y - floor(y);
+    }
+    return Taps(
+        vec4<u32>(j0 * w + i0, j0 * w + i1, j1 * w + i0, j1 * w + i1),
+        vec4<f32>((1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy),
+    );
+}
+
+// The vertical optical depth of shell k at p (T_k, bilinear).
+fn cloud_depth(k: u32, p: vec3<f32>) -> f32 {
+    let w = spheres.grids.x;
+    let h = spheres.grids.y;
+    let t = grid_taps(w, h, p);
+    let base = k * w * h;
+    return dot(t.weight, vec4<f32>(
+        cloud_depths[base + t.index.x], cloud_depths[base + t.index.y],
+        cloud_depths[base + t.index.z], cloud_depths[base + t.index.w]));
+}
+
+// The optical depth towards the sun of sphere k at p's direction: -ln of G_k's
+// bilinear attenuation ratio, at most SHADOWED_DEPTH.
+fn sun_depth(k: u32, p: vec3<f32>) -> f32 {
+    let w = spheres.grids.z;
+    let h = spheres.grids.w;
+    let t = grid_taps(w, h, p);
+    let base = k * w * h;
+    let ratio = dot(t.weight, vec4<f32>(
+        sun_ratios[base + t.index.x], sun_ratios[base + t.index.y],
+        sun_ratios[base + t.index.z], sun_ratios[base + t.index.w]));
+    return min(-log(max(ratio, exp(-SHADOWED_DEPTH))), SHADOWED_DEPTH);
+}
+
+// The two distances (near, far) where the line through a point at radius r with
+// direction cosine mu meets the sphere of `radius`; x > y when it misses (`roots`).
+fn sphere_roots(r: f32, mu: f32, radius: f32) -> vec2<f32> {
+    let b = r * mu;
+    let c = (r - radius) * (r + radius);
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return vec2<f32>(1.0, -1.0);
+    }
+    var s = 1.0;
+    if b < 0.0 {
+        s = -1.0;
+    }
+    let q = -(b + s * sqrt(disc));
+    if q == 0.0 {
+        return vec2<f32>(0.0);
+    }
+    let other = c / q;
+    return vec2<f32>(min(q, other), max(q, other));
+}
+
+// The sun's optical depth at `p` inside shell k of mean extinction `sigma`: G_k at the
+// sphere under p, its own path through the shell swapped for p's.
+fn sun_depth_at(k: u32, p: vec3<f32>, sigma: f32) -> f32 {
+    let g = sun_depth(k, p);
+    if g >= SHADOWED_DEPTH {
+        return SHADOWED_DEPTH;
+    }
+    let s = spheres.sun_direction.xyz;
+    let h = spheres.radii_m.w;
+    let outer = spheres.radii_m.y + f32(k + 1u) * h;
+    let sphere_r = spheres.radii_m.y + (f32(k) + 0.5) * h;
+    let r = length(p);
+    let u = p / r;
+    let here = max(sphere_roots(r, dot(u, s), outer).y, 0.0);
+    let there = max(sphere_roots(sphere_r, dot(u, s), outer).y, 0.0);
+    return clamp(g + sigma * (here - there), 0.0, SHADOWED_DEPTH);
+}
+
+// (1 - exp(-k)) / k, 1 at k = 0 (its series below 1e-3 in magnitude).
+fn exp_ratio(k: f32) -> f32 {
+    if abs(k) < 1e-3 {
+        return 1.0 - k / 2.0;
+    }
+    return (1.0 - exp(-k)) / k;
+}
+
+// A_1 at the scattering angle of cosine nu, each wavelength.
+fn phase_a1(nu: f32) -> vec3<f32> {
+    let x = acos(clamp(nu, -1.0, 1.0)) / PI * f32(ANGLES - 1u);
+    let k = min(u32(floor(x)), ANGLES - 2u);
+    let f = x - f32(k);
+    var a = vec3<f32>(0.0);
+    for (var w = 0u; w < 3u; w++) {
+        a[w] = mix(single_phase[w * ANGLES + k], single_phase[w * ANGLES + k + 1u], f);
+    }
+    return a;
+}
+
+// The radiance (rgb) and transmittance (a) of the crossing [t0, t1] of shell k by the
+// ray from o along the unit d.
+fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32) -> vec4<f32> {
+    let start = o + d * t0;
+    let end = o + d * t1;
+    let middle = (start + end) / 2.0;
+    let sigma = cloud_depth(k, middle) / spheres.radii_m.w;
+    if sigma <= 0.0 {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
+    let tau_v = sigma * (t1 - t0);
+    let tau_a = sun_depth_at(k, start, sigma);
+    let tau_b = sun_depth_at(k, end, sigma);
+    let top = spheres.radii_m.y + spheres.radii_m.z;
+    let up_a = sigma * max(top - length(start), 0.0);
+    let up_b = sigma * max(top - length(end), 0.0);
+    let sky = exp(-up_a) * tau_v * exp_ratio(tau_v + up_b - up_a) / (2.0 * PI);
+    let single = phase_a1(dot(d, spheres.sun_direction.xyz));
+    var sun = vec3<f32>(0.0);
+    var a = 1.0;
+    var b = 1.0;
+    var c = 1.0;
+    for (var i = 0u; i < spheres.counts.y; i++) {
+        let weight = a * (c * single + (1.0 - c) / (4.0 * PI));
+        sun += weight * exp(-b * tau_a) * tau_v * exp_ratio(tau_v + b * (tau_b - tau_a));
+        a *= 0.5;
+        b *= 0.5;
+        c *= 0.5;
+    }
+    let radiance = spheres.medium.x
+        * (spheres.sun_irradiance.xyz * sun + spheres.sky_irradiance.xyz * sky);
+    return vec4<f32>(radiance, exp(-tau_v));
+}
