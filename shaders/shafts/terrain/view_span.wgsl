@@ -26,9 +26,10 @@ fn shaft_span(m: ShadowMapParams, s: Segment) -> vec2<f32> {
     return vec2<f32>(entry, min(exit, min(s.length, width)));
 }
 
-// `shaft_samples`: two per cell of the map, within the fewest (w) and the most (z).
+// `shaft_samples`: two per cell of the outermost level (`ShadowMap::sample_cell_m`),
+// within the fewest (w) and the most (z).
 fn shaft_samples(m: ShadowMapParams, span: f32) -> u32 {
-    let per_cell = u32(ceil(2.0 * span / m.east_cell.w));
+    let per_cell = u32(ceil(2.0 * span * f32(m.size.x) / shadow_map_width(m)));
     return min(max(per_cell, m.size.w), m.size.z);
 }
 

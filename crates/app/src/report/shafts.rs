@@ -205,7 +205,13 @@ pub fn measure(
         let (lit, _) = luminance(&view, &earth, reference, Shadows::Off, &color)?;
         let shares = relative_errors(&truth, &lit);
         let shadow_share = shares.iter().sum::<f64>() / shares.len().max(1) as f64;
-        for variant in &parsed {
+        for (k, variant) in parsed.iter().enumerate() {
+            eprintln!(
+                "report: shafts on {name}, {}/{} {}",
+                k + 1,
+                parsed.len(),
+                variant.label
+            );
             let settings = single(variant);
             let model = (variant.model, &settings);
             let (with, cpu_frame_s) = luminance(&view, &earth, model, Shadows::Terrain, &color)?;

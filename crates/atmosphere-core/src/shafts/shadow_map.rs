@@ -87,8 +87,18 @@ impl ShadowMap {
 
     /// The width of the outermost grid, m: no point beyond it is shadowed.
     pub fn width_m(&self) -> f64 {
-        let outermost = self.levels().last().map_or(&self.grid, |m| &m.grid);
-        outermost.cell_m * outermost.size as f64
+        self.outermost().cell_m * self.outermost().size as f64
+    }
+
+    /// The cell by which the view segments' samples are counted (two per cell): the
+    /// outermost level's. The finer levels sharpen each sample's visibility near the
+    /// camera; they do not add samples.
+    pub fn sample_cell_m(&self) -> f64 {
+        self.outermost().cell_m
+    }
+
+    fn outermost(&self) -> &GnomonicGrid {
+        self.levels().last().map_or(&self.grid, |m| &m.grid)
     }
 
     fn swept(

@@ -69,7 +69,7 @@ pub fn shadowed_length_m(segment: &ViewSegment, map: &ShadowMap, bottom_radius_m
     let Some((entry, end)) = segment_span_m(segment, map, bottom_radius_m) else {
         return 0.0;
     };
-    let samples = shaft_samples(end - entry, map.grid.cell_m);
+    let samples = shaft_samples(end - entry, map.sample_cell_m());
     let dt = (end - entry) / samples as f64;
     (0..samples)
         .map(|k| {

@@ -60,7 +60,7 @@ impl AirShadow<'_> {
         if let Some(map) = self.terrain {
             top = top.max(bottom_radius_m + f64::from(map.max_top_m));
             width = width.max(map.width_m());
-            cell = cell.min(map.grid.cell_m);
+            cell = cell.min(map.sample_cell_m());
         }
         let span = shaft_span_m(segment.r, segment.mu, segment.length, top, width)?;
         Some((span, shaft_samples(span.1 - span.0, cell)))

@@ -34,7 +34,7 @@ pub fn shadowed_single(
     out.fill(0.0);
     let bottom = medium.atmosphere.bottom_radius_m;
     if let Some(span) = segment_span_m(segment, map, bottom) {
-        let samples = shaft_samples(span.1 - span.0, map.grid.cell_m);
+        let samples = shaft_samples(span.1 - span.0, map.sample_cell_m());
         shadowed_single_over(medium, segment, map, span, samples, out);
     }
 }

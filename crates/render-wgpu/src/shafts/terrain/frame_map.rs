@@ -44,6 +44,9 @@ pub fn level_cells(outer_m: f64) -> Vec<f64> {
     cells
 }
 
+/// Unit sun directions closer than this (a chord, about the angle in rad) share a map.
+const SAME_SUN: f64 = 1e-9;
+
 /// The shadow map of the frames so far, and the heights it was swept from (per level,
 /// finest first).
 #[derive(Debug, Default)]
@@ -84,7 +87,12 @@ impl FrameShadow {
                 true
             }
         };
-        let stale = resampled || self.map.as_ref().is_none_or(|(s, _)| *s != sun);
+        // Suns that differ in their last bits (rays turned one by one) share a map.
+        let stale = resampled
+            || self
+                .map
+                .as_ref()
+                .is_none_or(|(s, _)| (*s - sun).length() > SAME_SUN);
         if stale {
             let mut levels = self.heights.iter().rev();
             let (grid, heights) = levels.next().expect("at least one level");
