@@ -52,7 +52,11 @@ pub fn plan_shafts<'a, R: Relief + Sync>(
 pub fn why_no_shafts(frame: &Frame, map: &ShadowMap) -> Option<&'static str> {
     if !matches!(
         frame.model,
-        ModelId::Hillaire | ModelId::Nishita | ModelId::Oneil | ModelId::Bruneton
+        ModelId::Hillaire
+            | ModelId::Nishita
+            | ModelId::Oneil
+            | ModelId::Bruneton
+            | ModelId::Dobashi
     ) {
         return Some("the model has no light shafts");
     }
