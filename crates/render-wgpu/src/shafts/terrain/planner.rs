@@ -143,6 +143,10 @@ mod tests {
             why_no_shafts(&frame(500.0, DVec3::X), &overhead),
             Some("nothing casts a shadow into the air")
         );
+        // dobashi has shafts through its sampling planes.
+        let mut dobashi = frame(500.0, DVec3::X);
+        dobashi.model = ModelId::Dobashi;
+        assert_eq!(why_no_shafts(&dobashi, &map), None);
         // A model without shafts.
         let mut riley = frame(500.0, DVec3::X);
         riley.model = ModelId::Riley;
