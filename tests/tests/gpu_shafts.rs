@@ -1,10 +1,10 @@
 //! Light shafts on the planet (`render_wgpu::shafts::terrain`, `shaders/sky/hillaire/
 //! shafts.wgsl`, `shaders/sky/nishita/pixel.wgsl`, `shaders/sky/oneil/pixel.wgsl`,
-//! `shaders/sky/bruneton/pixel.wgsl`) against their CPU twins
-//! (`atmosphere_core::models::hillaire::shafts`, `models::nishita`, `models::oneil`,
-//! `models::bruneton::shafts`, with the renderer's own shadow map), that the
-//! shadow darkens the rays through it by the CPU's ratio, and that the planner's pruning
-//! changes nothing.
+//! `shaders/sky/bruneton/pixel.wgsl`, `shaders/sky/dobashi/trace.wgsl`) against their CPU
+//! twins (`atmosphere_core::models::hillaire::shafts`, `models::nishita`, `models::oneil`,
+//! `models::bruneton::shafts`, `models::dobashi::trace`, with the renderer's own shadow
+//! map), that the shadow darkens the rays through it by the CPU's ratio, and that the
+//! planner's pruning changes nothing.
 //!
 //! Needs a GPU adapter (lavapipe will do); see `gpu_hillaire_parity.rs`.
 
@@ -14,6 +14,7 @@ use std::path::Path;
 
 use atmos::render::scene::Scene;
 use atmosphere_core::models::bruneton::Bruneton;
+use atmosphere_core::models::dobashi::{Dobashi, DobashiSettings};
 use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
@@ -51,7 +52,7 @@ fn with_shafts(frame: &Frame, on: bool) -> Frame {
     f
 }
 
-/// The CPU model of `frame` (hillaire, nishita, oneil or bruneton) with the renderer's last shadow map
+/// The CPU model of `frame` (hillaire, nishita, oneil, bruneton or dobashi) with the renderer's last shadow map
 /// (or none).
 fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Box<dyn SkyModel> {
     let shadow = if shafts {
@@ -78,6 +79,11 @@ fn cpu_model(frame: &Frame, renderer: &Renderer, shafts: bool) -> Box<dyn SkyMod
         }
         ModelId::Bruneton => {
             let mut model = Bruneton::prepare(a, s).unwrap();
+            model.set_terrain_shadow(shadow);
+            Box::new(model)
+        }
+        ModelId::Dobashi => {
+            let mut model = Dobashi::prepare(a, s, DobashiSettings::default()).unwrap();
             model.set_terrain_shadow(shadow);
             Box::new(model)
         }
@@ -113,6 +119,11 @@ fn oneil_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() 
 #[test]
 fn bruneton_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
     check_shafts(ModelId::Bruneton);
+}
+
+#[test]
+fn dobashi_shafts_over_the_alps_at_sunset_match_the_cpu_and_darken_by_its_ratio() {
+    check_shafts(ModelId::Dobashi);
 }
 
 /// `model`'s frame of the Alps with the sun 4 degrees up, with shafts, against the CPU

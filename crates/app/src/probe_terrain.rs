@@ -20,6 +20,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::bruneton::Bruneton;
+use atmosphere_core::models::dobashi::{Dobashi, DobashiSettings};
 use atmosphere_core::models::error::ModelError;
 use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
 use atmosphere_core::models::id::ModelId;
@@ -88,6 +89,7 @@ enum Shafted {
     Nishita(Box<Nishita>),
     Oneil(Box<Oneil>),
     Bruneton(Box<Bruneton>),
+    Dobashi(Box<Dobashi>),
 }
 
 impl Shafted {
@@ -108,8 +110,12 @@ impl Shafted {
                 Shafted::Oneil(Box::new(Oneil::prepare(a, s, settings)?))
             }
             ModelId::Bruneton => Shafted::Bruneton(Box::new(Bruneton::prepare(a, s)?)),
+            ModelId::Dobashi => {
+                let settings = DobashiSettings::from_options(options)?;
+                Shafted::Dobashi(Box::new(Dobashi::prepare(a, s, settings)?))
+            }
             other => bail!(
-                "--terrain: {other} has no light shafts (reference, hillaire, nishita, oneil and bruneton have; docs/shafts.md)"
+                "--terrain: {other} has no light shafts (reference, hillaire, nishita, oneil, bruneton and dobashi have; docs/shafts.md)"
             ),
         })
     }
@@ -121,6 +127,7 @@ impl Shafted {
             Shafted::Nishita(m) => m.as_ref(),
             Shafted::Oneil(m) => m.as_ref(),
             Shafted::Bruneton(m) => m.as_ref(),
+            Shafted::Dobashi(m) => m.as_ref(),
         }
     }
 
@@ -131,6 +138,7 @@ impl Shafted {
             Shafted::Nishita(m) => m.set_terrain_shadow(Some(map)),
             Shafted::Oneil(m) => m.set_terrain_shadow(Some(map)),
             Shafted::Bruneton(m) => m.set_terrain_shadow(Some(map)),
+            Shafted::Dobashi(m) => m.set_terrain_shadow(Some(map)),
         }
     }
 }

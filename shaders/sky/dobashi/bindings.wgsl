@@ -1,6 +1,7 @@
 // Library: the bindings of the dobashi model's passes over its tables, the per-pixel pass
 // (`sky/dobashi/pixel.wgsl`) and the ambient table's build (`sky/dobashi/ambient.wgsl`),
-// which bind the same group 0 at 2 to 11 and each its own output at 12. Rust twins:
+// which bind the same group 0 at 2 to 11 (the build writes its table at 12; the pass
+// reads the terrain's shadow map at 12 and 13 and writes at 14). Rust twins:
 // render-wgpu's `sky/dobashi/` (`DobashiUniform`, the bind group layout). CPU twin of
 // the tables: atmosphere-core's `models/dobashi/` (`plane_tables.rs`, `sphere_tables.rs`,
 // `ambient.rs`). Paper: Dobashi, Yamamoto and Nishita 2002, sections 5.2-5.3 (g_l, the

@@ -3,7 +3,9 @@
 // `Dobashi::surface_irradiance`). Paper: Dobashi, Yamamoto and Nishita 2002, sections
 // 5.2-5.3: Eq. 12 along the pixel's ray through the sampling planes, or the sample spheres
 // for a camera far out (`sky/dobashi/trace.wgsl`), with the ambient term, ending on the
-// frame's surface where it has one (lit by the transmitted sun and the ambient sky). The
+// frame's surface where it has one (lit by the transmitted sun and the ambient sky); with
+// light shafts, each segment's single scattering times the sun's visibility past the
+// terrain at its plane (`shafts/terrain/shadow_map.wgsl`; section 4.2.2's H). The
 // frame around it (surface, sun disk, HDR target) is `common/shade_pixel.wgsl`. Writes
 // spectral radiance (W m^-2 sr^-1 nm^-1).
 
@@ -11,8 +13,21 @@
 #import common/surface.wgsl
 #import common/surface_columns.wgsl
 #import common/shade_pixel.wgsl
+#import shafts/terrain/shadow_map.wgsl
 
-@group(0) @binding(12) var hdr: texture_storage_2d<rgba16float, write>;
+// The terrain's shadow map for light shafts (docs/shafts.md).
+@group(0) @binding(12) var shadow_tops: texture_2d<f32>;
+@group(0) @binding(13) var<uniform> shadow_map: ShadowMapParams;
+@group(0) @binding(14) var hdr: texture_storage_2d<rgba16float, write>;
+
+// `Accumulator::visible_at`: the sun's visibility past the terrain at the planet-centred
+// `position` of altitude `altitude` (1 without shafts).
+fn terrain_visible(position: vec3<f32>, altitude: f32) -> f32 {
+    if shadow_map.size.y == 0u {
+        return 1.0;
+    }
+    return shadow_map_visible(shadow_tops, shadow_map, atmosphere.bottom_radius_m, position, altitude);
+}
 
 // `Dobashi::radiance` for the view ray with unit `direction` from the camera and its
 // segment `s` in the atmosphere (`common/shade_pixel.wgsl`): Eq. 12 per unit solar

@@ -11,7 +11,10 @@
 //     + I_sun sum_k g_l(h_k, theta_k) [F_r dI_r(t_k) + F_m dI_m(t_k)] prod_{j<k} dg_v(t_j),
 //
 // plus the ambient radiance psi, scattered by each segment (dI_r + dI_m) and reflected
-// by the ground. Positions are those of `common/frame_params.wgsl`: q = r^2 - bottom^2 and
+// by the ground. Each segment's single scattering is seen through the sun's visibility
+// past the terrain at its start, `terrain_visible`, which the including pass defines (the
+// pixel pass from the frame's shadow map, section 4.2.2's H; the ambient build 1: orders
+// two and up stay unshadowed). Positions are those of `common/frame_params.wgsl`: q = r^2 - bottom^2 and
 // r mu along the ray, no difference of radii near 6.4e6 m. The tables are read through
 // the texture unit's filter where the device filters Rgba32Float (`common/table_sampling.wgsl`).
 
@@ -141,6 +144,8 @@ fn no_terms() -> Terms {
 // What `Accumulator::add` and `add_ground` need of a ray.
 struct Ray {
     segment: Segment,
+    // Unit direction of the ray.
+    direction: vec3<f32>,
     // cos(view, sun) and the phase functions there.
     nu: f32,
     phase_r: f32,
@@ -182,7 +187,8 @@ fn add_segment(terms: Terms, ray: Ray, t: f32, v: Segment3) -> Terms {
     let mu_sun = clamp((s.start_dot_sun + t * ray.nu) / r, -1.0, 1.0);
     let psi = ambient_at(mu_sun);
     var out = terms;
-    out.single += terms.transmittance * sunlight_at(q, mu_sun)
+    let visible = terrain_visible(s.start + t * ray.direction, q / (r + atmosphere.bottom_radius_m));
+    out.single += terms.transmittance * visible * sunlight_at(q, mu_sun)
         * (ray.phase_r * v.scatter_r + ray.phase_m * v.scatter_m);
     out.ambient += terms.transmittance * psi * (v.scatter_r + v.scatter_m);
     out.transmittance = terms.transmittance * v.transmittance;
@@ -322,6 +328,7 @@ fn trace(ray: Ray, spheres: bool) -> Terms {
 fn make_ray(s: Segment, direction: vec3<f32>, sun: vec3<f32>) -> Ray {
     var ray: Ray;
     ray.segment = s;
+    ray.direction = direction;
     ray.nu = dot(direction, sun);
     ray.phase_r = rayleigh_phase(ray.nu);
     ray.phase_m = mie_phase(ray.nu);

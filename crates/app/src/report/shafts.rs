@@ -31,13 +31,14 @@ use crate::report::views::ReportView;
 pub const SHAFT_SCENES: [&str; 2] = ["default.toml", "alps_sunrise.toml"];
 
 /// The models with shafts at the settings the main report measures.
-pub const SHAFT_VARIANTS: [&str; 6] = [
+pub const SHAFT_VARIANTS: [&str; 7] = [
     "hillaire",
     "nishita samples=16",
     "nishita",
     "oneil",
     "oneil samples=16",
     "bruneton",
+    "dobashi",
 ];
 
 /// The frame the times are for.

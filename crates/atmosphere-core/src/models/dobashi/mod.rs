@@ -31,6 +31,7 @@ use crate::models::settings::ModelSettings;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 use crate::optics::surface_lighting::SurfaceElement;
 use crate::optics::transmittance_table::TransmittanceTable;
+use crate::shafts::ShadowMap;
 
 pub use ambient::AmbientTable;
 pub use plane_tables::PlaneTables;
@@ -50,6 +51,8 @@ pub struct Dobashi {
     spheres: SphereTables,
     /// `None` for single scattering (`max_orders = Some(1)`).
     ambient: Option<AmbientTable>,
+    /// The terrain's shadow in the air, when light shafts are on (docs/shafts.md).
+    shadow: Option<ShadowMap>,
 }
 
 impl Dobashi {
@@ -83,6 +86,7 @@ impl Dobashi {
             ),
             base,
             ambient: None,
+            shadow: None,
         };
         model.ambient = model.build_ambient()?;
         Ok(model)
@@ -92,8 +96,13 @@ impl Dobashi {
         if self.max_orders == Some(1) {
             return Ok(None);
         }
+        // Orders two and up stay unshadowed (docs/shafts.md).
+        let unshadowed = Tracer {
+            shadow: None,
+            ..self.tracer()
+        };
         AmbientTable::build(
-            &self.tracer(),
+            &unshadowed,
             self.settings.ambient_directions,
             self.settings.ambient_sun_angles,
             self.max_orders,
@@ -110,7 +119,16 @@ impl Dobashi {
             planes: &self.planes,
             spheres: &self.spheres,
             max_planes: self.settings.max_planes,
+            shadow: self.shadow.as_ref(),
         }
+    }
+
+    /// The terrain's shadow the sampling planes test from now on (`None`: no light
+    /// shafts): each segment's single scattering times the sun's visibility at its plane
+    /// (Dobashi, Yamamoto and Nishita 2002, Fig. 10(a)); the ambient term stays
+    /// unshadowed.
+    pub fn set_terrain_shadow(&mut self, shadow: Option<ShadowMap>) {
+        self.shadow = shadow;
     }
 
     pub fn settings(&self) -> &DobashiSettings {

@@ -12,7 +12,12 @@
 //! from the tables at the plane's height and the ray's angle there. The last segment
 //! ends where the ray leaves the atmosphere (the tables stop there) or, for an object, is
 //! cut by the rule of a uniform segment (`Accumulator::add`). g_l and the phase functions
-//! are taken at the plane, as in Eq. 12.
+//! are taken at the plane, as in Eq. 12. With light shafts (docs/shafts.md) each
+//! segment's single scattering is also multiplied by the sun's visibility past the
+//! terrain at its plane (`Tracer::shadow`), the visibility term H of section 4.2.2
+//! (Eq. 10) read from a shadow map; the paper's Fig. 10(a) draws the mountains' shafts
+//! so, on planes of their own with sub-planes, here the sky's own planes without
+//! sub-planes. The ambient term and the ground stay unshadowed.
 
 use std::f64::consts::PI;
 
@@ -32,6 +37,7 @@ use crate::optics::geometry::safe_sqrt;
 use crate::optics::surface_lighting::SurfaceElement;
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::optics::view_segment::{SegmentEnd, ViewSegment};
+use crate::shafts::{ShadowMap, SunVisibility};
 
 /// The ray's light per unit solar irradiance (sr^-1), at each wavelength.
 #[derive(Clone, Debug, PartialEq)]
@@ -68,6 +74,9 @@ pub struct Tracer<'a> {
     pub spheres: &'a SphereTables,
     /// Above the atmosphere, cameras that would need more planes use the spheres.
     pub max_planes: usize,
+    /// The terrain's shadow each segment's single scattering is tested against at its
+    /// start (`None`: no light shafts).
+    pub shadow: Option<&'a ShadowMap>,
 }
 
 impl Tracer<'_> {
@@ -270,15 +279,24 @@ impl<'t, 'a> Accumulator<'t, 'a> {
             .light(r, mu_sun, self.ambient, &mut self.sunlight, &mut self.psi);
     }
 
+    /// The sun's visibility past the terrain at `p` (1 without light shafts).
+    fn visible_at(&self, p: DVec3) -> f64 {
+        self.tracer
+            .shadow
+            .map_or(1.0, |map| map.sun_visible(p, self.sun))
+    }
+
     /// Adds the segment starting at `p` whose values are in `self.values`, or its first
     /// `fraction` (0 < fraction < 1) when an object cuts it: the segment is taken as
     /// uniform, so dg_v becomes dg_v^fraction and dI becomes
-    /// dI (1 - dg_v^fraction) / (1 - dg_v), both exact for a uniform segment.
+    /// dI (1 - dg_v^fraction) / (1 - dg_v), both exact for a uniform segment. The
+    /// single scattering is seen through the sun's visibility at `p`.
     fn add(&mut self, p: DVec3, fraction: f64) {
         if fraction <= 0.0 {
             return;
         }
         self.light_at(p);
+        let visible = self.visible_at(p);
         let v = &self.values;
         for w in 0..self.sunlight.len() {
             let (mut s_r, mut s_m, mut g_v) = (v.scatter_r[w], v.scatter_m[w], v.transmittance[w]);
@@ -295,7 +313,7 @@ impl<'t, 'a> Accumulator<'t, 'a> {
             }
             let t = self.terms.transmittance[w];
             self.terms.single[w] +=
-                t * self.sunlight[w] * (self.phase_r * s_r + self.phase_m * s_m);
+                t * visible * self.sunlight[w] * (self.phase_r * s_r + self.phase_m * s_m);
             self.terms.ambient[w] += t * self.psi[w] * (s_r + s_m);
             self.terms.transmittance[w] = t * g_v;
         }

@@ -52,7 +52,11 @@ pub fn plan_shafts<'a, R: Relief + Sync>(
 pub fn why_no_shafts(frame: &Frame, map: &ShadowMap) -> Option<&'static str> {
     if !matches!(
         frame.model,
-        ModelId::Hillaire | ModelId::Nishita | ModelId::Oneil | ModelId::Bruneton
+        ModelId::Hillaire
+            | ModelId::Nishita
+            | ModelId::Oneil
+            | ModelId::Bruneton
+            | ModelId::Dobashi
     ) {
         return Some("the model has no light shafts");
     }
@@ -139,6 +143,10 @@ mod tests {
             why_no_shafts(&frame(500.0, DVec3::X), &overhead),
             Some("nothing casts a shadow into the air")
         );
+        // dobashi has shafts through its sampling planes.
+        let mut dobashi = frame(500.0, DVec3::X);
+        dobashi.model = ModelId::Dobashi;
+        assert_eq!(why_no_shafts(&dobashi, &map), None);
         // A model without shafts.
         let mut riley = frame(500.0, DVec3::X);
         riley.model = ModelId::Riley;

@@ -10,9 +10,10 @@ use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, uniform_buffer,
-    uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texture_entry,
+    uniform_buffer, uniform_entry,
 };
+use crate::shafts::terrain::uniform::ShadowMapUniform;
 use crate::sky::columns_table::ColumnsTable;
 use crate::sky::dobashi::ambient::{
     AmbientKey, ambient_key, ambient_texture, unit_ambient_texture,
@@ -120,6 +121,10 @@ impl DobashiPass {
             &ambient_entries,
             &[sampling.constant()],
         )?;
+        // The pass also reads the terrain's shadow map for light shafts at 12 and 13.
+        let mut pass_tables = tables.clone();
+        pass_tables.push(texture_entry(12, D2));
+        pass_tables.push(uniform_entry(13, size_of::<ShadowMapUniform>()));
         let pass = PixelPass::new(
             gpu,
             PixelShader {
@@ -127,7 +132,7 @@ impl DobashiPass {
                 entry: "main",
                 label: "the dobashi pass",
                 params_size: size_of::<DobashiUniform>(),
-                tables: &tables,
+                tables: &pass_tables,
                 sampling: Some(&sampling),
             },
         )?;
@@ -306,7 +311,10 @@ impl ModelPass for DobashiPass {
             DobashiStep::Pass => {
                 let views = self.table_views();
                 let ambient = self.ambient.create_view(&Default::default());
-                let tables = self.inputs(&views, &ambient);
+                let shadow = cx.io.shadow.view();
+                let mut tables = self.inputs(&views, &ambient);
+                tables.push(wgpu::BindingResource::TextureView(&shadow));
+                tables.push(cx.io.shadow.params().as_entire_binding());
                 self.pass.encode(cx, &self.params, &tables);
             }
         }
