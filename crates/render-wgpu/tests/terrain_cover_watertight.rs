@@ -29,6 +29,15 @@ impl HeightField for Waves {
     }
 }
 
+/// The camera, the chosen chunks, those whose meshes were drawn before, and which chosen
+/// meshes are ready besides.
+type Scenario<'a> = (
+    LodView,
+    &'a [SelectedChunk],
+    &'a [SelectedChunk],
+    &'a dyn Fn(ChunkKey) -> bool,
+);
+
 /// Every triangle edge of `draws`, in f64 positions bit for bit and geomorphed for
 /// `view`, meets exactly one reversed edge, and the Euler characteristic is 2. Returns
 /// how many vertices the morph moved.
@@ -102,13 +111,8 @@ fn covers_and_chosen_chunks_close_up_without_cracks() {
         let (u, v) = k.vertex_uv(8, 4, 4);
         direction(k.face, u, v).dot(across) > 0.0
     };
-    let third = |k: ChunkKey| (k.x + k.y) % 3 == 0;
-    let scenarios: [(
-        LodView,
-        &[SelectedChunk],
-        &[SelectedChunk],
-        &dyn Fn(ChunkKey) -> bool,
-    ); 3] = [
+    let third = |k: ChunkKey| (k.x + k.y).is_multiple_of(3);
+    let scenarios: [Scenario; 3] = [
         (low, &near, &far, &third),
         (middle, &mid, &near, &third),
         (low, &near, &far, &one_side),

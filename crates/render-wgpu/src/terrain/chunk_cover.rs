@@ -221,6 +221,14 @@ mod tests {
         assert!(cover(&chosen(&keys), |_| false).is_empty());
     }
 
+    /// The chosen chunks, those whose meshes were drawn before, and which chosen meshes
+    /// are ready besides.
+    type Scenario<'a> = (
+        &'a [SelectedChunk],
+        &'a [SelectedChunk],
+        &'a dyn Fn(ChunkKey) -> bool,
+    );
+
     /// `draws` tile the planet once, neighbours at most one level apart, with the coarser
     /// edges flagged where they are (the level of detail's own invariants).
     fn assert_restricted_partition(draws: &[SelectedChunk]) {
@@ -269,12 +277,8 @@ mod tests {
             let (u, v) = k.vertex_uv(8, 4, 4);
             direction(k.face, u, v).dot(across) > 0.0
         };
-        let third = |k: ChunkKey| (k.x + k.y) % 3 == 0;
-        let scenarios: [(
-            &[SelectedChunk],
-            &[SelectedChunk],
-            &dyn Fn(ChunkKey) -> bool,
-        ); 3] = [
+        let third = |k: ChunkKey| (k.x + k.y).is_multiple_of(3);
+        let scenarios: [Scenario; 3] = [
             (&near, &far, &third),
             (&middle, &near, &third),
             (&near, &far, &one_side),
