@@ -25,6 +25,11 @@ pub struct FlightFrame {
     /// Chosen chunks drawn as a cover, and meshes being built, after the frame.
     pub covered: usize,
     pub building: usize,
+    /// Whether a choice of chunks was being made off the render thread after the frame.
+    pub selecting: bool,
+    /// The render thread's time preparing the terrain (choosing what to draw, uploading
+    /// finished meshes), ms.
+    pub prepare_ms: f64,
     /// The frame's passes with their GPU times, ms (indicative on a software adapter).
     pub passes: String,
 }
@@ -87,6 +92,8 @@ pub fn measure(
             wall_ms,
             covered: stand.covered,
             building: stand.building,
+            selecting: stand.selecting,
+            prepare_ms: stand.prepare_us as f64 / 1e3,
             passes,
         });
         progress.inc();
@@ -131,16 +138,23 @@ pub fn markdown(path: &Path, adapter: &str, size: (u32, u32), frames: &[FlightFr
     );
     let _ = writeln!(
         text,
-        "| time, s | altitude, m | frame, ms | covered | building | passes, GPU ms |"
+        "| time, s | altitude, m | frame, ms | terrain prepare, ms | selecting | covered | building | passes, GPU ms |"
     );
-    let _ = writeln!(text, "|---|---|---|---|---|---|");
+    let _ = writeln!(text, "|---|---|---|---|---|---|---|---|");
     // The five longest, then one of median length.
     let typical = longest.iter().find(|f| f.wall_ms <= mid);
     for f in longest.iter().take(5).chain(typical) {
         let _ = writeln!(
             text,
-            "| {:.2} | {:.0} | {:.1} | {} | {} | {} |",
-            f.time_s, f.altitude_m, f.wall_ms, f.covered, f.building, f.passes
+            "| {:.2} | {:.0} | {:.1} | {:.1} | {} | {} | {} | {} |",
+            f.time_s,
+            f.altitude_m,
+            f.wall_ms,
+            f.prepare_ms,
+            if f.selecting { "yes" } else { "no" },
+            f.covered,
+            f.building,
+            f.passes
         );
     }
     text
@@ -157,6 +171,8 @@ mod tests {
             wall_ms,
             covered: 0,
             building: 0,
+            selecting: false,
+            prepare_ms: 1.5,
             passes: "terrain 5".to_string(),
         }
     }
@@ -178,11 +194,11 @@ mod tests {
         let rows: Vec<&str> = text.lines().filter(|l| l.starts_with("| 0.")).collect();
         assert_eq!(
             rows.first(),
-            Some(&"| 0.20 | 2 | 30.0 | 0 | 0 | terrain 5 |")
+            Some(&"| 0.20 | 2 | 30.0 | 1.5 | no | 0 | 0 | terrain 5 |")
         );
         assert_eq!(
             rows.last(),
-            Some(&"| 0.30 | 2 | 12.0 | 0 | 0 | terrain 5 |")
+            Some(&"| 0.30 | 2 | 12.0 | 1.5 | no | 0 | 0 | terrain 5 |")
         );
         assert_eq!(rows.len(), 4);
     }

@@ -183,8 +183,9 @@ impl ViewerApp {
         })
     }
 
-    /// Whether the last frame's tables were still being built, or terrain meshes were
-    /// being built or covered (more of them next frame).
+    /// Whether the last frame's tables were still being built, terrain meshes were
+    /// being built or covered, or the terrain's chunks were being chosen (more of them
+    /// next frame).
     fn building(&self) -> bool {
         self.last_plan
             .as_ref()
@@ -192,7 +193,7 @@ impl ViewerApp {
             || self
                 .renderer
                 .terrain_progress()
-                .is_some_and(|t| t.covered > 0 || t.building > 0)
+                .is_some_and(|t| t.covered > 0 || t.building > 0 || t.selecting)
     }
 
     /// Renders `frame` if it differs from the last one or tables are being built, and

@@ -224,7 +224,7 @@ pub fn select_chunks(
 
 /// The leaf covering the same-level key `key` or an ancestor of it, if one is a leaf
 /// (none when `key` is subdivided).
-fn covering_leaf(leaves: &BTreeSet<ChunkKey>, key: ChunkKey) -> Option<ChunkKey> {
+pub fn covering_leaf(leaves: &BTreeSet<ChunkKey>, key: ChunkKey) -> Option<ChunkKey> {
     let mut k = key;
     loop {
         if leaves.contains(&k) {

@@ -11,6 +11,7 @@ pub mod chunk_cache;
 pub mod chunk_cover;
 pub mod chunk_key;
 pub mod chunk_mesh;
+pub mod chunk_selector;
 pub mod chunk_worker;
 pub mod coastline;
 pub mod colour_map;

@@ -8,8 +8,9 @@
 //! exaggeration rebuilds them), and one draw per chunk with its `origin - camera` offset computed in
 //! f64 and its morph ends (`geomorph.rs`). Offline (`TerrainOptions::wait_for_chunks`)
 //! the frame builds every missing mesh in parallel before drawing, so its image depends
-//! on nothing but the frame; interactive, the meshes are built off the render thread
-//! (`chunk_worker.rs`) and covered until they arrive (`chunk_cover.rs`). Depth is reversed with an infinite far plane and a near plane at half the
+//! on nothing but the frame; interactive, the chunks are chosen and the meshes built off
+//! the render thread (`chunk_selector.rs`, `chunk_worker.rs`) and covered until they
+//! arrive (`chunk_cover.rs`). Depth is reversed with an infinite far plane and a near plane at half the
 //! camera's height above the terrain below it, so 1 m and 1e8 m need nothing special.
 //! Albedo comes from the colour map (decoded from sRGB, mip-mapped in linear light),
 //! taken as the albedo at the three wavelengths: the Blue Marble is a true-colour
@@ -35,9 +36,11 @@ use crate::terrain::chunk_cache::{ChunkCache, buffer_with};
 use crate::terrain::chunk_cover::cover;
 use crate::terrain::chunk_key::ChunkKey;
 use crate::terrain::chunk_mesh::ChunkMesh;
+use crate::terrain::chunk_selector::{
+    ChunkSelector, Elevation, Selection, SelectionRequest, root_chunks,
+};
 use crate::terrain::chunk_worker::ChunkWorker;
 use crate::terrain::colour_texture::upload_colour;
-use crate::terrain::cube_sphere::Face;
 use crate::terrain::earth_data::{COLOUR_FILE, EarthData};
 use crate::terrain::frustum::Frustum;
 use crate::terrain::geomorph::{MORPH_START, MorphEnds};
@@ -66,6 +69,11 @@ pub struct ChunkProgress {
     pub covered: usize,
     /// Meshes the worker is building.
     pub building: usize,
+    /// Whether a choice of chunks is being made off the render thread
+    /// (`chunk_selector.rs`); the frame drew the newest finished one.
+    pub selecting: bool,
+    /// The render thread's time in [`TerrainPass::prepare`], microseconds.
+    pub prepare_us: u64,
 }
 
 /// One chunk of this frame: its key and which edges border a coarser chunk.
@@ -88,6 +96,7 @@ pub struct TerrainPass {
     sampler: wgpu::Sampler,
     chunks: ChunkCache,
     worker: ChunkWorker,
+    selector: ChunkSelector,
     progress: ChunkProgress,
     /// Index buffers by coarser-edge pattern (the same for every chunk).
     indices: HashMap<[bool; 4], (wgpu::Buffer, u32)>,
@@ -171,6 +180,7 @@ impl TerrainPass {
             sampler,
             chunks: ChunkCache::default(),
             worker: ChunkWorker::default(),
+            selector: ChunkSelector::default(),
             progress: ChunkProgress::default(),
             indices: HashMap::new(),
             chunk_buffer,
@@ -184,9 +194,23 @@ impl TerrainPass {
 
     /// Chooses, builds and uploads the chunks `frame` sees with `options`; returns how
     /// many it will draw (0: no terrain in view, the pass can be skipped). With
-    /// `options.wait_for_chunks` off, chunk meshes not yet built are asked of the worker
-    /// and covered meanwhile (`chunk_cover.rs`): only the six roots are ever built here.
+    /// `options.wait_for_chunks` off, the chunks are chosen off the render thread
+    /// (`chunk_selector.rs`; the newest finished choice is drawn, the six roots before the
+    /// first), and chunk meshes not yet built are asked of the worker and covered
+    /// meanwhile (`chunk_cover.rs`): only the six roots are ever built here.
     pub fn prepare(
+        &mut self,
+        gpu: &GpuContext,
+        frame: &Frame,
+        options: &TerrainOptions,
+    ) -> Result<usize, RenderError> {
+        let start = std::time::Instant::now();
+        let drawn = self.prepare_chunks(gpu, frame, options);
+        self.progress.prepare_us = start.elapsed().as_micros() as u64;
+        drawn
+    }
+
+    fn prepare_chunks(
         &mut self,
         gpu: &GpuContext,
         frame: &Frame,
@@ -204,6 +228,7 @@ impl TerrainPass {
                 LodSettings::for_spacing(radius_m, self.surface.heights.sample_spacing_rad());
             self.chunks.clear();
             self.worker.reset();
+            self.selector.reset();
         }
         let camera = frame.camera_position_m;
         let surface = &self.surface;
@@ -222,14 +247,28 @@ impl TerrainPass {
             f64::from(frame.height),
             frame.vertical_fov_deg.to_radians(),
         );
-        let selected = select_chunks(&self.lod, &view, |d| surface.elevation_m(d))
-            .map_err(|e| RenderError::Frame(e.to_string()))?;
-        let draws = if options.wait_for_chunks {
+        let (selected, draws) = if options.wait_for_chunks {
+            let selected = select_chunks(&self.lod, &view, |d| surface.elevation_m(d))
+                .map_err(|e| RenderError::Frame(e.to_string()))?;
             self.build_in_place(gpu, &selected);
-            selected.clone()
+            (selected.clone(), selected)
         } else {
-            self.build_off_thread(gpu, &selected, camera);
-            cover(&selected, |k| self.chunks.contains(k))
+            let surface = Arc::clone(surface);
+            let elevation: Elevation = Arc::new(move |d| surface.elevation_m(d));
+            self.selector
+                .update(SelectionRequest {
+                    settings: self.lod,
+                    view,
+                    elevation,
+                })
+                .map_err(|e| RenderError::Frame(e.to_string()))?;
+            let selection = self
+                .selector
+                .latest()
+                .unwrap_or_else(|| Arc::new(Selection::roots(view)));
+            self.build_off_thread(gpu, &selection.build_order);
+            let draws = cover(&selection.chunks, |k| self.chunks.contains(k));
+            (selection.chunks.clone(), draws)
         };
         self.progress = ChunkProgress {
             chosen: selected.len(),
@@ -238,6 +277,8 @@ impl TerrainPass {
                 .filter(|c| !self.chunks.contains(c.key))
                 .count(),
             building: self.worker.pending(),
+            selecting: self.selector.is_selecting(),
+            prepare_us: 0,
         };
 
         let [right, up, forward] = frame.axes();
@@ -349,37 +390,21 @@ impl TerrainPass {
     }
 
     /// Uploads the worker's finished meshes, builds the six roots here if missing (the
-    /// cover of last resort), and asks the worker for the chosen chunks still missing,
-    /// coarsest first, then nearest.
-    fn build_off_thread(&mut self, gpu: &GpuContext, selected: &[SelectedChunk], camera: DVec3) {
+    /// cover of last resort), and asks the worker for the chosen chunks still missing in
+    /// `build_order` (coarsest first, then nearest).
+    fn build_off_thread(&mut self, gpu: &GpuContext, build_order: &[SelectedChunk]) {
         for mesh in self.worker.finished() {
             if !self.chunks.contains(mesh.key) {
                 self.chunks
                     .insert(gpu, &self.normal_textures, &mesh, self.frame_number);
             }
         }
-        let roots: Vec<SelectedChunk> = Face::ALL
-            .iter()
-            .map(|&f| SelectedChunk {
-                key: ChunkKey::root(f),
-                coarser: [false; 4],
-            })
-            .collect();
-        self.build_in_place(gpu, &roots);
-        let mut missing: Vec<(u8, f64, SelectedChunk)> = selected
-            .iter()
-            .filter(|c| !self.chunks.contains(c.key) && !self.worker.is_building(c.key))
-            .map(|c| {
-                let centre = self
-                    .lod
-                    .bounding_sphere(c.key, &|d| self.surface.elevation_m(d))
-                    .0;
-                (c.key.level, (centre - camera).length(), *c)
-            })
-            .collect();
-        missing.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        for (_, _, chunk) in missing {
-            if !self.worker.request(&self.surface, chunk, self.lod.cells) {
+        self.build_in_place(gpu, &root_chunks());
+        for chunk in build_order {
+            if self.chunks.contains(chunk.key) || self.worker.is_building(chunk.key) {
+                continue;
+            }
+            if !self.worker.request(&self.surface, *chunk, self.lod.cells) {
                 break;
             }
         }
