@@ -119,9 +119,15 @@ pub fn measure(
             let per_ray = start.elapsed().as_secs_f64() / out.len() as f64;
             Ok((out, prepared_s + per_ray * f64::from(FRAME.0 * FRAME.1)))
         };
+        eprintln!("report: beams on {name}, the reference");
         let (truth, _) = luminance(BeamMethodId::Reference, &[])?;
         let floor = 0.01 * truth.iter().copied().fold(0.0, f64::max);
-        for variant in variants {
+        for (k, variant) in variants.iter().enumerate() {
+            eprintln!(
+                "report: beams on {name}, {}/{} {variant}",
+                k + 1,
+                variants.len()
+            );
             let mut words = variant.split_whitespace();
             let method: BeamMethodId = words.next().unwrap_or_default().parse()?;
             let options: Vec<String> = words.map(str::to_string).collect();
