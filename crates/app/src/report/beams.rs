@@ -32,13 +32,14 @@ pub const BEAM_SCENES: [&str; 4] = [
 ];
 
 /// The settings the report measures: the march at two step counts, the papers'
-/// defaults and a cheaper setting of each.
-pub const BEAM_VARIANTS: [&str; 6] = [
+/// defaults and a cheaper setting of each, and the q-table with fewer sub-planes.
+pub const BEAM_VARIANTS: [&str; 7] = [
     "march steps=32",
     "march steps=128",
     "planes2000",
     "planes2000 planes=50",
     "qtable2002",
+    "qtable2002 epsilon=0.1",
     "qtable2002 epsilon=1",
 ];
 
