@@ -21,7 +21,7 @@ use render_wgpu::GpuContext;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::shafts::beams::gpu_methods::{GPU_BEAM_METHODS, PreparedBeams};
 
-use crate::report::plot::{Point, Series, TimeAxis};
+use crate::report::plot::{Point, Series, TimeAxis, mean_points};
 
 /// The shipped scenes (`assets/scenes/beams/`).
 pub const BEAM_SCENES: [&str; 4] = [
@@ -220,21 +220,13 @@ pub fn points(rows: &[BeamRow], variants: &[&str]) -> (Vec<Point>, Vec<Point>) {
         let Some(first) = own.first() else {
             continue;
         };
-        let n = own.len() as f64;
-        let point = Point {
-            label: variant.to_string(),
-            series: Series::Beam(first.method),
-            frame_time: own.iter().map(|r| r.cpu_frame_s).sum::<f64>() / n,
-            error_percent: 100.0 * own.iter().map(|r| r.rms).sum::<f64>() / n,
-        };
-        let gpu_times: Option<Vec<f64>> = own.iter().map(|r| r.gpu_ms).collect();
-        if let Some(times) = gpu_times {
-            gpu.push(Point {
-                frame_time: times.iter().sum::<f64>() / n,
-                ..point.clone()
-            });
-        }
+        let scenes: Vec<(f64, f64, Option<f64>)> = own
+            .iter()
+            .map(|r| (r.cpu_frame_s, r.rms, r.gpu_ms))
+            .collect();
+        let (point, gpu_point) = mean_points(variant, Series::Beam(first.method), &scenes);
         cpu.push(point);
+        gpu.extend(gpu_point);
     }
     (cpu, gpu)
 }

@@ -77,6 +77,29 @@ impl Point {
     }
 }
 
+/// One setting's points from its rows on several scenes, `(CPU frame s, relative RMS
+/// error, GPU time)` each: the means of its CPU time and error, and of its GPU time
+/// where every scene has one.
+pub fn mean_points(
+    label: &str,
+    series: Series,
+    scenes: &[(f64, f64, Option<f64>)],
+) -> (Point, Option<Point>) {
+    let n = scenes.len().max(1) as f64;
+    let point = Point {
+        label: label.to_string(),
+        series,
+        frame_time: scenes.iter().map(|s| s.0).sum::<f64>() / n,
+        error_percent: 100.0 * scenes.iter().map(|s| s.1).sum::<f64>() / n,
+    };
+    let gpu_times: Option<Vec<f64>> = scenes.iter().map(|s| s.2).collect();
+    let gpu = gpu_times.map(|times| Point {
+        frame_time: times.iter().sum::<f64>() / n,
+        ..point.clone()
+    });
+    (point, gpu)
+}
+
 /// The points on the Pareto front, fastest first: each more accurate than every faster
 /// point.
 pub fn pareto_front(points: &[Point]) -> Vec<Point> {

@@ -24,7 +24,7 @@ use crate::bench::variant::Variant;
 use crate::probe_terrain::{Shadows, TerrainPlace, evaluate_timed};
 use crate::progress::Progress;
 use crate::render::scene::Scene;
-use crate::report::plot::{Point, Series, TimeAxis};
+use crate::report::plot::{Point, Series, TimeAxis, mean_points};
 use crate::report::views::ReportView;
 
 /// The shipped scenes with terrain (`assets/scenes/`).
@@ -323,24 +323,19 @@ pub fn points(rows: &[ShaftRow], variants: &[&str]) -> (Vec<Point>, Vec<Point>) 
         let Some(first) = own.first() else {
             continue;
         };
-        let n = own.len() as f64;
-        let point = Point {
-            label: variant.to_string(),
-            series: Series::Sky(first.model),
-            frame_time: own.iter().map(|r| r.cpu_frame_s).sum::<f64>() / n,
-            error_percent: 100.0 * own.iter().map(|r| r.rms).sum::<f64>() / n,
-        };
-        let gpu_times: Option<Vec<f64>> = own
+        let scenes: Vec<(f64, f64, Option<f64>)> = own
             .iter()
-            .map(|r| r.gpu.as_ref().and_then(|g| g.pass_with_ms))
+            .map(|r| {
+                (
+                    r.cpu_frame_s,
+                    r.rms,
+                    r.gpu.as_ref().and_then(|g| g.pass_with_ms),
+                )
+            })
             .collect();
-        if let Some(times) = gpu_times {
-            gpu.push(Point {
-                frame_time: times.iter().sum::<f64>() / n,
-                ..point.clone()
-            });
-        }
+        let (point, gpu_point) = mean_points(variant, Series::Sky(first.model), &scenes);
         cpu.push(point);
+        gpu.extend(gpu_point);
     }
     (cpu, gpu)
 }
