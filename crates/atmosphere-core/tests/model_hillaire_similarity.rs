@@ -195,11 +195,13 @@ fn the_scaled_term_stays_close_on_clear_skies() {
 }
 
 /// The stability sweep (extreme rays and atmospheres, the sun crossing the horizon, the
-/// top boundary) with the scaled term on.
+/// top boundary) with the scaled term on, at the 100 directions of the report's setting
+/// that meets its daytime target.
 #[test]
 fn the_scaled_term_passes_the_stability_sweep() {
     let mut settings = ModelSettings::default();
     settings.options.set("ms_delta", DELTA);
+    settings.options.set("ms_directions", "100");
     let results = atmosphere_core::analysis::stability::run_with(
         atmosphere_core::models::id::ModelId::Hillaire,
         &settings,

@@ -63,6 +63,11 @@ pub fn report_variants() -> Vec<Variant> {
             &["ms_order=2", "ms_directions=256"],
         ),
         Variant::new(ModelId::Hillaire, None, &["ms_delta=0.45"]),
+        Variant::new(
+            ModelId::Hillaire,
+            None,
+            &["ms_delta=0.45", "ms_directions=100"],
+        ),
         Variant::new(ModelId::Bruneton, Some(1), &[]),
         Variant::new(ModelId::Bruneton, Some(2), &[]),
         Variant::new(ModelId::Bruneton, None, &[]),
