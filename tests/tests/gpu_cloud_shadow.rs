@@ -13,6 +13,8 @@
 
 mod support;
 
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
@@ -100,6 +102,8 @@ fn clouds(renderer: &mut Renderer, frame: &Frame, settings: &LayerSettings, prun
         .set_clouds(Some(FrameClouds {
             settings: *settings,
             light,
+            form: CloudForm::Layer,
+            spheres: SphereSettings::default(),
             prune,
         }))
         .unwrap();
