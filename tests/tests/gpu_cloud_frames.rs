@@ -20,8 +20,6 @@
 
 mod support;
 
-use atmosphere_core::clouds::spheres::handover::CloudForm;
-use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::composite::composite;
 use atmosphere_core::clouds::layer::field::CloudLayer;
@@ -36,6 +34,8 @@ use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_sur
 use atmosphere_core::clouds::layer::sun_map::CloudSunMap;
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, nearest_pixel, reduced_size};
 use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::geo::equirectangular::lat_lon;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;

@@ -13,14 +13,14 @@
 
 mod support;
 
-use atmosphere_core::clouds::spheres::handover::CloudForm;
-use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_surface;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::optics::phase::PhaseFunction;

@@ -12,12 +12,12 @@ use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::droplets;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
-use atmosphere_core::clouds::spheres::handover::CloudForm;
-use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::clouds::layer::settings::{
     LayerMethod, LayerSettings, MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M,
     MIN_THICKNESS_M, SunLight,
 };
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::registry::prepare;
 use clap::Args;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};

@@ -301,7 +301,10 @@ mod tests {
             let (plan, steps) = planned(altitude_m, CloudForm::Auto);
             let steps = steps.unwrap();
             assert!(steps.march.is_none() && steps.spheres.is_some() && steps.weight == 1.0);
-            assert!(!plan.runs("clouds") && plan.runs("cloud_spheres"), "{altitude_m}");
+            assert!(
+                !plan.runs("clouds") && plan.runs("cloud_spheres"),
+                "{altitude_m}"
+            );
             assert_eq!(skipped_why(&plan, "clouds"), Some(ABOVE_HANDOVER));
         }
         // In the band both run, blended.

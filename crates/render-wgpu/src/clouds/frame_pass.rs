@@ -25,11 +25,11 @@ use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
-use crate::gpu::timer::GpuTimer;
 use crate::gpu::pipeline::{
     ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_buffer_entry,
     storage_texture_entry, texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
+use crate::gpu::timer::GpuTimer;
 use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -239,7 +239,12 @@ impl CloudFramePass {
         targets: &CloudTargets,
         (steps, timer): (&CloudSteps, Option<&GpuTimer>),
     ) -> Result<(), RenderError> {
-        let flags = [u32::from(scene.has_surface), u32::from(scene.has_front), 0, 0];
+        let flags = [
+            u32::from(scene.has_surface),
+            u32::from(scene.has_front),
+            0,
+            0,
+        ];
         gpu.write_uniform(&self.flags, &flags);
         if let Some(march) = steps.march {
             let writes = timer.map(|t| t.compute_writes(march));

@@ -100,6 +100,9 @@ mod tests {
             assert_eq!(form.to_string().parse::<CloudForm>(), Ok(form));
         }
         let e = "volume".parse::<CloudForm>().unwrap_err();
-        assert!(e.0.contains("\"volume\" is not one of auto, layer, spheres"), "{e}");
+        assert!(
+            e.0.contains("\"volume\" is not one of auto, layer, spheres"),
+            "{e}"
+        );
     }
 }

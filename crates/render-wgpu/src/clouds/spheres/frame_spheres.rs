@@ -82,7 +82,11 @@ impl FrameSpherePass {
                 "cloud spheres in frames",
                 &entries,
             )?,
-            params: uniform_buffer(&gpu.device, "cloud spheres in frames", size_of::<SphereUniform>()),
+            params: uniform_buffer(
+                &gpu.device,
+                "cloud spheres in frames",
+                size_of::<SphereUniform>(),
+            ),
             flags: uniform_buffer(&gpu.device, "cloud spheres in frames flags", 16),
         })
     }
@@ -115,7 +119,12 @@ impl FrameSpherePass {
         };
         let params = SphereUniform::new(&scene.camera, scene.light, &made.spheres)?;
         gpu.write_uniform(&self.params, &params);
-        let flags = [f32::from(u8::from(scene.has_surface)), scene.weight as f32, 0.0, 0.0];
+        let flags = [
+            f32::from(u8::from(scene.has_surface)),
+            scene.weight as f32,
+            0.0,
+            0.0,
+        ];
         gpu.write_uniform(&self.flags, &flags);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (layer, out, front) = (view(images.layer), view(images.out), view(images.front));

@@ -79,12 +79,12 @@ impl SphereCache {
             return Ok(made);
         }
         *made = None;
-        let frame_error = |e: atmosphere_core::clouds::error::CloudError| {
-            RenderError::Frame(e.to_string())
-        };
+        let frame_error =
+            |e: atmosphere_core::clouds::error::CloudError| RenderError::Frame(e.to_string());
         // The spheres take the density of the layer's cover and profile; their light
         // takes A_1 from `orders`, so the layer's own phase function is not read.
-        let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.0 }).map_err(frame_error)?;
+        let phase =
+            CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.0 }).map_err(frame_error)?;
         let field = CloudLayer::new(*layer, bottom_radius_m, self.cover.clone(), phase)
             .map_err(frame_error)?;
         let cloud_spheres = CloudSpheres::new(&field, spheres, sun).map_err(frame_error)?;
