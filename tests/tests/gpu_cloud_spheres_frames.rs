@@ -47,7 +47,7 @@ const ASCENT_M: [f64; 8] = [40e3, 55e3, 62e3, 70e3, 78e3, 86e3, 94e3, 110e3];
 /// their mean, beyond the larger step of the two forced ascents over the same interval.
 const STEP_ALLOWANCE: f64 = 0.015;
 
-/// Cells about 60 km across, with clear gaps.
+/// Cells about 200 km across, with clear gaps.
 fn cover() -> CoverGrid {
     CoverGrid::rasterize(2048, 1024, |p| {
         let (lat, lon) = lat_lon(p);
