@@ -171,20 +171,27 @@ struct SpheresAlong {
 // Along a ray the radius falls to its closest approach and rises after it, so the
 // shells' first intervals, outermost first, then their second intervals, innermost
 // first, are the crossings in order of distance (`shells.rs` sorts them); each is
-// composited front to back until the transmittance falls below MIN_TRANSMITTANCE.
+// composited front to back until the transmittance falls below MIN_TRANSMITTANCE, where
+// the loop stops. A ray that meets the ground ends before its closest approach, so it
+// has no second intervals and the loop takes the first ones only.
 fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
     let r = length(o);
     let mu = clamp(dot(o, d) / r, -1.0, 1.0);
     var end = end_m;
+    var halves = 2u;
     let ground = sphere_roots(r, mu, spheres.radii_m.x);
     if ground.x <= ground.y && ground.x >= 0.0 && mu < 0.0 {
         end = min(end, ground.x);
+        halves = 1u;
     }
     let m = spheres.counts.x;
     var result = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     var first = -1.0;
-    for (var half = 0u; half < 2u; half++) {
+    for (var half = 0u; half < halves; half++) {
         for (var n = 0u; n < m; n++) {
+            if result.a < MIN_TRANSMITTANCE {
+                break;
+            }
             // First intervals from the outermost shell in, then second ones outwards.
             var k = n;
             if half == 0u {
@@ -208,9 +215,6 @@ fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
             }
             let t0 = max(t.x, 0.0);
             let t1 = min(t.y, end);
-            if result.a < MIN_TRANSMITTANCE {
-                break;
-            }
             if t0 < t1 {
                 if first < 0.0 {
                     first = t0;
@@ -218,6 +222,9 @@ fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
                 let c = shade_crossing(o, d, k, t0, t1);
                 result = vec4<f32>(result.rgb + result.a * c.rgb, result.a * c.a);
             }
+        }
+        if result.a < MIN_TRANSMITTANCE {
+            break;
         }
     }
     return SpheresAlong(result, first);
