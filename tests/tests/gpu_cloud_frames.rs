@@ -34,6 +34,8 @@ use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_sur
 use atmosphere_core::clouds::layer::sun_map::CloudSunMap;
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, nearest_pixel, reduced_size};
 use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::geo::equirectangular::lat_lon;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
@@ -251,6 +253,8 @@ fn inside_the_layer_the_second_run_is_skipped_and_the_frame_still_matches_the_cp
     let clouds = FrameClouds {
         settings,
         light: light.clone(),
+        form: CloudForm::Layer,
+        spheres: SphereSettings::default(),
         prune: true,
     };
     let (gpu, plan) = render(&mut renderer, &frame, Some(clouds));
@@ -293,6 +297,8 @@ fn composited_frames_match_the_cpu_composite_for_three_models() {
             .set_clouds(Some(FrameClouds {
                 settings,
                 light: light.clone(),
+                form: CloudForm::Layer,
+                spheres: SphereSettings::default(),
                 prune: true,
             }))
             .unwrap();
@@ -367,6 +373,8 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
     let clouds = |settings| FrameClouds {
         settings,
         light: light.clone(),
+        form: CloudForm::Layer,
+        spheres: SphereSettings::default(),
         prune: true,
     };
     renderer.set_clouds(Some(clouds(full))).unwrap();
@@ -494,6 +502,8 @@ fn cover_zero_leaves_the_frame_exactly_as_without_clouds() {
     let clouds = |prune| FrameClouds {
         settings: settings(),
         light: light.clone(),
+        form: CloudForm::Layer,
+        spheres: SphereSettings::default(),
         prune,
     };
     let (clear, _) = render(&mut renderer, &frame, None);
@@ -530,6 +540,8 @@ fn pruning_a_layer_out_of_view_changes_nothing() {
     let clouds = |prune| FrameClouds {
         settings: settings(),
         light: light.clone(),
+        form: CloudForm::Layer,
+        spheres: SphereSettings::default(),
         prune,
     };
     let (run, plan) = render(&mut renderer, &frame, Some(clouds(false)));
@@ -568,6 +580,8 @@ fn bad_cloud_input_is_refused_by_name() {
             ..settings()
         },
         light: light.clone(),
+        form: CloudForm::Layer,
+        spheres: SphereSettings::default(),
         prune: true,
     };
     let e = renderer.set_clouds(Some(bad)).unwrap_err().to_string();
@@ -576,6 +590,8 @@ fn bad_cloud_input_is_refused_by_name() {
         .set_clouds(Some(FrameClouds {
             settings: settings(),
             light,
+            form: CloudForm::Layer,
+            spheres: SphereSettings::default(),
             prune: true,
         }))
         .unwrap();

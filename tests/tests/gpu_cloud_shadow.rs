@@ -19,6 +19,8 @@ use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_surface;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::optics::phase::PhaseFunction;
@@ -100,6 +102,8 @@ fn clouds(renderer: &mut Renderer, frame: &Frame, settings: &LayerSettings, prun
         .set_clouds(Some(FrameClouds {
             settings: *settings,
             light,
+            form: CloudForm::Layer,
+            spheres: SphereSettings::default(),
             prune,
         }))
         .unwrap();

@@ -253,6 +253,11 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "--cloud-method: cloud method \"slices\" is not one of riley, octaves",
         ),
         (
+            &[("--clouds", "true"), ("--cloud-form", "volume")],
+            "frame.png",
+            "--cloud-form: cloud form \"volume\" is not one of auto, layer, spheres",
+        ),
+        (
             &[
                 ("--clouds", "true"),
                 ("--cloud-cover", "/nonexistent/c.png:g"),

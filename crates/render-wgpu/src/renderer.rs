@@ -356,13 +356,13 @@ impl Renderer {
             return Err(e);
         }
         // (march, the second run's first step, the composite).
-        let cloud_steps = clouds_step.map(|march| {
+        let cloud_steps = clouds_step.map(|steps| {
             let front = front_needed.then(|| {
                 plan.run("cloud_front", StepKind::Pass);
                 plan.steps.len() as u32 - 1
             });
             plan.run("cloud_composite", StepKind::Pass);
-            (march, front, plan.steps.len() as u32 - 1)
+            (steps, front, plan.steps.len() as u32 - 1)
         });
         let volumes_step = plan_volumes(frame, &self.volumes, &mut plan);
         if volumes_step.is_some() && self.volumes_pass.is_none() {
@@ -412,7 +412,7 @@ impl Renderer {
                 timer.map(|t| t.render_writes(0)),
             );
         }
-        if let (Some((march, _, _)), Some(c), Some(pass), Some(clouds), Some((inputs, _))) = (
+        if let (Some((steps, _, _)), Some(c), Some(pass), Some(clouds), Some((inputs, _))) = (
             cloud_steps,
             cloud_targets,
             &self.cloud_pass,
@@ -437,10 +437,7 @@ impl Renderer {
             let writes = writes.map(|(t, s)| t.compute_writes(s));
             let marched = (self.sun_map)
                 .encode(gpu, &mut encoder, (frame, clouds, inputs), pixels, writes)
-                .and_then(|()| {
-                    let writes = timer.map(|t| t.compute_writes(march));
-                    pass.encode_march(gpu, &mut encoder, &scene, c, writes)
-                });
+                .and_then(|()| pass.encode_clouds(gpu, &mut encoder, &scene, c, (&steps, timer)));
             if let Err(e) = marched {
                 self.targets = Some(targets);
                 return Err(e);
@@ -452,7 +449,7 @@ impl Renderer {
             encoder: &mut encoder,
             timer,
         });
-        if let (Some((_, front, composite)), Some(c), Some(pass)) =
+        if let (Some((steps, front, composite)), Some(c), Some(pass)) =
             (cloud_steps, cloud_targets, &self.cloud_pass)
         {
             if let Some(front) = front {
@@ -478,7 +475,7 @@ impl Renderer {
                 gpu,
                 &mut encoder,
                 (&self.atmosphere, &self.frame),
-                c,
+                (c, &steps),
                 before_volumes,
                 timer.map(|t| t.compute_writes(composite)),
             );

@@ -1,7 +1,8 @@
 // Library: the cloud spheres' textures, crossings and light, twin of atmosphere-core's
 // `clouds/spheres/shells.rs`, `cloud_textures.rs`, `attenuation.rs` (the read) and
 // `field.rs` (whose documentation holds the equations: Dobashi et al. 2002 section 5.4,
-// the light integrated over each crossing with Wrenninge et al. 2013's octaves).
+// the light integrated over each crossing with Wrenninge et al. 2013's octaves), and the
+// crossings of a ray composited front to back (`composite.rs`, `spheres_only`).
 
 #import clouds/spheres/params.wgsl
 
@@ -153,4 +154,78 @@ fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32) -> vec4<
     let radiance = spheres.medium.x
         * (spheres.sun_irradiance.xyz * sun + spheres.sky_irradiance.xyz * sky);
     return vec4<f32>(radiance, exp(-tau_v));
+}
+
+// Below this transmittance the crossings behind are left out (`composite.rs`'s
+// MIN_TRANSMITTANCE).
+const MIN_TRANSMITTANCE: f32 = 1e-4;
+
+// The spheres along a ray: rgb their radiance, a their transmittance; and where the ray
+// first enters a shell (clamped to the camera; -1 when it crosses none before its end).
+struct SpheresAlong {
+    cloud: vec4<f32>,
+    first_m: f32,
+}
+
+// The spheres along the ray from o along the unit d, ended on the ground or at `end_m`.
+// Along a ray the radius falls to its closest approach and rises after it, so the
+// shells' first intervals, outermost first, then their second intervals, innermost
+// first, are the crossings in order of distance (`shells.rs` sorts them); each is
+// composited front to back until the transmittance falls below MIN_TRANSMITTANCE, where
+// the loop stops. A ray that meets the ground ends before its closest approach, so it
+// has no second intervals and the loop takes the first ones only.
+fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
+    let r = length(o);
+    let mu = clamp(dot(o, d) / r, -1.0, 1.0);
+    var end = end_m;
+    var halves = 2u;
+    let ground = sphere_roots(r, mu, spheres.radii_m.x);
+    if ground.x <= ground.y && ground.x >= 0.0 && mu < 0.0 {
+        end = min(end, ground.x);
+        halves = 1u;
+    }
+    let m = spheres.counts.x;
+    var result = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    var first = -1.0;
+    for (var half = 0u; half < halves; half++) {
+        for (var n = 0u; n < m; n++) {
+            if result.a < MIN_TRANSMITTANCE {
+                break;
+            }
+            // First intervals from the outermost shell in, then second ones outwards.
+            var k = n;
+            if half == 0u {
+                k = m - 1u - n;
+            }
+            let inner = spheres.radii_m.y + f32(k) * spheres.radii_m.w;
+            let outer_roots = sphere_roots(r, mu, inner + spheres.radii_m.w);
+            if outer_roots.x > outer_roots.y {
+                continue;
+            }
+            let inner_roots = sphere_roots(r, mu, inner);
+            var t = outer_roots;
+            if inner_roots.x <= inner_roots.y {
+                if half == 0u {
+                    t.y = min(t.y, inner_roots.x);
+                } else {
+                    t.x = max(t.x, inner_roots.y);
+                }
+            } else if half == 1u {
+                continue;
+            }
+            let t0 = max(t.x, 0.0);
+            let t1 = min(t.y, end);
+            if t0 < t1 {
+                if first < 0.0 {
+                    first = t0;
+                }
+                let c = shade_crossing(o, d, k, t0, t1);
+                result = vec4<f32>(result.rgb + result.a * c.rgb, result.a * c.a);
+            }
+        }
+        if result.a < MIN_TRANSMITTANCE {
+            break;
+        }
+    }
+    return SpheresAlong(result, first);
 }

@@ -9,6 +9,8 @@
 //! sun light and again with the other (`sun_light = march`, a shadow march per sample;
 //! `map`, the frame's sun map), for comparison.
 
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use std::fmt::Write as _;
 
 use atmosphere_core::atmosphere::Atmosphere;
@@ -113,6 +115,8 @@ pub fn measure(
         let clouds = FrameClouds {
             settings,
             light: frame_light(model.as_ref(), &frame, &settings)?,
+            form: CloudForm::Auto,
+            spheres: SphereSettings::default(),
             prune: true,
         };
         let (mut added, mut clear, mut sky) = (Vec::new(), Vec::new(), Vec::new());

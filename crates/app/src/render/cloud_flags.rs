@@ -1,6 +1,7 @@
 //! The cloud layer of a scene (`atmos render --clouds`, or a scene file's `[clouds]`
-//! table): where the cover comes from, where the layer lies, how dense it is and how its
-//! light is computed, each checked against its range with errors naming the flag; and
+//! table): where the cover comes from, where the layer lies, how dense it is, how its
+//! light is computed and which form shows it (the layer, the spheres, or by altitude),
+//! each checked against its range with errors naming the flag; and
 //! what the renderer needs from them (docs/clouds.md, "Clouds in frames").
 
 use std::path::Path;
@@ -15,6 +16,8 @@ use atmosphere_core::clouds::layer::settings::{
     LayerMethod, LayerSettings, MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M,
     MIN_THICKNESS_M, SunLight,
 };
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::registry::prepare;
 use clap::Args;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
@@ -64,6 +67,11 @@ pub struct CloudFlags {
     /// or map (the frame's sun map, made once a frame) [default: march].
     #[arg(long = "cloud-sun-light", value_name = "march|map")]
     pub sun_light: Option<String>,
+    /// Which form shows the cloud: layer (the volume's march), spheres (Dobashi et al.
+    /// 2002's cloud spheres), or auto (the layer up to 50 km, the spheres from 100 km,
+    /// blended between) [default: auto].
+    #[arg(long = "cloud-form", value_name = "auto|layer|spheres")]
+    pub form: Option<String>,
 }
 
 impl CloudFlags {
@@ -83,6 +91,7 @@ impl CloudFlags {
             method: flags.method.or(self.method),
             quality: flags.quality.or(self.quality),
             sun_light: flags.sun_light.or(self.sun_light),
+            form: flags.form.or(self.form),
         }
     }
 
@@ -150,6 +159,17 @@ impl CloudFlags {
         Ok(Some(settings))
     }
 
+    /// The form of `--cloud-form`; an unknown one is an error naming the flag and the
+    /// forms.
+    pub fn form(&self) -> anyhow::Result<CloudForm> {
+        match &self.form {
+            Some(f) => f
+                .parse::<CloudForm>()
+                .map_err(|e| anyhow::anyhow!("--cloud-form: {e}")),
+            None => Ok(CloudForm::default()),
+        }
+    }
+
     /// The cover grid of `--cloud-cover`.
     pub fn cover_grid(&self) -> anyhow::Result<CoverGrid> {
         let source = self.cover.as_deref().unwrap_or("generated");
@@ -206,6 +226,7 @@ pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
 #[derive(Debug)]
 pub struct CloudInputs {
     pub settings: LayerSettings,
+    pub form: CloudForm,
     pub cover: CoverGrid,
     pub orders: ScatteringOrders,
 }
@@ -218,6 +239,7 @@ impl CloudInputs {
         };
         Ok(Some(CloudInputs {
             settings,
+            form: flags.form()?,
             cover: flags.cover_grid()?,
             orders: droplet_orders()?,
         }))
@@ -231,6 +253,8 @@ impl CloudInputs {
         renderer.set_clouds(Some(FrameClouds {
             settings: self.settings,
             light,
+            form: self.form,
+            spheres: SphereSettings::default(),
             prune: true,
         }))?;
         Ok(())
@@ -320,6 +344,17 @@ mod tests {
             e.contains("--cloud-method") && e.contains("riley, octaves"),
             "{e}"
         );
+        let e = CloudFlags {
+            form: Some("volume".into()),
+            ..on()
+        }
+        .form()
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("--cloud-form") && e.contains("auto, layer, spheres"),
+            "{e}"
+        );
         let e = error(CloudFlags {
             sun_light: Some("rays".into()),
             ..on()
@@ -388,5 +423,13 @@ mod tests {
         assert_eq!(merged.base_m, Some(1200.0));
         assert_eq!(merged.method.as_deref(), Some("octaves"));
         assert!(toml::from_str::<CloudFlags>("bse_m = 1.0\n").is_err());
+        let file: CloudFlags = toml::from_str("on = true\nform = \"spheres\"\n").unwrap();
+        assert_eq!(file.form().unwrap(), CloudForm::Spheres);
+        let forced = file.overridden_by(CloudFlags {
+            form: Some("layer".into()),
+            ..CloudFlags::default()
+        });
+        assert_eq!(forced.form().unwrap(), CloudForm::Layer);
+        assert_eq!(CloudFlags::default().form().unwrap(), CloudForm::Auto);
     }
 }

@@ -1,5 +1,6 @@
 //! The side panel's "Clouds" section: the cloud layer on or off, its cover, base
-//! altitude, thickness, density, method and march quality (`cloud_settings.rs`).
+//! altitude, thickness, density, method, march quality and form: the volume layer, the
+//! cloud spheres or a choice by altitude (`cloud_settings.rs`).
 
 use atmosphere_core::clouds::layer::settings::{
     MAX_BASE_M, MAX_EXTINCTION_PER_M, MAX_THICKNESS_M, MIN_BASE_M, MIN_THICKNESS_M,
@@ -59,6 +60,19 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
                 .on_hover_text(
                     "interactive: 20 steps at a third of the resolution, for flight; \
                      offline: 128 steps at full resolution, for recordings",
+                );
+            egui::ComboBox::from_label("form")
+                .selected_text(clouds.form.as_str())
+                .show_ui(ui, |ui| {
+                    for form in ["auto", "layer", "spheres"] {
+                        ui.selectable_value(&mut clouds.form, form.to_string(), form);
+                    }
+                })
+                .response
+                .on_hover_text(
+                    "auto: the layer up to 50 km, the cloud spheres from 100 km, blended \
+                     between; layer: the volume's march; spheres: Dobashi et al. 2002's \
+                     cloud spheres (made anew on the CPU when the sun moves)",
                 );
         });
     });

@@ -4,6 +4,7 @@
 
 use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::spheres::handover::CloudForm;
 use serde::{Deserialize, Serialize};
 
 use crate::render::cloud_flags::CloudFlags;
@@ -26,6 +27,8 @@ pub struct CloudSettings {
     pub method: String,
     /// The march's quality, `interactive` or `offline`.
     pub quality: String,
+    /// The form the cloud takes: `auto` (by altitude), `layer` or `spheres`.
+    pub form: String,
 }
 
 impl Default for CloudSettings {
@@ -39,6 +42,7 @@ impl Default for CloudSettings {
             density_per_m: layer.extinction_per_m,
             method: layer.method.to_string(),
             quality: MarchQuality::Interactive.to_string(),
+            form: CloudForm::default().to_string(),
         }
     }
 }
@@ -55,6 +59,7 @@ impl CloudSettings {
             method: Some(self.method.clone()),
             quality: Some(self.quality.clone()),
             sun_light: None,
+            form: Some(self.form.clone()),
         }
     }
 }
@@ -77,5 +82,9 @@ mod tests {
         assert!(e.contains("--cloud-thickness-m 1"), "{e}");
         let stored: CloudSettings = toml::from_str("on = true").unwrap();
         assert_eq!(stored.base_m, LayerSettings::default().base_m);
+        assert_eq!(stored.flags().form().unwrap(), CloudForm::Auto);
+        clouds.form = "slabs".into();
+        let e = clouds.flags().form().unwrap_err().to_string();
+        assert!(e.contains("--cloud-form") && e.contains("\"slabs\""), "{e}");
     }
 }

@@ -4,6 +4,7 @@
 //! layer) and given to the renderer before each frame.
 
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel};
@@ -80,6 +81,8 @@ impl CloudState {
         renderer.set_clouds(Some(FrameClouds {
             settings: layer,
             light,
+            form: flags.form()?,
+            spheres: SphereSettings::default(),
             prune: true,
         }))?;
         Ok(())

@@ -1,12 +1,16 @@
 //! The cloud layer of a renderer frame: its settings and light ([`FrameClouds`]), the
-//! planner's rule for when the frame can do without it ([`why_no_clouds`]), and the light
-//! from the frame's CPU sky model ([`frame_light`]). The compositing is
+//! planner's rule for when the frame can do without it ([`why_no_clouds`]), its rule for
+//! the form the cloud takes by the camera's altitude, the layer's march, the spheres or
+//! both blended ([`plan_clouds`], atmosphere-core's `clouds/spheres/handover.rs`), and
+//! the light from the frame's CPU sky model ([`frame_light`]). The compositing is
 //! atmosphere-core's `clouds/layer/composite.rs`; the GPU passes are
 //! [`crate::clouds::frame_pass`].
 
 use atmosphere_core::clouds::layer::composite::light_at;
 use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::spheres::handover::{CloudForm, sphere_weight};
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::sky_model::SkyModel;
 
 use crate::frame::Frame;
@@ -22,6 +26,15 @@ pub const LAYER_NOT_IN_VIEW: &str = "the cloud layer is not in view";
 /// inside the layer: every ray enters the cloud at the camera, with no air in front.
 pub const CAMERA_IN_LAYER: &str = "the camera is inside the cloud layer";
 
+/// Why the planner leaves out the spheres under the hand-over band (`CloudForm::Auto`).
+pub const BELOW_HANDOVER: &str = "the camera is below the hand-over to the cloud spheres (50 km)";
+/// Why the planner leaves out the layer's march above the hand-over band.
+pub const ABOVE_HANDOVER: &str = "the camera is above the hand-over to the cloud spheres (100 km)";
+/// Why the planner leaves out the spheres when the form is forced to the layer.
+pub const FORCED_LAYER: &str = "the cloud form is set to the layer";
+/// Why the planner leaves out the layer's march when the form is forced to the spheres.
+pub const FORCED_SPHERES: &str = "the cloud form is set to the spheres";
+
 /// The cloud layer a frame shows: the layer's settings and the light on it (one value
 /// for the image, as the layer pass takes it). The cover and the multiple-scattering
 /// tables are uploaded once ([`crate::Renderer::set_cloud_inputs`]).
@@ -30,6 +43,10 @@ pub struct FrameClouds {
     pub settings: LayerSettings,
     /// The sun and sky light on the layer at the frame's three wavelengths.
     pub light: CloudLight,
+    /// The layer's march, the cloud spheres, or a choice by the camera's altitude.
+    pub form: CloudForm,
+    /// The spheres' count and attenuation textures.
+    pub spheres: SphereSettings,
     /// Whether the planner may leave the cloud steps out when they cannot change the
     /// image ([`why_no_clouds`]); off only to check that pruning changes nothing.
     pub prune: bool,
@@ -97,16 +114,28 @@ pub fn frame_light(
     Ok(light_at(model, vertical * (0.5 * (base_m + top_m)), sun)?)
 }
 
-/// The cloud steps of `frame` in `plan`: the march's step index (`None`: no clouds, or
-/// pruned with the reason recorded when `clouds.prune`), and whether the model's second
-/// run in front of the cloud is needed ([`why_nothing_in_front`]). `max_cover` is the
-/// cover's largest value, `None` when no cover was given.
+/// The cloud steps a frame runs: the layer's march, the spheres (blended with the
+/// march by `weight` when both run) and their indices in the frame's plan.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CloudSteps {
+    pub march: Option<u32>,
+    pub spheres: Option<u32>,
+    /// The spheres' share of the cloud, in [0, 1] (`handover.rs`'s `sphere_weight`).
+    pub weight: f64,
+}
+
+/// The cloud steps of `frame` in `plan` (`None`: no clouds, or pruned with the reason
+/// recorded when `clouds.prune`), and whether the model's second run in front of the
+/// cloud is needed ([`why_nothing_in_front`]). The spheres' weight of the camera's
+/// altitude chooses the steps: the march alone at 0, the spheres alone at 1, both in
+/// between; the plan names the one left out and why. `max_cover` is the cover's largest
+/// value, `None` when no cover was given.
 pub fn plan_clouds(
     frame: &Frame,
     clouds: Option<&FrameClouds>,
     max_cover: Option<f64>,
     plan: &mut FramePlan,
-) -> Result<(Option<u32>, bool), RenderError> {
+) -> Result<(Option<CloudSteps>, bool), RenderError> {
     let Some(clouds) = clouds else {
         return Ok((None, false));
     };
@@ -115,18 +144,43 @@ pub fn plan_clouds(
             "clouds are on but no cloud cover was given (set_cloud_inputs)".into(),
         ));
     };
+    clouds
+        .spheres
+        .check()
+        .map_err(|e| RenderError::Frame(e.to_string()))?;
     if let Some(why) = why_no_clouds(frame, &clouds.settings, max_cover).filter(|_| clouds.prune) {
         plan.skip("clouds", why);
         return Ok((None, false));
     }
-    plan.run("clouds", StepKind::Pass);
-    let march = plan.steps.len() as u32 - 1;
+    let altitude_m = frame.camera_position_m.length() - frame.atmosphere.bottom_radius_m;
+    let weight = sphere_weight(clouds.form, altitude_m);
+    let (why_no_march, why_no_spheres) = match clouds.form {
+        CloudForm::Layer => (FORCED_LAYER, FORCED_LAYER),
+        CloudForm::Spheres => (FORCED_SPHERES, FORCED_SPHERES),
+        CloudForm::Auto => (ABOVE_HANDOVER, BELOW_HANDOVER),
+    };
+    let mut step = |name, runs: bool, why| {
+        if runs {
+            plan.run(name, StepKind::Pass);
+            Some(plan.steps.len() as u32 - 1)
+        } else {
+            plan.skip(name, why);
+            None
+        }
+    };
+    let march = step("clouds", weight < 1.0, why_no_march);
+    let spheres = step("cloud_spheres", weight > 0.0, why_no_spheres);
+    let steps = Some(CloudSteps {
+        march,
+        spheres,
+        weight,
+    });
     match why_nothing_in_front(frame, &clouds.settings) {
         Some(why) => {
             plan.skip("cloud_front", why);
-            Ok((Some(march), false))
+            Ok((steps, false))
         }
-        None => Ok((Some(march), true)),
+        None => Ok((steps, true)),
     }
 }
 
@@ -203,5 +257,68 @@ mod tests {
             ..settings
         };
         assert_eq!(why_no_clouds(&f, &empty, 1.0), Some(NO_CLOUD_IN_COVER));
+    }
+
+    fn planned(altitude_m: f64, form: CloudForm) -> (FramePlan, Option<CloudSteps>) {
+        let f = frame(altitude_m, -DVec3::Z);
+        let clouds = FrameClouds {
+            settings: LayerSettings::default(),
+            light: CloudLight {
+                sun_direction: DVec3::Z,
+                sun_irradiance: vec![1.5; 3],
+                sky_irradiance: vec![0.1; 3],
+                up: DVec3::Z,
+            },
+            form,
+            spheres: SphereSettings::default(),
+            prune: true,
+        };
+        let mut plan = FramePlan::default();
+        let (steps, _) = plan_clouds(&f, Some(&clouds), Some(1.0), &mut plan).unwrap();
+        (plan, steps)
+    }
+
+    fn skipped_why(plan: &FramePlan, name: &str) -> Option<&'static str> {
+        plan.skipped
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, why)| *why)
+    }
+
+    #[test]
+    fn the_planner_chooses_the_form_by_altitude_and_says_why() {
+        use atmosphere_core::clouds::spheres::handover::{HANDOVER_END_M, HANDOVER_START_M};
+        assert!(BELOW_HANDOVER.contains(&format!("({} km)", HANDOVER_START_M / 1e3)));
+        assert!(ABOVE_HANDOVER.contains(&format!("({} km)", HANDOVER_END_M / 1e3)));
+        // 1 km: the layer's march alone.
+        let (plan, steps) = planned(1e3, CloudForm::Auto);
+        let steps = steps.unwrap();
+        assert!(steps.march.is_some() && steps.spheres.is_none() && steps.weight == 0.0);
+        assert!(plan.runs("clouds") && !plan.runs("cloud_spheres"));
+        assert_eq!(skipped_why(&plan, "cloud_spheres"), Some(BELOW_HANDOVER));
+        // 100 km and 1000 km: the spheres alone.
+        for altitude_m in [1e5, 1e6] {
+            let (plan, steps) = planned(altitude_m, CloudForm::Auto);
+            let steps = steps.unwrap();
+            assert!(steps.march.is_none() && steps.spheres.is_some() && steps.weight == 1.0);
+            assert!(
+                !plan.runs("clouds") && plan.runs("cloud_spheres"),
+                "{altitude_m}"
+            );
+            assert_eq!(skipped_why(&plan, "clouds"), Some(ABOVE_HANDOVER));
+        }
+        // In the band both run, blended.
+        let (plan, steps) = planned(75e3, CloudForm::Auto);
+        assert!(plan.runs("clouds") && plan.runs("cloud_spheres"));
+        assert_eq!(steps.unwrap().weight, 0.5);
+        // Forced forms hold at every altitude, with their reason.
+        for altitude_m in [1e3, 1e5, 1e6] {
+            let (plan, _) = planned(altitude_m, CloudForm::Layer);
+            assert!(plan.runs("clouds"));
+            assert_eq!(skipped_why(&plan, "cloud_spheres"), Some(FORCED_LAYER));
+            let (plan, _) = planned(altitude_m, CloudForm::Spheres);
+            assert!(plan.runs("cloud_spheres"));
+            assert_eq!(skipped_why(&plan, "clouds"), Some(FORCED_SPHERES));
+        }
     }
 }

@@ -9,11 +9,14 @@
 //! cloud with the model's two runs into the HDR target
 //! (`shaders/clouds/frame_composite.wgsl`). The compositing is atmosphere-core's
 //! `clouds/layer/composite.rs`. With `sun_light = map` the marches read the frame's
-//! sun map (`clouds/frame_sun_map.rs`, filled before them) at 33 and 35.
+//! sun map (`clouds/frame_sun_map.rs`, filled before them) at 33 and 35. Above the
+//! hand-over the cloud spheres (`spheres/frame_spheres.rs`) take the march's place, or
+//! blend with it in the band, and the composite reads their image.
 
-use crate::clouds::frame_clouds::FrameClouds;
+use crate::clouds::frame_clouds::{CloudSteps, FrameClouds};
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::{LayerCamera, LayerUniform};
+use crate::clouds::spheres::frame_spheres::{FrameSpherePass, SphereImages, SphereScene};
 use crate::clouds::sun_map_texture::{SUN_MAP_BINDING, SunMapTexture};
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
@@ -26,6 +29,7 @@ use crate::gpu::pipeline::{
     ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_buffer_entry,
     storage_texture_entry, texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
+use crate::gpu::timer::GpuTimer;
 use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
@@ -42,8 +46,10 @@ pub struct CloudTargets {
     pub full: wgpu::Texture,
     /// The model's pixels ended at the cloud (L_front).
     pub front: wgpu::Texture,
-    /// The cloud's radiance (rgb) and transmittance (a).
+    /// The cloud's radiance (rgb) and transmittance (a) of the layer's march.
     pub cloud: wgpu::Texture,
+    /// The same of the spheres (blended with the march in the hand-over band).
+    pub spheres: wgpu::Texture,
     /// The second run's surface: the cloud's entry (`surface_buffer.rs`'s layout).
     pub front_geometry: wgpu::Texture,
     /// Its albedo: 0, Lambertian.
@@ -76,6 +82,7 @@ impl CloudTargets {
             full: image("cloud full", HDR_FORMAT),
             front: image("cloud front", HDR_FORMAT),
             cloud: image("cloud image", CLOUD_FORMAT),
+            spheres: image("cloud spheres image", CLOUD_FORMAT),
             front_geometry: image("cloud front geometry", GEOMETRY_FORMAT),
             front_albedo,
         }
@@ -130,6 +137,7 @@ pub struct CloudFramePass {
     upsample: ComputePipeline,
     march_list: ComputePipeline,
     composite: ComputePipeline,
+    spheres: FrameSpherePass,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
 }
@@ -214,16 +222,63 @@ impl CloudFramePass {
                 "cloud composite",
                 &composite,
             )?,
+            spheres: FrameSpherePass::new(gpu)?,
             params: uniform_buffer(&gpu.device, "cloud frame", size_of::<LayerUniform>()),
             flags: uniform_buffer(&gpu.device, "cloud frame flags", 16),
         })
+    }
+
+    /// Records the cloud steps of `scene` planned in `steps`: the march, then the spheres
+    /// (which read the march where they blend with it), each timed by `timer` in its
+    /// step's slot.
+    pub fn encode_clouds(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &MarchScene<'_>,
+        targets: &CloudTargets,
+        (steps, timer): (&CloudSteps, Option<&GpuTimer>),
+    ) -> Result<(), RenderError> {
+        let flags = [
+            u32::from(scene.has_surface),
+            u32::from(scene.has_front),
+            0,
+            0,
+        ];
+        gpu.write_uniform(&self.flags, &flags);
+        if let Some(march) = steps.march {
+            let writes = timer.map(|t| t.compute_writes(march));
+            self.encode_march(gpu, encoder, scene, targets, writes)?;
+        }
+        let Some(step) = steps.spheres else {
+            return Ok(());
+        };
+        let frame = scene.frame;
+        let spheres = SphereScene {
+            camera: frame_camera(frame),
+            layer: &scene.clouds.settings,
+            spheres: &scene.clouds.spheres,
+            light: &scene.clouds.light,
+            bottom_radius_m: frame.atmosphere.bottom_radius_m,
+            cache: &scene.inputs.spheres,
+            surface: scene.surface,
+            has_surface: scene.has_surface,
+            weight: steps.weight,
+        };
+        let images = SphereImages {
+            layer: &targets.cloud,
+            out: &targets.spheres,
+            front: &targets.front_geometry,
+        };
+        let writes = timer.map(|t| t.compute_writes(step));
+        self.spheres.encode(gpu, encoder, &spheres, &images, writes)
     }
 
     /// Records the march of `scene`'s pixels into `targets.cloud` and
     /// `targets.front_geometry`: at full resolution, or reduced and brought to full size
     /// when the settings' resolution divisor is above 1 (timed from the march's start to
     /// the listed pixels' end).
-    pub fn encode_march(
+    fn encode_march(
         &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
@@ -240,15 +295,6 @@ impl CloudFramePass {
             scene.inputs.cover_size,
         )?;
         gpu.write_uniform(&self.params, &params);
-        gpu.write_uniform(
-            &self.flags,
-            &[
-                u32::from(scene.has_surface),
-                u32::from(scene.has_front),
-                0,
-                0,
-            ],
-        );
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let cover = view(&scene.inputs.cover);
         let cloud = view(&targets.cloud);
@@ -385,13 +431,14 @@ impl CloudFramePass {
     }
 
     /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and
-    /// `frame` uniforms (after [`CloudFramePass::encode_march`], whose flags it reads).
+    /// `frame` uniforms (after [`CloudFramePass::encode_clouds`], whose flags it reads),
+    /// taking the spheres' image when `steps` ran them.
     pub fn encode_composite(
         &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         uniforms: (&wgpu::Buffer, &wgpu::Buffer),
-        targets: &CloudTargets,
+        (targets, steps): (&CloudTargets, &CloudSteps),
         hdr: &wgpu::Texture,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
@@ -399,7 +446,10 @@ impl CloudFramePass {
         let views = [
             view(&targets.full),
             view(&targets.front),
-            view(&targets.cloud),
+            view(match steps.spheres {
+                Some(_) => &targets.spheres,
+                None => &targets.cloud,
+            }),
             view(&targets.front_geometry),
             view(hdr),
         ];

@@ -1,12 +1,14 @@
 //! What the cloud layer pass reads besides its parameters: the cover grid as an
 //! `R32Float` texture (read texel by texel, bilinear in the shader as on the CPU) and
 //! Riley et al. 2004's A_n and F_n tables as one storage buffer, in the order
-//! `shaders/clouds/layer_params.wgsl` documents.
+//! `shaders/clouds/layer_params.wgsl` documents; and the cover and tables on the CPU,
+//! from which a frame's cloud spheres are made (`spheres/sphere_cache.rs`).
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::orders::{ANGLES, ORDERS, ScatteringOrders};
 use wgpu::util::DeviceExt;
 
+use crate::clouds::spheres::sphere_cache::SphereCache;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 use crate::gpu::pipeline::texture_2d;
@@ -17,6 +19,8 @@ pub struct LayerInputs {
     pub cover: wgpu::Texture,
     pub cover_size: (usize, usize),
     pub orders: wgpu::Buffer,
+    /// The cloud spheres of the same cover and tables, made when a frame needs them.
+    pub spheres: SphereCache,
 }
 
 impl LayerInputs {
@@ -76,6 +80,7 @@ impl LayerInputs {
             cover: texture,
             cover_size: (cover.width(), cover.height()),
             orders: buffer,
+            spheres: SphereCache::new(cover.clone(), orders.clone()),
         })
     }
 }

@@ -2,8 +2,12 @@
 //! atmosphere-core's `clouds/spheres/`): [`sphere_uniform`] the pass's parameters,
 //! [`sphere_inputs`] the cloud and attenuation textures and the droplets' phase function
 //! as storage buffers, [`sphere_pass`] the pass writing each pixel's radiance and
-//! transmittance of the spheres.
+//! transmittance of the spheres; in renderer frames, [`sphere_cache`] the spheres made
+//! for the frame's sun and kept while it stays, and [`frame_spheres`] the pass ended on
+//! the frame's surface and blended with the layer across the hand-over.
 
+pub mod frame_spheres;
+pub mod sphere_cache;
 pub mod sphere_inputs;
 pub mod sphere_pass;
 pub mod sphere_uniform;
