@@ -17,6 +17,7 @@ use atmosphere_core::clouds::layer::settings::{LayerSettings, MAX_DETAIL_OCTAVES
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::clouds::reference::camera_path::PathScene;
+use atmosphere_core::clouds::reference::phase_sampler::PhaseTableSampler;
 use atmosphere_core::clouds::reference::ray::radiance_path_traced;
 use atmosphere_core::clouds::reference::settings::PathSettings;
 use atmosphere_core::clouds::reference::sun_light::SunThroughAtmosphere;
@@ -41,6 +42,7 @@ pub struct CloudRays {
     layer: CloudLayer,
     finest: CloudLayer,
     orders: ScatteringOrders,
+    phases: Vec<PhaseTableSampler>,
     sun: SunThroughAtmosphere,
 }
 
@@ -61,8 +63,8 @@ impl CloudRays {
                 sky.wavelengths_nm().len()
             );
         }
-        // The path tracer samples the middle wavelength's phase function and weighs
-        // each wavelength by its own (`clouds/reference/camera_path.rs`).
+        // The layer's own phase function (the march reads `orders` instead): the middle
+        // wavelength's A_1.
         let middle = &orders.table(orders.wavelengths() / 2)[..ANGLES];
         let angles_deg = (0..ANGLES)
             .map(|k| k as f64 * 180.0 / (ANGLES - 1) as f64)
@@ -81,6 +83,9 @@ impl CloudRays {
                 .context("cloud layer")?,
             finest: CloudLayer::new(finest_settings, radius, cover, phase)
                 .context("cloud layer")?,
+            phases: (0..orders.wavelengths())
+                .map(|w| PhaseTableSampler::new(&orders, w))
+                .collect(),
             orders,
             sun: SunThroughAtmosphere::new(atmosphere, sky.spectra()),
         })
@@ -131,6 +136,7 @@ impl CloudRays {
         let scene = PathScene {
             layer: &self.finest,
             orders: &self.orders,
+            phases: &self.phases,
             sun: &self.sun,
             sky: air,
             sun_direction: ray.sun_direction.normalize(),

@@ -6,8 +6,8 @@
 //!   the cosine between the path's direction and the sun, E_sun the sun through the
 //!   atmosphere and T_cloud the cloud's transmittance towards the sun by ratio tracking
 //!   (Novak, Selle and Jarosz 2014);
-//! - the path then scatters: a direction drawn from the layer's phase function, the
-//!   weight at wavelength w multiplied by albedo p_w(nu) / pdf(nu);
+//! - the path then scatters: a direction drawn from p_w exactly (`phase_sampler.rs`),
+//!   the weight multiplied by the albedo. Each wavelength follows its own paths.
 //! - where it leaves the layer it takes the light around the cloud from that direction
 //!   (`environment.rs`: the sky model's radiance, the sun disk excluded, so the sun is
 //!   counted once).
@@ -19,6 +19,7 @@
 use glam::DVec3;
 
 use super::environment::Environment;
+use super::phase_sampler::PhaseTableSampler;
 use super::sun_light::SunThroughAtmosphere;
 use crate::clouds::layer::field::CloudLayer;
 use crate::clouds::layer::orders::ScatteringOrders;
@@ -26,7 +27,7 @@ use crate::clouds::medium::CloudMedium;
 use crate::models::sky_model::SkyModel;
 use crate::numerics::sampling::{Sampler, direction_around};
 
-/// Below this weight (at every wavelength) a path survives with probability weight /
+/// Below this weight a path survives with probability weight /
 /// this, its weight raised to this.
 pub const ROULETTE_WEIGHT: f64 = 0.1;
 /// Collisions at most per path.
@@ -37,6 +38,8 @@ pub struct PathScene<'a> {
     pub layer: &'a CloudLayer,
     /// A_1 (the phase function) at each wavelength of the sky model.
     pub orders: &'a ScatteringOrders,
+    /// Its sampler at each wavelength.
+    pub phases: &'a [PhaseTableSampler],
     pub sun: &'a SunThroughAtmosphere,
     /// The air around the cloud: the composite's answers, and the light where a path
     /// leaves the layer (tabulated per view ray, `environment.rs`).
@@ -113,60 +116,46 @@ pub fn transmittance_to_boundary(
     }
 }
 
-/// Adds to `score` (one value per wavelength, W m^-2 sr^-1 nm^-1) the light the path
-/// from the real collision `x`, reached along the unit `d`, brings back towards `-d`,
-/// per unit of the path's weight (see the module's documentation).
+/// The light at wavelength `w` (W m^-2 sr^-1 nm^-1) that the path from the real
+/// collision `x`, reached along the unit `d`, brings back towards `-d`, per unit of the
+/// path's weight (see the module's documentation).
 pub fn trace_from(
     scene: &PathScene,
     environment: &Environment,
+    w: usize,
     mut x: DVec3,
     mut d: DVec3,
     sampler: &mut Sampler,
-    score: &mut [f64],
-) {
-    let waves = score.len();
+) -> f64 {
     let layer = scene.layer;
-    let phase = layer.phase();
-    let mut weight = vec![1.0; waves];
-    let mut sun = vec![0.0; waves];
+    let phase = &scene.phases[w];
+    let mut weight = 1.0;
+    let mut score = 0.0;
+    let mut light = vec![0.0; scene.sun.wavelengths()];
     for _ in 0..MAX_SCATTERINGS {
         let albedo = layer.single_scattering_albedo(x);
         let nu = d.dot(scene.sun_direction);
-        scene.sun.irradiance(x, scene.sun_direction, &mut sun);
-        if sun.iter().any(|&e| e > 0.0) {
+        scene.sun.irradiance(x, scene.sun_direction, &mut light);
+        if light[w] > 0.0 {
             let t_cloud = transmittance_to_boundary(layer, x, scene.sun_direction, sampler);
-            for w in 0..waves {
-                score[w] +=
-                    weight[w] * albedo * scene.orders.distribution(w, 1, nu) * sun[w] * t_cloud;
-            }
+            score += weight * albedo * scene.orders.distribution(w, 1, nu) * light[w] * t_cloud;
         }
         let (cos, phase_weight) = phase.sample(sampler);
-        let density = phase.eval(cos);
-        if density <= 0.0 {
-            return;
-        }
-        for (w, value) in weight.iter_mut().enumerate() {
-            *value *= albedo * scene.orders.distribution(w, 1, cos) * phase_weight / density;
-        }
-        let largest = weight.iter().cloned().fold(0.0, f64::max);
-        if largest < ROULETTE_WEIGHT {
-            if sampler.uniform() * ROULETTE_WEIGHT >= largest {
-                return;
+        weight *= albedo * phase_weight;
+        if weight < ROULETTE_WEIGHT {
+            if sampler.uniform() * ROULETTE_WEIGHT >= weight {
+                return score;
             }
-            weight
-                .iter_mut()
-                .for_each(|v| *v *= ROULETTE_WEIGHT / largest);
+            weight = ROULETTE_WEIGHT;
         }
         d = direction_around(d, cos, 2.0 * std::f64::consts::PI * sampler.uniform());
         match fly(layer, x, d, sampler) {
             Flight::Collision(y) => x = y,
             Flight::Escape => {
-                environment.radiance(d, &mut sun);
-                for w in 0..waves {
-                    score[w] += weight[w] * sun[w];
-                }
-                return;
+                environment.radiance(d, &mut light);
+                return score + weight * light[w];
             }
         }
     }
+    score
 }

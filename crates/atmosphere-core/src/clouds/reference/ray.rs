@@ -39,7 +39,7 @@ pub struct PathTracedRay {
     pub paths: u64,
 }
 
-/// The answer for `ray` with its standard error.
+/// The answer for `ray` with its standard error; `paths` paths per wavelength.
 pub fn radiance_path_traced(
     scene: &PathScene,
     ray: &ViewRay,
@@ -49,7 +49,10 @@ pub fn radiance_path_traced(
         .check()
         .map_err(|e| ModelError::Settings(e.to_string()))?;
     let waves = scene.sun.wavelengths();
-    if scene.orders.wavelengths() != waves || scene.sky.wavelengths_nm().len() != waves {
+    if scene.orders.wavelengths() != waves
+        || scene.phases.len() != waves
+        || scene.sky.wavelengths_nm().len() != waves
+    {
         return Err(ModelError::Settings(format!(
             "cloud path tracer: phase tables for {} wavelengths, the sky model answers {}, \
              the sun {waves}",
@@ -98,17 +101,16 @@ pub fn radiance_path_traced(
         direction.z.to_bits(),
     ]);
     let mut tallies = vec![Tally::default(); waves];
-    let mut score = vec![0.0; waves];
     let mut paths = 0;
     while paths < settings.max_paths {
         for _ in 0..BATCH_PATHS.min(settings.max_paths - paths) {
-            let mut sampler = Sampler::new(mix_seed(&[seed, paths]));
-            score.fill(0.0);
-            if let Some(x) = first_collision(scene, start, direction, t1 - t0, &mut sampler) {
-                trace_from(scene, &environment, x, direction, &mut sampler, &mut score);
-            }
-            for (tally, s) in tallies.iter_mut().zip(&score) {
-                tally.add(*s);
+            for (w, tally) in tallies.iter_mut().enumerate() {
+                let mut sampler = Sampler::new(mix_seed(&[seed, paths, w as u64]));
+                let score = match first_collision(scene, start, direction, t1 - t0, &mut sampler) {
+                    Some(x) => trace_from(scene, &environment, w, x, direction, &mut sampler),
+                    None => 0.0,
+                };
+                tally.add(score);
             }
             paths += 1;
         }
