@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod camera_path;
 pub mod cli;
+pub mod cloud_rays;
 pub mod contact_sheet;
 pub mod csv_lines;
 pub mod earth_data_flag;
@@ -13,7 +14,9 @@ pub mod location_flags;
 pub mod phase;
 pub mod probe;
 pub mod probe_args;
+pub mod probe_clouds;
 pub mod probe_scene;
+pub mod probe_table;
 pub mod probe_terrain;
 pub mod progress;
 pub mod record;

@@ -7,7 +7,8 @@
 //! are comments. Altitudes are at most 1e10 m, zeniths in [0, 180] and azimuths in
 //! [-360, 360] degrees; the file at most 64 MiB of UTF-8 in lines of at most 4 KiB.
 //! Output: the input columns as given, then per wavelength `L_<nm>`, then `T_<nm>`, then
-//! `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>`.
+//! `E_sun_<nm>`, then `luminance_cd_m2,r,g,b`, then `L_stderr_<nm>` (`probe_table.rs`;
+//! with `--clouds` also `T_cloud`, and `paths` for the path tracer: `probe_clouds.rs`).
 
 use std::io::Write;
 
@@ -26,6 +27,8 @@ use thiserror::Error;
 use crate::csv_lines::{record_fields, record_lines};
 use crate::files::{check_writable, write_atomically};
 use crate::probe_args::ProbeArgs;
+use crate::probe_clouds;
+use crate::probe_table::{ExtraColumns, Table};
 use crate::probe_terrain::{self, TerrainPlace};
 use crate::progress::map_with_progress;
 
@@ -297,12 +300,23 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
     let file = args.input.display().to_string();
     let text = read_text(&args.input, CSV_LIMITS)?;
     let input = read_rays(&text, &file, atmosphere.bottom_radius_m)?;
-    let (solar_irradiance, results) = match terrain_place(args)? {
-        Some(place) => {
-            let rays: Vec<ViewRay> = input.rows.iter().map(|row| row.ray).collect();
+    let rays: Vec<ViewRay> = input.rows.iter().map(|row| row.ray).collect();
+    let mut extra = ExtraColumns::default();
+    let clouds = args.clouds.on == Some(true);
+    let (solar_irradiance, results) = match (place(args)?, clouds) {
+        (Some(_), true) if args.terrain => anyhow::bail!(
+            "--clouds and --terrain together are not supported: the cloud layer's rays have no relief"
+        ),
+        (Some(place), false) => {
             probe_terrain::evaluate(model, &atmosphere, &settings, &rays, &place)?
         }
-        None => {
+        (Some(place), true) => {
+            let (solar, results, columns) =
+                probe_clouds::evaluate(model, &atmosphere, &settings, &rays, &place, args)?;
+            extra = columns;
+            (solar, results)
+        }
+        (None, _) => {
             let model = prepare(model, &atmosphere, &settings)?;
             let solar = model.solar_irradiance_w_m2_nm().to_vec();
             (solar, evaluate(model.as_ref(), &input.rows))
@@ -326,17 +340,24 @@ pub fn run(args: &ProbeArgs) -> anyhow::Result<()> {
         solar_irradiance: &solar_irradiance,
         color: &color,
     };
-    let text = table.write(&input, &results)?;
+    let fields: Vec<&[String]> = input.rows.iter().map(|row| &row.fields[..]).collect();
+    let text = table.write(&input.header, &fields, &results, &extra)?;
     match &args.output {
         Some(path) => write_atomically(path, &text),
         None => Ok(std::io::stdout().lock().write_all(&text)?),
     }
 }
 
-/// The place of `--terrain`, checked, or `None` without it.
-fn terrain_place(args: &ProbeArgs) -> anyhow::Result<Option<TerrainPlace>> {
+/// The place of `--terrain` or `--clouds`, checked, or `None` without either.
+fn place(args: &ProbeArgs) -> anyhow::Result<Option<TerrainPlace>> {
+    let option = if args.terrain {
+        "--terrain"
+    } else {
+        "--clouds"
+    };
+    let needed = args.terrain || args.clouds.on == Some(true);
     match (
-        args.terrain,
+        needed,
         args.latitude_deg,
         args.longitude_deg,
         args.sun_azimuth_deg,
@@ -345,61 +366,19 @@ fn terrain_place(args: &ProbeArgs) -> anyhow::Result<Option<TerrainPlace>> {
             Ok(Some(TerrainPlace::new(lat, lon, azimuth)?))
         }
         (true, ..) => {
-            anyhow::bail!("--terrain needs --latitude-deg, --longitude-deg and --sun-azimuth-deg")
+            anyhow::bail!("{option} needs --latitude-deg, --longitude-deg and --sun-azimuth-deg")
         }
-        (false, ..) => Ok(None),
+        (false, None, None, None) => Ok(None),
+        (false, ..) => anyhow::bail!(
+            "--latitude-deg, --longitude-deg and --sun-azimuth-deg place the rays of --terrain \
+             or --clouds, and neither is given"
+        ),
     }
 }
 
 /// The radiance of every row, in parallel, in the order of the rows.
 fn evaluate(model: &dyn SkyModel, rows: &[ProbeRow]) -> Vec<Result<RayRadiance, ModelError>> {
     map_with_progress("probe", "rays", rows, |row| model.radiance(&row.ray))
-}
-
-/// The output table's columns beyond the input's.
-struct Table<'a> {
-    labels: &'a [&'a str],
-    solar_irradiance: &'a [f64],
-    color: &'a SpectrumToColor,
-}
-
-impl Table<'_> {
-    /// The CSV text of the input rows and their results.
-    fn write(&self, input: &ProbeInput, results: &[RayRadiance]) -> anyhow::Result<Vec<u8>> {
-        let mut out = csv::Writer::from_writer(Vec::new());
-        let mut header = input.header.clone();
-        for prefix in ["L_", "T_", "E_sun_"] {
-            header.extend(self.labels.iter().map(|l| format!("{prefix}{l}")));
-        }
-        header.extend(["luminance_cd_m2", "r", "g", "b"].map(String::from));
-        header.extend(self.labels.iter().map(|l| format!("L_stderr_{l}")));
-        out.write_record(&header)?;
-        for (row, result) in input.rows.iter().zip(results) {
-            let luminance = self.color.luminance_cd_m2(&result.radiance);
-            let rgb = self.color.linear_srgb_cd_m2(&result.radiance);
-            let numbers = [
-                &result.radiance[..],
-                &result.transmittance,
-                self.solar_irradiance,
-                &[luminance],
-                &rgb,
-                &result.radiance_std_error,
-            ];
-            let mut record = row.fields.clone();
-            record.extend(numbers.iter().flat_map(|n| n.iter()).map(|&x| number(x)));
-            out.write_record(&record)?;
-        }
-        Ok(out.into_inner()?)
-    }
-}
-
-/// The shortest text that reads back as `x`, in exponent form when very small or large.
-pub(crate) fn number(x: f64) -> String {
-    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
 }
 
 #[cfg(test)]
@@ -580,14 +559,5 @@ mod tests {
         assert!(matches!(err, InputError::Ray { line: 2, .. }));
         let message = err.to_string();
         assert!(message.starts_with("rays.csv line 2: ") && message.contains("altitude_m"));
-    }
-
-    #[test]
-    fn numbers_round_trip() {
-        for x in [0.0, 1.0, 0.25, 1.5e-12, 3.1e20, -2.0e-7, 123456.789] {
-            assert_eq!(number(x).parse::<f64>().unwrap(), x);
-        }
-        assert_eq!(number(0.5), "0.5");
-        assert_eq!(number(1.5e-12), "1.5e-12");
     }
 }

@@ -1,5 +1,6 @@
 //! The flags of `atmos probe`: the model or beam method, the atmosphere or beams scene,
-//! the rays' CSV and, with `--terrain`, their place over the Earth's relief.
+//! the rays' CSV and, with `--terrain` or `--clouds`, their place over the Earth's
+//! relief or under its cloud cover.
 
 use std::path::PathBuf;
 
@@ -7,6 +8,7 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::ModelSettings;
 use clap::Args;
 
+use crate::render::cloud_flags::CloudFlags;
 use crate::wavelength_flag::Wavelength;
 
 /// The flags of `atmos probe`.
@@ -63,30 +65,24 @@ pub struct ProbeArgs {
     /// hillaire, nishita, oneil, bruneton; docs/shafts.md).
     #[arg(long, requires_all = ["latitude_deg", "longitude_deg", "sun_azimuth_deg"], conflicts_with = "scene")]
     pub terrain: bool,
-    /// With --terrain: the rays' latitude, degrees north, in [-90, 90].
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_negative_numbers = true,
-        requires = "terrain"
-    )]
+    /// With --terrain or --clouds: the rays' latitude, degrees north, in [-90, 90].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub latitude_deg: Option<f64>,
-    /// With --terrain: the rays' longitude, degrees east, in [-180, 180].
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_negative_numbers = true,
-        requires = "terrain"
-    )]
+    /// With --terrain or --clouds: the rays' longitude, degrees east, in [-180, 180].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub longitude_deg: Option<f64>,
-    /// With --terrain: the sun's azimuth, degrees from north towards east, in [-360, 360].
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_negative_numbers = true,
-        requires = "terrain"
-    )]
+    /// With --terrain or --clouds: the sun's azimuth, degrees from north towards east,
+    /// in [-360, 360].
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub sun_azimuth_deg: Option<f64>,
+    /// The planet's cloud layer (`--clouds` and the `--cloud-*` flags of `atmos
+    /// render`): the rays placed at --latitude-deg, --longitude-deg with the sun at
+    /// --sun-azimuth-deg over the cover, answered by the model with the layer's march,
+    /// or with `--model reference` by the cloud path tracer (hillaire's air around the
+    /// cloud); adds the columns T_cloud and, for the path tracer, paths
+    /// (docs/clouds.md).
+    #[command(flatten)]
+    pub clouds: CloudFlags,
 }
 
 /// A sky model's or a beam method's name, checked against both lists (which one it must

@@ -26,8 +26,9 @@ use thiserror::Error;
 
 use crate::csv_lines::{record_fields, record_lines};
 use crate::files::{check_writable, write_atomically};
-use crate::probe::{CSV_LIMITS, number};
+use crate::probe::CSV_LIMITS;
 use crate::probe_args::ProbeArgs;
+use crate::probe_table::number;
 use crate::progress::map_with_progress;
 
 /// The columns every scene input needs.

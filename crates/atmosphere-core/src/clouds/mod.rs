@@ -11,6 +11,7 @@ pub mod estimate;
 pub mod layer;
 pub mod medium;
 pub mod phase;
+pub mod reference;
 pub mod slab;
 pub mod slab_transport;
 pub mod spheres;

@@ -14,15 +14,17 @@
 //! (`optics/surface_lighting.rs`), which give E_sun T_sun and E_sky.
 //!
 //! The layer's sun light here is each sample's shadow march (`sun_light = march`); a
-//! layer lit by the frame's sun map (`sun_light = map`) is refused, since one ray has no
-//! frame: `march::march_in_sun_map` with the frame's map is that march's twin.
+//! layer lit by the frame's sun map (`sun_light = map`) needs the map of a frame whose
+//! camera stands at the ray's origin (`radiance_with_cloud_segment`), and is refused
+//! without one.
 
 use glam::DVec3;
 
 use super::field::CloudLayer;
-use super::march::{CloudLight, CloudSegment, MarchRay, march};
+use super::march::{CloudLight, CloudSegment, MarchRay, march, march_in_sun_map};
 use super::orders::ScatteringOrders;
 use super::settings::SunLight;
+use super::sun_map::CloudSunMap;
 use crate::models::error::ModelError;
 use crate::models::sky_model::{RayRadiance, SkyModel, SurfacePoint, ViewRay};
 
@@ -35,6 +37,20 @@ pub fn radiance_with_clouds(
     orders: &ScatteringOrders,
     ray: &ViewRay,
 ) -> Result<RayRadiance, ModelError> {
+    radiance_with_cloud_segment(model, layer, orders, ray, None).map(|(answer, _)| answer)
+}
+
+/// [`radiance_with_clouds`], with the cloud's march (`None` where the ray misses the
+/// layer) beside the answer; a layer lit by the sun map (`sun_light = map`) reads
+/// `sun_map`, the map of a frame whose camera is at the ray's origin, and is refused
+/// without one.
+pub fn radiance_with_cloud_segment(
+    model: &dyn SkyModel,
+    layer: &CloudLayer,
+    orders: &ScatteringOrders,
+    ray: &ViewRay,
+    sun_map: Option<&CloudSunMap>,
+) -> Result<(RayRadiance, Option<CloudSegment>), ModelError> {
     let waves = model.wavelengths_nm().len();
     if orders.wavelengths() != waves {
         return Err(ModelError::Settings(format!(
@@ -42,7 +58,7 @@ pub fn radiance_with_clouds(
             orders.wavelengths()
         )));
     }
-    if layer.settings().sun_light == SunLight::Map {
+    if layer.settings().sun_light == SunLight::Map && sun_map.is_none() {
         return Err(ModelError::Settings(
             "cloud sun_light = map needs the frame's sun map (march_in_sun_map); this \
              composite lights the layer by its shadow march (sun_light = march)"
@@ -56,7 +72,7 @@ pub fn radiance_with_clouds(
         direction,
         ray.max_distance_m.unwrap_or(f64::INFINITY),
     ) else {
-        return Ok(full);
+        return Ok((full, None));
     };
     let front = if t0 > 0.0 {
         model.radiance(&ViewRay {
@@ -68,19 +84,19 @@ pub fn radiance_with_clouds(
     };
     let entry = ray.origin_m + direction * t0;
     let light = light_at(model, entry, ray.sun_direction.normalize())?;
-    let cloud = march(
-        layer,
-        &MarchRay {
-            origin: ray.origin_m,
-            direction,
-            t0,
-            t1,
-        },
-        &light,
-        orders,
-        layer.settings(),
-    );
-    Ok(composite(&full, &front, &cloud))
+    let march_ray = MarchRay {
+        origin: ray.origin_m,
+        direction,
+        t0,
+        t1,
+    };
+    let cloud = match (layer.settings().sun_light, sun_map) {
+        (SunLight::Map, Some(map)) => {
+            march_in_sun_map(layer, &march_ray, &light, orders, layer.settings(), map)
+        }
+        _ => march(layer, &march_ray, &light, orders, layer.settings()),
+    };
+    Ok((composite(&full, &front, &cloud), Some(cloud)))
 }
 
 /// The module's composite of the model's answer for the whole ray, `full` (ended on a

@@ -1,0 +1,151 @@
+//! Rays through the planet's cloud layer, answered by a sky model with the layer's
+//! march (the CPU composite the frames' cloud steps are the twin of,
+//! `clouds/layer/composite.rs`) or by the cloud path tracer (`clouds/reference/`), so
+//! that `atmos probe --clouds` and `atmos report`'s clouds section ask both the same
+//! rays over the same cover (docs/clouds.md, "The path-traced reference on the planet").
+//!
+//! The path tracer walks the layer's finest field (all `detail_octaves`, 3); a method
+//! marches the field of its own settings (the interactive preset's one octave).
+
+use anyhow::Context;
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::composite::radiance_with_cloud_segment;
+use atmosphere_core::clouds::layer::field::CloudLayer;
+use atmosphere_core::clouds::layer::orders::{ANGLES, ScatteringOrders};
+use atmosphere_core::clouds::layer::settings::{LayerSettings, MAX_DETAIL_OCTAVES};
+use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
+use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::clouds::reference::camera_path::PathScene;
+use atmosphere_core::clouds::reference::phase_sampler::PhaseTableSampler;
+use atmosphere_core::clouds::reference::ray::radiance_path_traced;
+use atmosphere_core::clouds::reference::settings::PathSettings;
+use atmosphere_core::clouds::reference::sun_light::SunThroughAtmosphere;
+use atmosphere_core::models::error::ModelError;
+use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
+use atmosphere_core::optics::phase::PhaseFunction;
+use glam::DVec3;
+
+/// One ray's answer with the cloud.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CloudAnswer {
+    pub radiance: RayRadiance,
+    /// The cloud's transmittance along the ray (1 where it misses the layer).
+    pub cloud_transmittance: f64,
+    /// Paths the path tracer followed; `None` for a method.
+    pub paths: Option<u64>,
+}
+
+/// The layer as a method marches it and as the path tracer walks it.
+#[derive(Debug)]
+pub struct CloudRays {
+    layer: CloudLayer,
+    finest: CloudLayer,
+    orders: ScatteringOrders,
+    phases: Vec<PhaseTableSampler>,
+    sun: SunThroughAtmosphere,
+}
+
+impl CloudRays {
+    /// The layer of `settings` over `cover` on `atmosphere`'s planet; `orders` (A_n and
+    /// F_n) at the wavelengths of `sky`, the model whose spectra light the path tracer.
+    pub fn new(
+        settings: LayerSettings,
+        cover: CoverGrid,
+        orders: ScatteringOrders,
+        atmosphere: &Atmosphere,
+        sky: &dyn SkyModel,
+    ) -> anyhow::Result<CloudRays> {
+        if orders.wavelengths() != sky.wavelengths_nm().len() {
+            anyhow::bail!(
+                "cloud phase tables for {} wavelengths, the model answers {}",
+                orders.wavelengths(),
+                sky.wavelengths_nm().len()
+            );
+        }
+        // The layer's own phase function (the march reads `orders` instead): the middle
+        // wavelength's A_1.
+        let middle = &orders.table(orders.wavelengths() / 2)[..ANGLES];
+        let angles_deg = (0..ANGLES)
+            .map(|k| k as f64 * 180.0 / (ANGLES - 1) as f64)
+            .collect();
+        let phase = CloudPhase::new(PhaseFunction::Tabulated {
+            angles_deg,
+            values: middle.to_vec(),
+        })?;
+        let radius = atmosphere.bottom_radius_m;
+        let finest_settings = LayerSettings {
+            detail_octaves: MAX_DETAIL_OCTAVES,
+            ..settings
+        };
+        Ok(CloudRays {
+            layer: CloudLayer::new(settings, radius, cover.clone(), phase.clone())
+                .context("cloud layer")?,
+            finest: CloudLayer::new(finest_settings, radius, cover, phase)
+                .context("cloud layer")?,
+            phases: (0..orders.wavelengths())
+                .map(|w| PhaseTableSampler::new(&orders, w))
+                .collect(),
+            orders,
+            sun: SunThroughAtmosphere::new(atmosphere, sky.spectra()),
+        })
+    }
+
+    pub fn settings(&self) -> &LayerSettings {
+        self.layer.settings()
+    }
+
+    /// The sun map of a frame whose camera is at `camera_m`, at the resolution frames
+    /// light their layer with (`SunMapResolution::LIT`); `None` unless the layer is lit
+    /// by the map.
+    pub fn sun_map(&self, camera_m: DVec3, sun: DVec3) -> anyhow::Result<Option<CloudSunMap>> {
+        use atmosphere_core::clouds::layer::settings::SunLight;
+        if self.settings().sun_light != SunLight::Map {
+            return Ok(None);
+        }
+        let resolution = SunMapResolution::LIT;
+        let grid = CloudSunMap::grid_for(self.layer.shell(), camera_m, &resolution)?;
+        Ok(Some(CloudSunMap::new(&self.layer, grid, sun, &resolution)?))
+    }
+
+    /// `ray` by `model` with the layer's march; `sun_map` is [`CloudRays::sun_map`] at
+    /// the ray's origin when the layer is lit by it.
+    pub fn method(
+        &self,
+        model: &dyn SkyModel,
+        ray: &ViewRay,
+        sun_map: Option<&CloudSunMap>,
+    ) -> Result<CloudAnswer, ModelError> {
+        let (radiance, segment) =
+            radiance_with_cloud_segment(model, &self.layer, &self.orders, ray, sun_map)?;
+        Ok(CloudAnswer {
+            radiance,
+            cloud_transmittance: segment.map_or(1.0, |s| s.transmittance[0]),
+            paths: None,
+        })
+    }
+
+    /// `ray` by the path tracer through the finest field, with `air` the sky model in
+    /// front of, behind and around the cloud.
+    pub fn reference(
+        &self,
+        air: &dyn SkyModel,
+        ray: &ViewRay,
+        paths: &PathSettings,
+    ) -> Result<CloudAnswer, ModelError> {
+        let scene = PathScene {
+            layer: &self.finest,
+            orders: &self.orders,
+            phases: &self.phases,
+            sun: &self.sun,
+            sky: air,
+            sun_direction: ray.sun_direction.normalize(),
+        };
+        let traced = radiance_path_traced(&scene, ray, paths)?;
+        Ok(CloudAnswer {
+            radiance: traced.radiance,
+            cloud_transmittance: traced.cloud_transmittance,
+            paths: Some(traced.paths),
+        })
+    }
+}

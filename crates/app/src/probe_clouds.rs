@@ -1,0 +1,118 @@
+//! `atmos probe --clouds`: the probe's rays under the planet's cloud cover, placed at
+//! `--latitude-deg`, `--longitude-deg` with the sun at `--sun-azimuth-deg` as
+//! `--terrain` places them (`probe_terrain.rs`), through the layer of the `--cloud-*`
+//! flags of `atmos render` (`render/cloud_flags.rs`): a sky model answers with the
+//! layer's march (`cloud_rays.rs`; a layer lit by the sun map gets the map of a frame
+//! whose camera stands at the ray's origin), `--model reference` with the cloud path
+//! tracer, hillaire's air around the cloud, to `--target-error` (its standard error in
+//! `L_stderr_<nm>`). Extra columns: `T_cloud`, and `paths` for the path tracer.
+
+use anyhow::{Context, bail};
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::clouds::layer::droplets::droplet_orders_cached;
+use atmosphere_core::clouds::reference::settings::PathSettings;
+use atmosphere_core::models::error::ModelError;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, ViewRay};
+
+use crate::cloud_rays::{CloudAnswer, CloudRays};
+use crate::probe_args::ProbeArgs;
+use crate::probe_table::ExtraColumns;
+use crate::probe_terrain::TerrainPlace;
+use crate::progress::map_with_progress;
+use crate::table_cache_dir::table_cache;
+
+/// The sky model the path tracer's air comes from.
+pub const AIR_MODEL: ModelId = ModelId::Hillaire;
+
+/// The solar irradiance, each ray's answer and the extra columns.
+pub type CloudResults = (Vec<f64>, Vec<Result<RayRadiance, ModelError>>, ExtraColumns);
+
+/// The path tracer's stopping rule for `--target-error` and `--seed`; the error is
+/// named by its flag.
+pub fn path_settings(settings: &ModelSettings) -> anyhow::Result<PathSettings> {
+    let paths = PathSettings {
+        target_relative_error: settings.target_relative_error,
+        seed: settings.seed,
+        ..PathSettings::default()
+    };
+    if paths.check().is_err() {
+        bail!(
+            "--target-error {} must lie in [1e-4, 0.5] for the cloud path tracer",
+            settings.target_relative_error
+        );
+    }
+    Ok(paths)
+}
+
+/// The air model the path tracer runs with: `AIR_MODEL` at the probe's wavelengths.
+pub fn air_settings(settings: &ModelSettings) -> ModelSettings {
+    ModelSettings {
+        options: ModelOptions::default(),
+        max_orders: None,
+        ..settings.clone()
+    }
+}
+
+/// `rays` (in the probe's local frame) placed at `place` and answered with the cloud
+/// layer of `args.clouds` by `model`.
+pub fn evaluate(
+    model: ModelId,
+    atmosphere: &Atmosphere,
+    settings: &ModelSettings,
+    rays: &[ViewRay],
+    place: &TerrainPlace,
+    args: &ProbeArgs,
+) -> anyhow::Result<CloudResults> {
+    let Some(layer) = args.clouds.settings()? else {
+        bail!("--clouds is off");
+    };
+    let cover = args.clouds.cover_grid()?;
+    let orders = droplet_orders_cached(&settings.wavelengths_nm, &table_cache())
+        .context("--clouds: the droplets' phase functions at --wavelengths")?;
+    let (sky, paths) = match model {
+        ModelId::Reference => (
+            prepare(AIR_MODEL, atmosphere, &air_settings(settings))?,
+            Some(path_settings(settings)?),
+        ),
+        other => (prepare(other, atmosphere, settings)?, None),
+    };
+    let clouds = CloudRays::new(layer, cover, orders, atmosphere, sky.as_ref())?;
+    let placed: Vec<ViewRay> = rays.iter().map(|ray| place.placed(ray)).collect();
+    let answers: Vec<Result<CloudAnswer, ModelError>> =
+        map_with_progress("probe", "rays", &placed, |ray| match &paths {
+            Some(paths) => clouds.reference(sky.as_ref(), ray, paths),
+            None => {
+                let map = clouds
+                    .sun_map(ray.origin_m, ray.sun_direction.normalize())
+                    .map_err(|e| ModelError::Settings(format!("{e:#}")))?;
+                clouds.method(sky.as_ref(), ray, map.as_ref())
+            }
+        });
+    let mut names = vec!["T_cloud".to_string()];
+    if paths.is_some() {
+        names.push("paths".into());
+    }
+    let mut extra = ExtraColumns {
+        names,
+        rows: Vec::new(),
+    };
+    let mut results = Vec::new();
+    for answer in answers {
+        match answer {
+            Ok(a) => {
+                let mut row = vec![a.cloud_transmittance];
+                row.extend(a.paths.map(|p| p as f64));
+                extra.rows.push(row);
+                results.push(Ok(a.radiance));
+            }
+            Err(e) => {
+                extra.rows.push(Vec::new());
+                results.push(Err(e));
+            }
+        }
+    }
+    Ok((sky.solar_irradiance_w_m2_nm().to_vec(), results, extra))
+}
