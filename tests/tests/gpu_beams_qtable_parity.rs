@@ -122,6 +122,12 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
     };
     let on_cpu = changed(&cpu_with, &cpu_without);
     let on_gpu = changed(&gpu_with, &gpu_without);
-    assert!(on_cpu >= 20, "sub-planes change only {on_cpu} pixels on the CPU");
-    assert!(on_gpu >= 20, "sub-planes change only {on_gpu} pixels on the GPU");
+    assert!(
+        on_cpu >= 20,
+        "sub-planes change only {on_cpu} pixels on the CPU"
+    );
+    assert!(
+        on_gpu >= 20,
+        "sub-planes change only {on_gpu} pixels on the GPU"
+    );
 }

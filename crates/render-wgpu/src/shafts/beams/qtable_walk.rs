@@ -48,7 +48,12 @@ impl WalkedPlanes {
                 continue;
             }
             lights.push(LightWalk {
-                walk: [l as u32, planes.samples.len() as u32, samples.len() as u32, 0],
+                walk: [
+                    l as u32,
+                    planes.samples.len() as u32,
+                    samples.len() as u32,
+                    0,
+                ],
                 first_depth_m: planes.first_depth_m as f32,
                 bounds: method.screen_bounds()[l].map(|v| v as f32),
             });
