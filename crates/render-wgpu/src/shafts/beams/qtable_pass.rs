@@ -20,7 +20,7 @@ use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
 use crate::shafts::beams::planes_frame::PlanesFrame;
-use crate::shafts::beams::qtable_walk::{WalkedPlanes, samples_entry};
+use crate::shafts::beams::qtable_walk::{LightWalk, WalkedPlanes, samples_entry};
 use crate::shafts::beams::ray_end_pass::RayEndPass;
 
 /// The table's parameters (WGSL `QtableParams`).
@@ -152,10 +152,12 @@ impl QtablePass {
     pub fn new(gpu: &GpuContext) -> Result<QtablePass, RenderError> {
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let dimension = wgpu::TextureViewDimension::D2;
-        let instance = wgpu::VertexBufferLayout {
-            array_stride: size_of::<PlaneInstance>() as u64,
+        // A plane and a light's walk: four whole numbers, a depth and the bounds.
+        let attributes = &wgpu::vertex_attr_array![0 => Uint32x4, 1 => Float32, 2 => Float32x4];
+        let instance = |stride: usize| wgpu::VertexBufferLayout {
+            array_stride: stride as u64,
             step_mode: wgpu::VertexStepMode::Instance,
-            attributes: &wgpu::vertex_attr_array![0 => Uint32x4, 1 => Float32, 2 => Float32x4],
+            attributes,
         };
         let entries = [
             in_stage(fragment, uniform_entry(0, size_of::<QtableUniform>())),
@@ -168,14 +170,14 @@ impl QtablePass {
             "shafts/beams/qtable.wgsl",
             "beams qtable2002",
             &entries[..3],
-            &[Some(instance.clone())],
+            &[Some(instance(size_of::<PlaneInstance>()))],
         )?;
         let walk = BlendedPlanes::new(
             gpu,
             "shafts/beams/qtable_walk.wgsl",
             "beams qtable2002 per pixel",
             &entries,
-            &[Some(instance)],
+            &[Some(instance(size_of::<LightWalk>()))],
         )?;
         Ok(QtablePass {
             ray_end: RayEndPass::new(gpu)?,
