@@ -1,9 +1,10 @@
-//! The GPU q(u, v) table pass (`shaders/shafts/beams/qtable.wgsl` and `q_table.wgsl`
-//! through render-wgpu's `shafts/beams/qtable_pass.rs`) against its CPU twin
-//! (atmosphere-core's `beams/methods/qtable2002/`) on the same pixel rays of the
-//! shipped scenes, with the same table, planes, sub-planes and shadow maps; the
+//! The GPU q(u, v) table pass (`shaders/shafts/beams/qtable_walk.wgsl`, `qtable.wgsl`
+//! and `q_table.wgsl` through render-wgpu's `shafts/beams/qtable_pass.rs`) against its
+//! CPU twin (atmosphere-core's `beams/methods/qtable2002/`) on the same pixel rays of the
+//! shipped scenes, with the same table, planes, sub-planes and shadow maps, the planes
+//! walked per pixel (the default) and drawn one by one (`gpu_raster_planes=true`); the
 //! sub-planes the GPU draws are the CPU's, appear only where f_l exceeds epsilon, and
-//! change the picture.
+//! change the GPU's picture.
 
 mod support;
 
@@ -21,10 +22,17 @@ use support::gpu_or_skip;
 /// against f64, the same samples and shadow maps (docs/beams/qtable2002.md).
 const MAX_RELATIVE_ERROR: f64 = 2e-3;
 
-fn qtable(scene: &BeamScene, epsilon: &str) -> Qtable2002 {
+fn qtable(scene: &BeamScene, epsilon: &str, raster: bool) -> Qtable2002 {
+    let raster = format!("gpu_raster_planes={raster}");
     let settings = BeamSettings {
-        options: ModelOptions::parse(&["table_u=64", "table_v=64", "shadow_map_px=256", epsilon])
-            .unwrap(),
+        options: ModelOptions::parse(&[
+            "table_u=64",
+            "table_v=64",
+            "shadow_map_px=256",
+            epsilon,
+            &raster,
+        ])
+        .unwrap(),
         ..BeamSettings::default()
     };
     Qtable2002::new(scene, &settings).unwrap()
@@ -58,9 +66,13 @@ fn gpu_qtable_matches_the_cpu_qtable_on_the_shipped_scenes() {
         ("teapot_spotlight.toml", 64, 48),
     ] {
         let s = shipped_scene(name, width, height);
-        let method = qtable(&s, "epsilon=0.01");
-        let (cpu, gpu_pixels) = both(&gpu, &pass, &method, &s);
-        check_relative(name, &cpu, &gpu_pixels, MAX_RELATIVE_ERROR);
+        for raster in [false, true] {
+            let method = qtable(&s, "epsilon=0.01", raster);
+            assert_eq!(method.gpu_raster_planes(), raster);
+            let (cpu, gpu_pixels) = both(&gpu, &pass, &method, &s);
+            let what = format!("{name}, gpu_raster_planes={raster}");
+            check_relative(&what, &cpu, &gpu_pixels, MAX_RELATIVE_ERROR);
+        }
     }
 }
 
@@ -71,10 +83,12 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
     };
     let pass = QtablePass::new(&gpu).unwrap();
     let s = shipped_scene("sphere_spotlight.toml", 40, 60);
-    let with = qtable(&s, "epsilon=0.01");
+    let with = qtable(&s, "epsilon=0.01", false);
     let packed = GpuQtable::new(&with);
     let cpu_count: usize = with.planes().iter().map(|p| p.subplane_count()).sum();
     assert_eq!(packed.subplane_count(), cpu_count);
+    let raster = GpuQtable::new(&qtable(&s, "epsilon=0.01", true));
+    assert_eq!(raster.subplane_count(), cpu_count);
     assert!(cpu_count > 0, "no sub-planes at epsilon 0.01");
     // Every interval with sub-planes has f_l / m_k of at least epsilon of the centre
     // ray's whole f_l; every interval without has a share below 2 epsilon.
@@ -89,7 +103,7 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
     }
     // Without sub-planes (epsilon 1: no interval holds all the light) the GPU draws
     // none, and the picture changes as on the CPU.
-    let without = qtable(&s, "epsilon=1");
+    let without = qtable(&s, "epsilon=1", false);
     assert_eq!(GpuQtable::new(&without).subplane_count(), 0);
     let (cpu_with, gpu_with) = both(&gpu, &pass, &with, &s);
     let (cpu_without, gpu_without) = both(&gpu, &pass, &without, &s);
@@ -100,10 +114,20 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
         &gpu_without,
         MAX_RELATIVE_ERROR,
     );
-    let changed = cpu_with
-        .iter()
-        .zip(&cpu_without)
-        .filter(|(a, b)| (a[1] - b[1]).abs() > 1e-2 * a[1])
-        .count();
-    assert!(changed >= 20, "sub-planes change only {changed} pixels");
+    let changed = |with: &[[f64; 3]], without: &[[f64; 3]]| {
+        with.iter()
+            .zip(without)
+            .filter(|(a, b)| (a[1] - b[1]).abs() > 1e-2 * a[1])
+            .count()
+    };
+    let on_cpu = changed(&cpu_with, &cpu_without);
+    let on_gpu = changed(&gpu_with, &gpu_without);
+    assert!(
+        on_cpu >= 20,
+        "sub-planes change only {on_cpu} pixels on the CPU"
+    );
+    assert!(
+        on_gpu >= 20,
+        "sub-planes change only {on_gpu} pixels on the GPU"
+    );
 }

@@ -308,6 +308,10 @@ fn epsilon_zero_and_extreme_media_stay_finite_and_bad_settings_are_named() {
         (&["d0_m=0"][..], "d0_m=0 is outside 0.001..=10000000"),
         (&["table_u=1"][..], "table_u=1 is outside 2..=4096"),
         (
+            &["gpu_raster_planes=1"][..],
+            "gpu_raster_planes=1: expected true or false",
+        ),
+        (
             &["delta_min_m=1e-4", "delta_max_m=1e-4", "d0_m=1e7"][..],
             "planes 0.0001 m apart; at most 65536",
         ),

@@ -14,6 +14,7 @@ use atmosphere_core::beams::scene::BeamScene;
 use render_wgpu::GpuContext;
 use render_wgpu::shafts::beams::gpu_methods::{BeamPasses, PackedBeams, PreparedBeams};
 use render_wgpu::shafts::beams::image::BeamImage;
+use render_wgpu::shafts::beams::qtable_pass::QtablePlanes;
 
 use crate::render::beams::exposure_ev100;
 
@@ -154,9 +155,13 @@ fn steps(packed: &PackedBeams) -> String {
         }
         PackedBeams::Qtable2002(qtable) => {
             let [nu, nv, ..] = qtable.uniform.nodes;
+            let drawn = match qtable.planes {
+                QtablePlanes::Raster(_) => "drawn one by one",
+                QtablePlanes::PerPixel(_) => "walked per pixel",
+            };
             format!(
-                "ray end, then {} planes ({} of them sub-planes), q table {nu}x{nv}",
-                qtable.instances.len(),
+                "ray end, then {} planes ({} of them sub-planes) {drawn}, q table {nu}x{nv}",
+                qtable.plane_count(),
                 qtable.subplane_count()
             )
         }

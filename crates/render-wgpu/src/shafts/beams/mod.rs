@@ -14,6 +14,8 @@
 //! - [`qtable_pass`]: the q(u, v) table and sub-planes of Dobashi et al. 2002
 //!   (`shaders/shafts/beams/qtable.wgsl`, `q_table.wgsl`), twin of
 //!   `beams/methods/qtable2002/`;
+//! - [`qtable_walk`]: the q table's planes and sub-planes walked per pixel, the
+//!   default way [`qtable_pass`] draws them (`shaders/shafts/beams/qtable_walk.wgsl`);
 //! - [`ray_end_pass`]: where each pixel's ray ends, the planes' depth test;
 //! - [`blended_planes`]: the additive render pipeline the plane methods share;
 //! - [`planes_frame`]: one frame of a plane method: the scene uploaded, the ray end,
@@ -33,5 +35,6 @@ pub mod march_pass;
 pub mod planes_frame;
 pub mod planes_pass;
 pub mod qtable_pass;
+pub mod qtable_walk;
 pub mod ray_end_pass;
 pub mod scene_buffers;

@@ -1,10 +1,13 @@
 //! The q(u, v) table with adaptive sub-planes of Dobashi et al. 2002 section 4.2 on the
-//! GPU: the ray ends as for the virtual planes (`ray_end_pass.rs`), then one plane per
-//! light, plane interval and sample (main plane or sub-plane), over the part of the
-//! screen the light's bounding volume projects to, drawn with
-//! additive blending (`shaders/shafts/beams/qtable.wgsl`), f_l read from the table as a
-//! texture. The table, its interval and the sub-plane counts are the CPU's
-//! (atmosphere-core's `beams/methods/qtable2002/`, the twin), uploaded.
+//! GPU: the ray ends as for the virtual planes (`ray_end_pass.rs`), then the planes and
+//! sub-planes over the part of the screen each light's bounding volume projects to,
+//! summed by additive blending, f_l read from the table as a texture. By default each
+//! light's samples are walked per pixel in one pass (`qtable_walk.rs`,
+//! `shaders/shafts/beams/qtable_walk.wgsl`); with `gpu_raster_planes=true` one plane per
+//! light, plane interval and sample (main plane or sub-plane) is drawn, as the paper
+//! does (`shaders/shafts/beams/qtable.wgsl`). The table, its interval and the sub-plane
+//! counts are the CPU's (atmosphere-core's `beams/methods/qtable2002/`, the twin),
+//! uploaded.
 
 use atmosphere_core::beams::methods::qtable2002::Qtable2002;
 use bytemuck::{Pod, Zeroable};
@@ -17,6 +20,7 @@ use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
 use crate::shafts::beams::planes_frame::PlanesFrame;
+use crate::shafts::beams::qtable_walk::{LightWalk, WalkedPlanes, samples_entry};
 use crate::shafts::beams::ray_end_pass::RayEndPass;
 
 /// The table's parameters (WGSL `QtableParams`).
@@ -44,6 +48,15 @@ pub struct PlaneInstance {
     pub bounds: [f32; 4],
 }
 
+/// How the planes are drawn (the setting `gpu_raster_planes`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum QtablePlanes {
+    /// One instance per light, plane interval and sample, as the paper draws them.
+    Raster(Vec<PlaneInstance>),
+    /// One instance per light, its samples walked per pixel.
+    PerPixel(WalkedPlanes),
+}
+
 /// A beams scene with the table and planes of a prepared CPU `qtable2002`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GpuQtable {
@@ -51,7 +64,7 @@ pub struct GpuQtable {
     pub uniform: QtableUniform,
     /// q at the three wavelengths (xyz) per node, v rows of u nodes.
     pub table: Vec<[f32; 4]>,
-    pub instances: Vec<PlaneInstance>,
+    pub planes: QtablePlanes,
 }
 
 impl GpuQtable {
@@ -75,17 +88,11 @@ impl GpuQtable {
                 })
             })
             .collect();
-        let mut instances = Vec::new();
-        for (l, planes) in method.planes().iter().enumerate() {
-            let bounds = method.screen_bounds()[l].map(|v| v as f32);
-            for (k, &m) in planes.samples.iter().enumerate() {
-                instances.extend((0..m).map(|j| PlaneInstance {
-                    plane: [l as u32, k as u32, j as u32, m as u32],
-                    first_depth_m: planes.first_depth_m as f32,
-                    bounds,
-                }));
-            }
-        }
+        let planes = if method.gpu_raster_planes() {
+            QtablePlanes::Raster(plane_instances(method))
+        } else {
+            QtablePlanes::PerPixel(WalkedPlanes::new(method))
+        };
         GpuQtable {
             scene,
             uniform: QtableUniform {
@@ -94,14 +101,42 @@ impl GpuQtable {
                 nodes: [nu as u32, nv as u32, 0, 0],
             },
             table: texels,
-            instances,
+            planes,
         }
     }
 
-    /// The sub-planes drawn: instances past each interval's main plane.
-    pub fn subplane_count(&self) -> usize {
-        self.instances.iter().filter(|i| i.plane[2] > 0).count()
+    /// The planes and sub-planes of every light together.
+    pub fn plane_count(&self) -> usize {
+        match &self.planes {
+            QtablePlanes::Raster(instances) => instances.len(),
+            QtablePlanes::PerPixel(walks) => walks.samples.iter().map(|&m| m as usize).sum(),
+        }
     }
+
+    /// The sub-planes drawn: instances past each interval's main plane, or the
+    /// sub-planes each walk visits.
+    pub fn subplane_count(&self) -> usize {
+        match &self.planes {
+            QtablePlanes::Raster(instances) => instances.iter().filter(|i| i.plane[2] > 0).count(),
+            QtablePlanes::PerPixel(walks) => walks.subplane_count(),
+        }
+    }
+}
+
+/// One instance per light, plane interval k and sample j < m_k.
+fn plane_instances(method: &Qtable2002) -> Vec<PlaneInstance> {
+    let mut instances = Vec::new();
+    for (l, planes) in method.planes().iter().enumerate() {
+        let bounds = method.screen_bounds()[l].map(|v| v as f32);
+        for (k, &m) in planes.samples.iter().enumerate() {
+            instances.extend((0..m).map(|j| PlaneInstance {
+                plane: [l as u32, k as u32, j as u32, m as u32],
+                first_depth_m: planes.first_depth_m as f32,
+                bounds,
+            }));
+        }
+    }
+    instances
 }
 
 /// The table pass's pipelines, made once per device.
@@ -109,6 +144,7 @@ impl GpuQtable {
 pub struct QtablePass {
     ray_end: RayEndPass,
     planes: BlendedPlanes,
+    walk: BlendedPlanes,
 }
 
 impl QtablePass {
@@ -116,25 +152,37 @@ impl QtablePass {
     pub fn new(gpu: &GpuContext) -> Result<QtablePass, RenderError> {
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let dimension = wgpu::TextureViewDimension::D2;
-        let instance = wgpu::VertexBufferLayout {
-            array_stride: size_of::<PlaneInstance>() as u64,
+        // A plane and a light's walk: four whole numbers, a depth and the bounds.
+        let attributes = &wgpu::vertex_attr_array![0 => Uint32x4, 1 => Float32, 2 => Float32x4];
+        let instance = |stride: usize| wgpu::VertexBufferLayout {
+            array_stride: stride as u64,
             step_mode: wgpu::VertexStepMode::Instance,
-            attributes: &wgpu::vertex_attr_array![0 => Uint32x4, 1 => Float32, 2 => Float32x4],
+            attributes,
         };
+        let entries = [
+            in_stage(fragment, uniform_entry(0, size_of::<QtableUniform>())),
+            in_stage(fragment, texture_entry(1, dimension)),
+            in_stage(fragment, texture_entry(2, dimension)),
+            samples_entry(),
+        ];
         let planes = BlendedPlanes::new(
             gpu,
             "shafts/beams/qtable.wgsl",
             "beams qtable2002",
-            &[
-                in_stage(fragment, uniform_entry(0, size_of::<QtableUniform>())),
-                in_stage(fragment, texture_entry(1, dimension)),
-                in_stage(fragment, texture_entry(2, dimension)),
-            ],
-            &[Some(instance)],
+            &entries[..3],
+            &[Some(instance(size_of::<PlaneInstance>()))],
+        )?;
+        let walk = BlendedPlanes::new(
+            gpu,
+            "shafts/beams/qtable_walk.wgsl",
+            "beams qtable2002 per pixel",
+            &entries,
+            &[Some(instance(size_of::<LightWalk>()))],
         )?;
         Ok(QtablePass {
             ray_end: RayEndPass::new(gpu)?,
             planes,
+            walk,
         })
     }
 
@@ -175,26 +223,42 @@ impl QtablePass {
             bytemuck::cast_slice(&qtable.table),
         );
         let table_view = table.create_view(&Default::default());
+        let (pipeline, instances, count, samples) = match &qtable.planes {
+            QtablePlanes::Raster(planes) => (
+                &self.planes,
+                bytemuck::cast_slice(planes),
+                planes.len(),
+                None,
+            ),
+            QtablePlanes::PerPixel(walks) => (
+                &self.walk,
+                bytemuck::cast_slice(&walks.lights),
+                walks.lights.len(),
+                Some(walks.texture(gpu)?.create_view(&Default::default())),
+            ),
+        };
+        let mut own = vec![wgpu::BindingResource::TextureView(&table_view)];
+        own.extend(samples.as_ref().map(wgpu::BindingResource::TextureView));
         let mut frame = PlanesFrame::begin(
             gpu,
             &self.ray_end,
-            &self.planes,
+            pipeline,
             "beams qtable2002",
             &qtable.scene,
             bytemuck::bytes_of(&qtable.uniform),
-            &[wgpu::BindingResource::TextureView(&table_view)],
+            &own,
         )?;
-        let instances = (!qtable.instances.is_empty()).then(|| {
+        let instances = (count > 0).then(|| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("beams qtable2002 planes"),
-                contents: bytemuck::cast_slice(&qtable.instances),
+                contents: instances,
                 usage: wgpu::BufferUsages::VERTEX,
             })
         });
         frame.draw(|pass| {
             if let Some(instances) = &instances {
                 pass.set_vertex_buffer(0, instances.slice(..));
-                pass.draw(0..6, 0..qtable.instances.len() as u32);
+                pass.draw(0..6, 0..count as u32);
             }
         });
         frame.finish(gpu)

@@ -100,6 +100,11 @@ pub const D0_M: Setting<f64> = Setting {
     key: "d0_m",
     range: 1e-3..=1e7,
 };
+/// How the GPU draws the planes: `true`, as the paper does, one blended pass per plane
+/// and sample over the light's part of the screen; `false` (the default), the same
+/// samples walked per pixel in one pass per light, visiting only the intervals where the
+/// ray is in the light's beam. The CPU's sum is the same either way.
+pub const GPU_RASTER_PLANES: &str = "gpu_raster_planes";
 /// The most table entries (nodes x wavelengths): 2^26.
 pub const MAX_TABLE_VALUES: usize = 1 << 26;
 /// The most planes of one light.
@@ -117,6 +122,8 @@ pub struct Qtable2002Settings {
     pub table_v: usize,
     pub shadow_map_px: usize,
     pub d0_m: Option<f64>,
+    /// [`GPU_RASTER_PLANES`].
+    pub gpu_raster_planes: bool,
 }
 
 impl Qtable2002Settings {
@@ -136,6 +143,7 @@ impl Qtable2002Settings {
             } else {
                 None
             },
+            gpu_raster_planes: r.flag(GPU_RASTER_PLANES, false)?,
         };
         if own.delta_min_m > own.delta_max_m {
             return Err(ModelError::Settings(format!(
@@ -157,6 +165,7 @@ pub struct Qtable2002 {
     planes: Vec<LightPlanes>,
     /// Each light's part of the screen (`plan::screen_bounds` of its bounding volume).
     bounds: Vec<[f64; 4]>,
+    gpu_raster_planes: bool,
 }
 
 impl Qtable2002 {
@@ -252,6 +261,7 @@ impl Qtable2002 {
             table,
             planes,
             bounds,
+            gpu_raster_planes: own.gpu_raster_planes,
         })
     }
 
@@ -279,6 +289,11 @@ impl Qtable2002 {
     /// its planes are drawn there alone.
     pub fn screen_bounds(&self) -> &[[f64; 4]] {
         &self.bounds
+    }
+
+    /// Whether the GPU draws the planes one by one ([`GPU_RASTER_PLANES`]).
+    pub fn gpu_raster_planes(&self) -> bool {
+        self.gpu_raster_planes
     }
 
     /// Each light's planes and sub-plane counts.
