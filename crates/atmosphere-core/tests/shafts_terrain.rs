@@ -451,3 +451,137 @@ fn dobashi_planes_take_out_what_the_reference_does() {
         dobashi.radiance(ray).unwrap().radiance[0]
     });
 }
+
+/// A model with light shafts: its radiance of a ray with the terrain's shadow map, or
+/// without shadow.
+type Shadowed = Box<dyn FnMut(&ViewRay, Option<ShadowMap>) -> f64>;
+
+/// Every model with light shafts, at single scattering and 550 nm.
+fn models_with_shafts() -> Vec<(&'static str, Shadowed)> {
+    use atmosphere_core::models::bruneton::Bruneton;
+    use atmosphere_core::models::dobashi::{Dobashi, DobashiSettings};
+    use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
+    use atmosphere_core::models::nishita::{Nishita, NishitaSettings};
+    use atmosphere_core::models::oneil::{Oneil, OneilSettings};
+    let a = Atmosphere::preset("earth").unwrap();
+    let s = single_settings();
+    let mut hillaire = Hillaire::prepare(&a, &s, HillaireSettings::default()).unwrap();
+    let mut nishita = Nishita::prepare(&a, &s, NishitaSettings::default()).unwrap();
+    let mut oneil = Oneil::prepare(&a, &s, OneilSettings::default()).unwrap();
+    let mut bruneton = Bruneton::prepare(&a, &s).unwrap();
+    let mut dobashi = Dobashi::prepare(&a, &s, DobashiSettings::default()).unwrap();
+    vec![
+        (
+            "hillaire",
+            Box::new(move |ray: &ViewRay, map| {
+                hillaire.set_terrain_shadow(map);
+                hillaire.radiance(ray).unwrap().radiance[0]
+            }),
+        ),
+        (
+            "nishita",
+            Box::new(move |ray: &ViewRay, map| {
+                nishita.set_terrain_shadow(map);
+                nishita.radiance(ray).unwrap().radiance[0]
+            }),
+        ),
+        (
+            "oneil",
+            Box::new(move |ray: &ViewRay, map| {
+                oneil.set_terrain_shadow(map);
+                oneil.radiance(ray).unwrap().radiance[0]
+            }),
+        ),
+        (
+            "bruneton",
+            Box::new(move |ray: &ViewRay, map| {
+                bruneton.set_terrain_shadow(map);
+                bruneton.radiance(ray).unwrap().radiance[0]
+            }),
+        ),
+        (
+            "dobashi",
+            Box::new(move |ray: &ViewRay, map| {
+                dobashi.set_terrain_shadow(map);
+                dobashi.radiance(ray).unwrap().radiance[0]
+            }),
+        ),
+    ]
+}
+
+/// Stability of the shafts at their degenerate suns: the sun exactly on the ridge's
+/// line seen from the site's ground (the ground there on the shadow's boundary), the sun
+/// along the ridge, and a sun grazing at 0.1 degree. Every model with shafts and the
+/// reference's exact march answer rays from the ground (towards the ridge, along it,
+/// towards the sun) and from 6 km down with finite, non-negative radiance no brighter
+/// than without the shadow; the grazing sun's shadow takes light out of the ray along
+/// the ridge, which runs in it.
+#[test]
+fn shafts_stay_finite_with_the_sun_on_the_ridge_line_and_grazing() {
+    let crest_top = point(CREST_M, RIDGE_HEIGHT_M);
+    let site = point(0.0, 2.0);
+    let on_ridge_line = (crest_top - point(0.0, 0.0)).normalize();
+    let along = 5.0_f64.to_radians();
+    let along_ridge = DVec3::new(along.sin(), along.cos(), 0.0);
+    let grazing = sun(0.1);
+    let a = Atmosphere::preset("earth").unwrap();
+    let reference = single_reference(&a);
+    let march = HeightFieldShadow::new(Ridge, a.bottom_radius_m);
+    let mut models = models_with_shafts();
+    let down = 3.0_f64.to_radians();
+    for (sun_name, s) in [
+        ("on the ridge line", on_ridge_line),
+        ("along the ridge", along_ridge),
+        ("grazing at 0.1 deg", grazing),
+    ] {
+        let map = wide_ridge_map(s);
+        let rays = [
+            (site, (crest_top - site).normalize()),
+            (site, DVec3::Y),
+            (site, s),
+            (
+                point(4_000.0, 6_000.0),
+                DVec3::new(-down.sin(), down.cos(), 0.0),
+            ),
+        ];
+        for (origin_m, direction) in rays {
+            let ray = ViewRay {
+                origin_m,
+                direction,
+                sun_direction: s,
+                max_distance_m: None,
+            };
+            let lit = reference.radiance(&ray).unwrap().radiance[0];
+            let exact = reference
+                .radiance_shadowed(&ray, Some(&march))
+                .unwrap()
+                .radiance[0];
+            let mut answers = vec![("reference", lit, exact)];
+            for (name, answer) in models.iter_mut() {
+                answers.push((name, answer(&ray, None), answer(&ray, Some(map.clone()))));
+            }
+            for (name, lit, shadowed) in answers {
+                assert!(
+                    lit.is_finite() && shadowed.is_finite() && shadowed >= 0.0,
+                    "{name}, sun {sun_name}, ray {direction}: {shadowed:e} (lit {lit:e})"
+                );
+                assert!(
+                    shadowed <= lit * (1.0 + 1e-6),
+                    "{name}, sun {sun_name}, ray {direction}: shadowed {shadowed:e} above lit {lit:e}"
+                );
+            }
+        }
+    }
+    let ray = ViewRay {
+        origin_m: point(4_000.0, 300.0),
+        direction: DVec3::Y,
+        sun_direction: grazing,
+        max_distance_m: None,
+    };
+    let taken = reference.radiance(&ray).unwrap().radiance[0]
+        - reference
+            .radiance_shadowed(&ray, Some(&march))
+            .unwrap()
+            .radiance[0];
+    assert!(taken > 0.0, "the grazing sun's shadow took out {taken:e}");
+}
