@@ -154,6 +154,19 @@ fn tables_match_the_cpu_with_the_mie_quadrature() {
     assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
 }
 
+/// Nodes along each texel's ray placed by density (`density_nodes`), in the hazy
+/// atmosphere whose boundary layer they are for.
+#[test]
+fn tables_match_the_cpu_with_density_nodes() {
+    let Some(gpu) = gpu_or_skip("bruneton tables with density nodes") else {
+        return;
+    };
+    let mut options = REDUCED.to_vec();
+    options.push("density_nodes=true");
+    let errors = compare_tables(&gpu, "hazy", &options);
+    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+}
+
 /// The twilight settings: S and E down to the sun 20 deg below the horizon, u_nu linear
 /// in the scattering angle.
 const TWILIGHT: [&str; 6] = [
