@@ -63,6 +63,12 @@ struct BrunetonParams {
     mu_s_knee: u32,
     // 1 when S is read geometrically along mu_s below the horizontal.
     geometric_mu_s: u32,
+    // 1 when the nodes along each texel's ray are placed by density.
+    density_nodes: u32,
+    // 1 when the sun is a disk where it meets the horizon, of this angular radius
+    // (radians).
+    sun_disk: u32,
+    sun_angular_radius: f32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

@@ -198,7 +198,8 @@ fn segment_radiance(direction: vec3<f32>, s: Segment, inside: bool) -> Radiance 
     return out;
 }
 
-// `Bruneton::surface_irradiance`: the transmitted sun from the transmittance table and
+// `Bruneton::surface_irradiance`: the transmitted sun (a point, or with `sun_disk` the
+// disk's visible part along its centroid) from the transmittance table and
 // the sky's irradiance E[L](r, mu_s) from the irradiance table (section 4, Eq. 15), at the
 // element's radius and sun angle.
 fn bruneton_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
@@ -206,7 +207,12 @@ fn bruneton_surface_irradiance(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32>
     let bottom = atmosphere.bottom_radius_m;
     let q = (e.r - bottom) * (e.r + bottom);
     var t = vec3<f32>(0.0);
-    if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
+    if bruneton.sun_disk == 1u {
+        let visible = visible_sun(q, e.r, e.mu_s);
+        if e.sun_cosine > 0.0 && visible.x > 0.0 {
+            t = visible.x * exp(-optical_depth(read_table_columns(transmittance_columns, q, visible.y)));
+        }
+    } else if e.sun_cosine > 0.0 && !hits_ground(q, e.r * e.mu_s) {
         t = exp(-optical_depth(read_table_columns(transmittance_columns, q, e.mu_s)));
     }
     let sky = irradiance_at(bruneton.irradiance_offset, q, e.r, e.mu_s);

@@ -39,11 +39,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let ray = row_ray(tx);
     let nu_axis = axis(u_nu(tx.nu), bruneton.nu_size);
     let n = bruneton.view_samples;
-    var column = vec3<f32>(0.0);
-    var previous = vec3<f32>(0.0);
+    var nodes = start_nodes(ray, n);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i <= n; i++) {
-        let node = ray_node(ray, i, n, &column, &previous);
+        let node = ray_node(ray, i, &nodes);
         let p = table_position(node.q, node.r, ray.r_mu + node.t, 0.0, 0.0, ray.ground);
         let s = axis(u_mu_s(node_sun_cosine(ray, node, tx.mu_s, tx.nu)), bruneton.mu_s_size);
         let geometric = geometric_pair(s.i);

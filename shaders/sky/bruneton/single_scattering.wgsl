@@ -15,12 +15,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let tx = texel_of_index(index);
     let ray = row_ray(tx);
     let n = bruneton.view_samples;
-    var column = vec3<f32>(0.0);
-    var previous = vec3<f32>(0.0);
+    var nodes = start_nodes(ray, n);
     var rayleigh = vec3<f32>(0.0);
     var mie = vec3<f32>(0.0);
     for (var i = 0u; i <= n; i++) {
-        let node = ray_node(ray, i, n, &column, &previous);
+        let node = ray_node(ray, i, &nodes);
         if node.densities.x == 0.0 && node.densities.y == 0.0 {
             continue;
         }

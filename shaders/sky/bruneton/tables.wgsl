@@ -82,9 +82,44 @@ fn segment_ends(q: f32, r: f32, r_mu: f32, d: f32, ground: bool) -> vec4<f32> {
         select(mu_d, -mu, ground));
 }
 
-// Transmittance to the sun (a point) from (q, r) at sun cosine mu_s, interpolated in the
-// transmittance table (`Builder::sun_transmittance`); zero behind the planet.
+// The visible part of the sun seen from (q, r) with its centre at zenith cosine mu_s
+// (`visible_sun` of atmosphere-core's `bruneton/sun_disk.rs`): the fraction of the disk
+// above the geometric horizon (0 when none of it is) and the zenith cosine of that part's
+// centroid. With the centre y disk radii above the horizon, c = -y, the segment has area
+// (acos c - c sqrt(1 - c^2)) / pi of the disk and its centroid lies
+// (2/3) (1 - c^2)^(3/2) / (acos c - c sqrt(1 - c^2)) radii above the centre.
+fn visible_sun(q: f32, r: f32, mu_s: f32) -> vec2<f32> {
+    let alpha = bruneton.sun_angular_radius;
+    let theta_s = acos(clamp(mu_s, -1.0, 1.0));
+    let theta_h = acos(-safe_sqrt(q) / r);
+    let height = (theta_h - theta_s) / alpha;
+    if height >= 1.0 {
+        return vec2<f32>(1.0, mu_s);
+    }
+    if height <= -1.0 {
+        return vec2<f32>(0.0, mu_s);
+    }
+    let c = -height;
+    let s = safe_sqrt(1.0 - c * c);
+    let segment = acos(c) - c * s;
+    if segment <= 0.0 {
+        return vec2<f32>(0.0, mu_s);
+    }
+    let centroid = 2.0 / 3.0 * s * s * s / segment;
+    return vec2<f32>(segment / PI, cos(theta_s - centroid * alpha));
+}
+
+// Transmittance to the sun from (q, r) at sun cosine mu_s, interpolated in the
+// transmittance table (`Builder::sun_transmittance`): to a point, zero behind the planet,
+// or with `sun_disk` to the disk's visible part along its centroid.
 fn sun_transmittance(q: f32, r: f32, mu_s: f32) -> vec3<f32> {
+    if bruneton.sun_disk == 1u {
+        let visible = visible_sun(q, r, mu_s);
+        if visible.x <= 0.0 {
+            return vec3<f32>(0.0);
+        }
+        return visible.x * table_columns(transmittance, q, visible.y);
+    }
     if hits_ground(q, r * mu_s) {
         return vec3<f32>(0.0);
     }

@@ -20,6 +20,7 @@ pub mod builder;
 pub mod channels;
 pub mod delta_m;
 pub mod mie_quadrature;
+pub mod node_placement;
 pub mod parameterization;
 pub mod precompute;
 pub mod settings;

@@ -26,6 +26,9 @@ pub struct BrunetonSettings {
     /// dense end of climbing and descending rays, where evenly spaced nodes overestimate
     /// Mie scattering on vertical rays.
     pub view_samples: usize,
+    /// Those nodes placed at equal steps of half distance, half optical depth along the
+    /// ray (`node_placement.rs`) instead of by the crowding rule above: off by default.
+    pub density_nodes: bool,
     /// Directions (zenith angle, azimuth) of the sphere integrals for Delta J and
     /// Delta E: 16 x 32 (INSCATTER_SPHERICAL_INTEGRAL_SAMPLES). The zenith angle is
     /// integrated by 8-point Gauss-Legendre panels on each side of the horizon, one pair
@@ -62,6 +65,7 @@ impl Default for BrunetonSettings {
             irradiance_size: (64, 16),
             transmittance_size: BRUNETON_TABLE_SIZE,
             view_samples: 50,
+            density_nodes: false,
             sphere_samples: (16, 32),
             order_threshold: 0.02,
             order_limit: 32,
@@ -108,12 +112,13 @@ pub const NU_BY_ANGLE: &str = "nu_by_angle";
 pub const SUN_DISK: &str = "sun_disk";
 pub const MU_S_KNEE: &str = "mu_s_knee";
 pub const GEOMETRIC_MU_S: &str = "geometric_mu_s";
+pub const DENSITY_NODES: &str = "density_nodes";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
     /// `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`, `sun_disk`, `mie_directions`,
-    /// `geometric_mu_s`; the paper's values where absent.
+    /// `geometric_mu_s`, `density_nodes`; the paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -132,6 +137,7 @@ impl BrunetonSettings {
                 },
                 irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),
                 view_samples: o.count(&VIEW_SAMPLES, d.view_samples)?,
+                density_nodes: o.flag(DENSITY_NODES, d.density_nodes)?,
                 sphere_samples: (
                     o.count(&SPHERE_ZENITH, d.sphere_samples.0)?,
                     o.count(&SPHERE_AZIMUTH, d.sphere_samples.1)?,

@@ -5,10 +5,12 @@
 use rayon::prelude::*;
 
 use crate::models::bruneton::builder::{Builder, to_f32};
+use crate::models::bruneton::node_placement::{FINE_PER_NODE, crowded_distance, density_distances};
 use crate::models::bruneton::parameterization::{
     AngleMapping, axis, table_position, texel_parameters,
 };
 use crate::models::bruneton::tables::{Table4, along_mu_s};
+use crate::optics::column::optical_depth;
 use crate::optics::geometry::radius_at;
 
 /// One trapezoid node of a texel row's ray (see `Builder::ray_nodes`).
@@ -69,7 +71,8 @@ impl MuSAxis {
 type RowValues = (usize, usize, Vec<[[f32; 3]; 2]>);
 
 impl Builder<'_> {
-    /// The trapezoid nodes along the ray of texel row (r, mu): distance, radius, mu there,
+    /// The trapezoid nodes along the ray of texel row (r, mu), placed by
+    /// `node_placement.rs` (crowded, or by density with `density_nodes`): distance, radius, mu there,
     /// densities, the trapezoid weight times the transmittance from the ray's start (from
     /// a running trapezoid of the densities), and the r and mu axes of the table there.
     /// Every texel with this (r, mu) shares them; only mu_s and nu differ.
@@ -77,18 +80,18 @@ impl Builder<'_> {
         let d = self.ray_length(r, mu, ground);
         let n = self.settings.view_samples.max(1);
         let size = self.settings.scattering_size;
-        // Nodes crowd where the air is densest: at the start of rays that climb, at the
-        // end of rays that meet the ground; evenly spaced on rays through a tangent point.
-        let position = |i: usize| {
-            let u = i as f64 / n as f64;
-            if mu >= 0.0 {
-                d * u * u
-            } else if ground {
-                d * (1.0 - (1.0 - u) * (1.0 - u))
-            } else {
-                d * u
-            }
+        let crowded = |i: usize, count: usize| crowded_distance(d, mu >= 0.0, ground, i, count);
+        let distances: Vec<f64> = if self.settings.density_nodes {
+            let extinction = |t: f64| {
+                let r_t = radius_at(r, mu, t).clamp(self.radii.bottom_m, self.radii.top_m);
+                let rho = self.densities.at(r_t - self.radii.bottom_m);
+                optical_depth(rho, self.channels.extinction[1])
+            };
+            density_distances(n, |j| crowded(j, FINE_PER_NODE * n), extinction)
+        } else {
+            (0..=n).map(|i| crowded(i, n)).collect()
         };
+        let position = |i: usize| distances[i];
         let mut column = [0.0; 3];
         let mut previous = [0.0; 3];
         let mut nodes = Vec::with_capacity(n + 1);

@@ -69,11 +69,6 @@ fn check_limits(
 ) -> Result<StoreChunks, RenderError> {
     let s = settings.scattering_size;
     let e_texels = settings.irradiance_size.0 * settings.irradiance_size.1;
-    if settings.sun_disk {
-        return Err(RenderError::Unsupported(
-            "bruneton sun_disk=true is not built on the GPU yet (the CPU model has it)".into(),
-        ));
-    }
     if max_orders > MAX_ORDERS {
         return Err(RenderError::Unsupported(format!(
             "{max_orders} scattering orders (the GPU records at most {MAX_ORDERS})"

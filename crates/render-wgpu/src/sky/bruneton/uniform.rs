@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout, StoreTable};
 use crate::sky::bruneton::store_chunks::StoreChunks;
 
-/// WGSL `BrunetonParams`, 140 bytes: the sizes of the tables and of the sphere integrals,
+/// WGSL `BrunetonParams`, 152 bytes: the sizes of the tables and of the sphere integrals,
 /// the store's offsets (texels), and what the build depends on besides the atmosphere.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -72,6 +72,13 @@ pub struct BrunetonUniform {
     /// 1 when S is read geometrically along mu_s between texels whose sun is below the
     /// horizontal (`AngleMapping::geometric_mu_s`).
     pub geometric_mu_s: u32,
+    /// 1 when the nodes along each texel's ray are placed by density
+    /// (`BrunetonSettings::density_nodes`).
+    pub density_nodes: u32,
+    /// 1 when the sun is a disk where it meets the horizon (`BrunetonSettings::sun_disk`),
+    /// of this angular radius (radians).
+    pub sun_disk: u32,
+    pub sun_angular_radius: f32,
 }
 
 impl BrunetonUniform {
@@ -131,6 +138,9 @@ impl BrunetonUniform {
             store_chunk_texels: chunks.chunk_texels,
             mu_s_knee: u32::from(s.angles.mu_s_knee),
             geometric_mu_s: u32::from(s.angles.geometric_mu_s),
+            density_nodes: u32::from(settings.density_nodes),
+            sun_disk: u32::from(settings.sun_disk),
+            sun_angular_radius: atmosphere.sun.angular_radius_rad as f32,
         }
     }
 }
