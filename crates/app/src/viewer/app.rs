@@ -184,12 +184,14 @@ impl ViewerApp {
     }
 
     /// Whether the last frame's tables were still being built, terrain meshes were
-    /// being built or covered, or the terrain's chunks were being chosen (more of them
-    /// next frame).
+    /// being built or covered, the terrain's chunks were being chosen (more of them
+    /// next frame), or the rain and ice volumes' tables are being built.
     fn building(&self) -> bool {
-        self.last_plan
-            .as_ref()
-            .is_some_and(|p| p.building.is_some())
+        self.optics.building()
+            || self
+                .last_plan
+                .as_ref()
+                .is_some_and(|p| p.building.is_some())
             || self
                 .renderer
                 .terrain_progress()
@@ -335,6 +337,7 @@ impl eframe::App for ViewerApp {
             plan: self.last_plan.as_ref(),
             table_bytes: self.renderer.table_bytes(),
             adapter: &self.adapter,
+            optics_building: self.optics.building(),
         };
         let beams = &mut self.beams;
         let actions = egui::Panel::left("settings")
