@@ -24,8 +24,8 @@ pub const SMALL_DROP_RADIUS_RANGE_UM: [f64; 2] = [50.0, 600.0];
 /// outside a drop and those of its bows interfere in a ripple of a few units of size
 /// parameter, which a coarse regular rule in r samples at pseudo-random phases: each
 /// wavelength's table then jitters from the next and the colour integral over the
-/// wavelengths settles slowly (docs/optics-rendering.md, "Wavelengths and cost"); 64
-/// radii average the ripple where 16 left a few per cent.
+/// wavelengths settles slowly; 64 radii average the ripple out (docs/optics-rendering.md,
+/// "Wavelengths and cost").
 pub const SMALL_DROP_SIGMA: f64 = 0.05;
 pub const SMALL_DROP_RADII: usize = 64;
 /// The range of a deck's droplet effective radius, um.
