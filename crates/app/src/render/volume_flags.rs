@@ -10,6 +10,7 @@ use atmosphere_core::hydrometeors::scene::{
     CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, lit_volume,
 };
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
+use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::registry::prepare;
 use clap::Args;
 use render_wgpu::Frame;
@@ -177,8 +178,10 @@ impl VolumeFlags {
         })
     }
 
-    /// The volumes of `frame`, lit by its model on the CPU; errors name the flag.
-    pub fn lit_volumes(&self, frame: &Frame) -> anyhow::Result<Vec<LitVolume>> {
+    /// The volumes of `frame`, each with its flag, placed and checked but not lit:
+    /// quick, so that a bad setting is named before any table is built; errors name the
+    /// flag.
+    pub fn volumes(&self, frame: &Frame) -> anyhow::Result<Vec<(&'static str, Volume)>> {
         let wavelengths = self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS);
         let [lo, hi] = WAVELENGTH_COUNT_RANGE;
         if !(lo..=hi).contains(&(wavelengths as f64)) {
@@ -190,37 +193,15 @@ impl VolumeFlags {
         if self.rain_small_drop_radius_um.is_some() && self.rain != Some(true) {
             bail!("--rain-small-drop-radius-um is the rain shaft's drops: it needs --rain");
         }
-        let (rain, cirrus, deck) = (
-            self.rain_settings(),
-            self.cirrus_settings(),
-            self.deck_settings(),
-        );
-        if rain.is_none() && cirrus.is_none() && deck.is_none() {
-            return Ok(Vec::new());
-        }
-        let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
         let ground = frame.atmosphere.bottom_radius_m;
         let camera = frame.camera_position_m;
-        let view = (camera, frame.sun_direction);
-        let optics = (wavelengths, frame.atmosphere.sun.angular_radius_rad);
-        let cache = table_cache();
         let mut volumes = Vec::new();
-        if let Some(rain) = rain {
+        if let Some(rain) = self.rain_settings() {
             let forward = frame.axes()[2];
-            let volume = rain.volume(camera, forward, ground).context("--rain")?;
-            volumes.push(
-                lit_volume(
-                    model.as_ref(),
-                    volume,
-                    view,
-                    optics,
-                    RGB_WAVELENGTHS_NM,
-                    &cache,
-                )
-                .context("--rain")?,
-            );
+            let volume = rain.volume(camera, forward, ground);
+            volumes.push(("--rain", volume.context("--rain")?));
         }
-        if let Some(cirrus) = cirrus {
+        if let Some(cirrus) = self.cirrus_settings() {
             let up = camera.normalize();
             let sun_elevation_deg = frame
                 .sun_direction
@@ -228,35 +209,41 @@ impl VolumeFlags {
                 .clamp(-1.0, 1.0)
                 .asin()
                 .to_degrees();
-            let volume = cirrus
-                .volume(ground, sun_elevation_deg)
-                .context("--cirrus")?;
-            volumes.push(
-                lit_volume(
-                    model.as_ref(),
-                    volume,
-                    view,
-                    optics,
-                    RGB_WAVELENGTHS_NM,
-                    &cache,
-                )
-                .context("--cirrus")?,
-            );
+            let volume = cirrus.volume(ground, sun_elevation_deg);
+            volumes.push(("--cirrus", volume.context("--cirrus")?));
         }
-        if let Some(deck) = deck {
-            let volume = deck.volume(ground).context("--deck")?;
-            volumes.push(
-                lit_volume(
-                    model.as_ref(),
-                    volume,
-                    view,
-                    optics,
-                    RGB_WAVELENGTHS_NM,
-                    &cache,
-                )
-                .context("--deck")?,
-            );
+        if let Some(deck) = self.deck_settings() {
+            volumes.push(("--deck", deck.volume(ground).context("--deck")?));
         }
         Ok(volumes)
+    }
+
+    /// The volumes of `frame` ([`VolumeFlags::volumes`]), lit by its model on the CPU
+    /// with their phase tables (from the table cache, or built: seconds to minutes);
+    /// errors name the flag.
+    pub fn lit_volumes(&self, frame: &Frame) -> anyhow::Result<Vec<LitVolume>> {
+        let volumes = self.volumes(frame)?;
+        if volumes.is_empty() {
+            return Ok(Vec::new());
+        }
+        let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
+        let view = (frame.camera_position_m, frame.sun_direction);
+        let wavelengths = self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS);
+        let optics = (wavelengths, frame.atmosphere.sun.angular_radius_rad);
+        let cache = table_cache();
+        volumes
+            .into_iter()
+            .map(|(flag, volume)| {
+                lit_volume(
+                    model.as_ref(),
+                    volume,
+                    view,
+                    optics,
+                    RGB_WAVELENGTHS_NM,
+                    &cache,
+                )
+                .context(flag)
+            })
+            .collect()
     }
 }

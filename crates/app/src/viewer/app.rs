@@ -183,10 +183,10 @@ impl ViewerApp {
         })
     }
 
-    /// Whether the last frame's tables were still being built, terrain meshes were
-    /// being built or covered, or the terrain's chunks were being chosen (more of them
-    /// next frame).
-    fn building(&self) -> bool {
+    /// Whether the renderer is still building: the last frame's tables, terrain meshes
+    /// being built or covered, or the terrain's chunks being chosen (more of them next
+    /// frame).
+    fn renderer_building(&self) -> bool {
         self.last_plan
             .as_ref()
             .is_some_and(|p| p.building.is_some())
@@ -196,13 +196,27 @@ impl ViewerApp {
                 .is_some_and(|t| t.covered > 0 || t.building > 0 || t.selecting)
     }
 
-    /// Renders `frame` if it differs from the last one or tables are being built, and
-    /// points the egui texture at it.
+    /// Whether the renderer is building or the rain and ice volumes' tables are being
+    /// built on their worker thread (the window repaints to look for them).
+    fn building(&self) -> bool {
+        self.renderer_building() || self.optics.building()
+    }
+
+    /// Renders `frame` if it differs from the last one, the renderer is building, or
+    /// the volumes' tables have just been swapped in, and points the egui texture at
+    /// it.
     fn render(&mut self, frame: Frame) -> anyhow::Result<()> {
+        // A pending build of the volumes is looked for every frame; the image is drawn
+        // again only when its volumes arrive.
+        let swapped = self.optics.building()
+            && self
+                .optics
+                .apply(&mut self.renderer, &frame, &self.settings.optics)?;
         if self.last_frame.as_ref() == Some(&frame)
             && self.last_clouds.as_ref() == Some(&self.settings.clouds)
             && self.last_optics.as_ref() == Some(&self.settings.optics)
-            && !self.building()
+            && !swapped
+            && !self.renderer_building()
         {
             return Ok(());
         }
@@ -335,6 +349,7 @@ impl eframe::App for ViewerApp {
             plan: self.last_plan.as_ref(),
             table_bytes: self.renderer.table_bytes(),
             adapter: &self.adapter,
+            optics_building: self.optics.building(),
         };
         let beams = &mut self.beams;
         let actions = egui::Panel::left("settings")

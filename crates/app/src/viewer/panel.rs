@@ -34,6 +34,8 @@ pub struct Stats<'a> {
     pub plan: Option<&'a FramePlan>,
     pub table_bytes: u64,
     pub adapter: &'a str,
+    /// The rain and ice volumes' tables are being built off the render thread.
+    pub optics_building: bool,
 }
 
 /// What the user asked of the app this frame.
@@ -57,7 +59,7 @@ pub fn show(
         atmosphere(ui, settings);
         terrain(ui, settings);
         cloud_panel::show(ui, &mut settings.clouds);
-        optics_panel::show(ui, &mut settings.optics);
+        optics_panel::show(ui, &mut settings.optics, stats.optics_building);
         model(ui, settings);
         actions.screenshot = image(ui, settings);
         path_panel::show(ui, path, settings);

@@ -20,17 +20,22 @@ pub const SHAFT_DISTANCE_RANGE_M: [f64; 2] = [0.0, 100_000.0];
 pub const DEFAULT_WAVELENGTHS: usize = 32;
 /// The range of small rain drops' effective radius, um (supernumerary bows).
 pub const SMALL_DROP_RADIUS_RANGE_UM: [f64; 2] = [50.0, 600.0];
-/// Small drops: a narrow lognormal, and the radii of its average (the drops' ripple in
-/// angle is averaged within each bin, so a few radii follow the bows' shift with size).
+/// Small drops: a narrow lognormal, and the radii of its average. The rays reflected
+/// outside a drop and those of its bows interfere in a ripple of a few units of size
+/// parameter, which a coarse regular rule in r samples at pseudo-random phases: each
+/// wavelength's table then jitters from the next and the colour integral over the
+/// wavelengths settles slowly; 64 radii average the ripple out (docs/optics-rendering.md,
+/// "Wavelengths and cost").
 pub const SMALL_DROP_SIGMA: f64 = 0.05;
-pub const SMALL_DROP_RADII: usize = 16;
+pub const SMALL_DROP_RADII: usize = 64;
 /// The range of a deck's droplet effective radius, um.
 pub const DECK_DROPLET_RADIUS_RANGE_UM: [f64; 2] = [2.0, 50.0];
-/// Cloud droplets: a lognormal of sigma 0.1, and the radii of its average (about two
+/// Cloud droplets: a lognormal of sigma 0.1, and the radii of its average (about four
 /// per unit of size parameter at 380 nm for 10 um, so that the sharp resonances of the
-/// glory's swings with size average out).
+/// glory's swings with size average out: with fewer, each wavelength's table jitters
+/// from the next as the rule hits or misses them).
 pub const DECK_SIGMA: f64 = 0.1;
-pub const DECK_RADII: usize = 256;
+pub const DECK_RADII: usize = 512;
 
 /// A rain shaft standing `distance_m` from the camera along a horizontal direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
