@@ -3,7 +3,9 @@
 //! cloudbow and the glory): the droplet deck's (glory, cloudbow) changes from 32 to 64
 //! wavelengths by less than 1 % in every channel and its largest change falls from
 //! 16 -> 32 to 32 -> 64; the small drops' (supernumerary bows) green and blue alike,
-//! their red not yet (bounded). Slow: each table is built at 112 wavelengths in all.
+//! their red not yet (bounded). Slow: each table is built at 112 wavelengths in all,
+//! minutes of Lorenz-Mie series on two cores, so the suite leaves them out; run them with
+//! `cargo test -p atmosphere-core --test hydrometeor_spectral_convergence -- --ignored`.
 
 use atmosphere_core::hydrometeors::channel_phase::ChannelPhase;
 use atmosphere_core::hydrometeors::mie_droplets::Droplets;
@@ -63,6 +65,7 @@ fn largest(v: [f64; 3]) -> f64 {
 }
 
 #[test]
+#[ignore = "a measurement: about 11 CPU minutes of Lorenz-Mie; run with --ignored"]
 fn doubling_the_wavelengths_settles_the_small_drops_green_and_blue_below_one_percent() {
     let (coarse, fine) = changes(
         "small drops, 150 um",
@@ -83,6 +86,7 @@ fn doubling_the_wavelengths_settles_the_small_drops_green_and_blue_below_one_per
 }
 
 #[test]
+#[ignore = "a measurement: about 4 CPU minutes of Lorenz-Mie; run with --ignored"]
 fn doubling_the_wavelengths_changes_the_deck_table_by_less_than_one_percent() {
     let (coarse, fine) = changes(
         "deck, 10 um",
