@@ -456,6 +456,16 @@ fn dobashi_planes_take_out_what_the_reference_does() {
 /// without shadow.
 type Shadowed = Box<dyn FnMut(&ViewRay, Option<ShadowMap>) -> f64>;
 
+/// `model`'s radiance at 550 nm with the shadow map it is given.
+macro_rules! shadowed {
+    ($model:ident) => {
+        Box::new(move |ray: &ViewRay, map| {
+            $model.set_terrain_shadow(map);
+            $model.radiance(ray).unwrap().radiance[0]
+        }) as Shadowed
+    };
+}
+
 /// Every model with light shafts, at single scattering and 550 nm.
 fn models_with_shafts() -> Vec<(&'static str, Shadowed)> {
     use atmosphere_core::models::bruneton::Bruneton;
@@ -471,41 +481,11 @@ fn models_with_shafts() -> Vec<(&'static str, Shadowed)> {
     let mut bruneton = Bruneton::prepare(&a, &s).unwrap();
     let mut dobashi = Dobashi::prepare(&a, &s, DobashiSettings::default()).unwrap();
     vec![
-        (
-            "hillaire",
-            Box::new(move |ray: &ViewRay, map| {
-                hillaire.set_terrain_shadow(map);
-                hillaire.radiance(ray).unwrap().radiance[0]
-            }),
-        ),
-        (
-            "nishita",
-            Box::new(move |ray: &ViewRay, map| {
-                nishita.set_terrain_shadow(map);
-                nishita.radiance(ray).unwrap().radiance[0]
-            }),
-        ),
-        (
-            "oneil",
-            Box::new(move |ray: &ViewRay, map| {
-                oneil.set_terrain_shadow(map);
-                oneil.radiance(ray).unwrap().radiance[0]
-            }),
-        ),
-        (
-            "bruneton",
-            Box::new(move |ray: &ViewRay, map| {
-                bruneton.set_terrain_shadow(map);
-                bruneton.radiance(ray).unwrap().radiance[0]
-            }),
-        ),
-        (
-            "dobashi",
-            Box::new(move |ray: &ViewRay, map| {
-                dobashi.set_terrain_shadow(map);
-                dobashi.radiance(ray).unwrap().radiance[0]
-            }),
-        ),
+        ("hillaire", shadowed!(hillaire)),
+        ("nishita", shadowed!(nishita)),
+        ("oneil", shadowed!(oneil)),
+        ("bruneton", shadowed!(bruneton)),
+        ("dobashi", shadowed!(dobashi)),
     ]
 }
 

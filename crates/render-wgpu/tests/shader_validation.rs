@@ -453,7 +453,10 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             mie_directions,
             store_chunk_texels,
             mu_s_knee,
-            geometric_mu_s
+            geometric_mu_s,
+            density_nodes,
+            sun_disk,
+            sun_angular_radius
         ]
     );
     assert_layout!(

@@ -16,6 +16,7 @@
 #import shafts/beams/qtable_bindings.wgsl
 #import shafts/beams/plane_light.wgsl
 #import shafts/beams/q_table.wgsl
+#import shafts/beams/screen_rectangle.wgsl
 
 struct PlaneSample {
     @builtin(position) position: vec4<f32>,
@@ -32,14 +33,8 @@ fn vertex(
     @location(1) first_depth_m: f32,
     @location(2) bounds: vec4<f32>,
 ) -> PlaneSample {
-    // Two triangles over the rectangle [x0, y0, x1, y1]: its corners (0, 0), (1, 0),
-    // (1, 1), (0, 0), (1, 1), (0, 1).
-    let corners = array<vec2<f32>, 6>(
-        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0),
-        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0),
-    );
     var out: PlaneSample;
-    out.position = vec4<f32>(mix(bounds.xy, bounds.zw, corners[v]), 0.0, 1.0);
+    out.position = screen_rectangle_position(bounds, v);
     out.plane = plane;
     out.first_depth_m = first_depth_m;
     return out;

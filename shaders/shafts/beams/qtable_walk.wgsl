@@ -18,6 +18,7 @@
 #import shafts/beams/qtable_bindings.wgsl
 #import shafts/beams/plane_light.wgsl
 #import shafts/beams/q_table.wgsl
+#import shafts/beams/screen_rectangle.wgsl
 
 // m_k of every light's intervals, the lights one after another, row by row.
 @group(1) @binding(3) var interval_samples: texture_2d<u32>;
@@ -41,13 +42,8 @@ fn vertex(
     @location(1) first_depth_m: f32,
     @location(2) bounds: vec4<f32>,
 ) -> LightWalk {
-    // Two triangles over the rectangle [x0, y0, x1, y1].
-    let corners = array<vec2<f32>, 6>(
-        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0),
-        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0),
-    );
     var out: LightWalk;
-    out.position = vec4<f32>(mix(bounds.xy, bounds.zw, corners[v]), 0.0, 1.0);
+    out.position = screen_rectangle_position(bounds, v);
     out.walk = walk;
     out.first_depth_m = first_depth_m;
     return out;
