@@ -90,3 +90,13 @@ struct BvhNode {
 @group(0) @binding(8) var<storage, read> phase_table: array<vec2<f32>>;
 // Radiance at the three wavelengths (xyz), w = 1.
 @group(0) @binding(9) var radiance_out: texture_storage_2d<rgba32float, write>;
+
+// The camera ray's unit direction through the pixel centre `pixel` (framebuffer
+// coordinates) of the image of `params.size_steps_lights.xy` pixels.
+fn pixel_direction(pixel: vec2<f32>) -> vec3<f32> {
+    let size = vec2<f32>(params.size_steps_lights.xy);
+    let sx = (2.0 * pixel.x / size.x - 1.0) * params.camera_right.w;
+    let sy = (1.0 - 2.0 * pixel.y / size.y) * params.camera_up.w;
+    return normalize(params.camera_forward.xyz + params.camera_right.xyz * sx
+        + params.camera_up.xyz * sy);
+}

@@ -84,12 +84,8 @@ fn vertex(@builtin(vertex_index) v: u32, @builtin(instance_index) instance: u32)
 
 @fragment
 fn fragment(in: LatticePoint) -> @location(0) vec4<f32> {
-    let size = vec2<f32>(params.size_steps_lights.xy);
     let pixel = in.position.xy;
-    let sx = (2.0 * pixel.x / size.x - 1.0) * params.camera_right.w;
-    let sy = (1.0 - 2.0 * pixel.y / size.y) * params.camera_up.w;
-    let dir = normalize(params.camera_forward.xyz + params.camera_right.xyz * sx
-        + params.camera_up.xyz * sy);
+    let dir = pixel_direction(pixel);
     let cos_forward = dot(dir, params.camera_forward.xyz);
     let depth = plane_depth_m(in.plane);
     let t = depth / cos_forward;

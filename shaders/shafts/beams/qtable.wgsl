@@ -42,12 +42,8 @@ fn vertex(
 
 @fragment
 fn fragment(in: PlaneSample) -> @location(0) vec4<f32> {
-    let size = vec2<f32>(params.size_steps_lights.xy);
     let pixel = in.position.xy;
-    let sx = (2.0 * pixel.x / size.x - 1.0) * params.camera_right.w;
-    let sy = (1.0 - 2.0 * pixel.y / size.y) * params.camera_up.w;
-    let dir = normalize(params.camera_forward.xyz + params.camera_right.xyz * sx
-        + params.camera_up.xyz * sy);
+    let dir = pixel_direction(pixel);
     let cos_forward = dot(dir, params.camera_forward.xyz);
     let dt = qtable.interval_m.x;
     let dt_ray = dt / cos_forward;
