@@ -1,14 +1,15 @@
 // Library: the march of one view ray through the cloud layer, twin of atmosphere-core's
 // `clouds/layer/march.rs` (its documentation holds the equations): equal steps sampled
 // at their middles, the energy-conserving step integral (Hillaire 2016), the sun by
-// Riley et al. 2004's expected orders (Eq. 22, 25, 26) or Wrenninge et al. 2013's
-// octaves, the sky as isotropic ambient, the shadow march through the density with
+// Riley et al. 2004's expected orders (Eq. 22, 25, 26), Wrenninge et al. 2013's
+// octaves or the delta-Eddington slab (`eddington.wgsl`), the sky as isotropic ambient, the shadow march through the density with
 // `noise.y` octaves or, where `noise.w` is 1 (`sun_light = map`), the optical depth
 // read from the frame's sun map (`sun_map_read.wgsl`, Dobashi et al. 2002 section 5.4)
 // in `counts.y` equal parts, stopping below the transmittance `detail.z`.
 
 #import clouds/layer_medium.wgsl
 #import clouds/sun_map_read.wgsl
+#import clouds/eddington.wgsl
 
 const MAX_SHADOW_STEPS: u32 = 64u;
 
@@ -33,8 +34,35 @@ fn forward_fraction(n: u32) -> vec3<f32> {
     return vec3<f32>(orders[base], orders[base + ORDERS], orders[base + 2u * ORDERS]);
 }
 
-// J_sun / E_sun at `p`, sr^-1.
-fn sun_source(p: vec3<f32>, nu: f32, albedo: f32) -> vec3<f32> {
+// The single-scattering phase function's asymmetry g, each wavelength.
+fn asymmetry() -> vec3<f32> {
+    let base = WAVES * ORDERS * (ANGLES + 1u);
+    return vec3<f32>(orders[base], orders[base + 1u], orders[base + 2u]);
+}
+
+// What a sample scatters towards the eye per unit of extinction and albedo, sr^-1:
+// J_sun / E_sun seen through the real medium and, for the delta-Eddington method,
+// J_sun / E_sun and J_sky / E_sky seen through the delta-scaled one.
+struct SunParts {
+    unscaled: vec3<f32>,
+    scaled: vec3<f32>,
+    scaled_sky: vec3<f32>,
+}
+
+// The optical depth of `counts.y` equal steps from `p` to the layer's boundary along the
+// unit `d`, through the density the shadow march reads.
+fn layer_depth(p: vec3<f32>, d: vec3<f32>) -> f32 {
+    let steps = clamp(layer.counts.y, 1u, MAX_SHADOW_STEPS);
+    let ds = layer_boundary(p, d) / f32(steps);
+    var tau = 0.0;
+    for (var k = 0u; k < steps; k++) {
+        tau += layer_extinction(p + d * ((f32(k) + 0.5) * ds), layer.noise.y) * ds;
+    }
+    return tau;
+}
+
+// J_sun / E_sun at `p`, sr^-1, seen along `d`, `up` the local vertical.
+fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32) -> SunParts {
     let s = layer.sun_direction.xyz;
     let steps = min(layer.counts.y, MAX_SHADOW_STEPS);
     var depths: array<f32, MAX_SHADOW_STEPS>;
@@ -54,6 +82,25 @@ fn sun_source(p: vec3<f32>, nu: f32, albedo: f32) -> vec3<f32> {
             tau += depths[k];
         }
     }
+    if layer.counts.z == 2u {
+        let g = asymmetry();
+        let f = g * g;
+        let broad = (1.0 - f) * eddington_henyey_greenstein(g / (1.0 + g), nu);
+        let mu0 = dot(s, up);
+        let diffuse = eddington_diffuse(
+            tau * max(mu0, EDDINGTON_MIN_SUN_COSINE),
+            layer_depth(p, -up),
+            mu0,
+            albedo,
+            g,
+            -dot(d, up),
+        );
+        return SunParts(
+            (distribution(1u, nu) - broad) * exp(-tau),
+            diffuse.beam + broad * exp(-(1.0 - albedo * f) * tau),
+            diffuse.sky,
+        );
+    }
     if layer.counts.z == 0u {
         var intensity = vec3<f32>(1.0);
         var walked = 0.0;
@@ -69,7 +116,7 @@ fn sun_source(p: vec3<f32>, nu: f32, albedo: f32) -> vec3<f32> {
             }
         }
         let n = u32(floor(albedo * tau)) + 1u;
-        return intensity * (distribution(n, nu) + layer.medium.w);
+        return SunParts(intensity * (distribution(n, nu) + layer.medium.w), vec3<f32>(0.0), vec3<f32>(0.0));
     }
     let single = distribution(1u, nu);
     var j = vec3<f32>(0.0);
@@ -82,13 +129,16 @@ fn sun_source(p: vec3<f32>, nu: f32, albedo: f32) -> vec3<f32> {
         b *= 0.5;
         c *= 0.5;
     }
-    return j;
+    return SunParts(j, vec3<f32>(0.0), vec3<f32>(0.0));
 }
 
 // The cloud's radiance (rgb) and transmittance (a) along `d` from `o` over (t0, t1).
 fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
     var radiance = vec3<f32>(0.0);
     var transmittance = 1.0;
+    // The delta-scaled view transmittance the delta-Eddington method's diffuse part sees.
+    var scaled_transmittance = vec3<f32>(1.0);
+    let eddington = layer.counts.z == 2u;
     let dt = max(t1 - t0, 0.0) / f32(layer.counts.x);
     let nu = dot(d, layer.sun_direction.xyz);
     let up = normalize(o + d * t0);
@@ -102,10 +152,22 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
         let step_t = exp(-sigma * dt);
         let weight = transmittance * (1.0 - step_t) * albedo;
         let sky = exp(-sigma * layer_boundary(p, up)) / (2.0 * PI);
-        let sun = sun_source(p, nu, albedo);
-        radiance += weight * (layer.sun_irradiance.xyz * sun + layer.sky_irradiance.xyz * sky);
+        let sun = sun_source(p, d, up, nu, albedo);
         transmittance *= step_t;
-        if transmittance < layer.detail.z {
+        var seen = transmittance;
+        if eddington {
+            radiance += weight * layer.sun_irradiance.xyz * sun.unscaled;
+            let g = asymmetry();
+            let scale = 1.0 - albedo * g * g;
+            let step = exp(-scale * sigma * dt);
+            let scattered = layer.sun_irradiance.xyz * sun.scaled + layer.sky_irradiance.xyz * sun.scaled_sky;
+            radiance += scaled_transmittance * (1.0 - step) / scale * albedo * scattered;
+            scaled_transmittance *= step;
+            seen = max(scaled_transmittance.x, max(scaled_transmittance.y, scaled_transmittance.z));
+        } else {
+            radiance += weight * (layer.sun_irradiance.xyz * sun.unscaled + layer.sky_irradiance.xyz * sky);
+        }
+        if seen < layer.detail.z {
             break;
         }
     }

@@ -22,7 +22,7 @@ struct LayerParams {
     medium: vec4<f32>,
     // detail_scale_m, detail_strength, min_transmittance (w unused).
     detail: vec4<f32>,
-    // steps, shadow_steps, method (0 riley, 1 octaves), octaves.
+    // steps, shadow_steps, method (0 riley, 1 octaves, 2 eddington), octaves.
     counts: vec4<u32>,
     // The cover grid's width and height, the image's width and height.
     sizes: vec4<u32>,
@@ -34,8 +34,8 @@ struct LayerParams {
 @group(0) @binding(0) var<uniform> layer: LayerParams;
 // The cover, equirectangular, north up, the first column at 180 W (`CoverGrid`).
 @group(0) @binding(1) var cover: texture_2d<f32>;
-// A_1..A_26 at ANGLES angles per wavelength, then F_1..F_26 per wavelength
-// (`clouds::layer::orders::ScatteringOrders`).
+// A_1..A_26 at ANGLES angles per wavelength, then F_1..F_26 per wavelength, then the
+// asymmetry g per wavelength (`clouds::layer::orders::ScatteringOrders`).
 @group(0) @binding(2) var<storage, read> orders: array<f32>;
 // rgb: the cloud's radiance towards the camera; a: its transmittance; the full image,
 // or the reduced one that `layer_upsample.wgsl` brings to full size.

@@ -306,6 +306,27 @@ fn the_gpu_march_matches_the_cpu_from_below_inside_and_above() {
             10.0,
             map,
         ),
+        (
+            "below, eddington",
+            camera(10.0, 35.0),
+            LayerMethod::Eddington,
+            40.0,
+            march,
+        ),
+        (
+            "inside, eddington, map, low sun",
+            camera(2200.0, 5.0),
+            LayerMethod::Eddington,
+            10.0,
+            map,
+        ),
+        (
+            "above, eddington",
+            camera(5000.0, -30.0),
+            LayerMethod::Eddington,
+            50.0,
+            march,
+        ),
     ];
     for (name, camera, method, sun_elevation, sun_light) in views {
         let settings = LayerSettings {

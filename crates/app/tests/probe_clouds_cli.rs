@@ -102,7 +102,7 @@ fn a_thin_cloud_near_the_sun_agrees_with_the_path_tracer_within_its_error() {
 }
 
 #[test]
-fn below_an_opaque_deck_the_march_is_darker_than_the_clear_sky_and_the_path_tracer() {
+fn below_an_opaque_deck_riley_is_too_dark_and_eddington_follows_the_path_tracer() {
     // Looking up under the default layer (1.5 km thick, 0.04 m^-1, optical depth about
     // 45) at full cover, away from the sun.
     let (_dir, csv, cover) = inputs("0,20,40,180\n");
@@ -111,6 +111,9 @@ fn below_an_opaque_deck_the_march_is_darker_than_the_clear_sky_and_the_path_trac
     clouds.extend(PLACE);
     let (clear_header, clear) = probe("hillaire", &csv, &[]);
     let (header, method) = probe("hillaire", &csv, &clouds);
+    let mut eddington_flags = clouds.to_vec();
+    eddington_flags.extend(["--cloud-method", "eddington"]);
+    let (eddington_header, eddington) = probe("hillaire", &csv, &eddington_flags);
     let mut traced_flags = clouds.to_vec();
     traced_flags.extend(["--target-error", "0.2"]);
     let (traced_header, traced) = probe("reference", &csv, &traced_flags);
@@ -130,6 +133,13 @@ fn below_an_opaque_deck_the_march_is_darker_than_the_clear_sky_and_the_path_trac
         assert!(
             reference - 3.0 * error > 3.0 * march,
             "{nm} nm: path tracer {reference} +- {error}, march {march}"
+        );
+        // The delta-Eddington slab keeps it: no brighter than the path tracer (whose
+        // ground and air below the deck are lit as under a clear sky), at least half.
+        let diffused = eddington[0][column(&eddington_header, &format!("L_{nm}"))];
+        assert!(
+            diffused > 0.5 * (reference - 3.0 * error) && diffused < reference + 3.0 * error,
+            "{nm} nm: path tracer {reference} +- {error}, eddington {diffused}"
         );
     }
 }

@@ -113,8 +113,10 @@ fn a_thousand_times_the_density_stays_finite_and_opaque() {
     for (method, base) in [
         (LayerMethod::Riley, LayerSettings::default()),
         (LayerMethod::Octaves, LayerSettings::default()),
+        (LayerMethod::Eddington, LayerSettings::default()),
         (LayerMethod::Riley, interactive),
         (LayerMethod::Octaves, interactive),
+        (LayerMethod::Eddington, interactive),
     ] {
         for extinction_per_m in [0.001, 1.0] {
             let l = layer(
@@ -186,7 +188,11 @@ fn a_sun_ten_degrees_below_the_horizon_leaves_only_a_dim_cloud() {
     let orders = orders(model.wavelengths_nm().len());
     let l = layer(1.0, LayerSettings::default());
     let day = radiance_with_clouds(model.as_ref(), &l, &orders, &ray(10.0, 0.0, 60.0)).unwrap();
-    for method in [LayerMethod::Riley, LayerMethod::Octaves] {
+    for method in [
+        LayerMethod::Riley,
+        LayerMethod::Octaves,
+        LayerMethod::Eddington,
+    ] {
         let l = layer(
             1.0,
             LayerSettings {

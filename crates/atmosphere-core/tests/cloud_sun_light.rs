@@ -233,7 +233,11 @@ fn lit_by_the_map_the_march_is_no_further_from_the_fine_march() {
 fn lit_by_the_map_dense_inside_and_night_stay_finite() {
     let uniform = CoverGrid::from_values("overcast", 4, 2, vec![1.0; 8]).unwrap();
     let orders = orders();
-    for method in [LayerMethod::Riley, LayerMethod::Octaves] {
+    for method in [
+        LayerMethod::Riley,
+        LayerMethod::Octaves,
+        LayerMethod::Eddington,
+    ] {
         for extinction_per_m in [0.04, 1.0] {
             let settings = LayerSettings {
                 method,

@@ -54,9 +54,10 @@ pub struct CloudFlags {
     /// Extinction where the cloud is densest, m^-1, in [0, 1] [default: 0.04].
     #[arg(long = "cloud-density", value_name = "PER_M")]
     pub density_per_m: Option<f64>,
-    /// How light scattered more than once is computed: riley (Riley et al. 2004) or
-    /// octaves (Wrenninge et al. 2013) [default: riley].
-    #[arg(long = "cloud-method", value_name = "riley|octaves")]
+    /// How light scattered more than once is computed: riley (Riley et al. 2004),
+    /// octaves (Wrenninge et al. 2013) or eddington (the delta-Eddington slab of Joseph,
+    /// Wiscombe and Weinman 1976, for thick layers) [default: riley].
+    #[arg(long = "cloud-method", value_name = "riley|octaves|eddington")]
     pub method: Option<String>,
     /// The march's quality: interactive (20 steps at a third of the resolution, for
     /// flight) or offline (128 steps, full resolution, for recordings) [default:

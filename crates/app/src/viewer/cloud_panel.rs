@@ -40,14 +40,15 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
             egui::ComboBox::from_label("method")
                 .selected_text(clouds.method.as_str())
                 .show_ui(ui, |ui| {
-                    for method in ["riley", "octaves"] {
+                    for method in ["riley", "octaves", "eddington"] {
                         ui.selectable_value(&mut clouds.method, method.to_string(), method);
                     }
                 })
                 .response
                 .on_hover_text(
                     "riley: Riley et al. 2004's expected orders of scattering; octaves: \
-                     Wrenninge et al. 2013's production approximation",
+                     Wrenninge et al. 2013's production approximation; eddington: the \
+                     light that diffuses through thick cloud (delta-Eddington slab)",
                 );
             egui::ComboBox::from_label("quality")
                 .selected_text(clouds.quality.as_str())

@@ -63,7 +63,7 @@ pub struct LayerUniform {
     pub medium: [f32; 4],
     /// detail_scale_m, detail_strength, min_transmittance, 0.
     pub detail: [f32; 4],
-    /// steps, shadow_steps, method (0 riley, 1 octaves), octaves.
+    /// steps, shadow_steps, method (0 riley, 1 octaves, 2 eddington), octaves.
     pub counts: [u32; 4],
     /// The cover grid's width and height, the image's width and height.
     pub sizes: [u32; 4],
@@ -140,6 +140,7 @@ impl LayerUniform {
                 match settings.method {
                     LayerMethod::Riley => 0,
                     LayerMethod::Octaves => 1,
+                    LayerMethod::Eddington => 2,
                 },
                 settings.octaves,
             ],

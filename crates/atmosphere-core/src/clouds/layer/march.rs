@@ -17,6 +17,18 @@
 //! - the octaves of Wrenninge et al. 2013 ([`LayerMethod::Octaves`]):
 //!   J_sun = E_sun sum_i a^i exp(-b^i tau) (c^i A_1(theta) + (1 - c^i) / (4 pi)),
 //!   a = b = c = 1/2.
+//! - delta-Eddington ([`LayerMethod::Eddington`], `eddington.rs`): the diffuse light of
+//!   the slab through the sample lit by the sun and the sky, with tau_above = tau mu0
+//!   (mu0 the sun's cosine from the vertical; exact for a horizontally uniform layer)
+//!   and tau_below by a march of `shadow_steps` equal steps straight down to the
+//!   boundary, plus the beam scattered once: the smooth part
+//!   (1 - g^2) p_HG(g / (1 + g), theta) of the phase function (delta-Eddington's
+//!   truncated one) from the scaled beam exp(-(1 - albedo g^2) tau), the rest,
+//!   A_1(theta) minus that part, from the real beam exp(-tau). The diffuse light and the
+//!   smooth part are seen through the scaled medium (the forward peak's light goes on
+//!   towards the eye), the rest through the real one; the sky's term below is the
+//!   slab's instead. The march stops once the scaled view transmittance, not the real
+//!   one, falls below `min_transmittance`.
 //!
 //! The sky's light is isotropic from the upper hemisphere: a horizontal irradiance E_sky
 //! is a radiance E_sky / pi over 2 pi sr, of which an isotropic scatterer sends
@@ -35,10 +47,12 @@
 
 use glam::DVec3;
 
+use super::eddington::{MIN_SUN_COSINE, diffuse_source};
 use super::orders::ScatteringOrders;
 use super::settings::{LayerMethod, LayerSettings, MAX_SHADOW_STEPS};
 use super::sun_map::CloudSunMap;
 use crate::clouds::medium::CloudMedium;
+use crate::optics::phase::henyey_greenstein;
 
 /// Wrenninge et al. 2013's octave factors a (scattering), b (extinction), c (phase).
 pub const OCTAVE_A: f64 = 0.5;
@@ -127,6 +141,10 @@ fn march_lit(
     let waves = light.sun_irradiance.len();
     let mut radiance = vec![0.0; waves];
     let mut transmittance = 1.0;
+    // The view's transmittance through the delta-scaled medium, which the diffuse part
+    // of [`LayerMethod::Eddington`]'s light sees (1 - albedo g^2 of the extinction).
+    let mut scaled_transmittance = vec![1.0; waves];
+    let eddington = settings.method == LayerMethod::Eddington;
     let dt = (ray.t1 - ray.t0).max(0.0) / settings.steps as f64;
     let nu = ray.direction.dot(light.sun_direction);
     for i in 0..settings.steps {
@@ -141,13 +159,38 @@ fn march_lit(
         let up_depth = sigma * medium.distance_to_boundary(p, light.up);
         let sky = (-up_depth).exp() / (2.0 * std::f64::consts::PI);
         let (depths, count) = sun_depths(p);
-        let sun = sun_source(&depths[..count], orders, settings, nu, albedo);
+        let slab = SlabGeometry {
+            mu0: light.sun_direction.dot(light.up),
+            mu_out: -ray.direction.dot(light.up),
+            tau_below: if eddington {
+                vertical_depth(medium, p, -light.up, settings)
+            } else {
+                0.0
+            },
+        };
+        let sources = sample_sources(&depths[..count], orders, settings, nu, albedo, &slab);
         for w in 0..waves {
-            radiance[w] +=
-                weight * (light.sun_irradiance[w] * sun[w] + light.sky_irradiance[w] * sky);
+            let sun = light.sun_irradiance[w];
+            let sky_light = light.sky_irradiance[w];
+            if eddington {
+                radiance[w] += weight * sun * sources.unscaled[w];
+                let scale = 1.0 - albedo * orders.asymmetry(w).powi(2);
+                let step = (-scale * sigma * dt).exp();
+                radiance[w] += scaled_transmittance[w] * (1.0 - step) / scale
+                    * albedo
+                    * (sun * sources.scaled[w] + sky_light * sources.scaled_sky[w]);
+                scaled_transmittance[w] *= step;
+            } else {
+                radiance[w] += weight * (sun * sources.unscaled[w] + sky_light * sky);
+            }
         }
         transmittance *= step_t;
-        if transmittance < settings.min_transmittance {
+        let seen = if eddington {
+            scaled_transmittance.iter().copied().fold(0.0, f64::max)
+        } else {
+            transmittance
+        };
+        if seen < settings.min_transmittance {
             break;
         }
     }
@@ -176,44 +219,152 @@ fn shadow_march(
     (depths, steps)
 }
 
-/// J_sun / E_sun per wavelength, sr^-1 (the module's equations), for the optical
-/// depths `depths` of the path towards the sun, from the boundary inwards.
-fn sun_source(
+/// The optical depth of `shadow_steps` equal steps from `p` to the medium's boundary
+/// along the unit `direction`, through its light extinction.
+fn vertical_depth(
+    medium: &impl CloudMedium,
+    p: DVec3,
+    direction: DVec3,
+    settings: &LayerSettings,
+) -> f64 {
+    let steps = settings.shadow_steps.clamp(1, MAX_SHADOW_STEPS);
+    let ds = medium.distance_to_boundary(p, direction) / steps as f64;
+    (0..steps)
+        .map(|k| medium.light_extinction(p + direction * ((k as f64 + 0.5) * ds)) * ds)
+        .sum()
+}
+
+/// Where a sample lies in the slab [`LayerMethod::Eddington`] takes around it (only
+/// that method reads `tau_below`).
+struct SlabGeometry {
+    /// The sun's cosine from the upward vertical.
+    mu0: f64,
+    /// The cosine from the upward vertical of the light's way to the camera.
+    mu_out: f64,
+    /// The optical depth straight down to the medium's boundary.
+    tau_below: f64,
+}
+
+/// J_sun / E_sun at wavelength `w`, sr^-1, of [`LayerMethod::Eddington`] (the
+/// module's equations), for the optical depth `tau` of the path towards the sun: the
+/// part seen through the delta-scaled medium and the part seen through the real one;
+/// then J_sky / E_sky, seen through the scaled medium.
+fn eddington_source(
+    w: usize,
+    tau: f64,
+    orders: &ScatteringOrders,
+    slab: &SlabGeometry,
+    nu: f64,
+    albedo: f64,
+) -> (f64, f64, f64) {
+    let g = orders.asymmetry(w);
+    let f = g * g;
+    let broad = (1.0 - f) * henyey_greenstein(g / (1.0 + g), nu);
+    let scaled_beam = (-(1.0 - albedo * f) * tau).exp();
+    let beam = (-tau).exp();
+    let tau_above = tau * slab.mu0.max(MIN_SUN_COSINE);
+    let (diffuse, sky) =
+        diffuse_source(tau_above, slab.tau_below, slab.mu0, albedo, g, slab.mu_out);
+    (
+        diffuse + broad * scaled_beam,
+        (orders.distribution(w, 1, nu) - broad) * beam,
+        sky,
+    )
+}
+
+/// What a sample scatters towards the eye per unit of extinction and albedo, per
+/// wavelength, sr^-1: J_sun / E_sun seen through the real medium and, for
+/// [`LayerMethod::Eddington`], J_sun / E_sun and J_sky / E_sky seen through the
+/// delta-scaled one (zero for the other methods, whose sky term is the march's).
+struct SampleSources {
+    unscaled: Vec<f64>,
+    scaled: Vec<f64>,
+    scaled_sky: Vec<f64>,
+}
+
+/// The sources of a sample (the module's equations), for the optical depths `depths`
+/// of the path towards the sun, from the boundary inwards, at a sample placed in its
+/// slab by `slab`.
+fn sample_sources(
     depths: &[f64],
     orders: &ScatteringOrders,
     settings: &LayerSettings,
     nu: f64,
     albedo: f64,
-) -> Vec<f64> {
+    slab: &SlabGeometry,
+) -> SampleSources {
     let tau: f64 = depths.iter().sum();
-    (0..orders.wavelengths())
-        .map(|w| match settings.method {
-            LayerMethod::Riley => {
-                let mut intensity = 1.0;
-                let mut walked = 0.0;
-                for &d in depths {
-                    let n = albedo * walked;
-                    let m = (n + 1.0 + d).floor() as usize;
-                    let kept = albedo * orders.forward_fraction(w, m);
-                    let t = (-d).exp();
-                    intensity *= t + (1.0 - t) * kept.powf(d);
-                    walked += d;
-                }
-                let n = (albedo * tau).floor() as usize + 1;
-                intensity * (orders.distribution(w, n, nu) + settings.backscatter_xi)
+    let waves = orders.wavelengths();
+    let unscaled_only = |unscaled: Vec<f64>| SampleSources {
+        unscaled,
+        scaled: vec![0.0; waves],
+        scaled_sky: vec![0.0; waves],
+    };
+    match settings.method {
+        LayerMethod::Riley => unscaled_only(
+            (0..waves)
+                .map(|w| riley_source(w, depths, orders, settings, nu, albedo))
+                .collect(),
+        ),
+        LayerMethod::Octaves => unscaled_only(
+            (0..waves)
+                .map(|w| octaves_source(w, tau, orders, settings, nu))
+                .collect(),
+        ),
+        LayerMethod::Eddington => {
+            let mut sources = unscaled_only(vec![0.0; waves]);
+            for w in 0..waves {
+                let (scaled, unscaled, sky) = eddington_source(w, tau, orders, slab, nu, albedo);
+                sources.unscaled[w] = unscaled;
+                sources.scaled[w] = scaled;
+                sources.scaled_sky[w] = sky;
             }
-            LayerMethod::Octaves => {
-                let single = orders.distribution(w, 1, nu);
-                let isotropic = 1.0 / (4.0 * std::f64::consts::PI);
-                (0..settings.octaves as i32)
-                    .map(|i| {
-                        let c = OCTAVE_C.powi(i);
-                        OCTAVE_A.powi(i)
-                            * (-OCTAVE_B.powi(i) * tau).exp()
-                            * (c * single + (1.0 - c) * isotropic)
-                    })
-                    .sum()
-            }
+            sources
+        }
+    }
+}
+
+/// J_sun / E_sun at wavelength `w`, sr^-1, of [`LayerMethod::Riley`] (the module's
+/// equations), for the optical depths `depths` from the boundary inwards.
+fn riley_source(
+    w: usize,
+    depths: &[f64],
+    orders: &ScatteringOrders,
+    settings: &LayerSettings,
+    nu: f64,
+    albedo: f64,
+) -> f64 {
+    let mut intensity = 1.0;
+    let mut walked = 0.0;
+    for &d in depths {
+        let n = albedo * walked;
+        let m = (n + 1.0 + d).floor() as usize;
+        let kept = albedo * orders.forward_fraction(w, m);
+        let t = (-d).exp();
+        intensity *= t + (1.0 - t) * kept.powf(d);
+        walked += d;
+    }
+    let n = (albedo * walked).floor() as usize + 1;
+    intensity * (orders.distribution(w, n, nu) + settings.backscatter_xi)
+}
+
+/// J_sun / E_sun at wavelength `w`, sr^-1, of [`LayerMethod::Octaves`] (the module's
+/// equations), for the optical depth `tau` towards the sun.
+fn octaves_source(
+    w: usize,
+    tau: f64,
+    orders: &ScatteringOrders,
+    settings: &LayerSettings,
+    nu: f64,
+) -> f64 {
+    let single = orders.distribution(w, 1, nu);
+    let isotropic = 1.0 / (4.0 * std::f64::consts::PI);
+    (0..settings.octaves as i32)
+        .map(|i| {
+            let c = OCTAVE_C.powi(i);
+            OCTAVE_A.powi(i)
+                * (-OCTAVE_B.powi(i) * tau).exp()
+                * (c * single + (1.0 - c) * isotropic)
         })
-        .collect()
+        .sum()
 }

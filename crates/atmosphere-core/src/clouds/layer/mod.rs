@@ -13,6 +13,7 @@
 pub mod air_shadow;
 pub mod composite;
 pub mod droplets;
+pub mod eddington;
 pub mod field;
 pub mod march;
 pub mod orders;

@@ -20,6 +20,8 @@ pub struct ScatteringOrders {
     distributions: Vec<Vec<f64>>,
     /// `[wavelength][n - 1]`.
     forward: Vec<Vec<f64>>,
+    /// The single-scattering phase function's asymmetry g, `[wavelength]`.
+    asymmetry: Vec<f64>,
 }
 
 impl ScatteringOrders {
@@ -32,6 +34,7 @@ impl ScatteringOrders {
         }
         let mut distributions = Vec::with_capacity(series.len());
         let mut forward = Vec::with_capacity(series.len());
+        let asymmetry = series.iter().map(LegendreSeries::asymmetry).collect();
         for single in series {
             let orders = MultipleScatteringPhase::new(single, RILEY_MAX_ORDER);
             let mut table = Vec::with_capacity(ORDERS * ANGLES);
@@ -51,6 +54,7 @@ impl ScatteringOrders {
         Ok(ScatteringOrders {
             distributions,
             forward,
+            asymmetry,
         })
     }
 
@@ -71,6 +75,11 @@ impl ScatteringOrders {
         let f = x - k as f64;
         let table = &self.distributions[w][row * ANGLES..(row + 1) * ANGLES];
         table[k] * (1.0 - f) + table[k + 1] * f
+    }
+
+    /// The asymmetry g of the single-scattering phase function at wavelength `w`.
+    pub fn asymmetry(&self, w: usize) -> f64 {
+        self.asymmetry[w]
     }
 
     /// F_n, n clamped to 1..=26.

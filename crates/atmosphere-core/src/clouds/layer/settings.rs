@@ -17,6 +17,11 @@ pub enum LayerMethod {
     /// volumetric"): a sum of octaves i with scattering scaled by a^i,
     /// optical depth by b^i and the phase function blended towards isotropy by c^i.
     Octaves,
+    /// The sun's beam scattered once (A_1, the beam dimmed as delta-Eddington's scaled
+    /// beam) plus the diffuse light of the delta-Eddington slab through the sample
+    /// (Joseph, Wiscombe and Weinman 1976; `eddington.rs`): the light that diffuses
+    /// through a thick layer, which the other two lose.
+    Eddington,
 }
 
 impl fmt::Display for LayerMethod {
@@ -24,6 +29,7 @@ impl fmt::Display for LayerMethod {
         f.write_str(match self {
             LayerMethod::Riley => "riley",
             LayerMethod::Octaves => "octaves",
+            LayerMethod::Eddington => "eddington",
         })
     }
 }
@@ -35,8 +41,9 @@ impl FromStr for LayerMethod {
         match s {
             "riley" => Ok(LayerMethod::Riley),
             "octaves" => Ok(LayerMethod::Octaves),
+            "eddington" => Ok(LayerMethod::Eddington),
             other => Err(CloudError(format!(
-                "cloud method {other:?} is not one of riley, octaves"
+                "cloud method {other:?} is not one of riley, octaves, eddington"
             ))),
         }
     }
