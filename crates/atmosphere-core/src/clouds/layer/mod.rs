@@ -2,7 +2,8 @@
 //! ([`settings`]), the shell it fills ([`shell`]), its density from the cover, a vertical
 //! profile and detail noise ([`profile`], [`field`]), Riley et al. 2004's
 //! multiple-scattering tables ([`orders`]) of the droplets' Mie phase function
-//! ([`droplets`]), the ray march of a view ray ([`march`]), its
+//! ([`droplets`]), the delta-Eddington slab of the `eddington` method ([`eddington`]),
+//! the ray march of a view ray ([`march`]), its
 //! interactive, offline and finest settings ([`presets`]), the reduced-resolution march's
 //! interpolation ([`upsample`]), in frames
 //! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]); the
