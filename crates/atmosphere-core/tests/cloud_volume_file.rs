@@ -151,7 +151,7 @@ fn bad_scenes_are_refused_by_name() {
             "unknown field `density`",
         ),
         (
-            "elevation_deg = 35.0",
+            "elevation_deg = 40.0",
             "elevation_deg = 95.0",
             "volume sun elevation_deg = 95",
         ),
@@ -166,12 +166,12 @@ fn bad_scenes_are_refused_by_name() {
             "irradiance_w_m2_nm = inf",
         ),
         (
-            "look_at_m = [0.0, 0.0, 1250.0]",
-            "look_at_m = [-5000.0, -1500.0, 1000.0]",
+            "look_at_m = [0.0, 0.0, 1200.0]",
+            "look_at_m = [-3300.0, -1400.0, 800.0]",
             "must differ from position_m",
         ),
         (
-            "vertical_fov_deg = 30.0",
+            "vertical_fov_deg = 35.0",
             "vertical_fov_deg = 170.0",
             "vertical_fov_deg = 170 must lie in [1, 120]",
         ),
