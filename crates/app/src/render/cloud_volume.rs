@@ -10,7 +10,7 @@ use anyhow::{Context, bail};
 use atmosphere_core::clouds::volume::cloud::single_scattering_phase;
 use atmosphere_core::clouds::volume::march_image::march_image;
 use atmosphere_core::clouds::volume::scene::{VolumeScene, WAVELENGTHS_NM};
-use atmosphere_core::clouds::volume::settings::VolumeMethod;
+use atmosphere_core::clouds::volume::settings::{MAX_SLICES, MIN_SLICES, VolumeMethod};
 use atmosphere_core::clouds::volume::slicing::slicing_image;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::post::tone_map::ToneMap;
@@ -50,6 +50,11 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
             EXPOSURE_EV100[1]
         );
     }
+    if let Some(n) = flags.slices
+        && !(MIN_SLICES..=MAX_SLICES).contains(&n)
+    {
+        bail!("--slices {n} must lie in [{MIN_SLICES}, {MAX_SLICES}]");
+    }
     if WAVELENGTHS_NM != RGB_WAVELENGTHS_NM {
         bail!(
             "volume scenes' wavelengths {WAVELENGTHS_NM:?} differ from the images' {RGB_WAVELENGTHS_NM:?}"
@@ -61,7 +66,6 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
         VolumeScene::load(path, phase).with_context(|| format!("--volume {}", path.display()))?;
     if let Some(slices) = flags.slices {
         scene.settings.slices = slices;
-        scene.settings.check().context("--slices")?;
     }
     let s = &scene.settings;
     let start = Instant::now();
