@@ -1,6 +1,6 @@
 //! `atmos render --volume FILE.toml`: a voxel cloud's scene (docs/clouds.md, "A local
-//! volume by half-angle slicing") rendered on the CPU by half-angle slicing or by the
-//! ray march, over a black background, written atomically as a PNG (tone-mapped as a
+//! volume by half-angle slicing") rendered by half-angle slicing on the GPU (or its CPU
+//! twin with `--volume-cpu`) or by the ray march on the CPU, over a black background, written atomically as a PNG (tone-mapped as a
 //! planet frame is) or an EXR (linear sRGB in cd/m^2).
 
 use std::path::Path;
@@ -12,6 +12,8 @@ use atmosphere_core::clouds::volume::march_image::march_image;
 use atmosphere_core::clouds::volume::scene::{VolumeScene, WAVELENGTHS_NM};
 use atmosphere_core::clouds::volume::settings::{MAX_SLICES, MIN_SLICES, VolumeMethod};
 use atmosphere_core::clouds::volume::slicing::slicing_image;
+use render_wgpu::GpuContext;
+use render_wgpu::clouds::volume::slicing_pass::slicing_image_gpu;
 use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::post::tone_map::ToneMap;
 
@@ -28,6 +30,8 @@ const EXR_UNITS: &str = "linear sRGB (IEC 61966-2-1, D65) in cd/m^2, from spectr
 #[derive(Debug)]
 pub struct VolumeFlags<'a> {
     pub method: Option<&'a str>,
+    /// Slicing on the CPU (its twin) instead of the GPU.
+    pub cpu: bool,
     pub slices: Option<u32>,
     pub exposure: Option<f64>,
 }
@@ -70,12 +74,21 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
     let s = &scene.settings;
     let start = Instant::now();
     let image = match method {
-        VolumeMethod::Slicing => {
+        VolumeMethod::Slicing if flags.cpu => {
             slicing_image(&scene.cloud, &scene.camera, &scene.sun, &orders, s)?
+        }
+        VolumeMethod::Slicing => {
+            let gpu = GpuContext::headless()?;
+            slicing_image_gpu(&gpu, &scene.cloud, &scene.camera, &scene.sun, &orders, s)?
         }
         VolumeMethod::March => march_image(&scene.cloud, &scene.camera, &scene.sun, &orders, s)?,
     };
     let elapsed = start.elapsed();
+    let device = if method == VolumeMethod::Slicing && !flags.cpu {
+        "GPU"
+    } else {
+        "CPU"
+    };
     let radiance: Vec<[f32; 4]> = image
         .transmittance
         .iter()
@@ -116,7 +129,7 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
         }
     }
     eprintln!(
-        "{}x{} volume by {method} ({}, {steps}) on the CPU in {elapsed:.2?} (EV100 {ev100:.1}); wrote {}",
+        "{}x{} volume by {method} ({}, {steps}) on the {device} in {elapsed:.2?} (EV100 {ev100:.1}); wrote {}",
         size.0,
         size.1,
         s.light,

@@ -28,6 +28,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.volume {
         let flags = cloud_volume::VolumeFlags {
             method: args.volume_method.as_deref(),
+            cpu: args.volume_cpu,
             slices: args.slices,
             exposure: args.fields.exposure,
         };
