@@ -279,6 +279,21 @@ pub struct RenderArgs {
     /// method on the GPU: march), --width, --height, --exposure and --set.
     #[arg(long, value_name = "FILE.toml")]
     pub scene: Option<PathBuf>,
+    /// A voxel cloud's scene (docs/clouds.md, "A local volume by half-angle slicing"),
+    /// rendered from its own camera by --method; of the flags below it takes
+    /// --exposure.
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["scene", "model"])]
+    pub volume: Option<PathBuf>,
+    /// With --volume: slicing (Riley et al. 2004's half-angle slicing, on the GPU) or
+    /// march (a ray march per pixel, on the CPU) [default: slicing].
+    #[arg(long = "method", value_name = "METHOD", requires = "volume")]
+    pub volume_method: Option<String>,
+    /// With --volume and slicing: run the CPU twin instead of the GPU passes.
+    #[arg(long, requires = "volume")]
+    pub volume_cpu: bool,
+    /// With --volume: slices through the volume, 2 to 4096 [default: the scene's].
+    #[arg(long, value_name = "N", requires = "volume")]
+    pub slices: Option<u32>,
     /// Scattering model (every sky model but the reference is on the GPU), or with a
     /// beams scene a beam method [default: march].
     #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]

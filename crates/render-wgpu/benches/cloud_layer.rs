@@ -1,8 +1,9 @@
 //! What the cloud layer pass costs against the hillaire sky pass, in one run on one
 //! device at 1280 x 720: the hillaire frame of a flight view under the layer (500 m up,
 //! looking 10 degrees above the horizon, sun 30 degrees up) through the `Renderer` (its per-step GPU
-//! times), then the cloud layer pass of the same view over the generated cover: both
-//! methods at the default march (48 view, 8 shadow steps) and at the interactive preset
+//! times), then the cloud layer pass of the same view over the generated cover: the
+//! three methods at the default march (48 view, 8 shadow steps) and at the interactive
+//! preset
 //! (`MarchQuality`, whose sun light is the sun map's, filled before the march and timed
 //! with it), the interactive preset with a shadow march instead (`sun_light = march`),
 //! and octaves at the offline preset (Riley's march does not converge
@@ -60,6 +61,10 @@ fn rows() -> Vec<Row> {
         method: LayerMethod::Octaves,
         ..riley
     };
+    let eddington = LayerSettings {
+        method: LayerMethod::Eddington,
+        ..riley
+    };
     vec![
         Row {
             name: "riley, default",
@@ -70,8 +75,16 @@ fn rows() -> Vec<Row> {
             settings: octaves,
         },
         Row {
+            name: "eddington, default",
+            settings: eddington,
+        },
+        Row {
             name: "riley, interactive",
             settings: MarchQuality::Interactive.apply(riley),
+        },
+        Row {
+            name: "eddington, interactive",
+            settings: MarchQuality::Interactive.apply(eddington),
         },
         Row {
             name: "octaves, interactive",

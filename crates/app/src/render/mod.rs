@@ -3,6 +3,7 @@
 
 pub mod beams;
 pub mod cloud_flags;
+pub mod cloud_volume;
 pub mod image_files;
 pub mod scene;
 pub mod sun_disk_clip;
@@ -24,6 +25,15 @@ use sun_disk_clip::sun_disk_clip_warning;
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let output = Output::from_path(&args.out)?;
     check_writable(&args.out)?;
+    if let Some(path) = &args.volume {
+        let flags = cloud_volume::VolumeFlags {
+            method: args.volume_method.as_deref(),
+            cpu: args.volume_cpu,
+            slices: args.slices,
+            exposure: args.fields.exposure,
+        };
+        return cloud_volume::run(path, &flags, &args.out);
+    }
     let mut flags = args.fields.clone().at(&args.location);
     if let Some(path) = &args.scene
         && beams::is_beams_scene(path)?

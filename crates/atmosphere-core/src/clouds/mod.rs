@@ -16,3 +16,4 @@ pub mod slab;
 pub mod slab_transport;
 pub mod spheres;
 pub mod tracking;
+pub mod volume;

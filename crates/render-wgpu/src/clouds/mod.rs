@@ -6,7 +6,7 @@
 //! composite with the frame's sky model; [`sun_map_texture`] and [`sun_map_pass`] the
 //! layer's attenuation of the sun over the view's region, which shades the surface,
 //! and [`frame_sun_map`] its place in a renderer frame; [`spheres`] the cloud spheres
-//! seen from far away.
+//! seen from far away; [`volume`] a voxel cloud by half-angle slicing.
 
 pub mod frame_clouds;
 pub mod frame_pass;
@@ -17,3 +17,4 @@ pub mod layer_uniform;
 pub mod spheres;
 pub mod sun_map_pass;
 pub mod sun_map_texture;
+pub mod volume;

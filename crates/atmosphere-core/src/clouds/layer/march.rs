@@ -303,12 +303,28 @@ fn sample_sources(
     match settings.method {
         LayerMethod::Riley => unscaled_only(
             (0..waves)
-                .map(|w| riley_source(w, depths, orders, settings, nu, albedo))
+                .map(|w| {
+                    let mut intensity = 1.0;
+                    let mut walked = 0.0;
+                    for &d in depths {
+                        intensity *= riley_step(orders, w, albedo, walked, d);
+                        walked += d;
+                    }
+                    riley_source(
+                        orders,
+                        w,
+                        intensity,
+                        tau,
+                        albedo,
+                        nu,
+                        settings.backscatter_xi,
+                    )
+                })
                 .collect(),
         ),
         LayerMethod::Octaves => unscaled_only(
             (0..waves)
-                .map(|w| octaves_source(w, tau, orders, settings, nu))
+                .map(|w| octaves_source(orders, w, tau, nu, settings.octaves))
                 .collect(),
         ),
         LayerMethod::Eddington => {
@@ -324,42 +340,39 @@ fn sample_sources(
     }
 }
 
-/// J_sun / E_sun at wavelength `w`, sr^-1, of [`LayerMethod::Riley`] (the module's
-/// equations), for the optical depths `depths` from the boundary inwards.
-fn riley_source(
-    w: usize,
-    depths: &[f64],
-    orders: &ScatteringOrders,
-    settings: &LayerSettings,
-    nu: f64,
-    albedo: f64,
-) -> f64 {
-    let mut intensity = 1.0;
-    let mut walked = 0.0;
-    for &d in depths {
-        let n = albedo * walked;
-        let m = (n + 1.0 + d).floor() as usize;
-        let kept = albedo * orders.forward_fraction(w, m);
-        let t = (-d).exp();
-        intensity *= t + (1.0 - t) * kept.powf(d);
-        walked += d;
-    }
-    let n = (albedo * walked).floor() as usize + 1;
-    intensity * (orders.distribution(w, n, nu) + settings.backscatter_xi)
+/// Riley et al. 2004 Eq. 25: the factor the sun's intensity keeps at wavelength `w` over
+/// a step of optical depth `d`, after an optical depth `walked` from the boundary,
+/// exp(-d) + (1 - exp(-d)) (albedo F_m)^d with m = floor(albedo walked + 1 + d).
+pub fn riley_step(orders: &ScatteringOrders, w: usize, albedo: f64, walked: f64, d: f64) -> f64 {
+    let n = albedo * walked;
+    let m = (n + 1.0 + d).floor() as usize;
+    let kept = albedo * orders.forward_fraction(w, m);
+    let t = (-d).exp();
+    t + (1.0 - t) * kept.powf(d)
 }
 
-/// J_sun / E_sun at wavelength `w`, sr^-1, of [`LayerMethod::Octaves`] (the module's
-/// equations), for the optical depth `tau` towards the sun.
-fn octaves_source(
-    w: usize,
-    tau: f64,
+/// Riley et al. 2004 Eq. 26's source towards the eye over E_sun, sr^-1: the sun's
+/// `intensity` after an optical depth `tau` times A_(floor(albedo tau)+1)(theta) + xi,
+/// `nu` the cosine of theta.
+pub fn riley_source(
     orders: &ScatteringOrders,
-    settings: &LayerSettings,
+    w: usize,
+    intensity: f64,
+    tau: f64,
+    albedo: f64,
     nu: f64,
+    xi: f64,
 ) -> f64 {
+    let n = (albedo * tau).floor() as usize + 1;
+    intensity * (orders.distribution(w, n, nu) + xi)
+}
+
+/// Wrenninge et al. 2013's octaves over E_sun, sr^-1, after an optical depth `tau`
+/// towards the sun: sum over i < `octaves` of a^i exp(-b^i tau) (c^i A_1 + (1 - c^i) / (4 pi)).
+pub fn octaves_source(orders: &ScatteringOrders, w: usize, tau: f64, nu: f64, octaves: u32) -> f64 {
     let single = orders.distribution(w, 1, nu);
     let isotropic = 1.0 / (4.0 * std::f64::consts::PI);
-    (0..settings.octaves as i32)
+    (0..octaves as i32)
         .map(|i| {
             let c = OCTAVE_C.powi(i);
             OCTAVE_A.powi(i)
