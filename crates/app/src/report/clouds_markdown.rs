@@ -60,12 +60,14 @@ fn label(result: &RowResult) -> String {
     }
 }
 
-/// The CPU points and, where the GPU was measured, the GPU points of every row.
+/// The CPU points and, where the GPU was measured, the GPU points of every row measured
+/// on every view (the spheres, measured from orbit alone, are compared there in their
+/// own table).
 pub fn points(m: &Measured) -> (Vec<Point>, Vec<Point>) {
     let mut cpu = Vec::new();
     let mut gpu = Vec::new();
     for (i, r) in m.results.iter().enumerate() {
-        if r.per_view.iter().all(Option::is_none) {
+        if r.per_view.iter().any(Option::is_none) {
             continue;
         }
         let point = Point {
@@ -105,6 +107,7 @@ pub fn markdown(m: &Measured) -> String {
     views_table(&mut out, m);
     rows_table(&mut out, m);
     per_view_table(&mut out, m);
+    spheres_table(&mut out, m);
     pareto(&mut out, m);
     out.push_str(NOTES);
     out
@@ -225,12 +228,45 @@ fn per_view_table(out: &mut String, m: &Measured) {
     }
 }
 
+/// Every row on the views the spheres are measured on: error, CPU and GPU time there.
+fn spheres_table(out: &mut String, m: &Measured) {
+    for (v, scene) in m.scenes.iter().enumerate() {
+        if !scene.view.spheres {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "\n## The layer and the spheres on the view {}\n\n| setting | RMS % | max % | CPU \
+             frame s | GPU frame ms | GPU / clear frame |\n|---|---|---|---|---|---|",
+            scene.view.camera.title
+        );
+        for (i, r) in m.results.iter().enumerate() {
+            let Some(e) = r.per_view[v] else { continue };
+            let gpu = m.gpu.and_then(|g| g.per_row[i][v]);
+            let _ = writeln!(
+                out,
+                "| {} | {:.1} | {:.1} | {:.1} | {} | {} |",
+                r.row,
+                100.0 * e.rms,
+                100.0 * e.max,
+                e.frame_s,
+                gpu.map_or_else(|| "-".into(), |g| format!("{:.0}", g.cloudy_ms)),
+                gpu.map_or_else(
+                    || "-".into(),
+                    |g| format!("{:.2}", g.cloudy_ms / g.clear_ms)
+                ),
+            );
+        }
+    }
+}
+
 fn pareto(out: &mut String, m: &Measured) {
     let (cpu, gpu) = points(m);
     let _ = writeln!(
         out,
         "\n## Error against time\n\n![{}](clouds_error_vs_time.png)\n\nThe Pareto front (no \
-         faster setting has a lower error), fastest first, {}:\n",
+         faster setting has a lower error) of the rows measured on every view, fastest \
+         first, {}:\n",
         CPU_AXIS.caption, CPU_AXIS.description
     );
     for p in pareto_front(&cpu) {
