@@ -22,8 +22,8 @@ use crate::report::clouds_rows::CloudRow;
 use crate::report::clouds_scene::ViewScene;
 use crate::report::clouds_views::placed_camera;
 
-/// The frames' size: a quarter of 1280 x 720 in each direction, since the offline
-/// march takes tens of seconds a full frame on a software adapter.
+/// The frames' size: a quarter of 1280 x 720 in each direction, for the offline
+/// march's full frames are too slow on a software adapter (docs/clouds.md, "Cost").
 pub const SIZE: (u32, u32) = (320, 180);
 /// Measured pairs after the warm-up pair.
 pub const FRAMES: usize = 1;

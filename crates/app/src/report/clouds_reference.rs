@@ -1,6 +1,6 @@
 //! The path-traced reference of every ray of the clouds section's views, computed once
 //! and kept in `clouds_reference.csv` beside the report, as the skies section keeps
-//! its reference (`reference_cache.rs`): thick clouds take minutes a ray. Each view's
+//! its reference (`reference_cache.rs`): thick clouds are slow to trace. Each view's
 //! rows carry a fingerprint of the view (camera, cloud, cover, the path tracer's
 //! stopping rule) and of the air model, so that a changed view alone is computed again.
 //!

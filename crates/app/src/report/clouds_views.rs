@@ -5,9 +5,8 @@
 //! in the report").
 //!
 //! The views are small (12 rays each) and their clouds thinner than the layer's default
-//! deck (optical depth about 45) where the path tracer's cost demands it: a path through
-//! optical depth tau scatters about tau^2 times, and the default deck took minutes a
-//! ray to reach 5 %.
+//! deck where the path tracer's cost demands it: a path through optical depth tau
+//! scatters about tau^2 times (docs/clouds.md, "Limits of the reference").
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
