@@ -367,14 +367,22 @@ pub enum ReportSection {
     Beams,
     /// The terrain's light shafts on the scenes with terrain: shafts.md and its plots.
     Shafts,
+    /// The cloud methods against the cloud path tracer on four views: clouds.md, its
+    /// reference cache clouds_reference.csv and its plots.
+    Clouds,
 }
 
 impl ReportArgs {
-    /// Whether the report writes `section`.
+    /// Whether the report writes `section`. `--model` and `--variant` narrow the skies
+    /// and leave the other sections out, except the clouds when `--section clouds`
+    /// names them (its `--variant`s are then cloud rows).
     pub fn writes(&self, section: ReportSection) -> bool {
         let asked = self.section.is_empty() || self.section.contains(&section);
         let skies_only = !(self.model.is_empty() && self.variant.is_empty());
-        asked && (section == ReportSection::Skies || !skies_only)
+        let named_clouds = section == ReportSection::Clouds
+            && self.section.contains(&section)
+            && self.model.is_empty();
+        asked && (section == ReportSection::Skies || !skies_only || named_clouds)
     }
 }
 
@@ -511,21 +519,34 @@ mod tests {
                 ReportSection::Skies,
                 ReportSection::Beams,
                 ReportSection::Shafts,
+                ReportSection::Clouds,
             ]
             .map(|s| report.writes(s))
         };
-        assert_eq!(sections(&[]), [true, true, true]);
-        assert_eq!(sections(&["--section", "shafts"]), [false, false, true]);
+        assert_eq!(sections(&[]), [true, true, true, true]);
+        assert_eq!(
+            sections(&["--section", "shafts"]),
+            [false, false, true, false]
+        );
         assert_eq!(
             sections(&["--section", "skies", "--section", "beams"]),
-            [true, true, false]
+            [true, true, false, false]
         );
-        assert_eq!(sections(&["--model", "riley"]), [true, false, false]);
+        assert_eq!(sections(&["--model", "riley"]), [true, false, false, false]);
         assert_eq!(
             sections(&["--model", "riley", "--section", "shafts"]),
-            [false, false, false]
+            [false, false, false, false]
         );
-        assert!(Cli::try_parse_from(["atmos", "report", "--section", "clouds"]).is_err());
+        // --variant narrows the clouds section when it is named.
+        assert_eq!(
+            sections(&["--variant", "riley", "--section", "clouds"]),
+            [false, false, false, true]
+        );
+        assert_eq!(
+            sections(&["--variant", "riley"]),
+            [true, false, false, false]
+        );
+        assert!(Cli::try_parse_from(["atmos", "report", "--section", "cloud"]).is_err());
     }
 
     #[test]

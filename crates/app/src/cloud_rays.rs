@@ -5,13 +5,18 @@
 //! rays over the same cover (docs/clouds.md, "The path-traced reference on the planet").
 //!
 //! The path tracer walks the layer's finest field (all `detail_octaves`, 3); a method
-//! marches the field of its own settings (the interactive preset's one octave).
+//! marches the field of its own settings (the interactive preset's one octave). The
+//! same field as Dobashi, Yamamoto and Nishita 2002's cloud spheres (section 5.4;
+//! `clouds/spheres/`) answers through `radiance_with_spheres`, and the spheres' share
+//! of a ray whose camera stands in the hand-over band is blended with the layer's as
+//! frames blend them (`clouds/spheres/handover.rs`).
 
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::composite::radiance_with_cloud_segment;
 use atmosphere_core::clouds::layer::field::CloudLayer;
+use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::orders::{ANGLES, ScatteringOrders};
 use atmosphere_core::clouds::layer::settings::{LayerSettings, MAX_DETAIL_OCTAVES};
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
@@ -21,6 +26,10 @@ use atmosphere_core::clouds::reference::phase_sampler::PhaseTableSampler;
 use atmosphere_core::clouds::reference::ray::radiance_path_traced;
 use atmosphere_core::clouds::reference::settings::PathSettings;
 use atmosphere_core::clouds::reference::sun_light::SunThroughAtmosphere;
+use atmosphere_core::clouds::spheres::composite::{radiance_with_spheres, spheres_only};
+use atmosphere_core::clouds::spheres::field::CloudSpheres;
+use atmosphere_core::clouds::spheres::handover::{CloudForm, sphere_weight};
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::error::ModelError;
 use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
 use atmosphere_core::optics::phase::PhaseFunction;
@@ -95,6 +104,11 @@ impl CloudRays {
         self.layer.settings()
     }
 
+    /// The planet's radius under the layer, m.
+    pub fn ground_radius_m(&self) -> f64 {
+        self.layer.shell().ground_radius_m
+    }
+
     /// The sun map of a frame whose camera is at `camera_m`, at the resolution frames
     /// light their layer with (`SunMapResolution::LIT`); `None` unless the layer is lit
     /// by the map.
@@ -147,5 +161,90 @@ impl CloudRays {
             cloud_transmittance: traced.cloud_transmittance,
             paths: Some(traced.paths),
         })
+    }
+
+    /// The cloud spheres of the layer lit by the unit `sun`, with frames' settings
+    /// (`SphereSettings::default`: 5 spheres, attenuation textures 1024 x 512).
+    pub fn spheres(&self, sun: DVec3) -> anyhow::Result<CloudSpheres> {
+        CloudSpheres::new(&self.layer, &SphereSettings::default(), sun).context("cloud spheres")
+    }
+
+    /// `ray` by `model` with the cloud `spheres` ([`CloudRays::spheres`] of the ray's
+    /// sun); `T_cloud` is the product of the crossings' transmittances.
+    pub fn with_spheres(
+        &self,
+        model: &dyn SkyModel,
+        ray: &ViewRay,
+        spheres: &CloudSpheres,
+    ) -> Result<CloudAnswer, ModelError> {
+        let radiance = radiance_with_spheres(model, spheres, &self.orders, ray)?;
+        // The transmittance does not depend on the light: none is given.
+        let dark = CloudLight {
+            sun_direction: ray.sun_direction.normalize(),
+            sun_irradiance: vec![0.0; self.orders.wavelengths()],
+            sky_irradiance: vec![0.0; self.orders.wavelengths()],
+            up: ray.origin_m.normalize(),
+        };
+        let (segment, _) = spheres_only(
+            spheres,
+            &self.orders,
+            &dark,
+            ray.origin_m,
+            ray.direction.normalize(),
+            ray.max_distance_m.unwrap_or(f64::INFINITY),
+        );
+        Ok(CloudAnswer {
+            radiance,
+            cloud_transmittance: segment.transmittance[0],
+            paths: None,
+        })
+    }
+
+    /// `ray` by `model` in the cloud's `form`: the layer's march, the spheres, or
+    /// (`auto`) both blended by the spheres' weight at the ray origin's altitude, as
+    /// frames blend the two images; `spheres` must be given where the weight is not 0.
+    pub fn in_form(
+        &self,
+        model: &dyn SkyModel,
+        ray: &ViewRay,
+        form: CloudForm,
+        sun_map: Option<&CloudSunMap>,
+        spheres: Option<&CloudSpheres>,
+    ) -> Result<CloudAnswer, ModelError> {
+        let altitude_m = ray.origin_m.length() - self.ground_radius_m();
+        let w = sphere_weight(form, altitude_m);
+        if w <= 0.0 {
+            return self.method(model, ray, sun_map);
+        }
+        let spheres = spheres.ok_or_else(|| {
+            ModelError::Settings("the cloud spheres were not made for this ray's sun".into())
+        })?;
+        let seen = self.with_spheres(model, ray, spheres)?;
+        if w >= 1.0 {
+            return Ok(seen);
+        }
+        Ok(blend(&self.method(model, ray, sun_map)?, &seen, w))
+    }
+}
+
+/// (1 - w) a + w b in radiance and transmittance.
+fn blend(a: &CloudAnswer, b: &CloudAnswer, w: f64) -> CloudAnswer {
+    let mix = |x: &[f64], y: &[f64]| -> Vec<f64> {
+        x.iter()
+            .zip(y)
+            .map(|(x, y)| (1.0 - w) * x + w * y)
+            .collect()
+    };
+    CloudAnswer {
+        radiance: RayRadiance {
+            radiance: mix(&a.radiance.radiance, &b.radiance.radiance),
+            transmittance: mix(&a.radiance.transmittance, &b.radiance.transmittance),
+            radiance_std_error: mix(
+                &a.radiance.radiance_std_error,
+                &b.radiance.radiance_std_error,
+            ),
+        },
+        cloud_transmittance: (1.0 - w) * a.cloud_transmittance + w * b.cloud_transmittance,
+        paths: None,
     }
 }

@@ -5,17 +5,24 @@
 //! layer's march (`cloud_rays.rs`; a layer lit by the sun map gets the map of a frame
 //! whose camera stands at the ray's origin), `--model reference` with the cloud path
 //! tracer, hillaire's air around the cloud, to `--target-error` (its standard error in
-//! `L_stderr_<nm>`). Extra columns: `T_cloud`, and `paths` for the path tracer.
+//! `L_stderr_<nm>`). `--cloud-form` chooses as in frames: the layer, the cloud
+//! spheres (the same field as Dobashi et al. 2002's spheres, `cloud_rays.rs`, made once
+//! per sun direction), or by each ray's altitude (`auto`, blended across the hand-over
+//! band); the path tracer traces the field itself and takes no form but `auto` or
+//! `layer`. Extra columns: `T_cloud`, and `paths` for the path tracer.
 
 use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::layer::droplets::droplet_orders_cached;
 use atmosphere_core::clouds::reference::settings::PathSettings;
+use atmosphere_core::clouds::spheres::field::CloudSpheres;
+use atmosphere_core::clouds::spheres::handover::{CloudForm, sphere_weight};
 use atmosphere_core::models::error::ModelError;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, ViewRay};
+use glam::DVec3;
 
 use crate::cloud_rays::{CloudAnswer, CloudRays};
 use crate::probe_args::ProbeArgs;
@@ -69,6 +76,13 @@ pub fn evaluate(
     let Some(layer) = args.clouds.settings()? else {
         bail!("--clouds is off");
     };
+    let form = args.clouds.form()?;
+    if model == ModelId::Reference && form == CloudForm::Spheres {
+        bail!(
+            "--cloud-form spheres: the path tracer (--model reference) traces the cloud field \
+             itself; the form chooses how a sky model shows it (auto or layer here)"
+        );
+    }
     let cover = args.clouds.cover_grid()?;
     let orders = droplet_orders_cached(&settings.wavelengths_nm, &table_cache())
         .context("--clouds: the droplets' phase functions at --wavelengths")?;
@@ -81,6 +95,10 @@ pub fn evaluate(
     };
     let clouds = CloudRays::new(layer, cover, orders, atmosphere, sky.as_ref())?;
     let placed: Vec<ViewRay> = rays.iter().map(|ray| place.placed(ray)).collect();
+    let spheres = match paths {
+        Some(_) => Vec::new(),
+        None => spheres_by_sun(&clouds, &placed, form)?,
+    };
     let answers: Vec<Result<CloudAnswer, ModelError>> =
         map_with_progress("probe", "rays", &placed, |ray| match &paths {
             Some(paths) => clouds.reference(sky.as_ref(), ray, paths),
@@ -88,7 +106,9 @@ pub fn evaluate(
                 let map = clouds
                     .sun_map(ray.origin_m, ray.sun_direction.normalize())
                     .map_err(|e| ModelError::Settings(format!("{e:#}")))?;
-                clouds.method(sky.as_ref(), ray, map.as_ref())
+                let sun = ray.sun_direction.normalize();
+                let made = spheres.iter().find(|(s, _)| *s == sun).map(|(_, m)| m);
+                clouds.in_form(sky.as_ref(), ray, form, map.as_ref(), made)
             }
         });
     let mut names = vec!["T_cloud".to_string()];
@@ -115,4 +135,23 @@ pub fn evaluate(
         }
     }
     Ok((sky.solar_irradiance_w_m2_nm().to_vec(), results, extra))
+}
+
+/// The cloud spheres for each sun direction of the `rays` whose camera sees them in
+/// `form` (none for the layer alone).
+fn spheres_by_sun(
+    clouds: &CloudRays,
+    rays: &[ViewRay],
+    form: CloudForm,
+) -> anyhow::Result<Vec<(DVec3, CloudSpheres)>> {
+    let ground = clouds.ground_radius_m();
+    let mut made: Vec<(DVec3, CloudSpheres)> = Vec::new();
+    for ray in rays {
+        let sun = ray.sun_direction.normalize();
+        let seen = sphere_weight(form, ray.origin_m.length() - ground) > 0.0;
+        if seen && !made.iter().any(|(s, _)| *s == sun) {
+            made.push((sun, clouds.spheres(sun)?));
+        }
+    }
+    Ok(made)
 }

@@ -121,7 +121,7 @@ fn bad_flags_are_named() {
         &["report", "--twilight-max-paths", "10"],
         "--twilight-max-paths",
     );
-    atmos_fails_with(&["report", "--section", "clouds"], "clouds");
+    atmos_fails_with(&["report", "--section", "cloud"], "cloud");
     atmos_fails_with(
         &["report", "--model", "riley", "--section", "shafts"],
         "nothing to report",

@@ -2,9 +2,18 @@
 //! error, build time, time per ray and memory, CPU and GPU frame times, as `README.md`,
 //! `error_vs_time.png`, `error_vs_gpu_time.png` and `errors.csv`; the light beams of
 //! the shipped beams scenes as `beams.md` and its plots (`beams.rs`); the terrain's light
-//! shafts as `shafts.md` and its plots (`shafts.rs`).
+//! shafts as `shafts.md` and its plots (`shafts.rs`); the clouds as `clouds.md` and its
+//! plots (`clouds.rs`).
 
 pub mod beams;
+pub mod clouds;
+pub mod clouds_errors;
+pub mod clouds_gpu;
+pub mod clouds_markdown;
+pub mod clouds_reference;
+pub mod clouds_rows;
+pub mod clouds_scene;
+pub mod clouds_views;
 pub mod error_table;
 pub mod gpu_time;
 pub mod judged_rays;
@@ -36,16 +45,26 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         ReportSection::Skies,
         ReportSection::Beams,
         ReportSection::Shafts,
+        ReportSection::Clouds,
     ];
     if !all.iter().any(|s| args.writes(*s)) {
         bail!(
             "nothing to report: --model and --variant narrow the skies section, which --section leaves out"
         );
     }
+    if args.writes(ReportSection::Skies)
+        && args.writes(ReportSection::Clouds)
+        && !args.variant.is_empty()
+    {
+        bail!("--variant narrows one section at a time: skies or clouds (--section)");
+    }
     fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     if args.writes(ReportSection::Skies) {
         report_skies(args)?;
+    }
+    if args.writes(ReportSection::Clouds) {
+        clouds::report_clouds(args)?;
     }
     if args.reference_only {
         return Ok(());

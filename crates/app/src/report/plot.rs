@@ -9,6 +9,7 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
 use atmosphere_core::beams::methods::id::BeamMethodId;
+use atmosphere_core::clouds::layer::settings::LayerMethod;
 use atmosphere_core::models::id::ModelId;
 
 use crate::report::measure::VariantResult;
@@ -40,11 +41,13 @@ pub const GPU_AXIS: TimeAxis = TimeAxis {
     unit: "x baseline",
 };
 
-/// What a point's colour tells: a sky model or a beam method.
+/// What a point's colour tells: a sky model, a beam method, or a cloud method (`None`:
+/// the cloud spheres).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Series {
     Sky(ModelId),
     Beam(BeamMethodId),
+    Cloud(Option<LayerMethod>),
 }
 
 /// One point of the plot.
@@ -141,6 +144,13 @@ fn staircase(front: &[Point], x_end: f64) -> Vec<(f64, f64)> {
 fn series_color(series: Series) -> RGBColor {
     let model = match series {
         Series::Sky(model) => model,
+        Series::Cloud(method) => {
+            return match method {
+                Some(LayerMethod::Riley) => RGBColor(214, 39, 40),
+                Some(LayerMethod::Octaves) => RGBColor(31, 119, 180),
+                None => RGBColor(44, 160, 44),
+            };
+        }
         Series::Beam(method) => {
             return match method {
                 BeamMethodId::March => RGBColor(31, 119, 180),
