@@ -1,5 +1,6 @@
 //! The rows of the clouds section: each cloud method and setting (Riley et al. 2004's
-//! multiple scattering or Wrenninge et al. 2013's octaves; the interactive or offline
+//! multiple scattering, Wrenninge et al. 2013's octaves or the delta-Eddington slab of
+//! Joseph, Wiscombe and Weinman 1976; the interactive or offline
 //! march; the sun's light by a shadow march or from the frame's sun map), and the cloud
 //! spheres of Dobashi et al. 2002 section 5.4 on the view from orbit; their answers for
 //! a view's rays and the CPU time they took.
@@ -50,7 +51,7 @@ impl fmt::Display for CloudRow {
 }
 
 impl CloudRow {
-    /// A row as `--variant` writes it: `spheres`, or a method (riley, octaves), a
+    /// A row as `--variant` writes it: `spheres`, or a method (riley, octaves, eddington), a
     /// quality (interactive, offline) and a sun light (march, map) in any order, the
     /// method required, the others by default offline and march. Errors name the
     /// word and what it may be.
@@ -70,13 +71,13 @@ impl CloudRow {
             } else {
                 bail!(
                     "clouds variant \"{text}\": \"{word}\" is none of spheres, riley, octaves, \
-                     interactive, offline, march, map"
+                     eddington, interactive, offline, march, map"
                 );
             }
         }
         let Some(method) = method else {
             bail!(
-                "clouds variant \"{text}\" names no method: riley or octaves (with interactive \
+                "clouds variant \"{text}\" names no method: riley, octaves or eddington (with interactive \
                  or offline, march or map), or spheres"
             );
         };
@@ -122,10 +123,15 @@ impl CloudRow {
     }
 }
 
-/// The report's rows: both methods, both qualities, both sun lights, and the spheres.
+/// The report's rows: the three methods, both qualities, both sun lights, and the
+/// spheres.
 pub fn cloud_rows() -> Vec<CloudRow> {
     let mut rows = Vec::new();
-    for method in [LayerMethod::Riley, LayerMethod::Octaves] {
+    for method in [
+        LayerMethod::Riley,
+        LayerMethod::Octaves,
+        LayerMethod::Eddington,
+    ] {
         for quality in [MarchQuality::Interactive, MarchQuality::Offline] {
             for sun_light in [SunLight::March, SunLight::Map] {
                 rows.push(CloudRow::Layer {
