@@ -87,7 +87,7 @@ pub fn volumes_rect(frame: &Frame, volumes: &[LitVolume]) -> Option<PixelRect> {
     let y0 = (b[1] - 1.0).floor().clamp(0.0, height);
     let x1 = (b[2] + 1.0).ceil().clamp(0.0, width);
     let y1 = (b[3] + 1.0).ceil().clamp(0.0, height);
-    (x1 > x0 && y1 > y0).then(|| PixelRect {
+    (x1 > x0 && y1 > y0).then_some(PixelRect {
         origin: [x0 as u32, y0 as u32],
         size: [(x1 - x0) as u32, (y1 - y0) as u32],
     })
