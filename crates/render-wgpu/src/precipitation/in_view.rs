@@ -1,9 +1,9 @@
 //! The planner's rule for rain and ice volumes: a frame runs the volumes pass only when
 //! some volume may be in view. A rain shaft is out of view when its bounding sphere lies
-//! outside the cone around the view direction that holds every pixel's ray, or when the
-//! rectangle of pixels it may cover (`screen_rect.rs`) is empty; a cirrus layer around
-//! the planet is taken to be always in view. Conservative: a frame it prunes has no
-//! pixel whose ray meets a volume.
+//! outside the cone around the view direction that holds every pixel's ray; and the
+//! volumes are when the rectangle of pixels they may cover (`screen_rect.rs`) is empty
+//! (a layer's too: seen from below, when every pixel's ray meets the ground first).
+//! Conservative: a frame it prunes has no pixel whose ray meets a volume.
 
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::volumes::Shape;

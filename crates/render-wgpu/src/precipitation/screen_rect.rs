@@ -1,9 +1,13 @@
 //! The pixels a frame's rain and ice volumes may cover: the rectangle the volumes pass
 //! runs over, the rest of the frame keeping the model's pixels. A rain shaft's is the
-//! projection of the box around its cylinder (its eight corners, a pixel of margin; the
-//! whole frame when a corner is not in front of the camera); a cirrus layer or a droplet
-//! deck around the planet may cover any pixel.
+//! projection of the box around its cylinder (its eight corners; the whole frame when a
+//! corner is not in front of the camera). A cirrus layer or a droplet deck seen from
+//! below its base is reached only by rays that miss the ground, d . up > -s |d| with s
+//! the sine of the horizon's dip: its rectangle bounds the frame's part of the
+//! half-plane d . up >= -s max |d| (linear in the pixel's position); seen from inside or
+//! above, the whole frame. A pixel of margin all round.
 
+use atmosphere_core::clouds::layer::shell::Shell;
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::volumes::Shape;
 
@@ -24,17 +28,66 @@ impl PixelRect {
     }
 }
 
+/// Bounds (x0, y0, x1, y1) holding none.
+const EMPTY: [f64; 4] = [
+    f64::INFINITY,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    f64::NEG_INFINITY,
+];
+
+fn extend(b: [f64; 4], (x, y): (f64, f64)) -> [f64; 4] {
+    [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)]
+}
+
 /// The pixel bounds (x0, y0, x1, y1) of `volume` in `frame`, unclamped; `None`: any.
 fn bounds(frame: &Frame, volume: &LitVolume) -> Option<[f64; 4]> {
-    let Shape::Shaft {
-        axis,
-        ground_radius_m,
-        radius_m,
-        height_m,
-    } = volume.volume.shape
-    else {
+    match volume.volume.shape {
+        Shape::Shaft {
+            axis,
+            ground_radius_m,
+            radius_m,
+            height_m,
+        } => shaft_bounds(frame, (axis, ground_radius_m), radius_m, height_m),
+        Shape::Layer(shell) => layer_bounds(frame, &shell),
+    }
+}
+
+/// A layer's bounds: the frame's part where d . up >= -s max |d|, from below its base.
+fn layer_bounds(frame: &Frame, shell: &Shell) -> Option<[f64; 4]> {
+    let r = frame.camera_position_m.length();
+    if r >= shell.base_radius_m || r <= shell.ground_radius_m {
         return None;
-    };
+    }
+    let up = frame.camera_position_m / r;
+    let dip = (1.0 - (shell.ground_radius_m / r).powi(2)).sqrt();
+    let (half_w, half_h) = frame.half_extent();
+    let longest = (1.0 + half_w * half_w + half_h * half_h).sqrt();
+    let side = |(x, y): (f64, f64)| frame.direction_through(x, y).dot(up) + dip * longest;
+    let (width, height) = (f64::from(frame.width), f64::from(frame.height));
+    let corners = [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)];
+    let mut b = EMPTY;
+    for k in 0..4 {
+        let (p, q) = (corners[k], corners[(k + 1) % 4]);
+        let (fp, fq) = (side(p), side(q));
+        if fp >= 0.0 {
+            b = extend(b, p);
+        }
+        if (fp >= 0.0) != (fq >= 0.0) {
+            let s = fp / (fp - fq);
+            b = extend(b, (p.0 + s * (q.0 - p.0), p.1 + s * (q.1 - p.1)));
+        }
+    }
+    Some(b)
+}
+
+/// A shaft's bounds: the projection of the box around its cylinder.
+fn shaft_bounds(
+    frame: &Frame,
+    (axis, ground_radius_m): (glam::DVec3, f64),
+    radius_m: f64,
+    height_m: f64,
+) -> Option<[f64; 4]> {
     let [right, up, forward] = frame.axes();
     let (half_w, half_h) = frame.half_extent();
     let (width, height) = (f64::from(frame.width), f64::from(frame.height));
@@ -57,7 +110,7 @@ fn bounds(frame: &Frame, volume: &LitVolume) -> Option<[f64; 4]> {
         }
         let x = 0.5 * (1.0 + corner.dot(right) / (z * half_w)) * width;
         let y = 0.5 * (1.0 - corner.dot(up) / (z * half_h)) * height;
-        b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+        b = extend(b, (x, y));
     }
     Some(b)
 }
@@ -99,6 +152,7 @@ mod tests {
     use atmosphere_core::atmosphere::Atmosphere;
     use atmosphere_core::hydrometeors::channel_phase::ChannelPhase;
     use atmosphere_core::hydrometeors::render::VolumeLight;
+    use atmosphere_core::hydrometeors::scene::CirrusSettings;
     use atmosphere_core::hydrometeors::volumes::Volume;
     use atmosphere_core::models::id::ModelId;
     use glam::DVec3;
@@ -172,5 +226,47 @@ mod tests {
             }
         }
         assert!(narrowed >= 3, "{narrowed}");
+    }
+
+    /// Pitching the camera from 40 degrees down to 40 up under a cirrus layer: every
+    /// pixel whose ray meets the layer lies in the rectangle, which leaves out the rows
+    /// under the horizon, and none when every ray meets the ground.
+    #[test]
+    fn every_pixel_that_meets_a_layer_from_below_is_in_the_rectangle() {
+        let mut narrowed = 0;
+        for k in -8..=8 {
+            let pitch = f64::from(k) * 5f64.to_radians();
+            let f = frame(DVec3::new(pitch.sin(), pitch.cos(), 0.0));
+            let ground = f.atmosphere.bottom_radius_m;
+            let cirrus = CirrusSettings::default().volume(ground, 20.0).unwrap();
+            let volumes = [LitVolume {
+                volume: cirrus,
+                ..shaft(ground)
+            }];
+            let rect = volumes_rect(&f, &volumes);
+            for row in 0..f.height {
+                for column in 0..f.width {
+                    let d = f.pixel_ray(column, row).direction;
+                    if volumes[0]
+                        .volume
+                        .segment(f.camera_position_m, d, f64::INFINITY)
+                        .is_some()
+                    {
+                        assert!(rect.is_some_and(|r| r.contains(column, row)), "{k}");
+                    }
+                }
+            }
+            if rect.is_none_or(|r| r.size[1] < f.height) {
+                narrowed += 1;
+            }
+        }
+        assert!(narrowed >= 8, "{narrowed}");
+        let down = frame(DVec3::new(-1.0, 0.01, 0.0).normalize());
+        let ground = down.atmosphere.bottom_radius_m;
+        let volumes = [LitVolume {
+            volume: CirrusSettings::default().volume(ground, 20.0).unwrap(),
+            ..shaft(ground)
+        }];
+        assert_eq!(volumes_rect(&down, &volumes), None);
     }
 }
