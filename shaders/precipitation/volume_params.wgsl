@@ -30,7 +30,8 @@ struct VolumeParams {
 }
 
 struct VolumesParams {
-    // x: how many volumes; y: 1 when the frame's rays end on its surface.
+    // x: how many volumes; y: 1 when the frame's rays end on its surface; z, w: the
+    // column and row of the first pixel the pass runs over.
     count: vec4<u32>,
     volumes: array<VolumeParams, MAX_VOLUMES>,
 }

@@ -119,15 +119,17 @@ fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
     return Met(t.x, radiance, t_v);
 }
 
+// Over the rectangle of pixels the volumes may cover, from pixel `volumes.count.zw`.
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.size_px.xy) {
+    let px = id.xy + volumes.count.zw;
+    if any(px >= frame.size_px.xy) {
         return;
     }
-    let d = pixel_direction(id.xy);
+    let d = pixel_direction(px);
     var max_t = 3.0e38;
     if volumes.count.y == 1u {
-        let distance = textureLoad(surface, id.xy, 0).w;
+        let distance = textureLoad(surface, px, 0).w;
         if distance > 0.0 {
             max_t = distance;
         }
@@ -149,10 +151,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         met[0] = met[1];
         met[1] = near;
     }
-    var out = textureLoad(full_image, id.xy, 0).rgb;
+    var out = textureLoad(full_image, px, 0).rgb;
     for (var i = 0u; i < n; i++) {
         let front = front_transmittance(d, met[i].entry);
         out = out * (1.0 - front * (1.0 - met[i].transmittance)) + front * met[i].radiance;
     }
-    textureStore(hdr, id.xy, vec4<f32>(min(out, vec3<f32>(F16_MAX)), 1.0));
+    textureStore(hdr, px, vec4<f32>(min(out, vec3<f32>(F16_MAX)), 1.0));
 }

@@ -377,14 +377,6 @@ impl Renderer {
         if let (Some(_), Some(pass)) = (volumes_step, self.volumes_pass.as_mut()) {
             pass.fit(gpu, (frame.width, frame.height));
         }
-        // With volumes, the model's pixels (or the cloud composite) go to the volumes
-        // pass's image and that pass writes the HDR target.
-        let volumes_full = self
-            .volumes_pass
-            .as_ref()
-            .filter(|_| volumes_step.is_some())
-            .and_then(VolumesPass::full);
-        let before_volumes = volumes_full.unwrap_or(&targets.hdr);
         let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
 
@@ -396,7 +388,7 @@ impl Renderer {
         let io = PassIo {
             atmosphere: &self.atmosphere,
             frame: &self.frame,
-            hdr: cloud_targets.map_or(before_volumes, |c| &c.full),
+            hdr: cloud_targets.map_or(&targets.hdr, |c| &c.full),
             surface: &surface_views,
             has_surface,
             has_sea,
@@ -476,7 +468,7 @@ impl Renderer {
                 &mut encoder,
                 (&self.atmosphere, &self.frame),
                 (c, &steps),
-                before_volumes,
+                &targets.hdr,
                 timer.map(|t| t.compute_writes(composite)),
             );
         }

@@ -1,9 +1,12 @@
 //! `atmos bench --optics-scene FILE.toml`: what a scene's rain and ice volumes cost
-//! against its sky model's pixel pass, at --width x --height: frames with the volumes
+//! against its sky model's frame, at --width x --height: frames with the volumes
 //! interleaved with the same frames without them, timed by the wall clock around each
-//! render (lavapipe's timestamps around a lone compute pass do not measure it); the
-//! volumes' cost is the difference of the medians, the sky pass's the median of its own
-//! GPU timestamps (docs/optics-rendering.md, "Cost").
+//! render. Each pair, rendered one after the other under the same load, gives the
+//! volumes' cost as a share of the frame without them (the sky pass, the tone map and
+//! the frame's own work); the median of the pairs' shares is the figure. The sky pass's
+//! own GPU timestamps are shown beside it but not divided by: lavapipe's timestamps
+//! around compute passes often read a fraction of a millisecond (docs/optics-rendering.md,
+//! "Cost").
 
 use anyhow::Context;
 use render_wgpu::Renderer;
@@ -18,6 +21,20 @@ pub struct OpticsTimes {
     pub with_ms: f64,
     /// The model's pixel pass (the step named after the model), by its timestamps.
     pub sky_pass_ms: Option<f64>,
+    /// The median over the pairs of (with - without) / without.
+    pub pair_ratio: f64,
+    /// The one-minute load average before and after, where the system tells it.
+    pub load: Option<(f64, f64)>,
+}
+
+/// The one-minute load average (`/proc/loadavg`); `None` where there is none.
+fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
 }
 
 /// Renders the scene at `path` resized to `size`, `frames` times with and without its
@@ -50,6 +67,7 @@ pub fn measure(
     timed(renderer, &frame)?;
     renderer.set_volumes(volumes.clone())?;
     timed(renderer, &frame)?;
+    let load_before = load_average();
     let (mut without, mut with, mut sky) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..frames {
         renderer.set_volumes(Vec::new())?;
@@ -64,10 +82,17 @@ pub fn measure(
         renderer.set_volumes(volumes.clone())?;
         with.push(timed(renderer, &frame)?.1);
     }
+    let ratios: Vec<f64> = with
+        .iter()
+        .zip(&without)
+        .map(|(w, o)| (w - o) / o)
+        .collect();
     Ok(OpticsTimes {
         without_ms: median(&without).unwrap_or(f64::NAN),
         with_ms: median(&with).unwrap_or(f64::NAN),
         sky_pass_ms: median(&sky),
+        pair_ratio: median(&ratios).unwrap_or(f64::NAN),
+        load: load_before.zip(load_average()),
     })
 }
 
@@ -79,19 +104,43 @@ pub fn markdown(
     times: &OpticsTimes,
 ) -> String {
     let volumes = times.with_ms - times.without_ms;
-    let (sky, ratio) = match times.sky_pass_ms {
-        Some(s) => (format!("{s:.1}"), format!("{:.2}", volumes / s)),
-        None => ("-".into(), "-".into()),
-    };
+    let sky = times
+        .sky_pass_ms
+        .map_or_else(|| "-".into(), |s| format!("{s:.1}"));
+    let load = times
+        .load
+        .map_or_else(|| "-".into(), |(a, b)| format!("{a:.2}, {b:.2}"));
     format!(
         "## Optics scene {} at {}x{} on {adapter}\n\n\
-         | frame without volumes (ms) | frame with volumes (ms) | volumes (ms) | sky pass (ms) | volumes / sky pass |\n\
-         |---|---|---|---|---|\n\
-         | {:.1} | {:.1} | {volumes:.1} | {sky} | {ratio} |\n",
+         | frame without volumes (ms) | frame with volumes (ms) | volumes (ms) | sky pass timestamps (ms) | volumes / frame without (median of pairs) | load before, after |\n\
+         |---|---|---|---|---|---|\n\
+         | {:.1} | {:.1} | {volumes:.1} | {sky} | {:.2} | {load} |\n",
         path.display(),
         size.0,
         size.1,
         times.without_ms,
         times.with_ms,
+        times.pair_ratio,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_row_shows_the_median_of_the_pairs_and_the_load() {
+        let times = OpticsTimes {
+            without_ms: 400.0,
+            with_ms: 700.0,
+            sky_pass_ms: None,
+            pair_ratio: 0.8,
+            load: Some((3.5, 4.25)),
+        };
+        let text = markdown(std::path::Path::new("r.toml"), "cpu", (64, 36), &times);
+        assert!(
+            text.contains("| 400.0 | 700.0 | 300.0 | - | 0.80 | 3.50, 4.25 |"),
+            "{text}"
+        );
+    }
 }

@@ -1,14 +1,17 @@
 //! The planner's rule for rain and ice volumes: a frame runs the volumes pass only when
 //! some volume may be in view. A rain shaft is out of view when its bounding sphere lies
-//! outside the cone around the view direction that holds every pixel's ray; a cirrus
-//! layer around the planet is taken to be always in view. Conservative: a frame it
-//! prunes has no pixel whose ray meets a volume.
+//! outside the cone around the view direction that holds every pixel's ray; and the
+//! volumes are when the rectangle of pixels they may cover (`screen_rect.rs`) is empty
+//! (a layer's too: seen from below, when every pixel's ray meets the ground first).
+//! Conservative: a frame it prunes has no pixel whose ray meets a volume.
 
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::volumes::Shape;
 
 use crate::frame::Frame;
 use crate::frame::plan::{FramePlan, StepKind};
+
+use super::screen_rect::volumes_rect;
 
 /// Why the planner leaves the volumes pass out when no volume is in view.
 pub const NO_VOLUME_IN_VIEW: &str = "no rain or ice volume in view";
@@ -44,7 +47,8 @@ pub fn in_view(frame: &Frame, volume: &LitVolume) -> bool {
 
 /// Why `frame` needs no volumes pass, if it does not.
 pub fn why_no_volumes(frame: &Frame, volumes: &[LitVolume]) -> Option<&'static str> {
-    (!volumes.iter().any(|v| in_view(frame, v))).then_some(NO_VOLUME_IN_VIEW)
+    let none = !volumes.iter().any(|v| in_view(frame, v)) || volumes_rect(frame, volumes).is_none();
+    none.then_some(NO_VOLUME_IN_VIEW)
 }
 
 /// The volumes' step of `frame` in `plan`: its index, or `None` when there are no

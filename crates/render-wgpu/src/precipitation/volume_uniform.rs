@@ -38,7 +38,8 @@ pub struct VolumeUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VolumesUniform {
-    /// x: how many volumes; y: 1 when the frame's rays end on its surface.
+    /// x: how many volumes; y: 1 when the frame's rays end on its surface; z, w: the
+    /// column and row of the first pixel the pass runs over.
     pub count: [u32; 4],
     pub volumes: [VolumeUniform; MAX_VOLUMES],
 }

@@ -1,7 +1,10 @@
 //! The pass that composites a frame's rain and ice volumes over its pixels
-//! (`shaders/precipitation/volumes_composite.wgsl`): it reads the model's HDR image,
-//! which the model writes into this pass's own image in frames with volumes, and the
-//! frame's surface distances, and writes the HDR target.
+//! (`shaders/precipitation/volumes_composite.wgsl`): over the rectangle of pixels the
+//! volumes may cover (`screen_rect.rs`) it copies the model's HDR image into its own,
+//! reads that and the frame's surface distances, and writes the HDR target; the pixels
+//! outside keep the model's. On a software adapter a pass costs about the same per pixel
+//! whatever it computes, so the pixels it leaves out are most of what it saves
+//! (docs/optics-rendering.md, "Cost").
 
 use atmosphere_core::hydrometeors::render::LitVolume;
 use wgpu::util::DeviceExt;
@@ -13,10 +16,11 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
+    ComputePipeline, WORKGROUP_SIDE, read_only_storage_buffer_entry, storage_texture_entry,
     texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 
+use super::screen_rect::volumes_rect;
 use super::volume_uniform::{VolumesUniform, pack};
 
 /// What one frame's pass reads and writes.
@@ -31,12 +35,12 @@ pub struct VolumesScene<'a> {
     pub has_surface: bool,
 }
 
-/// The composite pipeline, its uniform and the image of the model's pixels it reads.
+/// The composite pipeline, its uniform and its copy of the model's pixels.
 #[derive(Debug)]
 pub struct VolumesPass {
     pipeline: ComputePipeline,
     params: wgpu::Buffer,
-    /// The model's pixels (remade when the size changes).
+    /// The model's pixels under the volumes (remade when the size changes).
     full: Option<wgpu::Texture>,
 }
 
@@ -65,8 +69,8 @@ impl VolumesPass {
         })
     }
 
-    /// Makes the image the model's pixels go to ([`VolumesPass::full`]) for frames of
-    /// `size`, unless it has that size.
+    /// Makes the image the model's pixels are copied to for frames of `size`, unless it
+    /// has that size.
     pub fn fit(&mut self, gpu: &GpuContext, size: (u32, u32)) {
         if self.full.as_ref().map(|t| (t.width(), t.height())) != Some(size) {
             self.full = Some(texture_2d(
@@ -74,18 +78,13 @@ impl VolumesPass {
                 "volumes full",
                 size,
                 HDR_FORMAT,
-                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
             ));
         }
     }
 
-    /// The image the frame's model (or its cloud composite) writes for this pass to read,
-    /// made by [`VolumesPass::fit`]; `None` before it.
-    pub fn full(&self) -> Option<&wgpu::Texture> {
-        self.full.as_ref()
-    }
-
-    /// Records the composite of `scene`'s volumes over [`VolumesPass::full`] into `hdr`.
+    /// Records the composite of `scene`'s volumes over the model's pixels in `hdr` (of
+    /// the size given to [`VolumesPass::fit`]), in place.
     pub fn encode(
         &self,
         gpu: &GpuContext,
@@ -95,7 +94,11 @@ impl VolumesPass {
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), RenderError> {
         let frame = scene.frame;
-        let (uniform, bins) = pack(scene.volumes, frame.camera_position_m, scene.has_surface)?;
+        let Some(rect) = volumes_rect(frame, scene.volumes) else {
+            return Ok(());
+        };
+        let (mut uniform, bins) = pack(scene.volumes, frame.camera_position_m, scene.has_surface)?;
+        uniform.count[2..].copy_from_slice(&rect.origin);
         gpu.write_uniform(&self.params, &uniform);
         let phase = gpu
             .device
@@ -107,6 +110,31 @@ impl VolumesPass {
         let full = self.full.as_ref().ok_or_else(|| {
             RenderError::Frame("the volumes pass has no image of the frame's size".into())
         })?;
+        // Whole workgroups over the rectangle, within the frame: the pixels the pass writes.
+        let groups = rect.size.map(|n| n.div_ceil(WORKGROUP_SIDE));
+        let extent = |axis: usize, limit: u32| {
+            (WORKGROUP_SIDE * groups[axis]).min(limit - rect.origin[axis])
+        };
+        let origin = wgpu::Origin3d {
+            x: rect.origin[0],
+            y: rect.origin[1],
+            z: 0,
+        };
+        let at = |texture| wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin,
+            aspect: wgpu::TextureAspect::All,
+        };
+        encoder.copy_texture_to_texture(
+            at(hdr),
+            at(full),
+            wgpu::Extent3d {
+                width: extent(0, hdr.width()),
+                height: extent(1, hdr.height()),
+                depth_or_array_layers: 1,
+            },
+        );
         let full_view = full.create_view(&Default::default());
         let out = hdr.create_view(&Default::default());
         let bind_group = self.pipeline.bind_group(
@@ -125,7 +153,7 @@ impl VolumesPass {
             encoder,
             "rain and ice volumes",
             &bind_group,
-            texel_groups(hdr),
+            [groups[0], groups[1], 1],
             timestamps,
         );
         Ok(())
