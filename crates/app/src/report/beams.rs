@@ -43,6 +43,9 @@ pub const BEAM_VARIANTS: [&str; 7] = [
     "qtable2002 epsilon=1",
 ];
 
+/// The label of the reference's row of each scene (its errors zero by definition).
+pub const REFERENCE_LABEL: &str = "reference";
+
 /// Rays across each scene's camera in the report.
 pub const RAYS_ACROSS: u32 = 24;
 
@@ -121,7 +124,18 @@ pub fn measure(
             Ok((out, prepared_s + per_ray * f64::from(FRAME.0 * FRAME.1)))
         };
         eprintln!("report: beams on {name}, the reference");
-        let (truth, _) = luminance(BeamMethodId::Reference, &[])?;
+        let (truth, reference_frame_s) = luminance(BeamMethodId::Reference, &[])?;
+        // The reference's own row: its CPU frame time, the brute force the methods'
+        // times compare with (Dobashi et al. 2002 section 4.3 compare with ray tracing).
+        rows.push(BeamRow {
+            scene: name.to_string(),
+            label: REFERENCE_LABEL.to_string(),
+            method: BeamMethodId::Reference,
+            rms: 0.0,
+            max: 0.0,
+            cpu_frame_s: reference_frame_s,
+            gpu_ms: None,
+        });
         let floor = 0.01 * truth.iter().copied().fold(0.0, f64::max);
         for (k, variant) in variants.iter().enumerate() {
             eprintln!(
@@ -246,19 +260,22 @@ mod tests {
             None,
         )
         .unwrap();
-        assert_eq!(rows.len(), 2);
+        assert_eq!(rows.len(), 3);
+        let (reference, rows) = (&rows[0], &rows[1..]);
+        assert_eq!(reference.label, REFERENCE_LABEL);
+        assert!(reference.cpu_frame_s > 0.0 && reference.rms == 0.0);
         assert!(
             rows.iter()
                 .all(|r| r.rms.is_finite() && r.cpu_frame_s > 0.0)
         );
         assert!(rows[1].rms < rows[0].rms, "{rows:?}");
         assert!(rows[0].max >= rows[0].rms);
-        let text = markdown(&rows, 6);
+        let text = markdown(rows, 6);
         assert!(
             text.contains("| sphere_spotlight.toml | march steps=128 |"),
             "{text}"
         );
-        let (cpu, gpu) = points(&rows, &variants);
+        let (cpu, gpu) = points(rows, &variants);
         assert_eq!(cpu.len(), 2);
         assert!(gpu.is_empty());
         let dir = tempfile::tempdir().unwrap();
@@ -271,8 +288,24 @@ mod tests {
     #[ignore = "slow: the reference and every setting on the four shipped scenes"]
     fn every_setting_is_measured_on_every_shipped_scene() {
         let rows = measure(&shipped_folder(), &BEAM_SCENES, &BEAM_VARIANTS, 12, None).unwrap();
-        assert_eq!(rows.len(), BEAM_SCENES.len() * BEAM_VARIANTS.len());
+        assert_eq!(rows.len(), BEAM_SCENES.len() * (1 + BEAM_VARIANTS.len()));
         assert!(rows.iter().all(|r| r.rms.is_finite()));
         println!("{}", markdown(&rows, 12));
+    }
+
+    #[test]
+    #[ignore = "slow: the march at up to 8191 steps against the reference"]
+    fn the_march_that_matches_the_q_tables_error_on_the_sphere_scene() {
+        let variants = [
+            "march steps=1024",
+            "march steps=2048",
+            "march steps=4096",
+            "march steps=8191",
+            "march steps=8191 shadow_map_px=2048",
+            "qtable2002",
+        ];
+        let scenes = ["sphere_spotlight.toml"];
+        let rows = measure(&shipped_folder(), &scenes, &variants, RAYS_ACROSS, None).unwrap();
+        println!("{}", markdown(&rows, RAYS_ACROSS));
     }
 }
