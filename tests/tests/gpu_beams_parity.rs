@@ -55,6 +55,7 @@ fn gpu_march_matches_the_cpu_march_on_the_shipped_scenes() {
         ("sphere_spotlight.toml", 40, 60),
         ("stage_five_spots.toml", 64, 48),
         ("stained_glass_room.toml", 64, 48),
+        ("point_lamp.toml", 64, 36),
     ] {
         let (cpu, gpu_pixels) = both(&gpu, &pass, &shipped_scene(name, width, height));
         check_relative(name, &cpu, &gpu_pixels, MAX_RELATIVE_ERROR);

@@ -52,6 +52,7 @@ fn gpu_planes_match_the_cpu_planes_on_the_shipped_scenes() {
         ("stage_five_spots.toml", 64, 48),
         ("stained_glass_room.toml", 64, 48),
         ("teapot_spotlight.toml", 64, 48),
+        ("point_lamp.toml", 64, 36),
     ] {
         let (cpu, gpu_pixels) = both(&gpu, &pass, &shipped_scene(name, width, height));
         check_relative(name, &cpu, &gpu_pixels, MAX_RELATIVE_ERROR);

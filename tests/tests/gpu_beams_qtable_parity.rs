@@ -64,6 +64,7 @@ fn gpu_qtable_matches_the_cpu_qtable_on_the_shipped_scenes() {
         ("stage_five_spots.toml", 64, 48),
         ("stained_glass_room.toml", 64, 48),
         ("teapot_spotlight.toml", 64, 48),
+        ("point_lamp.toml", 64, 36),
     ] {
         let s = shipped_scene(name, width, height);
         for raster in [false, true] {

@@ -25,7 +25,7 @@ fn shipped_scenes() -> Vec<PathBuf> {
 #[test]
 fn every_shipped_scene_gives_finite_positive_light() {
     let scenes = shipped_scenes();
-    assert_eq!(scenes.len(), 4, "{scenes:?}");
+    assert_eq!(scenes.len(), 5, "{scenes:?}");
     for path in scenes {
         let scene = BeamScene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         let (w, h) = (

@@ -16,6 +16,8 @@ struct LightPath {
     distance_m: f32,
     // 1 / r^2 times a spot's falloff (`LightPath::factor`).
     factor: f32,
+    // A spot's cos^n falloff; 1 for the other lights.
+    profile: f32,
     // Where the light map is read: u across, v down.
     uv: vec2<f32>,
     wrap_u: bool,
@@ -38,6 +40,7 @@ fn light_path(light: BeamLight, point: vec3<f32>) -> LightPath {
         path.to_light = -light.frame_z.xyz;
         path.distance_m = max(local.z, 0.0);
         path.factor = 1.0;
+        path.profile = 1.0;
         path.uv = vec2<f32>(0.5, 0.5);
         if light.beam.z > 0.0 {
             let half = light.beam.xy;
@@ -61,6 +64,7 @@ fn light_path(light: BeamLight, point: vec3<f32>) -> LightPath {
         var phi = atan2(d.y, d.x);
         phi = select(phi, phi + TAU, phi < 0.0);
         path.factor = inverse_square;
+        path.profile = 1.0;
         path.uv = vec2<f32>(phi / TAU, theta / PI_BEAMS);
         path.wrap_u = true;
         path.inside = true;
@@ -72,7 +76,8 @@ fn light_path(light: BeamLight, point: vec3<f32>) -> LightPath {
     if d.z < cos_cone || d.z <= 0.0 {
         return path;
     }
-    path.factor = inverse_square * pow(d.z, light.beam.z);
+    path.profile = pow(d.z, light.beam.z);
+    path.factor = inverse_square * path.profile;
     path.uv = vec2<f32>(0.5 + 0.5 * d.x / (d.z * tan_cone), 0.5 - 0.5 * d.y / (d.z * tan_cone));
     path.inside = true;
     return path;

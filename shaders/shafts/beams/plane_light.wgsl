@@ -31,8 +31,6 @@ fn plane_light(light: BeamLight, point: vec3<f32>) -> PlaneLight {
     if seen <= 0.0 {
         return out;
     }
-    let axis_cosine = dot(-path.to_light, light.frame_z.xyz);
-    let profile = select(1.0, pow(axis_cosine, light.beam.z), light.kind == 1u);
     let rgb = light_map_rgb(light, path.uv, path.wrap_u);
     let transmission = vec3<f32>(
         dot(params.channel_weights[0].xyz, rgb),
@@ -40,6 +38,6 @@ fn plane_light(light: BeamLight, point: vec3<f32>) -> PlaneLight {
         dot(params.channel_weights[2].xyz, rgb),
     );
     out.lit = true;
-    out.light = light.emission.xyz * profile * transmission * seen;
+    out.light = light.emission.xyz * path.profile * transmission * seen;
     return out;
 }

@@ -12,7 +12,8 @@
 // the beam's convex hull: a spot's infinite pyramid over its cone, a parallel light's
 // half-space (cut to its beam's rectangle where it has one); a point light's every
 // interval. f_l (Eq. 7, `q_table.wgsl`) is read once per interval instead of once per
-// sample.
+// sample, what the ray's reads share (the table's rows at the light's distance from the
+// ray) found once per pixel.
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/qtable_bindings.wgsl
@@ -117,6 +118,7 @@ fn fragment(in: LightWalk) -> @location(0) vec4<f32> {
     let count = f32(intervals);
     let k_first = u32(clamp(floor(first), 0.0, count));
     let k_end = u32(clamp(floor(last) + 1.0, 0.0, count));
+    let ray = ray_table(light, dir);
     var sum = vec3<f32>(0.0);
     for (var k = k_first; k < k_end; k++) {
         let t_k = (in.first_depth_m + f32(k) * dt) / cos_forward;
@@ -137,7 +139,7 @@ fn fragment(in: LightWalk) -> @location(0) vec4<f32> {
             lit = lit || at.lit;
         }
         if lit {
-            sum += f_h / f32(visible) * f_l(light, dir, t_k, covered);
+            sum += f_h / f32(visible) * f_l_on_ray(light, ray, dir, t_k, covered);
         }
     }
     return vec4<f32>(sum, 0.0);

@@ -128,6 +128,7 @@ mod tests {
         assert_eq!(
             names,
             [
+                "point_lamp.toml",
                 "sphere_spotlight.toml",
                 "stage_five_spots.toml",
                 "stained_glass_room.toml",
