@@ -43,7 +43,7 @@ use crate::models::bruneton::mie_quadrature::MieQuadrature;
 use crate::models::bruneton::parameterization::{Radii, table_position};
 use crate::models::bruneton::precompute::{OrderStats, Tables};
 use crate::models::bruneton::shafts::{ShaftRay, shadowed_segment};
-use crate::models::bruneton::sun_disk::visible_sun;
+use crate::models::bruneton::sun_disk::{disk_changed, visible_sun};
 use crate::models::bruneton::tables::{DensityTable, Table4};
 use crate::models::error::ModelError;
 use crate::models::id::ModelId;
@@ -238,9 +238,12 @@ impl SkyModel for Bruneton {
     /// scattering but not on the phase functions (applied per ray) nor the ground;
     /// orders two and up and the irradiance table also on the ground albedo and the Mie
     /// phase function (unless Mie is pruned). Tables are per unit solar irradiance, so
-    /// the sun ([`Inputs::SUN`]) rebuilds nothing.
+    /// the solar spectrum rebuilds nothing; the sun's angular radius rebuilds single
+    /// scattering and what follows it when the tables hold the sun as a disk
+    /// ([`disk_changed`]).
     fn update(&mut self, atmosphere: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
         let was_pruned = self.mie_pruned();
+        let disk = disk_changed(self.settings.sun_disk, &self.atmosphere, atmosphere);
         let mut update = self.base.adopt(&mut self.atmosphere, atmosphere)?;
         let changed = update.changed;
         self.radii = Radii {
@@ -249,7 +252,7 @@ impl SkyModel for Bruneton {
         };
         let size = self.settings.transmittance_size;
         update.rebuild_columns("transmittance", &mut self.transmittance, atmosphere, size);
-        let single = changed.intersects(Inputs::EXTINCTION);
+        let single = changed.intersects(Inputs::EXTINCTION) || disk;
         let multiple = single
             || changed.intersects(Inputs::GROUND_ALBEDO)
             || (changed.intersects(Inputs::MIE_PHASE) && !was_pruned);

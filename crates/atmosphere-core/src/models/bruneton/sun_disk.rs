@@ -3,7 +3,16 @@
 //! centroid. The paper treats the sun as a point, which switches on and off at the
 //! horizon; the reference integrates the disk.
 
+use crate::atmosphere::Atmosphere;
 use crate::optics::geometry::horizon_mu;
+
+/// Whether tables built for `old` must be rebuilt for `new` because of the sun: with
+/// `sun_disk` the sun's transmittance in single scattering and in the ground's direct
+/// light (hence every order and the irradiance) depends on the disk's angular radius; a
+/// point sun's tables depend on nothing of the sun.
+pub fn disk_changed(sun_disk: bool, old: &Atmosphere, new: &Atmosphere) -> bool {
+    sun_disk && old.sun.angular_radius_rad != new.sun.angular_radius_rad
+}
 
 /// The visible part of the sun seen from radius r with its centre at zenith cosine mu_s:
 /// (fraction of the disk above the horizon, zenith cosine of that part's centroid), or

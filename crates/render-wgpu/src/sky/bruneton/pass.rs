@@ -109,7 +109,7 @@ impl ModelPass for BrunetonPass {
         }
         let tables = &mut self.tables;
         let atmosphere = &frame.atmosphere;
-        let stale = tables.built.stale(atmosphere);
+        let stale = tables.built.stale(atmosphere, tables.settings.sun_disk);
         // The loop over orders starts again when its inputs changed, and a progressive
         // build under way is done in one go once progressive building is off.
         let orders = stale.orders || (tables.next.is_some() && !self.progressive);
