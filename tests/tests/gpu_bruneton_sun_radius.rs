@@ -1,7 +1,10 @@
 //! Tables that hold the sun as a disk where it meets the horizon (`sun_disk`) depend on
 //! the disk's angular radius: the GPU's frame plan rebuilds single scattering and the
 //! orders when it changes and renders what a fresh build renders; tables with the paper's
-//! point sun rebuild nothing (Bruneton and Neyret 2008 treat the sun as a point).
+//! point sun rebuild nothing (Bruneton and Neyret 2008 treat the sun as a point). The
+//! CPU twin's answer for the same change is `bruneton_sun_radius.rs`'s, and the GPU
+//! tables' parity with it `gpu_bruneton_parity.rs`'s: this test builds as few tables as
+//! it can (about a minute each on lavapipe).
 //!
 //! Needs a GPU adapter (lavapipe will do), with the skip policy of the other GPU tests.
 
@@ -12,14 +15,10 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::ModelSettings;
 use render_wgpu::Renderer;
 use render_wgpu::frame::Frame;
-use support::{BRUNETON_TABLES, check, gpu_or_skip, view};
+use support::{BRUNETON_TABLES, gpu_or_skip, view};
 
 /// Reduced table sizes (S 8 x 32 x 16 x 8), as in `gpu_bruneton_parity.rs`.
 const REDUCED: [&str; 4] = ["r=8", "mu=32", "mu_s=16", "nu=8"];
-
-/// Largest allowed |L_gpu - L_cpu| / max(L_cpu, floor) per pixel and channel, that of
-/// `gpu_bruneton_parity.rs`.
-const MAX_RELATIVE_ERROR: f64 = 5e-3;
 
 /// A 48 x 27 frame from 2 m looking 5 deg above the horizon with the sun's centre on it,
 /// where the disk's visible half decides the sun's light in the tables.
@@ -67,18 +66,12 @@ fn a_new_sun_radius_rebuilds_the_tables_of_a_disk_sun_and_of_no_point_sun() {
                 "{plan}"
             );
             assert!(!plan.runs("transmittance"), "{plan}");
+            let image = renderer.read_hdr().unwrap();
+            let mut fresh = Renderer::headless().unwrap();
+            fresh.render(&f).unwrap();
+            assert_eq!(image, fresh.read_hdr().unwrap(), "the rebuilt disk's frame");
         } else {
             assert!(BRUNETON_TABLES.iter().all(|t| !plan.runs(t)), "{plan}");
         }
-        let image = renderer.read_hdr().unwrap();
-        let mut fresh = Renderer::headless().unwrap();
-        fresh.render(&f).unwrap();
-        assert_eq!(image, fresh.read_hdr().unwrap(), "sun_disk={sun_disk}");
-        check(
-            &mut renderer,
-            &format!("sun_disk={sun_disk}, four times the radius"),
-            &f,
-            MAX_RELATIVE_ERROR,
-        );
     }
 }
