@@ -10,29 +10,9 @@
 #import clouds/layer_medium.wgsl
 #import clouds/sun_map_read.wgsl
 #import clouds/eddington.wgsl
+#import clouds/orders.wgsl
 
 const MAX_SHADOW_STEPS: u32 = 64u;
-
-// A_n (n clamped to 1..26) at the scattering angle of cosine `nu`, each wavelength.
-fn distribution(n: u32, nu: f32) -> vec3<f32> {
-    let row = clamp(n, 1u, ORDERS) - 1u;
-    let x = acos(clamp(nu, -1.0, 1.0)) / PI * f32(ANGLES - 1u);
-    let k = min(u32(floor(x)), ANGLES - 2u);
-    let f = x - f32(k);
-    var a = vec3<f32>(0.0);
-    for (var w = 0u; w < WAVES; w++) {
-        let base = (w * ORDERS + row) * ANGLES + k;
-        a[w] = mix(orders[base], orders[base + 1u], f);
-    }
-    return a;
-}
-
-// F_n (n clamped to 1..26), each wavelength.
-fn forward_fraction(n: u32) -> vec3<f32> {
-    let row = clamp(n, 1u, ORDERS) - 1u;
-    let base = WAVES * ORDERS * ANGLES + row;
-    return vec3<f32>(orders[base], orders[base + ORDERS], orders[base + 2u * ORDERS]);
-}
 
 // The single-scattering phase function's asymmetry g, each wavelength.
 fn asymmetry() -> vec3<f32> {

@@ -3,6 +3,7 @@
 // clouds/volume/grid.rs, cloud.rs, light_buffer.rs and clouds/layer/march.rs.
 
 #import clouds/volume/bindings.wgsl
+#import clouds/orders.wgsl
 
 fn voxel(i: u32, j: u32, k: u32) -> f32 {
     return textureLoad(density, vec3<u32>(i, j, k), 0).r;
@@ -40,27 +41,6 @@ fn read_light(p: vec3<f32>) -> vec4<f32> {
     let a = mix(textureLoad(light_in, vec2<u32>(i0.x, i0.y), 0), textureLoad(light_in, vec2<u32>(i1.x, i0.y), 0), f.x);
     let b = mix(textureLoad(light_in, vec2<u32>(i0.x, i1.y), 0), textureLoad(light_in, vec2<u32>(i1.x, i1.y), 0), f.x);
     return mix(a, b, f.y);
-}
-
-// A_n (n clamped to 1..26) at the scattering angle of cosine `nu`, each wavelength.
-fn distribution(n: u32, nu: f32) -> vec3<f32> {
-    let row = clamp(n, 1u, ORDERS) - 1u;
-    let x = acos(clamp(nu, -1.0, 1.0)) / PI * f32(ANGLES - 1u);
-    let k = min(u32(floor(x)), ANGLES - 2u);
-    let f = x - f32(k);
-    var a = vec3<f32>(0.0);
-    for (var w = 0u; w < WAVES; w++) {
-        let base = (w * ORDERS + row) * ANGLES + k;
-        a[w] = mix(orders[base], orders[base + 1u], f);
-    }
-    return a;
-}
-
-// F_n (n clamped to 1..26), each wavelength.
-fn forward_fraction(n: u32) -> vec3<f32> {
-    let row = clamp(n, 1u, ORDERS) - 1u;
-    let base = WAVES * ORDERS * ANGLES + row;
-    return vec3<f32>(orders[base], orders[base + ORDERS], orders[base + 2u * ORDERS]);
 }
 
 // Eq. 25's factor over a step of optical depth `d` after `walked`, each wavelength.

@@ -7,5 +7,7 @@
 
 pub mod in_view;
 pub mod screen_rect;
+#[cfg(test)]
+mod test_scene;
 pub mod volume_uniform;
 pub mod volumes_pass;

@@ -149,48 +149,16 @@ pub fn volumes_rect(frame: &Frame, volumes: &[LitVolume]) -> Option<PixelRect> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use atmosphere_core::atmosphere::Atmosphere;
-    use atmosphere_core::hydrometeors::channel_phase::ChannelPhase;
-    use atmosphere_core::hydrometeors::render::VolumeLight;
+    use crate::precipitation::test_scene;
     use atmosphere_core::hydrometeors::scene::CirrusSettings;
-    use atmosphere_core::hydrometeors::volumes::Volume;
-    use atmosphere_core::models::id::ModelId;
     use glam::DVec3;
 
-    use crate::frame::look_orientation;
-
     fn frame(forward: DVec3) -> Frame {
-        let atmosphere = Atmosphere::preset("earth").unwrap();
-        Frame {
-            camera_position_m: DVec3::X * (atmosphere.bottom_radius_m + 2.0),
-            orientation: look_orientation(forward, DVec3::X).unwrap(),
-            vertical_fov_deg: 60.0,
-            sun_direction: DVec3::X,
-            atmosphere,
-            model: ModelId::Nishita,
-            settings: Default::default(),
-            exposure_ev100: 14.0,
-            width: 64,
-            height: 36,
-            terrain: None,
-        }
+        test_scene::frame(forward, 60.0)
     }
 
     fn shaft(ground_m: f64) -> LitVolume {
-        let foot = (DVec3::X * ground_m + DVec3::Y * 3_000.0).normalize() * ground_m;
-        LitVolume {
-            volume: Volume::rain_shaft(foot, ground_m, 1_000.0, 2_000.0, 5.0).unwrap(),
-            phase: ChannelPhase {
-                bin_deg: 90.0,
-                sky: None,
-                values: vec![[0.1; 3]; 2],
-            },
-            light: VolumeLight {
-                sun_direction: DVec3::X,
-                sun_irradiance: [1.0; 3],
-                sky_irradiance: [0.1; 3],
-            },
-        }
+        test_scene::shaft(ground_m, 3_000.0, 2_000.0)
     }
 
     /// Turning the camera round a shaft: every pixel whose ray meets it lies in the
