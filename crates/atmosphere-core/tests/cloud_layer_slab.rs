@@ -200,10 +200,9 @@ fn slabs_reflect_within_the_stated_error_of_the_path_tracer() {
 /// delta-Eddington's method in the march: the reflected and the diffusely transmitted
 /// fractions of non-absorbing slabs against the path tracer (its direct beam taken out
 /// of the transmitted fraction), printing the table of `docs/clouds.md`
-/// (`-- --nocapture`). Reflected within 25 % from tau 1 to 60 (Riley's approximation
-/// keeps under 60 % of it from tau 4 on, above); transmitted within 15 % from tau 10 on,
-/// and within 35 % below, where the light scattered about the forward peak more than
-/// once, which the scaled beam carries, is not seen.
+/// (`-- --nocapture`). Reflected within 25 % from tau 1 to 60; transmitted within 15 %
+/// from tau 10 on, and within 35 % below, where the light scattered about the forward
+/// peak more than once, which the scaled beam carries, is not seen.
 #[test]
 fn eddington_reflects_and_transmits_what_the_path_tracer_does() {
     let orders = orders();
