@@ -41,8 +41,9 @@ fn layer_depth(p: vec3<f32>, d: vec3<f32>) -> f32 {
     return tau;
 }
 
-// J_sun / E_sun at `p`, sr^-1, seen along `d`, `up` the local vertical.
-fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32) -> SunParts {
+// J_sun / E_sun at `p`, sr^-1, seen along `d`, `up` the local vertical, `g` the
+// droplets' asymmetry (read by the delta-Eddington method only).
+fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32, g: vec3<f32>) -> SunParts {
     let s = layer.sun_direction.xyz;
     let steps = min(layer.counts.y, MAX_SHADOW_STEPS);
     var depths: array<f32, MAX_SHADOW_STEPS>;
@@ -63,7 +64,6 @@ fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32) -
         }
     }
     if layer.counts.z == 2u {
-        let g = asymmetry();
         let f = g * g;
         let broad = (1.0 - f) * eddington_henyey_greenstein(g / (1.0 + g), nu);
         let mu0 = dot(s, up);
@@ -123,6 +123,8 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
     let nu = dot(d, layer.sun_direction.xyz);
     let up = normalize(o + d * t0);
     let albedo = layer.medium.y;
+    let g = asymmetry();
+    let scale = 1.0 - albedo * g * g;
     for (var i = 0u; i < layer.counts.x; i++) {
         let p = o + d * (t0 + (f32(i) + 0.5) * dt);
         let sigma = layer_extinction(p, layer.noise.x);
@@ -132,13 +134,11 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
         let step_t = exp(-sigma * dt);
         let weight = transmittance * (1.0 - step_t) * albedo;
         let sky = exp(-sigma * layer_boundary(p, up)) / (2.0 * PI);
-        let sun = sun_source(p, d, up, nu, albedo);
+        let sun = sun_source(p, d, up, nu, albedo, g);
         transmittance *= step_t;
         var seen = transmittance;
         if eddington {
             radiance += weight * layer.sun_irradiance.xyz * sun.unscaled;
-            let g = asymmetry();
-            let scale = 1.0 - albedo * g * g;
             let step = exp(-scale * sigma * dt);
             let scattered = layer.sun_irradiance.xyz * sun.scaled + layer.sky_irradiance.xyz * sun.scaled_sky;
             radiance += scaled_transmittance * (1.0 - step) / scale * albedo * scattered;
