@@ -284,8 +284,9 @@ pub struct RenderArgs {
     /// --exposure.
     #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["scene", "model"])]
     pub volume: Option<PathBuf>,
-    /// With --volume: slicing (Riley et al. 2004's half-angle slicing, on the GPU) or
-    /// march (a ray march per pixel, on the CPU) [default: slicing].
+    /// With --volume: slicing (Riley et al. 2004's half-angle slicing, on the GPU), march
+    /// (a ray march per pixel, on the CPU) or path (the cloud path tracer, all orders of
+    /// scattering, on the CPU: the other two's ground truth) [default: slicing].
     #[arg(long = "method", value_name = "METHOD", requires = "volume")]
     pub volume_method: Option<String>,
     /// With --volume and slicing: run the CPU twin instead of the GPU passes.
@@ -294,6 +295,10 @@ pub struct RenderArgs {
     /// With --volume: slices through the volume, 2 to 4096 [default: the scene's].
     #[arg(long, value_name = "N", requires = "volume")]
     pub slices: Option<u32>,
+    /// With --volume and path: paths per pixel and wavelength, 1 to 1048576 [default:
+    /// 256].
+    #[arg(long, value_name = "N", requires = "volume")]
+    pub paths: Option<u64>,
     /// Scattering model (every sky model but the reference is on the GPU), or with a
     /// beams scene a beam method [default: march].
     #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]

@@ -1,8 +1,9 @@
 //! `atmos render --volume` end to end: the real binary renders a small copy of the
 //! shipped cumulus's scene by half-angle slicing on the GPU (lavapipe will do) and on
-//! the CPU and by the ray march into PNGs that are read back and agree; a bad method,
-//! slice count or scene, and the volume's flags without a volume, fail with clear errors
-//! and write nothing. Without an adapter the GPU case fails with the message saying
+//! the CPU and by the ray march into PNGs that are read back and agree, and by the path
+//! tracer into a PNG of the same cloud (within a factor of two of the march); a bad
+//! method, slice or path count or scene, and the volume's flags without a volume, fail
+//! with clear errors and write nothing. Without an adapter the GPU case fails with the message saying
 //! what to install, unless `ATMOS_SKIP_GPU_TESTS=1`, when it records that it skipped.
 
 mod common;
@@ -15,10 +16,15 @@ const CLOUDS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/scenes/c
 
 /// The shipped scene at 48 x 36 pixels with 64 slices, and its grid, in `dir`.
 fn small_scene(dir: &Path) -> PathBuf {
+    scene_of_size(dir, 48, 36)
+}
+
+/// The shipped scene at `width` x `height` pixels with 64 slices, and its grid, in `dir`.
+fn scene_of_size(dir: &Path, width: u32, height: u32) -> PathBuf {
     let text = std::fs::read_to_string(Path::new(CLOUDS).join("cumulus.toml")).unwrap();
     let text = text
-        .replace("width_px = 320", "width_px = 48")
-        .replace("height_px = 240", "height_px = 36")
+        .replace("width_px = 320", &format!("width_px = {width}"))
+        .replace("height_px = 240", &format!("height_px = {height}"))
         .replace("light_buffer_px = 256", "light_buffer_px = 64")
         .replace("steps = 256", "steps = 128");
     std::fs::copy(Path::new(CLOUDS).join("cumulus.u8"), dir.join("cumulus.u8")).unwrap();
@@ -86,6 +92,51 @@ fn the_cumulus_renders_alike_by_slicing_and_by_the_march() {
     }
 }
 
+/// The path tracer's cumulus, a few paths per pixel, is the march's cloud within a
+/// factor of two of its brightness (their differences are in docs/clouds.md).
+#[test]
+fn the_path_tracer_renders_the_cumulus_as_the_march_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = scene_of_size(dir.path(), 16, 12);
+    let mut means = Vec::new();
+    for (method, paths) in [("march", None), ("path", Some("8"))] {
+        let out = dir.path().join(format!("{method}.png"));
+        let mut args = vec!["render", "--volume", scene.to_str().unwrap()];
+        args.extend(["--method", method, "--exposure", "15"]);
+        args.extend(["--out", out.to_str().unwrap()]);
+        if let Some(n) = paths {
+            args.extend(["--paths", n]);
+        }
+        let output = atmos(&args);
+        let err = stderr(&output);
+        assert!(output.status.success(), "{err}");
+        if method == "path" {
+            assert!(
+                err.contains("16x12 volume by path (8 paths per pixel, all orders) on the CPU"),
+                "{err}"
+            );
+        }
+        let image = image::open(&out).unwrap().to_luma8();
+        assert_eq!(
+            image.get_pixel(0, 0)[0],
+            0,
+            "{method}: black sky in the corner"
+        );
+        let middle: f64 = (4..12)
+            .flat_map(|x| (3..9).map(move |y| (x, y)))
+            .map(|(x, y)| f64::from(image.get_pixel(x, y)[0]))
+            .sum::<f64>()
+            / 48.0;
+        means.push(middle);
+    }
+    println!(
+        "mean grey in the middle: march {:.1}, path tracer {:.1}",
+        means[0], means[1]
+    );
+    assert!(means[0] > 30.0, "{means:?}");
+    assert!((0.5..2.0).contains(&(means[1] / means[0])), "{means:?}");
+}
+
 #[test]
 fn bad_volume_flags_are_refused_by_name() {
     let dir = tempfile::tempdir().unwrap();
@@ -96,7 +147,17 @@ fn bad_volume_flags_are_refused_by_name() {
         &[
             "render", "--volume", scene, "--method", "splat", "--out", out,
         ],
-        "volume method \"splat\" is not one of slicing, march",
+        "volume method \"splat\" is not one of slicing, march, path",
+    );
+    atmos_fails_with(
+        &[
+            "render", "--volume", scene, "--method", "path", "--paths", "0", "--out", out,
+        ],
+        "--paths 0 must lie in [1, 1048576]",
+    );
+    atmos_fails_with(
+        &["render", "--volume", scene, "--paths", "8", "--out", out],
+        "--paths is a setting of --method path, not of slicing",
     );
     atmos_fails_with(
         &["render", "--volume", scene, "--slices", "1", "--out", out],

@@ -1,7 +1,8 @@
-//! The voxel cloud rendered by the ray march and by half-angle slicing: both against the
-//! closed form of single scattering in a thin homogeneous box, slicing converging to the
-//! march as its slices double, both within their energy bounds, and the half vector's
-//! flip when the view turns away from the sun.
+//! The voxel cloud rendered by the ray march, by half-angle slicing and by the path
+//! tracer: all three against the closed form of single scattering in a thin homogeneous
+//! box, slicing converging to the march as its slices double, both within their energy
+//! bounds, the path tracer's standard error honest and shrinking as its paths grow, and
+//! the half vector's flip when the view turns away from the sun.
 
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::settings::LayerMethod;
@@ -12,6 +13,7 @@ use atmosphere_core::clouds::volume::grid::VoxelGrid;
 use atmosphere_core::clouds::volume::half_angle::{HalfAngle, half_vector};
 use atmosphere_core::clouds::volume::image::VolumeImage;
 use atmosphere_core::clouds::volume::march_image::march_image;
+use atmosphere_core::clouds::volume::path_traced::{MAX_PATHS_PER_PIXEL, path_traced_image};
 use atmosphere_core::clouds::volume::settings::VolumeSettings;
 use atmosphere_core::clouds::volume::slicing::slicing_image;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
@@ -170,6 +172,87 @@ fn a_thin_box_under_an_overhead_sun_is_single_scattering_in_closed_form() {
         "{}",
         slicing.transmittance[pixel]
     );
+}
+
+/// In a box of optical depth about 0.01 the light scattered more than once is about a
+/// hundredth of the rest: the path tracer, all orders, is the closed form's single
+/// scattering within its standard error and that hundredth, pixel by pixel and in sum.
+#[test]
+fn the_path_tracer_in_a_thin_box_is_single_scattering_in_closed_form() {
+    let sigma = 1e-4;
+    let cloud = homogeneous_box(sigma);
+    let camera = VolumeCamera::looking_at(
+        DVec3::new(-300.0, 40.0, 70.0),
+        DVec3::splat(50.0),
+        10.0,
+        5,
+        4,
+    )
+    .unwrap();
+    let truth = closed_form(&cloud, &camera, sigma, true);
+    let traced = path_traced_image(
+        &cloud,
+        &camera,
+        &sun(90.0, 0.0),
+        &orders(),
+        40_000,
+        7,
+        &|| {},
+    )
+    .unwrap();
+    let image = &traced.image;
+    let (mut sum, mut sum_truth, mut variance) = (0.0, 0.0, 0.0);
+    for (k, &l) in truth.iter().enumerate() {
+        let (got, error) = (image.radiance[k], traced.standard_error[k]);
+        println!("pixel {k}: {got:.4e} +- {error:.1e}, closed form {l:.4e}");
+        assert!(l > 0.0, "every pixel sees the box");
+        assert!((got - l).abs() <= 4.0 * error + 0.02 * l, "pixel {k}");
+        let v = camera.direction((k % 5) as f64 + 0.5, (k / 5) as f64 + 0.5);
+        let (t0, t1) = cloud.crossing(camera.position_m, v).unwrap();
+        assert!((image.transmittance[k] - (-sigma * (t1 - t0)).exp()).abs() < 1e-9);
+        (sum, sum_truth, variance) = (sum + got, sum_truth + l, variance + error * error);
+    }
+    println!(
+        "sum {sum:.5e} +- {:.1e}, closed form {sum_truth:.5e}",
+        variance.sqrt()
+    );
+    assert!((sum - sum_truth).abs() <= 3.0 * variance.sqrt() + 0.015 * sum_truth);
+    assert!(variance.sqrt() < 0.02 * sum_truth, "the test's own noise");
+}
+
+/// In a thick ball (optical depth about 10 through its centre) two independent runs of
+/// the path tracer differ by what their standard errors say, and four times the paths
+/// halve the noise; a path count out of range is refused by name.
+#[test]
+fn the_path_tracers_standard_error_is_honest_and_shrinks_with_its_paths() {
+    let cloud = ball(0.05);
+    let light = sun(30.0, 40.0);
+    let camera =
+        VolumeCamera::looking_at(DVec3::new(-500.0, -300.0, 100.0), DVec3::ZERO, 30.0, 8, 6)
+            .unwrap();
+    let orders = orders();
+    let run = |paths, seed| {
+        path_traced_image(&cloud, &camera, &light, &orders, paths, seed, &|| {}).unwrap()
+    };
+    let (a, b, fine) = (run(64, 1), run(64, 2), run(256, 3));
+    let difference = a.relative_rms_error(&b.image);
+    println!(
+        "noise {:.4} and {:.4}; a against b beyond a's noise {difference:.4}; 4x paths {:.4}",
+        a.relative_noise(),
+        b.relative_noise(),
+        fine.relative_noise()
+    );
+    // What is left of the difference beyond a's noise is b's noise.
+    assert!(difference < 1.5 * b.relative_noise(), "{difference}");
+    assert!(difference > 0.5 * b.relative_noise(), "{difference}");
+    let ratio = fine.relative_noise() / a.relative_noise();
+    assert!((0.4..0.6).contains(&ratio), "{ratio}");
+    for paths in [0, MAX_PATHS_PER_PIXEL + 1] {
+        let error = path_traced_image(&cloud, &camera, &light, &orders, paths, 1, &|| {})
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("paths per pixel"), "{error}");
+    }
 }
 
 /// The octaves' slicing error against a fine march at 16 to 128 slices, the camera

@@ -1,7 +1,8 @@
 //! `atmos render --volume FILE.toml`: a voxel cloud's scene (docs/clouds.md, "A local
 //! volume by half-angle slicing") rendered by half-angle slicing on the GPU (or its CPU
-//! twin with `--volume-cpu`) or by the ray march on the CPU, over a black background, written atomically as a PNG (tone-mapped as a
-//! planet frame is) or an EXR (linear sRGB in cd/m^2).
+//! twin with `--volume-cpu`), by the ray march on the CPU or by the path tracer on the
+//! CPU (their ground truth, with progress), over a black background, written atomically
+//! as a PNG (tone-mapped as a planet frame is) or an EXR (linear sRGB in cd/m^2).
 
 use std::path::Path;
 use std::time::Instant;
@@ -9,6 +10,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use atmosphere_core::clouds::volume::cloud::single_scattering_phase;
 use atmosphere_core::clouds::volume::march_image::march_image;
+use atmosphere_core::clouds::volume::path_traced::{MAX_PATHS_PER_PIXEL, path_traced_image};
 use atmosphere_core::clouds::volume::scene::{VolumeScene, WAVELENGTHS_NM};
 use atmosphere_core::clouds::volume::settings::{MAX_SLICES, MIN_SLICES, VolumeMethod};
 use atmosphere_core::clouds::volume::slicing::slicing_image;
@@ -18,10 +20,16 @@ use render_wgpu::frame::atmosphere_uniform::RGB_WAVELENGTHS_NM;
 use render_wgpu::post::tone_map::ToneMap;
 
 use crate::files::write_atomically;
+use crate::progress::Progress;
 use crate::render::beams::exposure_ev100;
 use crate::render::cloud_flags::droplet_orders;
 use crate::render::image_files::{exr_of_size, png_of_size};
 use crate::render::scene::{EXPOSURE_EV100, Output};
+
+/// Paths per pixel and wavelength of `--method path` without `--paths`.
+const DEFAULT_PATHS: u64 = 256;
+/// The path tracer's random sequence.
+const PATH_SEED: u64 = 1;
 
 /// What an EXR of a volume holds.
 const EXR_UNITS: &str = "linear sRGB (IEC 61966-2-1, D65) in cd/m^2, from spectral radiance at 680, 550, 440 nm (CIE 1931), over black";
@@ -33,6 +41,8 @@ pub struct VolumeFlags<'a> {
     /// Slicing on the CPU (its twin) instead of the GPU.
     pub cpu: bool,
     pub slices: Option<u32>,
+    /// Paths per pixel and wavelength of the path tracer.
+    pub paths: Option<u64>,
     pub exposure: Option<f64>,
 }
 
@@ -58,6 +68,14 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
         && !(MIN_SLICES..=MAX_SLICES).contains(&n)
     {
         bail!("--slices {n} must lie in [{MIN_SLICES}, {MAX_SLICES}]");
+    }
+    if let Some(n) = flags.paths
+        && !(1..=MAX_PATHS_PER_PIXEL).contains(&n)
+    {
+        bail!("--paths {n} must lie in [1, {MAX_PATHS_PER_PIXEL}]");
+    }
+    if flags.paths.is_some() && method != VolumeMethod::PathTraced {
+        bail!("--paths is a setting of --method path, not of {method}");
     }
     if WAVELENGTHS_NM != RGB_WAVELENGTHS_NM {
         bail!(
@@ -86,6 +104,24 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
             None => slicing_image(&scene.cloud, &scene.camera, &scene.sun, &orders, s)?,
         },
         VolumeMethod::March => march_image(&scene.cloud, &scene.camera, &scene.sun, &orders, s)?,
+        VolumeMethod::PathTraced => {
+            let paths = flags.paths.unwrap_or(DEFAULT_PATHS);
+            let progress = Progress::new(
+                "path tracing the volume",
+                "rows",
+                u64::from(scene.camera.height_px),
+            );
+            let (cloud, camera, sun) = (&scene.cloud, &scene.camera, &scene.sun);
+            let row_done = || progress.inc();
+            let traced =
+                path_traced_image(cloud, camera, sun, &orders, paths, PATH_SEED, &row_done)?;
+            progress.finish();
+            eprintln!(
+                "path tracer: {paths} paths per pixel and wavelength, relative noise {:.2} %",
+                100.0 * traced.relative_noise()
+            );
+            traced.image
+        }
     };
     let elapsed = start.elapsed();
     let device = if gpu.is_some() { "GPU" } else { "CPU" };
@@ -104,14 +140,20 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
             format!("{} slices, light buffer {} px", s.slices, s.light_buffer_px)
         }
         VolumeMethod::March => format!("{} steps, {} shadow steps", s.steps, s.shadow_steps),
+        VolumeMethod::PathTraced => format!(
+            "{} paths per pixel, all orders",
+            flags.paths.unwrap_or(DEFAULT_PATHS)
+        ),
+    };
+    // The path tracer takes no light approximation: the march's and slicing's do.
+    let described = match method {
+        VolumeMethod::PathTraced => format!("{method} ({steps})"),
+        _ => format!("{method} ({}, {steps})", s.light),
     };
     let size = (scene.camera.width_px, scene.camera.height_px);
     let mut text = vec![
         ("atmos:volume_scene", path.display().to_string()),
-        (
-            "atmos:volume_method",
-            format!("{method} ({}, {steps})", s.light),
-        ),
+        ("atmos:volume_method", described.clone()),
         ("atmos:exposure_ev100", ev100.to_string()),
     ];
     match &output {
@@ -129,10 +171,9 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
         }
     }
     eprintln!(
-        "{}x{} volume by {method} ({}, {steps}) on the {device} in {elapsed:.2?} (EV100 {ev100:.1}); wrote {}",
+        "{}x{} volume by {described} on the {device} in {elapsed:.2?} (EV100 {ev100:.1}); wrote {}",
         size.0,
         size.1,
-        s.light,
         out.display()
     );
     Ok(())

@@ -30,6 +30,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             method: args.volume_method.as_deref(),
             cpu: args.volume_cpu,
             slices: args.slices,
+            paths: args.paths,
             exposure: args.fields.exposure,
         };
         return cloud_volume::run(path, &flags, &args.out);

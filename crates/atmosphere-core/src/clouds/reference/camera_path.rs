@@ -1,20 +1,23 @@
-//! One path of the cloud path tracer, followed from a collision inside the layer back
-//! towards the light, all orders of scattering:
+//! One path of the cloud path tracer, followed from a collision inside a cloud medium
+//! back towards the light, all orders of scattering:
 //! - at every real collision x (delta tracking, Woodcock et al. 1965), next-event
 //!   estimation of the sun: albedo p_w(nu) E_sun,w(x) T_cloud(x -> sun), with p_w the
 //!   droplets' phase function at wavelength w (A_1 of Riley et al. 2004, Eq. 20), nu
-//!   the cosine between the path's direction and the sun, E_sun the sun through the
-//!   atmosphere and T_cloud the cloud's transmittance towards the sun by ratio tracking
-//!   (Novak, Selle and Jarosz 2014);
+//!   the cosine between the path's direction and the sun, E_sun the sun's irradiance
+//!   outside the cloud ([`PathLight`]: for the layer the sun through the atmosphere) and
+//!   T_cloud the cloud's transmittance towards the sun by ratio tracking (Novak, Selle
+//!   and Jarosz 2014);
 //! - the path then scatters: a direction drawn from p_w exactly (`phase_sampler.rs`),
 //!   the weight multiplied by the albedo. Each wavelength follows its own paths.
-//! - where it leaves the layer it takes the light around the cloud from that direction
-//!   (`environment.rs`: the sky model's radiance, the sun disk excluded, so the sun is
-//!   counted once).
+//! - where it leaves the medium it takes the light around it from that direction
+//!   ([`PathLight::surroundings`]: for the layer the sky model's radiance, the sun disk
+//!   excluded, so the sun is counted once: `environment.rs`).
 //!
-//! Russian roulette ends paths whose weight has fallen below [`ROULETTE_WEIGHT`],
-//! unbiased; a path of more than [`MAX_SCATTERINGS`] collisions is cut (none of the
-//! layer's optical depths comes near it).
+//! The medium is any [`CloudMedium`]: the layer on the planet, or a voxel cloud in a
+//! scene of its own (`volume/path_traced.rs`). Russian roulette ends paths whose weight
+//! has fallen below [`ROULETTE_WEIGHT`], unbiased; a path of more than
+//! [`MAX_SCATTERINGS`] collisions is cut (none of the layer's optical depths comes near
+//! it).
 
 use glam::DVec3;
 
@@ -33,7 +36,61 @@ pub const ROULETTE_WEIGHT: f64 = 0.1;
 /// Collisions at most per path.
 pub const MAX_SCATTERINGS: u32 = 100_000;
 
-/// What every path of one view ray shares.
+/// The light a path meets outside the cloud.
+pub trait PathLight {
+    /// Unit vector towards the sun.
+    fn sun_direction(&self) -> DVec3;
+
+    /// The sun's irradiance at `x` at each wavelength, W m^-2 nm^-1, before the cloud's
+    /// own attenuation (0 where something else hides the sun).
+    fn sun_irradiance(&self, x: DVec3, out: &mut [f64]);
+
+    /// The radiance at each wavelength that arrives from beyond the medium along a path
+    /// that leaves it in the unit `direction`, W m^-2 sr^-1 nm^-1.
+    fn surroundings(&self, direction: DVec3, out: &mut [f64]);
+}
+
+/// A cloud medium with its droplets' tables at each wavelength: what a path scatters by.
+pub struct PathMedium<'a, M: CloudMedium + ?Sized> {
+    pub medium: &'a M,
+    /// A_1 (the phase function) at each wavelength.
+    pub orders: &'a ScatteringOrders,
+    /// Its sampler at each wavelength.
+    pub phases: &'a [PhaseTableSampler],
+}
+
+impl<M: CloudMedium + ?Sized> std::fmt::Debug for PathMedium<'_, M> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PathMedium")
+            .field("wavelengths", &self.orders.wavelengths())
+            .finish_non_exhaustive()
+    }
+}
+
+/// The layer's light for one view ray: the sun through the atmosphere, and the sky
+/// model's radiance tabulated about the ray's entry into the layer.
+#[derive(Debug)]
+pub struct LayerLight<'a> {
+    pub sun: &'a SunThroughAtmosphere,
+    pub environment: &'a Environment,
+    pub sun_direction: DVec3,
+}
+
+impl PathLight for LayerLight<'_> {
+    fn sun_direction(&self) -> DVec3 {
+        self.sun_direction
+    }
+
+    fn sun_irradiance(&self, x: DVec3, out: &mut [f64]) {
+        self.sun.irradiance(x, self.sun_direction, out);
+    }
+
+    fn surroundings(&self, direction: DVec3, out: &mut [f64]) {
+        self.environment.radiance(direction, out);
+    }
+}
+
+/// What every path of one view ray through the layer shares.
 pub struct PathScene<'a> {
     pub layer: &'a CloudLayer,
     /// A_1 (the phase function) at each wavelength of the sky model.
@@ -58,19 +115,35 @@ impl std::fmt::Debug for PathScene<'_> {
     }
 }
 
-/// Where a free flight from inside the layer ends.
+impl PathScene<'_> {
+    /// The layer with its tables, as the paths scatter in it.
+    pub fn medium(&self) -> PathMedium<'_, CloudLayer> {
+        PathMedium {
+            medium: self.layer,
+            orders: self.orders,
+            phases: self.phases,
+        }
+    }
+}
+
+/// Where a free flight from inside the medium ends.
 enum Flight {
     /// A real collision at this point.
     Collision(DVec3),
-    /// Out of the layer.
+    /// Out of the medium.
     Escape,
 }
 
 /// A free flight from `x` along the unit `d` by delta tracking.
-fn fly(layer: &CloudLayer, mut x: DVec3, d: DVec3, sampler: &mut Sampler) -> Flight {
-    let majorant = layer.majorant();
+fn fly<M: CloudMedium + ?Sized>(
+    medium: &M,
+    mut x: DVec3,
+    d: DVec3,
+    sampler: &mut Sampler,
+) -> Flight {
+    let majorant = medium.majorant();
     loop {
-        let to_boundary = layer.distance_to_boundary(x, d);
+        let to_boundary = medium.distance_to_boundary(x, d);
         let free = if majorant > 0.0 {
             -(1.0 - sampler.uniform()).ln() / majorant
         } else {
@@ -80,33 +153,59 @@ fn fly(layer: &CloudLayer, mut x: DVec3, d: DVec3, sampler: &mut Sampler) -> Fli
             return Flight::Escape;
         }
         x += d * free;
-        if sampler.uniform() * majorant < layer.extinction(x) {
+        if sampler.uniform() * majorant < medium.extinction(x) {
             return Flight::Collision(x);
         }
     }
 }
 
-/// The cloud's transmittance from `x` along the unit `d` to the layer's boundary, by
+/// The first real collision within `length` of `start` along the unit `d`, if any, by
+/// delta tracking.
+pub fn first_collision<M: CloudMedium + ?Sized>(
+    medium: &M,
+    start: DVec3,
+    d: DVec3,
+    length: f64,
+    sampler: &mut Sampler,
+) -> Option<DVec3> {
+    let majorant = medium.majorant();
+    if majorant <= 0.0 {
+        return None;
+    }
+    let mut travelled = 0.0;
+    loop {
+        travelled += -(1.0 - sampler.uniform()).ln() / majorant;
+        if travelled >= length {
+            return None;
+        }
+        let x = start + d * travelled;
+        if sampler.uniform() * majorant < medium.extinction(x) {
+            return Some(x);
+        }
+    }
+}
+
+/// The cloud's transmittance from `x` along the unit `d` to the medium's boundary, by
 /// ratio tracking with Russian roulette below 0.01 (unbiased).
-pub fn transmittance_to_boundary(
-    layer: &CloudLayer,
+pub fn transmittance_to_boundary<M: CloudMedium + ?Sized>(
+    medium: &M,
     mut x: DVec3,
     d: DVec3,
     sampler: &mut Sampler,
 ) -> f64 {
-    let majorant = layer.majorant();
+    let majorant = medium.majorant();
     if majorant <= 0.0 {
         return 1.0;
     }
     let mut t = 1.0;
     loop {
-        let to_boundary = layer.distance_to_boundary(x, d);
+        let to_boundary = medium.distance_to_boundary(x, d);
         let free = -(1.0 - sampler.uniform()).ln() / majorant;
         if free >= to_boundary {
             return t;
         }
         x += d * free;
-        t *= 1.0 - (layer.extinction(x) / majorant).min(1.0);
+        t *= 1.0 - (medium.extinction(x) / majorant).min(1.0);
         if t < 0.01 {
             if sampler.uniform() < 0.5 {
                 return 0.0;
@@ -119,26 +218,27 @@ pub fn transmittance_to_boundary(
 /// The light at wavelength `w` (W m^-2 sr^-1 nm^-1) that the path from the real
 /// collision `x`, reached along the unit `d`, brings back towards `-d`, per unit of the
 /// path's weight (see the module's documentation).
-pub fn trace_from(
-    scene: &PathScene,
-    environment: &Environment,
+pub fn trace_from<M: CloudMedium + ?Sized>(
+    scene: &PathMedium<M>,
+    light: &impl PathLight,
     w: usize,
     mut x: DVec3,
     mut d: DVec3,
     sampler: &mut Sampler,
 ) -> f64 {
-    let layer = scene.layer;
+    let medium = scene.medium;
     let phase = &scene.phases[w];
+    let sun_direction = light.sun_direction();
     let mut weight = 1.0;
     let mut score = 0.0;
-    let mut light = vec![0.0; scene.sun.wavelengths()];
+    let mut radiance = vec![0.0; scene.orders.wavelengths()];
     for _ in 0..MAX_SCATTERINGS {
-        let albedo = layer.single_scattering_albedo(x);
-        let nu = d.dot(scene.sun_direction);
-        scene.sun.irradiance(x, scene.sun_direction, &mut light);
-        if light[w] > 0.0 {
-            let t_cloud = transmittance_to_boundary(layer, x, scene.sun_direction, sampler);
-            score += weight * albedo * scene.orders.distribution(w, 1, nu) * light[w] * t_cloud;
+        let albedo = medium.single_scattering_albedo(x);
+        let nu = d.dot(sun_direction);
+        light.sun_irradiance(x, &mut radiance);
+        if radiance[w] > 0.0 {
+            let t_cloud = transmittance_to_boundary(medium, x, sun_direction, sampler);
+            score += weight * albedo * scene.orders.distribution(w, 1, nu) * radiance[w] * t_cloud;
         }
         let (cos, phase_weight) = phase.sample(sampler);
         weight *= albedo * phase_weight;
@@ -149,11 +249,11 @@ pub fn trace_from(
             weight = ROULETTE_WEIGHT;
         }
         d = direction_around(d, cos, 2.0 * std::f64::consts::PI * sampler.uniform());
-        match fly(layer, x, d, sampler) {
+        match fly(medium, x, d, sampler) {
             Flight::Collision(y) => x = y,
             Flight::Escape => {
-                environment.radiance(d, &mut light);
-                return score + weight * light[w];
+                light.surroundings(d, &mut radiance);
+                return score + weight * radiance[w];
             }
         }
     }

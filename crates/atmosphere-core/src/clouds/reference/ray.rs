@@ -11,7 +11,7 @@
 
 use glam::DVec3;
 
-use super::camera_path::{PathScene, trace_from};
+use super::camera_path::{LayerLight, PathScene, first_collision, trace_from};
 use super::environment::Environment;
 use super::settings::{BATCH_PATHS, PathSettings};
 use crate::clouds::estimate::Tally;
@@ -100,16 +100,23 @@ pub fn radiance_path_traced(
         direction.y.to_bits(),
         direction.z.to_bits(),
     ]);
+    let medium = scene.medium();
+    let light = LayerLight {
+        sun: scene.sun,
+        environment: &environment,
+        sun_direction: scene.sun_direction,
+    };
     let mut tallies = vec![Tally::default(); waves];
     let mut paths = 0;
     while paths < settings.max_paths {
         for _ in 0..BATCH_PATHS.min(settings.max_paths - paths) {
             for (w, tally) in tallies.iter_mut().enumerate() {
                 let mut sampler = Sampler::new(mix_seed(&[seed, paths, w as u64]));
-                let score = match first_collision(scene, start, direction, t1 - t0, &mut sampler) {
-                    Some(x) => trace_from(scene, &environment, w, x, direction, &mut sampler),
-                    None => 0.0,
-                };
+                let score =
+                    match first_collision(scene.layer, start, direction, t1 - t0, &mut sampler) {
+                        Some(x) => trace_from(&medium, &light, w, x, direction, &mut sampler),
+                        None => 0.0,
+                    };
                 tally.add(score);
             }
             paths += 1;
@@ -135,32 +142,6 @@ pub fn radiance_path_traced(
         cloud_transmittance: transmittance,
         paths,
     })
-}
-
-/// The first real collision within `length` of `start` along `d`, if any.
-fn first_collision(
-    scene: &PathScene,
-    start: DVec3,
-    d: DVec3,
-    length: f64,
-    sampler: &mut Sampler,
-) -> Option<DVec3> {
-    let layer = scene.layer;
-    let majorant = layer.majorant();
-    if majorant <= 0.0 {
-        return None;
-    }
-    let mut travelled = 0.0;
-    loop {
-        travelled += -(1.0 - sampler.uniform()).ln() / majorant;
-        if travelled >= length {
-            return None;
-        }
-        let x = start + d * travelled;
-        if sampler.uniform() * majorant < layer.extinction(x) {
-            return Some(x);
-        }
-    }
 }
 
 /// exp(-int sigma) over `[t0, t1]` by the midpoint rule.

@@ -4,6 +4,8 @@
 //! layer's ray march ([`march_image`]) and by half-angle slicing with a light buffer and
 //! an eye buffer, as Riley et al. 2004 (sections 4.2 and 5, after Kniss et al. 2002) do
 //! ([`half_angle`], [`light_buffer`], [`slicing`]); both give a [`image::VolumeImage`].
+//! The cloud path tracer's image of the same scene ([`path_traced`]) is their ground
+//! truth.
 //! [`cumulus`] generates the shipped cumulus.
 
 pub mod camera;
@@ -14,6 +16,7 @@ pub mod half_angle;
 pub mod image;
 pub mod light_buffer;
 pub mod march_image;
+pub mod path_traced;
 pub mod raw_file;
 pub mod scene;
 pub mod settings;

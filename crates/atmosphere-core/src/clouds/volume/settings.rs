@@ -1,5 +1,6 @@
-//! How a voxel cloud is rendered, each setting with its range: by half-angle slicing or
-//! by the ray march, the light's multiple scattering (the layer's [`LayerMethod`]:
+//! How a voxel cloud is rendered, each setting with its range: by half-angle slicing, by
+//! the ray march or by the path tracer (their ground truth), the light's multiple
+//! scattering (the layer's [`LayerMethod`]:
 //! Riley et al. 2004 or the octaves), and the steps of each method.
 
 use std::fmt;
@@ -25,6 +26,9 @@ pub enum VolumeMethod {
     Slicing,
     /// A ray march per pixel with a shadow march per sample (the layer's `march.rs`).
     March,
+    /// The cloud path tracer, all orders of scattering (`path_traced.rs`): the ground
+    /// truth of the other two.
+    PathTraced,
 }
 
 impl fmt::Display for VolumeMethod {
@@ -32,6 +36,7 @@ impl fmt::Display for VolumeMethod {
         f.write_str(match self {
             VolumeMethod::Slicing => "slicing",
             VolumeMethod::March => "march",
+            VolumeMethod::PathTraced => "path",
         })
     }
 }
@@ -43,8 +48,9 @@ impl FromStr for VolumeMethod {
         match s {
             "slicing" => Ok(VolumeMethod::Slicing),
             "march" => Ok(VolumeMethod::March),
+            "path" => Ok(VolumeMethod::PathTraced),
             other => Err(CloudError(format!(
-                "volume method {other:?} is not one of slicing, march"
+                "volume method {other:?} is not one of slicing, march, path"
             ))),
         }
     }
