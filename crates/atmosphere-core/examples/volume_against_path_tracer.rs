@@ -35,7 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let orders = droplet_orders_cached(&WAVELENGTHS_NM, &cache)?;
     let scene = VolumeScene::load(&path, single_scattering_phase(&orders, 1)?)?;
     let (cloud, sun) = (&scene.cloud, &scene.sun);
-    let mut camera = scene.camera.clone();
+    let mut camera = scene.camera;
     camera.height_px = (u64::from(camera.height_px) * u64::from(width_px)
         / u64::from(camera.width_px))
     .max(1) as u32;
