@@ -4,7 +4,9 @@
 //! luminance there is compared with the reference's (relative RMS and largest
 //! |L - L_ref| / max(L_ref, 1 % of the brightest L_ref)), its CPU frame time is its
 //! preparation plus its time per ray times the pixels of a 1280 x 720 frame, and its
-//! GPU frame time is measured at 1280 x 720 where the method is on the GPU.
+//! GPU frame time is measured at 1280 x 720 where the method is on the GPU. A setting
+//! that names qtable2002's `resolution_divisor` (a reduced walk upsampled answers for
+//! the frame's pixels) is prepared for the 1280 x 720 frame and asked the same rays.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -13,6 +15,7 @@ use std::time::Instant;
 use anyhow::Context;
 use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::BeamSettings;
+use atmosphere_core::beams::methods::qtable2002::upsample::RESOLUTION_DIVISOR;
 use atmosphere_core::beams::methods::registry::prepare;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::color::SpectrumToColor;
@@ -99,6 +102,8 @@ pub fn measure(
     for name in scenes {
         let path = folder.join(name);
         let full = BeamScene::load(&path).with_context(|| path.display().to_string())?;
+        let mut at_frame = full.clone();
+        (at_frame.camera.width_px, at_frame.camera.height_px) = FRAME;
         let mut scene = full.clone();
         let aspect = f64::from(full.camera.height_px) / f64::from(full.camera.width_px);
         scene.camera.width_px = width;
@@ -108,8 +113,13 @@ pub fn measure(
                 wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
                 options: ModelOptions::parse(options)?,
             };
+            let prepared_for = if frame_sized(options) {
+                &at_frame
+            } else {
+                &scene
+            };
             let start = Instant::now();
-            let method = prepare(id, &scene, &settings)?;
+            let method = prepare(id, prepared_for, &settings)?;
             let prepared_s = start.elapsed().as_secs_f64();
             let camera = &scene.camera;
             let start = Instant::now();
@@ -171,6 +181,16 @@ pub fn measure(
         }
     }
     Ok(rows)
+}
+
+/// Whether a setting is prepared for the 1280 x 720 frame: where it names a
+/// `resolution_divisor` (a reduced walk upsampled answers for the frame's pixels; the
+/// divisor 1 is the walk prepared alike, to compare with).
+fn frame_sized(options: &[String]) -> bool {
+    options.iter().any(|o| {
+        o.split_once('=')
+            .is_some_and(|(k, _)| k.trim() == RESOLUTION_DIVISOR.key)
+    })
 }
 
 /// The second of two 1280 x 720 frames of `method` on `scene`, ms (the first compiles
@@ -331,6 +351,25 @@ mod tests {
         assert_eq!(rows.len(), BEAM_SCENES.len() * (1 + BEAM_VARIANTS.len()));
         assert!(rows.iter().all(|r| r.rms.is_finite()));
         println!("{}", markdown(&rows, 12));
+    }
+
+    #[test]
+    #[ignore = "slow: the reference and the reduced walks on the sphere scene"]
+    fn the_reduced_walk_upsampled_against_the_walk_on_the_sphere_scene() {
+        let variants = [
+            "qtable2002",
+            "qtable2002 resolution_divisor=1",
+            "qtable2002 resolution_divisor=2",
+            "qtable2002 resolution_divisor=4",
+            "qtable2002 resolution_divisor=4 upsample_tolerance=0.02",
+            "qtable2002 resolution_divisor=4 upsample_tolerance=0.1",
+            "qtable2002 resolution_divisor=8",
+        ];
+        assert!(frame_sized(&["resolution_divisor=4".into()]));
+        assert!(!frame_sized(&["epsilon=0.1".into()]));
+        let scenes = ["sphere_spotlight.toml"];
+        let rows = measure(&shipped_folder(), &scenes, &variants, RAYS_ACROSS, None).unwrap();
+        println!("{}", markdown(&rows, RAYS_ACROSS));
     }
 
     #[test]

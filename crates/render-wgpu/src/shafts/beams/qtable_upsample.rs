@@ -1,0 +1,99 @@
+//! The q(u, v) table's walk at reduced resolution brought to the frame's size
+//! (`shaders/shafts/beams/qtable_upsample.wgsl`; the setting `resolution_divisor` above
+//! 1): `qtable_pass.rs` renders the planes at the reduced size first, then one triangle
+//! over the frame interpolates the reduced walk where its four taps agree and walks
+//! every light at the pixels where they do not. CPU twin: atmosphere-core's
+//! `beams/methods/qtable2002/upsample.rs`.
+
+use atmosphere_core::beams::methods::qtable2002::upsample::Upsample;
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::RenderError;
+use crate::gpu::pipeline::{in_stage, read_only_storage_buffer_entry, texture_entry};
+use crate::shafts::beams::blended_planes::BlendedPlanes;
+use crate::shafts::beams::qtable_walk::WalkedPlanes;
+
+/// One light's walk as the upsample reads it (WGSL `WalkEntry`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct WalkEntry {
+    /// Light, plane intervals, the index of its first interval's m_k, 0.
+    pub walk: [u32; 4],
+    /// The light's part of the screen, normalised device coordinates [x0, y0, x1, y1].
+    pub bounds: [f32; 4],
+    /// x: the light's first plane's depth along the view, m.
+    pub first_depth_m: [f32; 4],
+}
+
+/// The reduced walk of a frame and what the pixels walked at full size need.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GpuUpsample {
+    /// The reduced image's width and height, px.
+    pub reduced: (u32, u32),
+    /// Every light's walk and the sample counts of its intervals.
+    pub walked: WalkedPlanes,
+}
+
+impl GpuUpsample {
+    /// The reduced walk of `upsample` for a `width` x `height` frame of `walked`.
+    pub fn new(upsample: &Upsample, (width, height): (u32, u32), walked: WalkedPlanes) -> Self {
+        GpuUpsample {
+            reduced: upsample.reduced_size(width, height),
+            walked,
+        }
+    }
+
+    /// The lights' walks as the storage buffer holds them (a zeroed walk, which visits
+    /// nothing, where there is none: a binding needs an element).
+    pub fn entries(&self) -> Vec<WalkEntry> {
+        let mut entries: Vec<WalkEntry> = self
+            .walked
+            .lights
+            .iter()
+            .map(|l| WalkEntry {
+                walk: l.walk,
+                bounds: l.bounds,
+                first_depth_m: [l.first_depth_m, 0.0, 0.0, 0.0],
+            })
+            .collect();
+        if entries.is_empty() {
+            entries.push(WalkEntry::default());
+        }
+        entries
+    }
+
+    /// The walks uploaded.
+    pub fn walks_buffer(&self, gpu: &GpuContext) -> wgpu::Buffer {
+        gpu.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("beams qtable2002 walks"),
+                contents: bytemuck::cast_slice(&self.entries()),
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+    }
+}
+
+/// The upsample's pipeline: group 1 laid out by `table_entries` (the uniform, ray ends,
+/// table and sample counts of the walk) and the reduced radiance (binding 4) and walks
+/// (binding 5); one triangle, no vertex buffer.
+pub fn upsample_pipeline(
+    gpu: &GpuContext,
+    table_entries: &[wgpu::BindGroupLayoutEntry],
+) -> Result<BlendedPlanes, RenderError> {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
+    let mut entries = table_entries.to_vec();
+    entries.push(in_stage(
+        fragment,
+        texture_entry(4, wgpu::TextureViewDimension::D2),
+    ));
+    entries.push(in_stage(fragment, read_only_storage_buffer_entry(5, 0)));
+    BlendedPlanes::new(
+        gpu,
+        "shafts/beams/qtable_upsample.wgsl",
+        "beams qtable2002 upsample",
+        &entries,
+        &[],
+    )
+}
