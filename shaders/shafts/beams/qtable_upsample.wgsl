@@ -6,9 +6,9 @@
 // One triangle covers the frame. Each pixel reads the four reduced pixels about it (the
 // reduced walk's radiance and ray ends, group 1 bindings 4 and 1) and takes their
 // bilinear mean where their ray ends and radiances agree within the tolerances of
-// `qtable.upsample`; elsewhere (an occluder's outline, a beam's or a shadow's edge
-// between them) it walks every light's planes along its own ray, ended where its own
-// ray meets an occluder.
+// `qtable.upsample` and some light is among them; elsewhere (an occluder's outline, a
+// beam's or a shadow's edge or a beam's thin tip between them) it walks every light's
+// planes along its own ray, ended where its own ray meets an occluder.
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/occluders.wgsl
@@ -34,23 +34,38 @@ fn vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
     return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
 }
 
-// Every light's walk along the pixel's own ray.
+// Every light's walk along the pixel's own ray: nothing where the ray meets no light's
+// beam (as the walk would find), else ended where it meets an occluder.
 fn walked(pixel: vec2<f32>) -> vec3<f32> {
     let dir = pixel_direction(pixel);
     let limit = params.camera_forward.w;
-    let hit = nearest_occluder(vec3<f32>(0.0), dir, limit);
-    let t_end = select(limit, hit, hit != MISS);
     let size = vec2<f32>(params.size_steps_lights.xy);
     let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
+    var reached = false;
+    for (var l = 0u; l < arrayLength(&walks); l++) {
+        let entry = walks[l];
+        let span = beam_span(lights[entry.walk.x], dir, limit);
+        reached = reached || (in_bounds(entry, ndc) && span.x <= span.y);
+    }
+    if !reached {
+        return vec3<f32>(0.0);
+    }
+    let hit = nearest_occluder(vec3<f32>(0.0), dir, limit);
+    let t_end = select(limit, hit, hit != MISS);
     var sum = vec3<f32>(0.0);
     for (var l = 0u; l < arrayLength(&walks); l++) {
         let entry = walks[l];
-        let b = entry.bounds;
-        if entry.walk.y > 0u && all(ndc >= b.xy) && all(ndc <= b.zw) {
+        if in_bounds(entry, ndc) {
             sum += walk_light(entry.walk, entry.first_depth_m.x, dir, t_end);
         }
     }
     return sum;
+}
+
+// Whether the light of `entry` has planes over the point `ndc` of the screen.
+fn in_bounds(entry: WalkEntry, ndc: vec2<f32>) -> bool {
+    let b = entry.bounds;
+    return entry.walk.y > 0u && all(ndc >= b.xy) && all(ndc <= b.zw);
 }
 
 @fragment
@@ -80,7 +95,7 @@ fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         mean += weights[k] * radiance;
     }
     let agree = far - near <= qtable.upsample.y * near
-        && all(hi - lo <= qtable.upsample.x * hi);
+        && all(hi - lo <= qtable.upsample.x * hi) && any(hi > vec3<f32>(0.0));
     if agree {
         return vec4<f32>(mean, 0.0);
     }

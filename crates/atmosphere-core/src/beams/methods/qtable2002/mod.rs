@@ -150,7 +150,7 @@ impl Qtable2002Settings {
             gpu_raster_planes: r.flag(GPU_RASTER_PLANES, false)?,
             upsample: {
                 let divisor = r.count(&RESOLUTION_DIVISOR, 1)?;
-                let tolerance = r.number(&UPSAMPLE_TOLERANCE, 0.05)?;
+                let tolerance = r.number(&UPSAMPLE_TOLERANCE, 0.5)?;
                 (divisor > 1).then_some(Upsample {
                     divisor: divisor as u32,
                     tolerance,

@@ -7,11 +7,13 @@
 //! reduced pixels about u = X w / W - 0.5, v = Y h / H - 0.5 (clamped to the reduced
 //! image), the bilinear taps of the clouds' reduced march (`clouds/layer/upsample.rs`).
 //! It takes their bilinear mean only where they agree: their ray ends within
-//! [`DEPTH_TOLERANCE`] of the nearest (no silhouette between them) and, at every
-//! wavelength, their radiances within `tolerance` of the brightest (no edge of a beam or
-//! of a shadow in the air between them); otherwise its own ray is walked. So the beam's
-//! edges, the shadows' edges and the occluders' outlines stay as sharp as the walk's,
-//! and the smooth glow between them costs a walk per reduced pixel.
+//! [`DEPTH_TOLERANCE`] of the nearest (no silhouette between them), at every wavelength
+//! their radiances within `tolerance` of the brightest (no edge of a beam or of a shadow
+//! in the air between them), and some light among them; otherwise its own ray is walked
+//! (four dark taps may have a beam's thin tip between them; on the GPU such a walk ends
+//! at once where the ray meets no beam). So the beam's edges, the shadows' edges and the
+//! occluders' outlines stay as sharp as the walk's, and the smooth glow between them
+//! costs a walk per reduced pixel.
 
 use crate::models::options::Setting;
 
@@ -68,10 +70,13 @@ impl Upsample {
         if far - near > DEPTH_TOLERANCE * near {
             return false;
         }
-        (0..taps[0].radiance.len()).all(|w| {
+        let mut lit = false;
+        let agree = (0..taps[0].radiance.len()).all(|w| {
             let (lo, hi) = spread(&mut taps.iter().map(|t| t.radiance[w]));
+            lit |= hi > 0.0;
             hi - lo <= self.tolerance * hi
-        })
+        });
+        agree && lit
     }
 }
 
@@ -151,13 +156,15 @@ mod tests {
         // An occluder's outline: the same light, the ray ends 30 % apart.
         let outline = [tap(1.0, 10.0), tap(1.0, 13.0), tap(1.0, 10.0), tap(1.0, 10.0)];
         assert!(!up.interpolable(&outline));
-        // Dark taps are all equal; a zero tolerance interpolates only equal taps.
+        // Four dark taps may have a beam's tip between them; a zero tolerance
+        // interpolates only equal lit taps.
         let dark = [tap(0.0, 10.0), tap(0.0, 10.0), tap(0.0, 10.0), tap(0.0, 10.0)];
+        assert!(!up.interpolable(&dark));
         let exact = Upsample {
             divisor: 4,
             tolerance: 0.0,
         };
-        assert!(exact.interpolable(&dark));
+        assert!(exact.interpolable(&[tap(1.0, 10.0), tap(1.0, 10.0), tap(1.0, 10.0), tap(1.0, 10.0)]));
         assert!(!exact.interpolable(&same));
     }
 
