@@ -15,7 +15,8 @@
 #import shafts/beams/qtable_bindings.wgsl
 #import shafts/beams/qtable_walk_light.wgsl
 
-// One light's walk: light, intervals, first interval's index in `interval_samples`, 0;
+// One light's walk: light, intervals (0: no light), first interval's index in
+// `interval_samples`, 0;
 // its part of the screen [x0, y0, x1, y1] in normalised device coordinates; x the
 // first plane's depth, m.
 struct WalkEntry {
@@ -26,7 +27,9 @@ struct WalkEntry {
 
 // The reduced walk's radiance (xyz).
 @group(1) @binding(4) var reduced_radiance: texture_2d<f32>;
-@group(1) @binding(5) var<storage, read> walks: array<WalkEntry>;
+// One per light with planes, then zeroed walks; as many as a scene's lights may be.
+const MAX_WALKS: u32 = 64u;
+@group(1) @binding(5) var<uniform> walks: array<WalkEntry, MAX_WALKS>;
 
 @vertex
 fn vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
@@ -42,10 +45,12 @@ fn walked(pixel: vec2<f32>) -> vec3<f32> {
     let size = vec2<f32>(params.size_steps_lights.xy);
     let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
     var reached = false;
-    for (var l = 0u; l < arrayLength(&walks); l++) {
+    for (var l = 0u; l < MAX_WALKS && walks[l].walk.y > 0u; l++) {
         let entry = walks[l];
-        let span = beam_span(lights[entry.walk.x], dir, limit);
-        reached = reached || (in_bounds(entry, ndc) && span.x <= span.y);
+        if in_bounds(entry, ndc) {
+            let span = beam_span(lights[entry.walk.x], dir, limit);
+            reached = reached || span.x <= span.y;
+        }
     }
     if !reached {
         return vec3<f32>(0.0);
@@ -53,7 +58,7 @@ fn walked(pixel: vec2<f32>) -> vec3<f32> {
     let hit = nearest_occluder(vec3<f32>(0.0), dir, limit);
     let t_end = select(limit, hit, hit != MISS);
     var sum = vec3<f32>(0.0);
-    for (var l = 0u; l < arrayLength(&walks); l++) {
+    for (var l = 0u; l < MAX_WALKS && walks[l].walk.y > 0u; l++) {
         let entry = walks[l];
         if in_bounds(entry, ndc) {
             sum += walk_light(entry.walk, entry.first_depth_m.x, dir, t_end);
@@ -65,7 +70,7 @@ fn walked(pixel: vec2<f32>) -> vec3<f32> {
 // Whether the light of `entry` has planes over the point `ndc` of the screen.
 fn in_bounds(entry: WalkEntry, ndc: vec2<f32>) -> bool {
     let b = entry.bounds;
-    return entry.walk.y > 0u && all(ndc >= b.xy) && all(ndc <= b.zw);
+    return all(ndc >= b.xy) && all(ndc <= b.zw);
 }
 
 @fragment

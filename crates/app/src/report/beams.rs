@@ -17,6 +17,8 @@ use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::qtable2002::upsample::RESOLUTION_DIVISOR;
 use atmosphere_core::beams::methods::registry::prepare;
+use atmosphere_core::beams::camera::Camera;
+use atmosphere_core::beams::ray::SceneRay;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::options::ModelOptions;
@@ -108,33 +110,41 @@ pub fn measure(
         let aspect = f64::from(full.camera.height_px) / f64::from(full.camera.width_px);
         scene.camera.width_px = width;
         scene.camera.height_px = ((f64::from(width) * aspect).round() as u32).max(1);
-        let luminance = |id: BeamMethodId, options: &[String]| -> anyhow::Result<(Vec<f64>, f64)> {
+        let report_rays: Vec<SceneRay> = (0..scene.camera.height_px)
+            .flat_map(|y| (0..scene.camera.width_px).map(move |x| (x, y)))
+            .map(|(x, y)| scene.camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
+            .collect();
+        let frame_rays = frame_pixel_rays(&scene.camera, &at_frame.camera);
+        // A setting's luminance on the report's rays, or prepared for the frame and
+        // asked on its pixels (`on_frame`), and its CPU frame time.
+        let luminance = |id: BeamMethodId,
+                         options: &[String],
+                         on_frame: bool|
+         -> anyhow::Result<(Vec<f64>, f64)> {
             let settings = BeamSettings {
                 wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
                 options: ModelOptions::parse(options)?,
             };
-            let prepared_for = if frame_sized(options) {
-                &at_frame
+            let (prepared_for, rays) = if on_frame {
+                (&at_frame, &frame_rays)
             } else {
-                &scene
+                (&scene, &report_rays)
             };
             let start = Instant::now();
             let method = prepare(id, prepared_for, &settings)?;
             let prepared_s = start.elapsed().as_secs_f64();
-            let camera = &scene.camera;
             let start = Instant::now();
-            let mut out = Vec::new();
-            for y in 0..camera.height_px {
-                for x in 0..camera.width_px {
-                    let ray = camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
-                    out.push(color.luminance_cd_m2(&method.radiance(&ray)?));
-                }
+            let mut out = Vec::with_capacity(rays.len());
+            for ray in rays {
+                out.push(color.luminance_cd_m2(&method.radiance(ray)?));
             }
             let per_ray = start.elapsed().as_secs_f64() / out.len() as f64;
             Ok((out, prepared_s + per_ray * f64::from(FRAME.0 * FRAME.1)))
         };
+        // The reference on the frame's pixels, for the settings asked there.
+        let mut frame_truth: Option<Vec<f64>> = None;
         eprintln!("report: beams on {name}, the reference");
-        let (truth, reference_frame_s) = luminance(BeamMethodId::Reference, &[])?;
+        let (truth, reference_frame_s) = luminance(BeamMethodId::Reference, &[], false)?;
         // The reference's own row: its CPU frame time, the brute force the methods'
         // times compare with (Dobashi et al. 2002 section 4.3 compare with ray tracing).
         rows.push(BeamRow {
@@ -146,7 +156,6 @@ pub fn measure(
             cpu_frame_s: reference_frame_s,
             gpu_ms: None,
         });
-        let floor = 0.01 * truth.iter().copied().fold(0.0, f64::max);
         for (k, variant) in variants.iter().enumerate() {
             eprintln!(
                 "report: beams on {name}, {}/{} {variant}",
@@ -156,10 +165,20 @@ pub fn measure(
             let mut words = variant.split_whitespace();
             let method: BeamMethodId = words.next().unwrap_or_default().parse()?;
             let options: Vec<String> = words.map(str::to_string).collect();
-            let (values, cpu_frame_s) = luminance(method, &options)?;
+            let (values, cpu_frame_s) = luminance(method, &options, frame_sized(&options))?;
+            let truth = if frame_sized(&options) {
+                if frame_truth.is_none() {
+                    eprintln!("report: beams on {name}, the reference on the frame's pixels");
+                    frame_truth = Some(luminance(BeamMethodId::Reference, &[], true)?.0);
+                }
+                frame_truth.as_deref().unwrap_or_default()
+            } else {
+                &truth
+            };
+            let floor = 0.01 * truth.iter().copied().fold(0.0, f64::max);
             let errors: Vec<f64> = values
                 .iter()
-                .zip(&truth)
+                .zip(truth)
                 .map(|(l, t)| (l - t).abs() / t.max(floor))
                 .collect();
             let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
@@ -181,6 +200,30 @@ pub fn measure(
         }
     }
     Ok(rows)
+}
+
+/// The pixels of `frame` (the same view, another size) nearest the rays through the
+/// pixel centres of `camera`, each moved within its share of the frame by a fixed
+/// scramble of its row and column: a reduced walk upsampled is as exact as its walk on
+/// the pixels that fall on a reduced pixel's ray, and a grid of rays would meet the
+/// reduced pixels at one place only.
+fn frame_pixel_rays(camera: &Camera, frame: &Camera) -> Vec<SceneRay> {
+    let (w, h) = (f64::from(camera.width_px), f64::from(camera.height_px));
+    let (fw, fh) = (f64::from(frame.width_px), f64::from(frame.height_px));
+    // Frame pixels per ray of `camera` across (same vertical view, other aspect) and down.
+    let across = (w / h) / (fw / fh) * fw / w;
+    let down = fh / h;
+    let scramble = |k: u32| f64::from(k % 16) / 16.0 - 0.5;
+    (0..camera.height_px)
+        .flat_map(|y| (0..camera.width_px).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let fx = 0.5 * fw + (f64::from(x) + 0.5 - 0.5 * w + scramble(7 * x + 13 * y)) * across;
+            let fy = (f64::from(y) + 0.5 + scramble(11 * x + 5 * y)) * down;
+            let px = fx.floor().clamp(0.0, fw - 1.0);
+            let py = fy.floor().clamp(0.0, fh - 1.0);
+            frame.ray(px + 0.5, py + 0.5)
+        })
+        .collect()
 }
 
 /// Whether a setting is prepared for the 1280 x 720 frame: where it names a

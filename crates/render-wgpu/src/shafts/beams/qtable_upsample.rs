@@ -6,12 +6,13 @@
 //! `beams/methods/qtable2002/upsample.rs`.
 
 use atmosphere_core::beams::methods::qtable2002::upsample::Upsample;
+use atmosphere_core::beams::scene::MAX_LIGHTS;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
-use crate::gpu::pipeline::{in_stage, read_only_storage_buffer_entry, texture_entry};
+use crate::gpu::pipeline::{in_stage, texture_entry, uniform_entry};
 use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::qtable_walk::WalkedPlanes;
 
@@ -45,32 +46,28 @@ impl GpuUpsample {
         }
     }
 
-    /// The lights' walks as the storage buffer holds them (a zeroed walk, which visits
-    /// nothing, where there is none: a binding needs an element).
-    pub fn entries(&self) -> Vec<WalkEntry> {
-        let mut entries: Vec<WalkEntry> = self
-            .walked
-            .lights
-            .iter()
-            .map(|l| WalkEntry {
+    /// The lights' walks as the uniform holds them: one per light with planes, then
+    /// zeroed walks (which visit nothing) up to [`MAX_LIGHTS`].
+    pub fn entries(&self) -> [WalkEntry; MAX_LIGHTS] {
+        let mut entries = [WalkEntry::default(); MAX_LIGHTS];
+        for (entry, l) in entries.iter_mut().zip(&self.walked.lights) {
+            *entry = WalkEntry {
                 walk: l.walk,
                 bounds: l.bounds,
                 first_depth_m: [l.first_depth_m, 0.0, 0.0, 0.0],
-            })
-            .collect();
-        if entries.is_empty() {
-            entries.push(WalkEntry::default());
+            };
         }
         entries
     }
 
-    /// The walks uploaded.
+    /// The walks uploaded (the scene's eight storage buffers are as many as a fragment
+    /// stage may read, so the walks are a uniform).
     pub fn walks_buffer(&self, gpu: &GpuContext) -> wgpu::Buffer {
         gpu.device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("beams qtable2002 walks"),
                 contents: bytemuck::cast_slice(&self.entries()),
-                usage: wgpu::BufferUsages::STORAGE,
+                usage: wgpu::BufferUsages::UNIFORM,
             })
     }
 }
@@ -88,7 +85,8 @@ pub fn upsample_pipeline(
         fragment,
         texture_entry(4, wgpu::TextureViewDimension::D2),
     ));
-    entries.push(in_stage(fragment, read_only_storage_buffer_entry(5, 0)));
+    let walks = size_of::<WalkEntry>() * MAX_LIGHTS;
+    entries.push(in_stage(fragment, uniform_entry(5, walks)));
     BlendedPlanes::new(
         gpu,
         "shafts/beams/qtable_upsample.wgsl",

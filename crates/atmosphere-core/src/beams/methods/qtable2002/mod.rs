@@ -18,7 +18,9 @@
 //! samples are dt / m_k apart from the main plane (Eq. 10's dt / (m_k - 1) would put the
 //! last on the next main plane, counting it twice). A light's planes cover the part of
 //! the screen its bounding volume projects to (widened by a pixel), as the GPU draws
-//! them: rays outside it get nothing from that light.
+//! them: rays outside it get nothing from that light. With `resolution_divisor` above 1
+//! (not the paper's) a ray's answer is its pixel's in the frame of the camera's size
+//! walked at reduced resolution and upsampled (`upsample.rs`).
 
 pub mod interval;
 pub mod planes;
