@@ -3,12 +3,14 @@
 // setting `resolution_divisor` above 1). CPU twin: atmosphere-core's
 // `beams/methods/qtable2002/upsample.rs` (`upsampled`).
 //
-// One triangle covers the frame. Each pixel reads the four reduced pixels about it (the
-// reduced walk's radiance and ray ends, group 1 bindings 4 and 1) and takes their
-// bilinear mean where their ray ends and radiances agree within the tolerances of
-// `qtable.upsample` and some light is among them; elsewhere (an occluder's outline, a
-// beam's or a shadow's edge or a beam's thin tip between them) it walks every light's
-// planes along its own ray, ended where its own ray meets an occluder.
+// One triangle covers the frame, twice. First (`fragment`) each pixel reads the four
+// reduced pixels about it (the reduced walk's radiance and ray ends, group 1 bindings 4
+// and 1) and takes their bilinear mean where their ray ends and radiances agree within
+// the tolerances of `qtable.upsample` and some light is among them, depth 0; elsewhere
+// (an occluder's outline, a beam's or a shadow's edge or a beam's thin tip between
+// them) it adds nothing and marks the pixel with depth 1. Then (`walk_fragment`, drawn
+// at depth 0.5 and tested against the marks) the marked pixels alone walk every light's
+// planes along their own ray, ended where it meets an occluder.
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/occluders.wgsl
@@ -34,7 +36,13 @@ const MAX_WALKS: u32 = 64u;
 @vertex
 fn vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
     let corner = vec2<f32>(f32((v << 1u) & 2u), f32(v & 2u));
-    return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);
+    return vec4<f32>(corner * 2.0 - 1.0, 0.5, 1.0);
+}
+
+struct Interpolated {
+    @location(0) radiance: vec4<f32>,
+    // 1: the pixel is to be walked.
+    @builtin(frag_depth) mark: f32,
 }
 
 // Every light's walk along the pixel's own ray: nothing where the ray meets no light's
@@ -74,7 +82,12 @@ fn in_bounds(entry: WalkEntry, ndc: vec2<f32>) -> bool {
 }
 
 @fragment
-fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+fn walk_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(walked(position.xy), 0.0);
+}
+
+@fragment
+fn fragment(@builtin(position) position: vec4<f32>) -> Interpolated {
     let pixel = position.xy;
     let full = vec2<f32>(params.size_steps_lights.xy);
     let reduced = vec2<f32>(textureDimensions(reduced_radiance));
@@ -100,9 +113,9 @@ fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         mean += weights[k] * radiance;
     }
     let agree = far - near <= qtable.upsample.y * near
-        && all(hi - lo <= qtable.upsample.x * hi) && any(hi > vec3<f32>(0.0));
-    if agree {
-        return vec4<f32>(mean, 0.0);
-    }
-    return vec4<f32>(walked(pixel), 0.0);
+        && all(hi - lo <= qtable.upsample.x * hi);
+    var out: Interpolated;
+    out.radiance = select(vec4<f32>(0.0), vec4<f32>(mean, 0.0), agree);
+    out.mark = select(1.0, 0.0, agree);
+    return out;
 }

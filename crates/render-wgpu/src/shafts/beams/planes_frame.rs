@@ -110,11 +110,21 @@ impl<'a> PlanesFrame<'a> {
     /// Records the additive pass into the image, cleared first: the pipeline and both
     /// groups set, then `draw`.
     pub fn draw(&mut self, draw: impl FnOnce(&mut wgpu::RenderPass<'_>)) {
+        self.draw_with_depth(None, draw);
+    }
+
+    /// [`PlanesFrame::draw`] with a depth image (cleared to 0) for the pipelines' tests.
+    pub fn draw_with_depth(
+        &mut self,
+        depth: Option<&wgpu::TextureView>,
+        draw: impl FnOnce(&mut wgpu::RenderPass<'_>),
+    ) {
         let target = self.image.radiance.create_view(&Default::default());
         let mut pass = begin_planes_pass(
             &mut self.encoder,
             self.label,
             &target,
+            depth,
             self.timer.as_ref().map(|t| t.render_writes(self.passes - 1)),
         );
         pass.set_pipeline(&self.planes.pipeline);

@@ -22,7 +22,8 @@ use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
 use crate::shafts::beams::planes_frame::{PlanesFrame, RayEnds};
-use crate::shafts::beams::qtable_upsample::{GpuUpsample, upsample_pipeline};
+use crate::gpu::pipeline::texture_2d;
+use crate::shafts::beams::qtable_upsample::{GpuUpsample, MARK_FORMAT, UpsamplePipelines};
 use crate::shafts::beams::qtable_walk::{LightWalk, WalkedPlanes, samples_entry};
 use crate::shafts::beams::ray_end_pass::RayEndPass;
 
@@ -160,7 +161,7 @@ pub struct QtablePass {
     ray_end: RayEndPass,
     planes: BlendedPlanes,
     walk: BlendedPlanes,
-    upsample: BlendedPlanes,
+    upsample: UpsamplePipelines,
 }
 
 impl QtablePass {
@@ -199,7 +200,7 @@ impl QtablePass {
             ray_end: RayEndPass::new(gpu)?,
             planes,
             walk,
-            upsample: upsample_pipeline(gpu, &entries)?,
+            upsample: UpsamplePipelines::new(gpu, &entries)?,
         })
     }
 
@@ -227,7 +228,7 @@ impl QtablePass {
         let mut frame = PlanesFrame::begin(
             gpu,
             RayEnds::Given(&low_end),
-            &self.upsample,
+            &self.upsample.interpolate,
             "beams qtable2002 upsample",
             &qtable.scene,
             bytemuck::bytes_of(&qtable.uniform),
@@ -238,7 +239,15 @@ impl QtablePass {
                 walks.as_entire_binding(),
             ],
         )?;
-        frame.draw(|pass| pass.draw(0..3, 0..1));
+        let [width, height, ..] = qtable.scene.uniform.size_steps_lights;
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let marks = texture_2d(&gpu.device, "beams qtable2002 marks", (width, height), MARK_FORMAT, usage);
+        let marks_view = marks.create_view(&Default::default());
+        frame.draw_with_depth(Some(&marks_view), |pass| {
+            pass.draw(0..3, 0..1);
+            pass.set_pipeline(&self.upsample.walk);
+            pass.draw(0..3, 0..1);
+        });
         let (image, ms) = frame.finish(gpu)?;
         Ok((image, low_ms.zip(ms).map(|(a, b)| a + b)))
     }
