@@ -8,30 +8,19 @@
 // and 1) and takes their bilinear mean where their ray ends and radiances agree within
 // the tolerances of `qtable.upsample` and some light is among them, depth 0; elsewhere
 // (an occluder's outline, a beam's or a shadow's edge or a beam's thin tip between
-// them) it adds nothing and marks the pixel with depth 1. Then (`walk_fragment`, drawn
-// at depth 0.5 and tested against the marks) the marked pixels alone walk every light's
-// planes along their own ray, ended where it meets an occluder.
+// them) it adds nothing and marks the pixel with depth 1. Then each light's rectangle
+// (`walk_vertex`, `walk_fragment`, drawn at depth 0.5 and tested against the marks)
+// walks the light's planes at the marked pixels alone, along their own ray ended where
+// it meets an occluder: one light per fragment, as the walk itself draws them.
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/occluders.wgsl
 #import shafts/beams/qtable_bindings.wgsl
 #import shafts/beams/qtable_walk_light.wgsl
-
-// One light's walk: light, intervals (0: no light), first interval's index in
-// `interval_samples`, 0;
-// its part of the screen [x0, y0, x1, y1] in normalised device coordinates; x the
-// first plane's depth, m.
-struct WalkEntry {
-    walk: vec4<u32>,
-    bounds: vec4<f32>,
-    first_depth_m: vec4<f32>,
-}
+#import shafts/beams/screen_rectangle.wgsl
 
 // The reduced walk's radiance (xyz).
 @group(1) @binding(4) var reduced_radiance: texture_2d<f32>;
-// One per light with planes, then zeroed walks; as many as a scene's lights may be.
-const MAX_WALKS: u32 = 64u;
-@group(1) @binding(5) var<uniform> walks: array<WalkEntry, MAX_WALKS>;
 
 @vertex
 fn vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
@@ -45,45 +34,44 @@ struct Interpolated {
     @builtin(frag_depth) mark: f32,
 }
 
-// Every light's walk along the pixel's own ray: nothing where the ray meets no light's
-// beam (as the walk would find), else ended where it meets an occluder.
-fn walked(pixel: vec2<f32>) -> vec3<f32> {
-    let dir = pixel_direction(pixel);
+struct LightWalk {
+    @builtin(position) position: vec4<f32>,
+    // Light, intervals, the first interval's index in `interval_samples`, 0.
+    @location(0) @interpolate(flat) walk: vec4<u32>,
+    // The light's first plane's depth, m.
+    @location(1) @interpolate(flat) first_depth_m: f32,
+}
+
+// One light's rectangle (`qtable_walk.wgsl`'s instances) at depth 0.5, tested against
+// the marks.
+@vertex
+fn walk_vertex(
+    @builtin(vertex_index) v: u32,
+    @location(0) walk: vec4<u32>,
+    @location(1) first_depth_m: f32,
+    @location(2) bounds: vec4<f32>,
+) -> LightWalk {
+    var out: LightWalk;
+    out.position = screen_rectangle_position(bounds, v);
+    out.position.z = 0.5;
+    out.walk = walk;
+    out.first_depth_m = first_depth_m;
+    return out;
+}
+
+// One light's walk along a marked pixel's own ray: nothing where the ray misses the
+// light's beam (as the walk finds), else ended where the ray meets an occluder.
+@fragment
+fn walk_fragment(in: LightWalk) -> @location(0) vec4<f32> {
+    let dir = pixel_direction(in.position.xy);
     let limit = params.camera_forward.w;
-    let size = vec2<f32>(params.size_steps_lights.xy);
-    let ndc = vec2<f32>(2.0 * pixel.x / size.x - 1.0, 1.0 - 2.0 * pixel.y / size.y);
-    var reached = false;
-    for (var l = 0u; l < MAX_WALKS && walks[l].walk.y > 0u; l++) {
-        let entry = walks[l];
-        if in_bounds(entry, ndc) {
-            let span = beam_span(lights[entry.walk.x], dir, limit);
-            reached = reached || span.x <= span.y;
-        }
-    }
-    if !reached {
-        return vec3<f32>(0.0);
+    let span = beam_span(lights[in.walk.x], dir, limit);
+    if span.x > span.y {
+        return vec4<f32>(0.0);
     }
     let hit = nearest_occluder(vec3<f32>(0.0), dir, limit);
     let t_end = select(limit, hit, hit != MISS);
-    var sum = vec3<f32>(0.0);
-    for (var l = 0u; l < MAX_WALKS && walks[l].walk.y > 0u; l++) {
-        let entry = walks[l];
-        if in_bounds(entry, ndc) {
-            sum += walk_light(entry.walk, entry.first_depth_m.x, dir, t_end);
-        }
-    }
-    return sum;
-}
-
-// Whether the light of `entry` has planes over the point `ndc` of the screen.
-fn in_bounds(entry: WalkEntry, ndc: vec2<f32>) -> bool {
-    let b = entry.bounds;
-    return all(ndc >= b.xy) && all(ndc <= b.zw);
-}
-
-@fragment
-fn walk_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(walked(position.xy), 0.0);
+    return vec4<f32>(walk_light(in.walk, in.first_depth_m, dir, t_end), 0.0);
 }
 
 @fragment

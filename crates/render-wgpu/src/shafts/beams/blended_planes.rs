@@ -72,6 +72,7 @@ impl BlendedPlanes {
         let module = shader_module(device, shader)?;
         let stages = PipelineStages {
             module: &module,
+            vertex: "vertex",
             fragment: "fragment",
             buffers,
             depth,
@@ -92,11 +93,12 @@ impl BlendedPlanes {
     }
 }
 
-/// What a pipeline of additive planes runs: `vertex` and `fragment` of `module`, its
-/// vertices from `buffers`, its depth test.
+/// What a pipeline of additive planes runs: entry points `vertex` and `fragment` of
+/// `module`, its vertices from `buffers`, its depth test.
 #[derive(Debug)]
 pub struct PipelineStages<'a> {
     pub module: &'a wgpu::ShaderModule,
+    pub vertex: &'a str,
     pub fragment: &'a str,
     pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     pub depth: Option<wgpu::DepthStencilState>,
@@ -120,7 +122,7 @@ pub fn additive_pipeline(
         layout: Some(layout),
         vertex: wgpu::VertexState {
             module: stages.module,
-            entry_point: Some("vertex"),
+            entry_point: Some(stages.vertex),
             compilation_options: Default::default(),
             buffers: stages.buffers,
         },

@@ -200,7 +200,11 @@ impl QtablePass {
             ray_end: RayEndPass::new(gpu)?,
             planes,
             walk,
-            upsample: UpsamplePipelines::new(gpu, &entries)?,
+            upsample: UpsamplePipelines::new(
+                gpu,
+                &entries,
+                &[Some(instance(size_of::<LightWalk>()))],
+            )?,
         })
     }
 
@@ -217,6 +221,17 @@ impl QtablePass {
             let (image, ms, _) = self.planes_frame(gpu, qtable, &qtable.scene, &table_view)?;
             return Ok((image, ms));
         };
+        if !qtable.scene.triangles.is_empty() {
+            // The pixels walked at full size trace their ray's end through the meshes'
+            // BVH in the invocation that walks the planes; with both, lavapipe's loop
+            // budget (`models/gpu_loops.rs`) ends the walk early, silently.
+            return Err(RenderError::BeamsTooLarge(
+                "qtable2002 resolution_divisor above 1 with glTF meshes in the scene: the \
+                 pixels walked at full size would exceed the GPU's loop budget (use \
+                 resolution_divisor=1)"
+                    .into(),
+            ));
+        }
         let mut reduced = qtable.scene.clone();
         let (w, h) = upsample.reduced;
         reduced.uniform.size_steps_lights[..2].copy_from_slice(&[w, h]);
@@ -224,7 +239,15 @@ impl QtablePass {
         let samples = upsample.walked.texture(gpu)?;
         let samples_view = samples.create_view(&Default::default());
         let low_view = low.radiance.create_view(&Default::default());
-        let walks = upsample.walks_buffer(gpu);
+        let walks = &upsample.walked.lights;
+        let instances = (!walks.is_empty()).then(|| {
+            gpu.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("beams qtable2002 walks"),
+                    contents: bytemuck::cast_slice(walks),
+                    usage: wgpu::BufferUsages::VERTEX,
+                })
+        });
         let mut frame = PlanesFrame::begin(
             gpu,
             RayEnds::Given(&low_end),
@@ -236,7 +259,6 @@ impl QtablePass {
                 wgpu::BindingResource::TextureView(&table_view),
                 wgpu::BindingResource::TextureView(&samples_view),
                 wgpu::BindingResource::TextureView(&low_view),
-                walks.as_entire_binding(),
             ],
         )?;
         let [width, height, ..] = qtable.scene.uniform.size_steps_lights;
@@ -245,8 +267,11 @@ impl QtablePass {
         let marks_view = marks.create_view(&Default::default());
         frame.draw_with_depth(Some(&marks_view), |pass| {
             pass.draw(0..3, 0..1);
-            pass.set_pipeline(&self.upsample.walk);
-            pass.draw(0..3, 0..1);
+            if let Some(instances) = &instances {
+                pass.set_pipeline(&self.upsample.walk);
+                pass.set_vertex_buffer(0, instances.slice(..));
+                pass.draw(0..6, 0..walks.len() as u32);
+            }
         });
         let (image, ms) = frame.finish(gpu)?;
         Ok((image, low_ms.zip(ms).map(|(a, b)| a + b)))

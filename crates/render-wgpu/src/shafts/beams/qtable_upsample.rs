@@ -2,36 +2,20 @@
 //! (`shaders/shafts/beams/qtable_upsample.wgsl`; the setting `resolution_divisor` above
 //! 1): `qtable_pass.rs` renders the planes at the reduced size first, then one triangle
 //! over the frame interpolates the reduced walk where its four taps agree and marks the
-//! pixels where they do not in a depth image, and a second triangle, depth-tested
-//! against it, walks every light at the marked pixels alone. (One pass that chose per
-//! pixel took most of the walk's time on lavapipe even where it chose no walk at all:
-//! the walk's code in a fragment costs there whether it runs or not.) CPU twin:
-//! atmosphere-core's `beams/methods/qtable2002/upsample.rs`.
+//! pixels where they do not in a depth image, and each light's rectangle of the walk,
+//! depth-tested against it, walks that light at the marked pixels alone, one light per
+//! fragment as the walk does. (One pass that chose per pixel took most of the walk's
+//! time on lavapipe even where it chose no walk at all: the walk's code in a fragment
+//! costs there whether it runs or not.) CPU twin: atmosphere-core's
+//! `beams/methods/qtable2002/upsample.rs`.
 
 use atmosphere_core::beams::methods::qtable2002::upsample::Upsample;
-use atmosphere_core::beams::scene::MAX_LIGHTS;
-use bytemuck::{Pod, Zeroable};
-use wgpu::util::DeviceExt;
 
 use crate::gpu::context::GpuContext;
-use crate::gpu::error::RenderError;
-use crate::gpu::pipeline::{in_stage, texture_entry, uniform_entry};
-use crate::gpu::error::GpuError;
-use crate::gpu::pipeline::shader_module;
+use crate::gpu::error::{GpuError, RenderError};
+use crate::gpu::pipeline::{in_stage, shader_module, texture_entry};
 use crate::shafts::beams::blended_planes::{BlendedPlanes, PipelineStages, additive_pipeline};
 use crate::shafts::beams::qtable_walk::WalkedPlanes;
-
-/// One light's walk as the upsample reads it (WGSL `WalkEntry`).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct WalkEntry {
-    /// Light, plane intervals, the index of its first interval's m_k, 0.
-    pub walk: [u32; 4],
-    /// The light's part of the screen, normalised device coordinates [x0, y0, x1, y1].
-    pub bounds: [f32; 4],
-    /// x: the light's first plane's depth along the view, m.
-    pub first_depth_m: [f32; 4],
-}
 
 /// The reduced walk of a frame and what the pixels walked at full size need.
 #[derive(Clone, Debug, PartialEq)]
@@ -50,31 +34,6 @@ impl GpuUpsample {
             walked,
         }
     }
-
-    /// The lights' walks as the uniform holds them: one per light with planes, then
-    /// zeroed walks (which visit nothing) up to [`MAX_LIGHTS`].
-    pub fn entries(&self) -> [WalkEntry; MAX_LIGHTS] {
-        let mut entries = [WalkEntry::default(); MAX_LIGHTS];
-        for (entry, l) in entries.iter_mut().zip(&self.walked.lights) {
-            *entry = WalkEntry {
-                walk: l.walk,
-                bounds: l.bounds,
-                first_depth_m: [l.first_depth_m, 0.0, 0.0, 0.0],
-            };
-        }
-        entries
-    }
-
-    /// The walks uploaded (the scene's eight storage buffers are as many as a fragment
-    /// stage may read, so the walks are a uniform).
-    pub fn walks_buffer(&self, gpu: &GpuContext) -> wgpu::Buffer {
-        gpu.device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("beams qtable2002 walks"),
-                contents: bytemuck::cast_slice(&self.entries()),
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
-    }
 }
 
 /// The depth image's format: 1 where a pixel is to be walked, 0 where interpolated.
@@ -82,7 +41,8 @@ pub const MARK_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// The upsample's two pipelines: `interpolate` (the entry points `vertex` and
 /// `fragment`), which writes the interpolated pixels and marks the others, and `walk`
-/// (`walk_fragment`), drawn at depth 0.5 where the mark is 1, with the same layouts.
+/// (`walk_vertex`, `walk_fragment`: the walk's light rectangles), drawn at depth 0.5
+/// where the mark is 1, with the same layouts.
 #[derive(Debug)]
 pub struct UpsamplePipelines {
     pub interpolate: BlendedPlanes,
@@ -91,11 +51,12 @@ pub struct UpsamplePipelines {
 
 impl UpsamplePipelines {
     /// Group 1 laid out by `table_entries` (the uniform, ray ends, table and sample
-    /// counts of the walk) and the reduced radiance (binding 4) and walks (binding 5);
-    /// one triangle, no vertex buffer.
+    /// counts of the walk) and the reduced radiance (binding 4); `interpolate` draws one
+    /// triangle without vertex buffers, `walk` the walk's instances of `walk_buffers`.
     pub fn new(
         gpu: &GpuContext,
         table_entries: &[wgpu::BindGroupLayoutEntry],
+        walk_buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
     ) -> Result<UpsamplePipelines, RenderError> {
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let mut entries = table_entries.to_vec();
@@ -103,8 +64,6 @@ impl UpsamplePipelines {
             fragment,
             texture_entry(4, wgpu::TextureViewDimension::D2),
         ));
-        let walks = size_of::<WalkEntry>() * MAX_LIGHTS;
-        entries.push(in_stage(fragment, uniform_entry(5, walks)));
         let shader = "shafts/beams/qtable_upsample.wgsl";
         let depth = |write: bool, compare: wgpu::CompareFunction| wgpu::DepthStencilState {
             format: MARK_FORMAT,
@@ -135,8 +94,9 @@ impl UpsamplePipelines {
         let module = shader_module(device, shader)?;
         let stages = PipelineStages {
             module: &module,
+            vertex: "walk_vertex",
             fragment: "walk_fragment",
-            buffers: &[],
+            buffers: walk_buffers,
             depth: Some(depth(false, wgpu::CompareFunction::Less)),
         };
         let walk = additive_pipeline(device, label, &layout, &stages);
