@@ -135,7 +135,8 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
 /// Pixels whose largest |a - b| / max(a, floor) over the wavelengths exceeds `tolerance`,
 /// the floor 1e-3 of `a`'s brightest value, and the largest such error.
 fn differing(a: &[[f64; 3]], b: &[[f64; 3]], tolerance: f64) -> (usize, f64) {
-    let floor: [f64; 3] = std::array::from_fn(|k| 1e-3 * a.iter().map(|p| p[k]).fold(0.0, f64::max));
+    let floor: [f64; 3] =
+        std::array::from_fn(|k| 1e-3 * a.iter().map(|p| p[k]).fold(0.0, f64::max));
     let errors = a.iter().zip(b).map(|(a, b)| {
         (0..3)
             .map(|k| (b[k] - a[k]).abs() / a[k].max(floor[k]))
@@ -158,10 +159,7 @@ fn the_gpu_upsamples_its_reduced_walk_as_the_cpu_does() {
     ] {
         let s = shipped_scene(name, width, height);
         let walk = qtable_with(&s, &["epsilon=0.01"]);
-        let reduced = qtable_with(
-            &s,
-            &["epsilon=0.01", "resolution_divisor=4"],
-        );
+        let reduced = qtable_with(&s, &["epsilon=0.01", "resolution_divisor=4"]);
         let (cpu, gpu_image) = both(&gpu, &pass, &reduced, &s);
         let cpu_walk = cpu_pixels(&walk, &s);
         // A pixel whose taps spread by about the tolerance may be interpolated on one

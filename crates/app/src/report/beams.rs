@@ -13,11 +13,11 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::Context;
+use atmosphere_core::beams::camera::Camera;
 use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::qtable2002::upsample::RESOLUTION_DIVISOR;
 use atmosphere_core::beams::methods::registry::prepare;
-use atmosphere_core::beams::camera::Camera;
 use atmosphere_core::beams::ray::SceneRay;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::color::SpectrumToColor;

@@ -125,7 +125,9 @@ impl<'a> PlanesFrame<'a> {
             self.label,
             &target,
             depth,
-            self.timer.as_ref().map(|t| t.render_writes(self.passes - 1)),
+            self.timer
+                .as_ref()
+                .map(|t| t.render_writes(self.passes - 1)),
         );
         pass.set_pipeline(&self.planes.pipeline);
         pass.set_bind_group(0, &self.scene_group, &[]);

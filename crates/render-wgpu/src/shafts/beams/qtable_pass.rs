@@ -17,12 +17,12 @@ use wgpu::util::DeviceExt;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
+use crate::gpu::pipeline::texture_2d;
 use crate::gpu::pipeline::{in_stage, texture_entry, uniform_entry};
 use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
 use crate::shafts::beams::planes_frame::{PlanesFrame, RayEnds};
-use crate::gpu::pipeline::texture_2d;
 use crate::shafts::beams::qtable_upsample::{GpuUpsample, MARK_FORMAT, UpsamplePipelines};
 use crate::shafts::beams::qtable_walk::{LightWalk, WalkedPlanes, samples_entry};
 use crate::shafts::beams::ray_end_pass::RayEndPass;
@@ -263,7 +263,13 @@ impl QtablePass {
         )?;
         let [width, height, ..] = qtable.scene.uniform.size_steps_lights;
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let marks = texture_2d(&gpu.device, "beams qtable2002 marks", (width, height), MARK_FORMAT, usage);
+        let marks = texture_2d(
+            &gpu.device,
+            "beams qtable2002 marks",
+            (width, height),
+            MARK_FORMAT,
+            usage,
+        );
         let marks_view = marks.create_view(&Default::default());
         frame.draw_with_depth(Some(&marks_view), |pass| {
             pass.draw(0..3, 0..1);

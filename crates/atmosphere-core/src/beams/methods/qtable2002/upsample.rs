@@ -17,7 +17,8 @@
 
 use crate::models::options::Setting;
 
-use super::MODEL;
+/// The method these settings belong to.
+const MODEL: &str = "qtable2002";
 
 /// The side of the block of frame pixels one reduced pixel walks for (1: every pixel
 /// walked, the paper's way).
@@ -124,7 +125,12 @@ pub fn upsampled<E>(
         fx * fy,
     ];
     Ok((0..taps[0].radiance.len())
-        .map(|l| taps.iter().zip(weights).map(|(t, k)| k * t.radiance[l]).sum())
+        .map(|l| {
+            taps.iter()
+                .zip(weights)
+                .map(|(t, k)| k * t.radiance[l])
+                .sum()
+        })
         .collect())
 }
 
@@ -145,22 +151,47 @@ mod tests {
             divisor: 4,
             tolerance: 0.1,
         };
-        let same = [tap(1.0, 10.0), tap(0.95, 10.0), tap(1.0, 12.0), tap(0.92, 11.0)];
+        let same = [
+            tap(1.0, 10.0),
+            tap(0.95, 10.0),
+            tap(1.0, 12.0),
+            tap(0.92, 11.0),
+        ];
         assert!(up.interpolable(&same));
         // A beam's or shadow's edge between the taps: radiance 20 % apart.
-        let edge = [tap(1.0, 10.0), tap(0.8, 10.0), tap(1.0, 10.0), tap(1.0, 10.0)];
+        let edge = [
+            tap(1.0, 10.0),
+            tap(0.8, 10.0),
+            tap(1.0, 10.0),
+            tap(1.0, 10.0),
+        ];
         assert!(!up.interpolable(&edge));
         // An occluder's outline: the same light, the ray ends 2.1 times apart.
-        let outline = [tap(1.0, 10.0), tap(1.0, 21.0), tap(1.0, 10.0), tap(1.0, 10.0)];
+        let outline = [
+            tap(1.0, 10.0),
+            tap(1.0, 21.0),
+            tap(1.0, 10.0),
+            tap(1.0, 10.0),
+        ];
         assert!(!up.interpolable(&outline));
         // Dark taps are all equal; a zero tolerance interpolates only equal taps.
-        let dark = [tap(0.0, 10.0), tap(0.0, 10.0), tap(0.0, 10.0), tap(0.0, 10.0)];
+        let dark = [
+            tap(0.0, 10.0),
+            tap(0.0, 10.0),
+            tap(0.0, 10.0),
+            tap(0.0, 10.0),
+        ];
         assert!(up.interpolable(&dark));
         let exact = Upsample {
             divisor: 4,
             tolerance: 0.0,
         };
-        assert!(exact.interpolable(&[tap(1.0, 10.0), tap(1.0, 10.0), tap(1.0, 10.0), tap(1.0, 10.0)]));
+        assert!(exact.interpolable(&[
+            tap(1.0, 10.0),
+            tap(1.0, 10.0),
+            tap(1.0, 10.0),
+            tap(1.0, 10.0)
+        ]));
         assert!(!exact.interpolable(&same));
     }
 
