@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 
 use atmosphere_core::beams::methods::id::BeamMethodId;
-use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
+use atmosphere_core::beams::methods::method::BeamSettings;
 use atmosphere_core::beams::methods::qtable2002::Qtable2002;
 use atmosphere_core::beams::methods::registry::prepare;
 use atmosphere_core::beams::scene::BeamScene;

@@ -161,7 +161,8 @@ pub struct QtablePass {
     ray_end: RayEndPass,
     planes: BlendedPlanes,
     walk: BlendedPlanes,
-    upsample: UpsamplePipelines,
+    /// Boxed: only frames with `resolution_divisor` above 1 use it.
+    upsample: Box<UpsamplePipelines>,
 }
 
 impl QtablePass {
@@ -200,11 +201,11 @@ impl QtablePass {
             ray_end: RayEndPass::new(gpu)?,
             planes,
             walk,
-            upsample: UpsamplePipelines::new(
+            upsample: Box::new(UpsamplePipelines::new(
                 gpu,
                 &entries,
                 &[Some(instance(size_of::<LightWalk>()))],
-            )?,
+            )?),
         })
     }
 
