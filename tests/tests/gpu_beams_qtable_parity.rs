@@ -156,6 +156,7 @@ fn the_gpu_upsamples_its_reduced_walk_as_the_cpu_does() {
     for (name, width, height) in [
         ("sphere_spotlight.toml", 64, 96),
         ("stained_glass_room.toml", 64, 48),
+        ("point_lamp.toml", 64, 36),
     ] {
         let s = shipped_scene(name, width, height);
         let walk = qtable_with(&s, &["epsilon=0.01"]);

@@ -224,8 +224,9 @@ impl QtablePass {
         };
         if !qtable.scene.triangles.is_empty() {
             // The pixels walked at full size trace their ray's end through the meshes'
-            // BVH in the invocation that walks the planes; with both, lavapipe's loop
-            // budget (`models/gpu_loops.rs`) ends the walk early, silently.
+            // BVH in the invocation that walks the planes; with both, the walk came out
+            // short of light on lavapipe (presumably its silent loop budget,
+            // `models/gpu_loops.rs`; docs/beams/qtable2002.md).
             return Err(RenderError::BeamsTooLarge(
                 "qtable2002 resolution_divisor above 1 with glTF meshes in the scene: the \
                  pixels walked at full size would exceed the GPU's loop budget (use \
