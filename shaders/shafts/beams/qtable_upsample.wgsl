@@ -1,14 +1,13 @@
 // Entry passes: the q(u, v) table's walk at reduced resolution brought to the frame's
-// size, `vertex` and `fragment` (render-wgpu's `shafts/beams/qtable_upsample.rs`, the
-// setting `resolution_divisor` above 1). CPU twin: atmosphere-core's
+// size, `vertex` and `fragment`, then `walk_vertex` and `walk_fragment` (render-wgpu's
+// `shafts/beams/qtable_upsample.rs`, the setting `resolution_divisor` above 1). CPU twin: atmosphere-core's
 // `beams/methods/qtable2002/upsample.rs` (`upsampled`).
 //
-// One triangle covers the frame, twice. First (`fragment`) each pixel reads the four
-// reduced pixels about it (the reduced walk's radiance and ray ends, group 1 bindings 4
-// and 1) and takes their bilinear mean where their ray ends and radiances agree within
-// the tolerances of `qtable.upsample` and some light is among them, depth 0; elsewhere
-// (an occluder's outline, a beam's or a shadow's edge or a beam's thin tip between
-// them) it adds nothing and marks the pixel with depth 1. Then each light's rectangle
+// First one triangle over the frame (`fragment`): each pixel reads the four reduced
+// pixels about it (the reduced walk's radiance and ray ends, group 1 bindings 4 and 1)
+// and takes their bilinear mean where their ray ends and radiances agree within the
+// tolerances of `qtable.upsample`, depth 0; elsewhere (an occluder's outline, a beam's
+// or a shadow's edge between them) it adds nothing and marks the pixel with depth 1. Then each light's rectangle
 // (`walk_vertex`, `walk_fragment`, drawn at depth 0.5 and tested against the marks)
 // walks the light's planes at the marked pixels alone, along their own ray ended where
 // it meets an occluder: one light per fragment, as the walk itself draws them.
