@@ -4,7 +4,8 @@
 //! shipped scenes, with the same table, planes, sub-planes and shadow maps, the planes
 //! walked per pixel (the default) and drawn one by one (`gpu_raster_planes=true`); the
 //! sub-planes the GPU draws are the CPU's, appear only where f_l exceeds epsilon, and
-//! change the GPU's picture.
+//! change the GPU's picture; the walk at reduced resolution upsampled
+//! (`resolution_divisor`, `qtable_upsample.wgsl`) against its CPU twin.
 
 mod support;
 
@@ -23,16 +24,14 @@ use support::gpu_or_skip;
 const MAX_RELATIVE_ERROR: f64 = 2e-3;
 
 fn qtable(scene: &BeamScene, epsilon: &str, raster: bool) -> Qtable2002 {
-    let raster = format!("gpu_raster_planes={raster}");
+    qtable_with(scene, &[epsilon, &format!("gpu_raster_planes={raster}")])
+}
+
+fn qtable_with(scene: &BeamScene, options: &[&str]) -> Qtable2002 {
+    let mut all = vec!["table_u=64", "table_v=64", "shadow_map_px=256"];
+    all.extend_from_slice(options);
     let settings = BeamSettings {
-        options: ModelOptions::parse(&[
-            "table_u=64",
-            "table_v=64",
-            "shadow_map_px=256",
-            epsilon,
-            &raster,
-        ])
-        .unwrap(),
+        options: ModelOptions::parse(&all).unwrap(),
         ..BeamSettings::default()
     };
     Qtable2002::new(scene, &settings).unwrap()
@@ -131,4 +130,62 @@ fn the_gpu_draws_the_cpus_subplanes_only_where_f_l_exceeds_epsilon() {
         on_gpu >= 20,
         "sub-planes change only {on_gpu} pixels on the GPU"
     );
+}
+
+/// Pixels whose largest |a - b| / max(a, floor) over the wavelengths exceeds `tolerance`,
+/// the floor 1e-3 of `a`'s brightest value, and the largest such error.
+fn differing(a: &[[f64; 3]], b: &[[f64; 3]], tolerance: f64) -> (usize, f64) {
+    let floor: [f64; 3] =
+        std::array::from_fn(|k| 1e-3 * a.iter().map(|p| p[k]).fold(0.0, f64::max));
+    let errors = a.iter().zip(b).map(|(a, b)| {
+        (0..3)
+            .map(|k| (b[k] - a[k]).abs() / a[k].max(floor[k]))
+            .fold(0.0, f64::max)
+    });
+    errors.fold((0, 0.0f64), |(n, worst), e| {
+        (n + usize::from(e > tolerance), worst.max(e))
+    })
+}
+
+#[test]
+fn the_gpu_upsamples_its_reduced_walk_as_the_cpu_does() {
+    let Some(gpu) = gpu_or_skip("beams qtable upsample") else {
+        return;
+    };
+    let pass = QtablePass::new(&gpu).unwrap();
+    for (name, width, height) in [
+        ("sphere_spotlight.toml", 64, 96),
+        ("stained_glass_room.toml", 64, 48),
+        ("point_lamp.toml", 64, 36),
+    ] {
+        let s = shipped_scene(name, width, height);
+        let walk = qtable_with(&s, &["epsilon=0.01"]);
+        let reduced = qtable_with(&s, &["epsilon=0.01", "resolution_divisor=4"]);
+        let (cpu, gpu_image) = both(&gpu, &pass, &reduced, &s);
+        let cpu_walk = cpu_pixels(&walk, &s);
+        // A pixel whose taps spread by about the tolerance may be interpolated on one
+        // side and walked on the other (f32 against f64): a few such pixels, each off
+        // by less than the interpolation's own error.
+        let (apart, worst) = differing(&cpu, &gpu_image, MAX_RELATIVE_ERROR);
+        println!("{name}: {apart} pixels beyond the parity, largest {worst:.2e}");
+        assert!(apart * 100 <= cpu.len(), "{name}: {apart} pixels apart");
+        assert!(worst < 0.1, "{name}: {worst}");
+        // The upsample changes the picture, alike on both.
+        let (changed_cpu, _) = differing(&cpu_walk, &cpu, 1e-2);
+        let (changed_gpu, _) = differing(&cpu_walk, &gpu_image, 1e-2);
+        println!("{name}: {changed_cpu} pixels changed on the CPU, {changed_gpu} on the GPU");
+        assert!(changed_cpu >= 20 && changed_gpu >= 20, "{name}");
+    }
+}
+
+#[test]
+fn a_reduced_walk_with_meshes_is_refused_on_the_gpu() {
+    let Some(gpu) = gpu_or_skip("beams qtable upsample with meshes") else {
+        return;
+    };
+    let pass = QtablePass::new(&gpu).unwrap();
+    let s = shipped_scene("stage_five_spots.toml", 32, 24);
+    let reduced = qtable_with(&s, &["resolution_divisor=4"]);
+    let err = pass.render(&gpu, &GpuQtable::new(&reduced)).unwrap_err();
+    assert!(err.to_string().contains("resolution_divisor"), "{err}");
 }

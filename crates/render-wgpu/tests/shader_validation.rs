@@ -505,7 +505,7 @@ fn beams_structs_match_their_wgsl_layouts() {
         "shafts/beams/qtable.wgsl",
         "QtableParams",
         QtableUniform,
-        [interval_m, ranges, nodes]
+        [interval_m, ranges, nodes, upsample]
     );
     assert_layout!(
         "shafts/beams/march.wgsl",

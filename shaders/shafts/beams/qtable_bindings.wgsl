@@ -8,6 +8,9 @@ struct QtableParams {
     ranges: vec4<f32>,
     // Nodes along u and along v.
     nodes: vec4<u32>,
+    // A reduced walk's upsampling (`qtable_upsample.wgsl`): the taps' largest spread of
+    // radiance (x, a share of the brightest) and of ray ends (y, of the nearest).
+    upsample: vec4<f32>,
 }
 
 @group(1) @binding(0) var<uniform> qtable: QtableParams;

@@ -4,16 +4,21 @@
 //! luminance there is compared with the reference's (relative RMS and largest
 //! |L - L_ref| / max(L_ref, 1 % of the brightest L_ref)), its CPU frame time is its
 //! preparation plus its time per ray times the pixels of a 1280 x 720 frame, and its
-//! GPU frame time is measured at 1280 x 720 where the method is on the GPU.
+//! GPU frame time is measured at 1280 x 720 where the method is on the GPU. A setting
+//! that names qtable2002's `resolution_divisor` (a reduced walk upsampled answers for
+//! the frame's pixels) is prepared for the 1280 x 720 frame and asked the same rays.
 
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
 use anyhow::Context;
+use atmosphere_core::beams::camera::Camera;
 use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::BeamSettings;
+use atmosphere_core::beams::methods::qtable2002::upsample::RESOLUTION_DIVISOR;
 use atmosphere_core::beams::methods::registry::prepare;
+use atmosphere_core::beams::ray::SceneRay;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::color::SpectrumToColor;
 use atmosphere_core::models::options::ModelOptions;
@@ -99,32 +104,47 @@ pub fn measure(
     for name in scenes {
         let path = folder.join(name);
         let full = BeamScene::load(&path).with_context(|| path.display().to_string())?;
+        let mut at_frame = full.clone();
+        (at_frame.camera.width_px, at_frame.camera.height_px) = FRAME;
         let mut scene = full.clone();
         let aspect = f64::from(full.camera.height_px) / f64::from(full.camera.width_px);
         scene.camera.width_px = width;
         scene.camera.height_px = ((f64::from(width) * aspect).round() as u32).max(1);
-        let luminance = |id: BeamMethodId, options: &[String]| -> anyhow::Result<(Vec<f64>, f64)> {
+        let report_rays: Vec<SceneRay> = (0..scene.camera.height_px)
+            .flat_map(|y| (0..scene.camera.width_px).map(move |x| (x, y)))
+            .map(|(x, y)| scene.camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5))
+            .collect();
+        let frame_rays = frame_pixel_rays(&scene.camera, &at_frame.camera);
+        // A setting's luminance on the report's rays, or prepared for the frame and
+        // asked on its pixels (`on_frame`), and its CPU frame time.
+        let luminance = |id: BeamMethodId,
+                         options: &[String],
+                         on_frame: bool|
+         -> anyhow::Result<(Vec<f64>, f64)> {
             let settings = BeamSettings {
                 wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
                 options: ModelOptions::parse(options)?,
             };
+            let (prepared_for, rays) = if on_frame {
+                (&at_frame, &frame_rays)
+            } else {
+                (&scene, &report_rays)
+            };
             let start = Instant::now();
-            let method = prepare(id, &scene, &settings)?;
+            let method = prepare(id, prepared_for, &settings)?;
             let prepared_s = start.elapsed().as_secs_f64();
-            let camera = &scene.camera;
             let start = Instant::now();
-            let mut out = Vec::new();
-            for y in 0..camera.height_px {
-                for x in 0..camera.width_px {
-                    let ray = camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
-                    out.push(color.luminance_cd_m2(&method.radiance(&ray)?));
-                }
+            let mut out = Vec::with_capacity(rays.len());
+            for ray in rays {
+                out.push(color.luminance_cd_m2(&method.radiance(ray)?));
             }
             let per_ray = start.elapsed().as_secs_f64() / out.len() as f64;
             Ok((out, prepared_s + per_ray * f64::from(FRAME.0 * FRAME.1)))
         };
+        // The reference on the frame's pixels, for the settings asked there.
+        let mut frame_truth: Option<Vec<f64>> = None;
         eprintln!("report: beams on {name}, the reference");
-        let (truth, reference_frame_s) = luminance(BeamMethodId::Reference, &[])?;
+        let (truth, reference_frame_s) = luminance(BeamMethodId::Reference, &[], false)?;
         // The reference's own row: its CPU frame time, the brute force the methods'
         // times compare with (Dobashi et al. 2002 section 4.3 compare with ray tracing).
         rows.push(BeamRow {
@@ -136,7 +156,6 @@ pub fn measure(
             cpu_frame_s: reference_frame_s,
             gpu_ms: None,
         });
-        let floor = 0.01 * truth.iter().copied().fold(0.0, f64::max);
         for (k, variant) in variants.iter().enumerate() {
             eprintln!(
                 "report: beams on {name}, {}/{} {variant}",
@@ -146,10 +165,20 @@ pub fn measure(
             let mut words = variant.split_whitespace();
             let method: BeamMethodId = words.next().unwrap_or_default().parse()?;
             let options: Vec<String> = words.map(str::to_string).collect();
-            let (values, cpu_frame_s) = luminance(method, &options)?;
+            let (values, cpu_frame_s) = luminance(method, &options, frame_sized(&options))?;
+            let truth = if frame_sized(&options) {
+                if frame_truth.is_none() {
+                    eprintln!("report: beams on {name}, the reference on the frame's pixels");
+                    frame_truth = Some(luminance(BeamMethodId::Reference, &[], true)?.0);
+                }
+                frame_truth.as_deref().unwrap_or_default()
+            } else {
+                &truth
+            };
+            let floor = 0.01 * truth.iter().copied().fold(0.0, f64::max);
             let errors: Vec<f64> = values
                 .iter()
-                .zip(&truth)
+                .zip(truth)
                 .map(|(l, t)| (l - t).abs() / t.max(floor))
                 .collect();
             let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
@@ -171,6 +200,40 @@ pub fn measure(
         }
     }
     Ok(rows)
+}
+
+/// The pixels of `frame` (the same view, another size) nearest the rays through the
+/// pixel centres of `camera`, each moved within its share of the frame by a fixed
+/// scramble of its row and column: a reduced walk upsampled is as exact as its walk on
+/// the pixels that fall on a reduced pixel's ray, and a grid of rays would meet the
+/// reduced pixels at one place only.
+fn frame_pixel_rays(camera: &Camera, frame: &Camera) -> Vec<SceneRay> {
+    let (w, h) = (f64::from(camera.width_px), f64::from(camera.height_px));
+    let (fw, fh) = (f64::from(frame.width_px), f64::from(frame.height_px));
+    // Frame pixels per ray of `camera` across (same vertical view, other aspect) and down.
+    let across = (w / h) / (fw / fh) * fw / w;
+    let down = fh / h;
+    let scramble = |k: u32| f64::from(k % 16) / 16.0 - 0.5;
+    (0..camera.height_px)
+        .flat_map(|y| (0..camera.width_px).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let fx = 0.5 * fw + (f64::from(x) + 0.5 - 0.5 * w + scramble(7 * x + 13 * y)) * across;
+            let fy = (f64::from(y) + 0.5 + scramble(11 * x + 5 * y)) * down;
+            let px = fx.floor().clamp(0.0, fw - 1.0);
+            let py = fy.floor().clamp(0.0, fh - 1.0);
+            frame.ray(px + 0.5, py + 0.5)
+        })
+        .collect()
+}
+
+/// Whether a setting is prepared for the 1280 x 720 frame: where it names a
+/// `resolution_divisor` (a reduced walk upsampled answers for the frame's pixels; the
+/// divisor 1 is the walk prepared alike, to compare with).
+fn frame_sized(options: &[String]) -> bool {
+    options.iter().any(|o| {
+        o.split_once('=')
+            .is_some_and(|(k, _)| k.trim() == RESOLUTION_DIVISOR.key)
+    })
 }
 
 /// The second of two 1280 x 720 frames of `method` on `scene`, ms (the first compiles
@@ -331,6 +394,25 @@ mod tests {
         assert_eq!(rows.len(), BEAM_SCENES.len() * (1 + BEAM_VARIANTS.len()));
         assert!(rows.iter().all(|r| r.rms.is_finite()));
         println!("{}", markdown(&rows, 12));
+    }
+
+    #[test]
+    #[ignore = "slow: the reference and the reduced walks on the sphere scene"]
+    fn the_reduced_walk_upsampled_against_the_walk_on_the_sphere_scene() {
+        let variants = [
+            "qtable2002",
+            "qtable2002 resolution_divisor=1",
+            "qtable2002 resolution_divisor=2",
+            "qtable2002 resolution_divisor=4",
+            "qtable2002 resolution_divisor=4 upsample_tolerance=0.02",
+            "qtable2002 resolution_divisor=4 upsample_tolerance=0.1",
+            "qtable2002 resolution_divisor=8",
+        ];
+        assert!(frame_sized(&["resolution_divisor=4".into()]));
+        assert!(!frame_sized(&["epsilon=0.1".into()]));
+        let scenes = ["sphere_spotlight.toml"];
+        let rows = measure(&shipped_folder(), &scenes, &variants, RAYS_ACROSS, None).unwrap();
+        println!("{}", markdown(&rows, RAYS_ACROSS));
     }
 
     #[test]

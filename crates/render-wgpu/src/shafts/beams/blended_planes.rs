@@ -28,6 +28,18 @@ impl BlendedPlanes {
         own_entries: &[wgpu::BindGroupLayoutEntry],
         buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
     ) -> Result<BlendedPlanes, RenderError> {
+        Self::with_depth(gpu, shader, label, own_entries, buffers, None)
+    }
+
+    /// [`BlendedPlanes::new`] with a depth test and its writes.
+    pub fn with_depth(
+        gpu: &GpuContext,
+        shader: &str,
+        label: &'static str,
+        own_entries: &[wgpu::BindGroupLayoutEntry],
+        buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+        depth: Option<wgpu::DepthStencilState>,
+    ) -> Result<BlendedPlanes, RenderError> {
         let device = &gpu.device;
         if !device
             .features()
@@ -58,39 +70,14 @@ impl BlendedPlanes {
             immediate_size: 0,
         });
         let module = shader_module(device, shader)?;
-        let add = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
+        let stages = PipelineStages {
+            module: &module,
+            vertex: "vertex",
+            fragment: "fragment",
+            buffers,
+            depth,
         };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(label),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vertex"),
-                compilation_options: Default::default(),
-                buffers,
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fragment"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: RADIANCE_FORMAT,
-                    blend: Some(wgpu::BlendState {
-                        color: add,
-                        alpha: add,
-                    }),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = additive_pipeline(device, label, &layout, &stages);
         if let Some(source) = pollster::block_on(scope.pop()) {
             return Err(GpuError::Validation {
                 what: label,
@@ -106,11 +93,67 @@ impl BlendedPlanes {
     }
 }
 
-/// A render pass into `target`, cleared to black (alpha 1), timed by `timestamps`.
+/// What a pipeline of additive planes runs: entry points `vertex` and `fragment` of
+/// `module`, its vertices from `buffers`, its depth test.
+#[derive(Debug)]
+pub struct PipelineStages<'a> {
+    pub module: &'a wgpu::ShaderModule,
+    pub vertex: &'a str,
+    pub fragment: &'a str,
+    pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub depth: Option<wgpu::DepthStencilState>,
+}
+
+/// A render pipeline of `stages` laid out by `layout` adding its fragments into the
+/// `Rgba32Float` radiance image.
+pub fn additive_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    stages: &PipelineStages<'_>,
+) -> wgpu::RenderPipeline {
+    let add = wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    };
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module: stages.module,
+            entry_point: Some(stages.vertex),
+            compilation_options: Default::default(),
+            buffers: stages.buffers,
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: stages.depth.clone(),
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: stages.module,
+            entry_point: Some(stages.fragment),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: RADIANCE_FORMAT,
+                blend: Some(wgpu::BlendState {
+                    color: add,
+                    alpha: add,
+                }),
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// A render pass into `target`, cleared to black (alpha 1), and into `depth` (cleared to
+/// 0) where given, timed by `timestamps`.
 pub fn begin_planes_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
     target: &wgpu::TextureView,
+    depth: Option<&wgpu::TextureView>,
     timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
 ) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -129,7 +172,14 @@ pub fn begin_planes_pass<'e>(
                 store: wgpu::StoreOp::Store,
             },
         })],
-        depth_stencil_attachment: None,
+        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(0.0),
+                store: wgpu::StoreOp::Discard,
+            }),
+            stencil_ops: None,
+        }),
         timestamp_writes: timestamps,
         occlusion_query_set: None,
         multiview_mask: None,

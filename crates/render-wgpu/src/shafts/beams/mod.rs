@@ -16,6 +16,9 @@
 //!   `beams/methods/qtable2002/`;
 //! - [`qtable_walk`]: the q table's planes and sub-planes walked per pixel, the
 //!   default way [`qtable_pass`] draws them (`shaders/shafts/beams/qtable_walk.wgsl`);
+//! - [`qtable_upsample`]: the q table's walk at reduced resolution brought to the
+//!   frame's size, walked exactly where it cannot be interpolated
+//!   (`shaders/shafts/beams/qtable_upsample.wgsl`);
 //! - [`ray_end_pass`]: where each pixel's ray ends, the planes' depth test;
 //! - [`blended_planes`]: the additive render pipeline the plane methods share;
 //! - [`planes_frame`]: one frame of a plane method: the scene uploaded, the ray end,
@@ -35,6 +38,7 @@ pub mod march_pass;
 pub mod planes_frame;
 pub mod planes_pass;
 pub mod qtable_pass;
+pub mod qtable_upsample;
 pub mod qtable_walk;
 pub mod ray_end_pass;
 pub mod scene_buffers;

@@ -16,7 +16,7 @@ use crate::gpu::pipeline::{in_stage, texture_entry, uniform_entry};
 use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
-use crate::shafts::beams::planes_frame::PlanesFrame;
+use crate::shafts::beams::planes_frame::{PlanesFrame, RayEnds};
 use crate::shafts::beams::ray_end_pass::RayEndPass;
 
 /// The planes' own parameters (WGSL `PlanesParams`).
@@ -114,7 +114,7 @@ impl PlanesPass {
         let [count, n, lights, _] = planes.planes.planes_lattice_lights;
         let mut frame = PlanesFrame::begin(
             gpu,
-            &self.ray_end,
+            RayEnds::Traced(&self.ray_end),
             &self.planes,
             "beams planes2000",
             &planes.scene,

@@ -7,19 +7,23 @@
 //! light, plane interval and sample (main plane or sub-plane) is drawn, as the paper
 //! does (`shaders/shafts/beams/qtable.wgsl`). The table, its interval and the sub-plane
 //! counts are the CPU's (atmosphere-core's `beams/methods/qtable2002/`, the twin),
-//! uploaded.
+//! uploaded. With `resolution_divisor` above 1 the planes are rendered at the reduced
+//! size and brought to the frame's by `qtable_upsample.rs`.
 
 use atmosphere_core::beams::methods::qtable2002::Qtable2002;
+use atmosphere_core::beams::methods::qtable2002::upsample::DEPTH_TOLERANCE;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
+use crate::gpu::pipeline::texture_2d;
 use crate::gpu::pipeline::{in_stage, texture_entry, uniform_entry};
 use crate::shafts::beams::blended_planes::BlendedPlanes;
 use crate::shafts::beams::gpu_scene::GpuScene;
 use crate::shafts::beams::image::BeamImage;
-use crate::shafts::beams::planes_frame::PlanesFrame;
+use crate::shafts::beams::planes_frame::{PlanesFrame, RayEnds};
+use crate::shafts::beams::qtable_upsample::{GpuUpsample, MARK_FORMAT, UpsamplePipelines};
 use crate::shafts::beams::qtable_walk::{LightWalk, WalkedPlanes, samples_entry};
 use crate::shafts::beams::ray_end_pass::RayEndPass;
 
@@ -33,6 +37,9 @@ pub struct QtableUniform {
     pub ranges: [f32; 4],
     /// Nodes along u and along v.
     pub nodes: [u32; 4],
+    /// The upsample's tolerances: the taps' spread of radiance (x, a share of the
+    /// brightest) and of ray ends (y, a share of the nearest).
+    pub upsample: [f32; 4],
 }
 
 /// One drawn plane: an instance's vertex attributes (WGSL `vertex`'s inputs).
@@ -65,6 +72,8 @@ pub struct GpuQtable {
     /// q at the three wavelengths (xyz) per node, v rows of u nodes.
     pub table: Vec<[f32; 4]>,
     pub planes: QtablePlanes,
+    /// The reduced walk, where `resolution_divisor` is above 1.
+    pub upsample: Option<GpuUpsample>,
 }
 
 impl GpuQtable {
@@ -93,15 +102,22 @@ impl GpuQtable {
         } else {
             QtablePlanes::PerPixel(WalkedPlanes::new(method))
         };
+        let [width, height, ..] = scene.uniform.size_steps_lights;
+        let upsample = method
+            .upsample()
+            .map(|up| GpuUpsample::new(&up, (width, height), WalkedPlanes::new(method)));
+        let tolerance = method.upsample().map_or(0.0, |up| up.tolerance as f32);
         GpuQtable {
             scene,
             uniform: QtableUniform {
                 interval_m: [method.interval_m() as f32, 0.0, 0.0, 0.0],
                 ranges: [x.0, x.1, y.0, y.1].map(|v| v as f32),
                 nodes: [nu as u32, nv as u32, 0, 0],
+                upsample: [tolerance, DEPTH_TOLERANCE as f32, 0.0, 0.0],
             },
             table: texels,
             planes,
+            upsample,
         }
     }
 
@@ -145,6 +161,8 @@ pub struct QtablePass {
     ray_end: RayEndPass,
     planes: BlendedPlanes,
     walk: BlendedPlanes,
+    /// Boxed: only frames with `resolution_divisor` above 1 use it.
+    upsample: Box<UpsamplePipelines>,
 }
 
 impl QtablePass {
@@ -183,46 +201,100 @@ impl QtablePass {
             ray_end: RayEndPass::new(gpu)?,
             planes,
             walk,
+            upsample: Box::new(UpsamplePipelines::new(
+                gpu,
+                &entries,
+                &[Some(instance(size_of::<LightWalk>()))],
+            )?),
         })
     }
 
     /// Renders `qtable` after checking its table and scene against the device's limits;
-    /// the two passes' GPU time in milliseconds, together, where the device has
-    /// timestamps.
+    /// the passes' GPU time in milliseconds, together, where the device has timestamps.
     pub fn render(
         &self,
         gpu: &GpuContext,
         qtable: &GpuQtable,
     ) -> Result<(BeamImage, Option<f64>), RenderError> {
-        let device = &gpu.device;
-        let [nu, nv, ..] = qtable.uniform.nodes;
-        let side = device.limits().max_texture_dimension_2d;
-        if nu > side || nv > side {
-            return Err(RenderError::BeamsTooLarge(format!(
-                "the q table's {nu}x{nv} nodes exceed the device's largest texture side, {side} \
-                 (lower table_u or table_v)"
-            )));
-        }
-        let table = device.create_texture_with_data(
-            &gpu.queue,
-            &wgpu::TextureDescriptor {
-                label: Some("beams q table"),
-                size: wgpu::Extent3d {
-                    width: nu,
-                    height: nv,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&qtable.table),
-        );
+        let table = table_texture(gpu, qtable)?;
         let table_view = table.create_view(&Default::default());
+        let Some(upsample) = &qtable.upsample else {
+            let (image, ms, _) = self.planes_frame(gpu, qtable, &qtable.scene, &table_view)?;
+            return Ok((image, ms));
+        };
+        if !qtable.scene.triangles.is_empty() {
+            // The pixels walked at full size trace their ray's end through the meshes'
+            // BVH in the invocation that walks the planes; with both, the walk came out
+            // short of light on lavapipe (presumably its silent loop budget,
+            // `models/gpu_loops.rs`; docs/beams/qtable2002.md).
+            return Err(RenderError::BeamsTooLarge(
+                "qtable2002 resolution_divisor above 1 with glTF meshes in the scene: the \
+                 pixels walked at full size would exceed the GPU's loop budget (use \
+                 resolution_divisor=1)"
+                    .into(),
+            ));
+        }
+        let mut reduced = qtable.scene.clone();
+        let (w, h) = upsample.reduced;
+        reduced.uniform.size_steps_lights[..2].copy_from_slice(&[w, h]);
+        let (low, low_ms, low_end) = self.planes_frame(gpu, qtable, &reduced, &table_view)?;
+        let samples = upsample.walked.texture(gpu)?;
+        let samples_view = samples.create_view(&Default::default());
+        let low_view = low.radiance.create_view(&Default::default());
+        let walks = &upsample.walked.lights;
+        let instances = (!walks.is_empty()).then(|| {
+            gpu.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("beams qtable2002 walks"),
+                    contents: bytemuck::cast_slice(walks),
+                    usage: wgpu::BufferUsages::VERTEX,
+                })
+        });
+        let mut frame = PlanesFrame::begin(
+            gpu,
+            RayEnds::Given(&low_end),
+            &self.upsample.interpolate,
+            "beams qtable2002 upsample",
+            &qtable.scene,
+            bytemuck::bytes_of(&qtable.uniform),
+            &[
+                wgpu::BindingResource::TextureView(&table_view),
+                wgpu::BindingResource::TextureView(&samples_view),
+                wgpu::BindingResource::TextureView(&low_view),
+            ],
+        )?;
+        let [width, height, ..] = qtable.scene.uniform.size_steps_lights;
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let marks = texture_2d(
+            &gpu.device,
+            "beams qtable2002 marks",
+            (width, height),
+            MARK_FORMAT,
+            usage,
+        );
+        let marks_view = marks.create_view(&Default::default());
+        frame.draw_with_depth(Some(&marks_view), |pass| {
+            pass.draw(0..3, 0..1);
+            if let Some(instances) = &instances {
+                pass.set_pipeline(&self.upsample.walk);
+                pass.set_vertex_buffer(0, instances.slice(..));
+                pass.draw(0..6, 0..walks.len() as u32);
+            }
+        });
+        let (image, ms) = frame.finish(gpu)?;
+        Ok((image, low_ms.zip(ms).map(|(a, b)| a + b)))
+    }
+
+    /// The planes of `qtable` over `scene` (its own size): the image, the passes' GPU
+    /// time and the ray ends.
+    fn planes_frame(
+        &self,
+        gpu: &GpuContext,
+        qtable: &GpuQtable,
+        scene: &GpuScene,
+        table_view: &wgpu::TextureView,
+    ) -> Result<(BeamImage, Option<f64>, wgpu::Texture), RenderError> {
+        let device = &gpu.device;
         let (pipeline, instances, count, samples) = match &qtable.planes {
             QtablePlanes::Raster(planes) => (
                 &self.planes,
@@ -237,14 +309,14 @@ impl QtablePass {
                 Some(walks.texture(gpu)?.create_view(&Default::default())),
             ),
         };
-        let mut own = vec![wgpu::BindingResource::TextureView(&table_view)];
+        let mut own = vec![wgpu::BindingResource::TextureView(table_view)];
         own.extend(samples.as_ref().map(wgpu::BindingResource::TextureView));
         let mut frame = PlanesFrame::begin(
             gpu,
-            &self.ray_end,
+            RayEnds::Traced(&self.ray_end),
             pipeline,
             "beams qtable2002",
-            &qtable.scene,
+            scene,
             bytemuck::bytes_of(&qtable.uniform),
             &own,
         )?;
@@ -261,6 +333,41 @@ impl QtablePass {
                 pass.draw(0..6, 0..count as u32);
             }
         });
-        frame.finish(gpu)
+        let ray_end = frame.ray_end().clone();
+        let (image, ms) = frame.finish(gpu)?;
+        Ok((image, ms, ray_end))
     }
+}
+
+/// The q table as an `Rgba32Float` texture, u across and v down; an error where the
+/// device cannot hold it.
+fn table_texture(gpu: &GpuContext, qtable: &GpuQtable) -> Result<wgpu::Texture, RenderError> {
+    let device = &gpu.device;
+    let [nu, nv, ..] = qtable.uniform.nodes;
+    let side = device.limits().max_texture_dimension_2d;
+    if nu > side || nv > side {
+        return Err(RenderError::BeamsTooLarge(format!(
+            "the q table's {nu}x{nv} nodes exceed the device's largest texture side, {side} \
+             (lower table_u or table_v)"
+        )));
+    }
+    Ok(device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("beams q table"),
+            size: wgpu::Extent3d {
+                width: nu,
+                height: nv,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&qtable.table),
+    ))
 }

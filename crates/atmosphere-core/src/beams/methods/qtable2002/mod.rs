@@ -18,11 +18,14 @@
 //! samples are dt / m_k apart from the main plane (Eq. 10's dt / (m_k - 1) would put the
 //! last on the next main plane, counting it twice). A light's planes cover the part of
 //! the screen its bounding volume projects to (widened by a pixel), as the GPU draws
-//! them: rays outside it get nothing from that light.
+//! them: rays outside it get nothing from that light. With `resolution_divisor` above 1
+//! (not the paper's) a ray's answer is its pixel's in the frame of the camera's size
+//! walked at reduced resolution and upsampled (`upsample.rs`).
 
 pub mod interval;
 pub mod planes;
 pub mod q_table;
+pub mod upsample;
 
 use crate::beams::camera::Camera;
 use crate::beams::error::BeamError;
@@ -39,6 +42,7 @@ use crate::models::options::{OptionReader, Setting};
 use interval::f_l;
 use planes::{LightPlanes, PlaneContext, SubPlaneRule, default_d0, volume_depths};
 use q_table::{QExtent, QTable};
+use upsample::{RESOLUTION_DIVISOR, Tap, UPSAMPLE_TOLERANCE, Upsample, upsampled};
 
 const MODEL: &str = "qtable2002";
 
@@ -124,6 +128,8 @@ pub struct Qtable2002Settings {
     pub d0_m: Option<f64>,
     /// [`GPU_RASTER_PLANES`].
     pub gpu_raster_planes: bool,
+    /// [`RESOLUTION_DIVISOR`] and [`UPSAMPLE_TOLERANCE`]: `None` at divisor 1.
+    pub upsample: Option<Upsample>,
 }
 
 impl Qtable2002Settings {
@@ -144,6 +150,14 @@ impl Qtable2002Settings {
                 None
             },
             gpu_raster_planes: r.flag(GPU_RASTER_PLANES, false)?,
+            upsample: {
+                let divisor = r.count(&RESOLUTION_DIVISOR, 1)?;
+                let tolerance = r.number(&UPSAMPLE_TOLERANCE, 0.5)?;
+                (divisor > 1).then_some(Upsample {
+                    divisor: divisor as u32,
+                    tolerance,
+                })
+            },
         };
         if own.delta_min_m > own.delta_max_m {
             return Err(ModelError::Settings(format!(
@@ -166,6 +180,7 @@ pub struct Qtable2002 {
     /// Each light's part of the screen (`plan::screen_bounds` of its bounding volume).
     bounds: Vec<[f64; 4]>,
     gpu_raster_planes: bool,
+    upsample: Option<Upsample>,
 }
 
 impl Qtable2002 {
@@ -262,6 +277,7 @@ impl Qtable2002 {
             planes,
             bounds,
             gpu_raster_planes: own.gpu_raster_planes,
+            upsample: own.upsample,
         })
     }
 
@@ -294,6 +310,11 @@ impl Qtable2002 {
     /// Whether the GPU draws the planes one by one ([`GPU_RASTER_PLANES`]).
     pub fn gpu_raster_planes(&self) -> bool {
         self.gpu_raster_planes
+    }
+
+    /// The reduced walk and its upsampling, where set ([`RESOLUTION_DIVISOR`] above 1).
+    pub fn upsample(&self) -> Option<Upsample> {
+        self.upsample
     }
 
     /// Each light's planes and sub-plane counts.
@@ -383,16 +404,10 @@ fn table_extent(
 impl BeamMethod for Qtable2002 {
     fn radiance(&self, ray: &SceneRay) -> Result<Vec<f64>, BeamError> {
         let cam = &self.camera;
-        let wl = self.scattering.wavelengths_nm.len();
-        let mut sum = vec![0.0; wl];
         let Some(cos_forward) = cam.forward_cosine("qtable2002", ray)? else {
-            return Ok(sum);
+            return Ok(vec![0.0; self.scattering.wavelengths_nm.len()]);
         };
-        let t_end = self.scattering.ray_end_m(ray);
-        let dt_ray = self.table.interval_m() / cos_forward;
-        let occluders = &self.scattering.scene.occluders;
-        let mut f_h = vec![0.0; wl];
-        // Where the ray meets the screen, to test against each light's part of it.
+        // Where the ray meets the screen, normalised device coordinates.
         let (tan_y, aspect) = (
             (0.5 * cam.vertical_fov_deg.to_radians()).tan(),
             f64::from(cam.width_px) / f64::from(cam.height_px),
@@ -401,6 +416,42 @@ impl BeamMethod for Qtable2002 {
             ray.direction.dot(cam.right) / (cos_forward * tan_y * aspect),
             ray.direction.dot(cam.up) / (cos_forward * tan_y),
         ];
+        let Some(upsample) = &self.upsample else {
+            return Ok(self.walk(ray, cos_forward, ndc));
+        };
+        let size = (cam.width_px, cam.height_px);
+        let frame = (
+            0.5 * (ndc[0] + 1.0) * f64::from(size.0),
+            0.5 * (1.0 - ndc[1]) * f64::from(size.1),
+        );
+        let tap = |x: f64, y: f64| {
+            let tap_ray = cam.ray(x, y);
+            let cos = tap_ray.direction.dot(cam.forward);
+            let ndc = [
+                tap_ray.direction.dot(cam.right) / (cos * tan_y * aspect),
+                tap_ray.direction.dot(cam.up) / (cos * tan_y),
+            ];
+            Ok(Tap {
+                radiance: self.walk(&tap_ray, cos, ndc),
+                end_m: self.scattering.ray_end_m(&tap_ray),
+            })
+        };
+        upsampled(upsample, size, frame, tap, || {
+            Ok(self.walk(ray, cos_forward, ndc))
+        })
+    }
+}
+
+impl Qtable2002 {
+    /// The walk of the planes along `ray` (from the camera, at `cos_forward` to its
+    /// view and meeting the screen at `ndc`): every light's intervals and samples.
+    fn walk(&self, ray: &SceneRay, cos_forward: f64, ndc: [f64; 2]) -> Vec<f64> {
+        let wl = self.scattering.wavelengths_nm.len();
+        let mut sum = vec![0.0; wl];
+        let t_end = self.scattering.ray_end_m(ray);
+        let dt_ray = self.table.interval_m() / cos_forward;
+        let occluders = &self.scattering.scene.occluders;
+        let mut f_h = vec![0.0; wl];
         for (l, light) in self.scattering.scene.lights.iter().enumerate() {
             let [x0, y0, x1, y1] = self.bounds[l];
             if !(x0..=x1).contains(&ndc[0]) || !(y0..=y1).contains(&ndc[1]) {
@@ -454,6 +505,6 @@ impl BeamMethod for Qtable2002 {
                 }
             }
         }
-        Ok(sum)
+        sum
     }
 }
