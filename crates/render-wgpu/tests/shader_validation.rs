@@ -456,7 +456,8 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             geometric_mu_s,
             density_nodes,
             sun_disk,
-            sun_angular_radius
+            sun_angular_radius,
+            nu_edge
         ]
     );
     assert_layout!(
