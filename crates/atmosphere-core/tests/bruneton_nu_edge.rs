@@ -12,9 +12,11 @@ use atmosphere_core::models::bruneton::parameterization::{
 use atmosphere_core::models::bruneton::tables::Table4;
 use atmosphere_core::models::options::ModelOptions;
 
-/// A forward lobe in the true view-sun cosine, as the multiple part's about the sun.
-fn lobe(nu: f64) -> f64 {
-    (3.0 * nu).exp()
+/// A function of the true view-sun cosine growing towards the sun, linear along the
+/// table's nu axis: linear interpolation between the texels' true positions reads it
+/// exactly, so what a read loses is the weighting alone.
+fn lobe(angles: &AngleMapping, nu: f64) -> f64 {
+    1.0 + 4.0 * angles.u_nu(nu)
 }
 
 fn earth_radii() -> Radii {
@@ -31,14 +33,14 @@ fn lobe_table(radii: &Radii, angles: AngleMapping) -> Table4 {
         r: 4,
         mu: 16,
         mu_s: 8,
-        nu: 8,
+        nu: 16,
         angles,
     };
     let mut table = Table4::zeros(size);
     for (i, v) in table.data.iter_mut().enumerate() {
         let (ir, imu, imus, inu) = size.coords(i);
         let (_, _, _, nu, _) = texel_parameters(radii, &size, ir, imu, imus, inu);
-        *v = [lobe(nu) as f32; 3];
+        *v = [lobe(&angles, nu) as f32; 3];
     }
     table
 }
@@ -61,7 +63,7 @@ fn edge_errors(radii: &Radii, table: &Table4) -> Vec<f64> {
                     let step = 0.25 * (high - low) * k as f64 / 8.0;
                     for nu in [low + step, high - step] {
                         let read = table.lookup(radii, r, mu, mu_s, nu, ground)[0];
-                        errors.push((read / lobe(nu) - 1.0).abs());
+                        errors.push((read / lobe(&size.angles, nu) - 1.0).abs());
                     }
                 }
             }
@@ -101,8 +103,10 @@ fn reads_near_the_edge_of_the_nu_range_follow_the_clamped_texels() {
             rms(&clamped),
             max(&clamped)
         );
-        assert!(rms(&clamped) < 0.2 * rms(&nominal));
-        assert!(max(&clamped) < 0.3 * max(&nominal));
+        // The nominal weights misplace the edge's value by up to a texel's spacing (1.9 %
+        // and 0.8 % of the value at the worst ray); the clamped ones read the line exactly.
+        assert!(max(&nominal) > 0.005, "{}", max(&nominal));
+        assert!(max(&clamped) < 1e-5, "{}", max(&clamped));
     }
 }
 
