@@ -155,7 +155,10 @@ fn nu_edge_is_a_switch_named_in_its_error() {
     let on = BrunetonSettings::from_options(&ModelOptions::parse(&["nu_edge=true"]).unwrap());
     assert!(on.unwrap().scattering_size.angles.nu_edge);
     let off = BrunetonSettings::from_options(&ModelOptions::parse::<&str>(&[]).unwrap()).unwrap();
-    assert!(!off.scattering_size.angles.nu_edge, "the paper's weights stay the default");
+    assert!(
+        !off.scattering_size.angles.nu_edge,
+        "the paper's weights stay the default"
+    );
     let e = BrunetonSettings::from_options(&ModelOptions::parse(&["nu_edge=1"]).unwrap())
         .unwrap_err()
         .to_string();

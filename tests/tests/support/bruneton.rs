@@ -23,7 +23,14 @@ pub fn settings(options: &[&str]) -> ModelSettings {
 
 /// A `w` x `h` bruneton frame of `preset` seen from `v` with a vertical field of view of
 /// `fov` degrees.
-pub fn frame(preset: &str, settings: ModelSettings, v: LocalView, fov: f64, w: u32, h: u32) -> Frame {
+pub fn frame(
+    preset: &str,
+    settings: ModelSettings,
+    v: LocalView,
+    fov: f64,
+    w: u32,
+    h: u32,
+) -> Frame {
     let atmosphere = Atmosphere::preset(preset).unwrap();
     Frame {
         camera_position_m: v.position_m(atmosphere.bottom_radius_m),

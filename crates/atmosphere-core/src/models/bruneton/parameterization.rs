@@ -308,8 +308,16 @@ impl NuAxis {
         if low <= c0 && high >= c1 {
             return self.nominal_weight;
         }
-        let a = if low > c0 { self.angles.u_nu(low) } else { self.units[0] };
-        let b = if high < c1 { self.angles.u_nu(high) } else { self.units[1] };
+        let a = if low > c0 {
+            self.angles.u_nu(low)
+        } else {
+            self.units[0]
+        };
+        let b = if high < c1 {
+            self.angles.u_nu(high)
+        } else {
+            self.units[1]
+        };
         if b - a < 1e-3 * (self.units[1] - self.units[0]) {
             return self.nominal_weight;
         }
