@@ -10,6 +10,7 @@ mod support;
 use atmosphere_core::models::bruneton::Bruneton;
 use atmosphere_core::models::id::ModelId;
 use render_wgpu::frame::Frame;
+use render_wgpu::sky::bruneton::BrunetonPass;
 use render_wgpu::{RenderError, Renderer};
 use support::bruneton::{compare_tables, frame, settings};
 use support::{

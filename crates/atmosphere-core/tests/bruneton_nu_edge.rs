@@ -4,13 +4,16 @@
 //! as if it lay a texel's spacing away. A table holding a smooth function of each texel's
 //! true (clamped) nu, read at rays near the edges, shows the difference.
 
+use atmosphere_core::analysis::stability::run_with;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::bruneton::BrunetonSettings;
 use atmosphere_core::models::bruneton::parameterization::{
     AngleMapping, NuAxis, Radii, ScatteringSize, nu_range, table_position, texel_parameters,
 };
 use atmosphere_core::models::bruneton::tables::Table4;
+use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
+use atmosphere_core::models::sky_model::ModelSettings;
 
 /// A function of the true view-sun cosine growing towards the sun, linear along the
 /// table's nu axis: linear interpolation between the texels' true positions reads it
@@ -166,4 +169,18 @@ fn nu_edge_is_a_switch_named_in_its_error() {
         e.contains("bruneton setting nu_edge=1: expected true or false"),
         "{e}"
     );
+}
+
+/// The stability sweep's extreme rays and atmospheres (finite, non-negative, bounded,
+/// continuous), with the setting on: rays straight up and down and suns at the zenith
+/// meet the degenerate ranges of nu.
+#[test]
+fn the_stability_sweep_passes_with_nu_edge() {
+    let settings = ModelSettings {
+        options: ModelOptions::parse(&["nu_edge=true", "nu_by_angle=true"]).unwrap(),
+        ..ModelSettings::default()
+    };
+    let results = run_with(ModelId::Bruneton, &settings).unwrap();
+    let failed: Vec<_> = results.iter().filter(|r| !r.passed).collect();
+    assert!(failed.is_empty(), "{failed:#?}");
 }
