@@ -66,9 +66,9 @@ fn tables_and_frames_match_the_cpu_with_the_nu_edge_weights() {
         return;
     };
     let mut options = REDUCED.to_vec();
-    if std::env::var("NU_LINEAR").is_ok() { options.push("nu_edge=true"); } else { options.extend(["nu_by_angle=true", "nu_edge=true"]);
+    options.extend(["nu_by_angle=true", "nu_edge=true"]);
     let errors = compare_tables(&gpu, "hazy", &options);
-    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}"); }
+    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
     let mut renderer = Renderer::new(gpu).unwrap();
     let mut low_sun = view(2.0, 84.0, 45.0);
     low_sun.sun_azimuth_deg = 30.0;

@@ -187,11 +187,12 @@ fn along_mu_s(a: vec3<f32>, b: vec3<f32>, w: f32, geometric: bool) -> vec3<f32> 
 }
 
 // u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi with `nu_by_angle`
-// (`AngleMapping::u_nu`).
+// (`AngleMapping::u_nu`). acos as atan2(sqrt((1 - nu)(1 + nu)), nu), accurate near
+// nu = -/+1, where `nu_edge`'s weights divide differences of such angles.
 fn u_nu(nu: f32) -> f32 {
     let c = clamp(nu, -1.0, 1.0);
     if bruneton.nu_by_angle == 1u {
-        return clamp(1.0 - acos(c) / PI, 0.0, 1.0);
+        return clamp(1.0 - atan2(sqrt(max((1.0 - c) * (1.0 + c), 0.0)), c) / PI, 0.0, 1.0);
     }
     return 0.5 * (1.0 + c);
 }
