@@ -7,13 +7,12 @@
 
 mod support;
 
-use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::bruneton::Bruneton;
 use atmosphere_core::models::id::ModelId;
-use atmosphere_core::models::sky_model::ModelSettings;
-use render_wgpu::frame::{Frame, LocalView};
-use render_wgpu::sky::bruneton::{BrunetonPass, StoreTable};
-use render_wgpu::{GpuContext, RenderError, Renderer};
+use render_wgpu::frame::Frame;
+use render_wgpu::sky::bruneton::BrunetonPass;
+use render_wgpu::{RenderError, Renderer};
+use support::bruneton::{compare_tables, frame, settings};
 use support::{
     BRUNETON_TABLES, check, check_surface, check_texel_reads, gpu_or_skip, standard_frames, view,
 };
@@ -21,116 +20,6 @@ use support::{
 /// Reduced table sizes for the parity tests (S 8 x 32 x 16 x 8, the paper's sample
 /// counts), so that the CPU and lavapipe build them in seconds.
 const REDUCED: [&str; 4] = ["r=8", "mu=32", "mu_s=16", "nu=8"];
-
-fn settings(options: &[&str]) -> ModelSettings {
-    let mut s = ModelSettings::default();
-    for item in options {
-        let (k, v) = item.split_once('=').unwrap();
-        s.options.set(k, v);
-    }
-    s
-}
-
-fn frame(preset: &str, settings: ModelSettings, v: LocalView, fov: f64, w: u32, h: u32) -> Frame {
-    let atmosphere = Atmosphere::preset(preset).unwrap();
-    Frame {
-        camera_position_m: v.position_m(atmosphere.bottom_radius_m),
-        orientation: v.orientation(),
-        vertical_fov_deg: fov,
-        sun_direction: v.sun_direction(),
-        atmosphere,
-        model: ModelId::Bruneton,
-        settings,
-        exposure_ev100: 14.0,
-        width: w,
-        height: h,
-        terrain: None,
-    }
-}
-
-/// Worst |gpu - cpu| / max(|cpu|, floor) over a table's channels, with the floor a
-/// fraction `floor_share` of the table's largest value; and where.
-fn worst(gpu: &[[f32; 4]], cpu: &[[f32; 3]], floor_share: f64) -> (f64, usize) {
-    assert_eq!(gpu.len(), cpu.len());
-    let peak = cpu
-        .iter()
-        .flat_map(|v| v.iter())
-        .fold(0.0f64, |m, &x| m.max(f64::from(x).abs()));
-    let floor = (peak * floor_share).max(1e-30);
-    let mut out = (0.0, 0);
-    for (i, (g, c)) in gpu.iter().zip(cpu).enumerate() {
-        for k in 0..3 {
-            let e = (f64::from(g[k]) - f64::from(c[k])).abs() / f64::from(c[k]).abs().max(floor);
-            if e > out.0 || e.is_nan() {
-                out = (e, i);
-            }
-        }
-    }
-    out
-}
-
-/// Builds the tables of `preset` on both sides and compares them; returns the worst
-/// relative errors (single Rayleigh, single Mie, multiple, irradiance).
-fn compare_tables(gpu: &GpuContext, preset: &str, options: &[&str]) -> [f64; 4] {
-    let f = frame(
-        preset,
-        settings(options),
-        view(10.0, 80.0, 50.0),
-        60.0,
-        8,
-        8,
-    );
-    let cpu = Bruneton::prepare(&f.atmosphere, &f.settings).unwrap();
-    let mut pass = BrunetonPass::new(gpu).unwrap();
-    let plan = pass.build_tables(gpu, &f).unwrap();
-    let t = &cpu.tables()[0];
-    let size = t.single_rayleigh.size;
-    // The 3D textures in the CPU's order: texel (x = nu * mu_s + mu_s, y = mu, z = r).
-    let from_texture = |k: usize| {
-        let tex = pass.read_scattering_texture(gpu, k).unwrap();
-        (0..size.texels())
-            .map(|i| {
-                let (ir, imu, imus, inu) = size.coords(i);
-                tex[((ir * size.mu + imu) * size.nu + inu) * size.mu_s + imus]
-            })
-            .collect::<Vec<_>>()
-    };
-    let floor = 1e-3;
-    let rayleigh = worst(&from_texture(0), &t.single_rayleigh.data, floor);
-    let mie = t
-        .single_mie
-        .as_ref()
-        .map_or((0.0, 0), |m| worst(&from_texture(1), &m.data, floor));
-    let multiple = worst(&from_texture(2), &t.multiple.data, floor);
-    let e = pass.read_table(gpu, StoreTable::Irradiance).unwrap();
-    let irradiance = worst(&e, &t.irradiance.data, floor);
-    let state = pass.read_orders(gpu).unwrap();
-    let cpu_orders: Vec<_> = cpu.orders().iter().map(|o| (o.order, o.share)).collect();
-    let cpu_last = cpu
-        .orders()
-        .iter()
-        .filter(|o| o.share.is_finite())
-        .map(|o| o.order)
-        .max()
-        .unwrap();
-    println!(
-        "{preset} {options:?}: worst relative error (floor 1e-3 of the peak): single Rayleigh {:.2e} at {}, \
-         single Mie {:.2e} at {}, multiple {:.2e} at {}, irradiance {:.2e} at {}; orders GPU {} {:?}, CPU {:?}; plan {plan}",
-        rayleigh.0,
-        rayleigh.1,
-        mie.0,
-        mie.1,
-        multiple.0,
-        multiple.1,
-        irradiance.0,
-        irradiance.1,
-        state.last_order,
-        &state.shares[1..=(state.last_order as usize + 1).min(63)],
-        cpu_orders,
-    );
-    assert_eq!(state.last_order, cpu_last, "orders differ");
-    [rayleigh.0, mie.0, multiple.0, irradiance.0]
-}
 
 #[test]
 fn tables_match_the_cpu() {
@@ -165,6 +54,31 @@ fn tables_match_the_cpu_with_density_nodes() {
     options.push("density_nodes=true");
     let errors = compare_tables(&gpu, "hazy", &options);
     assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+}
+
+/// The nu weights between the texels' clamped positions (`nu_edge`), with u_nu by angle,
+/// in the hazy atmosphere whose forward lobe about the sun they are for: every table, then
+/// frames from the ground (the view slice) and from orbit (the 3D textures) whose rays
+/// pass near the edge of their nu range.
+#[test]
+fn tables_and_frames_match_the_cpu_with_the_nu_edge_weights() {
+    let Some(gpu) = gpu_or_skip("bruneton nu edge") else {
+        return;
+    };
+    let mut options = REDUCED.to_vec();
+    options.extend(["nu_by_angle=true", "nu_edge=true"]);
+    let errors = compare_tables(&gpu, "hazy", &options);
+    assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let mut low_sun = view(2.0, 84.0, 45.0);
+    low_sun.sun_azimuth_deg = 30.0;
+    for (name, v, fov) in [
+        ("hazy, towards the sun", low_sun, 90.0),
+        ("hazy, from orbit", view(400_000.0, 110.0, 60.0), 40.0),
+    ] {
+        let f = frame("hazy", settings(&options), v, fov, 48, 27);
+        check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
+    }
 }
 
 /// The twilight settings: S and E down to the sun 20 deg below the horizon, u_nu linear

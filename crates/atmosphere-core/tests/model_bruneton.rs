@@ -65,6 +65,7 @@ fn parameterization_round_trips() {
         nu_by_angle: true,
         mu_s_knee: false,
         geometric_mu_s: false,
+        nu_edge: false,
     };
     let knee = AngleMapping {
         min_mu_s: -0.31,

@@ -1,8 +1,7 @@
 //! Every entry pass of `shaders/` (a file with `@compute`, `@vertex` or `@fragment`
-//! functions), composed, must pass naga's WGSL front end and validator, without a GPU;
-//! every library is validated inside the passes that import it, and must have one (a
-//! library may call a function its importer defines, as `common/shade_pixel.wgsl` does);
-//! and the WGSL uniform layouts must match their Rust twins.
+//! functions), composed, passes naga's front end and validator without a GPU; a library
+//! is validated inside the passes importing it and must have one (it may call a function
+//! its importer defines, as `common/shade_pixel.wgsl` does); uniform layouts match Rust's.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -456,7 +455,8 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             geometric_mu_s,
             density_nodes,
             sun_disk,
-            sun_angular_radius
+            sun_angular_radius,
+            nu_edge
         ]
     );
     assert_layout!(

@@ -69,6 +69,9 @@ struct BrunetonParams {
     // (radians).
     sun_disk: u32,
     sun_angular_radius: f32,
+    // 1 when look-ups weigh their nu texels between the texels' positions clamped to the
+    // ray's range of nu.
+    nu_edge: u32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

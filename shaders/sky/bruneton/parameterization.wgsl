@@ -4,7 +4,8 @@
 // mapped over its range at r, one half of the mu axis per side of the horizon; u_mu_s =
 // (1 - exp(-3 (mu_s - min_mu_s))) / (1 - exp(-3 (1 - min_mu_s))), or with `mu_s_knee`
 // the paper's curve from -0.2 continued linearly below it; u_nu = (1 + nu) / 2 or,
-// with `nu_by_angle`, 1 - acos(nu) / pi; E linear in r and mu_s).
+// with `nu_by_angle`, 1 - acos(nu) / pi, and with `nu_edge` the nu weight taken between
+// the texels' positions clamped to the ray's range of nu; E linear in r and mu_s).
 //
 // Radii enter as q = r^2 - bottom^2 (and r mu) rather than r alone: in f32 a radius near
 // 6.4e6 m carries half a metre of rounding, and r - bottom is formed as q / (r + bottom)
@@ -186,11 +187,12 @@ fn along_mu_s(a: vec3<f32>, b: vec3<f32>, w: f32, geometric: bool) -> vec3<f32> 
 }
 
 // u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi with `nu_by_angle`
-// (`AngleMapping::u_nu`).
+// (`AngleMapping::u_nu`). acos as atan2(sqrt((1 - nu)(1 + nu)), nu), accurate near
+// nu = -/+1, where `nu_edge`'s weights divide differences of such angles.
 fn u_nu(nu: f32) -> f32 {
     let c = clamp(nu, -1.0, 1.0);
     if bruneton.nu_by_angle == 1u {
-        return clamp(1.0 - acos(c) / PI, 0.0, 1.0);
+        return clamp(1.0 - atan2(sqrt(max((1.0 - c) * (1.0 + c), 0.0)), c) / PI, 0.0, 1.0);
     }
     return 0.5 * (1.0 + c);
 }
@@ -208,10 +210,46 @@ fn irradiance_x_mu_s(mu_s: f32) -> f32 {
     return clamp((mu_s - bruneton.min_mu_s) / (1.0 - bruneton.min_mu_s), 0.0, 1.0);
 }
 
+// The range of the view-sun cosine that view and sun zenith cosines allow (`nu_range`).
+fn nu_range(mu: f32, mu_s: f32) -> vec2<f32> {
+    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
+    return vec2<f32>(mu * mu_s - s, mu * mu_s + s);
+}
+
 // The view-sun cosine clamped to what the view and sun zenith cosines allow.
 fn clamp_nu(mu: f32, mu_s: f32, nu: f32) -> f32 {
-    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
-    return clamp(nu, mu * mu_s - s, mu * mu_s + s);
+    let range = nu_range(mu, mu_s);
+    return clamp(nu, range.x, range.y);
+}
+
+// `NuAxis::weight`: the weight of the upper nu texel of `a` (placed at u = u_nu(nu)) for
+// a ray of view and sun zenith cosines mu and mu_s. With `nu_edge`, between the two
+// texels' positions clamped to the ray's range [u_nu(nu_min), u_nu(nu_max)]; the nominal
+// weight otherwise, where neither texel is clamped, and where the clamped interval is
+// under a thousandth of the texels' spacing.
+fn nu_edge_weight(a: Axis, u: f32, mu: f32, mu_s: f32) -> f32 {
+    if bruneton.nu_edge == 0u || a.w == 0.0 {
+        return a.w;
+    }
+    let range = nu_range(mu, mu_s);
+    let units = vec2<f32>(texel_unit(a.i, bruneton.nu_size), texel_unit(a.i + 1u, bruneton.nu_size));
+    let cosines = vec2<f32>(nu_from_u(units.x), nu_from_u(units.y));
+    if range.x <= cosines.x && range.y >= cosines.y {
+        return a.w;
+    }
+    let lower = select(units.x, u_nu(range.x), range.x > cosines.x);
+    let upper = select(units.y, u_nu(range.y), range.y < cosines.y);
+    if upper - lower < 1e-3 * (units.y - units.x) {
+        return a.w;
+    }
+    return clamp((u - lower) / (upper - lower), 0.0, 1.0);
+}
+
+// The nu axis of a look-up at (mu, mu_s, nu) (`NuAxis`).
+fn nu_axis(mu: f32, mu_s: f32, nu: f32) -> Axis {
+    let u = u_nu(nu);
+    let a = axis(u, bruneton.nu_size);
+    return Axis(a.i, nu_edge_weight(a, u, mu, mu_s));
 }
 
 // `axis`: the lower texel (at most n - 2) and the weight of the next.
@@ -301,7 +339,7 @@ fn table_position(q: f32, r: f32, r_mu: f32, mu_s: f32, nu: f32, ground: bool) -
         axis(sqrt(max(q, 0.0) / horizon_sq()), bruneton.r_size),
         mu,
         axis(u_mu_s(mu_s), bruneton.mu_s_size),
-        axis(u_nu(nu), bruneton.nu_size),
+        nu_axis(clamp(r_mu / r, -1.0, 1.0), mu_s, nu),
     );
 }
 

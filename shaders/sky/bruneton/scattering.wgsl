@@ -37,18 +37,22 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let tx = texel_of_index(index);
     let ray = row_ray(tx);
-    let nu_axis = axis(u_nu(tx.nu), bruneton.nu_size);
+    let u = u_nu(tx.nu);
+    let nu_at = axis(u, bruneton.nu_size);
     let n = bruneton.view_samples;
     var nodes = start_nodes(ray, n);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i <= n; i++) {
         let node = ray_node(ray, i, &nodes);
         let p = table_position(node.q, node.r, ray.r_mu + node.t, 0.0, 0.0, ray.ground);
-        let s = axis(u_mu_s(node_sun_cosine(ray, node, tx.mu_s, tx.nu)), bruneton.mu_s_size);
+        let mu_s_t = node_sun_cosine(ray, node, tx.mu_s, tx.nu);
+        let s = axis(u_mu_s(mu_s_t), bruneton.mu_s_size);
+        // With `nu_edge` the node's mu and mu_s bound nu, so the weight moves along the ray.
+        let wnu = nu_edge_weight(nu_at, u, clamp((ray.r_mu + node.t) / node.r, -1.0, 1.0), mu_s_t);
         let geometric = geometric_pair(s.i);
-        let a = along_mu_s(plane_entry(p, s.i, nu_axis.i), plane_entry(p, s.i + 1u, nu_axis.i), s.w, geometric);
-        let b = along_mu_s(plane_entry(p, s.i, nu_axis.i + 1u), plane_entry(p, s.i + 1u, nu_axis.i + 1u), s.w, geometric);
-        sum += node.weighted_transmittance * mix(a, b, nu_axis.w);
+        let a = along_mu_s(plane_entry(p, s.i, nu_at.i), plane_entry(p, s.i + 1u, nu_at.i), s.w, geometric);
+        let b = along_mu_s(plane_entry(p, s.i, nu_at.i + 1u), plane_entry(p, s.i + 1u, nu_at.i + 1u), s.w, geometric);
+        sum += node.weighted_transmittance * mix(a, b, wnu);
     }
     store_write(bruneton.delta_s_offset + index, vec4<f32>(sum, 0.0));
 }

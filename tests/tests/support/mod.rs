@@ -11,6 +11,7 @@
 #![allow(dead_code)]
 
 pub mod beams;
+pub mod bruneton;
 pub mod clouds;
 pub mod golden;
 #[path = "../../../crates/app/tests/common/skip.rs"]

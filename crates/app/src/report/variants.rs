@@ -82,6 +82,7 @@ pub fn report_variants() -> Vec<Variant> {
         Variant::new(ModelId::Bruneton, None, &["sun_disk=true"]),
         Variant::new(ModelId::Bruneton, None, &["geometric_mu_s=true"]),
         Variant::new(ModelId::Bruneton, None, &["density_nodes=true"]),
+        Variant::new(ModelId::Bruneton, None, &["nu=16", "nu_edge=true"]),
         Variant::new(
             ModelId::Bruneton,
             None,

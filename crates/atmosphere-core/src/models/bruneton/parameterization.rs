@@ -10,7 +10,8 @@
 //!   ([r - Rg, rho] to the ground, [Rt - r, rho + H] to the top) rather than from
 //!   [0, rho] and [0, rho + H] ([`Radii::x_mu`]); u_mu_s may start at another lowest
 //!   sun cosine (the curve shifted, or continued linearly below -0.2) and u_nu run
-//!   linearly in the scattering angle ([`AngleMapping`]);
+//!   linearly in the scattering angle ([`AngleMapping`]); a look-up may weigh its two nu
+//!   texels between their positions clamped to the ray's range of nu ([`NuAxis`]);
 //! - irradiance E(r, mu_s): linear in r over [Rg, Rt] and in mu_s over [-0.2, 1] (the
 //!   paper's implementation; [min_mu_s, 1] in general).
 //!
@@ -136,6 +137,10 @@ pub struct AngleMapping {
     /// below the horizontal (`tables::along_mu_s`), while building and rendering; linearly
     /// (the paper) everywhere otherwise.
     pub geometric_mu_s: bool,
+    /// Look-ups weigh their two nu texels between the texels' positions clamped to the
+    /// range of nu the ray's (mu, mu_s) allow ([`NuAxis::weight`]) rather than by their
+    /// nominal u_nu (the paper).
+    pub nu_edge: bool,
 }
 
 impl AngleMapping {
@@ -145,6 +150,7 @@ impl AngleMapping {
         nu_by_angle: false,
         mu_s_knee: false,
         geometric_mu_s: false,
+        nu_edge: false,
     };
 
     /// The lowest sun cosine of the paper's curve: `min_mu_s`, or the knee (-0.2) when
@@ -240,10 +246,83 @@ impl AngleMapping {
     }
 }
 
+/// The range of the view-sun cosine that view and sun zenith cosines mu and mu_s allow:
+/// mu mu_s -/+ sqrt((1 - mu^2)(1 - mu_s^2)) (the sun in the view's vertical plane, on
+/// its side or the other).
+pub fn nu_range(mu: f64, mu_s: f64) -> (f64, f64) {
+    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
+    (mu * mu_s - s, mu * mu_s + s)
+}
+
 /// The cosine of the view-sun angle clamped to what view and sun zenith cosines allow.
 pub fn clamp_nu(mu: f64, mu_s: f64, nu: f64) -> f64 {
-    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
-    nu.clamp(mu * mu_s - s, mu * mu_s + s)
+    let (low, high) = nu_range(mu, mu_s);
+    nu.clamp(low, high)
+}
+
+/// A view-sun cosine's place along the nu axis: its lower texel, the nominal weight of
+/// the next, and what [`NuAxis::weight`] needs to move that weight for a ray's (mu, mu_s).
+#[derive(Clone, Copy, Debug)]
+pub struct NuAxis {
+    pub lower: usize,
+    pub nominal_weight: f64,
+    angles: AngleMapping,
+    /// u_nu of the look-up, and of the two texels with their nominal cosines.
+    u: f64,
+    units: [f64; 2],
+    cosines: [f64; 2],
+}
+
+impl NuAxis {
+    /// Where nu falls on an axis of `n` texels of `angles`.
+    pub fn new(angles: &AngleMapping, n: usize, nu: f64) -> NuAxis {
+        let u = angles.u_nu(nu);
+        let (lower, nominal_weight) = axis(u, n);
+        let units = [texel_unit(lower, n), texel_unit((lower + 1).min(n - 1), n)];
+        NuAxis {
+            lower,
+            nominal_weight,
+            angles: *angles,
+            u,
+            units,
+            cosines: units.map(|x| angles.nu_from_u(x)),
+        }
+    }
+
+    /// The weight of the upper texel for a ray of view and sun zenith cosines mu and
+    /// mu_s. Each texel holds its nu clamped to the range its own (mu, mu_s) allow
+    /// ([`clamp_nu`]), so near the edge of that range a texel holds the edge's value, not
+    /// its nominal one. With `nu_edge` the weight is taken between the two texels'
+    /// positions clamped to the ray's range [u_nu(nu_min), u_nu(nu_max)] ([`nu_range`]),
+    /// w = (u - max(u_i, u_nu(nu_min))) / (min(u_i+1, u_nu(nu_max)) - max(u_i, u_nu(nu_min))),
+    /// so that a ray next to the edge reads mostly the texel holding the edge's value.
+    /// The nominal weight without `nu_edge`, where neither texel is clamped, and where
+    /// the clamped interval is under a thousandth of the texels' spacing (mu or mu_s near
+    /// +-1, where they fix nu).
+    pub fn weight(&self, mu: f64, mu_s: f64) -> f64 {
+        if !self.angles.nu_edge || self.nominal_weight == 0.0 {
+            return self.nominal_weight;
+        }
+        let (low, high) = nu_range(mu, mu_s);
+        let [c0, c1] = self.cosines;
+        if low <= c0 && high >= c1 {
+            return self.nominal_weight;
+        }
+        let a = if low > c0 {
+            self.angles.u_nu(low)
+        } else {
+            self.units[0]
+        };
+        let b = if high < c1 {
+            self.angles.u_nu(high)
+        } else {
+            self.units[1]
+        };
+        if b - a < 1e-3 * (self.units[1] - self.units[0]) {
+            return self.nominal_weight;
+        }
+        ((self.u - a) / (b - a)).clamp(0.0, 1.0)
+    }
 }
 
 /// Texel position along an axis of `n` texels for a unit coordinate: the lower texel
@@ -360,7 +439,10 @@ pub fn table_position(
         axis(radii.u_r(r), size.r),
         (if ground { imu } else { imu + half }, wmu),
         axis(size.angles.u_mu_s(mu_s), size.mu_s),
-        axis(size.angles.u_nu(nu), size.nu),
+        {
+            let nu_axis = NuAxis::new(&size.angles, size.nu, nu);
+            (nu_axis.lower, nu_axis.weight(mu, mu_s))
+        },
     ]
 }
 

@@ -113,12 +113,13 @@ pub const SUN_DISK: &str = "sun_disk";
 pub const MU_S_KNEE: &str = "mu_s_knee";
 pub const GEOMETRIC_MU_S: &str = "geometric_mu_s";
 pub const DENSITY_NODES: &str = "density_nodes";
+pub const NU_EDGE: &str = "nu_edge";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
     /// `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`, `sun_disk`, `mie_directions`,
-    /// `geometric_mu_s`, `density_nodes`; the paper's values where absent.
+    /// `geometric_mu_s`, `density_nodes`, `nu_edge`; the paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -133,6 +134,7 @@ impl BrunetonSettings {
                         mu_s_knee: o.flag(MU_S_KNEE, d.scattering_size.angles.mu_s_knee)?,
                         geometric_mu_s: o
                             .flag(GEOMETRIC_MU_S, d.scattering_size.angles.geometric_mu_s)?,
+                        nu_edge: o.flag(NU_EDGE, d.scattering_size.angles.nu_edge)?,
                     },
                 },
                 irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),

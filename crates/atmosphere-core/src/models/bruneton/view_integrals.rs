@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::models::bruneton::builder::{Builder, to_f32};
 use crate::models::bruneton::node_placement::{FINE_PER_NODE, crowded_distance, density_distances};
 use crate::models::bruneton::parameterization::{
-    AngleMapping, axis, table_position, texel_parameters,
+    AngleMapping, NuAxis, table_position, texel_parameters,
 };
 use crate::models::bruneton::tables::{Table4, along_mu_s};
 use crate::optics::column::optical_depth;
@@ -17,6 +17,8 @@ use crate::optics::geometry::radius_at;
 #[derive(Clone, Copy, Debug)]
 struct RayNode {
     r: f64,
+    /// The view's zenith cosine at the node (for `nu_edge`'s weights).
+    mu: f64,
     /// r / r_t and t / r_t, with r the ray's start and t the node's distance: the sun
     /// cosine there is mu_s r / r_t + nu t / r_t.
     start_ratio: f64,
@@ -112,6 +114,7 @@ impl Builder<'_> {
             let p = table_position(&self.radii, &size, r_t, mu_t, 0.0, 0.0, ground);
             nodes.push(RayNode {
                 r: r_t,
+                mu: mu_t,
                 start_ratio: r / r_t,
                 distance_ratio: t / r_t,
                 densities: rho,
@@ -246,15 +249,20 @@ impl Builder<'_> {
                 .map(|n| n.weighted_transmittance.map(|t| t as f32))
                 .collect();
             for &(mu_s, nu) in texels {
-                let (inu, wnu) = axis(size.angles.u_nu(nu), size.nu);
-                let wnu = wnu as f32;
+                let nu_axis = NuAxis::new(&size.angles, size.nu, nu);
+                let inu = nu_axis.lower;
+                // The nu weight moves along the ray with `nu_edge` (the node's mu and
+                // mu_s bound its nu), else it is the texel's own.
+                let fixed = (!size.angles.nu_edge).then_some(nu_axis.nominal_weight as f32);
                 let mut sum = [0.0f32; 3];
                 for ((node, plane), t) in nodes
                     .iter()
                     .zip(planes.chunks_exact(per_node))
                     .zip(&weights)
                 {
-                    let (imus, wmus) = mu_s_axis.at(node.sun_cosine(mu_s, nu));
+                    let mu_s_t = node.sun_cosine(mu_s, nu);
+                    let wnu = fixed.unwrap_or_else(|| nu_axis.weight(node.mu, mu_s_t) as f32);
+                    let (imus, wmus) = mu_s_axis.at(mu_s_t);
                     let lo = &plane[inu * size.mu_s + imus..];
                     let hi = &plane[(inu + 1) * size.mu_s + imus..];
                     for k in 0..3 {

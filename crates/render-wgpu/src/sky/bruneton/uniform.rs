@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout, StoreTable};
 use crate::sky::bruneton::store_chunks::StoreChunks;
 
-/// WGSL `BrunetonParams`, 152 bytes: the sizes of the tables and of the sphere integrals,
+/// WGSL `BrunetonParams`, 156 bytes: the sizes of the tables and of the sphere integrals,
 /// the store's offsets (texels), and what the build depends on besides the atmosphere.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -79,6 +79,9 @@ pub struct BrunetonUniform {
     /// of this angular radius (radians).
     pub sun_disk: u32,
     pub sun_angular_radius: f32,
+    /// 1 when look-ups weigh their nu texels between the texels' positions clamped to
+    /// the ray's range of nu (`AngleMapping::nu_edge`).
+    pub nu_edge: u32,
 }
 
 impl BrunetonUniform {
@@ -141,6 +144,7 @@ impl BrunetonUniform {
             density_nodes: u32::from(settings.density_nodes),
             sun_disk: u32::from(settings.sun_disk),
             sun_angular_radius: atmosphere.sun.angular_radius_rad as f32,
+            nu_edge: u32::from(s.angles.nu_edge),
         }
     }
 }
