@@ -55,7 +55,10 @@ fn a_tiny_view_gives_rows_with_finite_errors_and_reuses_its_reference() {
         .collect();
     for r in &results {
         let v = r.per_view[0];
-        assert!(v.rms.is_finite() && v.max >= v.rms && v.delta_e.is_finite(), "{r:?}");
+        assert!(
+            v.rms.is_finite() && v.max >= v.rms && v.delta_e.is_finite(),
+            "{r:?}"
+        );
         assert!(v.frame_s > 0.0 && v.frame_s.is_finite(), "{r:?}");
     }
     // Two settings, two answers: not the same error.

@@ -1,19 +1,21 @@
 //! One path of the volumes' path tracer, followed from a collision inside a homogeneous
 //! volume (albedo 1) back towards the light, all orders of scattering, as the cloud
-//! path tracer's (`clouds/reference/camera_path.rs`) but with the volume's three
-//! channels on one path:
-//! - at every collision x, next-event estimation of the sun: w_c P_c(nu) E_sun,c(x)
+//! path tracer's (`clouds/reference/camera_path.rs`), each of the frame's three
+//! channels c on its own paths:
+//! - at every collision x, next-event estimation of the sun: w P_c(nu) E_sun,c(x)
 //!   e^(-beta s(x)), with nu the cosine between the path's direction and the sun, E_sun
 //!   the sun through the atmosphere at x (`clouds/reference/sun_light.rs`, a point sun:
-//!   the tables already hold the sun's disc) and s(x) the sun's path inside the volume;
+//!   the tables already hold the sun's disc) and s(x) the sun's path inside the volume,
+//!   P_c and the extinction beta with the forward peak taken as no scattering
+//!   ([`super::phase`]);
 //! - the path then scatters into a direction drawn from the proposal of [`super::phase`]
-//!   (each weight w_c times P_c / q) and flies a distance drawn from e^(-beta t);
+//!   (the weight w times P_c / q) and flies a distance drawn from e^(-beta t);
 //! - where it leaves the volume it takes the light around it from that direction
 //!   (`clouds/reference/environment.rs`, the sky model's radiance, the sun's disc
 //!   excluded so that the sun is counted once), or none when the scene leaves the sky
 //!   out.
 //!
-//! Russian roulette ends paths whose largest weight has fallen below
+//! Russian roulette ends paths whose weight has fallen below
 //! [`ROULETTE_WEIGHT`], unbiased; a path of more than [`MAX_SCATTERINGS`] collisions is
 //! cut.
 
@@ -27,8 +29,8 @@ use crate::models::error::ModelError;
 use crate::models::sky_model::SkyModel;
 use crate::numerics::sampling::{Sampler, direction_around};
 
-/// Below this largest weight a path survives with probability weight / this, its
-/// weights raised by the same factor.
+/// Below this weight a path survives with probability weight / this, its weight
+/// raised to this.
 pub const ROULETTE_WEIGHT: f64 = 0.1;
 /// Collisions at most per path.
 pub const MAX_SCATTERINGS: u32 = 100_000;
@@ -43,6 +45,14 @@ pub struct VolumePaths<'a> {
     pub environment: Option<&'a Environment>,
     /// Unit vector towards the sun.
     pub sun_direction: DVec3,
+}
+
+impl VolumePaths<'_> {
+    /// Channel `c`'s extinction with the forward peak taken as no scattering
+    /// ([`super::phase`]), m^-1.
+    pub fn extinction(&self, c: usize) -> f64 {
+        self.volume.extinction_per_m * (1.0 - self.phase.peak_fraction[c])
+    }
 }
 
 impl std::fmt::Debug for VolumePaths<'_> {
@@ -71,69 +81,54 @@ impl PathLight {
     pub fn total(&self) -> [f64; 3] {
         std::array::from_fn(|c| self.sun_single[c] + self.sun_multiple[c] + self.sky[c])
     }
-
-    /// Every part times `factor`.
-    pub fn scaled(&self, factor: f64) -> PathLight {
-        PathLight {
-            sun_single: self.sun_single.map(|v| v * factor),
-            sun_multiple: self.sun_multiple.map(|v| v * factor),
-            sky: self.sky.map(|v| v * factor),
-        }
-    }
 }
 
-/// The light that the path from the collision `x`, reached along the unit `d`, brings
-/// back towards `-d`, per unit of the path's weight.
+/// The light of channel `c` that the path from the collision `x`, reached along the
+/// unit `d`, brings back towards `-d`, per unit of the path's weight: the sun once,
+/// the sun more times, the sky.
 pub fn trace_from(
     paths: &VolumePaths,
+    c: usize,
     mut x: DVec3,
     mut d: DVec3,
     sampler: &mut Sampler,
-) -> PathLight {
-    let beta = paths.volume.extinction_per_m;
+) -> [f64; 3] {
+    let beta = paths.extinction(c);
     let s = paths.sun_direction;
-    let mut weight = [1.0; 3];
-    let mut score = PathLight::default();
+    let mut weight = 1.0;
+    let [mut sun_single, mut sun_multiple] = [0.0; 2];
     let mut light = [0.0; 3];
     for order in 0..MAX_SCATTERINGS {
         paths.sun.irradiance(x, s, &mut light);
-        if light.iter().any(|e| *e > 0.0) {
+        if light[c] > 0.0 {
             let shadow = (-beta * paths.volume.exit_distance(x, s)).exp();
-            let p = paths.phase.phase(d.dot(s));
-            let sun = if order == 0 {
-                &mut score.sun_single
+            let sun = weight * paths.phase.phase(d.dot(s))[c] * light[c] * shadow;
+            if order == 0 {
+                sun_single += sun;
             } else {
-                &mut score.sun_multiple
-            };
-            for c in 0..3 {
-                sun[c] += weight[c] * p[c] * light[c] * shadow;
+                sun_multiple += sun;
             }
         }
-        let (cos, factor) = paths.phase.sample(sampler);
-        for c in 0..3 {
-            weight[c] *= factor[c];
-        }
-        let largest = weight.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
-        if largest < ROULETTE_WEIGHT {
-            if sampler.uniform() * ROULETTE_WEIGHT >= largest {
-                return score;
+        let (cos, factor) = paths.phase.sample(c, sampler);
+        weight *= factor;
+        if weight.abs() < ROULETTE_WEIGHT {
+            if sampler.uniform() * ROULETTE_WEIGHT >= weight.abs() {
+                return [sun_single, sun_multiple, 0.0];
             }
-            weight = weight.map(|w| w * ROULETTE_WEIGHT / largest);
+            weight = ROULETTE_WEIGHT * weight.signum();
         }
         d = direction_around(d, cos, 2.0 * std::f64::consts::PI * sampler.uniform());
         let free = -(1.0 - sampler.uniform()).ln() / beta;
         if free >= paths.volume.exit_distance(x, d) {
-            if let Some(environment) = paths.environment {
+            let sky = paths.environment.map_or(0.0, |environment| {
                 environment.radiance(d, &mut light);
-                for c in 0..3 {
-                    score.sky[c] += weight[c] * light[c];
-                }
-            }
-            return score;
+                weight * light[c]
+            });
+            return [sun_single, sun_multiple, sky];
         }
         x += d * free;
     }
-    score
+    [sun_single, sun_multiple, 0.0]
 }
 
 /// The light around `volume` for `sky` with the sun towards the unit `sun`, seen from

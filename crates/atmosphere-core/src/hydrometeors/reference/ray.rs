@@ -4,7 +4,9 @@
 //! with L_full the model's answer for the whole ray, L_front and T_front its answer up
 //! to the volume's entry (the model run a second time: the renderer instead takes
 //! L_front as the fraction 1 - T_front of L_full, `hydrometeors/render.rs`), T_v the
-//! volume's transmittance e^(-beta (t1 - t0)) along the ray's interval in it and L_v
+//! volume's transmittance e^(-beta' (t1 - t0)) along the ray's interval in it (beta'
+//! per channel, the forward peak taken as no scattering, [`super::phase`]: what lies
+//! behind arrives through the peak too) and L_v
 //! its own light, path traced ([`super::path`]). Each path's first collision is drawn
 //! inside the interval from the exponential cut at its end and weighted by 1 - T_v
 //! (every path scatters), so no path is spent crossing without a collision. The
@@ -26,7 +28,8 @@ use crate::numerics::sampling::{Sampler, mix_seed};
 pub struct VolumeTracedRay {
     /// The composited radiance, its standard error and the whole ray's transmittance.
     pub radiance: RayRadiance,
-    /// The volume's transmittance along the ray (1 where the ray misses it).
+    /// The volume's transmittance e^(-beta (t1 - t0)) along the ray, its whole
+    /// extinction (1 where the ray misses it).
     pub volume_transmittance: f64,
     /// The volume's light seen from the camera, T_front L_v, in its three parts.
     pub volume_light: PathLight,
@@ -104,7 +107,7 @@ pub fn radiance_path_traced(
     } else {
         RayRadiance::unattenuated(waves)
     };
-    let transmittance = (-paths.volume.extinction_per_m * (t1 - t0)).exp();
+    let transmittance: [f64; 3] = std::array::from_fn(|c| (-paths.extinction(c) * (t1 - t0)).exp());
     let seed = mix_seed(&[
         settings.seed,
         ray.origin_m.x.to_bits(),
@@ -125,7 +128,7 @@ pub fn radiance_path_traced(
     );
     let volume = CloudSegment {
         radiance: tally.total.iter().map(|t| t.estimate().mean).collect(),
-        transmittance: vec![transmittance; waves],
+        transmittance: transmittance.to_vec(),
     };
     let mut answer = composite(&full, &front, &volume);
     answer.radiance_std_error = tally
@@ -137,7 +140,7 @@ pub fn radiance_path_traced(
     let front_t = std::array::from_fn(|c| front.transmittance[c]);
     Ok(VolumeTracedRay {
         radiance: answer,
-        volume_transmittance: transmittance,
+        volume_transmittance: (-paths.volume.extinction_per_m * (t1 - t0)).exp(),
         volume_light: tally.mean_parts(front_t),
         paths: count,
     })
@@ -154,21 +157,26 @@ pub fn trace_segment(
     seed: u64,
     done: impl Fn(&SegmentTally) -> bool,
 ) -> (SegmentTally, u64) {
-    let beta = paths.volume.extinction_per_m;
-    let transmittance = (-beta * (t1 - t0)).exp();
     let mut tally = SegmentTally::default();
     let mut count = 0;
     while count < settings.max_paths {
         for _ in 0..BATCH_PATHS.min(settings.max_paths - count) {
-            let mut sampler = Sampler::new(mix_seed(&[seed, count]));
-            let light = if transmittance < 1.0 {
+            let mut light = PathLight::default();
+            for c in 0..3 {
+                let beta = paths.extinction(c);
+                let transmittance = (-beta * (t1 - t0)).exp();
+                if transmittance >= 1.0 {
+                    continue;
+                }
+                let mut sampler = Sampler::new(mix_seed(&[seed, count, c as u64]));
                 let u = sampler.uniform();
                 let t = t0 - (1.0 - u * (1.0 - transmittance)).ln() / beta;
                 let x = origin + direction * t.min(t1);
-                trace_from(paths, x, direction, &mut sampler).scaled(1.0 - transmittance)
-            } else {
-                PathLight::default()
-            };
+                let [single, multiple, sky] = trace_from(paths, c, x, direction, &mut sampler);
+                light.sun_single[c] = single * (1.0 - transmittance);
+                light.sun_multiple[c] = multiple * (1.0 - transmittance);
+                light.sky[c] = sky * (1.0 - transmittance);
+            }
             tally.add(&light);
             count += 1;
         }
@@ -185,13 +193,13 @@ fn converged(
     tallies: &[Tally; 3],
     full: &RayRadiance,
     front: &RayRadiance,
-    transmittance: f64,
+    transmittance: [f64; 3],
     settings: &PathSettings,
 ) -> bool {
     tallies.iter().enumerate().all(|(c, tally)| {
         let e = tally.estimate();
         let behind = (full.radiance[c] - front.radiance[c]).max(0.0);
-        let total = front.radiance[c] + front.transmittance[c] * e.mean + transmittance * behind;
+        let total = front.radiance[c] + front.transmittance[c] * e.mean + transmittance[c] * behind;
         front.transmittance[c] * e.standard_error <= settings.target_relative_error * total.abs()
     })
 }
