@@ -167,7 +167,8 @@ mod tests {
     fn the_colour_difference_sees_hue_where_luminance_does_not() {
         let color = SpectrumToColor::new(&[680.0, 550.0, 440.0]).unwrap();
         let grey = answer([1.0, 1.0, 1.0]);
-        assert!(colour_differences(&[grey.clone()], &[grey.clone()], &color)[0] < 1e-9);
+        let one = std::slice::from_ref(&grey);
+        assert!(colour_differences(one, one, &color)[0] < 1e-9);
         // More red and less blue at the same luminance: no luminance error, a colour one.
         let weights: Vec<f64> = (0..3)
             .map(|c| {
@@ -178,7 +179,7 @@ mod tests {
             .collect();
         let shift = 0.2;
         let redder = answer([1.0 + shift, 1.0, 1.0 - shift * weights[0] / weights[2]]);
-        let luminance = relative_errors(&[redder.clone()], &[grey.clone()], &color)[0];
+        let luminance = relative_errors(std::slice::from_ref(&redder), one, &color)[0];
         assert!(luminance.abs() < 1e-12, "{luminance}");
         assert!(colour_differences(&[redder], &[grey], &color)[0] > 2.0);
     }

@@ -115,7 +115,7 @@ impl OpticsScene {
         } else {
             0.0
         };
-        Ok(lit_volume(
+        lit_volume(
             self.air(),
             self.volume,
             (self.frame.camera_position_m, self.frame.sun_direction),
@@ -123,7 +123,7 @@ impl OpticsScene {
             RGB_WAVELENGTHS_NM,
             &table_cache(),
         )
-        .with_context(|| format!("optics view {}: the volume's tables", self.view.id))?)
+        .with_context(|| format!("optics view {}: the volume's tables", self.view.id))
     }
 
     /// The renderer's CPU twin for `ray`: the model's pixel with `lit` composited over
