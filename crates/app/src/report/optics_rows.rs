@@ -29,6 +29,7 @@ pub enum RowKind {
     Wavelengths,
     PointSun,
     Steps,
+    PeakUnscattered,
 }
 
 /// One row: the volume's tables and its march.
@@ -36,6 +37,11 @@ pub enum RowKind {
 pub struct OpticsRow {
     pub tables: Tables,
     pub steps: usize,
+    /// A diagnostic, not a setting of the renderer: the march with the forward peak
+    /// taken out of the extinction and the phase table as the reference takes it
+    /// (`hydrometeors/reference/phase.rs`), each channel marched with its own
+    /// extinction: how much of the error that alone removes.
+    pub peak_unscattered: bool,
 }
 
 /// The shipped scenes' settings.
@@ -45,6 +51,7 @@ pub const SHIPPED: OpticsRow = OpticsRow {
         sun_disc: true,
     },
     steps: MARCH_STEPS,
+    peak_unscattered: false,
 };
 
 impl fmt::Display for OpticsRow {
@@ -58,17 +65,22 @@ impl fmt::Display for OpticsRow {
             f,
             "wavelengths={} sun={sun} steps={}",
             self.tables.wavelengths, self.steps
-        )
+        )?;
+        if self.peak_unscattered {
+            f.write_str(" peak=unscattered")?;
+        }
+        Ok(())
     }
 }
 
 impl OpticsRow {
     /// A row as `--variant` writes it: `wavelengths=N` (3 to 128), `sun=disc` or
-    /// `sun=point`, `steps=N` (1 to 1000), in any order, each by default the shipped
-    /// scenes'. Errors name the word and what it may be.
+    /// `sun=point`, `steps=N` (1 to 1000), `peak=unscattered` (the diagnostic), in any
+    /// order, each by default the shipped scenes'. Errors name the word and what it may
+    /// be.
     pub fn parse(text: &str) -> anyhow::Result<OpticsRow> {
         let mut row = SHIPPED;
-        let what = "wavelengths=N, sun=disc, sun=point, steps=N";
+        let what = "wavelengths=N, sun=disc, sun=point, steps=N, peak=unscattered";
         for word in text.split_whitespace() {
             let Some((key, value)) = word.split_once('=') else {
                 bail!("optics variant \"{text}\": \"{word}\" is none of {what}");
@@ -76,6 +88,7 @@ impl OpticsRow {
             match (key, value) {
                 ("sun", "disc") => row.tables.sun_disc = true,
                 ("sun", "point") => row.tables.sun_disc = false,
+                ("peak", "unscattered") => row.peak_unscattered = true,
                 ("wavelengths", n) => {
                     let [lo, hi] = WAVELENGTH_COUNT_RANGE;
                     row.tables.wavelengths = match n.parse::<usize>() {
@@ -102,7 +115,9 @@ impl OpticsRow {
 
     /// What the row changes from the shipped settings (the first that differs).
     pub fn kind(&self) -> RowKind {
-        if self.tables.wavelengths != SHIPPED.tables.wavelengths {
+        if self.peak_unscattered {
+            RowKind::PeakUnscattered
+        } else if self.tables.wavelengths != SHIPPED.tables.wavelengths {
             RowKind::Wavelengths
         } else if self.tables.sun_disc != SHIPPED.tables.sun_disc {
             RowKind::PointSun
@@ -113,14 +128,15 @@ impl OpticsRow {
         }
     }
 
-    /// Whether the GPU pass renders this row (it marches [`MARCH_STEPS`]).
+    /// Whether the GPU pass renders this row (it marches [`MARCH_STEPS`], the
+    /// forward peak in its extinction).
     pub fn on_gpu(&self) -> bool {
-        self.steps == MARCH_STEPS
+        self.steps == MARCH_STEPS && !self.peak_unscattered
     }
 }
 
 /// The report's rows: the shipped settings, fewer wavelengths (the viewer's 16, and 8),
-/// a point sun, and coarser and finer marches.
+/// a point sun, coarser and finer marches, and the diagnostic of the forward peak.
 pub fn optics_rows() -> Vec<OpticsRow> {
     let with = |wavelengths, sun_disc, steps| OpticsRow {
         tables: Tables {
@@ -128,6 +144,7 @@ pub fn optics_rows() -> Vec<OpticsRow> {
             sun_disc,
         },
         steps,
+        peak_unscattered: false,
     };
     vec![
         SHIPPED,
@@ -136,6 +153,10 @@ pub fn optics_rows() -> Vec<OpticsRow> {
         with(32, false, MARCH_STEPS),
         with(32, true, 4),
         with(32, true, 48),
+        OpticsRow {
+            peak_unscattered: true,
+            ..SHIPPED
+        },
     ]
 }
 
@@ -165,6 +186,11 @@ pub fn answer(row: &OpticsRow, scene: &OpticsScene) -> anyhow::Result<RowAnswers
     scene.lit(row.tables)?;
     let start = Instant::now();
     let lit = scene.lit(row.tables)?;
+    let lit = if row.peak_unscattered {
+        scene.peak_unscattered(&lit)?
+    } else {
+        vec![lit]
+    };
     let per_frame_s = start.elapsed().as_secs_f64();
     let answers = scene
         .rays
@@ -212,6 +238,12 @@ mod tests {
         );
         let e = OpticsRow::parse("wavelengths=200").unwrap_err().to_string();
         assert!(e.contains("[3, 128]"), "{e}");
+        assert!(
+            OpticsRow::parse("peak=unscattered")
+                .unwrap()
+                .peak_unscattered
+        );
+        assert!(!optics_rows().last().unwrap().on_gpu());
         let e = OpticsRow::parse("steps=0").unwrap_err().to_string();
         assert!(e.contains("[1, 1000]"), "{e}");
     }

@@ -126,11 +126,30 @@ impl OpticsScene {
         .with_context(|| format!("optics view {}: the volume's tables", self.view.id))
     }
 
-    /// The renderer's CPU twin for `ray`: the model's pixel with `lit` composited over
-    /// it, marched in `steps` steps.
+    /// [`OpticsScene::composite`]'s diagnostic volumes: `lit` with the forward peak
+    /// out of its extinction and its table as the reference takes it, one per channel
+    /// (each channel's own extinction).
+    pub fn peak_unscattered(&self, lit: &LitVolume) -> anyhow::Result<Vec<LitVolume>> {
+        let sampler = ChannelSampler::new(&lit.phase)?;
+        let phase = sampler.truncated_table();
+        Ok((0..3)
+            .map(|c| LitVolume {
+                volume: Volume {
+                    extinction_per_m: lit.volume.extinction_per_m
+                        * (1.0 - sampler.peak_fraction[c]),
+                    ..lit.volume
+                },
+                phase: phase.clone(),
+                light: lit.light,
+            })
+            .collect())
+    }
+
+    /// The renderer's CPU twin for `ray`: the model's pixel with `lit` (one volume, or
+    /// one per channel) composited over it, marched in `steps` steps.
     pub fn composite(
         &self,
-        lit: &LitVolume,
+        lit: &[LitVolume],
         ray: &ViewRay,
         steps: usize,
     ) -> anyhow::Result<CloudAnswer> {
@@ -147,22 +166,29 @@ impl OpticsScene {
         })
     }
 
-    /// `lit` composited over the model's `pixel` for `ray`, marched in `steps` steps.
+    /// `lit` (one volume, or one per channel) composited over the model's `pixel` for
+    /// `ray`, marched in `steps` steps.
     pub fn composite_over(
         &self,
-        lit: &LitVolume,
+        lit: &[LitVolume],
         ray: &ViewRay,
         steps: usize,
         pixel: [f64; 3],
     ) -> [f64; 3] {
-        composite_in_steps(
-            &self.frame.atmosphere,
-            &self.extinction,
-            std::slice::from_ref(lit),
-            (ray.origin_m, ray.direction.normalize(), f64::INFINITY),
-            pixel,
-            steps,
-        )
+        let one = |volume: &LitVolume| {
+            composite_in_steps(
+                &self.frame.atmosphere,
+                &self.extinction,
+                std::slice::from_ref(volume),
+                (ray.origin_m, ray.direction.normalize(), f64::INFINITY),
+                pixel,
+                steps,
+            )
+        };
+        match lit {
+            [volume] => one(volume),
+            per_channel => std::array::from_fn(|c| one(&per_channel[c])[c]),
+        }
     }
 
     /// The path tracer's answers for every ray, in parallel, through `lit` (the

@@ -85,6 +85,30 @@ impl ChannelSampler {
         })
     }
 
+    /// The truncated table P_c' at the bins of the channel table (what a march would
+    /// take with the extinction beta (1 - f_c)).
+    pub fn truncated_table(&self) -> ChannelPhase {
+        let bins = self.phase.values.len();
+        let values = (0..bins)
+            .map(|b| {
+                let angle = (b as f64 + 0.5) * self.phase.bin_deg;
+                std::array::from_fn(|c| {
+                    let edge = self.phase.value_at(FORWARD_PEAK_DEG)[c];
+                    let v = if angle < FORWARD_PEAK_DEG {
+                        edge
+                    } else {
+                        self.phase.values[b][c]
+                    };
+                    v / (1.0 - self.peak_fraction[c])
+                })
+            })
+            .collect();
+        ChannelPhase {
+            values,
+            ..self.phase.clone()
+        }
+    }
+
     /// P_c' at the cosine `cos` of the scattering angle.
     pub fn phase(&self, cos: f64) -> [f64; 3] {
         let angle = cos.clamp(-1.0, 1.0).acos().to_degrees();
