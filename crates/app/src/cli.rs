@@ -375,19 +375,23 @@ pub enum ReportSection {
     /// The cloud methods against the cloud path tracer on four views: clouds.md, its
     /// reference cache clouds_reference.csv and its plots.
     Clouds,
+    /// The rain shaft, cirrus layer and droplet deck against the volumes' path tracer
+    /// on three views: optics.md, its reference cache optics_reference.csv and its
+    /// plots.
+    Optics,
 }
 
 impl ReportArgs {
     /// Whether the report writes `section`. `--model` and `--variant` narrow the skies
-    /// and leave the other sections out, except the clouds when `--section clouds`
-    /// names them (its `--variant`s are then cloud rows).
+    /// and leave the other sections out, except the clouds or the optics when
+    /// `--section` names them (its `--variant`s are then that section's rows).
     pub fn writes(&self, section: ReportSection) -> bool {
         let asked = self.section.is_empty() || self.section.contains(&section);
         let skies_only = !(self.model.is_empty() && self.variant.is_empty());
-        let named_clouds = section == ReportSection::Clouds
+        let named_rows = matches!(section, ReportSection::Clouds | ReportSection::Optics)
             && self.section.contains(&section)
             && self.model.is_empty();
-        asked && (section == ReportSection::Skies || !skies_only || named_clouds)
+        asked && (section == ReportSection::Skies || !skies_only || named_rows)
     }
 }
 
@@ -525,31 +529,39 @@ mod tests {
                 ReportSection::Beams,
                 ReportSection::Shafts,
                 ReportSection::Clouds,
+                ReportSection::Optics,
             ]
             .map(|s| report.writes(s))
         };
-        assert_eq!(sections(&[]), [true, true, true, true]);
+        assert_eq!(sections(&[]), [true; 5]);
         assert_eq!(
             sections(&["--section", "shafts"]),
-            [false, false, true, false]
+            [false, false, true, false, false]
         );
         assert_eq!(
             sections(&["--section", "skies", "--section", "beams"]),
-            [true, true, false, false]
+            [true, true, false, false, false]
         );
-        assert_eq!(sections(&["--model", "riley"]), [true, false, false, false]);
+        assert_eq!(
+            sections(&["--model", "riley"]),
+            [true, false, false, false, false]
+        );
         assert_eq!(
             sections(&["--model", "riley", "--section", "shafts"]),
-            [false, false, false, false]
+            [false; 5]
         );
-        // --variant narrows the clouds section when it is named.
+        // --variant narrows the clouds or the optics section when it is named.
         assert_eq!(
             sections(&["--variant", "riley", "--section", "clouds"]),
-            [false, false, false, true]
+            [false, false, false, true, false]
+        );
+        assert_eq!(
+            sections(&["--variant", "sun=point", "--section", "optics"]),
+            [false, false, false, false, true]
         );
         assert_eq!(
             sections(&["--variant", "riley"]),
-            [true, false, false, false]
+            [true, false, false, false, false]
         );
         assert!(Cli::try_parse_from(["atmos", "report", "--section", "cloud"]).is_err());
     }

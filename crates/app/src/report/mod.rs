@@ -3,7 +3,8 @@
 //! `error_vs_time.png`, `error_vs_gpu_time.png` and `errors.csv`; the light beams of
 //! the shipped beams scenes as `beams.md` and its plots (`beams.rs`); the terrain's light
 //! shafts as `shafts.md` and its plots (`shafts.rs`); the clouds as `clouds.md` and its
-//! plots (`clouds.rs`).
+//! plots (`clouds.rs`); the rain and ice volumes as `optics.md` and its plots
+//! (`optics.rs`).
 
 pub mod beams;
 pub mod clouds;
@@ -19,6 +20,14 @@ pub mod gpu_time;
 pub mod judged_rays;
 pub mod markdown;
 pub mod measure;
+pub mod optics;
+pub mod optics_errors;
+pub mod optics_gpu;
+pub mod optics_markdown;
+pub mod optics_reference;
+pub mod optics_rows;
+pub mod optics_scene;
+pub mod optics_views;
 pub mod plot;
 pub mod reference_cache;
 pub mod shafts;
@@ -46,17 +55,20 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         ReportSection::Beams,
         ReportSection::Shafts,
         ReportSection::Clouds,
+        ReportSection::Optics,
     ];
     if !all.iter().any(|s| args.writes(*s)) {
         bail!(
             "nothing to report: --model and --variant narrow the skies section, which --section leaves out"
         );
     }
-    if args.writes(ReportSection::Skies)
-        && args.writes(ReportSection::Clouds)
-        && !args.variant.is_empty()
-    {
-        bail!("--variant narrows one section at a time: skies or clouds (--section)");
+    let with_rows = [
+        ReportSection::Skies,
+        ReportSection::Clouds,
+        ReportSection::Optics,
+    ];
+    if with_rows.iter().filter(|s| args.writes(**s)).count() > 1 && !args.variant.is_empty() {
+        bail!("--variant narrows one section at a time: skies, clouds or optics (--section)");
     }
     fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
@@ -65,6 +77,9 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
     }
     if args.writes(ReportSection::Clouds) {
         clouds::report_clouds(args)?;
+    }
+    if args.writes(ReportSection::Optics) {
+        optics::report_optics(args)?;
     }
     if args.reference_only {
         return Ok(());

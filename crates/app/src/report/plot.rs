@@ -13,6 +13,7 @@ use atmosphere_core::clouds::layer::settings::LayerMethod;
 use atmosphere_core::models::id::ModelId;
 
 use crate::report::measure::VariantResult;
+use crate::report::optics_rows::RowKind;
 
 const FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans.ttf");
 
@@ -41,13 +42,15 @@ pub const GPU_AXIS: TimeAxis = TimeAxis {
     unit: "x baseline",
 };
 
-/// What a point's colour tells: a sky model, a beam method, or a cloud method (`None`:
-/// the cloud spheres).
+/// What a point's colour tells: a sky model, a beam method, a cloud method (`None`:
+/// the cloud spheres), or what an optics row changes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Series {
     Sky(ModelId),
     Beam(BeamMethodId),
     Cloud(Option<LayerMethod>),
+    /// An optics row, by the setting it changes from the shipped scenes'.
+    Optics(RowKind),
 }
 
 /// One point of the plot.
@@ -150,6 +153,15 @@ fn series_color(series: Series) -> RGBColor {
                 Some(LayerMethod::Octaves) => RGBColor(31, 119, 180),
                 Some(LayerMethod::Eddington) => RGBColor(148, 103, 189),
                 None => RGBColor(44, 160, 44),
+            };
+        }
+        Series::Optics(kind) => {
+            return match kind {
+                RowKind::Shipped => RGBColor(90, 90, 90),
+                RowKind::Wavelengths => RGBColor(31, 119, 180),
+                RowKind::PointSun => RGBColor(255, 127, 14),
+                RowKind::Steps => RGBColor(44, 160, 44),
+                RowKind::PeakUnscattered => RGBColor(214, 39, 40),
             };
         }
         Series::Beam(method) => {

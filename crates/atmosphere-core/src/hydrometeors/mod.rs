@@ -17,6 +17,7 @@ pub mod channel_phase;
 pub mod drop_rays;
 pub mod error;
 pub mod mie_droplets;
+pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod spectral_phase;

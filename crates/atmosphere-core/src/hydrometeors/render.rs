@@ -66,16 +66,28 @@ pub struct VolumeSegment {
 }
 
 /// The march of the ray from `origin` along the unit `direction` (ended at
-/// `max_distance_m`) through `lit`, if it meets it.
+/// `max_distance_m`) through `lit`, if it meets it, in [`MARCH_STEPS`] steps.
 pub fn march(
     lit: &LitVolume,
     origin: DVec3,
     direction: DVec3,
     max_distance_m: f64,
 ) -> Option<VolumeSegment> {
+    march_in_steps(lit, origin, direction, max_distance_m, MARCH_STEPS)
+}
+
+/// [`march`] in `steps` steps (at least one): the report's rows of other step counts.
+pub fn march_in_steps(
+    lit: &LitVolume,
+    origin: DVec3,
+    direction: DVec3,
+    max_distance_m: f64,
+    steps: usize,
+) -> Option<VolumeSegment> {
     let (t0, t1) = lit.volume.segment(origin, direction, max_distance_m)?;
+    let steps = steps.max(1);
     let beta = lit.volume.extinction_per_m;
-    let dt = (t1 - t0) / MARCH_STEPS as f64;
+    let dt = (t1 - t0) / steps as f64;
     let step_transmittance = (-beta * dt).exp();
     let up = origin.normalize_or(DVec3::Z);
     let p = lit
@@ -83,7 +95,7 @@ pub fn march(
         .value_toward(direction, lit.light.sun_direction, up);
     let mut radiance = [0.0; 3];
     let mut t_v = 1.0;
-    for k in 0..MARCH_STEPS {
+    for k in 0..steps {
         let x = origin + direction * (t0 + (k as f64 + 0.5) * dt);
         let sun_path = lit.volume.exit_distance(x, lit.light.sun_direction);
         let sun = (-beta * sun_path).exp();
@@ -137,9 +149,23 @@ pub fn composite(
     max_distance_m: f64,
     full: [f64; 3],
 ) -> [f64; 3] {
+    let ray = (origin, direction, max_distance_m);
+    composite_in_steps(atmosphere, extinction, volumes, ray, full, MARCH_STEPS)
+}
+
+/// [`composite`] with the volumes marched in `steps` steps, for the ray `(origin,
+/// direction, max_distance_m)`.
+pub fn composite_in_steps(
+    atmosphere: &Atmosphere,
+    extinction: &[[f64; 3]; 3],
+    volumes: &[LitVolume],
+    (origin, direction, max_distance_m): (DVec3, DVec3, f64),
+    full: [f64; 3],
+    steps: usize,
+) -> [f64; 3] {
     let mut met: Vec<VolumeSegment> = volumes
         .iter()
-        .filter_map(|v| march(v, origin, direction, max_distance_m))
+        .filter_map(|v| march_in_steps(v, origin, direction, max_distance_m, steps))
         .collect();
     met.sort_by(|a, b| b.entry_m.total_cmp(&a.entry_m));
     met.iter().fold(full, |behind, s| {

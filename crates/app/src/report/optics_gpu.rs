@@ -1,0 +1,97 @@
+//! The optics section's GPU column: each row that the GPU pass renders (its march's
+//! own steps) as its view's scene at [`FRAME_SIZE`] with the row's volume, interleaved
+//! with the same frame without it as `atmos bench --optics-scene` does
+//! (`bench/optics.rs`), so that both see the same load of a shared machine: a warm-up
+//! pair (pipelines, the volume's buffers), then [`FRAMES`] pairs, medians of the
+//! wall-clock times from `render` until the GPU has finished.
+
+use anyhow::{Context, ensure};
+use render_wgpu::Renderer;
+
+use crate::bench::timing::{median, timed};
+use crate::progress::Progress;
+use crate::report::optics_rows::OpticsRow;
+use crate::report::optics_scene::OpticsScene;
+
+/// Measured pairs after the warm-up pair.
+pub const FRAMES: usize = 3;
+
+/// One row's frame of one view, ms.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GpuFrame {
+    pub with_ms: f64,
+    pub without_ms: f64,
+}
+
+/// Every row's frames: `per_row[row][view]`, `None` for a row the GPU does not render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GpuTimes {
+    pub adapter: String,
+    pub per_row: Vec<Vec<Option<GpuFrame>>>,
+}
+
+impl GpuTimes {
+    /// The mean over the views of row `row`'s frame time, ms, and of its ratio to the
+    /// frame without the volume.
+    pub fn mean(&self, row: usize) -> Option<(f64, f64)> {
+        let frames: Vec<GpuFrame> = self.per_row[row].iter().flatten().copied().collect();
+        if frames.is_empty() {
+            return None;
+        }
+        let n = frames.len() as f64;
+        Some((
+            frames.iter().map(|f| f.with_ms).sum::<f64>() / n,
+            frames.iter().map(|f| f.with_ms / f.without_ms).sum::<f64>() / n,
+        ))
+    }
+}
+
+/// Every GPU row on every view.
+pub fn measure_all(rows: &[OpticsRow], scenes: &[OpticsScene]) -> anyhow::Result<GpuTimes> {
+    let mut renderer = Renderer::headless().context("the GPU frame times need an adapter")?;
+    let adapter = renderer.gpu().adapter_summary();
+    let total = rows.iter().filter(|r| r.on_gpu()).count() * scenes.len();
+    let progress = Progress::new("gpu optics frames", "frames", total as u64);
+    let mut per_row = vec![vec![None; scenes.len()]; rows.len()];
+    for (v, scene) in scenes.iter().enumerate() {
+        for (r, row) in rows.iter().enumerate() {
+            if row.on_gpu() {
+                per_row[r][v] = Some(
+                    measure(&mut renderer, row, scene)
+                        .with_context(|| format!("{row} on view {}", scene.view.id))?,
+                );
+                progress.inc();
+            }
+        }
+    }
+    renderer.set_volumes(Vec::new())?;
+    progress.finish();
+    Ok(GpuTimes { adapter, per_row })
+}
+
+fn measure(
+    renderer: &mut Renderer,
+    row: &OpticsRow,
+    scene: &OpticsScene,
+) -> anyhow::Result<GpuFrame> {
+    let lit = scene.lit(row.tables)?;
+    let (mut with, mut without) = (Vec::new(), Vec::new());
+    for k in 0..=FRAMES {
+        renderer.set_volumes(Vec::new())?;
+        let (_, without_ms) = timed(renderer, &scene.frame)?;
+        renderer.set_volumes(vec![lit.clone()])?;
+        let (plan, with_ms) = timed(renderer, &scene.frame)?;
+        ensure!(
+            plan.runs("volumes"),
+            "the frame's plan has no volumes: {plan}"
+        );
+        if k > 0 {
+            with.push(with_ms);
+            without.push(without_ms);
+        }
+    }
+    Ok(GpuFrame {
+        with_ms: median(&with).unwrap_or(f64::NAN),
+        without_ms: median(&without).unwrap_or(f64::NAN),
+    })
+}

@@ -1,0 +1,199 @@
+//! The volumes' path tracer (`hydrometeors/reference/`) against the single-scattering
+//! march it must equal where a volume is optically thin (the same sun, the sky's light
+//! left out on both sides), brighter than it by the orders the march leaves out where
+//! the volume is thicker, the growth of that excess with the optical depth, a volume of
+//! no extinction answered by the air alone, and a falling plates' table refused by name.
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::atmosphere::spectra::Spectra;
+use atmosphere_core::clouds::layer::shell::Shell;
+use atmosphere_core::clouds::reference::settings::PathSettings;
+use atmosphere_core::clouds::reference::sun_light::SunThroughAtmosphere;
+use atmosphere_core::hydrometeors::channel_phase::ChannelPhase;
+use atmosphere_core::hydrometeors::reference::path::VolumePaths;
+use atmosphere_core::hydrometeors::reference::phase::ChannelSampler;
+use atmosphere_core::hydrometeors::reference::ray::{
+    SegmentTally, radiance_path_traced, trace_segment,
+};
+use atmosphere_core::hydrometeors::render::{LitVolume, VolumeLight, march};
+use atmosphere_core::hydrometeors::spectral_phase::{Particles, SpectralPhase};
+use atmosphere_core::hydrometeors::volumes::{Shape, Volume};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::ViewRay;
+use glam::DVec3;
+
+const FRAME_NM: [f64; 3] = [680.0, 550.0, 440.0];
+const RAIN: Particles = Particles::Rain {
+    rain_rate_mm_h: 5.0,
+};
+/// The path tracer's relative standard error on the volume's own light.
+const TARGET: f64 = 0.002;
+
+struct Setup {
+    atmosphere: Atmosphere,
+    phase: ChannelPhase,
+    sun_light: SunThroughAtmosphere,
+    camera: DVec3,
+    /// 60 degrees up in the -Y azimuth.
+    sun: DVec3,
+}
+
+fn setup() -> Setup {
+    let atmosphere = Atmosphere::preset("earth").unwrap();
+    let spectral = SpectralPhase::build(&RAIN, 8, atmosphere.sun.angular_radius_rad).unwrap();
+    let e = 60f64.to_radians();
+    Setup {
+        phase: ChannelPhase::new(&spectral, FRAME_NM).unwrap(),
+        sun_light: SunThroughAtmosphere::new(&atmosphere, &Spectra::new(&atmosphere, &FRAME_NM)),
+        camera: DVec3::X * (atmosphere.bottom_radius_m + 2.0),
+        sun: DVec3::new(e.sin(), -e.cos(), 0.0),
+        atmosphere,
+    }
+}
+
+/// A layer of rain's phase function from 8 to 9 km of vertical optical depth `tau`.
+fn layer(s: &Setup, tau: f64) -> Volume {
+    let ground = s.atmosphere.bottom_radius_m;
+    Volume {
+        shape: Shape::Layer(Shell {
+            ground_radius_m: ground,
+            base_radius_m: ground + 8_000.0,
+            top_radius_m: ground + 9_000.0,
+        }),
+        extinction_per_m: tau / 1_000.0,
+        particles: RAIN,
+    }
+}
+
+/// A shaft 3 km away in +Y, 1 km in radius and 3 km high, of extinction `beta`.
+fn shaft(s: &Setup, beta: f64) -> Volume {
+    let ground = s.atmosphere.bottom_radius_m;
+    let foot = (s.camera + DVec3::Y * 3_000.0).normalize() * ground;
+    let mut v = Volume::rain_shaft(foot, ground, 1_000.0, 3_000.0, 5.0).unwrap();
+    v.extinction_per_m = beta;
+    v
+}
+
+/// Up `elevation_deg` in the +Y azimuth (away from the sun).
+fn look(elevation_deg: f64) -> DVec3 {
+    let e = elevation_deg.to_radians();
+    DVec3::new(e.sin(), e.cos(), 0.0)
+}
+
+/// The march's light and the path tracer's (mean, standard error) for the ray along
+/// `d`, both lit by the same sun (the march's at the middle of the ray's interval in the
+/// volume, which the path tracer's collisions average about) and no sky.
+fn both(s: &Setup, volume: Volume, d: DVec3) -> ([f64; 3], [(f64, f64); 3]) {
+    let segment = volume.segment(s.camera, d, f64::INFINITY).unwrap();
+    let middle = s.camera + d * 0.5 * (segment.0 + segment.1);
+    let mut e = [0.0; 3];
+    s.sun_light.irradiance(middle, s.sun, &mut e);
+    let lit = LitVolume {
+        volume,
+        phase: s.phase.clone(),
+        light: VolumeLight {
+            sun_direction: s.sun,
+            sun_irradiance: e,
+            sky_irradiance: [0.0; 3],
+        },
+    };
+    let marched = march(&lit, s.camera, d, f64::INFINITY).unwrap().radiance;
+    let sampler = ChannelSampler::new(&s.phase).unwrap();
+    let paths = VolumePaths {
+        volume: &lit.volume,
+        phase: &sampler,
+        sun: &s.sun_light,
+        environment: None,
+        sun_direction: s.sun,
+    };
+    let settings = PathSettings {
+        target_relative_error: TARGET,
+        min_paths: 2_048,
+        max_paths: 400_000,
+        seed: 3,
+    };
+    let done = |t: &SegmentTally| {
+        t.total.iter().all(|t| {
+            let e = t.estimate();
+            e.standard_error <= TARGET * e.mean
+        })
+    };
+    let (tallies, _) = trace_segment(&paths, (s.camera, d), segment, &settings, 11, done);
+    let traced = tallies.total.map(|t| {
+        let e = t.estimate();
+        (e.mean, e.standard_error)
+    });
+    (marched, traced)
+}
+
+#[test]
+fn a_thin_volume_path_traced_equals_the_single_scattering_march() {
+    let s = setup();
+    // Optical depths along the rays of about 0.002.
+    for (name, volume, d) in [
+        ("layer", layer(&s, 0.002), look(70.0)),
+        ("shaft", shaft(&s, 1e-6), look(10.0)),
+    ] {
+        let (marched, traced) = both(&s, volume, d);
+        for c in 0..3 {
+            let (mean, error) = traced[c];
+            let difference = (mean - marched[c]).abs();
+            assert!(
+                difference <= 4.0 * error + 0.002 * marched[c],
+                "{name} channel {c}: traced {mean:e} +- {error:e}, marched {:e}",
+                marched[c]
+            );
+        }
+    }
+}
+
+#[test]
+fn a_thicker_layer_is_brighter_than_single_scattering_by_more_the_thicker_it_is() {
+    let s = setup();
+    let excess = |tau: f64| {
+        let (marched, traced) = both(&s, layer(&s, tau), look(70.0));
+        let (mean, error) = traced[1];
+        assert!(
+            mean - marched[1] > 5.0 * error,
+            "tau {tau}: traced {mean:e} +- {error:e}, marched {:e}",
+            marched[1]
+        );
+        mean / marched[1] - 1.0
+    };
+    let (thin, thick) = (excess(0.25), excess(1.0));
+    eprintln!("traced / marched - 1 at 550 nm: tau 0.25 {thin:.4}, tau 1 {thick:.4}");
+    assert!(thick > 1.5 * thin && thin > 0.01, "{thin} {thick}");
+}
+
+#[test]
+fn no_extinction_is_the_air_alone_and_plates_are_refused() {
+    let s = setup();
+    let model = prepare(ModelId::Nishita, &s.atmosphere, &Default::default()).unwrap();
+    let volume = layer(&s, 0.0);
+    let sampler = ChannelSampler::new(&s.phase).unwrap();
+    let paths = VolumePaths {
+        volume: &volume,
+        phase: &sampler,
+        sun: &s.sun_light,
+        environment: None,
+        sun_direction: s.sun,
+    };
+    let ray = ViewRay {
+        origin_m: s.camera,
+        direction: look(70.0),
+        sun_direction: s.sun,
+        max_distance_m: None,
+    };
+    let answer =
+        radiance_path_traced(&paths, model.as_ref(), &ray, &PathSettings::default()).unwrap();
+    let air = model.radiance(&ray).unwrap();
+    for c in 0..3 {
+        let (a, b) = (answer.radiance.radiance[c], air.radiance[c]);
+        assert!((a - b).abs() <= 1e-12 * b, "{a} {b}");
+    }
+    let mut plates = s.phase.clone();
+    plates.sky = Some(atmosphere_core::hydrometeors::spectral_phase::SKY_GRID);
+    let e = ChannelSampler::new(&plates).unwrap_err().to_string();
+    assert!(e.contains("falling plates"), "{e}");
+}
