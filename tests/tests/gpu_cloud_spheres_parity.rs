@@ -34,7 +34,9 @@ use atmosphere_core::optics::legendre_series::LegendreSeries;
 use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::clouds::layer_uniform::LayerCamera;
-use render_wgpu::clouds::spheres::frame_spheres::{CLOUD_IMAGE_FORMAT, FrameSpherePass, SphereScene};
+use render_wgpu::clouds::spheres::frame_spheres::{
+    CLOUD_IMAGE_FORMAT, FrameSpherePass, SphereScene,
+};
 use render_wgpu::clouds::spheres::sphere_cache::SphereCache;
 use render_wgpu::clouds::spheres::sphere_inputs::SphereInputs;
 use render_wgpu::clouds::spheres::sphere_pass::CloudSpherePass;
@@ -253,7 +255,10 @@ fn the_reduced_frame_spheres_match_their_cpu_twin() {
         has_surface: true,
         weight: 1.0,
     };
-    let gpu_image = FrameSpherePass::new(&gpu).unwrap().render(&gpu, &scene).unwrap();
+    let gpu_image = FrameSpherePass::new(&gpu)
+        .unwrap()
+        .render(&gpu, &scene)
+        .unwrap();
     let spheres = CloudSpheres::new(&layer(), &settings, light.sun_direction).unwrap();
     let direction = |x: f64, y: f64| camera.direction_at(x, y);
     let end_m = |x: u32, _: u32| if on_wall(x) { WALL_M } else { f64::INFINITY };

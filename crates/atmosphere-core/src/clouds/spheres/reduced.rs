@@ -74,7 +74,9 @@ pub fn spheres_image(
         )));
     }
     if divisor == 0 {
-        return Err(CloudError("cloud spheres' image: resolution divisor 0".into()));
+        return Err(CloudError(
+            "cloud spheres' image: resolution divisor 0".into(),
+        ));
     }
     let shade = |direction: DVec3, end_m: f64| {
         let (cloud, _) = spheres_only(spheres, orders, light, view.origin, direction, end_m);
@@ -107,7 +109,14 @@ pub fn spheres_image(
     }
     let full_segments: Vec<Segment> = (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
-        .map(|(x, y)| span(spheres.shells(), view.origin, full_ray(x, y), (view.end_m)(x, y)))
+        .map(|(x, y)| {
+            span(
+                spheres.shells(),
+                view.origin,
+                full_ray(x, y),
+                (view.end_m)(x, y),
+            )
+        })
         .collect();
     let reduced = ReducedMarch {
         image: &image,

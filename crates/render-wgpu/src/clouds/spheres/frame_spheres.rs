@@ -265,7 +265,13 @@ impl FrameSpherePass {
             CLOUD_IMAGE_FORMAT,
             usage | wgpu::TextureUsages::COPY_SRC,
         );
-        let front = texture_2d(&gpu.device, "cloud spheres' front", size, GEOMETRY_FORMAT, usage);
+        let front = texture_2d(
+            &gpu.device,
+            "cloud spheres' front",
+            size,
+            GEOMETRY_FORMAT,
+            usage,
+        );
         let images = SphereImages {
             layer: &layer,
             out: &out,
