@@ -51,6 +51,7 @@ fn spheres(layer: &CloudLayer, count: u32, sun: DVec3) -> CloudSpheres {
     let settings = SphereSettings {
         count,
         attenuation_width: 16,
+        ..SphereSettings::default()
     };
     CloudSpheres::new(layer, &settings, sun).unwrap()
 }

@@ -89,6 +89,7 @@ fn along_single_rays_the_spheres_follow_a_fine_march() {
             let settings = SphereSettings {
                 count,
                 attenuation_width: 64,
+                ..SphereSettings::default()
             };
             let spheres = CloudSpheres::new(&deck, &settings, sun).unwrap();
             let (cloud, _) = spheres_only(&spheres, &orders, &light, origin, d, f64::INFINITY);

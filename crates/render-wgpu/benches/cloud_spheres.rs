@@ -6,7 +6,12 @@
 //! interleaved, medians. The spheres pass is timed by the wall clock around its dispatch
 //! and read-back (lavapipe's timestamps around a lone compute pass read about 0.1 ms
 //! whatever it does), so its ratio includes the read-back; the attenuation textures are
-//! made on the CPU once for the sun and timed apart.
+//! made on the CPU once for the sun and timed apart. The frames' spheres step
+//! (`FrameSpherePass`, no surface, the layer's weight 0) is timed the same way at each
+//! resolution divisor, every pixel shaded (1) and reduced and upsampled by span (2, 3,
+//! 4), and each reduced image's error against the divisor 1 image is printed: the mean
+//! absolute radiance difference over the mean radiance, and the largest transmittance
+//! difference.
 //!
 //! Run: `cargo bench -p render-wgpu --bench cloud_spheres` (on lavapipe:
 //! `WGPU_BACKEND=vulkan VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json`).
@@ -30,6 +35,10 @@ use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::layer_uniform::LayerCamera;
+use render_wgpu::clouds::spheres::frame_spheres::{
+    CLOUD_IMAGE_FORMAT, FrameSpherePass, SphereScene,
+};
+use render_wgpu::clouds::spheres::sphere_cache::SphereCache;
 use render_wgpu::clouds::spheres::sphere_inputs::SphereInputs;
 use render_wgpu::clouds::spheres::sphere_pass::CloudSpherePass;
 use render_wgpu::clouds::spheres::sphere_uniform::SphereUniform;
@@ -38,10 +47,32 @@ use render_wgpu::frame::{Frame, LocalView};
 const ROUNDS: usize = 3;
 const WIDTH: u32 = 1280;
 const HEIGHT: u32 = 720;
+/// The frames' spheres step's resolution divisors timed.
+const DIVISORS: [u32; 4] = [1, 2, 3, 4];
 
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]
+}
+
+/// Henyey-Greenstein tables of g = 0.85 at the three wavelengths.
+fn orders_of_droplets() -> ScatteringOrders {
+    let series = LegendreSeries::henyey_greenstein(0.85, 300);
+    ScatteringOrders::new(&vec![series; 3]).unwrap()
+}
+
+/// The mean absolute radiance difference of `image` from `reference` over the
+/// reference's mean radiance, and the largest transmittance difference.
+fn image_error(image: &[[f32; 4]], reference: &[[f32; 4]]) -> (f64, f64) {
+    let (mut difference, mut total, mut transmittance) = (0.0, 0.0, 0.0f64);
+    for (p, q) in image.iter().zip(reference) {
+        for c in 0..3 {
+            difference += f64::from((p[c] - q[c]).abs());
+            total += f64::from(q[c]);
+        }
+        transmittance = transmittance.max(f64::from((p[3] - q[3]).abs()));
+    }
+    (difference / total, transmittance)
 }
 
 fn main() {
@@ -69,14 +100,14 @@ fn main() {
     let mut renderer = Renderer::headless().expect("a GPU adapter");
     let cover = GeneratedCover::new(CoverParameters::default()).unwrap();
     let grid = CoverGrid::rasterize(2048, 1024, |p| cover.cover(p)).unwrap();
+    let cache = SphereCache::new(grid.clone(), orders_of_droplets());
     let settings = LayerSettings {
         method: LayerMethod::Octaves,
         ..LayerSettings::default()
     };
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     let layer = CloudLayer::new(settings, atmosphere.bottom_radius_m, grid, phase).unwrap();
-    let series = LegendreSeries::henyey_greenstein(0.85, 300);
-    let orders = ScatteringOrders::new(&vec![series; 3]).unwrap();
+    let orders = orders_of_droplets();
     let start = Instant::now();
     let spheres =
         CloudSpheres::new(&layer, &SphereSettings::default(), frame.sun_direction).unwrap();
@@ -101,7 +132,41 @@ fn main() {
         up: frame.camera_position_m.normalize(),
     };
     let params = SphereUniform::new(&camera, &light, &spheres).unwrap();
+    let frame_pass = FrameSpherePass::new(gpu).unwrap();
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+    let no_surface = render_wgpu::gpu::pipeline::texture_2d(
+        &gpu.device,
+        "no surface",
+        (1, 1),
+        CLOUD_IMAGE_FORMAT,
+        usage,
+    )
+    .create_view(&Default::default());
+    let sphere_settings: Vec<SphereSettings> = DIVISORS
+        .iter()
+        .map(|&resolution_divisor| SphereSettings {
+            resolution_divisor,
+            ..SphereSettings::default()
+        })
+        .collect();
+    let scene = |spheres| SphereScene {
+        camera,
+        layer: &settings,
+        spheres,
+        light: &light,
+        bottom_radius_m: atmosphere.bottom_radius_m,
+        cache: &cache,
+        surface: &no_surface,
+        has_surface: false,
+        weight: 1.0,
+    };
+    // The frames' spheres are made on the CPU at their first use; not timed.
+    let reference = frame_pass
+        .render(renderer.gpu(), &scene(&sphere_settings[0]))
+        .unwrap();
     let (mut sky_ms, mut frame_ms, mut spheres_ms) = (Vec::new(), Vec::new(), Vec::new());
+    let mut step_ms = vec![Vec::new(); DIVISORS.len()];
+    let mut errors = vec![(0.0, 0.0); DIVISORS.len()];
     let mut clouded = 0;
     for _ in 0..ROUNDS {
         let start = Instant::now();
@@ -116,6 +181,12 @@ fn main() {
         let pixels = pass.render(renderer.gpu(), &params, &inputs).unwrap();
         spheres_ms.push(start.elapsed().as_secs_f64() * 1e3);
         clouded = pixels.iter().filter(|p| p[3] < 0.5).count();
+        for (k, spheres) in sphere_settings.iter().enumerate() {
+            let start = Instant::now();
+            let image = frame_pass.render(renderer.gpu(), &scene(spheres)).unwrap();
+            step_ms[k].push(start.elapsed().as_secs_f64() * 1e3);
+            errors[k] = image_error(&image, &reference);
+        }
     }
     let (sky, whole, spheres) = (median(sky_ms), median(frame_ms), median(spheres_ms));
     println!(
@@ -130,4 +201,14 @@ fn main() {
         spheres / sky,
         spheres / whole
     );
+    for ((divisor, times), (radiance, transmittance)) in DIVISORS.iter().zip(step_ms).zip(errors) {
+        let step = median(times);
+        println!(
+            "frames' spheres step, divisor {divisor}: {step:.1} ms (wall clock, with \
+             read-back), {:.3} x the hillaire pass; against divisor 1: radiance {:.2} %, \
+             transmittance {transmittance:.3}",
+            step / sky,
+            100.0 * radiance
+        );
+    }
 }

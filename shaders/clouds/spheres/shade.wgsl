@@ -123,8 +123,9 @@ fn phase_a1(nu: f32) -> vec3<f32> {
 }
 
 // The radiance (rgb) and transmittance (a) of the crossing [t0, t1] of shell k by the
-// ray from o along the unit d.
-fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32) -> vec4<f32> {
+// ray from o along the unit d, whose scattering angle gives A_1 = `single` (one read
+// per ray).
+fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32, single: vec3<f32>) -> vec4<f32> {
     let start = o + d * t0;
     let end = o + d * t1;
     let middle = (start + end) / 2.0;
@@ -139,7 +140,6 @@ fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32) -> vec4<
     let up_a = sigma * max(top - length(start), 0.0);
     let up_b = sigma * max(top - length(end), 0.0);
     let sky = exp(-up_a) * tau_v * exp_ratio(tau_v + up_b - up_a) / (2.0 * PI);
-    let single = phase_a1(dot(d, spheres.sun_direction.xyz));
     var sun = vec3<f32>(0.0);
     var a = 1.0;
     var b = 1.0;
@@ -185,6 +185,7 @@ fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
         halves = 1u;
     }
     let m = spheres.counts.x;
+    let single = phase_a1(dot(d, spheres.sun_direction.xyz));
     var result = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     var first = -1.0;
     for (var half = 0u; half < halves; half++) {
@@ -219,7 +220,7 @@ fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
                 if first < 0.0 {
                     first = t0;
                 }
-                let c = shade_crossing(o, d, k, t0, t1);
+                let c = shade_crossing(o, d, k, t0, t1, single);
                 result = vec4<f32>(result.rgb + result.a * c.rgb, result.a * c.a);
             }
         }

@@ -73,6 +73,11 @@ pub struct CloudFlags {
     /// blended between) [default: auto].
     #[arg(long = "cloud-form", value_name = "auto|layer|spheres")]
     pub form: Option<String>,
+    /// Shade the cloud spheres for one ray per N x N pixels and bring them to full size
+    /// by each ray's span of the layer, N in [1, 4] (from orbit a texel of theirs spans
+    /// many pixels) [default: 1, every pixel].
+    #[arg(long = "cloud-sphere-divisor", value_name = "N")]
+    pub sphere_divisor: Option<u32>,
 }
 
 impl CloudFlags {
@@ -93,7 +98,21 @@ impl CloudFlags {
             quality: flags.quality.or(self.quality),
             sun_light: flags.sun_light.or(self.sun_light),
             form: flags.form.or(self.form),
+            sphere_divisor: flags.sphere_divisor.or(self.sphere_divisor),
         }
+    }
+
+    /// The spheres' settings of `--cloud-sphere-divisor`, the rest their defaults; a
+    /// divisor out of its range is an error naming the flag.
+    pub fn sphere_settings(&self) -> anyhow::Result<SphereSettings> {
+        let spheres = SphereSettings {
+            resolution_divisor: self.sphere_divisor.unwrap_or(1),
+            ..SphereSettings::default()
+        };
+        spheres
+            .check()
+            .map_err(|e| anyhow::anyhow!("--cloud-sphere-divisor: {e}"))?;
+        Ok(spheres)
     }
 
     /// The layer's settings when the clouds are on, `None` when off; a value out of its
@@ -228,6 +247,7 @@ pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
 pub struct CloudInputs {
     pub settings: LayerSettings,
     pub form: CloudForm,
+    pub spheres: SphereSettings,
     pub cover: CoverGrid,
     pub orders: ScatteringOrders,
 }
@@ -241,6 +261,7 @@ impl CloudInputs {
         Ok(Some(CloudInputs {
             settings,
             form: flags.form()?,
+            spheres: flags.sphere_settings()?,
             cover: flags.cover_grid()?,
             orders: droplet_orders()?,
         }))
@@ -255,7 +276,7 @@ impl CloudInputs {
             settings: self.settings,
             light,
             form: self.form,
-            spheres: SphereSettings::default(),
+            spheres: self.spheres,
             prune: true,
         }))?;
         Ok(())
@@ -345,6 +366,24 @@ mod tests {
             e.contains("--cloud-method") && e.contains("riley, octaves"),
             "{e}"
         );
+        let e = CloudFlags {
+            sphere_divisor: Some(5),
+            ..on()
+        }
+        .sphere_settings()
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("--cloud-sphere-divisor") && e.contains("= 5 must lie in [1, 4]"),
+            "{e}"
+        );
+        let spheres = CloudFlags {
+            sphere_divisor: Some(3),
+            ..on()
+        }
+        .sphere_settings()
+        .unwrap();
+        assert_eq!(spheres.resolution_divisor, 3);
         let e = CloudFlags {
             form: Some("volume".into()),
             ..on()

@@ -42,6 +42,7 @@ pub struct CloudSpheres {
     attenuation: AttenuationTextures,
     albedo: f64,
     octaves: u32,
+    extinction_per_m: f64,
 }
 
 impl CloudSpheres {
@@ -68,6 +69,7 @@ impl CloudSpheres {
             attenuation,
             albedo: layer.settings().albedo,
             octaves: layer.settings().octaves,
+            extinction_per_m: layer.settings().extinction_per_m,
         })
     }
 
@@ -89,6 +91,11 @@ impl CloudSpheres {
 
     pub fn octaves(&self) -> u32 {
         self.octaves
+    }
+
+    /// The layer's densest extinction, m^-1 (at full cover, no erosion).
+    pub fn extinction_per_m(&self) -> f64 {
+        self.extinction_per_m
     }
 
     /// The light `crossing` of the ray from `origin` along the unit `direction` sends

@@ -3,13 +3,15 @@
 //! ([`shells`], [`settings`]), each with a cloud texture of its part of the layer's cloud
 //! ([`cloud_textures`]) and an attenuation texture of the sun's light reaching it
 //! ([`attenuation`]), lit and crossed by view rays ([`field`]) and composited back to
-//! front with a sky model ([`composite`]); [`handover`] chooses between them and the
-//! layer by the camera's altitude.
+//! front with a sky model ([`composite`]), in frames at a reduced resolution brought to
+//! full size by segment ([`reduced`]); [`handover`] chooses between them and the layer
+//! by the camera's altitude.
 
 pub mod attenuation;
 pub mod cloud_textures;
 pub mod composite;
 pub mod field;
 pub mod handover;
+pub mod reduced;
 pub mod settings;
 pub mod shells;

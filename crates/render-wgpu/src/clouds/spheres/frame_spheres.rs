@@ -3,10 +3,14 @@
 //! the spheres' weight of the hand-over (atmosphere-core's `clouds/spheres/handover.rs`),
 //! and where each ray enters the cloud, written where the layer's march writes them so
 //! that the model's second run and the composite take the spheres as they take the
-//! layer (docs/clouds.md, "Cloud spheres in frames").
+//! layer (docs/clouds.md, "Cloud spheres in frames"). With the spheres' resolution
+//! divisor above 1, one ray per divisor x divisor pixels is shaded
+//! (`frame_reduced.wgsl`) and brought to full size by the span each ray crossed
+//! (`frame_upsample.wgsl`, twin of atmosphere-core's `clouds/spheres/reduced.rs`).
 
 use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::layer::upsample::reduced_size;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 
 use crate::clouds::layer_uniform::LayerCamera;
@@ -16,12 +20,15 @@ use crate::frame::surface_buffer::GEOMETRY_FORMAT;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
+    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
+use crate::gpu::readback::read_texture;
 
 /// The format of the cloud images the pass reads (the layer's) and writes.
 pub const CLOUD_IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The reduced rays' spans of the layer, (t0, t1) per ray.
+const SPAN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
 /// What the spheres of a frame are made of and seen from.
 #[derive(Debug)]
@@ -52,10 +59,12 @@ pub struct SphereImages<'a> {
     pub front: &'a wgpu::Texture,
 }
 
-/// The compiled pass and its parameter buffers.
+/// The compiled passes (every pixel; reduced and upsampled) and their parameter buffers.
 #[derive(Debug)]
 pub struct FrameSpherePass {
     pipeline: ComputePipeline,
+    reduced: ComputePipeline,
+    upsample: ComputePipeline,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
 }
@@ -74,13 +83,36 @@ impl FrameSpherePass {
             uniform_entry(7, 16),
             texture_entry(8, D2),
         ];
+        let reduced = [
+            entries[0],
+            entries[1],
+            entries[2],
+            entries[3],
+            entries[4],
+            entries[6],
+            entries[7],
+            storage_texture_entry(9, SPAN_FORMAT, D2),
+        ];
+        let mut upsample = entries.to_vec();
+        upsample.extend([texture_entry(9, D2), texture_entry(10, D2)]);
+        let pipeline = |shader, label, entries: &[wgpu::BindGroupLayoutEntry]| {
+            ComputePipeline::new(gpu, shader, "main", label, entries)
+        };
         Ok(FrameSpherePass {
-            pipeline: ComputePipeline::new(
-                gpu,
+            pipeline: pipeline(
                 "clouds/spheres/frame_image.wgsl",
-                "main",
                 "cloud spheres in frames",
                 &entries,
+            )?,
+            reduced: pipeline(
+                "clouds/spheres/frame_reduced.wgsl",
+                "cloud spheres in frames, reduced",
+                &reduced,
+            )?,
+            upsample: pipeline(
+                "clouds/spheres/frame_upsample.wgsl",
+                "cloud spheres in frames, upsample",
+                &upsample,
             )?,
             params: uniform_buffer(
                 &gpu.device,
@@ -107,6 +139,10 @@ impl FrameSpherePass {
                 scene.weight
             )));
         }
+        scene
+            .spheres
+            .check()
+            .map_err(|e| RenderError::Frame(e.to_string()))?;
         let made = scene.cache.get(
             gpu,
             scene.layer,
@@ -119,36 +155,132 @@ impl FrameSpherePass {
         };
         let params = SphereUniform::new(&scene.camera, scene.light, &made.spheres)?;
         gpu.write_uniform(&self.params, &params);
+        let divisor = scene.spheres.resolution_divisor;
         let flags = [
             f32::from(u8::from(scene.has_surface)),
             scene.weight as f32,
-            0.0,
-            0.0,
+            divisor as f32,
+            scene.layer.extinction_per_m as f32,
         ];
         gpu.write_uniform(&self.flags, &flags);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (layer, out, front) = (view(images.layer), view(images.out), view(images.front));
-        let bind_group = self.pipeline.bind_group(
-            gpu,
-            &[
-                self.params.as_entire_binding(),
-                made.inputs.cloud_depths.as_entire_binding(),
-                made.inputs.sun_ratios.as_entire_binding(),
-                made.inputs.single_phase.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&out),
-                wgpu::BindingResource::TextureView(&front),
-                wgpu::BindingResource::TextureView(scene.surface),
-                self.flags.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&layer),
-            ],
+        let inputs = [
+            (0, self.params.as_entire_binding()),
+            (1, made.inputs.cloud_depths.as_entire_binding()),
+            (2, made.inputs.sun_ratios.as_entire_binding()),
+            (3, made.inputs.single_phase.as_entire_binding()),
+            (6, wgpu::BindingResource::TextureView(scene.surface)),
+            (7, self.flags.as_entire_binding()),
+        ];
+        let written = [
+            (4, wgpu::BindingResource::TextureView(&out)),
+            (5, wgpu::BindingResource::TextureView(&front)),
+            (8, wgpu::BindingResource::TextureView(&layer)),
+        ];
+        if divisor <= 1 {
+            let bind_group = self
+                .pipeline
+                .bind_group_numbered(gpu, &[inputs.as_slice(), &written].concat());
+            self.pipeline.dispatch(
+                encoder,
+                "cloud spheres in frames",
+                &bind_group,
+                texel_groups(images.out),
+                timestamps,
+            );
+            return Ok(());
+        }
+        let size = reduced_size(images.out.width(), images.out.height(), divisor);
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let image = texture_2d(
+            &gpu.device,
+            "cloud spheres reduced",
+            size,
+            CLOUD_IMAGE_FORMAT,
+            usage,
         );
-        self.pipeline.dispatch(
+        let spans = texture_2d(
+            &gpu.device,
+            "cloud spheres reduced spans",
+            size,
+            SPAN_FORMAT,
+            usage,
+        );
+        let groups = texel_groups(&image);
+        let (image, spans) = (view(&image), view(&spans));
+        let (start, end) = split_timestamps(timestamps);
+        let reduced = [
+            (4, wgpu::BindingResource::TextureView(&image)),
+            (9, wgpu::BindingResource::TextureView(&spans)),
+        ];
+        let bind_group = self
+            .reduced
+            .bind_group_numbered(gpu, &[inputs.as_slice(), &reduced].concat());
+        self.reduced.dispatch(
             encoder,
-            "cloud spheres in frames",
+            "cloud spheres in frames, reduced",
+            &bind_group,
+            groups,
+            start,
+        );
+        let read = [
+            (9, wgpu::BindingResource::TextureView(&image)),
+            (10, wgpu::BindingResource::TextureView(&spans)),
+        ];
+        let bind_group = self
+            .upsample
+            .bind_group_numbered(gpu, &[inputs.as_slice(), &written, &read].concat());
+        self.upsample.dispatch(
+            encoder,
+            "cloud spheres in frames, upsample",
             &bind_group,
             texel_groups(images.out),
-            timestamps,
+            end,
         );
         Ok(())
+    }
+
+    /// The spheres of `scene` alone, as the composite would take them with the layer's
+    /// weight 0 (`scene.weight` must be 1), read back row by row: [radiance at 680, 550,
+    /// 440 nm, transmittance] per pixel of its camera. For tests and benches.
+    pub fn render(
+        &self,
+        gpu: &GpuContext,
+        scene: &SphereScene<'_>,
+    ) -> Result<Vec<[f32; 4]>, RenderError> {
+        if scene.weight != 1.0 {
+            return Err(RenderError::Frame(format!(
+                "cloud spheres alone: weight = {} must be 1 (no layer to blend with)",
+                scene.weight
+            )));
+        }
+        let size = (scene.camera.width, scene.camera.height);
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let layer = texture_2d(&gpu.device, "no layer", (1, 1), CLOUD_IMAGE_FORMAT, usage);
+        let out = texture_2d(
+            &gpu.device,
+            "cloud spheres alone",
+            size,
+            CLOUD_IMAGE_FORMAT,
+            usage | wgpu::TextureUsages::COPY_SRC,
+        );
+        let front = texture_2d(
+            &gpu.device,
+            "cloud spheres' front",
+            size,
+            GEOMETRY_FORMAT,
+            usage,
+        );
+        let images = SphereImages {
+            layer: &layer,
+            out: &out,
+            front: &front,
+        };
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        self.encode(gpu, &mut encoder, scene, &images, None)?;
+        gpu.queue.submit([encoder.finish()]);
+        let bytes = read_texture(gpu, &out, 16)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
     }
 }

@@ -65,9 +65,13 @@ impl SphereCache {
         bottom_radius_m: f64,
         sun: DVec3,
     ) -> Result<MutexGuard<'_, Option<MadeSpheres>>, RenderError> {
+        // The resolution divisor is how a frame shades them, not what they are.
         let key = SphereKey {
             layer: *layer,
-            spheres: *spheres,
+            spheres: SphereSettings {
+                resolution_divisor: 1,
+                ..*spheres
+            },
             bottom_radius_m,
             sun,
         };
