@@ -256,6 +256,7 @@ fn inside_the_layer_the_second_run_is_skipped_and_the_frame_still_matches_the_cp
         form: CloudForm::Layer,
         spheres: SphereSettings::default(),
         prune: true,
+        shafts: false,
     };
     let (gpu, plan) = render(&mut renderer, &frame, Some(clouds));
     assert!(
@@ -300,6 +301,7 @@ fn composited_frames_match_the_cpu_composite_for_three_models() {
                 form: CloudForm::Layer,
                 spheres: SphereSettings::default(),
                 prune: true,
+                shafts: false,
             }))
             .unwrap();
         let surface = mountain(&frame);
@@ -376,6 +378,7 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
         form: CloudForm::Layer,
         spheres: SphereSettings::default(),
         prune: true,
+        shafts: false,
     };
     renderer.set_clouds(Some(clouds(full))).unwrap();
     renderer.render_with_surface(&frame, &surface).unwrap();
@@ -505,6 +508,7 @@ fn cover_zero_leaves_the_frame_exactly_as_without_clouds() {
         form: CloudForm::Layer,
         spheres: SphereSettings::default(),
         prune,
+        shafts: false,
     };
     let (clear, _) = render(&mut renderer, &frame, None);
     let (run, plan) = render(&mut renderer, &frame, Some(clouds(false)));
@@ -543,6 +547,7 @@ fn pruning_a_layer_out_of_view_changes_nothing() {
         form: CloudForm::Layer,
         spheres: SphereSettings::default(),
         prune,
+        shafts: false,
     };
     let (run, plan) = render(&mut renderer, &frame, Some(clouds(false)));
     assert!(plan.runs("clouds"), "{plan}");
@@ -583,6 +588,7 @@ fn bad_cloud_input_is_refused_by_name() {
         form: CloudForm::Layer,
         spheres: SphereSettings::default(),
         prune: true,
+        shafts: false,
     };
     let e = renderer.set_clouds(Some(bad)).unwrap_err().to_string();
     assert!(e.contains("cloud base_m") && e.contains("-5"), "{e}");
@@ -593,6 +599,7 @@ fn bad_cloud_input_is_refused_by_name() {
             form: CloudForm::Layer,
             spheres: SphereSettings::default(),
             prune: true,
+            shafts: false,
         }))
         .unwrap();
     let e = renderer.render(&frame).unwrap_err().to_string();

@@ -73,6 +73,10 @@ pub struct CloudFlags {
     /// blended between) [default: auto].
     #[arg(long = "cloud-form", value_name = "auto|layer|spheres")]
     pub form: Option<String>,
+    /// The cloud's shadow in the air below its base (crepuscular rays under a deck with
+    /// gaps), taken by hillaire's light-shaft march (docs/clouds.md) [default: true].
+    #[arg(long = "cloud-shafts", value_name = "BOOL")]
+    pub shafts: Option<bool>,
 }
 
 impl CloudFlags {
@@ -93,6 +97,7 @@ impl CloudFlags {
             quality: flags.quality.or(self.quality),
             sun_light: flags.sun_light.or(self.sun_light),
             form: flags.form.or(self.form),
+            shafts: flags.shafts.or(self.shafts),
         }
     }
 
@@ -228,6 +233,8 @@ pub fn droplet_orders() -> anyhow::Result<ScatteringOrders> {
 pub struct CloudInputs {
     pub settings: LayerSettings,
     pub form: CloudForm,
+    /// Whether the cloud shadows the air below its base (`--cloud-shafts`).
+    pub shafts: bool,
     pub cover: CoverGrid,
     pub orders: ScatteringOrders,
 }
@@ -241,6 +248,7 @@ impl CloudInputs {
         Ok(Some(CloudInputs {
             settings,
             form: flags.form()?,
+            shafts: flags.shafts.unwrap_or(true),
             cover: flags.cover_grid()?,
             orders: droplet_orders()?,
         }))
@@ -257,6 +265,7 @@ impl CloudInputs {
             form: self.form,
             spheres: SphereSettings::default(),
             prune: true,
+            shafts: self.shafts,
         }))?;
         Ok(())
     }

@@ -60,6 +60,7 @@ impl CloudSettings {
             quality: Some(self.quality.clone()),
             sun_light: None,
             form: Some(self.form.clone()),
+            shafts: None,
         }
     }
 }

@@ -3,7 +3,9 @@
 //! parameters in a uniform, and the map's transmittance at each pixel's surface
 //! (`shaders/clouds/sun_map_pixels.wgsl`), which every model's pixel pass binds at 32
 //! with the parameters at 33 (`shaders/common/surface.wgsl`) and multiplies its
-//! surface's sun by. A frame without the map binds small textures with the flag off.
+//! surface's sun by; the map itself at 35, which hillaire's shafts read along the view
+//! ray (`shaders/sky/hillaire/shafts.wgsl`). A frame without the map binds small
+//! textures with the flag off.
 
 use atmosphere_core::clouds::layer::sun_map::SunMapResolution;
 use atmosphere_core::shafts::GnomonicGrid;
@@ -34,7 +36,8 @@ pub struct SunMapUniform {
     pub up: [f32; 4],
     /// Unit vector towards the sun.
     pub sun: [f32; 4],
-    /// Radii of the layer's base and top, m; 0, 0.
+    /// Radii of the layer's base and top, m; 1 when the map shades the air under the
+    /// base (hillaire's shafts), else 0; 0.
     pub radii: [f32; 4],
     /// Cells per side, levels, march steps per texel, 1.
     pub counts: [u32; 4],
@@ -64,12 +67,21 @@ impl SunMapUniform {
             ],
         }
     }
+
+    /// These parameters with the flag that the map shades the air under the layer's
+    /// base (`on`) or not.
+    pub fn shading_air(self, on: bool) -> SunMapUniform {
+        let mut params = self;
+        params.radii[2] = if on { 1.0 } else { 0.0 };
+        params
+    }
 }
 
 /// The map's texture, parameters and per-pixel transmittance.
 #[derive(Debug)]
 pub struct SunMapTexture {
     texture: wgpu::Texture,
+    view: wgpu::TextureView,
     pixels: wgpu::Texture,
     pixels_view: wgpu::TextureView,
     params: wgpu::Buffer,
@@ -81,8 +93,10 @@ impl SunMapTexture {
         let pixels = map_texture(gpu, "cloud sun map pixels", (1, 1));
         let params = uniform_buffer(&gpu.device, "cloud sun map", size_of::<SunMapUniform>());
         gpu.write_uniform(&params, &SunMapUniform::default());
+        let texture = map_texture(gpu, "cloud sun map", (2, 2));
         SunMapTexture {
-            texture: map_texture(gpu, "cloud sun map", (2, 2)),
+            view: texture.create_view(&Default::default()),
+            texture,
             pixels_view: pixels.create_view(&Default::default()),
             pixels,
             params,
@@ -114,6 +128,7 @@ impl SunMapTexture {
         }
         if (self.texture.width(), self.texture.height()) != size {
             self.texture = map_texture(gpu, "cloud sun map", size);
+            self.view = self.texture.create_view(&Default::default());
         }
         if (self.pixels.width(), self.pixels.height()) != pixels {
             self.pixels = map_texture(gpu, "cloud sun map pixels", pixels);
@@ -155,6 +170,21 @@ impl SunMapTexture {
             ),
             (SUN_MAP_PARAMS_BINDING, self.params.as_entire_binding()),
         ]
+    }
+}
+
+impl SunMapTexture {
+    /// The layout entry of the map itself at 35 in the models' pixel passes.
+    pub fn map_layout_entry() -> wgpu::BindGroupLayoutEntry {
+        texture_entry(SUN_MAP_BINDING, wgpu::TextureViewDimension::D2)
+    }
+
+    /// The map itself at 35 in the models' pixel passes.
+    pub fn map_binding(&self) -> (u32, wgpu::BindingResource<'_>) {
+        (
+            SUN_MAP_BINDING,
+            wgpu::BindingResource::TextureView(&self.view),
+        )
     }
 }
 
