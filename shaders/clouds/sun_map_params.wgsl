@@ -21,3 +21,9 @@ struct SunMapParams {
 }
 
 @group(0) @binding(33) var<uniform> sun_map_params: SunMapParams;
+
+// Whether the frame's sun map shades the air under the layer's base (radii.z): the
+// hillaire pass then reads its shafts per pixel (`sky/hillaire/cloud_shafts.wgsl`).
+fn cloud_shafts_on() -> bool {
+    return sun_map_params.counts.w == 1u && sun_map_params.radii.z > 0.5;
+}

@@ -18,9 +18,10 @@
 // rgb: albedo (linear); a: 1 for a Lambertian surface, 0 for the sea
 // (`common/sea_surface.wgsl`), whose rgb is then the water body's albedo.
 @group(0) @binding(31) var surface_albedo: texture_2d<f32>;
-// The sun's transmittance through the cloud layer at each pixel's surface
-// (`clouds/sun_map_pixels.wgsl`), read where the sun map's flag (counts.w) is 1; the
-// map's parameters at 33 (`clouds/sun_map_params.wgsl`).
+// x: the sun's transmittance through the cloud layer at each pixel's surface
+// (`clouds/sun_map_pixels.wgsl`), read where the sun map's flag (counts.w) is 1; y, z, w:
+// hillaire's shafts with the cloud (`sky/hillaire/cloud_shafts.wgsl`); the map's
+// parameters at 33 (`clouds/sun_map_params.wgsl`).
 @group(0) @binding(32) var surface_cloud_sun: texture_2d<f32>;
 
 // This pixel's cloud transmittance, set by `frame_surface`: the surface elements the

@@ -1,16 +1,12 @@
 // Library: light shafts in the hillaire pass, the single scattering the terrain's shadow
-// and the cloud layer's shadow below its base take out of a view segment. CPU twins:
-// atmosphere-core's `models/hillaire/shafts.rs` (`shadowed_single`; the span and its
-// samples: `shafts/terrain/view_span.wgsl`) and, with the cloud,
-// `clouds/layer/air_shadow.rs` (`AirShadow`); method: docs/shafts.md and docs/clouds.md
-// ("Cloud shadows in the air"). Bindings 9 and 10 of the pass: the shadow map's tops
-// (R32Float) and its parameters; 35 and 33: the cloud's sun map and its parameters
-// (`clouds/sun_map_read.wgsl`).
+// takes out of a view segment. CPU twin: atmosphere-core's `models/hillaire/shafts.rs`
+// (`shadowed_single`; the span and its samples: `shafts/terrain/view_span.wgsl`);
+// method: docs/shafts.md. Bindings 9 and 10 of the pass: the shadow map's tops (R32Float)
+// and its parameters.
 
 #import sky/hillaire/medium.wgsl
 #import common/frame_params.wgsl
 #import shafts/terrain/view_span.wgsl
-#import clouds/sun_map_read.wgsl
 
 @group(0) @binding(9) var shadow_tops: texture_2d<f32>;
 @group(0) @binding(10) var<uniform> shadow_map: ShadowMapParams;
@@ -30,72 +26,30 @@ fn shaft_entry_transmittance(s: Segment, entry: f32) -> vec3<f32> {
     return exp(-optical_depth(max(far - near, vec3<f32>(0.0))));
 }
 
-// Whether the frame's sun map shades the air under the layer's base (radii.z).
-fn cloud_shafts_on() -> bool {
-    return sun_map_params.counts.w == 1u && sun_map_params.radii.z > 0.5;
-}
-
-// `AirShadow::span` (and `shaft_span` without the cloud): x, y the part of the segment
-// below the higher of the terrain shadow's top and the layer's base, as far as the wider
-// of the two maps; z: its samples, two per cell of the finer map.
-fn air_span(s: Segment, terrain: bool, clouds: bool) -> vec3<f32> {
-    var h = 0.0;
-    var width = 0.0;
-    var cell = 1e30;
-    if terrain {
-        h = shadow_map.up_top.w;
-        width = shadow_map_width(shadow_map);
-        cell = width / f32(shadow_map.size.x);
-    }
-    if clouds {
-        let m = sun_map_params;
-        h = max(h, m.radii.x - atmosphere.bottom_radius_m);
-        width = max(width, m.east_cell.w * f32(m.counts.x));
-        cell = min(cell, m.east_cell.w);
-    }
-    let span = span_below(s, h, width);
-    var samples = shaft_samples(shadow_map, span.y - span.x);
-    if clouds {
-        samples = samples_per_cell(shadow_map, span.y - span.x, cell);
-    }
-    return vec3<f32>(span, f32(samples));
-}
-
-// `shadowed_single` (with the cloud, `AirShadow::shadowed_single`): per unit solar
-// irradiance, in equal segments of the span; the sun's visibility at a sample is the
-// terrain's times, below the layer's base, the sun map's transmittance.
+// `shadowed_single`: per unit solar irradiance, in `shaft_samples` equal segments of the
+// span.
 fn shafts_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
     var loss = vec3<f32>(0.0);
-    let terrain = shadow_map.size.y != 0u;
-    let clouds = cloud_shafts_on();
-    if !terrain && !clouds {
+    if shadow_map.size.y == 0u {
         return loss;
     }
-    let part = air_span(s, terrain, clouds);
-    let samples = u32(part.z);
-    if part.y <= part.x || samples == 0u {
+    let span = shaft_span(shadow_map, s);
+    if span.y <= span.x {
         return loss;
     }
-    let dt = (part.y - part.x) / f32(samples);
+    let samples = shaft_samples(shadow_map, span.y - span.x);
+    let dt = (span.y - span.x) / f32(samples);
     let phase_r = rayleigh_phase(nu);
     let phase_m = mie_phase(nu);
     let bottom = atmosphere.bottom_radius_m;
-    let base = sun_map_params.radii.x;
-    var throughput = shaft_entry_transmittance(s, part.x);
+    var throughput = shaft_entry_transmittance(s, span.x);
     for (var k = 0u; k < samples; k++) {
-        let t = part.x + (f32(k) + 0.5) * dt;
+        let t = span.x + (f32(k) + 0.5) * dt;
         let p = point_along(s.q, s.r_mu, s.start_dot_sun, nu, t);
         let rho = medium_densities(p.q);
         let altitude = p.q / (p.r + bottom);
         let position = s.start + t * direction;
-        var visible = 1.0;
-        if terrain {
-            visible = shadow_map_visible(shadow_tops, shadow_map, bottom, position, altitude);
-        }
-        if clouds && visible > 0.0 && p.r < base {
-            visible *= cloud_sun_transmittance(position);
-        }
-        let shadow = 1.0 - visible;
+        let shadow = 1.0 - shadow_map_visible(shadow_tops, shadow_map, bottom, position, altitude);
         let w = segment_weight(optical_depth(rho), dt);
         if shadow > 0.0 {
             let s_r = atmosphere.rayleigh_scattering_per_m.xyz * rho.x;

@@ -138,6 +138,7 @@ impl FrameSunMap {
         if self.pass.is_none() {
             self.pass = Some(SunMapPass::new(gpu)?);
         }
+        plan.cloud_shafts = air;
         plan.run("cloud_shadow", StepKind::Pass);
         self.step = Some(plan.steps.len() as u32 - 1);
         Ok(())

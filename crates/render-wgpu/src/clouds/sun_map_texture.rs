@@ -1,11 +1,10 @@
 //! The cloud layer's sun map on the GPU (atmosphere-core's `clouds/layer/sun_map.rs`):
 //! its optical depths in an `R32Float` texture, level k in rows k n to k n + n - 1, its
-//! parameters in a uniform, and the map's transmittance at each pixel's surface
+//! parameters in a uniform, and the map's transmittance at each pixel's surface (and,
+//! beside it, hillaire's shafts with the cloud, `sky/hillaire/cloud_shafts.rs`)
 //! (`shaders/clouds/sun_map_pixels.wgsl`), which every model's pixel pass binds at 32
 //! with the parameters at 33 (`shaders/common/surface.wgsl`) and multiplies its
-//! surface's sun by; the map itself at 35, which hillaire's shafts read along the view
-//! ray (`shaders/sky/hillaire/shafts.wgsl`). A frame without the map binds small
-//! textures with the flag off.
+//! surface's sun by. A frame without the map binds small textures with the flag off.
 
 use atmosphere_core::clouds::layer::sun_map::SunMapResolution;
 use atmosphere_core::shafts::GnomonicGrid;
@@ -18,6 +17,9 @@ use crate::gpu::pipeline::{texture_2d, texture_entry, uniform_buffer, uniform_en
 
 /// The texture's format: one optical depth per texel.
 pub const SUN_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// The per-pixel image's format: the transmittance at the pixel's surface, then the
+/// single scattering per unit solar irradiance that hillaire's shafts take out.
+pub const PIXELS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The bindings, in the model's pixel passes, of the per-pixel transmittance and of the
 /// parameters; in the per-pixel pass, of the per-pixel output and of the map.
 pub const PIXELS_BINDING: u32 = 32;
@@ -90,10 +92,10 @@ pub struct SunMapTexture {
 impl SunMapTexture {
     /// The placeholder of frames without the map.
     pub fn new(gpu: &GpuContext) -> SunMapTexture {
-        let pixels = map_texture(gpu, "cloud sun map pixels", (1, 1));
+        let pixels = map_texture(gpu, "cloud sun map pixels", (1, 1), PIXELS_FORMAT);
         let params = uniform_buffer(&gpu.device, "cloud sun map", size_of::<SunMapUniform>());
         gpu.write_uniform(&params, &SunMapUniform::default());
-        let texture = map_texture(gpu, "cloud sun map", (2, 2));
+        let texture = map_texture(gpu, "cloud sun map", (2, 2), SUN_MAP_FORMAT);
         SunMapTexture {
             view: texture.create_view(&Default::default()),
             texture,
@@ -127,11 +129,11 @@ impl SunMapTexture {
             )));
         }
         if (self.texture.width(), self.texture.height()) != size {
-            self.texture = map_texture(gpu, "cloud sun map", size);
+            self.texture = map_texture(gpu, "cloud sun map", size, SUN_MAP_FORMAT);
             self.view = self.texture.create_view(&Default::default());
         }
         if (self.pixels.width(), self.pixels.height()) != pixels {
-            self.pixels = map_texture(gpu, "cloud sun map pixels", pixels);
+            self.pixels = map_texture(gpu, "cloud sun map pixels", pixels, PIXELS_FORMAT);
             self.pixels_view = self.pixels.create_view(&Default::default());
         }
         gpu.write_uniform(&self.params, params);
@@ -174,12 +176,7 @@ impl SunMapTexture {
 }
 
 impl SunMapTexture {
-    /// The layout entry of the map itself at 35 in the models' pixel passes.
-    pub fn map_layout_entry() -> wgpu::BindGroupLayoutEntry {
-        texture_entry(SUN_MAP_BINDING, wgpu::TextureViewDimension::D2)
-    }
-
-    /// The map itself at 35 in the models' pixel passes.
+    /// The map itself at 35 (hillaire's cloud shafts read it).
     pub fn map_binding(&self) -> (u32, wgpu::BindingResource<'_>) {
         (
             SUN_MAP_BINDING,
@@ -188,12 +185,17 @@ impl SunMapTexture {
     }
 }
 
-fn map_texture(gpu: &GpuContext, label: &str, size: (u32, u32)) -> wgpu::Texture {
+fn map_texture(
+    gpu: &GpuContext,
+    label: &str,
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
     texture_2d(
         &gpu.device,
         label,
         size,
-        SUN_MAP_FORMAT,
+        format,
         wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC,

@@ -4,8 +4,8 @@
 //! (`common/frame_params.wgsl`), the model's parameters at 2, the model's tables (and
 //! other inputs) from 3 on, the HDR target after them, the table sampler at its binding
 //! where tables are sampled (`common/table_sampling.wgsl`), and the frame's surface at 30
-//! and 31 (`common/surface.wgsl`) with the clouds' sun map at 32, 33 and 35
-//! (`clouds/sun_map_read.wgsl`; hillaire's shafts read the map itself). Each pass compiles in the two variants of a
+//! and 31 (`common/surface.wgsl`) with the clouds' sun map at 32 and 33
+//! (`clouds/sun_map_read.wgsl`). Each pass compiles in the two variants of a
 //! [`PixelPipeline`], with and without a surface.
 
 use crate::clouds::sun_map_texture::SunMapTexture;
@@ -58,7 +58,6 @@ impl PixelPass {
         entries.push(storage_texture_entry(hdr_binding, HDR_FORMAT, D2));
         entries.extend(SurfaceBuffer::layout_entries());
         entries.extend(SunMapTexture::layout_entries());
-        entries.push(SunMapTexture::map_layout_entry());
         let mut constants = Vec::new();
         if let Some(sampling) = shader.sampling {
             entries.push(sampling.sampler_entry());
@@ -108,7 +107,6 @@ impl PixelPass {
         ));
         resources.push((ALBEDO_BINDING, wgpu::BindingResource::TextureView(albedo)));
         resources.extend(io.sun_map.bindings());
-        resources.push(io.sun_map.map_binding());
         if let Some(sampling) = &self.sampling {
             resources.push(sampling.sampler_binding());
         }
