@@ -20,8 +20,8 @@ use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{LayerSettings, SunLight};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
-use render_wgpu::Renderer;
 use atmosphere_core::models::sky_model::SkyModel;
+use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_cloud_shafts::CLOUD_SHAFTS;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
 use render_wgpu::frame::{Frame, LocalView, location_rotation};
@@ -237,7 +237,8 @@ pub fn shafts_markdown(results: &[ShaftTimes]) -> String {
         "| cloud quality | added wall ms | frame with clouds, wall ms | hillaire pass without, GPU ms | with | added / hillaire pass | pass with / without |"
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|");
-    let cell = |v: Option<f64>, digits: usize| v.map_or_else(|| "-".into(), |x| format!("{x:.digits$}"));
+    let cell =
+        |v: Option<f64>, digits: usize| v.map_or_else(|| "-".into(), |x| format!("{x:.digits$}"));
     for r in results {
         let (without, with) = r.sky_pass_ms;
         let _ = writeln!(

@@ -66,8 +66,7 @@ mod tests {
         let p = pitch_deg.to_radians();
         Frame {
             camera_position_m: DVec3::X * (atmosphere.bottom_radius_m + altitude_m),
-            orientation: look_orientation(DVec3::new(p.sin(), p.cos(), 0.0), DVec3::X)
-                .unwrap(),
+            orientation: look_orientation(DVec3::new(p.sin(), p.cos(), 0.0), DVec3::X).unwrap(),
             vertical_fov_deg: 40.0,
             sun_direction: DVec3::new(0.3, 1.0, 0.0).normalize(),
             atmosphere,

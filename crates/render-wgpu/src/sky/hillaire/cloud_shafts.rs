@@ -98,6 +98,12 @@ impl CloudShaftsPass {
         };
         let bind_group = pipeline.bind_group_numbered(cx.gpu, &resources);
         let groups = texel_groups(map.pixels());
-        pipeline.dispatch(cx.encoder, "hillaire's cloud shafts", &bind_group, groups, None);
+        pipeline.dispatch(
+            cx.encoder,
+            "hillaire's cloud shafts",
+            &bind_group,
+            groups,
+            None,
+        );
     }
 }
