@@ -75,7 +75,7 @@ pub struct CloudFlags {
     pub form: Option<String>,
     /// The cloud's shadow in the air below its base (crepuscular rays under a deck with
     /// gaps), taken by hillaire's light-shaft march (docs/clouds.md) [default: true].
-    #[arg(long = "cloud-shafts", value_name = "BOOL")]
+    #[arg(id = "cloud_shafts", long = "cloud-shafts", value_name = "BOOL")]
     pub shafts: Option<bool>,
 }
 
