@@ -120,10 +120,14 @@ impl FrameSunMap {
             plan.skip("cloud_shadow", why);
             return self.texture.set(gpu, None, pixels);
         }
-        let resolution = if lit {
-            SunMapResolution::LIT
-        } else {
-            SunMapResolution::default()
+        // The air below the base reads level 0 alone: without a surface, one level.
+        let resolution = match (lit, has_surface) {
+            (true, _) => SunMapResolution::LIT,
+            (false, true) => SunMapResolution::default(),
+            (false, false) => SunMapResolution {
+                levels: 1,
+                ..SunMapResolution::default()
+            },
         };
         let to_error =
             |e: atmosphere_core::clouds::error::CloudError| RenderError::Frame(e.to_string());
