@@ -3,14 +3,15 @@
 // atmosphere-core's `CloudSunMap::transmittance` at the point where
 // `clouds/layer/shadowed_surface.rs` lights the surface). Every model's pixel pass
 // multiplies its surface's sun by it (`common/surface.wgsl`); 1 where the pixel has no
-// surface.
+// surface. The other channels are hillaire's shafts, 0 here
+// (`sky/hillaire/cloud_shafts.wgsl` writes them).
 
 #import common/frame_params.wgsl
 #import clouds/sun_map_read.wgsl
 
 // xyz: the surface's normal; w: its distance along the pixel's ray, m (0: none).
 @group(0) @binding(30) var pixel_geometry: texture_2d<f32>;
-@group(0) @binding(34) var pixel_cloud_sun: texture_storage_2d<r32float, write>;
+@group(0) @binding(34) var pixel_cloud_sun: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -11,9 +11,9 @@
 
 #import clouds/sun_map_params.wgsl
 
-// Level k's optical depths in rows k n to k n + n - 1 (n cells per side).
+// Level k's optical depths in rows k n to k n + n - 1 (n cells per side); the
+// parameters at 33 (`sun_map_params.wgsl`).
 @group(0) @binding(35) var sun_map: texture_2d<f32>;
-@group(0) @binding(33) var<uniform> sun_map_params: SunMapParams;
 
 // `x` clamped to [0, hi] (0 for NaN) and truncated: a software rasteriser runs the loads
 // of lanes that take no part, so every index stays inside the texture whatever `x` is.

@@ -18,10 +18,11 @@
 // rgb: albedo (linear); a: 1 for a Lambertian surface, 0 for the sea
 // (`common/sea_surface.wgsl`), whose rgb is then the water body's albedo.
 @group(0) @binding(31) var surface_albedo: texture_2d<f32>;
-// The sun's transmittance through the cloud layer at each pixel's surface
-// (`clouds/sun_map_pixels.wgsl`), read where the sun map's flag (counts.w) is 1.
+// x: the sun's transmittance through the cloud layer at each pixel's surface
+// (`clouds/sun_map_pixels.wgsl`), read where the sun map's flag (counts.w) is 1; y, z, w:
+// hillaire's shafts with the cloud (`sky/hillaire/cloud_shafts.wgsl`); the map's
+// parameters at 33 (`clouds/sun_map_params.wgsl`).
 @group(0) @binding(32) var surface_cloud_sun: texture_2d<f32>;
-@group(0) @binding(33) var<uniform> surface_sun_map: SunMapParams;
 
 // This pixel's cloud transmittance, set by `frame_surface`: the surface elements the
 // pass lights lie on the pixel's surface (the ground sphere of a pixel without one is
@@ -59,7 +60,7 @@ fn frame_surface(px: vec2<u32>) -> Surface {
     let albedo = textureLoad(surface_albedo, px, 0);
     out.albedo = albedo.rgb;
     out.water = albedo.a < 0.5;
-    if out.present && surface_sun_map.counts.w == 1u {
+    if out.present && sun_map_params.counts.w == 1u {
         pixel_cloud_sun = textureLoad(surface_cloud_sun, px, 0).x;
     }
     return out;

@@ -99,6 +99,19 @@ fn frame(model: ModelId) -> Frame {
     }
 }
 
+/// The layer of `settings` lit by `light`, without the cloud's shadow in the air (the
+/// CPU twins here have none; `gpu_cloud_shafts.rs` tests it).
+fn layer_clouds(settings: LayerSettings, light: &CloudLight, prune: bool) -> FrameClouds {
+    FrameClouds {
+        settings,
+        light: light.clone(),
+        form: CloudForm::Layer,
+        spheres: SphereSettings::default(),
+        prune,
+        shafts: false,
+    }
+}
+
 /// A wall facing the camera 2 km away over the left third of the frame: in front of the
 /// cloud's base low in the frame, inside the layer high in it.
 fn mountain(frame: &Frame) -> Vec<SurfaceTexel> {
@@ -250,13 +263,7 @@ fn inside_the_layer_the_second_run_is_skipped_and_the_frame_still_matches_the_cp
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     let radius = frame.atmosphere.bottom_radius_m;
     let layer = CloudLayer::new(settings, radius, cover, phase).unwrap();
-    let clouds = FrameClouds {
-        settings,
-        light: light.clone(),
-        form: CloudForm::Layer,
-        spheres: SphereSettings::default(),
-        prune: true,
-    };
+    let clouds = layer_clouds(settings, &light, true);
     let (gpu, plan) = render(&mut renderer, &frame, Some(clouds));
     assert!(
         !plan.runs("cloud_front") && plan.runs("cloud_composite"),
@@ -294,13 +301,7 @@ fn composited_frames_match_the_cpu_composite_for_three_models() {
         )
         .unwrap();
         renderer
-            .set_clouds(Some(FrameClouds {
-                settings,
-                light: light.clone(),
-                form: CloudForm::Layer,
-                spheres: SphereSettings::default(),
-                prune: true,
-            }))
+            .set_clouds(Some(layer_clouds(settings, &light, true)))
             .unwrap();
         let surface = mountain(&frame);
         let plan = renderer.render_with_surface(&frame, &surface).unwrap();
@@ -370,13 +371,7 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
         resolution_divisor: 1,
         ..settings
     };
-    let clouds = |settings| FrameClouds {
-        settings,
-        light: light.clone(),
-        form: CloudForm::Layer,
-        spheres: SphereSettings::default(),
-        prune: true,
-    };
+    let clouds = |settings| layer_clouds(settings, &light, true);
     renderer.set_clouds(Some(clouds(full))).unwrap();
     renderer.render_with_surface(&frame, &surface).unwrap();
     let clear = renderer.read_hdr().unwrap();
@@ -499,13 +494,7 @@ fn cover_zero_leaves_the_frame_exactly_as_without_clouds() {
     let frame = frame(ModelId::Nishita);
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let light = frame_light(model.as_ref(), &frame, &settings()).unwrap();
-    let clouds = |prune| FrameClouds {
-        settings: settings(),
-        light: light.clone(),
-        form: CloudForm::Layer,
-        spheres: SphereSettings::default(),
-        prune,
-    };
+    let clouds = |prune| layer_clouds(settings(), &light, prune);
     let (clear, _) = render(&mut renderer, &frame, None);
     let (run, plan) = render(&mut renderer, &frame, Some(clouds(false)));
     assert!(plan.runs("clouds"), "{plan}");
@@ -537,13 +526,7 @@ fn pruning_a_layer_out_of_view_changes_nothing() {
     frame.vertical_fov_deg = 40.0;
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let light = frame_light(model.as_ref(), &frame, &settings()).unwrap();
-    let clouds = |prune| FrameClouds {
-        settings: settings(),
-        light: light.clone(),
-        form: CloudForm::Layer,
-        spheres: SphereSettings::default(),
-        prune,
-    };
+    let clouds = |prune| layer_clouds(settings(), &light, prune);
     let (run, plan) = render(&mut renderer, &frame, Some(clouds(false)));
     assert!(plan.runs("clouds"), "{plan}");
     let (pruned, plan) = render(&mut renderer, &frame, Some(clouds(true)));
@@ -583,17 +566,12 @@ fn bad_cloud_input_is_refused_by_name() {
         form: CloudForm::Layer,
         spheres: SphereSettings::default(),
         prune: true,
+        shafts: false,
     };
     let e = renderer.set_clouds(Some(bad)).unwrap_err().to_string();
     assert!(e.contains("cloud base_m") && e.contains("-5"), "{e}");
     renderer
-        .set_clouds(Some(FrameClouds {
-            settings: settings(),
-            light,
-            form: CloudForm::Layer,
-            spheres: SphereSettings::default(),
-            prune: true,
-        }))
+        .set_clouds(Some(layer_clouds(settings(), &light, true)))
         .unwrap();
     let e = renderer.render(&frame).unwrap_err().to_string();
     assert!(e.contains("no cloud cover"), "{e}");

@@ -105,6 +105,7 @@ fn clouds(renderer: &mut Renderer, frame: &Frame, settings: &LayerSettings, prun
             form: CloudForm::Layer,
             spheres: SphereSettings::default(),
             prune,
+            shafts: false,
         }))
         .unwrap();
 }

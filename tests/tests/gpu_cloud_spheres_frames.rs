@@ -96,6 +96,7 @@ fn clouds(frame: &Frame, form: CloudForm) -> FrameClouds {
         form,
         spheres: SphereSettings::default(),
         prune: true,
+        shafts: false,
     }
 }
 

@@ -11,7 +11,11 @@
 // outermost level's width and the segment; y <= x when it never dips below it. (r - top)(r + top) is
 // written as q - h (2 bottom + h) for f32.
 fn shaft_span(m: ShadowMapParams, s: Segment) -> vec2<f32> {
-    let h = m.up_top.w;
+    return span_below(s, m.up_top.w, shadow_map_width(m));
+}
+
+// `shaft_span_m` under the sphere `h` (m) above the ground, at most `width` (m) long.
+fn span_below(s: Segment, h: f32, width: f32) -> vec2<f32> {
     let above = s.q - h * (2.0 * atmosphere.bottom_radius_m + h);
     let disc = s.r_mu * s.r_mu - above;
     if disc < 0.0 {
@@ -22,7 +26,6 @@ fn shaft_span(m: ShadowMapParams, s: Segment) -> vec2<f32> {
     if above > 0.0 && exit > 0.0 {
         entry = above / exit;
     }
-    let width = shadow_map_width(m);
     return vec2<f32>(entry, min(exit, min(s.length, width)));
 }
 
@@ -30,6 +33,13 @@ fn shaft_span(m: ShadowMapParams, s: Segment) -> vec2<f32> {
 // within the fewest (w) and the most (z).
 fn shaft_samples(m: ShadowMapParams, span: f32) -> u32 {
     let per_cell = u32(ceil(2.0 * span * f32(m.size.x) / shadow_map_width(m)));
+    return min(max(per_cell, m.size.w), m.size.z);
+}
+
+// `shaft_samples` over `span` (m) in cells `cell` (m) wide, within the fewest (w) and
+// the most (z) of `m`.
+fn samples_per_cell(m: ShadowMapParams, span: f32, cell: f32) -> u32 {
+    let per_cell = u32(ceil(2.0 * span / cell));
     return min(max(per_cell, m.size.w), m.size.z);
 }
 

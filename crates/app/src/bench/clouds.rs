@@ -7,7 +7,9 @@
 //! cloud steps' timestamps are not to be trusted: docs/clouds.md, "Cost"). Medians of
 //! `--frames` pairs after a warm-up pair. Each quality is measured with its preset's
 //! sun light and again with the other (`sun_light = march`, a shadow march per sample;
-//! `map`, the frame's sun map), for comparison.
+//! `map`, the frame's sun map), for comparison, without the cloud's shadow in the air;
+//! then what that shadow (hillaire's cloud shafts) adds to the frame with clouds, each
+//! frame with them interleaved with the same frame without.
 
 use atmosphere_core::clouds::spheres::handover::CloudForm;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
@@ -18,7 +20,9 @@ use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::{LayerSettings, SunLight};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::SkyModel;
 use render_wgpu::Renderer;
+use render_wgpu::clouds::frame_cloud_shafts::CLOUD_SHAFTS;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
 use render_wgpu::frame::{Frame, LocalView, location_rotation};
 
@@ -89,20 +93,84 @@ fn variants(quality: MarchQuality) -> [LayerSettings; 2] {
 }
 
 /// Frames the bench renders for `quality` (the warm-up pair included, two each, for
-/// each of its variants).
+/// each of its variants and the cloud shafts).
 pub fn frames_per_quality(quality: MarchQuality, frames: usize) -> usize {
-    2 * (1 + frames) * variants(quality).len()
+    2 * (1 + frames) * (variants(quality).len() + 1)
+}
+
+/// What hillaire's cloud shafts added to one quality's frame with clouds, ms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShaftTimes {
+    pub quality: MarchQuality,
+    /// Median of the pairs' differences of wall-clock time, with less without.
+    pub added_wall_ms: f64,
+    /// Median wall-clock time of the frame with clouds, without the shafts.
+    pub without_wall_ms: f64,
+    /// Median GPU times of the hillaire pass without and with the cloud shafts.
+    pub sky_pass_ms: (Option<f64>, Option<f64>),
+}
+
+/// Measures the cloud shafts of `quality` on `renderer` in `atmosphere` at `size`,
+/// `frames` pairs after a warm-up pair: the frame with clouds with them, interleaved
+/// with the same frame without.
+fn measure_shafts(
+    renderer: &mut Renderer,
+    (frame, model): (&Frame, &dyn SkyModel),
+    quality: MarchQuality,
+    frames: usize,
+    progress: &Progress,
+) -> anyhow::Result<ShaftTimes> {
+    let settings = quality.apply(LayerSettings::default());
+    let without = FrameClouds {
+        settings,
+        light: frame_light(model, frame, &settings)?,
+        form: CloudForm::Auto,
+        spheres: SphereSettings::default(),
+        prune: true,
+        shafts: false,
+    };
+    let with = FrameClouds {
+        shafts: true,
+        ..without.clone()
+    };
+    let (mut added, mut base, mut sky_without, mut sky_with) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for k in 0..=frames {
+        renderer.set_clouds(Some(without.clone()))?;
+        let (plain, plain_ms) = timed(renderer, frame)?;
+        progress.inc();
+        renderer.set_clouds(Some(with.clone()))?;
+        let (shafts, shafts_ms) = timed(renderer, frame)?;
+        progress.inc();
+        anyhow::ensure!(
+            !shafts.skipped.iter().any(|(name, _)| *name == CLOUD_SHAFTS),
+            "the flight view's plan has no cloud shafts: {shafts}"
+        );
+        if k > 0 {
+            added.push(shafts_ms - plain_ms);
+            base.push(plain_ms);
+            sky_without.extend(step_gpu_ms(&plain, "hillaire"));
+            sky_with.extend(step_gpu_ms(&shafts, "hillaire"));
+        }
+    }
+    let pass = |times: &[f64]| (times.len() == frames).then(|| median(times)).flatten();
+    Ok(ShaftTimes {
+        quality,
+        added_wall_ms: median(&added).unwrap_or(f64::NAN),
+        without_wall_ms: median(&base).unwrap_or(f64::NAN),
+        sky_pass_ms: (pass(&sky_without), pass(&sky_with)),
+    })
 }
 
 /// Measures each of `qualities` on `renderer` in `atmosphere` at `size`, `frames` pairs
-/// each.
+/// each, and what the cloud shafts add to each.
 pub fn measure(
     renderer: &mut Renderer,
     atmosphere: &Atmosphere,
     qualities: &[MarchQuality],
     (size, frames): ((u32, u32), usize),
     progress: &Progress,
-) -> anyhow::Result<Vec<CloudTimes>> {
+) -> anyhow::Result<(Vec<CloudTimes>, Vec<ShaftTimes>)> {
     let frame = flight_frame(atmosphere, size);
     let cover = CloudFlags::default().cover_grid()?;
     renderer.set_cloud_inputs(&cover, &droplet_orders()?)?;
@@ -118,6 +186,7 @@ pub fn measure(
             form: CloudForm::Auto,
             spheres: SphereSettings::default(),
             prune: true,
+            shafts: false,
         };
         let (mut added, mut clear, mut sky) = (Vec::new(), Vec::new(), Vec::new());
         for k in 0..=frames {
@@ -146,8 +215,45 @@ pub fn measure(
             sky_pass_ms: (sky.len() == frames).then(|| median(&sky)).flatten(),
         });
     }
+    let mut shafts = Vec::new();
+    for &quality in qualities {
+        let scene = (&frame, model.as_ref());
+        shafts.push(measure_shafts(renderer, scene, quality, frames, progress)?);
+    }
     renderer.set_clouds(None)?;
-    Ok(out)
+    Ok((out, shafts))
+}
+
+/// The Markdown table of the cloud shafts' `results`.
+pub fn shafts_markdown(results: &[ShaftTimes]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "\nCloud shafts (hillaire), the same view: each frame with clouds and their shadow \
+         in the air interleaved with the same frame with clouds without it; medians.\n"
+    );
+    let _ = writeln!(
+        out,
+        "| cloud quality | added wall ms | frame with clouds, wall ms | hillaire pass without, GPU ms | with | added / hillaire pass | pass with / without |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    let cell =
+        |v: Option<f64>, digits: usize| v.map_or_else(|| "-".into(), |x| format!("{x:.digits$}"));
+    for r in results {
+        let (without, with) = r.sky_pass_ms;
+        let _ = writeln!(
+            out,
+            "| {} | {:.1} | {:.1} | {} | {} | {} | {} |",
+            r.quality,
+            r.added_wall_ms,
+            r.without_wall_ms,
+            cell(without, 1),
+            cell(with, 1),
+            cell(without.map(|s| r.added_wall_ms / s), 2),
+            cell(with.zip(without).map(|(a, b)| a / b), 2)
+        );
+    }
+    out
 }
 
 /// The Markdown table of `results`.

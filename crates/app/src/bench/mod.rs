@@ -383,7 +383,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         beam_results = beams::measure(&mut renderer, &base, path, &beam_variants, size, &progress)?;
     }
     let size = ((args.width, args.height), args.frames);
-    let cloud_results = clouds::measure(
+    let (cloud_results, shaft_results) = clouds::measure(
         &mut renderer,
         &atmosphere,
         &cloud_qualities,
@@ -398,6 +398,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     if !cloud_results.is_empty() {
         let size = (args.width, args.height);
         text.push_str(&clouds::markdown(&adapter, size, &cloud_results));
+        text.push_str(&clouds::shafts_markdown(&shaft_results));
     }
     std::io::stdout().lock().write_all(text.as_bytes())?;
     if let Some(path) = &args.out {

@@ -78,6 +78,10 @@ pub struct CloudFlags {
     /// many pixels) [default: 1, every pixel].
     #[arg(long = "cloud-sphere-divisor", value_name = "N")]
     pub sphere_divisor: Option<u32>,
+    /// The cloud's shadow in the air below its base (crepuscular rays under a deck with
+    /// gaps), taken by hillaire's light-shaft march (docs/clouds.md) [default: true].
+    #[arg(id = "cloud_shafts", long = "cloud-shafts", value_name = "BOOL")]
+    pub shafts: Option<bool>,
 }
 
 impl CloudFlags {
@@ -99,6 +103,7 @@ impl CloudFlags {
             sun_light: flags.sun_light.or(self.sun_light),
             form: flags.form.or(self.form),
             sphere_divisor: flags.sphere_divisor.or(self.sphere_divisor),
+            shafts: flags.shafts.or(self.shafts),
         }
     }
 
@@ -248,6 +253,8 @@ pub struct CloudInputs {
     pub settings: LayerSettings,
     pub form: CloudForm,
     pub spheres: SphereSettings,
+    /// Whether the cloud shadows the air below its base (`--cloud-shafts`).
+    pub shafts: bool,
     pub cover: CoverGrid,
     pub orders: ScatteringOrders,
 }
@@ -262,6 +269,7 @@ impl CloudInputs {
             settings,
             form: flags.form()?,
             spheres: flags.sphere_settings()?,
+            shafts: flags.shafts.unwrap_or(true),
             cover: flags.cover_grid()?,
             orders: droplet_orders()?,
         }))
@@ -278,6 +286,7 @@ impl CloudInputs {
             form: self.form,
             spheres: self.spheres,
             prune: true,
+            shafts: self.shafts,
         }))?;
         Ok(())
     }

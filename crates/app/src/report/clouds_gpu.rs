@@ -133,6 +133,8 @@ fn measure(
         form: row.form(),
         spheres: SphereSettings::default(),
         prune: true,
+        // The cloud methods' own cost, without hillaire's cloud shafts.
+        shafts: false,
     };
     let step = match row {
         CloudRow::Layer { .. } => "clouds",

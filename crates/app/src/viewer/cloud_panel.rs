@@ -75,6 +75,11 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
                      between; layer: the volume's march; spheres: Dobashi et al. 2002's \
                      cloud spheres (made anew on the CPU when the sun moves)",
                 );
+            ui.checkbox(&mut clouds.shafts, "cloud shafts")
+                .on_hover_text(
+                    "the cloud's shadow in the air below its base (crepuscular rays under a \
+                 deck with gaps; the hillaire model)",
+                );
         });
     });
 }

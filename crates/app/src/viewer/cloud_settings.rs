@@ -29,6 +29,8 @@ pub struct CloudSettings {
     pub quality: String,
     /// The form the cloud takes: `auto` (by altitude), `layer` or `spheres`.
     pub form: String,
+    /// The cloud's shadow in the air below its base (hillaire's cloud shafts).
+    pub shafts: bool,
 }
 
 impl Default for CloudSettings {
@@ -43,6 +45,7 @@ impl Default for CloudSettings {
             method: layer.method.to_string(),
             quality: MarchQuality::Interactive.to_string(),
             form: CloudForm::default().to_string(),
+            shafts: true,
         }
     }
 }
@@ -61,6 +64,7 @@ impl CloudSettings {
             sun_light: None,
             form: Some(self.form.clone()),
             sphere_divisor: None,
+            shafts: Some(self.shafts),
         }
     }
 }

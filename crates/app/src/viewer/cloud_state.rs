@@ -84,6 +84,7 @@ impl CloudState {
             form: flags.form()?,
             spheres: SphereSettings::default(),
             prune: true,
+            shafts: flags.shafts.unwrap_or(true),
         }))?;
         Ok(())
     }

@@ -50,6 +50,9 @@ pub struct FrameClouds {
     /// Whether the planner may leave the cloud steps out when they cannot change the
     /// image ([`why_no_clouds`]); off only to check that pruning changes nothing.
     pub prune: bool,
+    /// Whether the cloud shadows the air below its base (crepuscular rays; hillaire's
+    /// shafts, `frame_cloud_shafts.rs`).
+    pub shafts: bool,
 }
 
 /// Why `frame` needs no cloud steps, if it does not: the cover, scaled by the settings'
@@ -272,6 +275,7 @@ mod tests {
             form,
             spheres: SphereSettings::default(),
             prune: true,
+            shafts: true,
         };
         let mut plan = FramePlan::default();
         let (steps, _) = plan_clouds(&f, Some(&clouds), Some(1.0), &mut plan).unwrap();

@@ -2,12 +2,14 @@
 //! ([`why_no_sun_map`]), its grid under the frame's camera, and its fill before the
 //! cloud's march, which reads it with `sun_light = map`, and the model's passes, which
 //! multiply the surface's sun by its transmittance (the clouds' shadows on the terrain;
-//! docs/clouds.md, "Cloud shadows").
+//! docs/clouds.md, "Cloud shadows") and, in hillaire's shafts, the sun's visibility in
+//! the air below the layer's base (`frame_cloud_shafts.rs`).
 
 use atmosphere_core::clouds::layer::settings::SunLight;
 use atmosphere_core::clouds::layer::shell::Shell;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution, half_width_m};
 
+use crate::clouds::frame_cloud_shafts::{CLOUD_SHAFTS, NO_CLOUD_STEPS, why_no_cloud_shafts};
 use crate::clouds::frame_clouds::FrameClouds;
 use crate::clouds::frame_pass::frame_camera;
 use crate::clouds::layer_inputs::LayerInputs;
@@ -19,16 +21,17 @@ use crate::frame::plan::{FramePlan, StepKind};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
 
-/// Why the planner leaves the sun map out of a frame whose rays end on no surface.
-pub const NO_SURFACE: &str = "no surface in view to shade";
+/// Why the planner leaves the sun map out of a frame whose rays end on no surface and
+/// whose air the cloud does not shade.
+pub const NO_SURFACE: &str = "no surface or air in view to shade";
 /// Why it leaves the map out when the sun is below the horizon all over the map.
 pub const SUN_DOWN: &str = "the sun is below the horizon over the map";
 
-/// Why `frame` needs no sun map when its cloud steps run: no surface takes the shadow,
-/// or the sun is more than the map's angular half width (and 2 degrees for the
+/// Why `frame` needs no sun map when its cloud steps run: no surface and no air
+/// (`shades`) takes the shadow, or the sun is more than the map's angular half width (and 2 degrees for the
 /// relief) below the camera's horizon, where no point of the map's region sees it.
-pub fn why_no_sun_map(frame: &Frame, has_surface: bool, shell: &Shell) -> Option<&'static str> {
-    if !has_surface {
+pub fn why_no_sun_map(frame: &Frame, shades: bool, shell: &Shell) -> Option<&'static str> {
+    if !shades {
         return Some(NO_SURFACE);
     }
     let up = frame.camera_position_m.normalize();
@@ -72,7 +75,9 @@ impl FrameSunMap {
     /// Plans the map of `frame`, whose cloud steps run when `clouds_run`, into `plan`
     /// (`cloud_shadow`, or skipped with why by [`why_no_sun_map`] when the clouds
     /// prune; never skipped when the layer is lit by it, whose resolution is then
-    /// [`SunMapResolution::LIT`]), and sets the parameters the pixel passes read.
+    /// [`SunMapResolution::LIT`]), with the cloud's shadow in the air where
+    /// [`why_no_cloud_shafts`] finds none missing (else `cloud_shafts` skipped with
+    /// why), and sets the parameters the pixel passes read.
     pub fn plan(
         &mut self,
         gpu: &GpuContext,
@@ -84,8 +89,22 @@ impl FrameSunMap {
         self.step = None;
         self.shades_surface = has_surface;
         let pixels = (frame.width, frame.height);
-        let Some((clouds, true)) = clouds else {
-            return self.texture.set(gpu, None, pixels);
+        let clouds = match clouds {
+            Some((clouds, true)) => clouds,
+            Some((clouds, false)) => {
+                if clouds.shafts {
+                    plan.skip(CLOUD_SHAFTS, NO_CLOUD_STEPS);
+                }
+                return self.texture.set(gpu, None, pixels);
+            }
+            None => return self.texture.set(gpu, None, pixels),
+        };
+        let air = match why_no_cloud_shafts(frame, clouds) {
+            Some(why) => {
+                plan.skip(CLOUD_SHAFTS, why);
+                false
+            }
+            None => true,
         };
         let ground = frame.atmosphere.bottom_radius_m;
         let (base, top) = clouds.settings.radii_m(ground);
@@ -95,15 +114,20 @@ impl FrameSunMap {
             top_radius_m: top,
         };
         let lit = clouds.settings.sun_light == SunLight::Map;
-        let skip = why_no_sun_map(frame, has_surface, &shell).filter(|_| clouds.prune && !lit);
+        let shades = has_surface || air;
+        let skip = why_no_sun_map(frame, shades, &shell).filter(|_| clouds.prune && !lit);
         if let Some(why) = skip {
             plan.skip("cloud_shadow", why);
             return self.texture.set(gpu, None, pixels);
         }
-        let resolution = if lit {
-            SunMapResolution::LIT
-        } else {
-            SunMapResolution::default()
+        // The air below the base reads level 0 alone: without a surface, one level.
+        let resolution = match (lit, has_surface) {
+            (true, _) => SunMapResolution::LIT,
+            (false, true) => SunMapResolution::default(),
+            (false, false) => SunMapResolution {
+                levels: 1,
+                ..SunMapResolution::default()
+            },
         };
         let to_error =
             |e: atmosphere_core::clouds::error::CloudError| RenderError::Frame(e.to_string());
@@ -113,11 +137,12 @@ impl FrameSunMap {
             .sun_direction
             .try_normalize()
             .ok_or_else(|| RenderError::Frame("sun direction must be non-zero".into()))?;
-        let params = SunMapUniform::new(&grid, sun, top, &resolution);
+        let params = SunMapUniform::new(&grid, sun, top, &resolution).shading_air(air);
         self.texture.set(gpu, Some(&params), pixels)?;
         if self.pass.is_none() {
             self.pass = Some(SunMapPass::new(gpu)?);
         }
+        plan.cloud_shafts = air;
         plan.run("cloud_shadow", StepKind::Pass);
         self.step = Some(plan.steps.len() as u32 - 1);
         Ok(())

@@ -5,9 +5,11 @@
 //! layer of a renderer frame and the planner's rule, [`frame_pass`] its march and its
 //! composite with the frame's sky model; [`sun_map_texture`] and [`sun_map_pass`] the
 //! layer's attenuation of the sun over the view's region, which shades the surface,
-//! and [`frame_sun_map`] its place in a renderer frame; [`spheres`] the cloud spheres
+//! and [`frame_sun_map`] its place in a renderer frame, [`frame_cloud_shafts`] the
+//! planner's rule for its shadow in the air (hillaire's shafts); [`spheres`] the cloud spheres
 //! seen from far away; [`volume`] a voxel cloud by half-angle slicing.
 
+pub mod frame_cloud_shafts;
 pub mod frame_clouds;
 pub mod frame_pass;
 pub mod frame_sun_map;

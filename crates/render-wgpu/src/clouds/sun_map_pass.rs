@@ -6,7 +6,7 @@
 
 use crate::clouds::layer_uniform::LayerUniform;
 use crate::clouds::sun_map_texture::{
-    PIXELS_OUT_BINDING, SUN_MAP_BINDING, SUN_MAP_FORMAT, SunMapTexture,
+    PIXELS_FORMAT, PIXELS_OUT_BINDING, SUN_MAP_BINDING, SUN_MAP_FORMAT, SunMapTexture,
 };
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::surface_buffer::GEOMETRY_BINDING;
@@ -50,7 +50,7 @@ impl SunMapPass {
             uniform_entry(1, size_of::<FrameUniform>()),
             texture_entry(GEOMETRY_BINDING, D2),
             params,
-            storage_texture_entry(PIXELS_OUT_BINDING, SUN_MAP_FORMAT, D2),
+            storage_texture_entry(PIXELS_OUT_BINDING, PIXELS_FORMAT, D2),
             texture_entry(SUN_MAP_BINDING, D2),
         ];
         Ok(SunMapPass {

@@ -1,6 +1,7 @@
 //! The cloud layer's sun map on the GPU (atmosphere-core's `clouds/layer/sun_map.rs`):
 //! its optical depths in an `R32Float` texture, level k in rows k n to k n + n - 1, its
-//! parameters in a uniform, and the map's transmittance at each pixel's surface
+//! parameters in a uniform, and the map's transmittance at each pixel's surface (and,
+//! beside it, hillaire's shafts with the cloud, `sky/hillaire/cloud_shafts.rs`)
 //! (`shaders/clouds/sun_map_pixels.wgsl`), which every model's pixel pass binds at 32
 //! with the parameters at 33 (`shaders/common/surface.wgsl`) and multiplies its
 //! surface's sun by. A frame without the map binds small textures with the flag off.
@@ -16,6 +17,9 @@ use crate::gpu::pipeline::{texture_2d, texture_entry, uniform_buffer, uniform_en
 
 /// The texture's format: one optical depth per texel.
 pub const SUN_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// The per-pixel image's format: the transmittance at the pixel's surface, then the
+/// single scattering per unit solar irradiance that hillaire's shafts take out.
+pub const PIXELS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The bindings, in the model's pixel passes, of the per-pixel transmittance and of the
 /// parameters; in the per-pixel pass, of the per-pixel output and of the map.
 pub const PIXELS_BINDING: u32 = 32;
@@ -34,7 +38,8 @@ pub struct SunMapUniform {
     pub up: [f32; 4],
     /// Unit vector towards the sun.
     pub sun: [f32; 4],
-    /// Radii of the layer's base and top, m; 0, 0.
+    /// Radii of the layer's base and top, m; 1 when the map shades the air under the
+    /// base (hillaire's shafts), else 0; 0.
     pub radii: [f32; 4],
     /// Cells per side, levels, march steps per texel, 1.
     pub counts: [u32; 4],
@@ -64,12 +69,21 @@ impl SunMapUniform {
             ],
         }
     }
+
+    /// These parameters with the flag that the map shades the air under the layer's
+    /// base (`on`) or not.
+    pub fn shading_air(self, on: bool) -> SunMapUniform {
+        let mut params = self;
+        params.radii[2] = if on { 1.0 } else { 0.0 };
+        params
+    }
 }
 
 /// The map's texture, parameters and per-pixel transmittance.
 #[derive(Debug)]
 pub struct SunMapTexture {
     texture: wgpu::Texture,
+    view: wgpu::TextureView,
     pixels: wgpu::Texture,
     pixels_view: wgpu::TextureView,
     params: wgpu::Buffer,
@@ -78,11 +92,13 @@ pub struct SunMapTexture {
 impl SunMapTexture {
     /// The placeholder of frames without the map.
     pub fn new(gpu: &GpuContext) -> SunMapTexture {
-        let pixels = map_texture(gpu, "cloud sun map pixels", (1, 1));
+        let pixels = map_texture(gpu, "cloud sun map pixels", (1, 1), PIXELS_FORMAT);
         let params = uniform_buffer(&gpu.device, "cloud sun map", size_of::<SunMapUniform>());
         gpu.write_uniform(&params, &SunMapUniform::default());
+        let texture = map_texture(gpu, "cloud sun map", (2, 2), SUN_MAP_FORMAT);
         SunMapTexture {
-            texture: map_texture(gpu, "cloud sun map", (2, 2)),
+            view: texture.create_view(&Default::default()),
+            texture,
             pixels_view: pixels.create_view(&Default::default()),
             pixels,
             params,
@@ -113,10 +129,11 @@ impl SunMapTexture {
             )));
         }
         if (self.texture.width(), self.texture.height()) != size {
-            self.texture = map_texture(gpu, "cloud sun map", size);
+            self.texture = map_texture(gpu, "cloud sun map", size, SUN_MAP_FORMAT);
+            self.view = self.texture.create_view(&Default::default());
         }
         if (self.pixels.width(), self.pixels.height()) != pixels {
-            self.pixels = map_texture(gpu, "cloud sun map pixels", pixels);
+            self.pixels = map_texture(gpu, "cloud sun map pixels", pixels, PIXELS_FORMAT);
             self.pixels_view = self.pixels.create_view(&Default::default());
         }
         gpu.write_uniform(&self.params, params);
@@ -158,12 +175,27 @@ impl SunMapTexture {
     }
 }
 
-fn map_texture(gpu: &GpuContext, label: &str, size: (u32, u32)) -> wgpu::Texture {
+impl SunMapTexture {
+    /// The map itself at 35 (hillaire's cloud shafts read it).
+    pub fn map_binding(&self) -> (u32, wgpu::BindingResource<'_>) {
+        (
+            SUN_MAP_BINDING,
+            wgpu::BindingResource::TextureView(&self.view),
+        )
+    }
+}
+
+fn map_texture(
+    gpu: &GpuContext,
+    label: &str,
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
     texture_2d(
         &gpu.device,
         label,
         size,
-        SUN_MAP_FORMAT,
+        format,
         wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
             | wgpu::TextureUsages::COPY_SRC,

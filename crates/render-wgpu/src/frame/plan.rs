@@ -33,6 +33,10 @@ pub struct FramePlan {
     /// renderer before the model plans: a surface may lie at any distance in any
     /// direction, so passes that serve nearby ground serve it too.
     pub surface: bool,
+    /// Whether the frame's sun map shades the air below the cloud layer's base, set by
+    /// the renderer before the model plans (hillaire then runs its cloud shafts;
+    /// `clouds/frame_cloud_shafts.rs`).
+    pub cloud_shafts: bool,
     /// What a progressive table build ([`crate::Renderer::set_progressive`]) is doing
     /// this frame when more of it follows in later frames (`bruneton: order 3 of at most
     /// 32, Delta S slice 2 of 16`): the image is not final yet. `None` when the tables

@@ -78,6 +78,11 @@ impl<'a, S: PassStep> SkyPlan<'a, S> {
         self.record.surface
     }
 
+    /// Whether the frame's sun map shades the air ([`FramePlan::cloud_shafts`]).
+    pub fn cloud_shafts(&self) -> bool {
+        self.record.cloud_shafts
+    }
+
     /// What a progressive table build is doing this frame ([`FramePlan::building`]).
     pub fn set_building(&mut self, building: Option<String>) {
         self.record.building = building;

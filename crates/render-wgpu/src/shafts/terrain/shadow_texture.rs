@@ -28,7 +28,12 @@ impl ShadowTexture {
     /// and at least `samples.1` samples per view segment.
     pub fn upload(&mut self, gpu: &GpuContext, map: Option<&ShadowMap>, samples: (u32, u32)) {
         let Some(map) = map else {
-            gpu.write_uniform(&self.params, &ShadowMapUniform::default());
+            // No levels; the sample counts still bound the cloud's shafts.
+            let none = ShadowMapUniform {
+                size: [0, 0, samples.0, samples.1],
+                ..ShadowMapUniform::default()
+            };
+            gpu.write_uniform(&self.params, &none);
             return;
         };
         let n = map.grid.size as u32;

@@ -16,8 +16,10 @@
 //! - `hillaire`: the pass, every frame. It reads the transmittance table, the sky view
 //!   and the volume through the texture unit's filter where the device can
 //!   (`table_sampling`): one read per look-up instead of 4 (8 for the volume's trilinear
-//!   one).
+//!   one); before it, where the cloud's sun map shades the air, `cloud_shafts.rs`
+//!   (the shafts with the cloud's shadow, per pixel).
 
+pub mod cloud_shafts;
 pub mod pass;
 pub mod step;
 pub mod tables;

@@ -1,0 +1,268 @@
+//! The cloud layer's shadow in the air in renderer frames (crepuscular rays under a deck
+//! with gaps): hillaire's shaft march multiplies the sun's visibility below the layer's
+//! base by the frame's sun map (`shaders/sky/hillaire/shafts.wgsl`), against its CPU
+//! twin, atmosphere-core's `clouds/layer/air_shadow.rs` (`radiance_with_cloud_shafts`
+//! for the whole ray and for the ray ended where it enters the cloud, composited with
+//! the CPU march by `composite.rs`), on a 64 x 36 frame 300 m up under the default
+//! layer over a cover with gaps, the sun 12 degrees up, no surface: the sun map is made
+//! for the air alone.
+//!
+//! Tolerance: the air's pixels (rays that meet no cloud) within `AIR_RELATIVE` of
+//! themselves (hillaire's own parity is 2e-3; the map's f32 fill and read add theirs,
+//! `gpu_cloud_sun_map.rs`); the pixels that see the deck as `gpu_cloud_frames.rs` states
+//! (4 % plus 1 % of the frame's brightest, one value in a hundred up to four times
+//! that). The shafts must be there: without the cloud's shadow in the air
+//! (`FrameClouds::shafts` off) the air's pixels are brighter, by more than ten times
+//! the tolerance in three quarters of their values, and never darker beyond it; the
+//! light they keep varies by more than 0.1 over the frame (beams through the gaps beside
+//! the deck's shadow: a shadow of one value fails). Pruning
+//! (the camera inside the layer looking up: no air below the base in view) changes
+//! nothing.
+//!
+//! Needs a GPU adapter (lavapipe will do); see `support`.
+
+mod support;
+
+use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::air_shadow::radiance_with_cloud_shafts;
+use atmosphere_core::clouds::layer::composite::composite;
+use atmosphere_core::clouds::layer::field::CloudLayer;
+use atmosphere_core::clouds::layer::march::CloudSegment;
+use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::phase::CloudPhase;
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
+use atmosphere_core::geo::equirectangular::lat_lon;
+use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::sky_model::{RayRadiance, ViewRay};
+use atmosphere_core::optics::phase::PhaseFunction;
+use glam::DVec3;
+use render_wgpu::Renderer;
+use render_wgpu::clouds::frame_cloud_shafts::{CLOUD_SHAFTS, NO_AIR_BELOW};
+use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::clouds::frame_sun_map::NO_SURFACE;
+use render_wgpu::frame::{Frame, look_orientation};
+use support::clouds::{cpu_march, frame_sun_map};
+
+const AIR_RELATIVE: f64 = 0.02;
+const RELATIVE: f64 = 0.04;
+const OF_BRIGHTEST: f64 = 0.01;
+const JUMP_FACTOR: f64 = 4.0;
+
+/// Cells about 50 km across near (0 N, 0 E) with gaps where the product dips below 0.
+fn cover() -> CoverGrid {
+    CoverGrid::rasterize(2048, 1024, |p| {
+        let (lat, lon) = lat_lon(p);
+        0.5 + 0.8 * (lat * 400.0).sin() * (lon * 300.0).cos()
+    })
+    .unwrap()
+}
+
+fn settings() -> LayerSettings {
+    LayerSettings {
+        steps: 24,
+        shadow_steps: 6,
+        ..LayerSettings::default()
+    }
+}
+
+/// `altitude_m` above (0 N, 0 E), pitched `pitch_deg`, the sun 12 degrees up, 30
+/// degrees to the right of the view's azimuth.
+fn frame(altitude_m: f64, pitch_deg: f64) -> Frame {
+    let atmosphere = atmosphere_core::atmosphere::Atmosphere::preset("earth").unwrap();
+    let up = DVec3::X;
+    let pitch = pitch_deg.to_radians();
+    let (elevation, azimuth) = (12f64.to_radians(), 30f64.to_radians());
+    Frame {
+        camera_position_m: up * (atmosphere.bottom_radius_m + altitude_m),
+        orientation: look_orientation(DVec3::new(pitch.sin(), pitch.cos(), 0.0), up).unwrap(),
+        vertical_fov_deg: 40.0,
+        sun_direction: DVec3::new(
+            elevation.sin(),
+            elevation.cos() * azimuth.cos(),
+            elevation.cos() * azimuth.sin(),
+        ),
+        atmosphere,
+        model: ModelId::Hillaire,
+        settings: Default::default(),
+        exposure_ev100: 14.0,
+        width: 64,
+        height: 36,
+        terrain: None,
+    }
+}
+
+fn clouds(frame: &Frame, shafts: bool, prune: bool) -> FrameClouds {
+    let model = cpu_model(frame);
+    FrameClouds {
+        settings: settings(),
+        light: frame_light(&model, frame, &settings()).unwrap(),
+        form: CloudForm::Layer,
+        spheres: SphereSettings::default(),
+        prune,
+        shafts,
+    }
+}
+
+fn cpu_model(frame: &Frame) -> Hillaire {
+    Hillaire::prepare(
+        &frame.atmosphere,
+        &frame.settings,
+        HillaireSettings::default(),
+    )
+    .unwrap()
+}
+
+fn render(renderer: &mut Renderer, frame: &Frame, clouds: FrameClouds) -> Vec<[f32; 4]> {
+    renderer.set_clouds(Some(clouds)).unwrap();
+    let plan = renderer.render(frame).unwrap();
+    assert!(plan.runs("clouds"), "{plan}");
+    renderer.read_hdr().unwrap()
+}
+
+#[test]
+fn cloud_shafts_darken_the_air_below_a_deck_with_gaps_as_the_cpu_twin_does() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud shafts") else {
+        return;
+    };
+    let (orders, cover) = (support::clouds::orders(), cover());
+    renderer.set_cloud_inputs(&cover, &orders).unwrap();
+    let frame = frame(300.0, 0.0);
+    renderer
+        .set_clouds(Some(clouds(&frame, true, true)))
+        .unwrap();
+    let plan = renderer.render(&frame).unwrap();
+    assert!(
+        plan.runs("cloud_shadow"),
+        "the map for the air alone: {plan}"
+    );
+    assert!(
+        !plan.skipped.iter().any(|(name, _)| *name == CLOUD_SHAFTS),
+        "{plan}"
+    );
+    let gpu = renderer.read_hdr().unwrap();
+    let plain = render(&mut renderer, &frame, clouds(&frame, false, true));
+
+    let model = cpu_model(&frame);
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+    let radius = frame.atmosphere.bottom_radius_m;
+    let layer = CloudLayer::new(settings(), radius, cover, phase).unwrap();
+    let map = frame_sun_map(&layer, &frame);
+    let light = frame_light(&model, &frame, &settings()).unwrap();
+    let brightest = gpu
+        .iter()
+        .flat_map(|p| p[..3].to_vec())
+        .fold(0.0f32, f32::max);
+    let (mut worst_air, mut worst_cloud, mut outside, mut far_outside) = (0.0f64, 0.0f64, 0, 0);
+    let (mut air, mut darkened, mut brighter) = (0, 0, 0);
+    let (mut cloudy, mut least, mut most) = (0, f64::INFINITY, 0.0f64);
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            let k = (row * frame.width + column) as usize;
+            let ray = frame.pixel_ray(column, row);
+            let full = radiance_with_cloud_shafts(&model, &ray, &map).unwrap();
+            let segment = layer
+                .shell()
+                .first_segment(ray.origin_m, ray.direction, f64::INFINITY);
+            let Some((t0, t1)) = segment else {
+                // Air and ground only: the model's answer with the cloud's shafts.
+                air += 1;
+                let kept = f64::from(gpu[k][1]) / f64::from(plain[k][1]);
+                (least, most) = (least.min(kept), most.max(kept));
+                for w in 0..3 {
+                    let (g, c) = (f64::from(gpu[k][w]), full.radiance[w]);
+                    worst_air = worst_air.max((g - c).abs() / (AIR_RELATIVE * c));
+                    let lost = f64::from(plain[k][w]) - g;
+                    darkened += usize::from(lost > 10.0 * AIR_RELATIVE * c);
+                    brighter += usize::from(-lost > AIR_RELATIVE * c);
+                }
+                continue;
+            };
+            let front = radiance_with_cloud_shafts(
+                &model,
+                &ViewRay {
+                    max_distance_m: Some(t0),
+                    ..ray
+                },
+                &map,
+            )
+            .unwrap();
+            let [r, g, b, t] = cpu_march(
+                &layer,
+                &orders,
+                (&light, &map),
+                (ray.origin_m, ray.direction),
+                (t0, t1),
+            );
+            cloudy += 1;
+            let cloud = CloudSegment {
+                radiance: vec![r, g, b],
+                transmittance: vec![t; 3],
+            };
+            let cpu: RayRadiance = composite(&full, &front, &cloud);
+            for w in 0..3 {
+                let error = (f64::from(gpu[k][w]) - cpu.radiance[w]).abs();
+                let allowed = RELATIVE * cpu.radiance[w] + OF_BRIGHTEST * f64::from(brightest);
+                worst_cloud = worst_cloud.max(error / allowed);
+                outside += usize::from(error > allowed);
+                far_outside += usize::from(error > JUMP_FACTOR * allowed);
+            }
+        }
+    }
+    println!(
+        "{air} air pixels: worst {worst_air:.3} of the tolerance; {darkened} of {} values \
+         darkened by the shafts beyond ten times it, {brighter} brighter, the air's \
+         light kept {least:.3} to {most:.3} (550 nm); {cloudy} pixels see the deck: worst \
+         {worst_cloud:.3} of the tolerance, {outside} values outside",
+        3 * air
+    );
+    assert!(air > 500 && cloudy > 500, "{air} air, {cloudy} deck pixels");
+    // Beams: air lit through the gaps beside air in the deck's shadow.
+    assert!(
+        least < 0.8 && most - least > 0.1,
+        "the air keeps {least:.3} to {most:.3} of its light: no beams"
+    );
+    assert!(
+        worst_air <= 1.0,
+        "air pixels: worst {worst_air:.3} of the tolerance"
+    );
+    assert!(
+        outside * 100 <= 3 * cloudy && far_outside == 0,
+        "deck pixels: {outside} values outside, {far_outside} far outside"
+    );
+    assert!(darkened * 4 >= 3 * air, "only {darkened} values darkened");
+    assert_eq!(brighter, 0, "values brighter with the cloud's shadow");
+}
+
+#[test]
+fn pruning_the_cloud_shafts_changes_nothing() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud shafts pruning") else {
+        return;
+    };
+    renderer
+        .set_cloud_inputs(&cover(), &support::clouds::orders())
+        .unwrap();
+    // Inside the layer (1.5 to 3 km) looking 40 degrees up: no ray comes down to the
+    // base.
+    let frame = frame(2_000.0, 40.0);
+    renderer
+        .set_clouds(Some(clouds(&frame, true, true)))
+        .unwrap();
+    let plan = renderer.render(&frame).unwrap();
+    assert!(
+        plan.skipped.contains(&(CLOUD_SHAFTS, NO_AIR_BELOW)),
+        "{plan}"
+    );
+    assert!(
+        plan.skipped.contains(&("cloud_shadow", NO_SURFACE)),
+        "{plan}"
+    );
+    let pruned = renderer.read_hdr().unwrap();
+    renderer
+        .set_clouds(Some(clouds(&frame, true, false)))
+        .unwrap();
+    let plan = renderer.render(&frame).unwrap();
+    assert!(plan.runs("cloud_shadow"), "{plan}");
+    assert_eq!(pruned, renderer.read_hdr().unwrap());
+}
