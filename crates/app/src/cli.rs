@@ -299,6 +299,10 @@ pub struct RenderArgs {
     /// 256].
     #[arg(long, value_name = "N", requires = "volume")]
     pub paths: Option<u64>,
+    /// With --volume and path: scattering within this many degrees of the forward
+    /// direction taken as none (delta-M), 0 to 20 [default: 0, exact].
+    #[arg(long, value_name = "DEG", requires = "volume")]
+    pub forward_peak_deg: Option<f64>,
     /// Scattering model (every sky model but the reference is on the GPU), or with a
     /// beams scene a beam method [default: march].
     #[arg(long, value_name = "MODEL", value_parser = parse_probe_model)]

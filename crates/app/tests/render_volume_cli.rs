@@ -92,29 +92,34 @@ fn the_cumulus_renders_alike_by_slicing_and_by_the_march() {
     }
 }
 
-/// The path tracer's cumulus, a few paths per pixel, is the march's cloud within a
-/// factor of two of its brightness (their differences are in docs/clouds.md).
+/// The path tracer's cumulus, a few paths per pixel, exact and with the forward peak
+/// within 5 degrees cut, is the march's cloud within a factor of two of its brightness
+/// (their differences are in docs/clouds.md).
 #[test]
 fn the_path_tracer_renders_the_cumulus_as_the_march_does() {
     let dir = tempfile::tempdir().unwrap();
     let scene = scene_of_size(dir.path(), 16, 12);
     let mut means = Vec::new();
-    for (method, paths) in [("march", None), ("path", Some("8"))] {
-        let out = dir.path().join(format!("{method}.png"));
+    for (name, method, cone) in [
+        ("march", "march", None),
+        ("exact", "path", Some("0")),
+        ("cut", "path", Some("5")),
+    ] {
+        let out = dir.path().join(format!("{name}.png"));
         let mut args = vec!["render", "--volume", scene.to_str().unwrap()];
         args.extend(["--method", method, "--exposure", "15"]);
         args.extend(["--out", out.to_str().unwrap()]);
-        if let Some(n) = paths {
-            args.extend(["--paths", n]);
+        if let Some(cone) = cone {
+            args.extend(["--paths", "8", "--forward-peak-deg", cone]);
         }
         let output = atmos(&args);
         let err = stderr(&output);
         assert!(output.status.success(), "{err}");
-        if method == "path" {
-            assert!(
-                err.contains("16x12 volume by path (8 paths per pixel, all orders) on the CPU"),
-                "{err}"
+        if let Some(cone) = cone {
+            let expected = format!(
+                "16x12 volume by path (8 paths per pixel, all orders, forward peak {cone} deg) on the CPU"
             );
+            assert!(err.contains(&expected), "{err}");
         }
         let image = image::open(&out).unwrap().to_luma8();
         assert_eq!(
@@ -130,11 +135,13 @@ fn the_path_tracer_renders_the_cumulus_as_the_march_does() {
         means.push(middle);
     }
     println!(
-        "mean grey in the middle: march {:.1}, path tracer {:.1}",
-        means[0], means[1]
+        "mean grey in the middle: march {:.1}, path tracer {:.1}, cut {:.1}",
+        means[0], means[1], means[2]
     );
     assert!(means[0] > 30.0, "{means:?}");
-    assert!((0.5..2.0).contains(&(means[1] / means[0])), "{means:?}");
+    for traced in &means[1..] {
+        assert!((0.5..2.0).contains(&(traced / means[0])), "{means:?}");
+    }
 }
 
 #[test]
@@ -158,6 +165,34 @@ fn bad_volume_flags_are_refused_by_name() {
     atmos_fails_with(
         &["render", "--volume", scene, "--paths", "8", "--out", out],
         "--paths is a setting of --method path, not of slicing",
+    );
+    atmos_fails_with(
+        &[
+            "render",
+            "--volume",
+            scene,
+            "--method",
+            "path",
+            "--forward-peak-deg",
+            "30",
+            "--out",
+            out,
+        ],
+        "--forward-peak-deg 30 must lie in [0, 20]",
+    );
+    atmos_fails_with(
+        &[
+            "render",
+            "--volume",
+            scene,
+            "--method",
+            "march",
+            "--forward-peak-deg",
+            "5",
+            "--out",
+            out,
+        ],
+        "--forward-peak-deg is a setting of --method path, not of march",
     );
     atmos_fails_with(
         &["render", "--volume", scene, "--slices", "1", "--out", out],

@@ -7,8 +7,8 @@
 //! are kept in the folder `ATMOS_CACHE_DIR` names, as `atmos` keeps them.
 //!
 //! `cargo run -p atmosphere-core --example volume_against_path_tracer [SCENE.toml
-//! [WIDTH_PX [PATHS]]]` (defaults: the cumulus, 16 pixels across, 256 paths per pixel
-//! and wavelength)
+//! [WIDTH_PX [PATHS [FORWARD_PEAK_DEG]]]]` (defaults: the cumulus, 16 pixels across, 256
+//! paths per pixel and wavelength, the exact tracer)
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -17,7 +17,7 @@ use atmosphere_core::clouds::layer::droplets::droplet_orders_cached;
 use atmosphere_core::clouds::layer::settings::LayerMethod;
 use atmosphere_core::clouds::volume::cloud::single_scattering_phase;
 use atmosphere_core::clouds::volume::march_image::march_image;
-use atmosphere_core::clouds::volume::path_traced::path_traced_image;
+use atmosphere_core::clouds::volume::path_traced::{PathTracing, path_traced_image};
 use atmosphere_core::clouds::volume::scene::{VolumeScene, WAVELENGTHS_NM};
 use atmosphere_core::clouds::volume::settings::VolumeSettings;
 use atmosphere_core::clouds::volume::slicing::slicing_image;
@@ -31,6 +31,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let width_px: u32 = args.next().map_or(Ok(16), |a| a.parse())?;
     let paths: u64 = args.next().map_or(Ok(256), |a| a.parse())?;
+    let forward_peak_deg: f64 = args.next().map_or(Ok(0.0), |a| a.parse())?;
     let cache = std::env::var_os("ATMOS_CACHE_DIR").map_or_else(TableCache::off, TableCache::at);
     let orders = droplet_orders_cached(&WAVELENGTHS_NM, &cache)?;
     let scene = VolumeScene::load(&path, single_scattering_phase(&orders, 1)?)?;
@@ -41,10 +42,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     .max(1) as u32;
     camera.width_px = width_px;
     let start = Instant::now();
-    let reference = path_traced_image(cloud, &camera, sun, &orders, paths, 1, &|| {})?;
+    let tracing = PathTracing {
+        paths,
+        seed: 1,
+        forward_peak_deg,
+    };
+    let reference = path_traced_image(cloud, &camera, sun, &orders, &tracing, &|| {})?;
     println!(
-        "{} at {}x{}: path tracer {paths} paths per pixel and wavelength in {:.0} s, \
-         relative noise {:.2} %",
+        "{} at {}x{}: path tracer {paths} paths per pixel and wavelength, forward peak \
+         {forward_peak_deg} deg, in {:.0} s, relative noise {:.2} %",
         path.display(),
         camera.width_px,
         camera.height_px,

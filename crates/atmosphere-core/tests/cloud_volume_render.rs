@@ -13,7 +13,9 @@ use atmosphere_core::clouds::volume::grid::VoxelGrid;
 use atmosphere_core::clouds::volume::half_angle::{HalfAngle, half_vector};
 use atmosphere_core::clouds::volume::image::VolumeImage;
 use atmosphere_core::clouds::volume::march_image::march_image;
-use atmosphere_core::clouds::volume::path_traced::{MAX_PATHS_PER_PIXEL, path_traced_image};
+use atmosphere_core::clouds::volume::path_traced::{
+    MAX_PATHS_PER_PIXEL, PathTracedImage, PathTracing, path_traced_image,
+};
 use atmosphere_core::clouds::volume::settings::VolumeSettings;
 use atmosphere_core::clouds::volume::slicing::slicing_image;
 use atmosphere_core::optics::legendre_series::LegendreSeries;
@@ -54,6 +56,25 @@ fn ball(sigma: f64) -> VoxelCloud {
         .collect();
     let grid = VoxelGrid::new([n, n, n], density).unwrap();
     VoxelCloud::new(grid, DVec3::splat(-120.0), 10.0, sigma, 1.0, phase()).unwrap()
+}
+
+/// The path tracer's image with `paths` paths per pixel from `seed`, the forward peak
+/// within `forward_peak_deg` taken as no scattering.
+fn traced(
+    cloud: &VoxelCloud,
+    camera: &VolumeCamera,
+    sun: &VolumeSun,
+    orders: &ScatteringOrders,
+    paths: u64,
+    seed: u64,
+    forward_peak_deg: f64,
+) -> PathTracedImage {
+    let tracing = PathTracing {
+        paths,
+        seed,
+        forward_peak_deg,
+    };
+    path_traced_image(cloud, camera, sun, orders, &tracing, &|| {}).unwrap()
 }
 
 fn settings(light: LayerMethod, slices: u32) -> VolumeSettings {
@@ -190,16 +211,7 @@ fn the_path_tracer_in_a_thin_box_is_single_scattering_in_closed_form() {
     )
     .unwrap();
     let truth = closed_form(&cloud, &camera, sigma, true);
-    let traced = path_traced_image(
-        &cloud,
-        &camera,
-        &sun(90.0, 0.0),
-        &orders(),
-        40_000,
-        7,
-        &|| {},
-    )
-    .unwrap();
+    let traced = traced(&cloud, &camera, &sun(90.0, 0.0), &orders(), 40_000, 7, 0.0);
     let image = &traced.image;
     let (mut sum, mut sum_truth, mut variance) = (0.0, 0.0, 0.0);
     for (k, &l) in truth.iter().enumerate() {
@@ -231,9 +243,7 @@ fn the_path_tracers_standard_error_is_honest_and_shrinks_with_its_paths() {
         VolumeCamera::looking_at(DVec3::new(-500.0, -300.0, 100.0), DVec3::ZERO, 30.0, 8, 6)
             .unwrap();
     let orders = orders();
-    let run = |paths, seed| {
-        path_traced_image(&cloud, &camera, &light, &orders, paths, seed, &|| {}).unwrap()
-    };
+    let run = |paths, seed| traced(&cloud, &camera, &light, &orders, paths, seed, 0.0);
     let (a, b, fine) = (run(64, 1), run(64, 2), run(256, 3));
     let difference = a.relative_rms_error(&b.image);
     println!(
@@ -248,10 +258,26 @@ fn the_path_tracers_standard_error_is_honest_and_shrinks_with_its_paths() {
     let ratio = fine.relative_noise() / a.relative_noise();
     assert!((0.4..0.6).contains(&ratio), "{ratio}");
     for paths in [0, MAX_PATHS_PER_PIXEL + 1] {
-        let error = path_traced_image(&cloud, &camera, &light, &orders, paths, 1, &|| {})
+        let tracing = PathTracing {
+            paths,
+            seed: 1,
+            forward_peak_deg: 0.0,
+        };
+        let error = path_traced_image(&cloud, &camera, &light, &orders, &tracing, &|| {})
             .unwrap_err()
             .to_string();
         assert!(error.contains("paths per pixel"), "{error}");
+    }
+    for forward_peak_deg in [-1.0, 20.5, f64::NAN] {
+        let tracing = PathTracing {
+            paths: 1,
+            seed: 1,
+            forward_peak_deg,
+        };
+        let error = path_traced_image(&cloud, &camera, &light, &orders, &tracing, &|| {})
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("forward peak"), "{error}");
     }
 }
 

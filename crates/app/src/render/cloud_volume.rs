@@ -1,16 +1,20 @@
 //! `atmos render --volume FILE.toml`: a voxel cloud's scene (docs/clouds.md, "A local
 //! volume by half-angle slicing") rendered by half-angle slicing on the GPU (or its CPU
 //! twin with `--volume-cpu`), by the ray march on the CPU or by the path tracer on the
-//! CPU (their ground truth, with progress), over a black background, written atomically
+//! CPU (their ground truth, with progress; `--forward-peak-deg` trades its exactness
+//! for far less noise), over a black background, written atomically
 //! as a PNG (tone-mapped as a planet frame is) or an EXR (linear sRGB in cd/m^2).
 
 use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
+use atmosphere_core::clouds::reference::forward_peak::MAX_FORWARD_PEAK_DEG;
 use atmosphere_core::clouds::volume::cloud::single_scattering_phase;
 use atmosphere_core::clouds::volume::march_image::march_image;
-use atmosphere_core::clouds::volume::path_traced::{MAX_PATHS_PER_PIXEL, path_traced_image};
+use atmosphere_core::clouds::volume::path_traced::{
+    MAX_PATHS_PER_PIXEL, PathTracing, path_traced_image,
+};
 use atmosphere_core::clouds::volume::scene::{VolumeScene, WAVELENGTHS_NM};
 use atmosphere_core::clouds::volume::settings::{MAX_SLICES, MIN_SLICES, VolumeMethod};
 use atmosphere_core::clouds::volume::slicing::slicing_image;
@@ -43,6 +47,8 @@ pub struct VolumeFlags<'a> {
     pub slices: Option<u32>,
     /// Paths per pixel and wavelength of the path tracer.
     pub paths: Option<u64>,
+    /// The path tracer's forward cone taken as no scattering, degrees.
+    pub forward_peak_deg: Option<f64>,
     pub exposure: Option<f64>,
 }
 
@@ -69,13 +75,28 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
     {
         bail!("--slices {n} must lie in [{MIN_SLICES}, {MAX_SLICES}]");
     }
+    let tracing = PathTracing {
+        paths: flags.paths.unwrap_or(DEFAULT_PATHS),
+        seed: PATH_SEED,
+        forward_peak_deg: flags.forward_peak_deg.unwrap_or(0.0),
+    };
     if let Some(n) = flags.paths
         && !(1..=MAX_PATHS_PER_PIXEL).contains(&n)
     {
         bail!("--paths {n} must lie in [1, {MAX_PATHS_PER_PIXEL}]");
     }
-    if flags.paths.is_some() && method != VolumeMethod::PathTraced {
-        bail!("--paths is a setting of --method path, not of {method}");
+    if let Some(deg) = flags.forward_peak_deg
+        && !(0.0..=MAX_FORWARD_PEAK_DEG).contains(&deg)
+    {
+        bail!("--forward-peak-deg {deg} must lie in [0, {MAX_FORWARD_PEAK_DEG}]");
+    }
+    if method != VolumeMethod::PathTraced {
+        if flags.paths.is_some() {
+            bail!("--paths is a setting of --method path, not of {method}");
+        }
+        if flags.forward_peak_deg.is_some() {
+            bail!("--forward-peak-deg is a setting of --method path, not of {method}");
+        }
     }
     if WAVELENGTHS_NM != RGB_WAVELENGTHS_NM {
         bail!(
@@ -105,7 +126,6 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
         },
         VolumeMethod::March => march_image(&scene.cloud, &scene.camera, &scene.sun, &orders, s)?,
         VolumeMethod::PathTraced => {
-            let paths = flags.paths.unwrap_or(DEFAULT_PATHS);
             let progress = Progress::new(
                 "path tracing the volume",
                 "rows",
@@ -113,11 +133,12 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
             );
             let (cloud, camera, sun) = (&scene.cloud, &scene.camera, &scene.sun);
             let row_done = || progress.inc();
-            let traced =
-                path_traced_image(cloud, camera, sun, &orders, paths, PATH_SEED, &row_done)?;
+            let traced = path_traced_image(cloud, camera, sun, &orders, &tracing, &row_done)?;
             progress.finish();
             eprintln!(
-                "path tracer: {paths} paths per pixel and wavelength, relative noise {:.2} %",
+                "path tracer: {} paths per pixel and wavelength, forward peak {} deg, relative noise {:.2} %",
+                tracing.paths,
+                tracing.forward_peak_deg,
                 100.0 * traced.relative_noise()
             );
             traced.image
@@ -141,8 +162,8 @@ pub fn run(path: &Path, flags: &VolumeFlags, out: &Path) -> anyhow::Result<()> {
         }
         VolumeMethod::March => format!("{} steps, {} shadow steps", s.steps, s.shadow_steps),
         VolumeMethod::PathTraced => format!(
-            "{} paths per pixel, all orders",
-            flags.paths.unwrap_or(DEFAULT_PATHS)
+            "{} paths per pixel, all orders, forward peak {} deg",
+            tracing.paths, tracing.forward_peak_deg
         ),
     };
     // The path tracer takes no light approximation: the march's and slicing's do.

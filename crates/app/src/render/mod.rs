@@ -31,6 +31,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             cpu: args.volume_cpu,
             slices: args.slices,
             paths: args.paths,
+            forward_peak_deg: args.forward_peak_deg,
             exposure: args.fields.exposure,
         };
         return cloud_volume::run(path, &flags, &args.out);

@@ -50,19 +50,19 @@ pub trait PathLight {
     fn surroundings(&self, direction: DVec3, out: &mut [f64]);
 }
 
-/// A cloud medium with its droplets' tables at each wavelength: what a path scatters by.
+/// A cloud medium with its droplets' phase function at each wavelength: what a path
+/// scatters by.
 pub struct PathMedium<'a, M: CloudMedium + ?Sized> {
     pub medium: &'a M,
-    /// A_1 (the phase function) at each wavelength.
-    pub orders: &'a ScatteringOrders,
-    /// Its sampler at each wavelength.
+    /// The phase function (A_1) at each wavelength, read by the sun's next-event
+    /// estimate and drawn from when a path scatters.
     pub phases: &'a [PhaseTableSampler],
 }
 
 impl<M: CloudMedium + ?Sized> std::fmt::Debug for PathMedium<'_, M> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("PathMedium")
-            .field("wavelengths", &self.orders.wavelengths())
+            .field("wavelengths", &self.phases.len())
             .finish_non_exhaustive()
     }
 }
@@ -120,7 +120,6 @@ impl PathScene<'_> {
     pub fn medium(&self) -> PathMedium<'_, CloudLayer> {
         PathMedium {
             medium: self.layer,
-            orders: self.orders,
             phases: self.phases,
         }
     }
@@ -231,14 +230,14 @@ pub fn trace_from<M: CloudMedium + ?Sized>(
     let sun_direction = light.sun_direction();
     let mut weight = 1.0;
     let mut score = 0.0;
-    let mut radiance = vec![0.0; scene.orders.wavelengths()];
+    let mut radiance = vec![0.0; scene.phases.len()];
     for _ in 0..MAX_SCATTERINGS {
         let albedo = medium.single_scattering_albedo(x);
         let nu = d.dot(sun_direction);
         light.sun_irradiance(x, &mut radiance);
         if radiance[w] > 0.0 {
             let t_cloud = transmittance_to_boundary(medium, x, sun_direction, sampler);
-            score += weight * albedo * scene.orders.distribution(w, 1, nu) * radiance[w] * t_cloud;
+            score += weight * albedo * phase.value(nu) * radiance[w] * t_cloud;
         }
         let (cos, phase_weight) = phase.sample(sampler);
         weight *= albedo * phase_weight;

@@ -6,7 +6,9 @@
 //! that leaves the box finds nothing (the black background the other two composite
 //! over). Each pixel's ray follows `paths` paths per wavelength from a first collision
 //! on its crossing of the box, drawn by delta tracking (a path that crosses without one
-//! adds nothing); its transmittance is the midpoint rule along the crossing.
+//! adds nothing); its transmittance is the midpoint rule along the crossing. As a
+//! setting ([`PathTracing::forward_peak_deg`]) the droplets' forward peak is taken as
+//! no scattering (`reference/forward_peak.rs`): a biased but far less noisy answer.
 
 use rayon::prelude::*;
 
@@ -18,16 +20,51 @@ use super::image::VolumeImage;
 use super::march_image::check_wavelengths;
 use crate::clouds::error::CloudError;
 use crate::clouds::estimate::Tally;
+use crate::clouds::layer::orders::ANGLES;
 use crate::clouds::layer::orders::ScatteringOrders;
 use crate::clouds::medium::CloudMedium;
 use crate::clouds::reference::camera_path::{PathLight, PathMedium, first_collision, trace_from};
-use crate::clouds::reference::phase_sampler::PhaseTableSampler;
+use crate::clouds::reference::forward_peak::{
+    ForwardPeakCut, MAX_FORWARD_PEAK_DEG, truncated_phase,
+};
 use crate::numerics::sampling::{Sampler, mix_seed};
 
 /// The most paths per pixel and wavelength.
 pub const MAX_PATHS_PER_PIXEL: u64 = 1 << 20;
 /// The transmittance's midpoint steps per voxel side.
 const TRANSMITTANCE_STEPS_PER_VOXEL: f64 = 4.0;
+
+/// How the path tracer runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathTracing {
+    /// Paths per pixel and wavelength, in [1, MAX_PATHS_PER_PIXEL].
+    pub paths: u64,
+    /// The random sequence.
+    pub seed: u64,
+    /// The cone around the forward direction, degrees in [0, MAX_FORWARD_PEAK_DEG],
+    /// within which scattering is taken as none (0: every scattering as it is, the
+    /// exact answer).
+    pub forward_peak_deg: f64,
+}
+
+impl PathTracing {
+    /// Refuses a path count or a cone out of range, naming it.
+    pub fn check(&self) -> Result<(), CloudError> {
+        if !(1..=MAX_PATHS_PER_PIXEL).contains(&self.paths) {
+            return Err(CloudError(format!(
+                "volume path tracer: {} paths per pixel, expected 1 to {MAX_PATHS_PER_PIXEL}",
+                self.paths
+            )));
+        }
+        if !(0.0..=MAX_FORWARD_PEAK_DEG).contains(&self.forward_peak_deg) {
+            return Err(CloudError(format!(
+                "volume path tracer: forward peak {} deg, expected 0 to {MAX_FORWARD_PEAK_DEG}",
+                self.forward_peak_deg
+            )));
+        }
+        Ok(())
+    }
+}
 
 /// The image with each pixel's standard error.
 #[derive(Clone, Debug)]
@@ -92,33 +129,29 @@ impl PathLight for SunAlone<'_> {
 }
 
 /// The image of `cloud` through `camera`, lit by `sun`, with the droplets' tables
-/// `orders` (one per wavelength of the sun), `paths` paths per pixel and wavelength
-/// (in [1, MAX_PATHS_PER_PIXEL]) from the random sequence `seed`; `row_done` is called
-/// once per finished row of pixels (for progress).
+/// `orders` (one per wavelength of the sun), traced as `tracing` says; `row_done` is
+/// called once per finished row of pixels (for progress).
 pub fn path_traced_image(
     cloud: &VoxelCloud,
     camera: &VolumeCamera,
     sun: &VolumeSun,
     orders: &ScatteringOrders,
-    paths: u64,
-    seed: u64,
+    tracing: &PathTracing,
     row_done: &(dyn Fn() + Sync),
 ) -> Result<PathTracedImage, CloudError> {
     check_wavelengths(sun, orders)?;
-    if !(1..=MAX_PATHS_PER_PIXEL).contains(&paths) {
-        return Err(CloudError(format!(
-            "volume path tracer: {paths} paths per pixel, expected 1 to {MAX_PATHS_PER_PIXEL}"
-        )));
-    }
+    tracing.check()?;
     let waves = sun.irradiance.len();
-    let phases: Vec<PhaseTableSampler> = (0..waves)
-        .map(|w| PhaseTableSampler::new(orders, w))
+    let (phases, fractions): (Vec<_>, Vec<_>) = (0..waves)
+        .map(|w| truncated_phase(&orders.table(w)[..ANGLES], tracing.forward_peak_deg))
+        .unzip();
+    let media: Vec<ForwardPeakCut<VoxelCloud>> = fractions
+        .iter()
+        .map(|&fraction| ForwardPeakCut {
+            medium: cloud,
+            fraction,
+        })
         .collect();
-    let medium = PathMedium {
-        medium: cloud,
-        orders,
-        phases: &phases,
-    };
     let light = SunAlone(sun);
     let width = camera.width_px as usize;
     let mut image = VolumeImage::clear(camera.width_px, camera.height_px, waves);
@@ -137,13 +170,17 @@ pub fn path_traced_image(
                 };
                 let start = camera.position_m + direction * t0;
                 transmittance[x] = crossing_transmittance(cloud, start, direction, t1 - t0);
-                for w in 0..waves {
+                for (w, cut) in media.iter().enumerate() {
+                    let medium = PathMedium {
+                        medium: cut,
+                        phases: &phases,
+                    };
                     let mut tally = Tally::default();
-                    for path in 0..paths {
-                        let key = [seed, (y * width + x) as u64, w as u64, path];
+                    for path in 0..tracing.paths {
+                        let key = [tracing.seed, (y * width + x) as u64, w as u64, path];
                         let mut sampler = Sampler::new(mix_seed(&key));
                         tally.add(
-                            match first_collision(cloud, start, direction, t1 - t0, &mut sampler) {
+                            match first_collision(cut, start, direction, t1 - t0, &mut sampler) {
                                 Some(p) => {
                                     trace_from(&medium, &light, w, p, direction, &mut sampler)
                                 }
@@ -161,7 +198,7 @@ pub fn path_traced_image(
     Ok(PathTracedImage {
         image,
         standard_error,
-        paths,
+        paths: tracing.paths,
     })
 }
 
