@@ -21,43 +21,13 @@ use crate::progress::Progress;
 use crate::report::clouds_rows::CloudRow;
 use crate::report::clouds_scene::ViewScene;
 use crate::report::clouds_views::placed_camera;
+use crate::report::paired_frames::{GpuTimes, PairedFrame};
 
 /// The frames' size: a quarter of 1280 x 720 in each direction, for the offline
 /// march's full frames are too slow on a software adapter (docs/clouds.md, "Cost").
 pub const SIZE: (u32, u32) = (320, 180);
 /// Measured pairs after the warm-up pair.
 pub const FRAMES: usize = 1;
-
-/// One row's frame of one view, ms.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GpuFrame {
-    pub cloudy_ms: f64,
-    pub clear_ms: f64,
-}
-
-/// Every row's frames: `per_row[row][view]`, `None` where the row is not measured on
-/// the view.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GpuTimes {
-    pub adapter: String,
-    pub per_row: Vec<Vec<Option<GpuFrame>>>,
-}
-
-impl GpuTimes {
-    /// The mean over the measured views of row `row`'s frame time, ms, and of its
-    /// ratio to the frame without clouds.
-    pub fn mean(&self, row: usize) -> Option<(f64, f64)> {
-        let frames: Vec<GpuFrame> = self.per_row[row].iter().flatten().copied().collect();
-        if frames.is_empty() {
-            return None;
-        }
-        let n = frames.len() as f64;
-        Some((
-            frames.iter().map(|f| f.cloudy_ms).sum::<f64>() / n,
-            frames.iter().map(|f| f.cloudy_ms / f.clear_ms).sum::<f64>() / n,
-        ))
-    }
-}
 
 /// The hillaire frame of `scene`'s view at [`SIZE`], its horizontal field of view kept.
 pub fn frame_of(scene: &ViewScene) -> Frame {
@@ -122,7 +92,7 @@ fn measure(
     frame: &Frame,
     row: &CloudRow,
     scene: &ViewScene,
-) -> anyhow::Result<GpuFrame> {
+) -> anyhow::Result<PairedFrame> {
     let march = row
         .march()
         .unwrap_or_else(|| MarchQuality::Offline.apply(LayerSettings::default()));
@@ -152,8 +122,8 @@ fn measure(
             clear.push(clear_ms);
         }
     }
-    Ok(GpuFrame {
-        cloudy_ms: median(&cloudy).unwrap_or(f64::NAN),
-        clear_ms: median(&clear).unwrap_or(f64::NAN),
+    Ok(PairedFrame {
+        with_ms: median(&cloudy).unwrap_or(f64::NAN),
+        without_ms: median(&clear).unwrap_or(f64::NAN),
     })
 }

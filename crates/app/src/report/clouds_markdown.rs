@@ -6,10 +6,11 @@ use std::fmt::Write as _;
 use atmosphere_core::color::SpectrumToColor;
 
 use crate::report::clouds_errors::{RowResult, reference_errors};
-use crate::report::clouds_gpu::{FRAMES, GpuTimes, SIZE};
+use crate::report::clouds_gpu::{FRAMES, SIZE};
 use crate::report::clouds_reference::CloudReference;
 use crate::report::clouds_scene::ViewScene;
 use crate::report::clouds_views::{PLACE, ViewCover};
+use crate::report::paired_frames::GpuTimes;
 use crate::report::plot::{Point, Series, TimeAxis, pareto_front};
 
 const NOTES: &str = include_str!("clouds_notes.md");
@@ -250,10 +251,10 @@ fn spheres_table(out: &mut String, m: &Measured) {
                 100.0 * e.rms,
                 100.0 * e.max,
                 e.frame_s,
-                gpu.map_or_else(|| "-".into(), |g| format!("{:.0}", g.cloudy_ms)),
+                gpu.map_or_else(|| "-".into(), |g| format!("{:.0}", g.with_ms)),
                 gpu.map_or_else(
                     || "-".into(),
-                    |g| format!("{:.2}", g.cloudy_ms / g.clear_ms)
+                    |g| format!("{:.2}", g.with_ms / g.without_ms)
                 ),
             );
         }

@@ -28,6 +28,7 @@ pub mod optics_reference;
 pub mod optics_rows;
 pub mod optics_scene;
 pub mod optics_views;
+pub mod paired_frames;
 pub mod plot;
 pub mod reference_cache;
 pub mod shafts;

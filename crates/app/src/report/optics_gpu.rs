@@ -12,39 +12,10 @@ use crate::bench::timing::{median, timed};
 use crate::progress::Progress;
 use crate::report::optics_rows::OpticsRow;
 use crate::report::optics_scene::OpticsScene;
+use crate::report::paired_frames::{GpuTimes, PairedFrame};
 
 /// Measured pairs after the warm-up pair.
 pub const FRAMES: usize = 3;
-
-/// One row's frame of one view, ms.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GpuFrame {
-    pub with_ms: f64,
-    pub without_ms: f64,
-}
-
-/// Every row's frames: `per_row[row][view]`, `None` for a row the GPU does not render.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GpuTimes {
-    pub adapter: String,
-    pub per_row: Vec<Vec<Option<GpuFrame>>>,
-}
-
-impl GpuTimes {
-    /// The mean over the views of row `row`'s frame time, ms, and of its ratio to the
-    /// frame without the volume.
-    pub fn mean(&self, row: usize) -> Option<(f64, f64)> {
-        let frames: Vec<GpuFrame> = self.per_row[row].iter().flatten().copied().collect();
-        if frames.is_empty() {
-            return None;
-        }
-        let n = frames.len() as f64;
-        Some((
-            frames.iter().map(|f| f.with_ms).sum::<f64>() / n,
-            frames.iter().map(|f| f.with_ms / f.without_ms).sum::<f64>() / n,
-        ))
-    }
-}
 
 /// Every GPU row on every view.
 pub fn measure_all(rows: &[OpticsRow], scenes: &[OpticsScene]) -> anyhow::Result<GpuTimes> {
@@ -73,7 +44,7 @@ fn measure(
     renderer: &mut Renderer,
     row: &OpticsRow,
     scene: &OpticsScene,
-) -> anyhow::Result<GpuFrame> {
+) -> anyhow::Result<PairedFrame> {
     let lit = scene.lit(row.tables)?;
     let (mut with, mut without) = (Vec::new(), Vec::new());
     for k in 0..=FRAMES {
@@ -90,7 +61,7 @@ fn measure(
             without.push(without_ms);
         }
     }
-    Ok(GpuFrame {
+    Ok(PairedFrame {
         with_ms: median(&with).unwrap_or(f64::NAN),
         without_ms: median(&without).unwrap_or(f64::NAN),
     })

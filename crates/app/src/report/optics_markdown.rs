@@ -9,11 +9,12 @@ use atmosphere_core::color::SpectrumToColor;
 
 use crate::report::clouds_errors::reference_errors;
 use crate::report::optics_errors::RowResult;
-use crate::report::optics_gpu::{FRAMES, GpuTimes};
+use crate::report::optics_gpu::FRAMES;
 use crate::report::optics_reference::{OpticsReference, REFERENCE_TABLES, as_answer};
 use crate::report::optics_rows::SHIPPED;
 use crate::report::optics_scene::OpticsScene;
 use crate::report::optics_views::{Centre, FRAME_SIZE, Sweep};
+use crate::report::paired_frames::GpuTimes;
 use crate::report::plot::{Point, Series, TimeAxis, pareto_front};
 
 const NOTES: &str = include_str!("optics_notes.md");
