@@ -86,6 +86,9 @@ pub struct BeamRow {
     /// Relative RMS and largest relative error of luminance.
     pub rms: f64,
     pub max: f64,
+    /// Dobashi et al. 2002's "average error in intensities" (section 4.3), here of
+    /// luminance: the mean |L - L_ref| over the mean L_ref.
+    pub mean_error: f64,
     pub cpu_frame_s: f64,
     /// GPU time of a 1280 x 720 frame, ms, where measured.
     pub gpu_ms: Option<f64>,
@@ -154,6 +157,7 @@ pub fn measure(
             method: BeamMethodId::Reference,
             rms: 0.0,
             max: 0.0,
+            mean_error: 0.0,
             cpu_frame_s: reference_frame_s,
             gpu_ms: None,
         });
@@ -183,6 +187,12 @@ pub fn measure(
                 .map(|(l, t)| (l - t).abs() / t.max(floor))
                 .collect();
             let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
+            let mean_error = values
+                .iter()
+                .zip(truth)
+                .map(|(l, t)| (l - t).abs())
+                .sum::<f64>()
+                / truth.iter().sum::<f64>().max(f64::MIN_POSITIVE);
             let gpu_ms = match gpu {
                 // The GPU refuses a reduced walk in a scene with meshes (qtable_pass.rs).
                 Some(gpu)
@@ -199,6 +209,7 @@ pub fn measure(
                 method,
                 rms,
                 max: errors.iter().copied().fold(0.0, f64::max),
+                mean_error,
                 cpu_frame_s,
                 gpu_ms,
             });
@@ -267,7 +278,8 @@ pub fn markdown(rows: &[BeamRow], width: u32) -> String {
         out,
         "## Light beams\n\nEach beam method and setting against the reference on the shipped \
          scenes (`assets/scenes/beams/`), {width} rays across each camera: relative RMS and \
-         largest |L - L_ref| / max(L_ref, 1 % of the brightest L_ref) of luminance; CPU time \
+         largest |L - L_ref| / max(L_ref, 1 % of the brightest L_ref) of luminance; the \
+         mean |L - L_ref| over the mean L_ref (Dobashi et al. 2002's average error); CPU time \
          of a 1280 x 720 frame on one thread (preparation plus time per ray); GPU time of a \
          1280 x 720 frame (ms, `-` off the GPU, without timestamps or where the GPU \
          refuses the setting: a reduced walk, `resolution_divisor` above 1, in a scene \
@@ -276,20 +288,21 @@ pub fn markdown(rows: &[BeamRow], width: u32) -> String {
     );
     let _ = writeln!(
         out,
-        "| scene | setting | RMS error % | max error % | CPU frame s | GPU frame ms |"
+        "| scene | setting | RMS error % | max error % | mean error % | CPU frame s | GPU frame ms |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     for r in rows {
         let gpu = r
             .gpu_ms
             .map_or_else(|| "-".to_string(), |ms| format!("{ms:.1}"));
         let _ = writeln!(
             out,
-            "| {} | {} | {:.2} | {:.2} | {:.1} | {gpu} |",
+            "| {} | {} | {:.2} | {:.2} | {:.2} | {:.1} | {gpu} |",
             r.scene,
             r.label,
             100.0 * r.rms,
             100.0 * r.max,
+            100.0 * r.mean_error,
             r.cpu_frame_s
         );
     }
@@ -371,6 +384,7 @@ mod tests {
         );
         assert!(rows[1].rms < rows[0].rms, "{rows:?}");
         assert!(rows[0].max >= rows[0].rms);
+        assert!(rows[1].mean_error < rows[0].mean_error && rows[1].mean_error > 0.0);
         let text = markdown(rows, 6);
         assert!(
             text.contains("| sphere_spotlight.toml | march steps=128 |"),
