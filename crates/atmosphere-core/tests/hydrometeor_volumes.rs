@@ -63,9 +63,11 @@ fn rays_cross_the_shaft_and_the_layer_where_geometry_says() {
 
 #[test]
 fn the_march_keeps_the_slabs_closed_forms() {
-    // No sun: the sky's light alone, E_sky / (2 pi) (1 - e^(-tau)), and T = e^(-tau)
-    // whatever the steps, for the vertical crossing of a layer of tau = 2.
+    // No sun: the sky's light alone, E_sky / (2 pi) (1 - e^(-tau_c)), and T_c =
+    // e^(-tau_c) whatever the steps, for the vertical crossing of a layer of tau = 2,
+    // each channel with its own extinction beta (1 - f_c) (the forward peak out of it).
     let volume = cirrus(2.0);
+    let peak_fraction = [0.0, 0.5, 0.75];
     let lit = LitVolume {
         volume,
         phase: ChannelPhase {
@@ -73,6 +75,7 @@ fn the_march_keeps_the_slabs_closed_forms() {
             sky: None,
             values: vec![[1.0 / (4.0 * PI); 3]; 3600],
         },
+        peak_fraction,
         light: VolumeLight {
             sun_direction: DVec3::Y,
             sun_irradiance: [0.0; 3],
@@ -81,13 +84,13 @@ fn the_march_keeps_the_slabs_closed_forms() {
     };
     let origin = DVec3::X * (GROUND_M + 2.0);
     let s = march(&lit, origin, DVec3::X, f64::INFINITY).unwrap();
-    let t = (-2.0f64).exp();
-    assert!(
-        (s.transmittance / t - 1.0).abs() < 1e-12,
-        "{}",
-        s.transmittance
-    );
     for c in 0..3 {
+        let t = (-2.0 * (1.0 - peak_fraction[c])).exp();
+        assert!(
+            (s.transmittance[c] / t - 1.0).abs() < 1e-12,
+            "{c}: {}",
+            s.transmittance[c]
+        );
         let exact = lit.light.sky_irradiance[c] / (2.0 * PI) * (1.0 - t);
         assert!(
             (s.radiance[c] / exact - 1.0).abs() < 1e-12,

@@ -589,7 +589,15 @@ fn volume_uniforms_match_their_wgsl_layouts() {
         "precipitation/volumes_composite.wgsl",
         "VolumeParams",
         VolumeUniform,
-        [kind, axis, place, medium, sun_irradiance, sky_irradiance]
+        [
+            kind,
+            axis,
+            place,
+            bins,
+            extinction,
+            sun_irradiance,
+            sky_irradiance
+        ]
     );
     assert_layout!(
         "precipitation/volumes_composite.wgsl",

@@ -5,9 +5,10 @@
 
 use crate::table_cache_dir::table_cache;
 use anyhow::{Context, bail};
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::scene::{
-    CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, lit_volume,
+    CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, TableSettings, lit_volume,
 };
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
 use atmosphere_core::hydrometeors::volumes::Volume;
@@ -99,6 +100,12 @@ pub struct VolumeFlags {
     /// [3, 128] [default: 32].
     #[arg(long = "optics-wavelengths", value_name = "N")]
     pub wavelengths: Option<usize>,
+    /// How the volumes' march counts the light its particles scatter within 1 degree
+    /// of the forward direction (diffraction): `unscattered`, as light that arrives
+    /// unscattered (delta-M: the extinction without it, the phase table truncated), or
+    /// `extinction`, as light lost (the whole extinction) [default: unscattered].
+    #[arg(long = "optics-forward-peak", value_name = "PEAK", value_enum)]
+    pub forward_peak: Option<ForwardPeak>,
 }
 
 impl VolumeFlags {
@@ -137,6 +144,7 @@ impl VolumeFlags {
             cirrus_plates: flags.cirrus_plates.or(self.cirrus_plates),
             cirrus_tilt_deg: flags.cirrus_tilt_deg.or(self.cirrus_tilt_deg),
             wavelengths: flags.wavelengths.or(self.wavelengths),
+            forward_peak: flags.forward_peak.or(self.forward_peak),
         }
     }
 
@@ -228,8 +236,11 @@ impl VolumeFlags {
         }
         let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
         let view = (frame.camera_position_m, frame.sun_direction);
-        let wavelengths = self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS);
-        let optics = (wavelengths, frame.atmosphere.sun.angular_radius_rad);
+        let optics = TableSettings {
+            wavelengths: self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS),
+            sun_radius_rad: frame.atmosphere.sun.angular_radius_rad,
+            forward_peak: self.forward_peak.unwrap_or_default(),
+        };
         let cache = table_cache();
         volumes
             .into_iter()
@@ -245,5 +256,26 @@ impl VolumeFlags {
                 .context(flag)
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_forward_peak_reads_from_a_scene_file_and_a_bad_one_is_named() {
+        let flags: VolumeFlags =
+            toml::from_str("rain = true\nforward_peak = \"extinction\"").unwrap();
+        assert_eq!(flags.forward_peak, Some(ForwardPeak::Extinction));
+        let flags = flags.overridden_by(VolumeFlags {
+            forward_peak: Some(ForwardPeak::Unscattered),
+            ..VolumeFlags::default()
+        });
+        assert_eq!(flags.forward_peak, Some(ForwardPeak::Unscattered));
+        let e = toml::from_str::<VolumeFlags>("forward_peak = \"lost\"")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("lost") && e.contains("unscattered"), "{e}");
     }
 }

@@ -17,6 +17,7 @@ use std::fs;
 use std::path::Path;
 
 use anyhow::{Context, bail};
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::reference::path::PathLight;
 use atmosphere_core::hydrometeors::reference::ray::VolumeTracedRay;
 use atmosphere_core::models::sky_model::RayRadiance;
@@ -118,7 +119,7 @@ pub fn load_or_compute(
     let progress = Progress::new("optics reference", "rays", total as u64);
     for &i in &missing {
         let scene = &scenes[i];
-        let lit = scene.lit(REFERENCE_TABLES)?;
+        let lit = scene.lit(REFERENCE_TABLES, ForwardPeak::Extinction)?;
         reference[i] = scene
             .reference(&lit, &scene.view.paths, &progress)
             .with_context(|| format!("optics reference on view {}", scene.view.id))?;

@@ -2,8 +2,10 @@
 //! distance and, as a choice, small drops of a radius), a cirrus layer (its base and
 //! optical depth) and a deck of cloud droplets (base, thickness, optical depth, droplet
 //! radius), with the rainbows, halos, glories and cloudbows of their phase functions
-//! (`optics_settings.rs`), and whether their tables are being built.
+//! (`optics_settings.rs`), how the march counts their forward peak, and whether their
+//! tables are being built.
 
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::scene::{
     DECK_DROPLET_RADIUS_RANGE_UM, SHAFT_DISTANCE_RANGE_M, SMALL_DROP_RADIUS_RANGE_UM,
 };
@@ -121,6 +123,19 @@ pub fn show(ui: &mut egui::Ui, optics: &mut OpticsSettings, building: bool) {
                 DECK_DROPLET_RADIUS_RANGE_UM,
                 "droplet radius, um",
             ));
+        });
+        ui.horizontal(|ui| {
+            ui.label("forward peak:");
+            let unscattered = ForwardPeak::Unscattered;
+            ui.radio_value(&mut optics.forward_peak, unscattered, unscattered.name())
+                .on_hover_text(
+                    "The light the drops and crystals scatter within 1 degree of forward \
+                     (diffraction) arrives as if unscattered: the volumes' extinction \
+                     without it (delta-M). Closer to the path-traced reference",
+                );
+            let extinction = ForwardPeak::Extinction;
+            ui.radio_value(&mut optics.forward_peak, extinction, extinction.name())
+                .on_hover_text("That light is lost: the whole extinction (darker volumes)");
         });
     });
 }

@@ -3,6 +3,7 @@
 //! volume flags, which check them (docs/optics-rendering.md, "Settings and their
 //! ranges").
 
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::scene::{CirrusSettings, DeckSettings, RainShaftSettings};
 use serde::{Deserialize, Serialize};
 
@@ -52,6 +53,8 @@ pub struct OpticsSettings {
     pub deck_optical_depth: f64,
     /// The droplets' effective radius, um, in [2, 50].
     pub deck_droplet_radius_um: f64,
+    /// How the march counts the light scattered within 1 degree of forward.
+    pub forward_peak: ForwardPeak,
 }
 
 impl Default for OpticsSettings {
@@ -72,6 +75,7 @@ impl Default for OpticsSettings {
             deck_thickness_m: deck.thickness_m,
             deck_optical_depth: deck.optical_depth,
             deck_droplet_radius_um: deck.droplet_radius_um,
+            forward_peak: ForwardPeak::default(),
         }
     }
 }
@@ -100,6 +104,7 @@ impl OpticsSettings {
             deck_optical_depth: Some(self.deck_optical_depth),
             deck_droplet_radius_um: Some(self.deck_droplet_radius_um),
             wavelengths: Some(VIEWER_WAVELENGTHS),
+            forward_peak: Some(self.forward_peak),
             ..VolumeFlags::default()
         }
     }
@@ -149,6 +154,9 @@ mod tests {
         assert!(e.contains("deck droplet radius (um) 60"), "{e}");
         let stored: OpticsSettings = toml::from_str("rain = true").unwrap();
         assert!(stored.rain && !stored.cirrus && !stored.deck && !stored.rain_small_drops);
+        assert_eq!(stored.forward_peak, ForwardPeak::Unscattered);
+        optics.forward_peak = ForwardPeak::Extinction;
+        assert_eq!(optics.flags().forward_peak, Some(ForwardPeak::Extinction));
         assert_eq!(
             stored.rain_rate_mm_h,
             RainShaftSettings::default().rain_rate_mm_h

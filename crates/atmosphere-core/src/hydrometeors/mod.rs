@@ -5,8 +5,8 @@
 //! disc ([`sun_disk_blur`]) and reduced to a frame's three wavelengths through the CIE
 //! functions ([`channel_phase`]); a rain shaft, a cirrus layer and a droplet deck
 //! ([`volumes`]) lit by a
-//! sky model's sun in single scattering and composited over the model's frame
-//! ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
+//! sky model's sun in single scattering, the forward peak taken as no scattering
+//! ([`forward_peak`]), and composited over the model's frame ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
 //! around a camera from a scene's settings.
 //!
 //! Conventions, once: scattering angles from the sun's direction of travel (0: forward,
@@ -16,6 +16,7 @@
 pub mod channel_phase;
 pub mod drop_rays;
 pub mod error;
+pub mod forward_peak;
 pub mod mie_droplets;
 pub mod reference;
 pub mod render;
