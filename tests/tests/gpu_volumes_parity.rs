@@ -169,7 +169,10 @@ fn check(renderer: &mut render_wgpu::Renderer, frame: &Frame, lit: &[LitVolume])
             }
         }
     }
-    eprintln!("{}: worst error {worst:.3} of the tolerance", frame.model);
+    eprintln!(
+        "{}, the first volume's f_c {:.3?}: worst error {worst:.3} of the tolerance",
+        frame.model, lit[0].peak_fraction
+    );
     changed
 }
 

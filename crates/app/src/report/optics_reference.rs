@@ -37,7 +37,7 @@ pub const REFERENCE_TABLES: Tables = Tables {
     sun_disc: true,
 };
 /// Raised whenever the path tracer changes what it answers (`hydrometeors/reference/`).
-pub const REFERENCE_VERSION: u32 = 1;
+pub const REFERENCE_VERSION: u32 = 2;
 
 const TITLE: &str =
     "# atmos report optics: path-traced reference radiance, one fingerprint per view";

@@ -50,65 +50,40 @@ pub struct PeakTruncation {
 }
 
 impl PeakTruncation {
-    /// The peak of `phase`, a table by angle, by the trapezoid rule over the rings
-    /// between its nodes at multiples of the bin width.
+    /// The peak of `phase`, a table by angle: over the bins whose centre lies within
+    /// [`FORWARD_PEAK_DEG`], each bin's value above the edge's times its ring's solid
+    /// angle (the rule the table's unit integral holds by), so that the truncated table
+    /// integrates to one as the whole table does.
     pub fn of(phase: &ChannelPhase) -> PeakTruncation {
-        let nodes = (180.0 / phase.bin_deg).round() as usize + 1;
-        let step = std::f64::consts::PI / (nodes - 1) as f64;
         let edge = phase.value_at(FORWARD_PEAK_DEG);
-        let peak_fraction = std::array::from_fn(|c| {
-            let excess = |k: usize| {
-                let angle = k as f64 * phase.bin_deg;
-                if angle <= FORWARD_PEAK_DEG {
-                    (phase.value_at(angle)[c] - edge[c]).max(0.0)
-                } else {
-                    0.0
-                }
-            };
-            (0..nodes - 1)
-                .map(|k| {
-                    let ring = 2.0
-                        * std::f64::consts::PI
-                        * ((k as f64 * step).cos() - ((k + 1) as f64 * step).cos());
-                    0.5 * (excess(k) + excess(k + 1)) * ring
-                })
-                .sum::<f64>()
-                .clamp(0.0, MAX_PEAK_FRACTION)
-        });
+        let mut excess = [0.0; 3];
+        for (b, v) in phase.values.iter().enumerate() {
+            if (b as f64 + 0.5) * phase.bin_deg >= FORWARD_PEAK_DEG {
+                break;
+            }
+            let [from, to] = [b, b + 1].map(|k| (k as f64 * phase.bin_deg).to_radians());
+            let ring = 2.0 * std::f64::consts::PI * (from.cos() - to.cos());
+            for c in 0..3 {
+                excess[c] += (v[c] - edge[c]) * ring;
+            }
+        }
         PeakTruncation {
-            peak_fraction,
+            peak_fraction: excess.map(|f| f.clamp(0.0, MAX_PEAK_FRACTION)),
             edge,
         }
     }
 
-    /// Channel `c` of P_c' at `angle_deg` from the untruncated `phase`.
-    pub fn value(&self, phase: &ChannelPhase, c: usize, angle_deg: f64) -> f64 {
-        self.flattened(phase, c, angle_deg) / (1.0 - self.peak_fraction[c])
-    }
-
-    /// Channel `c` of `phase` at `angle_deg`, flat at the edge's value within the peak.
-    pub fn flattened(&self, phase: &ChannelPhase, c: usize, angle_deg: f64) -> f64 {
-        if angle_deg < FORWARD_PEAK_DEG {
-            self.edge[c]
-        } else {
-            phase.value_at(angle_deg)[c]
-        }
-    }
-
-    /// The truncated table P_c' at the bins of `phase` (a table by angle).
+    /// The truncated table P_c' at the bins of `phase` (a table by angle): flat at the
+    /// edge's value over the bins whose centre lies within the peak.
     pub fn table(&self, phase: &ChannelPhase) -> ChannelPhase {
         let values = phase
             .values
             .iter()
             .enumerate()
             .map(|(b, v)| {
-                let angle = (b as f64 + 0.5) * phase.bin_deg;
+                let in_peak = (b as f64 + 0.5) * phase.bin_deg < FORWARD_PEAK_DEG;
                 std::array::from_fn(|c| {
-                    let flat = if angle < FORWARD_PEAK_DEG {
-                        self.edge[c]
-                    } else {
-                        v[c]
-                    };
+                    let flat = if in_peak { self.edge[c] } else { v[c] };
                     flat / (1.0 - self.peak_fraction[c])
                 })
             })
@@ -137,24 +112,41 @@ pub fn truncated(phase: ChannelPhase, setting: ForwardPeak) -> (ChannelPhase, [f
 mod tests {
     use super::*;
 
-    /// A table with a peak of `peak` sr^-1 in its first bin over a flat 1 / (4 pi).
+    /// The integral of channel 0 of `t` over the sphere, bin by bin.
+    fn integral(t: &ChannelPhase) -> f64 {
+        t.values
+            .iter()
+            .enumerate()
+            .map(|(b, v)| {
+                let [from, to] = [b, b + 1].map(|k| (k as f64 * t.bin_deg).to_radians());
+                v[0] * 2.0 * std::f64::consts::PI * (from.cos() - to.cos())
+            })
+            .sum()
+    }
+
+    /// A table of unit integral: a peak `peak` times the rest's value in its first bin.
     fn peaked(peak: f64) -> ChannelPhase {
         let bin_deg = 0.5;
         let bins = (180.0 / bin_deg) as usize;
-        let flat = 1.0 / (4.0 * std::f64::consts::PI);
         let values = (0..bins)
-            .map(|b| if b == 0 { [peak; 3] } else { [flat; 3] })
+            .map(|b| if b == 0 { [peak; 3] } else { [1.0; 3] })
             .collect();
-        ChannelPhase {
+        let mut table = ChannelPhase {
             bin_deg,
             sky: None,
             values,
-        }
+        };
+        let whole = integral(&table);
+        table
+            .values
+            .iter_mut()
+            .for_each(|v| *v = v.map(|x| x / whole));
+        table
     }
 
     #[test]
     fn the_truncated_table_times_its_extinction_keeps_the_light_past_the_peak() {
-        let phase = peaked(400.0);
+        let phase = peaked(5_000.0);
         let (table, f) = truncated(phase.clone(), ForwardPeak::Unscattered);
         assert!(f[0] > 0.05 && f[0] < 0.99, "{f:?}");
         for angle in [1.5, 10.0, 90.0, 179.0] {
@@ -165,6 +157,13 @@ mod tests {
         // Within the peak the table is flat at its edge's value.
         let edge = phase.value_at(FORWARD_PEAK_DEG)[2] / (1.0 - f[2]);
         assert!((table.values[0][2] - edge).abs() <= 1e-12 * edge);
+        // It integrates to one as the whole table does.
+        assert!((integral(&phase) - 1.0).abs() < 1e-12);
+        assert!(
+            (integral(&table) - 1.0).abs() < 1e-12,
+            "{}",
+            integral(&table)
+        );
         let (same, none) = truncated(phase.clone(), ForwardPeak::Extinction);
         assert_eq!((same, none), (phase.clone(), [0.0; 3]));
         let mut plates = phase;

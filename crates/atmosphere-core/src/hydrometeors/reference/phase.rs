@@ -25,15 +25,17 @@ use crate::numerics::sampling::Sampler;
 /// The truncated channel tables P_c' and their samplers.
 #[derive(Clone, Debug)]
 pub struct ChannelSampler {
-    phase: ChannelPhase,
+    /// P_c', read as the march reads it (linear between bin centres).
+    table: ChannelPhase,
     /// The forward peak: f_c, each channel's share of the scattering in it.
     pub peak: PeakTruncation,
     proposals: [PhaseTableSampler; 3],
 }
 
 impl ChannelSampler {
-    /// The sampler of `phase`, a table by angle (falling plates' tables over the sky are
-    /// refused: their value depends on the direction seen, not only on the angle).
+    /// The sampler of `phase`, the whole table by angle (falling plates' tables over the
+    /// sky are refused: their value depends on the direction seen, not only on the
+    /// angle).
     pub fn new(phase: &ChannelPhase) -> Result<ChannelSampler, HydrometeorError> {
         if phase.sky.is_some() {
             return Err(HydrometeorError::Setting {
@@ -43,16 +45,17 @@ impl ChannelSampler {
             });
         }
         let peak = PeakTruncation::of(phase);
+        let table = peak.table(phase);
         let nodes = (180.0 / phase.bin_deg).round() as usize + 1;
         let proposals = std::array::from_fn(|c| {
             PhaseTableSampler::from_nodes(
                 (0..nodes)
-                    .map(|k| peak.flattened(phase, c, k as f64 * phase.bin_deg).abs())
+                    .map(|k| table.value_at(k as f64 * phase.bin_deg)[c].abs())
                     .collect(),
             )
         });
         Ok(ChannelSampler {
-            phase: phase.clone(),
+            table,
             peak,
             proposals,
         })
@@ -60,8 +63,8 @@ impl ChannelSampler {
 
     /// P_c' at the cosine `cos` of the scattering angle.
     pub fn phase(&self, cos: f64) -> [f64; 3] {
-        let angle = cos.clamp(-1.0, 1.0).acos().to_degrees();
-        std::array::from_fn(|c| self.peak.value(&self.phase, c, angle))
+        self.table
+            .value_at(cos.clamp(-1.0, 1.0).acos().to_degrees())
     }
 
     /// A cosine drawn for channel `c` and the factor P_c / q its weight takes.
