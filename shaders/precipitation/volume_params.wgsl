@@ -22,7 +22,7 @@ struct VolumeParams {
     place: vec4<f32>,
     // x: the phase bins' width (over the sky: the elevation bins'), y: over the sky,
     // the azimuth bins' width, degrees.
-    bins: vec4<f32>,
+    bin_deg: vec4<f32>,
     // The march's extinction per channel, beta (1 - f_c), m^-1 (CPU twin:
     // `LitVolume::extinction_per_m`, the forward peak out of it).
     extinction: vec4<f32>,

@@ -24,7 +24,7 @@ const TWO_PI: f32 = 6.283185307;
 
 fn phase_at(v: VolumeParams, angle_deg: f32) -> vec3<f32> {
     let last = f32(v.kind.z - 1u);
-    let x = clamp(angle_deg / v.bins.x - 0.5, 0.0, last);
+    let x = clamp(angle_deg / v.bin_deg.x - 0.5, 0.0, last);
     let i = min(u32(floor(x)), v.kind.z - 2u);
     let f = x - f32(i);
     let first = v.kind.y + i;
@@ -46,8 +46,8 @@ fn sky_phase_at(v: VolumeParams, d: vec3<f32>, sun: vec3<f32>) -> vec3<f32> {
     }
     let columns = v.kind.w;
     let rows = v.kind.z / columns;
-    let x = clamp((elevation + 90.0) / v.bins.x - 0.5, 0.0, f32(rows - 1u));
-    let y = clamp(azimuth / v.bins.y - 0.5, 0.0, f32(columns - 1u));
+    let x = clamp((elevation + 90.0) / v.bin_deg.x - 0.5, 0.0, f32(rows - 1u));
+    let y = clamp(azimuth / v.bin_deg.y - 0.5, 0.0, f32(columns - 1u));
     let i = min(u32(floor(x)), rows - 2u);
     let j = min(u32(floor(y)), columns - 2u);
     let s = x - f32(i);

@@ -34,7 +34,7 @@ fn the_volume_uniforms_match_their_wgsl_layouts() {
         ("kind", offset_of!(VolumeUniform, kind)),
         ("axis", offset_of!(VolumeUniform, axis)),
         ("place", offset_of!(VolumeUniform, place)),
-        ("bins", offset_of!(VolumeUniform, bins)),
+        ("bin_deg", offset_of!(VolumeUniform, bin_deg)),
         ("extinction", offset_of!(VolumeUniform, extinction)),
         ("sun_irradiance", offset_of!(VolumeUniform, sun_irradiance)),
         ("sky_irradiance", offset_of!(VolumeUniform, sky_irradiance)),

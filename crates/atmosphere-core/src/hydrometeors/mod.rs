@@ -4,9 +4,9 @@
 //! [`mie_droplets`]; ice by the crystal ray tracer of `optics/ice/`), seen with the sun's
 //! disc ([`sun_disk_blur`]) and reduced to a frame's three wavelengths through the CIE
 //! functions ([`channel_phase`]); a rain shaft, a cirrus layer and a droplet deck
-//! ([`volumes`]) lit by a
-//! sky model's sun in single scattering, the forward peak taken as no scattering
-//! ([`forward_peak`]), and composited over the model's frame ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
+//! ([`volumes`]) lit by a sky model's sun in single scattering, the forward peak taken
+//! as no scattering ([`forward_peak`]), and composited over the model's frame
+//! ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
 //! around a camera from a scene's settings.
 //!
 //! Conventions, once: scattering angles from the sun's direction of travel (0: forward,

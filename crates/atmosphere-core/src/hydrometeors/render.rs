@@ -8,8 +8,8 @@
 //! start, beta_c = beta (1 - f_c) with the forward peak taken as no scattering
 //! (`forward_peak.rs`, delta-M: f_c = 0 where the peak counts as extinction), P_c the
 //! phase function at the frame's wavelengths (`channel_phase.rs`; truncated alike) at
-//! the scattering angle theta between the sun and the view (falling plates: at the view's elevation
-//! and azimuth from the sun about the camera's vertical), E_sun the sun's irradiance through the
+//! the scattering angle theta between the sun and the view (falling plates: at the
+//! view's elevation and azimuth from the sun about the camera's vertical), E_sun the sun's irradiance through the
 //! atmosphere (one value per volume, at its `light_point`), s_k the sun's path inside the
 //! volume from the step's middle, and E_sky / (2 pi) the sky's irradiance on a
 //! horizontal plane scattered isotropically (a uniform upper hemisphere of radiance

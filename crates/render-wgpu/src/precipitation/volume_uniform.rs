@@ -29,7 +29,7 @@ pub struct VolumeUniform {
     pub place: [f32; 4],
     /// x: the bins' width (over the sky: the elevation bins'), y: over the sky, the
     /// azimuth bins' width, degrees.
-    pub bins: [f32; 4],
+    pub bin_deg: [f32; 4],
     /// The march's extinction per channel, beta (1 - f_c) (the forward peak out of it
     /// where it counts as no scattering), m^-1.
     pub extinction: [f32; 4],
@@ -124,7 +124,7 @@ pub fn pack(
             kind: [kind, bins.len() as u32, values.len() as u32, columns],
             axis,
             place,
-            bins: [bin_deg as f32, azimuth_bin_deg as f32, 0.0, 0.0],
+            bin_deg: [bin_deg as f32, azimuth_bin_deg as f32, 0.0, 0.0],
             extinction: rgb(lit.extinction_per_m()),
             sun_irradiance: rgb(lit.light.sun_irradiance),
             sky_irradiance: rgb(lit.light.sky_irradiance),
