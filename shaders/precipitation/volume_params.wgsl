@@ -26,10 +26,11 @@ struct VolumeParams {
     // The march's extinction per channel, beta (1 - f_c), m^-1 (CPU twin:
     // `LitVolume::extinction_per_m`, the forward peak out of it).
     extinction: vec4<f32>,
-    // The sun's irradiance through the atmosphere and the sky's horizontal irradiance,
-    // W m^-2 nm^-1, per channel.
+    // The sun's irradiance through the atmosphere, W m^-2 nm^-1, and the radiance the
+    // march scatters isotropically as the sky's light, W m^-2 sr^-1 nm^-1, per channel
+    // (CPU twin: `VolumeLight`, `sky_light.rs`).
     sun_irradiance: vec4<f32>,
-    sky_irradiance: vec4<f32>,
+    sky_radiance: vec4<f32>,
 }
 
 struct VolumesParams {

@@ -4,7 +4,7 @@
 // the frame's wavelengths from the buffer (linear between bin centres; by scattering
 // angle, or over the sky for falling plates; truncated where the forward peak counts
 // as no scattering, with each channel's extinction beta (1 - f_c)), the sun's path in
-// the volume, the sky's light isotropic; with L_front = (1 - T_front) L_full,
+// the volume, the sky's light (one radiance) scattered isotropically; with L_front = (1 - T_front) L_full,
 // L = L_front + T_v (L_full - L_front) + T_front L_v, farthest volume first.
 
 #import common/frame_params.wgsl
@@ -12,7 +12,6 @@
 
 const MARCH_STEPS: u32 = 12u;
 const FRONT_STEPS: u32 = 8u;
-const TWO_PI: f32 = 6.283185307;
 
 @group(0) @binding(2) var<uniform> volumes: VolumesParams;
 // Every volume's phase function, rgb per bin.
@@ -114,7 +113,7 @@ fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
         let s = t.x + (f32(k) + 0.5) * dt;
         let lit = exp(-beta * sun_path(v, d, b, s, camera, sun));
         radiance += t_v * (1.0 - step_t)
-            * (p * v.sun_irradiance.xyz * lit + v.sky_irradiance.xyz / TWO_PI);
+            * (p * v.sun_irradiance.xyz * lit + v.sky_radiance.xyz);
         t_v *= step_t;
     }
     return Met(t.x, radiance, t_v);

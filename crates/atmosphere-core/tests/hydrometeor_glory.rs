@@ -7,7 +7,7 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::hydrometeors::render::{LitVolume, composite};
 use atmosphere_core::hydrometeors::scene::{
-    DeckSettings, RainShaftSettings, TableSettings, lit_volume,
+    DeckSettings, RainShaftSettings, VolumeOptics, lit_volume,
 };
 use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::id::ModelId;
@@ -44,7 +44,7 @@ fn line(
         model.as_ref(),
         volume(camera, atmosphere.bottom_radius_m),
         (camera, sun),
-        TableSettings::new(WAVELENGTHS, SUN_RADIUS_RAD),
+        VolumeOptics::new(WAVELENGTHS, SUN_RADIUS_RAD),
         FRAME_NM,
         &TableCache::off(),
     )

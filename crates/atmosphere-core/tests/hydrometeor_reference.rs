@@ -109,7 +109,7 @@ fn both(s: &Setup, volume: Volume, d: DVec3, peak: ForwardPeak) -> ([f64; 3], Tr
         light: VolumeLight {
             sun_direction: s.sun,
             sun_irradiance: e,
-            sky_irradiance: [0.0; 3],
+            sky_radiance: [0.0; 3],
         },
     };
     let marched = march(&lit, s.camera, d, f64::INFINITY).unwrap().radiance;

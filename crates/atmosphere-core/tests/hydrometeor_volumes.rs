@@ -63,7 +63,7 @@ fn rays_cross_the_shaft_and_the_layer_where_geometry_says() {
 
 #[test]
 fn the_march_keeps_the_slabs_closed_forms() {
-    // No sun: the sky's light alone, E_sky / (2 pi) (1 - e^(-tau_c)), and T_c =
+    // No sun: the sky's light alone, L_sky (1 - e^(-tau_c)), and T_c =
     // e^(-tau_c) whatever the steps, for the vertical crossing of a layer of tau = 2,
     // each channel with its own extinction beta (1 - f_c) (the forward peak out of it).
     let volume = cirrus(2.0);
@@ -79,7 +79,7 @@ fn the_march_keeps_the_slabs_closed_forms() {
         light: VolumeLight {
             sun_direction: DVec3::Y,
             sun_irradiance: [0.0; 3],
-            sky_irradiance: [1.0, 2.0, 3.0],
+            sky_radiance: [1.0, 2.0, 3.0],
         },
     };
     let origin = DVec3::X * (GROUND_M + 2.0);
@@ -91,7 +91,7 @@ fn the_march_keeps_the_slabs_closed_forms() {
             "{c}: {}",
             s.transmittance[c]
         );
-        let exact = lit.light.sky_irradiance[c] / (2.0 * PI) * (1.0 - t);
+        let exact = lit.light.sky_radiance[c] * (1.0 - t);
         assert!(
             (s.radiance[c] / exact - 1.0).abs() < 1e-12,
             "{c}: {}",

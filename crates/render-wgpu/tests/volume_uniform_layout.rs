@@ -37,7 +37,7 @@ fn the_volume_uniforms_match_their_wgsl_layouts() {
         ("bin_deg", offset_of!(VolumeUniform, bin_deg)),
         ("extinction", offset_of!(VolumeUniform, extinction)),
         ("sun_irradiance", offset_of!(VolumeUniform, sun_irradiance)),
-        ("sky_irradiance", offset_of!(VolumeUniform, sky_irradiance)),
+        ("sky_radiance", offset_of!(VolumeUniform, sky_radiance)),
     ];
     let volumes = [
         ("count", offset_of!(VolumesUniform, count)),

@@ -8,8 +8,9 @@ use anyhow::{Context, bail};
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::scene::{
-    CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, TableSettings, lit_volume,
+    CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, VolumeOptics, lit_volume,
 };
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
 use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::registry::prepare;
@@ -106,6 +107,12 @@ pub struct VolumeFlags {
     /// `extinction`, as light lost (the whole extinction) [default: unscattered].
     #[arg(long = "optics-forward-peak", value_name = "PEAK", value_enum)]
     pub forward_peak: Option<ForwardPeak>,
+    /// The sky's light the volumes scatter: `sphere`, the model's radiance averaged over
+    /// every direction around the volume (the sky, the lit ground below), the all-orders
+    /// answer in a uniform field; or `horizontal`, the sky's horizontal irradiance over a
+    /// black ground, once [default: sphere].
+    #[arg(long = "optics-sky-light", value_name = "SKY", value_enum)]
+    pub sky_light: Option<SkyLight>,
 }
 
 impl VolumeFlags {
@@ -145,6 +152,7 @@ impl VolumeFlags {
             cirrus_tilt_deg: flags.cirrus_tilt_deg.or(self.cirrus_tilt_deg),
             wavelengths: flags.wavelengths.or(self.wavelengths),
             forward_peak: flags.forward_peak.or(self.forward_peak),
+            sky_light: flags.sky_light.or(self.sky_light),
         }
     }
 
@@ -236,10 +244,11 @@ impl VolumeFlags {
         }
         let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
         let view = (frame.camera_position_m, frame.sun_direction);
-        let optics = TableSettings {
+        let optics = VolumeOptics {
             wavelengths: self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS),
             sun_radius_rad: frame.atmosphere.sun.angular_radius_rad,
             forward_peak: self.forward_peak.unwrap_or_default(),
+            sky_light: self.sky_light.unwrap_or_default(),
         };
         let cache = table_cache();
         volumes
@@ -264,10 +273,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_forward_peak_reads_from_a_scene_file_and_a_bad_one_is_named() {
-        let flags: VolumeFlags =
-            toml::from_str("rain = true\nforward_peak = \"extinction\"").unwrap();
+    fn the_forward_peak_and_sky_light_read_from_a_scene_file_and_bad_ones_are_named() {
+        let text = "rain = true\nforward_peak = \"extinction\"\nsky_light = \"horizontal\"";
+        let flags: VolumeFlags = toml::from_str(text).unwrap();
         assert_eq!(flags.forward_peak, Some(ForwardPeak::Extinction));
+        assert_eq!(flags.sky_light, Some(SkyLight::Horizontal));
         let flags = flags.overridden_by(VolumeFlags {
             forward_peak: Some(ForwardPeak::Unscattered),
             ..VolumeFlags::default()
@@ -277,5 +287,9 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("lost") && e.contains("unscattered"), "{e}");
+        let e = toml::from_str::<VolumeFlags>("sky_light = \"dome\"")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("dome") && e.contains("sphere"), "{e}");
     }
 }

@@ -20,6 +20,7 @@ use anyhow::{Context, bail};
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::reference::path::PathLight;
 use atmosphere_core::hydrometeors::reference::ray::VolumeTracedRay;
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::models::sky_model::RayRadiance;
 
 use crate::cloud_rays::CloudAnswer;
@@ -119,7 +120,12 @@ pub fn load_or_compute(
     let progress = Progress::new("optics reference", "rays", total as u64);
     for &i in &missing {
         let scene = &scenes[i];
-        let lit = scene.lit(REFERENCE_TABLES, ForwardPeak::Extinction)?;
+        // The whole table (the path tracer truncates it) and its own light around the
+        // volume (the march's sky light is not read).
+        let lit = scene.lit(
+            REFERENCE_TABLES,
+            (ForwardPeak::Extinction, SkyLight::Horizontal),
+        )?;
         reference[i] = scene
             .reference(&lit, &scene.view.paths, &progress)
             .with_context(|| format!("optics reference on view {}", scene.view.id))?;

@@ -2,7 +2,8 @@
 //! shaft, cirrus layer or droplet deck looks like (docs/optics-rendering.md, "Settings
 //! and their ranges"): the wavelengths its phase tables are computed at, whether they
 //! hold the sun's disc, the steps of its march (the GPU pass marches [`MARCH_STEPS`]:
-//! other counts are CPU rows) and how it counts the forward peak. Their answers for a
+//! other counts are CPU rows), how it counts the forward peak and which sky's light it
+//! scatters. Their answers for a
 //! view's rays and the CPU time they took.
 
 use std::fmt;
@@ -11,6 +12,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::render::MARCH_STEPS;
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
 
 use crate::cloud_rays::CloudAnswer;
@@ -31,6 +33,7 @@ pub enum RowKind {
     PointSun,
     Steps,
     PeakExtinction,
+    SkyHorizontal,
 }
 
 /// One row: the volume's tables and its march.
@@ -40,6 +43,8 @@ pub struct OpticsRow {
     pub steps: usize,
     /// How the march counts the forward peak (`hydrometeors/forward_peak.rs`).
     pub forward_peak: ForwardPeak,
+    /// The sky's light the march scatters (`hydrometeors/sky_light.rs`).
+    pub sky_light: SkyLight,
 }
 
 /// The shipped scenes' settings.
@@ -50,6 +55,7 @@ pub const SHIPPED: OpticsRow = OpticsRow {
     },
     steps: MARCH_STEPS,
     forward_peak: ForwardPeak::Unscattered,
+    sky_light: SkyLight::Sphere,
 };
 
 impl fmt::Display for OpticsRow {
@@ -67,18 +73,22 @@ impl fmt::Display for OpticsRow {
         if self.forward_peak != SHIPPED.forward_peak {
             write!(f, " peak={}", self.forward_peak.name())?;
         }
+        if self.sky_light != SHIPPED.sky_light {
+            write!(f, " sky={}", self.sky_light.name())?;
+        }
         Ok(())
     }
 }
 
 impl OpticsRow {
     /// A row as `--variant` writes it: `wavelengths=N` (3 to 128), `sun=disc` or
-    /// `sun=point`, `steps=N` (1 to 1000), `peak=unscattered` or `peak=extinction`, in any
-    /// order, each by default the shipped scenes'. Errors name the word and what it may
+    /// `sun=point`, `steps=N` (1 to 1000), `peak=unscattered` or `peak=extinction`,
+    /// `sky=sphere` or `sky=horizontal`, in any order, each by default the shipped scenes'. Errors name the word and what it may
     /// be.
     pub fn parse(text: &str) -> anyhow::Result<OpticsRow> {
         let mut row = SHIPPED;
-        let what = "wavelengths=N, sun=disc, sun=point, steps=N, peak=unscattered, peak=extinction";
+        let what = "wavelengths=N, sun=disc, sun=point, steps=N, peak=unscattered, \
+                    peak=extinction, sky=sphere, sky=horizontal";
         for word in text.split_whitespace() {
             let Some((key, value)) = word.split_once('=') else {
                 bail!("optics variant \"{text}\": \"{word}\" is none of {what}");
@@ -88,6 +98,8 @@ impl OpticsRow {
                 ("sun", "point") => row.tables.sun_disc = false,
                 ("peak", "unscattered") => row.forward_peak = ForwardPeak::Unscattered,
                 ("peak", "extinction") => row.forward_peak = ForwardPeak::Extinction,
+                ("sky", "sphere") => row.sky_light = SkyLight::Sphere,
+                ("sky", "horizontal") => row.sky_light = SkyLight::Horizontal,
                 ("wavelengths", n) => {
                     let [lo, hi] = WAVELENGTH_COUNT_RANGE;
                     row.tables.wavelengths = match n.parse::<usize>() {
@@ -116,6 +128,8 @@ impl OpticsRow {
     pub fn kind(&self) -> RowKind {
         if self.forward_peak != SHIPPED.forward_peak {
             RowKind::PeakExtinction
+        } else if self.sky_light != SHIPPED.sky_light {
+            RowKind::SkyHorizontal
         } else if self.tables.wavelengths != SHIPPED.tables.wavelengths {
             RowKind::Wavelengths
         } else if self.tables.sun_disc != SHIPPED.tables.sun_disc {
@@ -134,8 +148,8 @@ impl OpticsRow {
 }
 
 /// The report's rows: the shipped settings, fewer wavelengths (the viewer's 16, and 8),
-/// a point sun, coarser and finer marches, and the forward peak counted as extinction
-/// (the march before delta-M).
+/// a point sun, coarser and finer marches, the sky's horizontal irradiance, and the march
+/// before both (the forward peak counted as extinction, the sky's horizontal irradiance).
 pub fn optics_rows() -> Vec<OpticsRow> {
     let with = |wavelengths, sun_disc, steps| OpticsRow {
         tables: Tables {
@@ -143,7 +157,7 @@ pub fn optics_rows() -> Vec<OpticsRow> {
             sun_disc,
         },
         steps,
-        forward_peak: SHIPPED.forward_peak,
+        ..SHIPPED
     };
     vec![
         SHIPPED,
@@ -153,7 +167,12 @@ pub fn optics_rows() -> Vec<OpticsRow> {
         with(32, true, 4),
         with(32, true, 48),
         OpticsRow {
+            sky_light: SkyLight::Horizontal,
+            ..SHIPPED
+        },
+        OpticsRow {
             forward_peak: ForwardPeak::Extinction,
+            sky_light: SkyLight::Horizontal,
             ..SHIPPED
         },
     ]
@@ -182,9 +201,10 @@ impl RowAnswers {
 /// `row` on `scene`.
 pub fn answer(row: &OpticsRow, scene: &OpticsScene) -> anyhow::Result<RowAnswers> {
     // The first call may build the tables; the second times what a frame does.
-    scene.lit(row.tables, row.forward_peak)?;
+    let march = (row.forward_peak, row.sky_light);
+    scene.lit(row.tables, march)?;
     let start = Instant::now();
-    let lit = scene.lit(row.tables, row.forward_peak)?;
+    let lit = scene.lit(row.tables, march)?;
     let per_frame_s = start.elapsed().as_secs_f64();
     let answers = scene
         .rays
@@ -232,6 +252,11 @@ mod tests {
         );
         let e = OpticsRow::parse("wavelengths=200").unwrap_err().to_string();
         assert!(e.contains("[3, 128]"), "{e}");
+        assert_eq!(
+            OpticsRow::parse("sky=horizontal").unwrap().kind(),
+            RowKind::SkyHorizontal
+        );
+        assert_eq!(OpticsRow::parse("sky=sphere").unwrap(), SHIPPED);
         let paper = OpticsRow::parse("peak=extinction").unwrap();
         assert_eq!(paper.forward_peak, ForwardPeak::Extinction);
         assert_eq!(paper.kind(), RowKind::PeakExtinction);

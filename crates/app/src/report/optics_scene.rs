@@ -14,7 +14,8 @@ use atmosphere_core::hydrometeors::reference::path::{VolumePaths, environment_ar
 use atmosphere_core::hydrometeors::reference::phase::ChannelSampler;
 use atmosphere_core::hydrometeors::reference::ray::{VolumeTracedRay, radiance_path_traced};
 use atmosphere_core::hydrometeors::render::{LitVolume, composite_in_steps};
-use atmosphere_core::hydrometeors::scene::{TableSettings, lit_volume};
+use atmosphere_core::hydrometeors::scene::{VolumeOptics, lit_volume};
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
@@ -110,8 +111,12 @@ impl OpticsScene {
 
     /// The scene's volume with `tables` (from the table cache, or built) and its
     /// forward peak counted as `forward_peak` says, lit by the sky model as the renderer
-    /// lights it.
-    pub fn lit(&self, tables: Tables, forward_peak: ForwardPeak) -> anyhow::Result<LitVolume> {
+    /// lights it, the sky's light as `sky_light` says.
+    pub fn lit(
+        &self,
+        tables: Tables,
+        (forward_peak, sky_light): (ForwardPeak, SkyLight),
+    ) -> anyhow::Result<LitVolume> {
         let sun_radius = if tables.sun_disc {
             self.frame.atmosphere.sun.angular_radius_rad
         } else {
@@ -121,10 +126,11 @@ impl OpticsScene {
             self.air(),
             self.volume,
             (self.frame.camera_position_m, self.frame.sun_direction),
-            TableSettings {
+            VolumeOptics {
                 wavelengths: tables.wavelengths,
                 sun_radius_rad: sun_radius,
                 forward_peak,
+                sky_light,
             },
             RGB_WAVELENGTHS_NM,
             &table_cache(),

@@ -162,6 +162,7 @@ fn series_color(series: Series) -> RGBColor {
                 RowKind::PointSun => RGBColor(255, 127, 14),
                 RowKind::Steps => RGBColor(44, 160, 44),
                 RowKind::PeakExtinction => RGBColor(214, 39, 40),
+                RowKind::SkyHorizontal => RGBColor(148, 103, 189),
             };
         }
         Series::Beam(method) => {

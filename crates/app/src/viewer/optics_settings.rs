@@ -5,6 +5,7 @@
 
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::scene::{CirrusSettings, DeckSettings, RainShaftSettings};
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use serde::{Deserialize, Serialize};
 
 use crate::render::volume_flags::VolumeFlags;
@@ -55,6 +56,8 @@ pub struct OpticsSettings {
     pub deck_droplet_radius_um: f64,
     /// How the march counts the light scattered within 1 degree of forward.
     pub forward_peak: ForwardPeak,
+    /// Which sky's light the march scatters.
+    pub sky_light: SkyLight,
 }
 
 impl Default for OpticsSettings {
@@ -76,6 +79,7 @@ impl Default for OpticsSettings {
             deck_optical_depth: deck.optical_depth,
             deck_droplet_radius_um: deck.droplet_radius_um,
             forward_peak: ForwardPeak::default(),
+            sky_light: SkyLight::default(),
         }
     }
 }
@@ -105,6 +109,7 @@ impl OpticsSettings {
             deck_droplet_radius_um: Some(self.deck_droplet_radius_um),
             wavelengths: Some(VIEWER_WAVELENGTHS),
             forward_peak: Some(self.forward_peak),
+            sky_light: Some(self.sky_light),
             ..VolumeFlags::default()
         }
     }
@@ -157,6 +162,9 @@ mod tests {
         assert_eq!(stored.forward_peak, ForwardPeak::Unscattered);
         optics.forward_peak = ForwardPeak::Extinction;
         assert_eq!(optics.flags().forward_peak, Some(ForwardPeak::Extinction));
+        assert_eq!(stored.sky_light, SkyLight::Sphere);
+        optics.sky_light = SkyLight::Horizontal;
+        assert_eq!(optics.flags().sky_light, Some(SkyLight::Horizontal));
         assert_eq!(
             stored.rain_rate_mm_h,
             RainShaftSettings::default().rain_rate_mm_h

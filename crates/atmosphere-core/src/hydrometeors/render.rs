@@ -3,17 +3,18 @@
 //! 4.2.3, Eq. 26 with the first order only): along a view ray's interval [t0, t1] in a
 //! homogeneous volume of extinction beta_c per channel (albedo 1), in MARCH_STEPS equal
 //! steps of length dt, each step adds
-//!     T_v(t_k) (1 - e^(-beta_c dt)) [P_c(theta) E_sun e^(-beta_c s_k) + E_sky / (2 pi)],
+//!     T_v(t_k) (1 - e^(-beta_c dt)) [P_c(theta) E_sun e^(-beta_c s_k) + L_sky],
 //! where T_v(t_k) is the volume's transmittance in channel c from t0 to the step's
 //! start, beta_c = beta (1 - f_c) with the forward peak taken as no scattering
 //! (`forward_peak.rs`, delta-M: f_c = 0 where the peak counts as extinction), P_c the
 //! phase function at the frame's wavelengths (`channel_phase.rs`; truncated alike) at
 //! the scattering angle theta between the sun and the view (falling plates: at the
-//! view's elevation and azimuth from the sun about the camera's vertical), E_sun the sun's irradiance through the
-//! atmosphere (one value per volume, at its `light_point`), s_k the sun's path inside the
-//! volume from the step's middle, and E_sky / (2 pi) the sky's irradiance on a
-//! horizontal plane scattered isotropically (a uniform upper hemisphere of radiance
-//! E_sky / pi, half of all directions). The volume is composited over the model's pixel
+//! view's elevation and azimuth from the sun about the camera's vertical), E_sun the
+//! sun's irradiance through the atmosphere (one value per volume, at its
+//! `light_point`), s_k the sun's path inside the volume from the step's middle, and
+//! L_sky the sky's light scattered isotropically (`sky_light.rs`: the model's radiance
+//! averaged over the sphere there, or E_sky / (2 pi) from its horizontal irradiance).
+//! The volume is composited over the model's pixel
 //! L_full (its surface and sun included) as
 //!     L = L_front + T_v (L_full - L_front) + T_front L_v,   L_front = (1 - T_front) L_full,
 //! Riley et al. 2004's (section 5) split of the atmosphere in front of and behind the
@@ -29,6 +30,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use super::channel_phase::ChannelPhase;
+use super::sky_light::{SkyLight, sphere_mean_radiance};
 use super::volumes::Volume;
 use crate::atmosphere::Atmosphere;
 use crate::clouds::layer::composite::light_at;
@@ -47,8 +49,9 @@ pub struct VolumeLight {
     pub sun_direction: DVec3,
     /// The sun's irradiance on a plane facing it, through the atmosphere, W m^-2 nm^-1.
     pub sun_irradiance: [f64; 3],
-    /// The sky's irradiance on a horizontal plane, W m^-2 nm^-1.
-    pub sky_irradiance: [f64; 3],
+    /// The radiance the march scatters isotropically as the sky's light
+    /// (`sky_light.rs`), W m^-2 sr^-1 nm^-1.
+    pub sky_radiance: [f64; 3],
 }
 
 /// A volume with its phase function and light.
@@ -117,8 +120,7 @@ pub fn march_in_steps(
             let sun = (-beta[c] * sun_path).exp();
             radiance[c] += t_v[c]
                 * (1.0 - step_transmittance[c])
-                * (p[c] * lit.light.sun_irradiance[c] * sun
-                    + lit.light.sky_irradiance[c] / (2.0 * PI));
+                * (p[c] * lit.light.sun_irradiance[c] * sun + lit.light.sky_radiance[c]);
             t_v[c] *= step_transmittance[c];
         }
     }
@@ -192,18 +194,19 @@ pub fn composite_in_steps(
 }
 
 /// The light of `model` (at its wavelengths, which must be three) on `volume` seen from
-/// `camera_m`: the sun through the atmosphere and the sky at the volume's `light_point`
-/// (`clouds/layer/composite.rs`, `light_at`).
+/// `camera_m`: the sun through the atmosphere at the volume's `light_point`
+/// (`clouds/layer/composite.rs`, `light_at`) and the sky's light there as `sky` says.
 pub fn light_of(
     model: &dyn SkyModel,
     volume: &Volume,
-    camera_m: DVec3,
-    sun_direction: DVec3,
+    (camera_m, sun_direction): (DVec3, DVec3),
+    sky: SkyLight,
 ) -> Result<VolumeLight, ModelError> {
     let sun = sun_direction
         .try_normalize()
         .ok_or_else(|| ModelError::Settings("the sun direction must be non-zero".into()))?;
-    let light = light_at(model, volume.light_point(camera_m), sun)?;
+    let point = volume.light_point(camera_m);
+    let light = light_at(model, point, sun)?;
     let three = |v: &[f64]| -> Result<[f64; 3], ModelError> {
         v.try_into().map_err(|_| {
             ModelError::Settings(format!(
@@ -212,9 +215,13 @@ pub fn light_of(
             ))
         })
     };
+    let sky_radiance = match sky {
+        SkyLight::Sphere => three(&sphere_mean_radiance(model, point, sun)?)?,
+        SkyLight::Horizontal => three(&light.sky_irradiance)?.map(|e| e / (2.0 * PI)),
+    };
     Ok(VolumeLight {
         sun_direction: sun,
         sun_irradiance: three(&light.sun_irradiance)?,
-        sky_irradiance: three(&light.sky_irradiance)?,
+        sky_radiance,
     })
 }

@@ -44,7 +44,7 @@ pub fn shaft(ground_m: f64, away_m: f64, height_m: f64) -> LitVolume {
         light: VolumeLight {
             sun_direction: DVec3::X,
             sun_irradiance: [1.0; 3],
-            sky_irradiance: [0.1; 3],
+            sky_radiance: [0.1; 3],
         },
     }
 }

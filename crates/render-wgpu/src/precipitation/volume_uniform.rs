@@ -34,7 +34,8 @@ pub struct VolumeUniform {
     /// where it counts as no scattering), m^-1.
     pub extinction: [f32; 4],
     pub sun_irradiance: [f32; 4],
-    pub sky_irradiance: [f32; 4],
+    /// The radiance the march scatters as the sky's light, W m^-2 sr^-1 nm^-1.
+    pub sky_radiance: [f32; 4],
 }
 
 /// WGSL `VolumesParams`, 240 bytes.
@@ -127,7 +128,7 @@ pub fn pack(
             bin_deg: [bin_deg as f32, azimuth_bin_deg as f32, 0.0, 0.0],
             extinction: rgb(lit.extinction_per_m()),
             sun_irradiance: rgb(lit.light.sun_irradiance),
-            sky_irradiance: rgb(lit.light.sky_irradiance),
+            sky_radiance: rgb(lit.light.sky_radiance),
         };
         bins.extend(values.iter().map(|v| rgb(*v)));
     }
