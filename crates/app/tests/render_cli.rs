@@ -324,6 +324,11 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "frame.png",
             "invalid value 'lost' for '--optics-forward-peak <PEAK>'",
         ),
+        (
+            &[("--rain", "true"), ("--optics-sky-light", "dome")],
+            "frame.png",
+            "invalid value 'dome' for '--optics-sky-light <SKY>'",
+        ),
     ];
     for (overrides, name, message) in cases {
         let out = dir.path().join(name);
