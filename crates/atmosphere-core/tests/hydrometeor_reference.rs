@@ -4,8 +4,10 @@
 //! volume is thicker, its first order of the sun against the march with the peak taken
 //! as no scattering (delta-M, `hydrometeors/forward_peak.rs`: they must agree) and with
 //! the peak in the extinction (darker), brighter than either march by the orders the
-//! march leaves out, the growth of that excess with the optical depth, a volume of
-//! no extinction answered by the air alone, and a falling plates' table refused by name.
+//! march leaves out, the growth of that excess with the optical depth; in a sky of one
+//! radiance everywhere, the march's sky term with the sphere's mean (`sky_light.rs`)
+//! against the path tracer's sky light in every order; a volume of no extinction
+//! answered by the air alone, and a falling plates' table refused by name.
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
@@ -14,17 +16,21 @@ use atmosphere_core::clouds::reference::settings::PathSettings;
 use atmosphere_core::clouds::reference::sun_light::SunThroughAtmosphere;
 use atmosphere_core::hydrometeors::channel_phase::ChannelPhase;
 use atmosphere_core::hydrometeors::forward_peak::{ForwardPeak, truncated};
-use atmosphere_core::hydrometeors::reference::path::VolumePaths;
+use atmosphere_core::hydrometeors::reference::path::{VolumePaths, environment_around};
 use atmosphere_core::hydrometeors::reference::phase::ChannelSampler;
 use atmosphere_core::hydrometeors::reference::ray::{
     SegmentTally, radiance_path_traced, trace_segment,
 };
 use atmosphere_core::hydrometeors::render::{LitVolume, VolumeLight, march};
+use atmosphere_core::hydrometeors::sky_light::sphere_mean_radiance;
 use atmosphere_core::hydrometeors::spectral_phase::{Particles, SpectralPhase};
 use atmosphere_core::hydrometeors::volumes::{Shape, Volume};
+use atmosphere_core::models::error::ModelError;
 use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::model_base::ModelBase;
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::models::sky_model::ViewRay;
+use atmosphere_core::models::settings::ModelSettings;
+use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
 use glam::DVec3;
 
 const FRAME_NM: [f64; 3] = [680.0, 550.0, 440.0];
@@ -213,6 +219,102 @@ fn a_thicker_layer_is_brighter_than_single_scattering_by_more_the_thicker_it_is(
     let (thin, thick) = (excess(0.25), excess(1.0));
     eprintln!("traced / marched - 1 at 550 nm: tau 0.25 {thin:.4}, tau 1 {thick:.4}");
     assert!(thick > 1.5 * thin && thin > 0.01, "{thin} {thick}");
+}
+
+/// A sky of one radiance in every direction, the ground's included.
+struct UniformSky {
+    base: ModelBase,
+    radiance: f64,
+}
+
+impl SkyModel for UniformSky {
+    fn base(&self) -> &ModelBase {
+        &self.base
+    }
+    fn radiance(&self, _: &ViewRay) -> Result<RayRadiance, ModelError> {
+        Ok(RayRadiance {
+            radiance: vec![self.radiance; 3],
+            transmittance: vec![1.0; 3],
+            radiance_std_error: vec![0.0; 3],
+        })
+    }
+    fn table_bytes(&self) -> usize {
+        0
+    }
+    fn update(&mut self, _: &Atmosphere) -> Result<Vec<&'static str>, ModelError> {
+        Ok(Vec::new())
+    }
+}
+
+#[test]
+fn in_a_uniform_sky_the_march_with_the_spheres_mean_is_every_order() {
+    // A volume that does not absorb, inside a field of one radiance L_0: the path
+    // tracer's sky light (every order, the forward peak truncated, a layer of vertical
+    // optical depth 2) is L_0 (1 - T), and so is the march's sky term with the sphere's
+    // mean; the horizontal irradiance's E_sky / (2 pi) would be half of it.
+    let s = setup();
+    let settings = ModelSettings {
+        wavelengths_nm: FRAME_NM.to_vec(),
+        ..ModelSettings::default()
+    };
+    let sky = UniformSky {
+        base: ModelBase::new(ModelId::Nishita, &s.atmosphere, &settings),
+        radiance: 0.05,
+    };
+    let volume = layer(&s, 2.0);
+    let d = look(70.0);
+    let point = volume.light_point(s.camera);
+    let mean = sphere_mean_radiance(&sky, point, s.sun).unwrap();
+    let (phase, peak_fraction) = truncated(s.phase.clone(), ForwardPeak::Unscattered);
+    let lit = LitVolume {
+        volume,
+        phase,
+        peak_fraction,
+        light: VolumeLight {
+            sun_direction: s.sun,
+            sun_irradiance: [0.0; 3],
+            sky_radiance: std::array::from_fn(|c| mean[c]),
+        },
+    };
+    let marched = march(&lit, s.camera, d, f64::INFINITY).unwrap();
+    let environment = environment_around(&volume, &sky, s.camera, s.sun).unwrap();
+    let sampler = ChannelSampler::new(&s.phase).unwrap();
+    let paths = VolumePaths {
+        volume: &volume,
+        phase: &sampler,
+        sun: &s.sun_light,
+        environment: Some(&environment),
+        sun_direction: s.sun,
+    };
+    let segment = volume.segment(s.camera, d, f64::INFINITY).unwrap();
+    let settings = PathSettings {
+        target_relative_error: TARGET,
+        min_paths: 2_048,
+        max_paths: 100_000,
+        seed: 5,
+    };
+    let done = |t: &SegmentTally| {
+        t.sky.iter().all(|t| {
+            let e = t.estimate();
+            e.standard_error <= TARGET * e.mean
+        })
+    };
+    let (tallies, _) = trace_segment(&paths, (s.camera, d), segment, &settings, 13, done);
+    for c in 0..3 {
+        let e = tallies.sky[c].estimate();
+        let exact = sky.radiance * (1.0 - marched.transmittance[c]);
+        eprintln!(
+            "channel {c}: traced sky {:e} +- {:e}, marched {:e}, L_0 (1 - T) {exact:e}",
+            e.mean, e.standard_error, marched.radiance[c]
+        );
+        assert!((marched.radiance[c] / exact - 1.0).abs() < 1e-9);
+        assert!(
+            (e.mean - exact).abs() <= 4.0 * e.standard_error + 0.005 * exact,
+            "channel {c}: traced {} +- {}, exact {exact}",
+            e.mean,
+            e.standard_error
+        );
+    }
 }
 
 #[test]
