@@ -20,13 +20,17 @@ struct VolumeParams {
     // Layer: x, y: r^2 - R^2 of the camera for the base and top radii (f64 on the CPU),
     // z: the same for the ground, m^2.
     place: vec4<f32>,
-    // x: extinction, m^-1; y: the phase bins' width (over the sky: the elevation
-    // bins'), z: over the sky, the azimuth bins' width, degrees.
-    medium: vec4<f32>,
-    // The sun's irradiance through the atmosphere and the sky's horizontal irradiance,
-    // W m^-2 nm^-1, per channel.
+    // x: the phase bins' width (over the sky: the elevation bins'), y: over the sky,
+    // the azimuth bins' width, degrees.
+    bin_deg: vec4<f32>,
+    // The march's extinction per channel, beta (1 - f_c), m^-1 (CPU twin:
+    // `LitVolume::extinction_per_m`, the forward peak out of it).
+    extinction: vec4<f32>,
+    // The sun's irradiance through the atmosphere, W m^-2 nm^-1, and the radiance the
+    // march scatters isotropically as the sky's light, W m^-2 sr^-1 nm^-1, per channel
+    // (CPU twin: `VolumeLight`, `sky_light.rs`).
     sun_irradiance: vec4<f32>,
-    sky_irradiance: vec4<f32>,
+    sky_radiance: vec4<f32>,
 }
 
 struct VolumesParams {

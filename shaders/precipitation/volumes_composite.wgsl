@@ -2,8 +2,9 @@
 // `precipitation/volumes_pass.rs`). CPU twin: atmosphere-core's `hydrometeors/render.rs`,
 // which states the method: single scattering in MARCH_STEPS steps, the phase function at
 // the frame's wavelengths from the buffer (linear between bin centres; by scattering
-// angle, or over the sky for falling plates), the sun's path in
-// the volume, the sky's light isotropic; with L_front = (1 - T_front) L_full,
+// angle, or over the sky for falling plates; truncated where the forward peak counts
+// as no scattering, with each channel's extinction beta (1 - f_c)), the sun's path in
+// the volume, the sky's light (one radiance) scattered isotropically; with L_front = (1 - T_front) L_full,
 // L = L_front + T_v (L_full - L_front) + T_front L_v, farthest volume first.
 
 #import common/frame_params.wgsl
@@ -11,7 +12,6 @@
 
 const MARCH_STEPS: u32 = 12u;
 const FRONT_STEPS: u32 = 8u;
-const TWO_PI: f32 = 6.283185307;
 
 @group(0) @binding(2) var<uniform> volumes: VolumesParams;
 // Every volume's phase function, rgb per bin.
@@ -23,7 +23,7 @@ const TWO_PI: f32 = 6.283185307;
 
 fn phase_at(v: VolumeParams, angle_deg: f32) -> vec3<f32> {
     let last = f32(v.kind.z - 1u);
-    let x = clamp(angle_deg / v.medium.y - 0.5, 0.0, last);
+    let x = clamp(angle_deg / v.bin_deg.x - 0.5, 0.0, last);
     let i = min(u32(floor(x)), v.kind.z - 2u);
     let f = x - f32(i);
     let first = v.kind.y + i;
@@ -45,8 +45,8 @@ fn sky_phase_at(v: VolumeParams, d: vec3<f32>, sun: vec3<f32>) -> vec3<f32> {
     }
     let columns = v.kind.w;
     let rows = v.kind.z / columns;
-    let x = clamp((elevation + 90.0) / v.medium.y - 0.5, 0.0, f32(rows - 1u));
-    let y = clamp(azimuth / v.medium.z - 0.5, 0.0, f32(columns - 1u));
+    let x = clamp((elevation + 90.0) / v.bin_deg.x - 0.5, 0.0, f32(rows - 1u));
+    let y = clamp(azimuth / v.bin_deg.y - 0.5, 0.0, f32(columns - 1u));
     let i = min(u32(floor(x)), rows - 2u);
     let j = min(u32(floor(y)), columns - 2u);
     let s = x - f32(i);
@@ -91,14 +91,14 @@ fn front_transmittance(d: vec3<f32>, distance_m: f32) -> vec3<f32> {
 struct Met {
     entry: f32,
     radiance: vec3<f32>,
-    transmittance: f32,
+    transmittance: vec3<f32>,
 }
 
 fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
     let camera = frame.camera_m.xyz;
     let sun = frame.sun_direction.xyz;
     let b = dot(camera, d);
-    let beta = v.medium.x;
+    let beta = v.extinction.xyz;
     let dt = (t.y - t.x) / f32(MARCH_STEPS);
     let step_t = exp(-beta * dt);
     var p: vec3<f32>;
@@ -108,12 +108,12 @@ fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
         p = sky_phase_at(v, d, sun);
     }
     var radiance = vec3<f32>(0.0);
-    var t_v = 1.0;
+    var t_v = vec3<f32>(1.0);
     for (var k = 0u; k < MARCH_STEPS; k++) {
         let s = t.x + (f32(k) + 0.5) * dt;
         let lit = exp(-beta * sun_path(v, d, b, s, camera, sun));
         radiance += t_v * (1.0 - step_t)
-            * (p * v.sun_irradiance.xyz * lit + v.sky_irradiance.xyz / TWO_PI);
+            * (p * v.sun_irradiance.xyz * lit + v.sky_radiance.xyz);
         t_v *= step_t;
     }
     return Met(t.x, radiance, t_v);

@@ -14,7 +14,7 @@ mod support;
 
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::hydrometeors::render::composite;
-use atmosphere_core::hydrometeors::scene::{DeckSettings, lit_volume};
+use atmosphere_core::hydrometeors::scene::{DeckSettings, VolumeOptics, lit_volume};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::table_cache::TableCache;
@@ -70,7 +70,7 @@ fn a_droplet_deck_seen_from_above_matches_the_cpu_composite() {
                 model.as_ref(),
                 deck,
                 (frame.camera_position_m, frame.sun_direction),
-                (WAVELENGTHS, frame.atmosphere.sun.angular_radius_rad),
+                VolumeOptics::new(WAVELENGTHS, frame.atmosphere.sun.angular_radius_rad),
                 RGB_WAVELENGTHS_NM,
                 &TableCache::off(),
             )

@@ -15,7 +15,7 @@ mod support;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::hydrometeors::render::composite;
-use atmosphere_core::hydrometeors::scene::{CirrusSettings, lit_volume};
+use atmosphere_core::hydrometeors::scene::{CirrusSettings, VolumeOptics, lit_volume};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::table_cache::TableCache;
@@ -69,7 +69,7 @@ fn falling_plates_match_the_cpu_composite() {
             model.as_ref(),
             cirrus,
             (frame.camera_position_m, frame.sun_direction),
-            (3, frame.atmosphere.sun.angular_radius_rad),
+            VolumeOptics::new(3, frame.atmosphere.sun.angular_radius_rad),
             RGB_WAVELENGTHS_NM,
             &TableCache::off(),
         )

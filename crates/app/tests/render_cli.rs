@@ -319,6 +319,16 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "frame.png",
             "--optics-wavelengths 1000 must lie in [3, 128]",
         ),
+        (
+            &[("--rain", "true"), ("--optics-forward-peak", "lost")],
+            "frame.png",
+            "invalid value 'lost' for '--optics-forward-peak <PEAK>'",
+        ),
+        (
+            &[("--rain", "true"), ("--optics-sky-light", "dome")],
+            "frame.png",
+            "invalid value 'dome' for '--optics-sky-light <SKY>'",
+        ),
     ];
     for (overrides, name, message) in cases {
         let out = dir.path().join(name);

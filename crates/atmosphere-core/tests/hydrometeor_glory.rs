@@ -6,7 +6,9 @@
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::hydrometeors::render::{LitVolume, composite};
-use atmosphere_core::hydrometeors::scene::{DeckSettings, RainShaftSettings, lit_volume};
+use atmosphere_core::hydrometeors::scene::{
+    DeckSettings, RainShaftSettings, VolumeOptics, lit_volume,
+};
 use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
@@ -42,7 +44,7 @@ fn line(
         model.as_ref(),
         volume(camera, atmosphere.bottom_radius_m),
         (camera, sun),
-        (WAVELENGTHS, SUN_RADIUS_RAD),
+        VolumeOptics::new(WAVELENGTHS, SUN_RADIUS_RAD),
         FRAME_NM,
         &TableCache::off(),
     )

@@ -7,7 +7,9 @@
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::hydrometeors::render::{LitVolume, composite};
-use atmosphere_core::hydrometeors::scene::{CirrusSettings, RainShaftSettings, lit_volume};
+use atmosphere_core::hydrometeors::scene::{
+    CirrusSettings, RainShaftSettings, VolumeOptics, lit_volume,
+};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{SkyModel, ViewRay};
@@ -101,7 +103,7 @@ fn the_rain_shaft_shows_both_bows_and_the_dark_band_between() {
         s.model.as_ref(),
         volume,
         (s.camera, s.sun),
-        (16, 0.004675),
+        VolumeOptics::new(16, 0.004675),
         FRAME_NM,
         &TableCache::off(),
     )
@@ -155,7 +157,7 @@ fn the_cirrus_shows_the_halos_at_22_and_46_degrees() {
         s.model.as_ref(),
         volume,
         (s.camera, s.sun),
-        (16, 0.004675),
+        VolumeOptics::new(16, 0.004675),
         FRAME_NM,
         &TableCache::off(),
     )

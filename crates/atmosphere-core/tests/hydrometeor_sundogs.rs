@@ -8,7 +8,7 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::hydrometeors::channel_phase::sky_angles_deg;
 use atmosphere_core::hydrometeors::render::composite;
-use atmosphere_core::hydrometeors::scene::{CirrusSettings, lit_volume};
+use atmosphere_core::hydrometeors::scene::{CirrusSettings, VolumeOptics, lit_volume};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::ViewRay;
@@ -53,7 +53,7 @@ fn the_sundog_lies_beside_the_sun_at_the_prisms_least_projected_deviation() {
         model.as_ref(),
         volume,
         (camera, sun),
-        (8, 0.004675),
+        VolumeOptics::new(8, 0.004675),
         FRAME_NM,
         &TableCache::off(),
     )

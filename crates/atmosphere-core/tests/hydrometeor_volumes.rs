@@ -1,14 +1,20 @@
 //! The rain shaft's and the cirrus layer's geometry against closed forms, the march's
 //! transmittance and sky light against the homogeneous slab's closed forms, rain's
-//! extinction against the Marshall-Palmer integral, and bad settings named.
+//! extinction against the Marshall-Palmer integral, the sky's light averaged over the
+//! sphere against another rule, and bad settings named.
 
 use std::f64::consts::PI;
 
+use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::hydrometeors::channel_phase::ChannelPhase;
 use atmosphere_core::hydrometeors::error::HydrometeorError;
 use atmosphere_core::hydrometeors::render::{LitVolume, VolumeLight, march};
+use atmosphere_core::hydrometeors::sky_light::sphere_mean_radiance;
 use atmosphere_core::hydrometeors::spectral_phase::Particles;
 use atmosphere_core::hydrometeors::volumes::{Volume, rain_extinction_per_m};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use atmosphere_core::models::sky_model::ViewRay;
 use atmosphere_core::optics::mie::marshall_palmer::MarshallPalmer;
 use glam::DVec3;
 
@@ -63,9 +69,11 @@ fn rays_cross_the_shaft_and_the_layer_where_geometry_says() {
 
 #[test]
 fn the_march_keeps_the_slabs_closed_forms() {
-    // No sun: the sky's light alone, E_sky / (2 pi) (1 - e^(-tau)), and T = e^(-tau)
-    // whatever the steps, for the vertical crossing of a layer of tau = 2.
+    // No sun: the sky's light alone, L_sky (1 - e^(-tau_c)), and T_c =
+    // e^(-tau_c) whatever the steps, for the vertical crossing of a layer of tau = 2,
+    // each channel with its own extinction beta (1 - f_c) (the forward peak out of it).
     let volume = cirrus(2.0);
+    let peak_fraction = [0.0, 0.5, 0.75];
     let lit = LitVolume {
         volume,
         phase: ChannelPhase {
@@ -73,22 +81,23 @@ fn the_march_keeps_the_slabs_closed_forms() {
             sky: None,
             values: vec![[1.0 / (4.0 * PI); 3]; 3600],
         },
+        peak_fraction,
         light: VolumeLight {
             sun_direction: DVec3::Y,
             sun_irradiance: [0.0; 3],
-            sky_irradiance: [1.0, 2.0, 3.0],
+            sky_radiance: [1.0, 2.0, 3.0],
         },
     };
     let origin = DVec3::X * (GROUND_M + 2.0);
     let s = march(&lit, origin, DVec3::X, f64::INFINITY).unwrap();
-    let t = (-2.0f64).exp();
-    assert!(
-        (s.transmittance / t - 1.0).abs() < 1e-12,
-        "{}",
-        s.transmittance
-    );
     for c in 0..3 {
-        let exact = lit.light.sky_irradiance[c] / (2.0 * PI) * (1.0 - t);
+        let t = (-2.0 * (1.0 - peak_fraction[c])).exp();
+        assert!(
+            (s.transmittance[c] / t - 1.0).abs() < 1e-12,
+            "{c}: {}",
+            s.transmittance[c]
+        );
+        let exact = lit.light.sky_radiance[c] * (1.0 - t);
         assert!(
             (s.radiance[c] / exact - 1.0).abs() < 1e-12,
             "{c}: {}",
@@ -130,4 +139,40 @@ fn bad_volumes_are_named() {
         rain_rate_mm_h: 5.0,
     };
     assert!(err(Volume::cirrus(GROUND_M, 8e3, 1e3, 0.3, rain)).contains("ice crystals only"));
+}
+
+#[test]
+fn the_sky_light_is_the_models_radiance_averaged_over_the_sphere() {
+    // The sphere's mean by the midpoint rule in the zenith cosine and the azimuth
+    // against a Fibonacci lattice of 4096 directions (no symmetry assumed), 500 m up
+    // with the sun 30 degrees high: the ground below, lit, and the sky above.
+    let atmosphere = Atmosphere::preset("earth").unwrap();
+    let model = prepare(ModelId::Nishita, &atmosphere, &Default::default()).unwrap();
+    let point = DVec3::X * (atmosphere.bottom_radius_m + 500.0);
+    let e = 30f64.to_radians();
+    let sun = DVec3::new(e.sin(), e.cos(), 0.0);
+    let mean = sphere_mean_radiance(model.as_ref(), point, sun).unwrap();
+    let n = 4096;
+    let golden = PI * (3.0 - 5f64.sqrt());
+    let mut lattice = vec![0.0; mean.len()];
+    for k in 0..n {
+        let z = 1.0 - 2.0 * (k as f64 + 0.5) / n as f64;
+        let r = (1.0 - z * z).sqrt();
+        let phi = golden * k as f64;
+        let direction = DVec3::new(z, r * phi.cos(), r * phi.sin());
+        let answer = model
+            .radiance(&ViewRay {
+                origin_m: point,
+                direction,
+                sun_direction: sun,
+                max_distance_m: None,
+            })
+            .unwrap();
+        for (l, a) in lattice.iter_mut().zip(&answer.radiance) {
+            *l += a / n as f64;
+        }
+    }
+    for (m, l) in mean.iter().zip(&lattice) {
+        assert!((m / l - 1.0).abs() < 0.02, "{m} against {l}");
+    }
 }

@@ -581,20 +581,3 @@ fn cloud_uniforms_match_their_wgsl_layouts() {
         ]
     );
 }
-
-#[test]
-fn volume_uniforms_match_their_wgsl_layouts() {
-    use render_wgpu::precipitation::volume_uniform::{VolumeUniform, VolumesUniform};
-    assert_layout!(
-        "precipitation/volumes_composite.wgsl",
-        "VolumeParams",
-        VolumeUniform,
-        [kind, axis, place, medium, sun_irradiance, sky_irradiance]
-    );
-    assert_layout!(
-        "precipitation/volumes_composite.wgsl",
-        "VolumesParams",
-        VolumesUniform,
-        [count, volumes]
-    );
-}

@@ -5,10 +5,12 @@
 
 use crate::table_cache_dir::table_cache;
 use anyhow::{Context, bail};
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::scene::{
-    CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, lit_volume,
+    CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, VolumeOptics, lit_volume,
 };
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
 use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::registry::prepare;
@@ -99,6 +101,18 @@ pub struct VolumeFlags {
     /// [3, 128] [default: 32].
     #[arg(long = "optics-wavelengths", value_name = "N")]
     pub wavelengths: Option<usize>,
+    /// How the volumes' march counts the light its particles scatter within 1 degree
+    /// of the forward direction (diffraction): `unscattered`, as light that arrives
+    /// unscattered (delta-M: the extinction without it, the phase table truncated), or
+    /// `extinction`, as light lost (the whole extinction) [default: unscattered].
+    #[arg(long = "optics-forward-peak", value_name = "PEAK", value_enum)]
+    pub forward_peak: Option<ForwardPeak>,
+    /// The sky's light the volumes scatter: `sphere`, the model's radiance averaged over
+    /// every direction around the volume (the sky, the lit ground below), the all-orders
+    /// answer in a uniform field; or `horizontal`, the sky's horizontal irradiance over a
+    /// black ground, once [default: sphere].
+    #[arg(long = "optics-sky-light", value_name = "SKY", value_enum)]
+    pub sky_light: Option<SkyLight>,
 }
 
 impl VolumeFlags {
@@ -137,6 +151,8 @@ impl VolumeFlags {
             cirrus_plates: flags.cirrus_plates.or(self.cirrus_plates),
             cirrus_tilt_deg: flags.cirrus_tilt_deg.or(self.cirrus_tilt_deg),
             wavelengths: flags.wavelengths.or(self.wavelengths),
+            forward_peak: flags.forward_peak.or(self.forward_peak),
+            sky_light: flags.sky_light.or(self.sky_light),
         }
     }
 
@@ -228,8 +244,12 @@ impl VolumeFlags {
         }
         let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
         let view = (frame.camera_position_m, frame.sun_direction);
-        let wavelengths = self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS);
-        let optics = (wavelengths, frame.atmosphere.sun.angular_radius_rad);
+        let optics = VolumeOptics {
+            wavelengths: self.wavelengths.unwrap_or(DEFAULT_WAVELENGTHS),
+            sun_radius_rad: frame.atmosphere.sun.angular_radius_rad,
+            forward_peak: self.forward_peak.unwrap_or_default(),
+            sky_light: self.sky_light.unwrap_or_default(),
+        };
         let cache = table_cache();
         volumes
             .into_iter()
@@ -245,5 +265,31 @@ impl VolumeFlags {
                 .context(flag)
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_forward_peak_and_sky_light_read_from_a_scene_file_and_bad_ones_are_named() {
+        let text = "rain = true\nforward_peak = \"extinction\"\nsky_light = \"horizontal\"";
+        let flags: VolumeFlags = toml::from_str(text).unwrap();
+        assert_eq!(flags.forward_peak, Some(ForwardPeak::Extinction));
+        assert_eq!(flags.sky_light, Some(SkyLight::Horizontal));
+        let flags = flags.overridden_by(VolumeFlags {
+            forward_peak: Some(ForwardPeak::Unscattered),
+            ..VolumeFlags::default()
+        });
+        assert_eq!(flags.forward_peak, Some(ForwardPeak::Unscattered));
+        let e = toml::from_str::<VolumeFlags>("forward_peak = \"lost\"")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("lost") && e.contains("unscattered"), "{e}");
+        let e = toml::from_str::<VolumeFlags>("sky_light = \"dome\"")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("dome") && e.contains("sphere"), "{e}");
     }
 }

@@ -17,8 +17,10 @@ use std::fs;
 use std::path::Path;
 
 use anyhow::{Context, bail};
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::reference::path::PathLight;
 use atmosphere_core::hydrometeors::reference::ray::VolumeTracedRay;
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::models::sky_model::RayRadiance;
 
 use crate::cloud_rays::CloudAnswer;
@@ -36,7 +38,7 @@ pub const REFERENCE_TABLES: Tables = Tables {
     sun_disc: true,
 };
 /// Raised whenever the path tracer changes what it answers (`hydrometeors/reference/`).
-pub const REFERENCE_VERSION: u32 = 1;
+pub const REFERENCE_VERSION: u32 = 2;
 
 const TITLE: &str =
     "# atmos report optics: path-traced reference radiance, one fingerprint per view";
@@ -118,7 +120,12 @@ pub fn load_or_compute(
     let progress = Progress::new("optics reference", "rays", total as u64);
     for &i in &missing {
         let scene = &scenes[i];
-        let lit = scene.lit(REFERENCE_TABLES)?;
+        // The whole table (the path tracer truncates it) and its own light around the
+        // volume (the march's sky light is not read).
+        let lit = scene.lit(
+            REFERENCE_TABLES,
+            (ForwardPeak::Extinction, SkyLight::Horizontal),
+        )?;
         reference[i] = scene
             .reference(&lit, &scene.view.paths, &progress)
             .with_context(|| format!("optics reference on view {}", scene.view.id))?;

@@ -1,15 +1,18 @@
 //! The rows of the optics section: the renderer's settings that change what a rain
 //! shaft, cirrus layer or droplet deck looks like (docs/optics-rendering.md, "Settings
 //! and their ranges"): the wavelengths its phase tables are computed at, whether they
-//! hold the sun's disc, and the steps of its march (the GPU pass marches
-//! [`MARCH_STEPS`]: other counts are CPU rows). Their answers for a view's rays and the
-//! CPU time they took.
+//! hold the sun's disc, the steps of its march (the GPU pass marches [`MARCH_STEPS`]:
+//! other counts are CPU rows), how it counts the forward peak and which sky's light it
+//! scatters. Their answers for a
+//! view's rays and the CPU time they took.
 
 use std::fmt;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::render::MARCH_STEPS;
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
 
 use crate::cloud_rays::CloudAnswer;
@@ -29,7 +32,8 @@ pub enum RowKind {
     Wavelengths,
     PointSun,
     Steps,
-    PeakUnscattered,
+    PeakExtinction,
+    SkyHorizontal,
 }
 
 /// One row: the volume's tables and its march.
@@ -37,11 +41,10 @@ pub enum RowKind {
 pub struct OpticsRow {
     pub tables: Tables,
     pub steps: usize,
-    /// A diagnostic, not a setting of the renderer: the march with the forward peak
-    /// taken out of the extinction and the phase table as the reference takes it
-    /// (`hydrometeors/reference/phase.rs`), each channel marched with its own
-    /// extinction: how much of the error that alone removes.
-    pub peak_unscattered: bool,
+    /// How the march counts the forward peak (`hydrometeors/forward_peak.rs`).
+    pub forward_peak: ForwardPeak,
+    /// The sky's light the march scatters (`hydrometeors/sky_light.rs`).
+    pub sky_light: SkyLight,
 }
 
 /// The shipped scenes' settings.
@@ -51,7 +54,8 @@ pub const SHIPPED: OpticsRow = OpticsRow {
         sun_disc: true,
     },
     steps: MARCH_STEPS,
-    peak_unscattered: false,
+    forward_peak: ForwardPeak::Unscattered,
+    sky_light: SkyLight::Sphere,
 };
 
 impl fmt::Display for OpticsRow {
@@ -66,8 +70,11 @@ impl fmt::Display for OpticsRow {
             "wavelengths={} sun={sun} steps={}",
             self.tables.wavelengths, self.steps
         )?;
-        if self.peak_unscattered {
-            f.write_str(" peak=unscattered")?;
+        if self.forward_peak != SHIPPED.forward_peak {
+            write!(f, " peak={}", self.forward_peak.name())?;
+        }
+        if self.sky_light != SHIPPED.sky_light {
+            write!(f, " sky={}", self.sky_light.name())?;
         }
         Ok(())
     }
@@ -75,12 +82,13 @@ impl fmt::Display for OpticsRow {
 
 impl OpticsRow {
     /// A row as `--variant` writes it: `wavelengths=N` (3 to 128), `sun=disc` or
-    /// `sun=point`, `steps=N` (1 to 1000), `peak=unscattered` (the diagnostic), in any
-    /// order, each by default the shipped scenes'. Errors name the word and what it may
+    /// `sun=point`, `steps=N` (1 to 1000), `peak=unscattered` or `peak=extinction`,
+    /// `sky=sphere` or `sky=horizontal`, in any order, each by default the shipped scenes'. Errors name the word and what it may
     /// be.
     pub fn parse(text: &str) -> anyhow::Result<OpticsRow> {
         let mut row = SHIPPED;
-        let what = "wavelengths=N, sun=disc, sun=point, steps=N, peak=unscattered";
+        let what = "wavelengths=N, sun=disc, sun=point, steps=N, peak=unscattered, \
+                    peak=extinction, sky=sphere, sky=horizontal";
         for word in text.split_whitespace() {
             let Some((key, value)) = word.split_once('=') else {
                 bail!("optics variant \"{text}\": \"{word}\" is none of {what}");
@@ -88,7 +96,10 @@ impl OpticsRow {
             match (key, value) {
                 ("sun", "disc") => row.tables.sun_disc = true,
                 ("sun", "point") => row.tables.sun_disc = false,
-                ("peak", "unscattered") => row.peak_unscattered = true,
+                ("peak", "unscattered") => row.forward_peak = ForwardPeak::Unscattered,
+                ("peak", "extinction") => row.forward_peak = ForwardPeak::Extinction,
+                ("sky", "sphere") => row.sky_light = SkyLight::Sphere,
+                ("sky", "horizontal") => row.sky_light = SkyLight::Horizontal,
                 ("wavelengths", n) => {
                     let [lo, hi] = WAVELENGTH_COUNT_RANGE;
                     row.tables.wavelengths = match n.parse::<usize>() {
@@ -115,8 +126,10 @@ impl OpticsRow {
 
     /// What the row changes from the shipped settings (the first that differs).
     pub fn kind(&self) -> RowKind {
-        if self.peak_unscattered {
-            RowKind::PeakUnscattered
+        if self.forward_peak != SHIPPED.forward_peak {
+            RowKind::PeakExtinction
+        } else if self.sky_light != SHIPPED.sky_light {
+            RowKind::SkyHorizontal
         } else if self.tables.wavelengths != SHIPPED.tables.wavelengths {
             RowKind::Wavelengths
         } else if self.tables.sun_disc != SHIPPED.tables.sun_disc {
@@ -128,15 +141,15 @@ impl OpticsRow {
         }
     }
 
-    /// Whether the GPU pass renders this row (it marches [`MARCH_STEPS`], the
-    /// forward peak in its extinction).
+    /// Whether the GPU pass renders this row (it marches [`MARCH_STEPS`]).
     pub fn on_gpu(&self) -> bool {
-        self.steps == MARCH_STEPS && !self.peak_unscattered
+        self.steps == MARCH_STEPS
     }
 }
 
 /// The report's rows: the shipped settings, fewer wavelengths (the viewer's 16, and 8),
-/// a point sun, coarser and finer marches, and the diagnostic of the forward peak.
+/// a point sun, coarser and finer marches, the sky's horizontal irradiance, and the march
+/// before both (the forward peak counted as extinction, the sky's horizontal irradiance).
 pub fn optics_rows() -> Vec<OpticsRow> {
     let with = |wavelengths, sun_disc, steps| OpticsRow {
         tables: Tables {
@@ -144,7 +157,7 @@ pub fn optics_rows() -> Vec<OpticsRow> {
             sun_disc,
         },
         steps,
-        peak_unscattered: false,
+        ..SHIPPED
     };
     vec![
         SHIPPED,
@@ -154,7 +167,12 @@ pub fn optics_rows() -> Vec<OpticsRow> {
         with(32, true, 4),
         with(32, true, 48),
         OpticsRow {
-            peak_unscattered: true,
+            sky_light: SkyLight::Horizontal,
+            ..SHIPPED
+        },
+        OpticsRow {
+            forward_peak: ForwardPeak::Extinction,
+            sky_light: SkyLight::Horizontal,
             ..SHIPPED
         },
     ]
@@ -183,14 +201,10 @@ impl RowAnswers {
 /// `row` on `scene`.
 pub fn answer(row: &OpticsRow, scene: &OpticsScene) -> anyhow::Result<RowAnswers> {
     // The first call may build the tables; the second times what a frame does.
-    scene.lit(row.tables)?;
+    let march = (row.forward_peak, row.sky_light);
+    scene.lit(row.tables, march)?;
     let start = Instant::now();
-    let lit = scene.lit(row.tables)?;
-    let lit = if row.peak_unscattered {
-        scene.peak_unscattered(&lit)?
-    } else {
-        vec![lit]
-    };
+    let lit = scene.lit(row.tables, march)?;
     let per_frame_s = start.elapsed().as_secs_f64();
     let answers = scene
         .rays
@@ -238,12 +252,17 @@ mod tests {
         );
         let e = OpticsRow::parse("wavelengths=200").unwrap_err().to_string();
         assert!(e.contains("[3, 128]"), "{e}");
-        assert!(
-            OpticsRow::parse("peak=unscattered")
-                .unwrap()
-                .peak_unscattered
+        assert_eq!(
+            OpticsRow::parse("sky=horizontal").unwrap().kind(),
+            RowKind::SkyHorizontal
         );
-        assert!(!optics_rows().last().unwrap().on_gpu());
+        assert_eq!(OpticsRow::parse("sky=sphere").unwrap(), SHIPPED);
+        let paper = OpticsRow::parse("peak=extinction").unwrap();
+        assert_eq!(paper.forward_peak, ForwardPeak::Extinction);
+        assert_eq!(paper.kind(), RowKind::PeakExtinction);
+        assert_eq!(OpticsRow::parse("peak=unscattered").unwrap(), SHIPPED);
+        assert!(optics_rows().last().unwrap().on_gpu());
+        assert!(!OpticsRow::parse("steps=4").unwrap().on_gpu());
         let e = OpticsRow::parse("steps=0").unwrap_err().to_string();
         assert!(e.contains("[1, 1000]"), "{e}");
     }

@@ -9,11 +9,13 @@ use anyhow::{Context, bail};
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::clouds::reference::settings::PathSettings;
 use atmosphere_core::clouds::reference::sun_light::SunThroughAtmosphere;
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::reference::path::{VolumePaths, environment_around};
 use atmosphere_core::hydrometeors::reference::phase::ChannelSampler;
 use atmosphere_core::hydrometeors::reference::ray::{VolumeTracedRay, radiance_path_traced};
 use atmosphere_core::hydrometeors::render::{LitVolume, composite_in_steps};
-use atmosphere_core::hydrometeors::scene::lit_volume;
+use atmosphere_core::hydrometeors::scene::{VolumeOptics, lit_volume};
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
@@ -107,9 +109,14 @@ impl OpticsScene {
         self.air.as_ref()
     }
 
-    /// The scene's volume with `tables` (from the table cache, or built), lit by the
-    /// sky model as the renderer lights it.
-    pub fn lit(&self, tables: Tables) -> anyhow::Result<LitVolume> {
+    /// The scene's volume with `tables` (from the table cache, or built) and its
+    /// forward peak counted as `forward_peak` says, lit by the sky model as the renderer
+    /// lights it, the sky's light as `sky_light` says.
+    pub fn lit(
+        &self,
+        tables: Tables,
+        (forward_peak, sky_light): (ForwardPeak, SkyLight),
+    ) -> anyhow::Result<LitVolume> {
         let sun_radius = if tables.sun_disc {
             self.frame.atmosphere.sun.angular_radius_rad
         } else {
@@ -119,37 +126,23 @@ impl OpticsScene {
             self.air(),
             self.volume,
             (self.frame.camera_position_m, self.frame.sun_direction),
-            (tables.wavelengths, sun_radius),
+            VolumeOptics {
+                wavelengths: tables.wavelengths,
+                sun_radius_rad: sun_radius,
+                forward_peak,
+                sky_light,
+            },
             RGB_WAVELENGTHS_NM,
             &table_cache(),
         )
         .with_context(|| format!("optics view {}: the volume's tables", self.view.id))
     }
 
-    /// [`OpticsScene::composite`]'s diagnostic volumes: `lit` with the forward peak
-    /// out of its extinction and its table as the reference takes it, one per channel
-    /// (each channel's own extinction).
-    pub fn peak_unscattered(&self, lit: &LitVolume) -> anyhow::Result<Vec<LitVolume>> {
-        let sampler = ChannelSampler::new(&lit.phase)?;
-        let phase = sampler.truncated_table();
-        Ok((0..3)
-            .map(|c| LitVolume {
-                volume: Volume {
-                    extinction_per_m: lit.volume.extinction_per_m
-                        * (1.0 - sampler.peak_fraction[c]),
-                    ..lit.volume
-                },
-                phase: phase.clone(),
-                light: lit.light,
-            })
-            .collect())
-    }
-
-    /// The renderer's CPU twin for `ray`: the model's pixel with `lit` (one volume, or
-    /// one per channel) composited over it, marched in `steps` steps.
+    /// The renderer's CPU twin for `ray`: the model's pixel with `lit` composited over
+    /// it, marched in `steps` steps.
     pub fn composite(
         &self,
-        lit: &[LitVolume],
+        lit: &LitVolume,
         ray: &ViewRay,
         steps: usize,
     ) -> anyhow::Result<CloudAnswer> {
@@ -166,39 +159,40 @@ impl OpticsScene {
         })
     }
 
-    /// `lit` (one volume, or one per channel) composited over the model's `pixel` for
-    /// `ray`, marched in `steps` steps.
+    /// `lit` composited over the model's `pixel` for `ray`, marched in `steps` steps.
     pub fn composite_over(
         &self,
-        lit: &[LitVolume],
+        lit: &LitVolume,
         ray: &ViewRay,
         steps: usize,
         pixel: [f64; 3],
     ) -> [f64; 3] {
-        let one = |volume: &LitVolume| {
-            composite_in_steps(
-                &self.frame.atmosphere,
-                &self.extinction,
-                std::slice::from_ref(volume),
-                (ray.origin_m, ray.direction.normalize(), f64::INFINITY),
-                pixel,
-                steps,
-            )
-        };
-        match lit {
-            [volume] => one(volume),
-            per_channel => std::array::from_fn(|c| one(&per_channel[c])[c]),
-        }
+        composite_in_steps(
+            &self.frame.atmosphere,
+            &self.extinction,
+            std::slice::from_ref(lit),
+            (ray.origin_m, ray.direction.normalize(), f64::INFINITY),
+            pixel,
+            steps,
+        )
     }
 
     /// The path tracer's answers for every ray, in parallel, through `lit` (the
-    /// reference's tables), to `paths`' stopping rule.
+    /// reference's tables, their forward peak whole: the path tracer truncates it
+    /// itself), to `paths`' stopping rule.
     pub fn reference(
         &self,
         lit: &LitVolume,
         paths: &PathSettings,
         progress: &Progress,
     ) -> anyhow::Result<Vec<VolumeTracedRay>> {
+        if lit.peak_fraction != [0.0; 3] {
+            bail!(
+                "optics view {}: the reference takes the whole table and truncates its \
+                 forward peak itself",
+                self.view.id
+            );
+        }
         let atmosphere = &self.frame.atmosphere;
         let sun =
             SunThroughAtmosphere::new(atmosphere, &Spectra::new(atmosphere, &RGB_WAVELENGTHS_NM));

@@ -161,7 +161,8 @@ fn series_color(series: Series) -> RGBColor {
                 RowKind::Wavelengths => RGBColor(31, 119, 180),
                 RowKind::PointSun => RGBColor(255, 127, 14),
                 RowKind::Steps => RGBColor(44, 160, 44),
-                RowKind::PeakUnscattered => RGBColor(214, 39, 40),
+                RowKind::PeakExtinction => RGBColor(214, 39, 40),
+                RowKind::SkyHorizontal => RGBColor(148, 103, 189),
             };
         }
         Series::Beam(method) => {

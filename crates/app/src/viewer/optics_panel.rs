@@ -2,11 +2,14 @@
 //! distance and, as a choice, small drops of a radius), a cirrus layer (its base and
 //! optical depth) and a deck of cloud droplets (base, thickness, optical depth, droplet
 //! radius), with the rainbows, halos, glories and cloudbows of their phase functions
-//! (`optics_settings.rs`), and whether their tables are being built.
+//! (`optics_settings.rs`), how the march counts their forward peak and which sky's light
+//! it scatters, and whether their tables are being built.
 
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::scene::{
     DECK_DROPLET_RADIUS_RANGE_UM, SHAFT_DISTANCE_RANGE_M, SMALL_DROP_RADIUS_RANGE_UM,
 };
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::volumes::{
     CIRRUS_BASE_RANGE_M, CIRRUS_OPTICAL_DEPTH_RANGE, DECK_BASE_RANGE_M, DECK_OPTICAL_DEPTH_RANGE,
     DECK_THICKNESS_RANGE_M,
@@ -121,6 +124,32 @@ pub fn show(ui: &mut egui::Ui, optics: &mut OpticsSettings, building: bool) {
                 DECK_DROPLET_RADIUS_RANGE_UM,
                 "droplet radius, um",
             ));
+        });
+        ui.horizontal(|ui| {
+            ui.label("forward peak:");
+            let unscattered = ForwardPeak::Unscattered;
+            ui.radio_value(&mut optics.forward_peak, unscattered, unscattered.name())
+                .on_hover_text(
+                    "The light the drops and crystals scatter within 1 degree of forward \
+                     (diffraction) arrives as if unscattered: the volumes' extinction \
+                     without it (delta-M). Closer to the path-traced reference",
+                );
+            let extinction = ForwardPeak::Extinction;
+            ui.radio_value(&mut optics.forward_peak, extinction, extinction.name())
+                .on_hover_text("That light is lost: the whole extinction (darker volumes)");
+        });
+        ui.horizontal(|ui| {
+            ui.label("sky's light:");
+            let sphere = SkyLight::Sphere;
+            ui.radio_value(&mut optics.sky_light, sphere, sphere.name())
+                .on_hover_text(
+                    "The volumes scatter the sky's radiance averaged over every direction \
+                     around them (the sky above, the lit ground below): every order of \
+                     scattering in a uniform field",
+                );
+            let horizontal = SkyLight::Horizontal;
+            ui.radio_value(&mut optics.sky_light, horizontal, horizontal.name())
+                .on_hover_text("The sky's horizontal irradiance over a black ground, once");
         });
     });
 }

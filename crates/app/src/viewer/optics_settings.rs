@@ -3,7 +3,9 @@
 //! volume flags, which check them (docs/optics-rendering.md, "Settings and their
 //! ranges").
 
+use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::scene::{CirrusSettings, DeckSettings, RainShaftSettings};
+use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use serde::{Deserialize, Serialize};
 
 use crate::render::volume_flags::VolumeFlags;
@@ -52,6 +54,10 @@ pub struct OpticsSettings {
     pub deck_optical_depth: f64,
     /// The droplets' effective radius, um, in [2, 50].
     pub deck_droplet_radius_um: f64,
+    /// How the march counts the light scattered within 1 degree of forward.
+    pub forward_peak: ForwardPeak,
+    /// Which sky's light the march scatters.
+    pub sky_light: SkyLight,
 }
 
 impl Default for OpticsSettings {
@@ -72,6 +78,8 @@ impl Default for OpticsSettings {
             deck_thickness_m: deck.thickness_m,
             deck_optical_depth: deck.optical_depth,
             deck_droplet_radius_um: deck.droplet_radius_um,
+            forward_peak: ForwardPeak::default(),
+            sky_light: SkyLight::default(),
         }
     }
 }
@@ -100,6 +108,8 @@ impl OpticsSettings {
             deck_optical_depth: Some(self.deck_optical_depth),
             deck_droplet_radius_um: Some(self.deck_droplet_radius_um),
             wavelengths: Some(VIEWER_WAVELENGTHS),
+            forward_peak: Some(self.forward_peak),
+            sky_light: Some(self.sky_light),
             ..VolumeFlags::default()
         }
     }
@@ -149,6 +159,12 @@ mod tests {
         assert!(e.contains("deck droplet radius (um) 60"), "{e}");
         let stored: OpticsSettings = toml::from_str("rain = true").unwrap();
         assert!(stored.rain && !stored.cirrus && !stored.deck && !stored.rain_small_drops);
+        assert_eq!(stored.forward_peak, ForwardPeak::Unscattered);
+        optics.forward_peak = ForwardPeak::Extinction;
+        assert_eq!(optics.flags().forward_peak, Some(ForwardPeak::Extinction));
+        assert_eq!(stored.sky_light, SkyLight::Sphere);
+        optics.sky_light = SkyLight::Horizontal;
+        assert_eq!(optics.flags().sky_light, Some(SkyLight::Horizontal));
         assert_eq!(
             stored.rain_rate_mm_h,
             RainShaftSettings::default().rain_rate_mm_h

@@ -4,8 +4,8 @@
 //! [`mie_droplets`]; ice by the crystal ray tracer of `optics/ice/`), seen with the sun's
 //! disc ([`sun_disk_blur`]) and reduced to a frame's three wavelengths through the CIE
 //! functions ([`channel_phase`]); a rain shaft, a cirrus layer and a droplet deck
-//! ([`volumes`]) lit by a
-//! sky model's sun in single scattering and composited over the model's frame
+//! ([`volumes`]) lit by a sky model's sun in single scattering, the forward peak taken
+//! as no scattering ([`forward_peak`]), and by its sky ([`sky_light`]), and composited over the model's frame
 //! ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
 //! around a camera from a scene's settings.
 //!
@@ -16,10 +16,12 @@
 pub mod channel_phase;
 pub mod drop_rays;
 pub mod error;
+pub mod forward_peak;
 pub mod mie_droplets;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod sky_light;
 pub mod spectral_phase;
 pub mod sun_disk_blur;
 pub mod volumes;

@@ -1,17 +1,20 @@
 //! Rain and ice volumes in a sky model's frame on the CPU: the specification of
 //! render-wgpu's `precipitation/` pass. Single scattering (Riley et al. 2004, section
 //! 4.2.3, Eq. 26 with the first order only): along a view ray's interval [t0, t1] in a
-//! homogeneous volume of extinction beta (albedo 1), in MARCH_STEPS equal steps of
-//! length dt, each step adds
-//!     T_v(t_k) (1 - e^(-beta dt)) [P_c(theta) E_sun e^(-beta s_k) + E_sky / (2 pi)],
-//! where T_v(t_k) is the volume's transmittance from t0 to the step's start, P_c the
-//! phase function at the frame's wavelengths (`channel_phase.rs`) at the scattering
-//! angle theta between the sun and the view (falling plates: at the view's elevation
-//! and azimuth from the sun about the camera's vertical), E_sun the sun's irradiance through the
-//! atmosphere (one value per volume, at its `light_point`), s_k the sun's path inside the
-//! volume from the step's middle, and E_sky / (2 pi) the sky's irradiance on a
-//! horizontal plane scattered isotropically (a uniform upper hemisphere of radiance
-//! E_sky / pi, half of all directions). The volume is composited over the model's pixel
+//! homogeneous volume of extinction beta_c per channel (albedo 1), in MARCH_STEPS equal
+//! steps of length dt, each step adds
+//!     T_v(t_k) (1 - e^(-beta_c dt)) [P_c(theta) E_sun e^(-beta_c s_k) + L_sky],
+//! where T_v(t_k) is the volume's transmittance in channel c from t0 to the step's
+//! start, beta_c = beta (1 - f_c) with the forward peak taken as no scattering
+//! (`forward_peak.rs`, delta-M: f_c = 0 where the peak counts as extinction), P_c the
+//! phase function at the frame's wavelengths (`channel_phase.rs`; truncated alike) at
+//! the scattering angle theta between the sun and the view (falling plates: at the
+//! view's elevation and azimuth from the sun about the camera's vertical), E_sun the
+//! sun's irradiance through the atmosphere (one value per volume, at its
+//! `light_point`), s_k the sun's path inside the volume from the step's middle, and
+//! L_sky the sky's light scattered isotropically (`sky_light.rs`: the model's radiance
+//! averaged over the sphere there, or E_sky / (2 pi) from its horizontal irradiance).
+//! The volume is composited over the model's pixel
 //! L_full (its surface and sun included) as
 //!     L = L_front + T_v (L_full - L_front) + T_front L_v,   L_front = (1 - T_front) L_full,
 //! Riley et al. 2004's (section 5) split of the atmosphere in front of and behind the
@@ -27,6 +30,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use super::channel_phase::ChannelPhase;
+use super::sky_light::{SkyLight, sphere_mean_radiance};
 use super::volumes::Volume;
 use crate::atmosphere::Atmosphere;
 use crate::clouds::layer::composite::light_at;
@@ -45,24 +49,38 @@ pub struct VolumeLight {
     pub sun_direction: DVec3,
     /// The sun's irradiance on a plane facing it, through the atmosphere, W m^-2 nm^-1.
     pub sun_irradiance: [f64; 3],
-    /// The sky's irradiance on a horizontal plane, W m^-2 nm^-1.
-    pub sky_irradiance: [f64; 3],
+    /// The radiance the march scatters isotropically as the sky's light
+    /// (`sky_light.rs`), W m^-2 sr^-1 nm^-1.
+    pub sky_radiance: [f64; 3],
 }
 
 /// A volume with its phase function and light.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LitVolume {
     pub volume: Volume,
+    /// The table the march reads: truncated where `peak_fraction` is not zero.
     pub phase: ChannelPhase,
+    /// f_c: each channel's share of the scattering taken out of the extinction with
+    /// the forward peak (`forward_peak.rs`); zero where the peak counts as extinction.
+    pub peak_fraction: [f64; 3],
     pub light: VolumeLight,
 }
 
-/// What a view ray meets in one volume: its entry distance, radiance and transmittance.
+impl LitVolume {
+    /// The extinction the march attenuates with per channel, beta (1 - f_c), m^-1.
+    pub fn extinction_per_m(&self) -> [f64; 3] {
+        self.peak_fraction
+            .map(|f| self.volume.extinction_per_m * (1.0 - f))
+    }
+}
+
+/// What a view ray meets in one volume: its entry distance, radiance and transmittance
+/// per channel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VolumeSegment {
     pub entry_m: f64,
     pub radiance: [f64; 3],
-    pub transmittance: f64,
+    pub transmittance: [f64; 3],
 }
 
 /// The march of the ray from `origin` along the unit `direction` (ended at
@@ -86,26 +104,25 @@ pub fn march_in_steps(
 ) -> Option<VolumeSegment> {
     let (t0, t1) = lit.volume.segment(origin, direction, max_distance_m)?;
     let steps = steps.max(1);
-    let beta = lit.volume.extinction_per_m;
+    let beta = lit.extinction_per_m();
     let dt = (t1 - t0) / steps as f64;
-    let step_transmittance = (-beta * dt).exp();
+    let step_transmittance = beta.map(|b| (-b * dt).exp());
     let up = origin.normalize_or(DVec3::Z);
     let p = lit
         .phase
         .value_toward(direction, lit.light.sun_direction, up);
     let mut radiance = [0.0; 3];
-    let mut t_v = 1.0;
+    let mut t_v = [1.0; 3];
     for k in 0..steps {
         let x = origin + direction * (t0 + (k as f64 + 0.5) * dt);
         let sun_path = lit.volume.exit_distance(x, lit.light.sun_direction);
-        let sun = (-beta * sun_path).exp();
-        let weight = t_v * (1.0 - step_transmittance);
         for c in 0..3 {
-            radiance[c] += weight
-                * (p[c] * lit.light.sun_irradiance[c] * sun
-                    + lit.light.sky_irradiance[c] / (2.0 * PI));
+            let sun = (-beta[c] * sun_path).exp();
+            radiance[c] += t_v[c]
+                * (1.0 - step_transmittance[c])
+                * (p[c] * lit.light.sun_irradiance[c] * sun + lit.light.sky_radiance[c]);
+            t_v[c] *= step_transmittance[c];
         }
-        t_v *= step_transmittance;
     }
     Some(VolumeSegment {
         entry_m: t0,
@@ -171,24 +188,25 @@ pub fn composite_in_steps(
     met.iter().fold(full, |behind, s| {
         let front = front_transmittance(atmosphere, extinction, origin, direction, s.entry_m);
         std::array::from_fn(|c| {
-            behind[c] * (1.0 - front[c] * (1.0 - s.transmittance)) + front[c] * s.radiance[c]
+            behind[c] * (1.0 - front[c] * (1.0 - s.transmittance[c])) + front[c] * s.radiance[c]
         })
     })
 }
 
 /// The light of `model` (at its wavelengths, which must be three) on `volume` seen from
-/// `camera_m`: the sun through the atmosphere and the sky at the volume's `light_point`
-/// (`clouds/layer/composite.rs`, `light_at`).
+/// `camera_m`: the sun through the atmosphere at the volume's `light_point`
+/// (`clouds/layer/composite.rs`, `light_at`) and the sky's light there as `sky` says.
 pub fn light_of(
     model: &dyn SkyModel,
     volume: &Volume,
-    camera_m: DVec3,
-    sun_direction: DVec3,
+    (camera_m, sun_direction): (DVec3, DVec3),
+    sky: SkyLight,
 ) -> Result<VolumeLight, ModelError> {
     let sun = sun_direction
         .try_normalize()
         .ok_or_else(|| ModelError::Settings("the sun direction must be non-zero".into()))?;
-    let light = light_at(model, volume.light_point(camera_m), sun)?;
+    let point = volume.light_point(camera_m);
+    let light = light_at(model, point, sun)?;
     let three = |v: &[f64]| -> Result<[f64; 3], ModelError> {
         v.try_into().map_err(|_| {
             ModelError::Settings(format!(
@@ -197,9 +215,13 @@ pub fn light_of(
             ))
         })
     };
+    let sky_radiance = match sky {
+        SkyLight::Sphere => three(&sphere_mean_radiance(model, point, sun)?)?,
+        SkyLight::Horizontal => three(&light.sky_irradiance)?.map(|e| e / (2.0 * PI)),
+    };
     Ok(VolumeLight {
         sun_direction: sun,
         sun_irradiance: three(&light.sun_irradiance)?,
-        sky_irradiance: three(&light.sky_irradiance)?,
+        sky_radiance,
     })
 }

@@ -6,8 +6,10 @@ use glam::DVec3;
 
 use super::channel_phase::ChannelPhase;
 use super::error::{HydrometeorError, check_range};
+use super::forward_peak::{ForwardPeak, truncated};
 use super::mie_droplets::Droplets;
 use super::render::{LitVolume, light_of};
+use super::sky_light::SkyLight;
 use super::spectral_phase::{Particles, SpectralPhase};
 use super::volumes::Volume;
 use crate::models::sky_model::SkyModel;
@@ -216,25 +218,57 @@ impl CirrusSettings {
     }
 }
 
-/// `volume` with its phase table at `wavelengths` wavelengths (seen with a sun of
-/// angular radius `sun_radius_rad`, kept in `cache`) reduced to `channels_nm`, lit by
-/// `model` from `camera_m` with the sun towards `sun_direction`.
+/// What a volume's table is made with (its wavelengths across 380-720 nm, the sun's
+/// angular radius it is seen with, 0 for a point sun), how the march counts its forward
+/// peak and which sky's light it scatters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumeOptics {
+    pub wavelengths: usize,
+    pub sun_radius_rad: f64,
+    pub forward_peak: ForwardPeak,
+    pub sky_light: SkyLight,
+}
+
+impl VolumeOptics {
+    /// A table of `wavelengths` seen with a sun of `sun_radius_rad`, the forward peak and
+    /// the sky's light as the march takes them by default.
+    pub fn new(wavelengths: usize, sun_radius_rad: f64) -> VolumeOptics {
+        VolumeOptics {
+            wavelengths,
+            sun_radius_rad,
+            forward_peak: ForwardPeak::default(),
+            sky_light: SkyLight::default(),
+        }
+    }
+}
+
+/// `volume` with its phase table made as `table` says (kept in `cache`), reduced to
+/// `channels_nm` and truncated for its forward peak, lit by `model` from the camera
+/// `view.0` with the sun towards `view.1`.
 pub fn lit_volume(
     model: &dyn SkyModel,
     volume: Volume,
-    (camera_m, sun_direction): (DVec3, DVec3),
-    (wavelengths, sun_radius_rad): (usize, f64),
+    view: (DVec3, DVec3),
+    table: VolumeOptics,
     channels_nm: [f64; 3],
     cache: &TableCache,
 ) -> Result<LitVolume, HydrometeorError> {
-    let spectral =
-        SpectralPhase::build_cached(&volume.particles, wavelengths, sun_radius_rad, cache)?;
-    let phase = ChannelPhase::new(&spectral, channels_nm)?;
-    let light = light_of(model, &volume, camera_m, sun_direction)
+    let spectral = SpectralPhase::build_cached(
+        &volume.particles,
+        table.wavelengths,
+        table.sun_radius_rad,
+        cache,
+    )?;
+    let (phase, peak_fraction) = truncated(
+        ChannelPhase::new(&spectral, channels_nm)?,
+        table.forward_peak,
+    );
+    let light = light_of(model, &volume, view, table.sky_light)
         .map_err(|e| HydrometeorError::Model(e.to_string()))?;
     Ok(LitVolume {
         volume,
         phase,
+        peak_fraction,
         light,
     })
 }

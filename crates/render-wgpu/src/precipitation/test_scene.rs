@@ -40,10 +40,11 @@ pub fn shaft(ground_m: f64, away_m: f64, height_m: f64) -> LitVolume {
             sky: None,
             values: vec![[0.1; 3]; 2],
         },
+        peak_fraction: [0.0; 3],
         light: VolumeLight {
             sun_direction: DVec3::X,
             sun_irradiance: [1.0; 3],
-            sky_irradiance: [0.1; 3],
+            sky_radiance: [0.1; 3],
         },
     }
 }

@@ -14,7 +14,7 @@ pub const MAX_VOLUMES: usize = 2;
 const KIND_SHAFT: u32 = 1;
 const KIND_LAYER: u32 = 2;
 
-/// WGSL `VolumeParams`, 96 bytes.
+/// WGSL `VolumeParams`, 112 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VolumeUniform {
@@ -27,14 +27,18 @@ pub struct VolumeUniform {
     /// Shaft: xyz the camera relative to the axis's foot, w the height, m. Layer: r^2 -
     /// R^2 of the camera for the base, top and ground radii, m^2.
     pub place: [f32; 4],
-    /// x: extinction, m^-1; y: the bins' width (over the sky: the elevation bins'),
-    /// z: over the sky, the azimuth bins' width, degrees.
-    pub medium: [f32; 4],
+    /// x: the bins' width (over the sky: the elevation bins'), y: over the sky, the
+    /// azimuth bins' width, degrees.
+    pub bin_deg: [f32; 4],
+    /// The march's extinction per channel, beta (1 - f_c) (the forward peak out of it
+    /// where it counts as no scattering), m^-1.
+    pub extinction: [f32; 4],
     pub sun_irradiance: [f32; 4],
-    pub sky_irradiance: [f32; 4],
+    /// The radiance the march scatters as the sky's light, W m^-2 sr^-1 nm^-1.
+    pub sky_radiance: [f32; 4],
 }
 
-/// WGSL `VolumesParams`, 208 bytes.
+/// WGSL `VolumesParams`, 240 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VolumesUniform {
@@ -121,14 +125,10 @@ pub fn pack(
             kind: [kind, bins.len() as u32, values.len() as u32, columns],
             axis,
             place,
-            medium: [
-                lit.volume.extinction_per_m as f32,
-                bin_deg as f32,
-                azimuth_bin_deg as f32,
-                0.0,
-            ],
+            bin_deg: [bin_deg as f32, azimuth_bin_deg as f32, 0.0, 0.0],
+            extinction: rgb(lit.extinction_per_m()),
             sun_irradiance: rgb(lit.light.sun_irradiance),
-            sky_irradiance: rgb(lit.light.sky_irradiance),
+            sky_radiance: rgb(lit.light.sky_radiance),
         };
         bins.extend(values.iter().map(|v| rgb(*v)));
     }

@@ -51,7 +51,7 @@ impl VolumePaths<'_> {
     /// Channel `c`'s extinction with the forward peak taken as no scattering
     /// ([`super::phase`]), m^-1.
     pub fn extinction(&self, c: usize) -> f64 {
-        self.volume.extinction_per_m * (1.0 - self.phase.peak_fraction[c])
+        self.volume.extinction_per_m * (1.0 - self.phase.peak.peak_fraction[c])
     }
 }
 
