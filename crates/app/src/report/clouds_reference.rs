@@ -9,27 +9,24 @@
 //! wavelength, `T_cloud`, `paths`), then per view a line
 //! `# view <id> fingerprint <16 hex digits>` followed by its rays in order.
 
-use std::collections::BTreeMap;
-use std::fs;
 use std::path::Path;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance};
 use rayon::prelude::*;
 
 use crate::cloud_rays::CloudAnswer;
-use crate::files::write_atomically;
 use crate::probe_clouds::AIR_MODEL;
 use crate::progress::Progress;
 use crate::report::clouds_scene::ViewScene;
 use crate::report::clouds_views::CloudView;
+use crate::report::view_sections::{self, RayRow, Wanted, fingerprint_of};
 
 /// The reference's answers, per view, per ray.
 pub type CloudReference = Vec<Vec<CloudAnswer>>;
 
 const TITLE: &str =
     "# atmos report clouds: path-traced reference radiance, one fingerprint per view";
-const VIEW_MARK: &str = "# view ";
 
 /// A stable 64-bit hash (FNV-1a) of what a view's reference depends on.
 pub fn fingerprint(view: &CloudView, settings: &ModelSettings) -> String {
@@ -37,12 +34,7 @@ pub fn fingerprint(view: &CloudView, settings: &ModelSettings) -> String {
         "{view:?}{AIR_MODEL}{:?}{:?}",
         settings.wavelengths_nm, settings.options
     );
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for byte in text.bytes() {
-        hash ^= u64::from(byte);
-        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    format!("{hash:016x}")
+    fingerprint_of(&text)
 }
 
 /// The views of the cache at `path` whose fingerprint matches and that `recompute`
@@ -59,42 +51,17 @@ pub fn load_or_compute(
         .iter()
         .map(|s| fingerprint(&s.view, settings))
         .collect();
-    let mut cached = BTreeMap::new();
-    if path.exists() {
-        match read(path, waves) {
-            Ok(found) => cached = found,
-            Err(why) => eprintln!(
-                "report: recomputing every view of {} ({why:#})",
-                path.display()
-            ),
-        }
-    }
-    let mut reference = Vec::with_capacity(scenes.len());
-    let mut missing = Vec::new();
-    for (i, (scene, key)) in scenes.iter().zip(&keys).enumerate() {
-        let rays = scene.rays.len();
-        match cached.remove(scene.view.id()) {
-            Some((k, answers)) if k == *key && answers.len() == rays && !recompute(&scene.view) => {
-                reference.push(answers);
-            }
-            found => {
-                let why = if recompute(&scene.view) {
-                    "asked to recompute it"
-                } else if found.is_some() {
-                    "its view or settings changed"
-                } else {
-                    "not in the cache"
-                };
-                eprintln!(
-                    "report: computing view {} of {} ({why})",
-                    scene.view.id(),
-                    path.display()
-                );
-                reference.push(Vec::new());
-                missing.push(i);
-            }
-        }
-    }
+    let wanted: Vec<Wanted> = scenes
+        .iter()
+        .zip(&keys)
+        .map(|(scene, key)| Wanted {
+            id: scene.view.id(),
+            fingerprint: key,
+            rays: scene.rays.len(),
+            recompute: recompute(&scene.view),
+        })
+        .collect();
+    let (mut reference, missing) = view_sections::cached(path, TITLE, &header(waves), &wanted);
     if missing.is_empty() {
         eprintln!("report: clouds reference from {}", path.display());
         return Ok(reference);
@@ -137,86 +104,33 @@ fn write(
     keys: &[String],
     waves: usize,
 ) -> anyhow::Result<()> {
-    let mut text = format!("{TITLE}\n{}\n", header(waves));
-    for ((scene, answers), key) in scenes.iter().zip(reference).zip(keys) {
-        if answers.is_empty() {
-            continue;
-        }
-        text.push_str(&format!(
-            "{VIEW_MARK}{} fingerprint {key}\n",
-            scene.view.id()
-        ));
-        for (i, a) in answers.iter().enumerate() {
-            let mut fields = vec![scene.view.id().to_string(), i.to_string()];
-            fields.extend(
-                a.radiance
-                    .radiance
-                    .iter()
-                    .chain(&a.radiance.transmittance)
-                    .chain(&a.radiance.radiance_std_error)
-                    .map(|x| format!("{x:e}")),
-            );
-            fields.push(format!("{:e}", a.cloud_transmittance));
-            fields.push(a.paths.unwrap_or(0).to_string());
-            text.push_str(&fields.join(","));
-            text.push('\n');
-        }
-    }
-    write_atomically(path, text.as_bytes())
+    let views = scenes
+        .iter()
+        .zip(reference)
+        .zip(keys)
+        .map(|((scene, answers), key)| (scene.view.id(), key.as_str(), answers.as_slice()));
+    view_sections::write(path, TITLE, &header(waves), views)
 }
 
-type Cached = BTreeMap<String, (String, Vec<CloudAnswer>)>;
-
-/// Every view in the file by id; an error naming the line for a file of another layout.
-fn read(path: &Path, waves: usize) -> anyhow::Result<Cached> {
-    let text = fs::read_to_string(path)?;
-    let mut lines = text.lines();
-    if lines.next() != Some(TITLE) {
-        bail!("its first line is not \"{TITLE}\"");
-    }
-    if lines.next() != Some(header(waves).as_str()) {
-        bail!("its second line is not the header for {waves} wavelengths");
-    }
-    let mut views: Cached = BTreeMap::new();
-    let mut current: Option<String> = None;
-    for (n, line) in lines.enumerate() {
-        let bad = || format!("{} line {}", path.display(), n + 3);
-        if let Some(rest) = line.strip_prefix(VIEW_MARK) {
-            let Some((id, key)) = rest.split_once(" fingerprint ") else {
-                bail!("{}: expected \"# view <id> fingerprint <hex>\"", bad());
-            };
-            if views
-                .insert(id.to_string(), (key.to_string(), Vec::new()))
-                .is_some()
-            {
-                bail!("{}: view {id} appears twice", bad());
-            }
-            current = Some(id.to_string());
-            continue;
-        }
-        let fields: Vec<&str> = line.split(',').collect();
-        if fields.len() != 4 + 3 * waves {
-            bail!(
-                "{}: {} fields, expected {}",
-                bad(),
-                fields.len(),
-                4 + 3 * waves
-            );
-        }
-        let answers = match &current {
-            Some(id) if id == fields[0] => &mut views.get_mut(id).expect("inserted above").1,
-            _ => bail!("{}: a row of view {} outside its section", bad(), fields[0]),
-        };
-        if fields[1] != answers.len().to_string() {
-            bail!("{}: ray {}, expected {}", bad(), fields[1], answers.len());
-        }
-        let numbers = fields[2..3 + 3 * waves]
+impl RayRow for CloudAnswer {
+    fn numbers(&self) -> Vec<f64> {
+        let r = &self.radiance;
+        r.radiance
             .iter()
-            .map(|f| f.parse::<f64>())
-            .collect::<Result<Vec<f64>, _>>()
-            .with_context(bad)?;
-        let paths: u64 = fields[3 + 3 * waves].parse().with_context(bad)?;
-        answers.push(CloudAnswer {
+            .chain(&r.transmittance)
+            .chain(&r.radiance_std_error)
+            .chain([&self.cloud_transmittance])
+            .copied()
+            .collect()
+    }
+
+    fn paths(&self) -> u64 {
+        self.paths.unwrap_or(0)
+    }
+
+    fn from_numbers(numbers: &[f64], paths: u64) -> Self {
+        let waves = (numbers.len() - 1) / 3;
+        CloudAnswer {
             radiance: RayRadiance {
                 radiance: numbers[..waves].to_vec(),
                 transmittance: numbers[waves..2 * waves].to_vec(),
@@ -224,7 +138,37 @@ fn read(path: &Path, waves: usize) -> anyhow::Result<Cached> {
             },
             cloud_transmittance: numbers[3 * waves],
             paths: Some(paths),
-        });
+        }
     }
-    Ok(views)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The committed cache reads back and writes out byte for byte as it is, so that
+    /// the report keeps its 27 minutes of paths.
+    #[test]
+    fn the_committed_cache_reads_back_and_writes_out_unchanged() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/report/clouds_reference.csv");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let views: view_sections::Sections<CloudAnswer> =
+            view_sections::read(&path, TITLE, &header(3)).unwrap();
+        assert_eq!(views.len(), 4, "{:?}", views.keys());
+        let dir = tempfile::tempdir().unwrap();
+        let copy = dir.path().join("copy.csv");
+        let order: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("# view ")?.split_once(' ').map(|(id, _)| id))
+            .collect();
+        let sections = order
+            .iter()
+            .map(|id| (*id, views[*id].0.as_str(), views[*id].1.as_slice()));
+        view_sections::write(&copy, TITLE, &header(3), sections).unwrap();
+        assert!(
+            std::fs::read_to_string(&copy).unwrap() == text,
+            "the cache changed"
+        );
+    }
 }

@@ -33,6 +33,7 @@ pub mod plot;
 pub mod reference_cache;
 pub mod shafts;
 pub mod variants;
+pub mod view_sections;
 pub mod views;
 
 use std::fs;

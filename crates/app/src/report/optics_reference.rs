@@ -12,11 +12,9 @@
 //! light `sky_c`; then `T_volume`, `paths`), then per view a line
 //! `# view <id> fingerprint <16 hex digits>` followed by its rays in order.
 
-use std::collections::BTreeMap;
-use std::fs;
 use std::path::Path;
 
-use anyhow::{Context, bail};
+use anyhow::Context;
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::reference::path::PathLight;
 use atmosphere_core::hydrometeors::reference::ray::VolumeTracedRay;
@@ -24,9 +22,9 @@ use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::models::sky_model::RayRadiance;
 
 use crate::cloud_rays::CloudAnswer;
-use crate::files::write_atomically;
 use crate::progress::Progress;
 use crate::report::optics_scene::{OpticsScene, Tables};
+use crate::report::view_sections::{self, RayRow, Wanted, fingerprint_of};
 
 /// The reference's answers, per view, per ray.
 pub type OpticsReference = Vec<Vec<VolumeTracedRay>>;
@@ -42,7 +40,6 @@ pub const REFERENCE_VERSION: u32 = 2;
 
 const TITLE: &str =
     "# atmos report optics: path-traced reference radiance, one fingerprint per view";
-const VIEW_MARK: &str = "# view ";
 const PARTS: [&str; 6] = ["L", "T", "stderr", "sun_single", "sun_multiple", "sky"];
 
 /// A stable 64-bit hash (FNV-1a) of what a view's reference depends on.
@@ -51,12 +48,7 @@ pub fn fingerprint(scene: &OpticsScene) -> String {
         "{:?}{}{:?}{REFERENCE_VERSION}",
         scene.view, scene.scene_text, REFERENCE_TABLES
     );
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for byte in text.bytes() {
-        hash ^= u64::from(byte);
-        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    format!("{hash:016x}")
+    fingerprint_of(&text)
 }
 
 /// A traced ray as the errors compare it.
@@ -77,41 +69,17 @@ pub fn load_or_compute(
     recompute: impl Fn(&OpticsScene) -> bool,
 ) -> anyhow::Result<OpticsReference> {
     let keys: Vec<String> = scenes.iter().map(fingerprint).collect();
-    let mut cached = BTreeMap::new();
-    if path.exists() {
-        match read(path) {
-            Ok(found) => cached = found,
-            Err(why) => eprintln!(
-                "report: recomputing every view of {} ({why:#})",
-                path.display()
-            ),
-        }
-    }
-    let mut reference = Vec::with_capacity(scenes.len());
-    let mut missing = Vec::new();
-    for (i, (scene, key)) in scenes.iter().zip(&keys).enumerate() {
-        match cached.remove(scene.view.id) {
-            Some((k, rays)) if k == *key && rays.len() == scene.rays.len() && !recompute(scene) => {
-                reference.push(rays);
-            }
-            found => {
-                let why = if recompute(scene) {
-                    "asked to recompute it"
-                } else if found.is_some() {
-                    "its view, scene or path tracer changed"
-                } else {
-                    "not in the cache"
-                };
-                eprintln!(
-                    "report: computing view {} of {} ({why})",
-                    scene.view.id,
-                    path.display()
-                );
-                reference.push(Vec::new());
-                missing.push(i);
-            }
-        }
-    }
+    let wanted: Vec<Wanted> = scenes
+        .iter()
+        .zip(&keys)
+        .map(|(scene, key)| Wanted {
+            id: scene.view.id,
+            fingerprint: key,
+            rays: scene.rays.len(),
+            recompute: recompute(scene),
+        })
+        .collect();
+    let (mut reference, missing) = view_sections::cached(path, TITLE, &header(), &wanted);
     if missing.is_empty() {
         eprintln!("report: optics reference from {}", path.display());
         return Ok(reference);
@@ -152,88 +120,36 @@ fn write(
     scenes: &[OpticsScene],
     keys: &[String],
 ) -> anyhow::Result<()> {
-    let mut text = format!("{TITLE}\n{}\n", header());
-    for ((scene, rays), key) in scenes.iter().zip(reference).zip(keys) {
-        if rays.is_empty() {
-            continue;
-        }
-        text.push_str(&format!("{VIEW_MARK}{} fingerprint {key}\n", scene.view.id));
-        for (i, r) in rays.iter().enumerate() {
-            let light = &r.volume_light;
-            let mut fields = vec![scene.view.id.to_string(), i.to_string()];
-            fields.extend(
-                r.radiance
-                    .radiance
-                    .iter()
-                    .chain(&r.radiance.transmittance)
-                    .chain(&r.radiance.radiance_std_error)
-                    .chain(&light.sun_single)
-                    .chain(&light.sun_multiple)
-                    .chain(&light.sky)
-                    .chain([&r.volume_transmittance])
-                    .map(|x| format!("{x:e}")),
-            );
-            fields.push(r.paths.to_string());
-            text.push_str(&fields.join(","));
-            text.push('\n');
-        }
-    }
-    write_atomically(path, text.as_bytes())
+    let views = scenes
+        .iter()
+        .zip(reference)
+        .zip(keys)
+        .map(|((scene, rays), key)| (scene.view.id, key.as_str(), rays.as_slice()));
+    view_sections::write(path, TITLE, &header(), views)
 }
 
-type Cached = BTreeMap<String, (String, Vec<VolumeTracedRay>)>;
-
-/// Every view in the file by id; an error naming the line for a file of another layout.
-fn read(path: &Path) -> anyhow::Result<Cached> {
-    let text = fs::read_to_string(path)?;
-    let mut lines = text.lines();
-    if lines.next() != Some(TITLE) {
-        bail!("its first line is not \"{TITLE}\"");
-    }
-    if lines.next() != Some(header().as_str()) {
-        bail!("its second line is not the header");
-    }
-    let fields_per_row = 4 + 3 * PARTS.len();
-    let mut views: Cached = BTreeMap::new();
-    let mut current: Option<String> = None;
-    for (n, line) in lines.enumerate() {
-        let bad = || format!("{} line {}", path.display(), n + 3);
-        if let Some(rest) = line.strip_prefix(VIEW_MARK) {
-            let Some((id, key)) = rest.split_once(" fingerprint ") else {
-                bail!("{}: expected \"# view <id> fingerprint <hex>\"", bad());
-            };
-            if views
-                .insert(id.to_string(), (key.to_string(), Vec::new()))
-                .is_some()
-            {
-                bail!("{}: view {id} appears twice", bad());
-            }
-            current = Some(id.to_string());
-            continue;
-        }
-        let fields: Vec<&str> = line.split(',').collect();
-        if fields.len() != fields_per_row {
-            bail!(
-                "{}: {} fields, expected {fields_per_row}",
-                bad(),
-                fields.len()
-            );
-        }
-        let rays = match &current {
-            Some(id) if id == fields[0] => &mut views.get_mut(id).expect("inserted above").1,
-            _ => bail!("{}: a row of view {} outside its section", bad(), fields[0]),
-        };
-        if fields[1] != rays.len().to_string() {
-            bail!("{}: ray {}, expected {}", bad(), fields[1], rays.len());
-        }
-        let numbers = fields[2..fields_per_row - 1]
+impl RayRow for VolumeTracedRay {
+    fn numbers(&self) -> Vec<f64> {
+        let (r, light) = (&self.radiance, &self.volume_light);
+        r.radiance
             .iter()
-            .map(|f| f.parse::<f64>())
-            .collect::<Result<Vec<f64>, _>>()
-            .with_context(bad)?;
-        let paths: u64 = fields[fields_per_row - 1].parse().with_context(bad)?;
+            .chain(&r.transmittance)
+            .chain(&r.radiance_std_error)
+            .chain(&light.sun_single)
+            .chain(&light.sun_multiple)
+            .chain(&light.sky)
+            .chain([&self.volume_transmittance])
+            .copied()
+            .collect()
+    }
+
+    fn paths(&self) -> u64 {
+        self.paths
+    }
+
+    fn from_numbers(numbers: &[f64], paths: u64) -> Self {
         let part = |k: usize| -> [f64; 3] { std::array::from_fn(|c| numbers[3 * k + c]) };
-        rays.push(VolumeTracedRay {
+        VolumeTracedRay {
             radiance: RayRadiance {
                 radiance: part(0).to_vec(),
                 transmittance: part(1).to_vec(),
@@ -246,7 +162,36 @@ fn read(path: &Path) -> anyhow::Result<Cached> {
             },
             volume_transmittance: numbers[3 * PARTS.len()],
             paths,
-        });
+        }
     }
-    Ok(views)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The committed cache reads back and writes out byte for byte as it is.
+    #[test]
+    fn the_committed_cache_reads_back_and_writes_out_unchanged() {
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/report/optics_reference.csv");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let views: view_sections::Sections<VolumeTracedRay> =
+            view_sections::read(&path, TITLE, &header()).unwrap();
+        assert_eq!(views.len(), 3, "{:?}", views.keys());
+        let dir = tempfile::tempdir().unwrap();
+        let copy = dir.path().join("copy.csv");
+        let order: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("# view ")?.split_once(' ').map(|(id, _)| id))
+            .collect();
+        let sections = order
+            .iter()
+            .map(|id| (*id, views[*id].0.as_str(), views[*id].1.as_slice()));
+        view_sections::write(&copy, TITLE, &header(), sections).unwrap();
+        assert!(
+            std::fs::read_to_string(&copy).unwrap() == text,
+            "the cache changed"
+        );
+    }
 }

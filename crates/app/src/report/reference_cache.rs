@@ -21,6 +21,7 @@ use rayon::prelude::*;
 
 use crate::files::write_atomically;
 use crate::progress::Progress;
+use crate::report::view_sections::fingerprint_of;
 use crate::report::views::ReportView;
 
 /// The reference's answers, per view, per ray.
@@ -55,13 +56,9 @@ pub fn reference_settings(
 /// the view, its atmosphere and the reference's settings.
 pub fn fingerprint(view: &ReportView, settings: &ModelSettings) -> anyhow::Result<String> {
     let atmosphere = Atmosphere::preset(view.atmosphere)?;
-    let text = format!("{settings:?}{view:?}{atmosphere:?}");
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for byte in text.bytes() {
-        hash ^= u64::from(byte);
-        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    Ok(format!("{hash:016x}"))
+    Ok(fingerprint_of(&format!(
+        "{settings:?}{view:?}{atmosphere:?}"
+    )))
 }
 
 /// One view's cached rows and the fingerprint they were computed under.
