@@ -10,13 +10,16 @@ use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::clouds::reference::forward_peak::{ForwardPeakCut, truncated_phase};
 use atmosphere_core::clouds::volume::camera::{VolumeCamera, VolumeSun};
 use atmosphere_core::clouds::volume::cloud::VoxelCloud;
-use atmosphere_core::clouds::volume::grid::VoxelGrid;
 use atmosphere_core::clouds::volume::path_traced::{
     PathTracedImage, PathTracing, path_traced_image,
 };
 use atmosphere_core::optics::legendre_series::LegendreSeries;
 use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
+
+mod common;
+
+use common::voxel_ball::smooth_ball;
 
 fn orders(g: f64) -> ScatteringOrders {
     ScatteringOrders::new(&[LegendreSeries::henyey_greenstein(g, 400)]).unwrap()
@@ -69,24 +72,11 @@ fn the_cut_fraction_of_henyey_greenstein_is_its_closed_form() {
     assert_eq!(fraction, 0.0, "no cone cuts nothing");
 }
 
-/// A smooth ball of cloud (optical depth about 10 through its centre), albedo `albedo`.
+/// A smooth ball of cloud (`common/voxel_ball.rs`, optical depth about 10 through its
+/// centre), albedo `albedo`, Henyey-Greenstein `g`.
 fn ball(albedo: f64, g: f64) -> VoxelCloud {
-    let n = 24;
-    let density = (0..n * n * n)
-        .map(|k| {
-            let c = |i: usize| (i as f64 + 0.5) / (n as f64 / 2.0) - 1.0;
-            let (x, y, z) = (c(k % n), c((k / n) % n), c(k / (n * n)));
-            let r2 = x * x + y * y + z * z;
-            if r2 >= 1.0 {
-                0.0
-            } else {
-                ((-4.0 * r2).exp() * (1.0 - r2)) as f32
-            }
-        })
-        .collect();
-    let grid = VoxelGrid::new([n, n, n], density).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g }).unwrap();
-    VoxelCloud::new(grid, DVec3::splat(-120.0), 10.0, 0.05, albedo, phase).unwrap()
+    smooth_ball(0.05, albedo, phase)
 }
 
 /// beta' omega' = beta omega (1 - f): what scatters past the cone is unchanged, and

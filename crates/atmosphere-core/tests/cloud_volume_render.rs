@@ -22,6 +22,10 @@ use atmosphere_core::optics::legendre_series::LegendreSeries;
 use atmosphere_core::optics::phase::{PhaseFunction, henyey_greenstein};
 use glam::DVec3;
 
+mod common;
+
+use common::voxel_ball::smooth_ball;
+
 const G: f64 = 0.7;
 
 fn orders() -> ScatteringOrders {
@@ -38,24 +42,9 @@ fn homogeneous_box(sigma: f64) -> VoxelCloud {
     VoxelCloud::new(grid, DVec3::ZERO, 12.5, sigma, 1.0, phase()).unwrap()
 }
 
-/// A smooth ball of cloud, 0 on the grid's faces: density exp(-4 r^2) in a 24^3 grid of
-/// 10 m voxels, r in units of the grid's half side.
+/// A smooth ball of cloud (`common/voxel_ball.rs`), albedo 1.
 fn ball(sigma: f64) -> VoxelCloud {
-    let n = 24;
-    let density = (0..n * n * n)
-        .map(|k| {
-            let c = |i: usize| (i as f64 + 0.5) / (n as f64 / 2.0) - 1.0;
-            let (x, y, z) = (c(k % n), c((k / n) % n), c(k / (n * n)));
-            let r2 = x * x + y * y + z * z;
-            if r2 >= 1.0 {
-                0.0
-            } else {
-                ((-4.0 * r2).exp() * (1.0 - r2)) as f32
-            }
-        })
-        .collect();
-    let grid = VoxelGrid::new([n, n, n], density).unwrap();
-    VoxelCloud::new(grid, DVec3::splat(-120.0), 10.0, sigma, 1.0, phase()).unwrap()
+    smooth_ball(sigma, 1.0, phase())
 }
 
 /// The path tracer's image with `paths` paths per pixel from `seed`, the forward peak

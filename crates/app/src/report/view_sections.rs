@@ -177,6 +177,25 @@ pub fn read<T: RayRow>(path: &Path, title: &str, header: &str) -> anyhow::Result
     Ok(views)
 }
 
+/// The file at `path` as reading it and writing it again makes it (views in the
+/// file's order): the committed caches' tests compare it with the file.
+#[cfg(test)]
+pub fn rewritten<T: RayRow>(path: &Path, title: &str, header: &str) -> anyhow::Result<String> {
+    let text = fs::read_to_string(path)?;
+    let views: Sections<T> = read(path, title, header)?;
+    let order: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix(VIEW_MARK)?.split_once(' ').map(|(id, _)| id))
+        .collect();
+    let dir = tempfile::tempdir()?;
+    let copy = dir.path().join("copy.csv");
+    let sections = order
+        .iter()
+        .map(|id| (*id, views[*id].0.as_str(), views[*id].1.as_slice()));
+    write(&copy, title, header, sections)?;
+    Ok(fs::read_to_string(&copy)?)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

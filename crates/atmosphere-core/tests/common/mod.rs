@@ -3,6 +3,7 @@
 
 pub mod beams;
 pub mod hillaire;
+pub mod voxel_ball;
 
 use atmosphere_core::analysis::error_statistics::RelativeErrorStats;
 use atmosphere_core::analysis::stability::venus_like;
