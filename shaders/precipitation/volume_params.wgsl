@@ -31,6 +31,14 @@ struct VolumeParams {
     // (CPU twin: `VolumeLight`, `sky_light.rs`).
     sun_irradiance: vec4<f32>,
     sky_radiance: vec4<f32>,
+    // The probes of the sun's light scattered more than once (CPU twin:
+    // `hydrometeors/sun_orders.rs`): x their first entry in the buffer (per probe one
+    // J, H_x, H_y, H_z per channel), y, z, w probes across radius, azimuth and height
+    // (w = 0: none).
+    probes: vec4<u32>,
+    // The lobe table: x its first entry (rgb, rows of G), y its G steps, z its angles,
+    // w its largest G (f32 bits).
+    lobes: vec4<u32>,
 }
 
 struct VolumesParams {

@@ -4,11 +4,13 @@
 // the frame's wavelengths from the buffer (linear between bin centres; by scattering
 // angle, or over the sky for falling plates; truncated where the forward peak counts
 // as no scattering, with each channel's extinction beta (1 - f_c)), the sun's path in
-// the volume, the sky's light (one radiance) scattered isotropically; with L_front = (1 - T_front) L_full,
+// the volume, the sun's light scattered more than once from the volume's probes
+// (`sun_orders.wgsl`), the sky's light (one radiance) scattered isotropically; with L_front = (1 - T_front) L_full,
 // L = L_front + T_v (L_full - L_front) + T_front L_v, farthest volume first.
 
 #import common/frame_params.wgsl
 #import precipitation/volume_params.wgsl
+#import precipitation/sun_orders.wgsl
 
 const MARCH_STEPS: u32 = 12u;
 const FRONT_STEPS: u32 = 8u;
@@ -112,8 +114,9 @@ fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
     for (var k = 0u; k < MARCH_STEPS; k++) {
         let s = t.x + (f32(k) + 0.5) * dt;
         let lit = exp(-beta * sun_path(v, d, b, s, camera, sun));
+        let orders = orders_source(v, d, b, s, sun, -d);
         radiance += t_v * (1.0 - step_t)
-            * (p * v.sun_irradiance.xyz * lit + v.sky_radiance.xyz);
+            * (v.sun_irradiance.xyz * (p * lit + orders) + v.sky_radiance.xyz);
         t_v *= step_t;
     }
     return Met(t.x, radiance, t_v);

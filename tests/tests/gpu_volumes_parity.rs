@@ -4,8 +4,9 @@
 //! layer over the model's own GPU pixels (the frame rendered without them), with a wall
 //! in front of the shaft over the left quarter, with the shipped settings (the forward
 //! peak taken as no scattering: the truncated tables, each channel's own extinction; the
-//! sky's light averaged over the sphere) and the march before them (the peak as
-//! extinction, the sky's horizontal irradiance); the shaft alone, whose pass runs over
+//! sky's light averaged over the sphere, the sun's higher orders from the volumes'
+//! probes) and the march before them (the peak as extinction, the sky's horizontal
+//! irradiance, single scattering); the shaft alone, whose pass runs over
 //! the rows above the ground only; no volume leaves the frame exactly as it was; more
 //! than two volumes are refused by name.
 //!
@@ -25,6 +26,7 @@ use atmosphere_core::hydrometeors::scene::{
     CirrusSettings, RainShaftSettings, VolumeOptics, lit_volume,
 };
 use atmosphere_core::hydrometeors::sky_light::SkyLight;
+use atmosphere_core::hydrometeors::sun_orders::MultipleScattering;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::table_cache::TableCache;
@@ -62,7 +64,10 @@ fn frame(model: ModelId) -> Frame {
     }
 }
 
-fn volumes(frame: &Frame, (forward_peak, sky_light): (ForwardPeak, SkyLight)) -> Vec<LitVolume> {
+fn volumes(
+    frame: &Frame,
+    (forward_peak, sky_light, multiple_scattering): (ForwardPeak, SkyLight, MultipleScattering),
+) -> Vec<LitVolume> {
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let ground = frame.atmosphere.bottom_radius_m;
     let view = (frame.camera_position_m, frame.sun_direction);
@@ -71,6 +76,7 @@ fn volumes(frame: &Frame, (forward_peak, sky_light): (ForwardPeak, SkyLight)) ->
         sun_radius_rad: frame.atmosphere.sun.angular_radius_rad,
         forward_peak,
         sky_light,
+        multiple_scattering,
     };
     let shaft = RainShaftSettings::default()
         .volume(frame.camera_position_m, DVec3::Y, ground)
@@ -187,14 +193,26 @@ fn volumes_match_the_cpu_composite_for_two_models() {
     for model_id in [ModelId::Nishita, ModelId::Hillaire] {
         let frame = frame(model_id);
         // The shipped settings, and the march before them.
-        for (peak, sky) in [
-            (ForwardPeak::Unscattered, SkyLight::Sphere),
-            (ForwardPeak::Extinction, SkyLight::Horizontal),
+        for (peak, sky, orders) in [
+            (
+                ForwardPeak::Unscattered,
+                SkyLight::Sphere,
+                MultipleScattering::Probes,
+            ),
+            (
+                ForwardPeak::Extinction,
+                SkyLight::Horizontal,
+                MultipleScattering::None,
+            ),
         ] {
-            let lit = volumes(&frame, (peak, sky));
-            // Truncated, each channel's extinction its own.
+            let lit = volumes(&frame, (peak, sky, orders));
+            // Truncated, each channel's extinction its own; the probes there or not.
             let f = lit[0].peak_fraction;
             assert_eq!(peak == ForwardPeak::Unscattered, f[0] > 0.3, "{f:?}");
+            assert!(
+                lit.iter()
+                    .all(|v| v.orders.is_some() == (orders == MultipleScattering::Probes))
+            );
             let changed = check(&mut renderer, &frame, &lit);
             // The volumes change most of the frame: the test compares something.
             let values = 3 * (frame.width * frame.height) as usize;

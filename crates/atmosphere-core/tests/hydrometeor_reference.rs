@@ -24,6 +24,7 @@ use atmosphere_core::hydrometeors::reference::ray::{
 use atmosphere_core::hydrometeors::render::{LitVolume, VolumeLight, march};
 use atmosphere_core::hydrometeors::sky_light::sphere_mean_radiance;
 use atmosphere_core::hydrometeors::spectral_phase::{Particles, SpectralPhase};
+use atmosphere_core::hydrometeors::sun_orders::{MultipleScattering, SunOrders};
 use atmosphere_core::hydrometeors::volumes::{Shape, Volume};
 use atmosphere_core::models::error::ModelError;
 use atmosphere_core::models::id::ModelId;
@@ -103,11 +104,24 @@ struct Traced {
 /// ray's interval in the volume, which the path tracer's collisions average about) and
 /// no sky.
 fn both(s: &Setup, volume: Volume, d: DVec3, peak: ForwardPeak) -> ([f64; 3], Traced) {
+    both_with(s, volume, d, (peak, MultipleScattering::None))
+}
+
+/// [`both`] with the march adding the sun's higher orders as `orders` says.
+fn both_with(
+    s: &Setup,
+    volume: Volume,
+    d: DVec3,
+    (peak, orders): (ForwardPeak, MultipleScattering),
+) -> ([f64; 3], Traced) {
     let segment = volume.segment(s.camera, d, f64::INFINITY).unwrap();
     let middle = s.camera + d * 0.5 * (segment.0 + segment.1);
     let mut e = [0.0; 3];
     s.sun_light.irradiance(middle, s.sun, &mut e);
     let (phase, peak_fraction) = truncated(s.phase.clone(), peak);
+    let sampler = ChannelSampler::new(&s.phase).unwrap();
+    let orders = (orders == MultipleScattering::Probes)
+        .then(|| SunOrders::estimate(&volume, &sampler, s.sun, volume.light_point(s.camera)));
     let lit = LitVolume {
         volume,
         phase,
@@ -117,9 +131,9 @@ fn both(s: &Setup, volume: Volume, d: DVec3, peak: ForwardPeak) -> ([f64; 3], Tr
             sun_irradiance: e,
             sky_radiance: [0.0; 3],
         },
+        orders,
     };
     let marched = march(&lit, s.camera, d, f64::INFINITY).unwrap().radiance;
-    let sampler = ChannelSampler::new(&s.phase).unwrap();
     let paths = VolumePaths {
         volume: &lit.volume,
         phase: &sampler,
@@ -221,6 +235,39 @@ fn a_thicker_layer_is_brighter_than_single_scattering_by_more_the_thicker_it_is(
     assert!(thick > 1.5 * thin && thin > 0.01, "{thin} {thick}");
 }
 
+/// With the probes of the sun's higher orders (`sun_orders.rs`) the march answers every
+/// order of the sun: within 5 % of the path tracer on a rain layer of optical depth 1
+/// seen 70 degrees up, within 25 % where the higher orders are nearly all the light (a
+/// layer of depth 3 seen 20 degrees up through its base, a shaft of horizontal depth 2
+/// seen from 3 km), and at least three times closer than single scattering alone.
+#[test]
+fn with_the_probes_the_march_is_every_order_of_the_sun() {
+    let s = setup();
+    let orders = (ForwardPeak::Unscattered, MultipleScattering::Probes);
+    for (name, volume, d, bound) in [
+        ("layer tau 1", layer(&s, 1.0), look(70.0), 0.05),
+        ("layer tau 3", layer(&s, 3.0), look(20.0), 0.25),
+        ("shaft", shaft(&s, 1e-3), look(10.0), 0.25),
+    ] {
+        let (single, traced) = both(&s, volume, d, ForwardPeak::Unscattered);
+        let (marched, _) = both_with(&s, volume, d, orders);
+        for c in 0..3 {
+            let (mean, error) = traced.total[c];
+            let (off_single, off) = (single[c] / mean - 1.0, marched[c] / mean - 1.0);
+            eprintln!(
+                "{name} channel {c}: march / path tracer - 1: single {off_single:.4}, with \
+                 probes {off:.4} (standard error {:.4})",
+                error / mean
+            );
+            assert!(off.abs() <= bound, "{name} channel {c}: {off}");
+            assert!(
+                off.abs() * 3.0 <= off_single.abs(),
+                "{name} channel {c}: {off} against {off_single}"
+            );
+        }
+    }
+}
+
 /// A sky of one radiance in every direction, the ground's included.
 struct UniformSky {
     base: ModelBase,
@@ -275,6 +322,7 @@ fn in_a_uniform_sky_the_march_with_the_spheres_mean_is_every_order() {
             sun_irradiance: [0.0; 3],
             sky_radiance: std::array::from_fn(|c| mean[c]),
         },
+        orders: None,
     };
     let marched = march(&lit, s.camera, d, f64::INFINITY).unwrap();
     let environment = environment_around(&volume, &sky, s.camera, s.sun).unwrap();

@@ -87,6 +87,7 @@ fn the_march_keeps_the_slabs_closed_forms() {
             sun_irradiance: [0.0; 3],
             sky_radiance: [1.0, 2.0, 3.0],
         },
+        orders: None,
     };
     let origin = DVec3::X * (GROUND_M + 2.0);
     let s = march(&lit, origin, DVec3::X, f64::INFINITY).unwrap();

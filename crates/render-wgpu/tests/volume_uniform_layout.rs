@@ -38,6 +38,8 @@ fn the_volume_uniforms_match_their_wgsl_layouts() {
         ("extinction", offset_of!(VolumeUniform, extinction)),
         ("sun_irradiance", offset_of!(VolumeUniform, sun_irradiance)),
         ("sky_radiance", offset_of!(VolumeUniform, sky_radiance)),
+        ("probes", offset_of!(VolumeUniform, probes)),
+        ("lobes", offset_of!(VolumeUniform, lobes)),
     ];
     let volumes = [
         ("count", offset_of!(VolumesUniform, count)),

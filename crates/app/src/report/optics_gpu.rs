@@ -45,7 +45,7 @@ fn measure(
     row: &OpticsRow,
     scene: &OpticsScene,
 ) -> anyhow::Result<PairedFrame> {
-    let lit = scene.lit(row.tables, (row.forward_peak, row.sky_light))?;
+    let lit = scene.lit(row.tables, row.march())?;
     let (mut with, mut without) = (Vec::new(), Vec::new());
     for k in 0..=FRAMES {
         renderer.set_volumes(Vec::new())?;

@@ -19,6 +19,7 @@ use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::reference::path::PathLight;
 use atmosphere_core::hydrometeors::reference::ray::VolumeTracedRay;
 use atmosphere_core::hydrometeors::sky_light::SkyLight;
+use atmosphere_core::hydrometeors::sun_orders::MultipleScattering;
 use atmosphere_core::models::sky_model::RayRadiance;
 
 use crate::cloud_rays::CloudAnswer;
@@ -89,10 +90,14 @@ pub fn load_or_compute(
     for &i in &missing {
         let scene = &scenes[i];
         // The whole table (the path tracer truncates it) and its own light around the
-        // volume (the march's sky light is not read).
+        // volume (the march's sky light and probes are not read).
         let lit = scene.lit(
             REFERENCE_TABLES,
-            (ForwardPeak::Extinction, SkyLight::Horizontal),
+            (
+                ForwardPeak::Extinction,
+                SkyLight::Horizontal,
+                MultipleScattering::None,
+            ),
         )?;
         reference[i] = scene
             .reference(&lit, &scene.view.paths, &progress)

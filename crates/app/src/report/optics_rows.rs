@@ -14,6 +14,7 @@ use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::render::MARCH_STEPS;
 use atmosphere_core::hydrometeors::sky_light::SkyLight;
 use atmosphere_core::hydrometeors::spectral_phase::WAVELENGTH_COUNT_RANGE;
+use atmosphere_core::hydrometeors::sun_orders::MultipleScattering;
 
 use crate::cloud_rays::CloudAnswer;
 use crate::report::optics_scene::{OpticsScene, Tables};
@@ -34,6 +35,7 @@ pub enum RowKind {
     Steps,
     PeakExtinction,
     SkyHorizontal,
+    OrdersNone,
 }
 
 /// One row: the volume's tables and its march.
@@ -45,6 +47,8 @@ pub struct OpticsRow {
     pub forward_peak: ForwardPeak,
     /// The sky's light the march scatters (`hydrometeors/sky_light.rs`).
     pub sky_light: SkyLight,
+    /// The sun's light scattered more than once (`hydrometeors/sun_orders.rs`).
+    pub multiple_scattering: MultipleScattering,
 }
 
 /// The shipped scenes' settings.
@@ -56,6 +60,7 @@ pub const SHIPPED: OpticsRow = OpticsRow {
     steps: MARCH_STEPS,
     forward_peak: ForwardPeak::Unscattered,
     sky_light: SkyLight::Sphere,
+    multiple_scattering: MultipleScattering::Probes,
 };
 
 impl fmt::Display for OpticsRow {
@@ -76,6 +81,9 @@ impl fmt::Display for OpticsRow {
         if self.sky_light != SHIPPED.sky_light {
             write!(f, " sky={}", self.sky_light.name())?;
         }
+        if self.multiple_scattering != SHIPPED.multiple_scattering {
+            write!(f, " orders={}", self.multiple_scattering.name())?;
+        }
         Ok(())
     }
 }
@@ -83,12 +91,12 @@ impl fmt::Display for OpticsRow {
 impl OpticsRow {
     /// A row as `--variant` writes it: `wavelengths=N` (3 to 128), `sun=disc` or
     /// `sun=point`, `steps=N` (1 to 1000), `peak=unscattered` or `peak=extinction`,
-    /// `sky=sphere` or `sky=horizontal`, in any order, each by default the shipped scenes'. Errors name the word and what it may
-    /// be.
+    /// `sky=sphere` or `sky=horizontal`, `orders=probes` or `orders=none`, in any order,
+    /// each by default the shipped scenes'. Errors name the word and what it may be.
     pub fn parse(text: &str) -> anyhow::Result<OpticsRow> {
         let mut row = SHIPPED;
         let what = "wavelengths=N, sun=disc, sun=point, steps=N, peak=unscattered, \
-                    peak=extinction, sky=sphere, sky=horizontal";
+                    peak=extinction, sky=sphere, sky=horizontal, orders=probes, orders=none";
         for word in text.split_whitespace() {
             let Some((key, value)) = word.split_once('=') else {
                 bail!("optics variant \"{text}\": \"{word}\" is none of {what}");
@@ -100,6 +108,8 @@ impl OpticsRow {
                 ("peak", "extinction") => row.forward_peak = ForwardPeak::Extinction,
                 ("sky", "sphere") => row.sky_light = SkyLight::Sphere,
                 ("sky", "horizontal") => row.sky_light = SkyLight::Horizontal,
+                ("orders", "probes") => row.multiple_scattering = MultipleScattering::Probes,
+                ("orders", "none") => row.multiple_scattering = MultipleScattering::None,
                 ("wavelengths", n) => {
                     let [lo, hi] = WAVELENGTH_COUNT_RANGE;
                     row.tables.wavelengths = match n.parse::<usize>() {
@@ -130,6 +140,8 @@ impl OpticsRow {
             RowKind::PeakExtinction
         } else if self.sky_light != SHIPPED.sky_light {
             RowKind::SkyHorizontal
+        } else if self.multiple_scattering != SHIPPED.multiple_scattering {
+            RowKind::OrdersNone
         } else if self.tables.wavelengths != SHIPPED.tables.wavelengths {
             RowKind::Wavelengths
         } else if self.tables.sun_disc != SHIPPED.tables.sun_disc {
@@ -141,6 +153,12 @@ impl OpticsRow {
         }
     }
 
+    /// How the march lights the volume: the forward peak, the sky's light, the sun's
+    /// higher orders.
+    pub fn march(&self) -> (ForwardPeak, SkyLight, MultipleScattering) {
+        (self.forward_peak, self.sky_light, self.multiple_scattering)
+    }
+
     /// Whether the GPU pass renders this row (it marches [`MARCH_STEPS`]).
     pub fn on_gpu(&self) -> bool {
         self.steps == MARCH_STEPS
@@ -148,8 +166,9 @@ impl OpticsRow {
 }
 
 /// The report's rows: the shipped settings, fewer wavelengths (the viewer's 16, and 8),
-/// a point sun, coarser and finer marches, the sky's horizontal irradiance, and the march
-/// before both (the forward peak counted as extinction, the sky's horizontal irradiance).
+/// a point sun, coarser and finer marches, the sun's single scattering alone, the sky's
+/// horizontal irradiance too, and the march before all three (the forward peak counted
+/// as extinction, the sky's horizontal irradiance, single scattering).
 pub fn optics_rows() -> Vec<OpticsRow> {
     let with = |wavelengths, sun_disc, steps| OpticsRow {
         tables: Tables {
@@ -167,12 +186,18 @@ pub fn optics_rows() -> Vec<OpticsRow> {
         with(32, true, 4),
         with(32, true, 48),
         OpticsRow {
+            multiple_scattering: MultipleScattering::None,
+            ..SHIPPED
+        },
+        OpticsRow {
             sky_light: SkyLight::Horizontal,
+            multiple_scattering: MultipleScattering::None,
             ..SHIPPED
         },
         OpticsRow {
             forward_peak: ForwardPeak::Extinction,
             sky_light: SkyLight::Horizontal,
+            multiple_scattering: MultipleScattering::None,
             ..SHIPPED
         },
     ]
@@ -201,7 +226,7 @@ impl RowAnswers {
 /// `row` on `scene`.
 pub fn answer(row: &OpticsRow, scene: &OpticsScene) -> anyhow::Result<RowAnswers> {
     // The first call may build the tables; the second times what a frame does.
-    let march = (row.forward_peak, row.sky_light);
+    let march = row.march();
     scene.lit(row.tables, march)?;
     let start = Instant::now();
     let lit = scene.lit(row.tables, march)?;
@@ -261,6 +286,11 @@ mod tests {
         assert_eq!(paper.forward_peak, ForwardPeak::Extinction);
         assert_eq!(paper.kind(), RowKind::PeakExtinction);
         assert_eq!(OpticsRow::parse("peak=unscattered").unwrap(), SHIPPED);
+        assert_eq!(
+            OpticsRow::parse("orders=none").unwrap().kind(),
+            RowKind::OrdersNone
+        );
+        assert_eq!(OpticsRow::parse("orders=probes").unwrap(), SHIPPED);
         assert!(optics_rows().last().unwrap().on_gpu());
         assert!(!OpticsRow::parse("steps=4").unwrap().on_gpu());
         let e = OpticsRow::parse("steps=0").unwrap_err().to_string();

@@ -16,6 +16,7 @@ use atmosphere_core::hydrometeors::reference::ray::{VolumeTracedRay, radiance_pa
 use atmosphere_core::hydrometeors::render::{LitVolume, composite_in_steps};
 use atmosphere_core::hydrometeors::scene::{VolumeOptics, lit_volume};
 use atmosphere_core::hydrometeors::sky_light::SkyLight;
+use atmosphere_core::hydrometeors::sun_orders::MultipleScattering;
 use atmosphere_core::hydrometeors::volumes::Volume;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
@@ -111,11 +112,12 @@ impl OpticsScene {
 
     /// The scene's volume with `tables` (from the table cache, or built) and its
     /// forward peak counted as `forward_peak` says, lit by the sky model as the renderer
-    /// lights it, the sky's light as `sky_light` says.
+    /// lights it, the sky's light as `sky_light` says, the sun's higher orders as
+    /// `multiple_scattering` says.
     pub fn lit(
         &self,
         tables: Tables,
-        (forward_peak, sky_light): (ForwardPeak, SkyLight),
+        (forward_peak, sky_light, multiple_scattering): (ForwardPeak, SkyLight, MultipleScattering),
     ) -> anyhow::Result<LitVolume> {
         let sun_radius = if tables.sun_disc {
             self.frame.atmosphere.sun.angular_radius_rad
@@ -131,6 +133,7 @@ impl OpticsScene {
                 sun_radius_rad: sun_radius,
                 forward_peak,
                 sky_light,
+                multiple_scattering,
             },
             RGB_WAVELENGTHS_NM,
             &table_cache(),

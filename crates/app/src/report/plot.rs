@@ -163,6 +163,7 @@ fn series_color(series: Series) -> RGBColor {
                 RowKind::Steps => RGBColor(44, 160, 44),
                 RowKind::PeakExtinction => RGBColor(214, 39, 40),
                 RowKind::SkyHorizontal => RGBColor(148, 103, 189),
+                RowKind::OrdersNone => RGBColor(140, 86, 75),
             };
         }
         Series::Beam(method) => {

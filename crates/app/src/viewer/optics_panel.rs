@@ -10,6 +10,7 @@ use atmosphere_core::hydrometeors::scene::{
     DECK_DROPLET_RADIUS_RANGE_UM, SHAFT_DISTANCE_RANGE_M, SMALL_DROP_RADIUS_RANGE_UM,
 };
 use atmosphere_core::hydrometeors::sky_light::SkyLight;
+use atmosphere_core::hydrometeors::sun_orders::MultipleScattering;
 use atmosphere_core::hydrometeors::volumes::{
     CIRRUS_BASE_RANGE_M, CIRRUS_OPTICAL_DEPTH_RANGE, DECK_BASE_RANGE_M, DECK_OPTICAL_DEPTH_RANGE,
     DECK_THICKNESS_RANGE_M,
@@ -150,6 +151,17 @@ pub fn show(ui: &mut egui::Ui, optics: &mut OpticsSettings, building: bool) {
             let horizontal = SkyLight::Horizontal;
             ui.radio_value(&mut optics.sky_light, horizontal, horizontal.name())
                 .on_hover_text("The sky's horizontal irradiance over a black ground, once");
+        });
+        ui.horizontal(|ui| {
+            ui.label("sun's higher orders:");
+            let probes = MultipleScattering::Probes;
+            ui.radio_value(&mut optics.multiple_scattering, probes, probes.name())
+                .on_hover_text(
+                    "The sun's light scattered two and more times inside the volumes,                      from a grid of probes estimated once per volume and sun (a tenth to                      a third of a second)",
+                );
+            let none = MultipleScattering::None;
+            ui.radio_value(&mut optics.multiple_scattering, none, none.name())
+                .on_hover_text("The sun's light scattered once only (darker thick volumes)");
         });
     });
 }

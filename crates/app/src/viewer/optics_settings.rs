@@ -6,6 +6,7 @@
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
 use atmosphere_core::hydrometeors::scene::{CirrusSettings, DeckSettings, RainShaftSettings};
 use atmosphere_core::hydrometeors::sky_light::SkyLight;
+use atmosphere_core::hydrometeors::sun_orders::MultipleScattering;
 use serde::{Deserialize, Serialize};
 
 use crate::render::volume_flags::VolumeFlags;
@@ -58,6 +59,8 @@ pub struct OpticsSettings {
     pub forward_peak: ForwardPeak,
     /// Which sky's light the march scatters.
     pub sky_light: SkyLight,
+    /// Whether the march adds the sun's light scattered more than once.
+    pub multiple_scattering: MultipleScattering,
 }
 
 impl Default for OpticsSettings {
@@ -80,6 +83,7 @@ impl Default for OpticsSettings {
             deck_droplet_radius_um: deck.droplet_radius_um,
             forward_peak: ForwardPeak::default(),
             sky_light: SkyLight::default(),
+            multiple_scattering: MultipleScattering::default(),
         }
     }
 }
@@ -110,6 +114,7 @@ impl OpticsSettings {
             wavelengths: Some(VIEWER_WAVELENGTHS),
             forward_peak: Some(self.forward_peak),
             sky_light: Some(self.sky_light),
+            multiple_scattering: Some(self.multiple_scattering),
             ..VolumeFlags::default()
         }
     }
@@ -165,6 +170,12 @@ mod tests {
         assert_eq!(stored.sky_light, SkyLight::Sphere);
         optics.sky_light = SkyLight::Horizontal;
         assert_eq!(optics.flags().sky_light, Some(SkyLight::Horizontal));
+        assert_eq!(stored.multiple_scattering, MultipleScattering::Probes);
+        optics.multiple_scattering = MultipleScattering::None;
+        assert_eq!(
+            optics.flags().multiple_scattering,
+            Some(MultipleScattering::None)
+        );
         assert_eq!(
             stored.rain_rate_mm_h,
             RainShaftSettings::default().rain_rate_mm_h

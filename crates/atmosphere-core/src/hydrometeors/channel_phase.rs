@@ -120,6 +120,22 @@ impl ChannelPhase {
         std::array::from_fn(|c| v[i][c] * (1.0 - t) + v[i + 1][c] * t)
     }
 
+    /// g_c, the mean cosine of the scattering angle per channel (a table by angle), by
+    /// the rule its unit integral holds by: each bin's value times its ring's solid
+    /// angle, at the bin's centre.
+    pub fn asymmetry(&self) -> [f64; 3] {
+        let mut g = [0.0; 3];
+        for (b, v) in self.values.iter().enumerate() {
+            let [from, to] = [b, b + 1].map(|k| (k as f64 * self.bin_deg).to_radians());
+            let ring = 2.0 * std::f64::consts::PI * (from.cos() - to.cos());
+            let centre = ((b as f64 + 0.5) * self.bin_deg).to_radians().cos();
+            for c in 0..3 {
+                g[c] += v[c] * ring * centre;
+            }
+        }
+        g
+    }
+
     /// The value for light seen along the unit `seen` (a view ray's direction) with the
     /// sun towards the unit `sun` and the local vertical `up`: by the angle between
     /// `seen` and `sun`, or, over the sky, bilinear in elevation and azimuth.

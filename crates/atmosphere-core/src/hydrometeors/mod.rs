@@ -5,7 +5,8 @@
 //! disc ([`sun_disk_blur`]) and reduced to a frame's three wavelengths through the CIE
 //! functions ([`channel_phase`]); a rain shaft, a cirrus layer and a droplet deck
 //! ([`volumes`]) lit by a sky model's sun in single scattering, the forward peak taken
-//! as no scattering ([`forward_peak`]), and by its sky ([`sky_light`]), and composited over the model's frame
+//! as no scattering ([`forward_peak`]), with the sun's light scattered more than once
+//! from a grid of probes ([`sun_orders`]), and by its sky ([`sky_light`]), and composited over the model's frame
 //! ([`render`]), the twin of render-wgpu's `precipitation/`; [`scene`] places them
 //! around a camera from a scene's settings.
 //!
@@ -24,4 +25,5 @@ pub mod scene;
 pub mod sky_light;
 pub mod spectral_phase;
 pub mod sun_disk_blur;
+pub mod sun_orders;
 pub mod volumes;

@@ -14,6 +14,9 @@
 //! `light_point`), s_k the sun's path inside the volume from the step's middle, and
 //! L_sky the sky's light scattered isotropically (`sky_light.rs`: the model's radiance
 //! averaged over the sphere there, or E_sky / (2 pi) from its horizontal irradiance).
+//! With probes of the sun's light scattered more than once (`sun_orders.rs`) the bracket
+//! gains E_sun (J + 3 g_c w . H) at the step's middle, w = -direction the way the light
+//! travels to the camera.
 //! The volume is composited over the model's pixel
 //! L_full (its surface and sun included) as
 //!     L = L_front + T_v (L_full - L_front) + T_front L_v,   L_front = (1 - T_front) L_full,
@@ -31,6 +34,7 @@ use glam::DVec3;
 
 use super::channel_phase::ChannelPhase;
 use super::sky_light::{SkyLight, sphere_mean_radiance};
+use super::sun_orders::SunOrders;
 use super::volumes::Volume;
 use crate::atmosphere::Atmosphere;
 use crate::clouds::layer::composite::light_at;
@@ -64,6 +68,8 @@ pub struct LitVolume {
     /// the forward peak (`forward_peak.rs`); zero where the peak counts as extinction.
     pub peak_fraction: [f64; 3],
     pub light: VolumeLight,
+    /// The probes of the sun's light scattered more than once; `None`: left out.
+    pub orders: Option<SunOrders>,
 }
 
 impl LitVolume {
@@ -116,11 +122,15 @@ pub fn march_in_steps(
     for k in 0..steps {
         let x = origin + direction * (t0 + (k as f64 + 0.5) * dt);
         let sun_path = lit.volume.exit_distance(x, lit.light.sun_direction);
+        let orders = lit.orders.as_ref().map_or([0.0; 3], |o| {
+            o.source(&lit.volume, lit.light.sun_direction, x, -direction)
+        });
         for c in 0..3 {
             let sun = (-beta[c] * sun_path).exp();
             radiance[c] += t_v[c]
                 * (1.0 - step_transmittance[c])
-                * (p[c] * lit.light.sun_irradiance[c] * sun + lit.light.sky_radiance[c]);
+                * (lit.light.sun_irradiance[c] * (p[c] * sun + orders[c])
+                    + lit.light.sky_radiance[c]);
             t_v[c] *= step_transmittance[c];
         }
     }

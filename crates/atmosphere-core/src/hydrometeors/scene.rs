@@ -8,9 +8,11 @@ use super::channel_phase::ChannelPhase;
 use super::error::{HydrometeorError, check_range};
 use super::forward_peak::{ForwardPeak, truncated};
 use super::mie_droplets::Droplets;
+use super::reference::phase::ChannelSampler;
 use super::render::{LitVolume, light_of};
 use super::sky_light::SkyLight;
 use super::spectral_phase::{Particles, SpectralPhase};
+use super::sun_orders::{MultipleScattering, SunOrders};
 use super::volumes::Volume;
 use crate::models::sky_model::SkyModel;
 use crate::table_cache::TableCache;
@@ -220,13 +222,15 @@ impl CirrusSettings {
 
 /// What a volume's table is made with (its wavelengths across 380-720 nm, the sun's
 /// angular radius it is seen with, 0 for a point sun), how the march counts its forward
-/// peak and which sky's light it scatters.
+/// peak, which sky's light it scatters and whether it adds the sun's light scattered
+/// more than once.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VolumeOptics {
     pub wavelengths: usize,
     pub sun_radius_rad: f64,
     pub forward_peak: ForwardPeak,
     pub sky_light: SkyLight,
+    pub multiple_scattering: MultipleScattering,
 }
 
 impl VolumeOptics {
@@ -238,13 +242,16 @@ impl VolumeOptics {
             sun_radius_rad,
             forward_peak: ForwardPeak::default(),
             sky_light: SkyLight::default(),
+            multiple_scattering: MultipleScattering::default(),
         }
     }
 }
 
 /// `volume` with its phase table made as `table` says (kept in `cache`), reduced to
 /// `channels_nm` and truncated for its forward peak, lit by `model` from the camera
-/// `view.0` with the sun towards `view.1`.
+/// `view.0` with the sun towards `view.1`, with the probes of the sun's light scattered
+/// more than once where `table` asks for them (not for falling plates: their table over
+/// the sky has no scattering angle to draw paths by).
 pub fn lit_volume(
     model: &dyn SkyModel,
     volume: Volume,
@@ -259,16 +266,24 @@ pub fn lit_volume(
         table.sun_radius_rad,
         cache,
     )?;
-    let (phase, peak_fraction) = truncated(
-        ChannelPhase::new(&spectral, channels_nm)?,
-        table.forward_peak,
-    );
+    let channels = ChannelPhase::new(&spectral, channels_nm)?;
     let light = light_of(model, &volume, view, table.sky_light)
         .map_err(|e| HydrometeorError::Model(e.to_string()))?;
+    let orders = match table.multiple_scattering {
+        MultipleScattering::Probes if channels.sky.is_none() => Some(SunOrders::estimate(
+            &volume,
+            &ChannelSampler::new(&channels)?,
+            light.sun_direction,
+            volume.light_point(view.0),
+        )),
+        _ => None,
+    };
+    let (phase, peak_fraction) = truncated(channels, table.forward_peak);
     Ok(LitVolume {
         volume,
         phase,
         peak_fraction,
         light,
+        orders,
     })
 }

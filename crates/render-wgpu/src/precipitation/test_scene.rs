@@ -46,5 +46,6 @@ pub fn shaft(ground_m: f64, away_m: f64, height_m: f64) -> LitVolume {
             sun_irradiance: [1.0; 3],
             sky_radiance: [0.1; 3],
         },
+        orders: None,
     }
 }

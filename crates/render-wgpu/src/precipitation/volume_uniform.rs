@@ -1,8 +1,11 @@
 //! The Rust twin of `VolumesParams` in `shaders/precipitation/volume_params.wgsl` (the
 //! naga test checks the layout): a frame's lit volumes relative to its camera in f32, and
-//! their phase tables at the frame's wavelengths packed in one buffer.
+//! their phase tables at the frame's wavelengths, the probes of the sun's light
+//! scattered more than once and their lobe tables (`hydrometeors/sun_orders.rs`) packed
+//! in one buffer.
 
 use atmosphere_core::hydrometeors::render::LitVolume;
+use atmosphere_core::hydrometeors::sun_orders::{LOBE_ANGLES, LOBE_G_MAX, LOBE_G_STEPS};
 use atmosphere_core::hydrometeors::volumes::Shape;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
@@ -14,7 +17,7 @@ pub const MAX_VOLUMES: usize = 2;
 const KIND_SHAFT: u32 = 1;
 const KIND_LAYER: u32 = 2;
 
-/// WGSL `VolumeParams`, 112 bytes.
+/// WGSL `VolumeParams`, 144 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VolumeUniform {
@@ -36,9 +39,15 @@ pub struct VolumeUniform {
     pub sun_irradiance: [f32; 4],
     /// The radiance the march scatters as the sky's light, W m^-2 sr^-1 nm^-1.
     pub sky_radiance: [f32; 4],
+    /// x: the probes' first entry in the buffer (per probe one J, H_x, H_y, H_z per
+    /// channel); y, z, w: probes across radius, azimuth and height (w = 0: none).
+    pub probes: [u32; 4],
+    /// x: the lobe table's first entry (rgb, rows of G); y: its G steps; z: its angles;
+    /// w: its largest G as f32 bits.
+    pub lobes: [u32; 4],
 }
 
-/// WGSL `VolumesParams`, 240 bytes.
+/// WGSL `VolumesParams`, 304 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VolumesUniform {
@@ -121,16 +130,43 @@ pub fn pack(
                 )
             }
         };
+        let first = bins.len() as u32;
+        bins.extend(values.iter().map(|v| rgb(*v)));
+        let (probes, lobes) = match &lit.orders {
+            None => ([0; 4], [0; 4]),
+            Some(orders) => {
+                let probes = bins.len() as u32;
+                bins.extend(
+                    orders
+                        .moments
+                        .iter()
+                        .flat_map(|probe| probe.iter().map(|m| m.map(|x| x as f32))),
+                );
+                let lobes = bins.len() as u32;
+                bins.extend(orders.lobes.iter().map(|v| rgb(*v)));
+                let [r, a, h] = orders.dims.map(|n| n as u32);
+                (
+                    [probes, r, a, h],
+                    [
+                        lobes,
+                        LOBE_G_STEPS as u32,
+                        LOBE_ANGLES as u32,
+                        (LOBE_G_MAX as f32).to_bits(),
+                    ],
+                )
+            }
+        };
         *slot = VolumeUniform {
-            kind: [kind, bins.len() as u32, values.len() as u32, columns],
+            kind: [kind, first, values.len() as u32, columns],
             axis,
             place,
             bin_deg: [bin_deg as f32, azimuth_bin_deg as f32, 0.0, 0.0],
             extinction: rgb(lit.extinction_per_m()),
             sun_irradiance: rgb(lit.light.sun_irradiance),
             sky_radiance: rgb(lit.light.sky_radiance),
+            probes,
+            lobes,
         };
-        bins.extend(values.iter().map(|v| rgb(*v)));
     }
     if bins.is_empty() {
         bins.push([0.0; 4]);

@@ -35,12 +35,44 @@ pub const ROULETTE_WEIGHT: f64 = 0.1;
 /// Collisions at most per path.
 pub const MAX_SCATTERINGS: u32 = 100_000;
 
+/// The sun's irradiance at a point on a plane facing it, per channel.
+pub trait SunIrradiance: Sync {
+    /// The irradiance at `point` from the sun towards the unit `sun`, into `out`.
+    fn irradiance(&self, point: DVec3, sun: DVec3, out: &mut [f64]);
+    /// How many channels it answers.
+    fn wavelengths(&self) -> usize;
+}
+
+impl SunIrradiance for SunThroughAtmosphere {
+    fn irradiance(&self, point: DVec3, sun: DVec3, out: &mut [f64]) {
+        SunThroughAtmosphere::irradiance(self, point, sun, out);
+    }
+
+    fn wavelengths(&self) -> usize {
+        SunThroughAtmosphere::wavelengths(self)
+    }
+}
+
+/// The same irradiance everywhere (the renderer's one value per volume).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UniformSun(pub [f64; 3]);
+
+impl SunIrradiance for UniformSun {
+    fn irradiance(&self, _: DVec3, _: DVec3, out: &mut [f64]) {
+        out.copy_from_slice(&self.0);
+    }
+
+    fn wavelengths(&self) -> usize {
+        3
+    }
+}
+
 /// What every path of a view shares.
 pub struct VolumePaths<'a> {
     pub volume: &'a Volume,
     pub phase: &'a ChannelSampler,
-    /// The sun through the atmosphere at the frame's three wavelengths.
-    pub sun: &'a SunThroughAtmosphere,
+    /// The sun at the frame's three wavelengths: through the atmosphere, or uniform.
+    pub sun: &'a dyn SunIrradiance,
     /// The light around the volume; `None`: the sky's light left out.
     pub environment: Option<&'a Environment>,
     /// Unit vector towards the sun.

@@ -67,6 +67,11 @@ impl ChannelSampler {
             .value_at(cos.clamp(-1.0, 1.0).acos().to_degrees())
     }
 
+    /// The truncated tables P_c'.
+    pub fn table(&self) -> &ChannelPhase {
+        &self.table
+    }
+
     /// A cosine drawn for channel `c` and the factor P_c / q its weight takes.
     pub fn sample(&self, c: usize, sampler: &mut Sampler) -> (f64, f64) {
         let proposal = &self.proposals[c];
