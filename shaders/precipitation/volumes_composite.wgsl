@@ -5,7 +5,7 @@
 // angle, or over the sky for falling plates; truncated where the forward peak counts
 // as no scattering, with each channel's extinction beta (1 - f_c)), the sun's path in
 // the volume, the sun's light scattered more than once from the volume's probes
-// (`sun_orders.wgsl`), the sky's light (one radiance) scattered isotropically; with L_front = (1 - T_front) L_full,
+// (`sun_orders.wgsl`, read once per ORDERS_EVERY steps at their group's middle), the sky's light (one radiance) scattered isotropically; with L_front = (1 - T_front) L_full,
 // L = L_front + T_v (L_full - L_front) + T_front L_v, farthest volume first.
 
 #import common/frame_params.wgsl
@@ -14,6 +14,7 @@
 
 const MARCH_STEPS: u32 = 12u;
 const FRONT_STEPS: u32 = 8u;
+const ORDERS_EVERY: u32 = 3u;
 
 @group(0) @binding(2) var<uniform> volumes: VolumesParams;
 // Every volume's phase function, rgb per bin.
@@ -111,10 +112,14 @@ fn march(v: VolumeParams, d: vec3<f32>, t: vec2<f32>) -> Met {
     }
     var radiance = vec3<f32>(0.0);
     var t_v = vec3<f32>(1.0);
+    var orders = vec3<f32>(0.0);
     for (var k = 0u; k < MARCH_STEPS; k++) {
         let s = t.x + (f32(k) + 0.5) * dt;
         let lit = exp(-beta * sun_path(v, d, b, s, camera, sun));
-        let orders = orders_source(v, d, b, s, sun, -d);
+        if k % ORDERS_EVERY == 0u {
+            let group = f32(min(ORDERS_EVERY, MARCH_STEPS - k));
+            orders = orders_source(v, d, b, t.x + (f32(k) + 0.5 * group) * dt, sun, -d);
+        }
         radiance += t_v * (1.0 - step_t)
             * (v.sun_irradiance.xyz * (p * lit + orders) + v.sky_radiance.xyz);
         t_v *= step_t;

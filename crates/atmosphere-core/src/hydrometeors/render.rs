@@ -15,8 +15,8 @@
 //! L_sky the sky's light scattered isotropically (`sky_light.rs`: the model's radiance
 //! averaged over the sphere there, or E_sky / (2 pi) from its horizontal irradiance).
 //! With probes of the sun's light scattered more than once (`sun_orders.rs`) the bracket
-//! gains E_sun (J + 3 g_c w . H) at the step's middle, w = -direction the way the light
-//! travels to the camera.
+//! gains E_sun S(x, w), w = -direction the way the light travels to the camera, read
+//! once per ORDERS_EVERY steps at their group's middle.
 //! The volume is composited over the model's pixel
 //! L_full (its surface and sun included) as
 //!     L = L_front + T_v (L_full - L_front) + T_front L_v,   L_front = (1 - T_front) L_full,
@@ -44,6 +44,9 @@ use crate::optics::column::{densities, optical_depth};
 
 /// Steps of the march through a volume, and of the atmosphere's columns in front of it.
 pub const MARCH_STEPS: usize = 12;
+/// The probes' light is read once per this many steps, at their group's middle (it
+/// varies slowly along a ray; each read is the costliest part of a step).
+pub const ORDERS_EVERY: usize = 3;
 pub const FRONT_STEPS: usize = 8;
 
 /// The light on a volume at the frame's three wavelengths.
@@ -119,12 +122,17 @@ pub fn march_in_steps(
         .value_toward(direction, lit.light.sun_direction, up);
     let mut radiance = [0.0; 3];
     let mut t_v = [1.0; 3];
+    let mut orders = [0.0; 3];
     for k in 0..steps {
         let x = origin + direction * (t0 + (k as f64 + 0.5) * dt);
         let sun_path = lit.volume.exit_distance(x, lit.light.sun_direction);
-        let orders = lit.orders.as_ref().map_or([0.0; 3], |o| {
-            o.source(&lit.volume, lit.light.sun_direction, x, -direction)
-        });
+        if k % ORDERS_EVERY == 0 {
+            let group = ORDERS_EVERY.min(steps - k) as f64;
+            let middle = origin + direction * (t0 + (k as f64 + 0.5 * group) * dt);
+            orders = lit.orders.as_ref().map_or([0.0; 3], |o| {
+                o.source(&lit.volume, lit.light.sun_direction, middle, -direction)
+            });
+        }
         for c in 0..3 {
             let sun = (-beta[c] * sun_path).exp();
             radiance[c] += t_v[c]
