@@ -45,6 +45,9 @@ struct VolumesParams {
     // x: how many volumes; y: 1 when the frame's rays end on its surface; z, w: the
     // column and row of the first pixel the pass runs over.
     count: vec4<u32>,
+    // x: the divisor N (1: every pixel marched); y, z: the first reduced pixel the
+    // reduced pass runs over.
+    reduction: vec4<u32>,
     volumes: array<VolumeParams, MAX_VOLUMES>,
 }
 

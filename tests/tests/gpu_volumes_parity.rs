@@ -21,7 +21,8 @@ mod support;
 
 use atmosphere_core::atmosphere::spectra::Spectra;
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
-use atmosphere_core::hydrometeors::render::{LitVolume, composite};
+use atmosphere_core::hydrometeors::reduced::frame_terms;
+use atmosphere_core::hydrometeors::render::{LitVolume, MARCH_STEPS, composite_terms};
 use atmosphere_core::hydrometeors::scene::{
     CirrusSettings, RainShaftSettings, VolumeOptics, lit_volume,
 };
@@ -123,11 +124,18 @@ fn wall(frame: &Frame) -> Vec<SurfaceTexel> {
     texels
 }
 
-/// Renders `frame` over `surface` without volumes and with `lit`, checks every pixel
-/// of the second against the CPU composite over the first; returns how many values the
+/// Renders `frame` over `surface` without volumes and with `lit` marched at `divisor`,
+/// checks every pixel of the second against the CPU composite over the first (its
+/// terms upsampled as `hydrometeors/reduced.rs` says); returns how many values the
 /// volumes changed by more than 1 %.
-fn check(renderer: &mut render_wgpu::Renderer, frame: &Frame, lit: &[LitVolume]) -> usize {
+fn check(
+    renderer: &mut render_wgpu::Renderer,
+    frame: &Frame,
+    lit: &[LitVolume],
+    divisor: u32,
+) -> usize {
     let surface = wall(frame);
+    renderer.set_volumes_divisor(divisor).unwrap();
     renderer.set_volumes(Vec::new()).unwrap();
     let plan = renderer.render_with_surface(frame, &surface).unwrap();
     assert!(plan.steps.iter().all(|s| s.name != "volumes"));
@@ -138,28 +146,22 @@ fn check(renderer: &mut render_wgpu::Renderer, frame: &Frame, lit: &[LitVolume])
     let with = renderer.read_hdr().unwrap();
     let spectra = Spectra::new(&frame.atmosphere, &RGB_WAVELENGTHS_NM);
     let extinction: [[f64; 3]; 3] = std::array::from_fn(|c| spectra.extinction[c]);
-    let mut cpu = Vec::new();
-    for row in 0..frame.height {
-        for column in 0..frame.width {
-            let i = (row * frame.width + column) as usize;
-            let ray = frame.pixel_ray(column, row);
-            let end = if column < WALL_COLUMNS {
-                f64::from(WALL_M)
-            } else {
-                f64::INFINITY
-            };
-            let full = std::array::from_fn(|c| f64::from(without[i][c]));
-            cpu.push(composite(
-                &frame.atmosphere,
-                &extinction,
-                lit,
-                ray.origin_m,
-                ray.direction,
-                end,
-                full,
-            ));
-        }
-    }
+    let ray = |column: u32, row: u32| {
+        let ray = frame.pixel_ray(column, row);
+        let end = if column < WALL_COLUMNS {
+            f64::from(WALL_M)
+        } else {
+            f64::INFINITY
+        };
+        (ray.origin_m, ray.direction, end)
+    };
+    let terms = |r| composite_terms(&frame.atmosphere, &extinction, lit, r, MARCH_STEPS);
+    let size = (frame.width, frame.height);
+    let cpu: Vec<[f64; 3]> = frame_terms(size, divisor, lit, ray, terms)
+        .iter()
+        .zip(&without)
+        .map(|(t, w)| t.over(std::array::from_fn(|c| f64::from(w[c]))))
+        .collect();
     let brightest = cpu.iter().flatten().fold(0.0f64, |m, v| m.max(*v));
     let (mut changed, mut worst) = (0, 0.0f64);
     for (i, (c, g)) in cpu.iter().zip(&with).enumerate() {
@@ -179,7 +181,8 @@ fn check(renderer: &mut render_wgpu::Renderer, frame: &Frame, lit: &[LitVolume])
         }
     }
     eprintln!(
-        "{}, the first volume's f_c {:.3?}: worst error {worst:.3} of the tolerance",
+        "{} at divisor {divisor}, the first volume's f_c {:.3?}: worst error {worst:.3} of \
+         the tolerance",
         frame.model, lit[0].peak_fraction
     );
     changed
@@ -213,7 +216,7 @@ fn volumes_match_the_cpu_composite_for_two_models() {
                 lit.iter()
                     .all(|v| v.orders.is_some() == (orders == MultipleScattering::Probes))
             );
-            let changed = check(&mut renderer, &frame, &lit);
+            let changed = check(&mut renderer, &frame, &lit, 1);
             // The volumes change most of the frame: the test compares something.
             let values = 3 * (frame.width * frame.height) as usize;
             assert!(
@@ -238,6 +241,44 @@ fn a_shaft_alone_is_composited_over_its_rectangle_only() {
     let lit = vec![volumes(&frame, Default::default())[0].clone()];
     let rect = volumes_rect(&frame, &lit).unwrap();
     assert!(rect.size[1] < frame.height, "{rect:?}");
-    let changed = check(&mut renderer, &frame, &lit);
+    let changed = check(&mut renderer, &frame, &lit, 1);
     assert!(changed > frame.width as usize, "{changed} values changed");
+}
+
+/// The volumes marched for one pixel in 2 x 2 and 3 x 3 and upsampled where the rays'
+/// spans agree (the wall's edge, the shaft's and the layer's edges marched per pixel),
+/// against the CPU twin's upsample; and the upsample is not the full march everywhere
+/// (some values differ from it by more than the tolerance), so the test sees it.
+#[test]
+fn volumes_at_a_reduced_resolution_match_the_cpu_upsample() {
+    let Some(mut renderer) = support::renderer_or_skip("volumes parity") else {
+        return;
+    };
+    let frame = frame(ModelId::Hillaire);
+    let lit = volumes(&frame, Default::default());
+    for divisor in [2, 3] {
+        let changed = check(&mut renderer, &frame, &lit, divisor);
+        assert!(changed > frame.width as usize, "{changed} values changed");
+    }
+    let spectra = Spectra::new(&frame.atmosphere, &RGB_WAVELENGTHS_NM);
+    let extinction: [[f64; 3]; 3] = std::array::from_fn(|c| spectra.extinction[c]);
+    let ray = |column: u32, row: u32| {
+        let ray = frame.pixel_ray(column, row);
+        (ray.origin_m, ray.direction, f64::INFINITY)
+    };
+    let terms = |r| composite_terms(&frame.atmosphere, &extinction, &lit, r, MARCH_STEPS);
+    let size = (frame.width, frame.height);
+    let exact = frame_terms(size, 1, &lit, ray, terms);
+    let reduced = frame_terms(size, 3, &lit, ray, terms);
+    let differ = exact
+        .iter()
+        .zip(&reduced)
+        .filter(|(a, b)| {
+            let (a, b) = (a.over([0.0; 3]), b.over([0.0; 3]));
+            (0..3).any(|c| (a[c] - b[c]).abs() > RELATIVE * a[c].abs())
+        })
+        .count();
+    eprintln!("divisor 3: {differ} pixels differ from the full march by more than the tolerance");
+    assert!(differ > 0);
+    assert!(renderer.set_volumes_divisor(5).is_err());
 }

@@ -329,6 +329,16 @@ fn bad_flags_fail_clearly_and_write_nothing() {
             "frame.png",
             "invalid value 'dome' for '--optics-sky-light <SKY>'",
         ),
+        (
+            &[("--rain", "true"), ("--optics-multiple-scattering", "many")],
+            "frame.png",
+            "invalid value 'many' for '--optics-multiple-scattering <ORDERS>'",
+        ),
+        (
+            &[("--rain", "true"), ("--optics-resolution-divisor", "9")],
+            "frame.png",
+            "--optics-resolution-divisor: volumes resolution divisor 9",
+        ),
     ];
     for (overrides, name, message) in cases {
         let out = dir.path().join(name);

@@ -81,6 +81,8 @@ pub struct Renderer {
     /// compiled when a frame first has one.
     volumes: Vec<LitVolume>,
     volumes_pass: Option<VolumesPass>,
+    /// One pixel in N x N of the volumes marched ([`Renderer::set_volumes_divisor`]).
+    volumes_divisor: u32,
 }
 
 impl Renderer {
@@ -112,6 +114,7 @@ impl Renderer {
             prune_shafts: true,
             volumes: Vec::new(),
             volumes_pass: None,
+            volumes_divisor: 1,
             gpu,
         })
     }
@@ -212,6 +215,15 @@ impl Renderer {
             )));
         }
         self.volumes = volumes;
+        Ok(())
+    }
+
+    /// The volumes of the frames that follow marched for one pixel in `divisor` x
+    /// `divisor` and upsampled where the rays' paths through them agree
+    /// (atmosphere-core's `hydrometeors/reduced.rs`): 1 (every pixel, the default) to 4.
+    pub fn set_volumes_divisor(&mut self, divisor: u32) -> Result<(), RenderError> {
+        self.volumes_divisor = atmosphere_core::hydrometeors::reduced::check_divisor(divisor)
+            .map_err(|e| RenderError::Frame(e.to_string()))?;
         Ok(())
     }
 
@@ -375,7 +387,7 @@ impl Renderer {
             }
         }
         if let (Some(_), Some(pass)) = (volumes_step, self.volumes_pass.as_mut()) {
-            pass.fit(gpu, (frame.width, frame.height));
+            pass.fit(gpu, (frame.width, frame.height), self.volumes_divisor);
         }
         let tone_map_step = plan.steps.len() as u32;
         plan.run("tone_map", StepKind::Pass);
@@ -479,6 +491,7 @@ impl Renderer {
                 uniforms: (&self.atmosphere, &self.frame),
                 surface: &surface_views[0],
                 has_surface,
+                divisor: self.volumes_divisor,
             };
             let encoded = pass.encode(
                 gpu,

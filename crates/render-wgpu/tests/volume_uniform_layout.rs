@@ -43,6 +43,7 @@ fn the_volume_uniforms_match_their_wgsl_layouts() {
     ];
     let volumes = [
         ("count", offset_of!(VolumesUniform, count)),
+        ("reduction", offset_of!(VolumesUniform, reduction)),
         ("volumes", offset_of!(VolumesUniform, volumes)),
     ];
     for (name, size, rust) in [

@@ -6,7 +6,9 @@
 //! the frame's own work); the median of the pairs' shares is the figure. The sky pass's
 //! own GPU timestamps are shown beside it but not divided by: lavapipe's timestamps
 //! around compute passes often read a fraction of a millisecond (docs/optics-rendering.md,
-//! "Cost").
+//! "Cost"). At the scene's `resolution_divisor` above 1 the row also gives how far that
+//! frame is from the frame with every pixel marched: the RMS of the relative difference
+//! per channel over the pixels the volumes change by more than 1 %.
 
 use anyhow::Context;
 use render_wgpu::Renderer;
@@ -25,6 +27,25 @@ pub struct OpticsTimes {
     pub pair_ratio: f64,
     /// The one-minute load average before and after, where the system tells it.
     pub load: Option<(f64, f64)>,
+    /// The scene's divisor, and above 1 the RMS relative difference of its frame from
+    /// the frame marched at every pixel.
+    pub divisor: (u32, Option<f64>),
+}
+
+/// The RMS of (reduced - exact) / exact per channel over the pixels where `exact`
+/// differs from `without` (the frame without volumes) by more than 1 %.
+pub fn divisor_difference(exact: &[[f32; 4]], reduced: &[[f32; 4]], without: &[[f32; 4]]) -> f64 {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for ((e, r), w) in exact.iter().zip(reduced).zip(without) {
+        for c in 0..3 {
+            let (e, r, w) = (f64::from(e[c]), f64::from(r[c]), f64::from(w[c]));
+            if e > 0.0 && (e - w).abs() > 0.01 * e {
+                sum += ((r - e) / e).powi(2);
+                n += 1;
+            }
+        }
+    }
+    if n == 0 { 0.0 } else { (sum / n as f64).sqrt() }
 }
 
 /// The one-minute load average (`/proc/loadavg`); `None` where there is none.
@@ -54,7 +75,9 @@ pub fn measure(
         .resolved()
         .with_context(|| format!("--optics-scene {}", path.display()))?;
     let frame = scene.frame()?;
+    let divisor = scene.volumes.divisor()?;
     let volumes = scene.volumes.lit_volumes(&frame)?;
+    renderer.set_volumes_divisor(divisor)?;
     if volumes.is_empty() {
         anyhow::bail!(
             "--optics-scene {}: the scene has no rain or cirrus",
@@ -82,6 +105,20 @@ pub fn measure(
         renderer.set_volumes(volumes.clone())?;
         with.push(timed(renderer, &frame)?.1);
     }
+    let difference = if divisor > 1 {
+        let mut image = |volumes: Vec<_>, divisor| -> anyhow::Result<Vec<[f32; 4]>> {
+            renderer.set_volumes(volumes)?;
+            renderer.set_volumes_divisor(divisor)?;
+            renderer.render(&frame)?;
+            Ok(renderer.read_hdr()?)
+        };
+        let without_image = image(Vec::new(), divisor)?;
+        let exact = image(volumes.clone(), 1)?;
+        let reduced = image(volumes, divisor)?;
+        Some(divisor_difference(&exact, &reduced, &without_image))
+    } else {
+        None
+    };
     let ratios: Vec<f64> = with
         .iter()
         .zip(&without)
@@ -93,6 +130,7 @@ pub fn measure(
         sky_pass_ms: median(&sky),
         pair_ratio: median(&ratios).unwrap_or(f64::NAN),
         load: load_before.zip(load_average()),
+        divisor: (divisor, difference),
     })
 }
 
@@ -110,11 +148,13 @@ pub fn markdown(
     let load = times
         .load
         .map_or_else(|| "-".into(), |(a, b)| format!("{a:.2}, {b:.2}"));
+    let (divisor, difference) = times.divisor;
+    let difference = difference.map_or_else(|| "-".into(), |d| format!("{:.2} %", 100.0 * d));
     format!(
         "## Optics scene {} at {}x{} on {adapter}\n\n\
-         | frame without volumes (ms) | frame with volumes (ms) | volumes (ms) | sky pass timestamps (ms) | volumes / frame without (median of pairs) | load before, after |\n\
-         |---|---|---|---|---|---|\n\
-         | {:.1} | {:.1} | {volumes:.1} | {sky} | {:.2} | {load} |\n",
+         | frame without volumes (ms) | frame with volumes (ms) | volumes (ms) | sky pass timestamps (ms) | volumes / frame without (median of pairs) | load before, after | divisor | RMS difference from divisor 1 |\n\
+         |---|---|---|---|---|---|---|---|\n\
+         | {:.1} | {:.1} | {volumes:.1} | {sky} | {:.2} | {load} | {divisor} | {difference} |\n",
         path.display(),
         size.0,
         size.1,
@@ -136,11 +176,21 @@ mod tests {
             sky_pass_ms: None,
             pair_ratio: 0.8,
             load: Some((3.5, 4.25)),
+            divisor: (2, Some(0.0123)),
         };
         let text = markdown(std::path::Path::new("r.toml"), "cpu", (64, 36), &times);
         assert!(
-            text.contains("| 400.0 | 700.0 | 300.0 | - | 0.80 | 3.50, 4.25 |"),
+            text.contains("| 400.0 | 700.0 | 300.0 | - | 0.80 | 3.50, 4.25 | 2 | 1.23 % |"),
             "{text}"
         );
+    }
+
+    #[test]
+    fn the_difference_counts_only_the_volumes_pixels() {
+        let without = [[1.0, 1.0, 1.0, 1.0], [1.0, 1.0, 1.0, 1.0]];
+        let exact = [[2.0, 2.0, 2.0, 1.0], [1.0, 1.0, 1.0, 1.0]];
+        let reduced = [[2.2, 2.0, 1.8, 1.0], [5.0, 5.0, 5.0, 1.0]];
+        let d = divisor_difference(&exact, &reduced, &without);
+        assert!((d - (0.02f64 / 3.0).sqrt()).abs() < 1e-6, "{d}");
     }
 }

@@ -57,6 +57,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let frame = scene.frame()?;
     let earth_data = args.earth_data.source()?;
     let clouds = CloudInputs::load(&scene.clouds)?;
+    let divisor = scene.volumes.divisor()?;
     let volumes = scene.volumes.lit_volumes(&frame)?;
     if let Some(warning) = sun_disk_clip_warning(&frame.atmosphere) {
         eprintln!("warning: {warning}");
@@ -67,6 +68,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         clouds.set_up(&mut renderer, &frame)?;
     }
     renderer.set_volumes(volumes)?;
+    renderer.set_volumes_divisor(divisor)?;
     let start = Instant::now();
     let plan = renderer.render(&frame)?;
     let elapsed = start.elapsed();

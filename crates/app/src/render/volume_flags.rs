@@ -6,6 +6,7 @@
 use crate::table_cache_dir::table_cache;
 use anyhow::{Context, bail};
 use atmosphere_core::hydrometeors::forward_peak::ForwardPeak;
+use atmosphere_core::hydrometeors::reduced::check_divisor;
 use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::hydrometeors::scene::{
     CirrusSettings, DEFAULT_WAVELENGTHS, DeckSettings, RainShaftSettings, VolumeOptics, lit_volume,
@@ -120,6 +121,10 @@ pub struct VolumeFlags {
     /// sun only [default: probes].
     #[arg(long = "optics-multiple-scattering", value_name = "ORDERS", value_enum)]
     pub multiple_scattering: Option<MultipleScattering>,
+    /// The volumes marched for one pixel in N x N and upsampled where the rays' paths
+    /// through them agree (the rest marched per pixel), 1 to 4 [default: 1].
+    #[arg(long = "optics-resolution-divisor", value_name = "N")]
+    pub resolution_divisor: Option<u32>,
 }
 
 impl VolumeFlags {
@@ -161,6 +166,7 @@ impl VolumeFlags {
             forward_peak: flags.forward_peak.or(self.forward_peak),
             sky_light: flags.sky_light.or(self.sky_light),
             multiple_scattering: flags.multiple_scattering.or(self.multiple_scattering),
+            resolution_divisor: flags.resolution_divisor.or(self.resolution_divisor),
         }
     }
 
@@ -242,6 +248,12 @@ impl VolumeFlags {
         Ok(volumes)
     }
 
+    /// The divisor the volumes are marched at (1 by default), checked; the error names
+    /// the flag.
+    pub fn divisor(&self) -> anyhow::Result<u32> {
+        check_divisor(self.resolution_divisor.unwrap_or(1)).context("--optics-resolution-divisor")
+    }
+
     /// The volumes of `frame` ([`VolumeFlags::volumes`]), lit by its model on the CPU
     /// with their phase tables (from the table cache, or built: seconds to minutes);
     /// errors name the flag.
@@ -306,5 +318,19 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("many") && e.contains("probes"), "{e}");
+        let flags: VolumeFlags = toml::from_str("resolution_divisor = 3").unwrap();
+        assert_eq!(flags.divisor().unwrap(), 3);
+        assert_eq!(VolumeFlags::default().divisor().unwrap(), 1);
+        let e = VolumeFlags {
+            resolution_divisor: Some(9),
+            ..VolumeFlags::default()
+        }
+        .divisor()
+        .unwrap_err();
+        let e = format!("{e:#}");
+        assert!(
+            e.contains("--optics-resolution-divisor") && e.contains('9'),
+            "{e}"
+        );
     }
 }

@@ -163,5 +163,13 @@ pub fn show(ui: &mut egui::Ui, optics: &mut OpticsSettings, building: bool) {
             ui.radio_value(&mut optics.multiple_scattering, none, none.name())
                 .on_hover_text("The sun's light scattered once only (darker thick volumes)");
         });
+        ui.add(
+            egui::Slider::new(&mut optics.resolution_divisor, 1..=4)
+                .text("resolution divisor"),
+        )
+        .on_hover_text(
+            "The volumes marched for one pixel in N x N and upsampled where the rays' \
+             paths through them agree; 1 marches every pixel",
+        );
     });
 }

@@ -18,6 +18,9 @@ pub const VIEWER_WAVELENGTHS: usize = 16;
 /// Rays per wavelength of the viewer's cirrus: a fifth of `atmos render`'s, for the
 /// same reason (fainter rings of noise around the sun show).
 pub const VIEWER_CIRRUS_RAYS: usize = 200_000;
+/// The viewer's volumes marched for one pixel in 3 x 3 by default, the interactive
+/// setting (docs/optics-rendering.md, "Cost").
+pub const VIEWER_RESOLUTION_DIVISOR: u32 = 3;
 
 /// The small drops' effective radius offered when they are first turned on, um: the
 /// shipped scene's (`assets/scenes/optics/rainbow_small_drops.toml`).
@@ -61,6 +64,8 @@ pub struct OpticsSettings {
     pub sky_light: SkyLight,
     /// Whether the march adds the sun's light scattered more than once.
     pub multiple_scattering: MultipleScattering,
+    /// One pixel in N x N of the volumes marched, the rest upsampled, in [1, 4].
+    pub resolution_divisor: u32,
 }
 
 impl Default for OpticsSettings {
@@ -84,6 +89,7 @@ impl Default for OpticsSettings {
             forward_peak: ForwardPeak::default(),
             sky_light: SkyLight::default(),
             multiple_scattering: MultipleScattering::default(),
+            resolution_divisor: VIEWER_RESOLUTION_DIVISOR,
         }
     }
 }
@@ -115,6 +121,7 @@ impl OpticsSettings {
             forward_peak: Some(self.forward_peak),
             sky_light: Some(self.sky_light),
             multiple_scattering: Some(self.multiple_scattering),
+            resolution_divisor: Some(self.resolution_divisor),
             ..VolumeFlags::default()
         }
     }
@@ -171,6 +178,8 @@ mod tests {
         optics.sky_light = SkyLight::Horizontal;
         assert_eq!(optics.flags().sky_light, Some(SkyLight::Horizontal));
         assert_eq!(stored.multiple_scattering, MultipleScattering::Probes);
+        assert_eq!(stored.resolution_divisor, VIEWER_RESOLUTION_DIVISOR);
+        assert_eq!(optics.flags().divisor().unwrap(), VIEWER_RESOLUTION_DIVISOR);
         optics.multiple_scattering = MultipleScattering::None;
         assert_eq!(
             optics.flags().multiple_scattering,

@@ -86,8 +86,13 @@ impl OpticsState {
         frame: &Frame,
         settings: &OpticsSettings,
     ) -> anyhow::Result<bool> {
+        renderer.set_volumes_divisor(settings.resolution_divisor)?;
         let wanted = MadeFor {
-            settings: settings.clone(),
+            // The divisor is the renderer's, not the volumes': changing it builds nothing.
+            settings: OpticsSettings {
+                resolution_divisor: 1,
+                ..settings.clone()
+            },
             model: frame.model,
             atmosphere: frame.atmosphere.clone(),
             model_settings: frame.settings.clone(),

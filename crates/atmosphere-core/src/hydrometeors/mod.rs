@@ -19,6 +19,7 @@ pub mod drop_rays;
 pub mod error;
 pub mod forward_peak;
 pub mod mie_droplets;
+pub mod reduced;
 pub mod reference;
 pub mod render;
 pub mod scene;

@@ -194,20 +194,55 @@ pub fn composite_in_steps(
     atmosphere: &Atmosphere,
     extinction: &[[f64; 3]; 3],
     volumes: &[LitVolume],
-    (origin, direction, max_distance_m): (DVec3, DVec3, f64),
+    ray: (DVec3, DVec3, f64),
     full: [f64; 3],
     steps: usize,
 ) -> [f64; 3] {
+    composite_terms(atmosphere, extinction, volumes, ray, steps).over(full)
+}
+
+/// What the volumes make of the pixel behind them, L = A L_full + B per channel:
+/// the composite is linear in L_full.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CompositeTerms {
+    pub times_full: [f64; 3],
+    pub added: [f64; 3],
+}
+
+impl CompositeTerms {
+    /// Nothing in front of the pixel.
+    pub const NONE: CompositeTerms = CompositeTerms {
+        times_full: [1.0; 3],
+        added: [0.0; 3],
+    };
+
+    /// The pixel `full` seen through these terms.
+    pub fn over(&self, full: [f64; 3]) -> [f64; 3] {
+        std::array::from_fn(|c| self.times_full[c] * full[c] + self.added[c])
+    }
+}
+
+/// The composite's terms for the ray `(origin, direction, max_distance_m)`, the
+/// volumes marched in `steps` steps, the farthest first.
+pub fn composite_terms(
+    atmosphere: &Atmosphere,
+    extinction: &[[f64; 3]; 3],
+    volumes: &[LitVolume],
+    (origin, direction, max_distance_m): (DVec3, DVec3, f64),
+    steps: usize,
+) -> CompositeTerms {
     let mut met: Vec<VolumeSegment> = volumes
         .iter()
         .filter_map(|v| march_in_steps(v, origin, direction, max_distance_m, steps))
         .collect();
     met.sort_by(|a, b| b.entry_m.total_cmp(&a.entry_m));
-    met.iter().fold(full, |behind, s| {
+    met.iter().fold(CompositeTerms::NONE, |behind, s| {
         let front = front_transmittance(atmosphere, extinction, origin, direction, s.entry_m);
-        std::array::from_fn(|c| {
-            behind[c] * (1.0 - front[c] * (1.0 - s.transmittance[c])) + front[c] * s.radiance[c]
-        })
+        let keep: [f64; 3] = std::array::from_fn(|c| 1.0 - front[c] * (1.0 - s.transmittance[c]));
+        CompositeTerms {
+            times_full: std::array::from_fn(|c| behind.times_full[c] * keep[c]),
+            added: std::array::from_fn(|c| behind.added[c] * keep[c] + front[c] * s.radiance[c]),
+        }
     })
 }
 

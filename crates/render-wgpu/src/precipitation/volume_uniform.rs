@@ -47,13 +47,16 @@ pub struct VolumeUniform {
     pub lobes: [u32; 4],
 }
 
-/// WGSL `VolumesParams`, 304 bytes.
+/// WGSL `VolumesParams`, 320 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VolumesUniform {
     /// x: how many volumes; y: 1 when the frame's rays end on its surface; z, w: the
     /// column and row of the first pixel the pass runs over.
     pub count: [u32; 4],
+    /// x: the divisor N (1: every pixel marched); y, z: the first reduced pixel the
+    /// reduced pass runs over.
+    pub reduction: [u32; 4],
     pub volumes: [VolumeUniform; MAX_VOLUMES],
 }
 
