@@ -396,3 +396,48 @@ fn no_extinction_is_the_air_alone_and_plates_are_refused() {
     let e = ChannelSampler::new(&plates).unwrap_err().to_string();
     assert!(e.contains("falling plates"), "{e}");
 }
+
+/// The probes of the thickest shaft the settings allow (300 mm/h, 50 km across, 20 km
+/// high: an optical radius of about 300) and of an empty one are finite and not
+/// negative but by a little (an empty one's all zero): their paths are cut at `PROBE_MAX_SCATTERINGS` and their strata at the
+/// collision budget, so the estimate ends.
+#[test]
+fn the_probes_of_the_thickest_and_an_empty_shaft_are_finite() {
+    let s = setup();
+    let sampler = ChannelSampler::new(&s.phase).unwrap();
+    let ground = s.atmosphere.bottom_radius_m;
+    let foot = (s.camera + DVec3::Y * 60_000.0).normalize() * ground;
+    let thick = Volume::rain_shaft(foot, ground, 50_000.0, 20_000.0, 300.0).unwrap();
+    let empty = Volume {
+        extinction_per_m: 0.0,
+        ..thick
+    };
+    for (volume, lit) in [(thick, true), (empty, false)] {
+        let clock = std::time::Instant::now();
+        let orders = SunOrders::estimate(&volume, &sampler, s.sun, volume.light_point(s.camera));
+        eprintln!(
+            "extinction {:.2e} m^-1: probes in {:.2?}",
+            volume.extinction_per_m,
+            clock.elapsed()
+        );
+        let all: Vec<f64> = orders.moments.iter().flatten().flatten().copied().collect();
+        assert!(all.iter().all(|v| v.is_finite()));
+        let j_max = orders
+            .moments
+            .iter()
+            .flatten()
+            .map(|m| m[0])
+            .fold(f64::NEG_INFINITY, f64::max);
+        // A channel's table may dip below zero where a bow's colour is saturated, and
+        // its J with it, a little.
+        let j_min = orders
+            .moments
+            .iter()
+            .flatten()
+            .map(|m| m[0])
+            .fold(f64::INFINITY, f64::min);
+        eprintln!("J from {j_min:e} to {j_max:e}");
+        assert!(j_min >= -1e-2 * j_max.max(0.0), "{j_min} {j_max}");
+        assert_eq!(j_max > 0.0, lit, "{j_max}");
+    }
+}

@@ -37,7 +37,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::channel_phase::ChannelPhase;
-use super::reference::path::{UniformSun, VolumePaths, trace_from};
+use super::reference::path::{UniformSun, VolumePaths, trace_from_cut};
 use super::reference::phase::ChannelSampler;
 use super::volumes::{Shape, Volume};
 use crate::numerics::sampling::{Sampler, mix_seed};
@@ -47,8 +47,15 @@ use crate::optics::legendre_series::LegendreSeries;
 pub const SHAFT_PROBES: [usize; 3] = [4, 6, 8];
 /// A layer's probes across its thickness.
 pub const LAYER_PROBES: usize = 16;
-/// Directions per probe and channel: cosine strata times azimuth strata.
+/// Directions per probe and channel: cosine strata times azimuth strata, at most; a
+/// quarter and a sixteenth of them where the volume is thick ([`probe_strata`]).
 pub const PROBE_STRATA: [usize; 2] = [32, 64];
+/// A probe's paths are cut after this many collisions (the light of longer paths, deep
+/// in an optically thick volume, left out).
+pub const PROBE_MAX_SCATTERINGS: u32 = 128;
+/// The collisions the probes of one volume may take, about (the strata are cut to keep
+/// within it).
+pub const PROBE_COLLISION_BUDGET: f64 = 2e7;
 const SEED: u64 = 0x0b5e_55ed;
 /// The lobe table's G from 0 to [`LOBE_G_MAX`] in equal steps, and its angles alpha from
 /// 0 to 180 degrees in equal steps (nodes at both ends).
@@ -191,12 +198,15 @@ impl SunOrders {
             environment: None,
             sun_direction: sun,
         };
-        let moments = (0..dims.iter().product::<usize>())
+        let probes = dims.iter().product::<usize>();
+        let strata = probe_strata(volume, phase, probes);
+        let moments = (0..probes)
             .into_par_iter()
             .map(|n| {
                 let cell = [n % dims[0], n / dims[0] % dims[1], n / (dims[0] * dims[1])];
                 let x = probe_point(volume, sun, anchor, dims, cell);
-                std::array::from_fn(|c| probe_moments(&paths, c, x, mix_seed(&[SEED, n as u64])))
+                let seed = mix_seed(&[SEED, n as u64]);
+                std::array::from_fn(|c| probe_moments(&paths, c, x, (seed, strata)))
             })
             .collect();
         SunOrders {
@@ -307,12 +317,44 @@ pub fn lobe_table(phase: &ChannelPhase) -> Vec<[f64; 3]> {
     table
 }
 
-/// J, H_x, H_y, H_z of channel `c` at `x` from [`PROBE_STRATA`] directions, one per
-/// stratum of the cosine and the azimuth.
-fn probe_moments(paths: &VolumePaths, c: usize, x: DVec3, seed: u64) -> [f64; 4] {
+/// The probes' strata for `volume`: [`PROBE_STRATA`], halved on both axes while the
+/// collisions their paths are expected to take pass [`PROBE_COLLISION_BUDGET`] (to a
+/// sixteenth at most). A path in a volume of optical size tau (the shaft's radius or
+/// height, the layer's thickness, whichever is less, at the least truncated extinction)
+/// collides about 1 + tau^2 times before it leaves (a random walk), at most
+/// [`PROBE_MAX_SCATTERINGS`].
+fn probe_strata(volume: &Volume, phase: &ChannelSampler, probes: usize) -> [usize; 2] {
+    let size = match volume.shape {
+        Shape::Shaft {
+            radius_m, height_m, ..
+        } => radius_m.min(height_m),
+        Shape::Layer(shell) => shell.top_radius_m - shell.base_radius_m,
+    };
+    let least_cut = phase.peak.peak_fraction.iter().copied().fold(1.0, f64::min);
+    let tau = volume.extinction_per_m * (1.0 - least_cut) * size;
+    let collisions = (1.0 + tau * tau).min(f64::from(PROBE_MAX_SCATTERINGS));
+    let mut strata = PROBE_STRATA;
+    for _ in 0..2 {
+        let paths = (strata[0] * strata[1] * probes * 3) as f64;
+        if paths * collisions <= PROBE_COLLISION_BUDGET {
+            break;
+        }
+        strata = strata.map(|n| n / 2);
+    }
+    strata
+}
+
+/// J, H_x, H_y, H_z of channel `c` at `x` from `strata` directions, one per stratum of
+/// the cosine and the azimuth, their sampler seeded by `seed`.
+fn probe_moments(
+    paths: &VolumePaths,
+    c: usize,
+    x: DVec3,
+    (seed, strata): (u64, [usize; 2]),
+) -> [f64; 4] {
     let beta = paths.extinction(c);
     let mut sampler = Sampler::new(mix_seed(&[seed, c as u64]));
-    let [m_strata, a_strata] = PROBE_STRATA;
+    let [m_strata, a_strata] = strata;
     let mut sum = [0.0; 4];
     for m in 0..m_strata {
         for a in 0..a_strata {
@@ -327,7 +369,8 @@ fn probe_moments(paths: &VolumePaths, c: usize, x: DVec3, seed: u64) -> [f64; 4]
             }
             let t = -(1.0 - sampler.uniform() * (1.0 - transmittance)).ln() / beta;
             let y = x - w * t.min(edge);
-            let [single, multiple, _] = trace_from(paths, c, y, -w, &mut sampler);
+            let [single, multiple, _] =
+                trace_from_cut(paths, c, (y, -w), &mut sampler, PROBE_MAX_SCATTERINGS);
             let light = (single + multiple) * (1.0 - transmittance);
             sum[0] += light;
             sum[1] += light * w.x;

@@ -121,16 +121,28 @@ impl PathLight {
 pub fn trace_from(
     paths: &VolumePaths,
     c: usize,
-    mut x: DVec3,
-    mut d: DVec3,
+    x: DVec3,
+    d: DVec3,
     sampler: &mut Sampler,
+) -> [f64; 3] {
+    trace_from_cut(paths, c, (x, d), sampler, MAX_SCATTERINGS)
+}
+
+/// [`trace_from`] with the path cut after `max_scatterings` collisions (the light of
+/// longer paths left out).
+pub fn trace_from_cut(
+    paths: &VolumePaths,
+    c: usize,
+    (mut x, mut d): (DVec3, DVec3),
+    sampler: &mut Sampler,
+    max_scatterings: u32,
 ) -> [f64; 3] {
     let beta = paths.extinction(c);
     let s = paths.sun_direction;
     let mut weight = 1.0;
     let [mut sun_single, mut sun_multiple] = [0.0; 2];
     let mut light = [0.0; 3];
-    for order in 0..MAX_SCATTERINGS {
+    for order in 0..max_scatterings {
         paths.sun.irradiance(x, s, &mut light);
         if light[c] > 0.0 {
             let shadow = (-beta * paths.volume.exit_distance(x, s)).exp();
