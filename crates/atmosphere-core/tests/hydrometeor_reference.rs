@@ -422,20 +422,11 @@ fn the_probes_of_the_thickest_and_an_empty_shaft_are_finite() {
         );
         let all: Vec<f64> = orders.moments.iter().flatten().flatten().copied().collect();
         assert!(all.iter().all(|v| v.is_finite()));
-        let j_max = orders
-            .moments
-            .iter()
-            .flatten()
-            .map(|m| m[0])
-            .fold(f64::NEG_INFINITY, f64::max);
         // A channel's table may dip below zero where a bow's colour is saturated, and
         // its J with it, a little.
-        let j_min = orders
-            .moments
-            .iter()
-            .flatten()
-            .map(|m| m[0])
-            .fold(f64::INFINITY, f64::min);
+        let j: Vec<f64> = orders.moments.iter().flatten().map(|m| m[0]).collect();
+        let j_max = j.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let j_min = j.iter().copied().fold(f64::INFINITY, f64::min);
         eprintln!("J from {j_min:e} to {j_max:e}");
         assert!(j_min >= -1e-2 * j_max.max(0.0), "{j_min} {j_max}");
         assert_eq!(j_max > 0.0, lit, "{j_max}");
