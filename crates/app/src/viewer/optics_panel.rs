@@ -157,19 +157,18 @@ pub fn show(ui: &mut egui::Ui, optics: &mut OpticsSettings, building: bool) {
             let probes = MultipleScattering::Probes;
             ui.radio_value(&mut optics.multiple_scattering, probes, probes.name())
                 .on_hover_text(
-                    "The sun's light scattered two and more times inside the volumes,                      from a grid of probes estimated once per volume and sun (a tenth to                      a third of a second)",
+                    "The sun's light scattered two and more times inside the volumes, \
+                     from a grid of probes estimated once per volume and sun (a tenth to \
+                     a third of a second)",
                 );
             let none = MultipleScattering::None;
             ui.radio_value(&mut optics.multiple_scattering, none, none.name())
                 .on_hover_text("The sun's light scattered once only (darker thick volumes)");
         });
-        ui.add(
-            egui::Slider::new(&mut optics.resolution_divisor, 1..=4)
-                .text("resolution divisor"),
-        )
-        .on_hover_text(
-            "The volumes marched for one pixel in N x N and upsampled where the rays' \
+        ui.add(egui::Slider::new(&mut optics.resolution_divisor, 1..=4).text("resolution divisor"))
+            .on_hover_text(
+                "The volumes marched for one pixel in N x N and upsampled where the rays' \
              paths through them agree; 1 marches every pixel",
-        );
+            );
     });
 }

@@ -52,7 +52,7 @@ pub fn sky_angles_deg(seen: DVec3, sun: DVec3, up: DVec3) -> (f64, f64) {
 
 /// `i` and the fraction `t` for reading `n` bins of `width` at `x` (a position from the
 /// first bin's start), linear between centres, the end bins' values beyond them.
-fn between_centres(x: f64, width: f64, n: usize) -> (usize, f64) {
+pub(super) fn between_centres(x: f64, width: f64, n: usize) -> (usize, f64) {
     let u = (x / width - 0.5).clamp(0.0, (n - 1) as f64);
     let i = (u.floor() as usize).min(n - 2);
     (i, u - i as f64)
@@ -120,20 +120,17 @@ impl ChannelPhase {
         std::array::from_fn(|c| v[i][c] * (1.0 - t) + v[i + 1][c] * t)
     }
 
-    /// g_c, the mean cosine of the scattering angle per channel (a table by angle), by
-    /// the rule its unit integral holds by: each bin's value times its ring's solid
-    /// angle, at the bin's centre.
-    pub fn asymmetry(&self) -> [f64; 3] {
-        let mut g = [0.0; 3];
-        for (b, v) in self.values.iter().enumerate() {
-            let [from, to] = [b, b + 1].map(|k| (k as f64 * self.bin_deg).to_radians());
-            let ring = 2.0 * std::f64::consts::PI * (from.cos() - to.cos());
-            let centre = ((b as f64 + 0.5) * self.bin_deg).to_radians().cos();
-            for c in 0..3 {
-                g[c] += v[c] * ring * centre;
-            }
-        }
-        g
+    /// The rule the table's unit integral holds by (a table by angle): per bin, the
+    /// cosine of its centre and its width in cosine, so that the integral of P over
+    /// the sphere is 2 pi sum_b w_b P_b.
+    pub fn cosine_rule(&self) -> Vec<(f64, f64)> {
+        (0..self.values.len())
+            .map(|b| {
+                let [from, to] = [b, b + 1].map(|k| (k as f64 * self.bin_deg).to_radians());
+                let centre = ((b as f64 + 0.5) * self.bin_deg).to_radians().cos();
+                (centre, from.cos() - to.cos())
+            })
+            .collect()
     }
 
     /// The value for light seen along the unit `seen` (a view ray's direction) with the

@@ -57,12 +57,12 @@ impl PeakTruncation {
     pub fn of(phase: &ChannelPhase) -> PeakTruncation {
         let edge = phase.value_at(FORWARD_PEAK_DEG);
         let mut excess = [0.0; 3];
-        for (b, v) in phase.values.iter().enumerate() {
+        let rule = phase.cosine_rule();
+        for (b, (v, (_, width))) in phase.values.iter().zip(rule).enumerate() {
             if (b as f64 + 0.5) * phase.bin_deg >= FORWARD_PEAK_DEG {
                 break;
             }
-            let [from, to] = [b, b + 1].map(|k| (k as f64 * phase.bin_deg).to_radians());
-            let ring = 2.0 * std::f64::consts::PI * (from.cos() - to.cos());
+            let ring = 2.0 * std::f64::consts::PI * width;
             for c in 0..3 {
                 excess[c] += (v[c] - edge[c]) * ring;
             }

@@ -36,7 +36,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::channel_phase::ChannelPhase;
+use super::channel_phase::{ChannelPhase, between_centres};
 use super::reference::path::{UniformSun, VolumePaths, trace_from_cut};
 use super::reference::phase::ChannelSampler;
 use super::volumes::{Shape, Volume};
@@ -167,14 +167,12 @@ fn probe_point(
 }
 
 /// `i` and the fraction `t` for reading `n` cells at the fraction `f` of their extent,
-/// linear between centres.
-fn between_centres(f: f64, n: usize) -> (usize, f64) {
+/// linear between centres (one cell: itself).
+fn cell_between(f: f64, n: usize) -> (usize, f64) {
     if n < 2 {
         return (0, 0.0);
     }
-    let u = (f * n as f64 - 0.5).clamp(0.0, (n - 1) as f64);
-    let i = (u.floor() as usize).min(n - 2);
-    (i, u - i as f64)
+    between_centres(f, 1.0 / n as f64, n)
 }
 
 impl SunOrders {
@@ -219,7 +217,7 @@ impl SunOrders {
     /// J, H_x, H_y, H_z per channel at `x` in `volume` (trilinear between the probes).
     pub fn moments_at(&self, volume: &Volume, sun: DVec3, x: DVec3) -> [[f64; 4]; 3] {
         let f = grid_fractions(volume, sun, x);
-        let [(i, s), (j, t), (k, u)] = std::array::from_fn(|a| between_centres(f[a], self.dims[a]));
+        let [(i, s), (j, t), (k, u)] = std::array::from_fn(|a| cell_between(f[a], self.dims[a]));
         let mut out = [[0.0; 4]; 3];
         for (dk, wk) in [(0, 1.0 - u), (1, u)] {
             for (dj, wj) in [(0, 1.0 - t), (1, t)] {
@@ -258,21 +256,15 @@ impl SunOrders {
             };
             let g = (length / j).min(LOBE_G_MAX) / LOBE_G_MAX * (LOBE_G_STEPS - 1) as f64;
             let a = cos.clamp(-1.0, 1.0).acos() / PI * (LOBE_ANGLES - 1) as f64;
-            let (gi, gt) = node_between(g, LOBE_G_STEPS);
-            let (ai, at) = node_between(a, LOBE_ANGLES);
+            // Nodes at both ends: a node is a bin of width 1 centred on it.
+            let (gi, gt) = between_centres(g + 0.5, 1.0, LOBE_G_STEPS);
+            let (ai, at) = between_centres(a + 0.5, 1.0, LOBE_ANGLES);
             let v = |r: usize, k: usize| self.lobes[r * LOBE_ANGLES + k][c];
             let low = v(gi, ai) * (1.0 - at) + v(gi, ai + 1) * at;
             let high = v(gi + 1, ai) * (1.0 - at) + v(gi + 1, ai + 1) * at;
             j * (low * (1.0 - gt) + high * gt).max(0.0)
         })
     }
-}
-
-/// `i` and the fraction for reading `n` nodes at the node position `u`.
-fn node_between(u: f64, n: usize) -> (usize, f64) {
-    let u = u.clamp(0.0, (n - 1) as f64);
-    let i = (u.floor() as usize).min(n - 2);
-    (i, u - i as f64)
 }
 
 /// The light a medium of table `phase` scatters out of a diffuse radiance shaped as a
@@ -283,16 +275,8 @@ fn node_between(u: f64, n: usize) -> (usize, f64) {
 /// chi_l,c the table's coefficients. Rows G at [`LOBE_G_STEPS`] steps to
 /// [`LOBE_G_MAX`], columns alpha at [`LOBE_ANGLES`] steps over 0 to 180 degrees.
 pub fn lobe_table(phase: &ChannelPhase) -> Vec<[f64; 3]> {
+    let rule = phase.cosine_rule();
     let series: [LegendreSeries; 3] = std::array::from_fn(|c| {
-        let rule: Vec<(f64, f64)> = (0..phase.values.len())
-            .map(|b| {
-                let [from, to] = [b, b + 1].map(|k| (k as f64 * phase.bin_deg).to_radians());
-                (
-                    ((b as f64 + 0.5) * phase.bin_deg).to_radians().cos(),
-                    from.cos() - to.cos(),
-                )
-            })
-            .collect();
         let values: Vec<f64> = phase.values.iter().map(|v| v[c]).collect();
         LegendreSeries::from_gauss_rule(&rule, &values, LOBE_DEGREE)
     });

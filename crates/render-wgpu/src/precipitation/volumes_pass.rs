@@ -23,11 +23,11 @@ use crate::gpu::pipeline::{
 };
 
 use super::screen_rect::volumes_rect;
+use super::volume_uniform::{VolumesUniform, pack};
 
 /// The reduced pass's images: terms and spans in f32 (a layer's entry may pass f16's
 /// range).
 const REDUCED_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-use super::volume_uniform::{VolumesUniform, pack};
 
 /// What one frame's pass reads and writes.
 #[derive(Debug)]
@@ -52,9 +52,9 @@ pub struct VolumesPass {
     params: wgpu::Buffer,
     /// The model's pixels under the volumes (remade when the size changes).
     full: Option<wgpu::Texture>,
-    /// The reduced pass's terms and spans, and the divisor they are sized for (remade
-    /// when the size or the divisor changes; a texel each at divisor 1).
-    reduced: Option<([wgpu::Texture; 2], u32)>,
+    /// The reduced pass's terms and spans ([`reduced_size`]; remade when the size or
+    /// the divisor changes; a texel each at divisor 1).
+    reduced: Option<[wgpu::Texture; 2]>,
 }
 
 /// The reduced images' size for frames of `size` at `divisor`: a reduced pixel past the
@@ -123,11 +123,7 @@ impl VolumesPass {
             ));
         }
         let want = reduced_size(size, divisor);
-        let fits = self
-            .reduced
-            .as_ref()
-            .is_some_and(|([a, _], _)| (a.width(), a.height()) == want);
-        if !fits {
+        if self.reduced.as_ref().map(|[a, _]| (a.width(), a.height())) != Some(want) {
             let image = |label| {
                 texture_2d(
                     &gpu.device,
@@ -137,16 +133,10 @@ impl VolumesPass {
                     wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::STORAGE_BINDING,
                 )
             };
-            self.reduced = Some((
-                [
-                    image("volumes reduced terms"),
-                    image("volumes reduced light"),
-                ],
-                divisor,
-            ));
-        }
-        if let Some((_, d)) = self.reduced.as_mut() {
-            *d = divisor;
+            self.reduced = Some([
+                image("volumes reduced terms"),
+                image("volumes reduced light"),
+            ]);
         }
     }
 
@@ -166,18 +156,18 @@ impl VolumesPass {
         };
         let (mut uniform, bins) = pack(scene.volumes, frame.camera_position_m, scene.has_surface)?;
         uniform.count[2..].copy_from_slice(&rect.origin);
-        let Some(([reduced_a, reduced_b], divisor)) = self.reduced.as_ref() else {
-            return Err(RenderError::Frame(
-                "the volumes pass has no reduced images of the frame's size".into(),
-            ));
-        };
-        if *divisor != scene.divisor {
+        let divisor = scene.divisor;
+        let fitted = (frame.width, frame.height);
+        let Some([reduced_a, reduced_b]) = self
+            .reduced
+            .as_ref()
+            .filter(|[a, _]| (a.width(), a.height()) == reduced_size(fitted, divisor))
+        else {
             return Err(RenderError::Frame(format!(
-                "the volumes pass is fitted for divisor {divisor}, the frame asks for {}",
-                scene.divisor
+                "the volumes pass has no reduced images for {}x{} at divisor {divisor}",
+                frame.width, frame.height
             )));
-        }
-        let divisor = *divisor;
+        };
         // The reduced pixels the rectangle's pixels read: from the one at or before its
         // first pixel to the one at or past its last.
         let first = rect.origin.map(|o| o / divisor);
