@@ -178,6 +178,57 @@ fn the_gpu_upsamples_its_reduced_walk_as_the_cpu_does() {
     }
 }
 
+/// The samples weighted by g at each and counted on each ray from its own f_l
+/// (`weighted_samples`, `subplanes_per_ray`; not the paper's): the walk, the drawn planes
+/// (weighted: drawn planes cannot count per ray) and the reduced walk, each within the
+/// parity, and both settings change the picture.
+#[test]
+fn samples_weighted_and_counted_per_ray_match_the_cpu() {
+    let Some(gpu) = gpu_or_skip("beams qtable weighted samples") else {
+        return;
+    };
+    let pass = QtablePass::new(&gpu).unwrap();
+    for (name, width, height) in [
+        ("sphere_spotlight.toml", 40, 60),
+        ("stained_glass_room.toml", 64, 48),
+        ("teapot_spotlight.toml", 64, 48),
+        ("point_lamp.toml", 64, 36),
+    ] {
+        let s = shipped_scene(name, width, height);
+        let plain = cpu_pixels(&qtable_with(&s, &["epsilon=0.01"]), &s);
+        for options in [
+            &["weighted_samples=true", "subplanes_per_ray=true"][..],
+            &["weighted_samples=true", "gpu_raster_planes=true"],
+            &["subplanes_per_ray=true"],
+        ] {
+            let method = qtable_with(&s, &[&["epsilon=0.01"], options].concat());
+            let (cpu, gpu_image) = both(&gpu, &pass, &method, &s);
+            let what = format!("{name}, {options:?}");
+            check_relative(&what, &cpu, &gpu_image, MAX_RELATIVE_ERROR);
+            let (changed, _) = differing(&plain, &cpu, 1e-3);
+            println!("{what}: {changed} pixels changed by the settings");
+            assert!(changed > 0, "{what}: the settings changed nothing");
+        }
+    }
+    let s = shipped_scene("sphere_spotlight.toml", 64, 96);
+    let reduced = qtable_with(
+        &s,
+        &[
+            "epsilon=0.005",
+            "weighted_samples=true",
+            "subplanes_per_ray=true",
+            "resolution_divisor=4",
+        ],
+    );
+    let (cpu, gpu_image) = both(&gpu, &pass, &reduced, &s);
+    let (apart, worst) = differing(&cpu, &gpu_image, MAX_RELATIVE_ERROR);
+    println!("reduced: {apart} pixels beyond the parity, largest {worst:.2e}");
+    assert!(
+        apart * 100 <= cpu.len() && worst < 0.1,
+        "{apart} apart, {worst}"
+    );
+}
+
 #[test]
 fn a_reduced_walk_with_meshes_is_refused_on_the_gpu() {
     let Some(gpu) = gpu_or_skip("beams qtable upsample with meshes") else {

@@ -312,6 +312,14 @@ fn epsilon_zero_and_extreme_media_stay_finite_and_bad_settings_are_named() {
             "gpu_raster_planes=1: expected true or false",
         ),
         (
+            &["subplanes_per_ray=true", "gpu_raster_planes=true"][..],
+            "subplanes_per_ray=true with gpu_raster_planes=true",
+        ),
+        (
+            &["weighted_samples=yes"][..],
+            "weighted_samples=yes: expected true or false",
+        ),
+        (
             &["delta_min_m=1e-4", "delta_max_m=1e-4", "d0_m=1e7"][..],
             "planes 0.0001 m apart; at most 65536",
         ),

@@ -10,12 +10,16 @@
 // distribution, light map and shadow map) over the samples in front of the ray's end,
 // times f_l of the interval from the table (`q_table.wgsl`). Additive blending sums
 // them. The interval on an oblique ray is dt / cos long; a plane within a thousandth of
-// the ray's length of its end is left out, as on the CPU.
+// the ray's length of its end is left out, as on the CPU. With `weighted_samples` (not
+// the paper's) a fragment's share is g at its sample over the sum of g at the visible
+// samples (`sample_weights.wgsl`) instead of one over their count. Drawn planes are the
+// same for every pixel, so `subplanes_per_ray` is refused here (`qtable_pass.rs`).
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/qtable_bindings.wgsl
 #import shafts/beams/plane_light.wgsl
 #import shafts/beams/q_table.wgsl
+#import shafts/beams/sample_weights.wgsl
 #import shafts/beams/screen_rectangle.wgsl
 
 struct PlaneSample {
@@ -65,6 +69,20 @@ fn fragment(in: PlaneSample) -> @location(0) vec4<f32> {
     if !lit.lit {
         discard;
     }
-    let f_h = lit.light / f32(visible);
-    return vec4<f32>(f_h * f_l(light, dir, t_k, span), 0.0);
+    var share = vec3<f32>(1.0 / f32(visible));
+    if qtable.interval_m.y > 0.5 {
+        var base = -1.0;
+        var own = vec3<f32>(0.0);
+        var weight_sum = vec3<f32>(0.0);
+        for (var j = 0u; j < visible; j++) {
+            let g = smooth_factor(light, dir, t_k + f32(j) * spacing, base);
+            base = select(base, g.w, base < 0.0);
+            weight_sum += g.xyz;
+            if j == in.plane.z {
+                own = g.xyz;
+            }
+        }
+        share = select(vec3<f32>(0.0), own / weight_sum, weight_sum > vec3<f32>(0.0));
+    }
+    return vec4<f32>(lit.light * share * f_l(light, dir, t_k, span), 0.0);
 }

@@ -2,7 +2,9 @@
 // group 0), laid out as render-wgpu's `shafts/beams/qtable_pass.rs` packs them.
 
 struct QtableParams {
-    // x: the plane interval dt, m.
+    // x: the plane interval dt, m; y: 1 where each sample is weighted by g at it
+    // (`weighted_samples`); z: the most samples of an interval (1 + `max_subplanes`);
+    // w: 1 where each ray counts its own sub-planes (`subplanes_per_ray`).
     interval_m: vec4<f32>,
     // The ranges the table's nodes span evenly: asinh(u / dt) (xy) and ln v (zw).
     ranges: vec4<f32>,

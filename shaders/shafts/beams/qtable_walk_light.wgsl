@@ -9,12 +9,15 @@
 // a parallel light's half-space (cut to its beam's rectangle where it has one); a point
 // light's every interval. f_l (Eq. 7, `q_table.wgsl`) is read once per interval instead
 // of once per sample, what the ray's reads share (the table's rows at the light's
-// distance from the ray) found once per ray.
+// distance from the ray) found once per ray. With `weighted_samples` each sample is
+// weighted by g at it (`sample_weights.wgsl`); with `subplanes_per_ray` each interval's
+// m comes from this ray's own f_l instead of the centre ray's m_k (both not the paper's).
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/qtable_bindings.wgsl
 #import shafts/beams/plane_light.wgsl
 #import shafts/beams/q_table.wgsl
+#import shafts/beams/sample_weights.wgsl
 
 // m_k of every light's intervals, the lights one after another, row by row.
 @group(1) @binding(3) var interval_samples: texture_2d<u32>;
@@ -71,9 +74,20 @@ fn samples_of(index: u32) -> u32 {
     return textureLoad(interval_samples, vec2<u32>(index % width, index / width), 0).x;
 }
 
+// m of an interval whose largest f_l over the wavelengths is `f` on a ray counting its
+// own sub-planes: f over the f_l one sample stands for (`unit`; 0: the most samples
+// everywhere), at least 1 and at most `most` (`LightPlanes::samples_for`).
+fn samples_for(f: f32, unit: f32, most: u32) -> u32 {
+    if unit <= 0.0 {
+        return most;
+    }
+    return u32(clamp(floor(f / unit), 1.0, f32(most)));
+}
+
 // The light `walk.x`'s sum along the camera's ray along the unit `dir` ending at
 // `t_end`: its `walk.y` intervals from depth `first_depth_m` along the view, their m_k
-// from `interval_samples` at index `walk.z` on.
+// from `interval_samples` at index `walk.z` on (or counted on this ray from the f_l one
+// sample stands for, `walk.w`'s bits).
 fn walk_light(walk: vec4<u32>, first_depth_m: f32, dir: vec3<f32>, t_end: f32) -> vec3<f32> {
     let cos_forward = dot(dir, params.camera_forward.xyz);
     let light = lights[walk.x];
@@ -83,6 +97,10 @@ fn walk_light(walk: vec4<u32>, first_depth_m: f32, dir: vec3<f32>, t_end: f32) -
         return vec3<f32>(0.0);
     }
     let dt = qtable.interval_m.x;
+    let weighted = qtable.interval_m.y > 0.5;
+    let most = u32(qtable.interval_m.z);
+    let per_ray = qtable.interval_m.w > 0.5;
+    let unit = bitcast<f32>(walk.w);
     let dt_ray = dt / cos_forward;
     // The intervals whose depths along the view meet the beam's part of the ray.
     let first = (span.x * cos_forward - first_depth_m) / dt;
@@ -100,18 +118,36 @@ fn walk_light(walk: vec4<u32>, first_depth_m: f32, dir: vec3<f32>, t_end: f32) -
             break;
         }
         let covered = min(dt_ray, t_end - t_k);
-        let m = samples_of(walk.z + k);
+        var interval_f_l = vec3<f32>(0.0);
+        var m = samples_of(walk.z + k);
+        if per_ray {
+            interval_f_l = f_l_on_ray(light, ray, dir, t_k, covered);
+            m = samples_for(max(interval_f_l.x, max(interval_f_l.y, interval_f_l.z)), unit, most);
+        }
         let spacing = dt_ray / f32(m);
         let visible = clamp(u32(ceil(covered / spacing)), 1u, m);
         var f_h = vec3<f32>(0.0);
+        var weight_sum = vec3<f32>(0.0);
+        var base = -1.0;
         var lit = false;
         for (var j = 0u; j < visible; j++) {
-            let at = plane_light(light, dir * (t_k + f32(j) * spacing));
-            f_h += at.light;
+            let t = t_k + f32(j) * spacing;
+            var weight = vec3<f32>(1.0);
+            if weighted {
+                let g = smooth_factor(light, dir, t, base);
+                weight = g.xyz;
+                base = select(base, g.w, base < 0.0);
+            }
+            weight_sum += weight;
+            let at = plane_light(light, dir * t);
+            f_h += weight * at.light;
             lit = lit || at.lit;
         }
         if lit {
-            sum += f_h / f32(visible) * f_l_on_ray(light, ray, dir, t_k, covered);
+            if !per_ray {
+                interval_f_l = f_l_on_ray(light, ray, dir, t_k, covered);
+            }
+            sum += select(vec3<f32>(0.0), f_h / weight_sum, weight_sum > vec3<f32>(0.0)) * interval_f_l;
         }
     }
     return sum;

@@ -37,8 +37,10 @@ pub const BEAM_SCENES: [&str; 4] = [
 ];
 
 /// The settings the report measures: the march at two step counts, the papers'
-/// defaults and a cheaper setting of each, and the q-table with fewer sub-planes.
-pub const BEAM_VARIANTS: [&str; 8] = [
+/// defaults and a cheaper setting of each, the q-table with fewer sub-planes, and the
+/// q-table with its samples weighted by g and counted per ray (not the paper's), walked
+/// at every pixel and at a quarter of the resolution.
+pub const BEAM_VARIANTS: [&str; 10] = [
     "march steps=32",
     "march steps=128",
     "planes2000",
@@ -47,6 +49,8 @@ pub const BEAM_VARIANTS: [&str; 8] = [
     "qtable2002 epsilon=0.1",
     "qtable2002 epsilon=1",
     "qtable2002 resolution_divisor=4",
+    "qtable2002 resolution_divisor=1 weighted_samples=true subplanes_per_ray=true epsilon=0.005",
+    "qtable2002 resolution_divisor=4 weighted_samples=true subplanes_per_ray=true epsilon=0.005 upsample_tolerance=0.3",
 ];
 
 /// The label of the reference's row of each scene (its errors zero by definition).
@@ -293,7 +297,12 @@ pub fn markdown(rows: &[BeamRow], width: u32) -> String {
          of a 1280 x 720 frame on one thread (preparation plus time per ray); GPU time of a \
          1280 x 720 frame (ms, `-` off the GPU, without timestamps or where the GPU \
          refuses the setting: a reduced walk, `resolution_divisor` above 1, in a scene \
-         with glTF meshes). Plots: \
+         with glTF meshes). A setting that names `resolution_divisor` is prepared for the \
+         1280 x 720 frame and asked at as many of its pixels, one in each block of the \
+         grid moved within it by a fixed scramble (`resolution_divisor=1`: every pixel \
+         walked, asked alike); those pixels come nearer the lights than the grid's \
+         centres, and the rays beside a light, the brightest, weigh most in the mean \
+         error (docs/beams/qtable2002.md). Plots: \
          `beams_error_vs_time.png`, `beams_error_vs_gpu_time.png`.\n"
     );
     let _ = writeln!(
@@ -471,5 +480,75 @@ mod tests {
         let scenes = ["sphere_spotlight.toml"];
         let rows = measure(&shipped_folder(), &scenes, &variants, RAYS_ACROSS, None).unwrap();
         println!("{}", markdown(&rows, RAYS_ACROSS));
+    }
+
+    #[test]
+    #[ignore = "slow: the reference, the walks and the march at up to 8191 steps"]
+    fn the_rays_that_set_the_mean_error_on_the_sphere_scene() {
+        // Every setting on the frame's pixels the reduced walks are asked at, and the
+        // rays that carry most of |L - L_ref|, with their distance from the light.
+        let variants = [
+            "qtable2002 resolution_divisor=1",
+            "qtable2002 resolution_divisor=1 epsilon=0",
+            "qtable2002 resolution_divisor=1 weighted_samples=true epsilon=0",
+            "qtable2002 resolution_divisor=1 subplanes_per_ray=true",
+            "qtable2002 resolution_divisor=1 weighted_samples=true subplanes_per_ray=true",
+            "qtable2002 resolution_divisor=1 weighted_samples=true subplanes_per_ray=true epsilon=0.005",
+            "qtable2002 resolution_divisor=1 weighted_samples=true subplanes_per_ray=true epsilon=0.002",
+            "qtable2002 resolution_divisor=4",
+            "qtable2002 resolution_divisor=4 weighted_samples=true subplanes_per_ray=true",
+            "qtable2002 resolution_divisor=4 weighted_samples=true subplanes_per_ray=true epsilon=0.005",
+            "qtable2002 resolution_divisor=4 weighted_samples=true subplanes_per_ray=true epsilon=0.005 upsample_tolerance=0.3",
+            "qtable2002 resolution_divisor=4 weighted_samples=true subplanes_per_ray=true epsilon=0.005 upsample_tolerance=0.2",
+            "march steps=2048",
+            "march steps=4096",
+            "march steps=8191",
+        ];
+        let color = SpectrumToColor::new(&RGB_WAVELENGTHS_NM).unwrap();
+        let full = BeamScene::load(&shipped_folder().join("sphere_spotlight.toml")).unwrap();
+        let mut frame = full.clone();
+        (frame.camera.width_px, frame.camera.height_px) = FRAME;
+        let mut grid = full.clone();
+        grid.camera.width_px = RAYS_ACROSS;
+        grid.camera.height_px = RAYS_ACROSS * full.camera.height_px / full.camera.width_px;
+        let rays = frame_pixel_rays(&grid.camera, &frame.camera);
+        let light = full.lights[0].position_m().unwrap();
+        let luminance = |variant: &str| {
+            let mut words = variant.split_whitespace();
+            let id: BeamMethodId = words.next().unwrap().parse().unwrap();
+            let options: Vec<&str> = words.collect();
+            let settings = BeamSettings {
+                wavelengths_nm: RGB_WAVELENGTHS_NM.to_vec(),
+                options: ModelOptions::parse(&options).unwrap(),
+            };
+            let method = prepare(id, &frame, &settings).unwrap();
+            rays.iter()
+                .map(|r| color.luminance_cd_m2(&method.radiance(r).unwrap()))
+                .collect::<Vec<f64>>()
+        };
+        let truth = luminance("reference");
+        let total: f64 = truth.iter().sum();
+        for variant in variants {
+            let values = luminance(variant);
+            let mut shares: Vec<(f64, usize)> = values
+                .iter()
+                .zip(&truth)
+                .map(|(l, t)| (l - t).abs() / total)
+                .zip(0..)
+                .collect();
+            let mean: f64 = shares.iter().map(|s| s.0).sum();
+            shares.sort_by(|a, b| b.0.total_cmp(&a.0));
+            println!("{variant}: mean error {:.2} %", 100.0 * mean);
+            for &(share, i) in &shares[..3] {
+                let r = &rays[i];
+                let to_light = light - r.origin_m;
+                let miss = (to_light - r.direction * to_light.dot(r.direction)).length();
+                println!(
+                    "  {:.2} % of it from a ray {miss:.2} m from the light, {:+.1} % there",
+                    100.0 * share,
+                    100.0 * (values[i] / truth[i] - 1.0)
+                );
+            }
+        }
     }
 }

@@ -31,7 +31,9 @@ use crate::shafts::beams::ray_end_pass::RayEndPass;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct QtableUniform {
-    /// x: the plane interval dt, m.
+    /// x: the plane interval dt, m; y: 1 where each sample is weighted by g at it
+    /// (`weighted_samples`); z: the most samples of an interval (1 + `max_subplanes`);
+    /// w: 1 where each ray counts its own sub-planes (`subplanes_per_ray`).
     pub interval_m: [f32; 4],
     /// The ranges the nodes span evenly: asinh(u / dt) (x, y) and ln v (z, w).
     pub ranges: [f32; 4],
@@ -107,10 +109,16 @@ impl GpuQtable {
             .upsample()
             .map(|up| GpuUpsample::new(&up, (width, height), WalkedPlanes::new(method)));
         let tolerance = method.upsample().map_or(0.0, |up| up.tolerance as f32);
+        let per_ray = method.subplanes_per_ray();
         GpuQtable {
             scene,
             uniform: QtableUniform {
-                interval_m: [method.interval_m() as f32, 0.0, 0.0, 0.0],
+                interval_m: [
+                    method.interval_m() as f32,
+                    f32::from(u8::from(method.weighted_samples())),
+                    per_ray.map_or(1, |rule| 1 + rule.max_subplanes) as f32,
+                    f32::from(u8::from(per_ray.is_some())),
+                ],
                 ranges: [x.0, x.1, y.0, y.1].map(|v| v as f32),
                 nodes: [nu as u32, nv as u32, 0, 0],
                 upsample: [tolerance, DEPTH_TOLERANCE as f32, 0.0, 0.0],

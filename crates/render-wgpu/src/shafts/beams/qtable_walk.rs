@@ -21,7 +21,8 @@ const SAMPLES_ROW: usize = 4096;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct LightWalk {
     /// Light, plane intervals, the index of its first interval's m_k in the sample
-    /// counts, 0.
+    /// counts, and the f_l one sample stands for on a ray counting its own sub-planes
+    /// (`LightPlanes::sample_unit`, f32 bits; 0 where rays take the centre ray's m_k).
     pub walk: [u32; 4],
     /// The light's first plane's depth along the view, m.
     pub first_depth_m: f32,
@@ -52,7 +53,10 @@ impl WalkedPlanes {
                     l as u32,
                     planes.samples.len() as u32,
                     samples.len() as u32,
-                    0,
+                    method
+                        .subplanes_per_ray()
+                        .map_or(0.0, |rule| planes.sample_unit(&rule) as f32)
+                        .to_bits(),
                 ],
                 first_depth_m: planes.first_depth_m as f32,
                 bounds: method.screen_bounds()[l].map(|v| v as f32),

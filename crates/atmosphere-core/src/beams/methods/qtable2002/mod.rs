@@ -25,6 +25,7 @@
 pub mod interval;
 pub mod planes;
 pub mod q_table;
+pub mod sample_weights;
 pub mod upsample;
 
 use crate::beams::camera::Camera;
@@ -40,8 +41,11 @@ use crate::models::error::ModelError;
 use crate::models::options::{OptionReader, Setting};
 
 use interval::f_l;
-use planes::{LightPlanes, PlaneContext, SubPlaneRule, default_d0, volume_depths};
+use planes::{
+    LightPlanes, PlaneContext, SUBPLANES_PER_RAY, SubPlaneRule, default_d0, volume_depths,
+};
 use q_table::{QExtent, QTable};
+use sample_weights::{WEIGHTED_SAMPLES, smooth_factor};
 use upsample::{RESOLUTION_DIVISOR, Tap, UPSAMPLE_TOLERANCE, Upsample, upsampled};
 
 const MODEL: &str = "qtable2002";
@@ -128,6 +132,10 @@ pub struct Qtable2002Settings {
     pub d0_m: Option<f64>,
     /// [`GPU_RASTER_PLANES`].
     pub gpu_raster_planes: bool,
+    /// [`WEIGHTED_SAMPLES`].
+    pub weighted_samples: bool,
+    /// [`SUBPLANES_PER_RAY`].
+    pub subplanes_per_ray: bool,
     /// [`RESOLUTION_DIVISOR`] and [`UPSAMPLE_TOLERANCE`]: `None` at divisor 1.
     pub upsample: Option<Upsample>,
 }
@@ -150,6 +158,8 @@ impl Qtable2002Settings {
                 None
             },
             gpu_raster_planes: r.flag(GPU_RASTER_PLANES, false)?,
+            weighted_samples: r.flag(WEIGHTED_SAMPLES, false)?,
+            subplanes_per_ray: r.flag(SUBPLANES_PER_RAY, false)?,
             upsample: {
                 let divisor = r.count(&RESOLUTION_DIVISOR, 1)?;
                 let tolerance = r.number(&UPSAMPLE_TOLERANCE, 0.5)?;
@@ -159,6 +169,13 @@ impl Qtable2002Settings {
                 })
             },
         };
+        if own.subplanes_per_ray && own.gpu_raster_planes {
+            return Err(ModelError::Settings(format!(
+                "qtable2002: {SUBPLANES_PER_RAY}=true with {GPU_RASTER_PLANES}=true: drawn \
+                 planes give every pixel the centre ray's sub-planes; a ray counts its own \
+                 only where the planes are walked per pixel ({GPU_RASTER_PLANES}=false)"
+            )));
+        }
         if own.delta_min_m > own.delta_max_m {
             return Err(ModelError::Settings(format!(
                 "qtable2002: delta_min_m={} exceeds delta_max_m={}",
@@ -180,6 +197,10 @@ pub struct Qtable2002 {
     /// Each light's part of the screen (`plan::screen_bounds` of its bounding volume).
     bounds: Vec<[f64; 4]>,
     gpu_raster_planes: bool,
+    weighted_samples: bool,
+    /// [`SUBPLANES_PER_RAY`], counted by `rule`.
+    subplanes_per_ray: bool,
+    rule: SubPlaneRule,
     upsample: Option<Upsample>,
 }
 
@@ -277,6 +298,9 @@ impl Qtable2002 {
             planes,
             bounds,
             gpu_raster_planes: own.gpu_raster_planes,
+            weighted_samples: own.weighted_samples,
+            subplanes_per_ray: own.subplanes_per_ray,
+            rule,
             upsample: own.upsample,
         })
     }
@@ -299,6 +323,17 @@ impl Qtable2002 {
     /// Each light's shadow map, in the scene's order.
     pub fn shadow_maps(&self) -> &[ShadowMap] {
         &self.shadow_maps
+    }
+
+    /// Whether each sample is weighted by g at it ([`WEIGHTED_SAMPLES`]).
+    pub fn weighted_samples(&self) -> bool {
+        self.weighted_samples
+    }
+
+    /// Whether each ray counts its own sub-planes ([`SUBPLANES_PER_RAY`]), and by what
+    /// rule.
+    pub fn subplanes_per_ray(&self) -> Option<SubPlaneRule> {
+        self.subplanes_per_ray.then_some(self.rule)
     }
 
     /// Each light's part of the screen, normalised device coordinates [x0, y0, x1, y1]:
@@ -451,7 +486,11 @@ impl Qtable2002 {
         let t_end = self.scattering.ray_end_m(ray);
         let dt_ray = self.table.interval_m() / cos_forward;
         let occluders = &self.scattering.scene.occluders;
+        let phase = &self.scattering.scene.medium.phase;
         let mut f_h = vec![0.0; wl];
+        let mut smooth = vec![0.0; wl];
+        let mut weight = vec![1.0; wl];
+        let mut weight_sum = vec![0.0; wl];
         for (l, light) in self.scattering.scene.lights.iter().enumerate() {
             let [x0, y0, x1, y1] = self.bounds[l];
             if !(x0..=x1).contains(&ndc[0]) || !(y0..=y1).contains(&ndc[1]) {
@@ -459,7 +498,7 @@ impl Qtable2002 {
             }
             let planes = &self.planes[l];
             let emission = &self.scattering.emission[l];
-            for (k, &m) in planes.samples.iter().enumerate() {
+            for (k, &centre_m) in planes.samples.iter().enumerate() {
                 let t_k = (planes.first_depth_m + k as f64 * self.table.interval_m()) / cos_forward;
                 // A plane within a thousandth of the ray's length of its end meets the
                 // occluder's surface at a shadow map's resolution, and the map's bias
@@ -468,13 +507,51 @@ impl Qtable2002 {
                     break;
                 }
                 let length = dt_ray.min(t_end - t_k);
+                // f_l of the interval (Eq. 7), the smooth factor of each wavelength.
+                for (w, f) in smooth.iter_mut().enumerate() {
+                    *f = f_l(
+                        &self.table,
+                        &self.scattering.medium,
+                        phase,
+                        light,
+                        ray.origin_m,
+                        ray.direction,
+                        t_k,
+                        length,
+                        w,
+                    );
+                }
+                let m = if self.subplanes_per_ray {
+                    planes.samples_for(&self.rule, smooth.iter().copied().fold(0.0, f64::max))
+                } else {
+                    centre_m
+                };
                 // Eq. 10: the mean of I_l H over the main plane and its sub-planes in
-                // front of the ray's end (an occluder hides those behind it).
+                // front of the ray's end (an occluder hides those behind it), each
+                // sample weighted alike or by g at it (`sample_weights.rs`).
                 let spacing = dt_ray / m as f64;
                 let visible = ((length / spacing).ceil() as usize).clamp(1, m);
                 f_h.fill(0.0);
+                weight_sum.fill(0.0);
+                let mut base_m = None;
                 for j in 0..visible {
-                    let point = ray.at(t_k + j as f64 * spacing);
+                    let t = t_k + j as f64 * spacing;
+                    if self.weighted_samples {
+                        let path_m = smooth_factor(
+                            light,
+                            phase,
+                            &self.scattering.medium.extinction_per_m,
+                            ray,
+                            t,
+                            base_m,
+                            &mut weight,
+                        );
+                        base_m.get_or_insert(path_m);
+                    }
+                    for (total, g) in weight_sum.iter_mut().zip(&weight) {
+                        *total += g;
+                    }
+                    let point = ray.at(t);
                     let Some(path) = light.path_from(point) else {
                         continue;
                     };
@@ -484,23 +561,16 @@ impl Qtable2002 {
                     }
                     let rgb = light_map_rgb(light, &path);
                     for (w, f) in f_h.iter_mut().enumerate() {
-                        *f += emission[w] * path.profile * self.scattering.filter(rgb, w) * lit;
+                        *f += weight[w]
+                            * emission[w]
+                            * path.profile
+                            * self.scattering.filter(rgb, w)
+                            * lit;
                     }
                 }
                 for (w, s) in sum.iter_mut().enumerate() {
                     if f_h[w] > 0.0 {
-                        let smooth = f_l(
-                            &self.table,
-                            &self.scattering.medium,
-                            &self.scattering.scene.medium.phase,
-                            light,
-                            ray.origin_m,
-                            ray.direction,
-                            t_k,
-                            length,
-                            w,
-                        );
-                        *s += f_h[w] / visible as f64 * smooth;
+                        *s += f_h[w] / weight_sum[w] * smooth[w];
                     }
                 }
             }

@@ -39,6 +39,14 @@ pub struct LightPlanes {
     pub centre_share: Vec<f64>,
 }
 
+/// Whether each ray counts its own sub-planes from its own f_l of each interval
+/// (`true`; not the paper's: a pixel's walk can, drawn planes cannot) or every ray takes
+/// the centre ray's m_k (`false`, the paper's section 4.2.2). The threshold is the same
+/// either way, epsilon of the centre ray's whole f_l, so the centre ray's counts do not
+/// change; a ray that passes a light within an interval's length, whose f_l there is
+/// far above the centre ray's, gets the sub-planes its beam needs.
+pub const SUBPLANES_PER_RAY: &str = "subplanes_per_ray";
+
 /// How the sub-planes are counted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SubPlaneRule {
@@ -118,6 +126,33 @@ impl LightPlanes {
             centre_f_l,
             centre_share,
         }
+    }
+
+    /// The f_l that one sample of an interval stands for on a ray that counts its own
+    /// sub-planes (`SUBPLANES_PER_RAY`): epsilon of the centre ray's whole f_l; 0 where
+    /// epsilon is 0 (the most samples everywhere), infinite where the centre ray gets no
+    /// light (one sample everywhere, as the centre ray's counts are then).
+    pub fn sample_unit(&self, rule: &SubPlaneRule) -> f64 {
+        let total: f64 = self.centre_f_l.iter().sum();
+        if rule.epsilon <= 0.0 {
+            0.0
+        } else if total > 0.0 {
+            rule.epsilon * total
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// m for an interval whose largest f_l over the wavelengths is `f_l` (m^-2 sr^-1) on
+    /// a ray that counts its own sub-planes: f_l over [`Self::sample_unit`], at least 1
+    /// and at most 1 + `max_subplanes`.
+    pub fn samples_for(&self, rule: &SubPlaneRule, f_l: f64) -> usize {
+        let most = 1 + rule.max_subplanes;
+        let unit = self.sample_unit(rule);
+        if unit <= 0.0 {
+            return most;
+        }
+        ((f_l / unit).floor() as usize).clamp(1, most)
     }
 
     /// The sub-planes of every interval together.
