@@ -59,9 +59,9 @@ pub struct CloudFlags {
     /// Wiscombe and Weinman 1976, for thick layers) [default: riley].
     #[arg(long = "cloud-method", value_name = "riley|octaves|eddington")]
     pub method: Option<String>,
-    /// The march's quality: interactive (20 steps at a third of the resolution, for
-    /// flight) or offline (128 steps, full resolution, for recordings) [default:
-    /// offline].
+    /// The march's quality: interactive (20 steps at a third of the resolution, the
+    /// cloud spheres at a third too, for flight) or offline (128 steps, full resolution,
+    /// for recordings) [default: offline].
     #[arg(long = "cloud-quality", value_name = "interactive|offline")]
     pub quality: Option<String>,
     /// Where the layer's sun light comes from: march (a shadow march from every sample)
@@ -75,7 +75,8 @@ pub struct CloudFlags {
     pub form: Option<String>,
     /// Shade the cloud spheres for one ray per N x N pixels and bring them to full size
     /// by each ray's span of the layer, N in [1, 4] (from orbit a texel of theirs spans
-    /// many pixels) [default: 1, every pixel].
+    /// many pixels) [default: the quality's: 3 at interactive, 1 (every pixel) at
+    /// offline].
     #[arg(long = "cloud-sphere-divisor", value_name = "N")]
     pub sphere_divisor: Option<u32>,
     /// The cloud's shadow in the air below its base (crepuscular rays under a deck with
@@ -107,17 +108,32 @@ impl CloudFlags {
         }
     }
 
-    /// The spheres' settings of `--cloud-sphere-divisor`, the rest their defaults; a
-    /// divisor out of its range is an error naming the flag.
+    /// The spheres' settings of `--cloud-sphere-divisor` (by default the quality's,
+    /// `MarchQuality::sphere_resolution_divisor`), the rest their defaults; a divisor
+    /// out of its range or an unknown quality is an error naming the flag.
     pub fn sphere_settings(&self) -> anyhow::Result<SphereSettings> {
         let spheres = SphereSettings {
-            resolution_divisor: self.sphere_divisor.unwrap_or(1),
+            resolution_divisor: match self.sphere_divisor {
+                Some(divisor) => divisor,
+                None => self.quality()?.sphere_resolution_divisor(),
+            },
             ..SphereSettings::default()
         };
         spheres
             .check()
             .map_err(|e| anyhow::anyhow!("--cloud-sphere-divisor: {e}"))?;
         Ok(spheres)
+    }
+
+    /// `--cloud-quality`, offline where it is not given; an unknown one is an error
+    /// naming the flag.
+    fn quality(&self) -> anyhow::Result<MarchQuality> {
+        match &self.quality {
+            Some(q) => q
+                .parse::<MarchQuality>()
+                .map_err(|e| anyhow::anyhow!("--cloud-quality: {e}")),
+            None => Ok(MarchQuality::Offline),
+        }
     }
 
     /// The layer's settings when the clouds are on, `None` when off; a value out of its
@@ -140,12 +156,7 @@ impl CloudFlags {
                 .map_err(|e| anyhow::anyhow!("--cloud-method: {e}"))?,
             None => defaults.method,
         };
-        let quality = match &self.quality {
-            Some(q) => q
-                .parse::<MarchQuality>()
-                .map_err(|e| anyhow::anyhow!("--cloud-quality: {e}"))?,
-            None => MarchQuality::Offline,
-        };
+        let quality = self.quality()?;
         let settings = LayerSettings {
             base_m: within(
                 self.base_m,
@@ -393,6 +404,17 @@ mod tests {
         .sphere_settings()
         .unwrap();
         assert_eq!(spheres.resolution_divisor, 3);
+        // Without the flag the quality chooses: a third at interactive (the viewer's),
+        // every pixel at offline (render's default).
+        for (quality, divisor) in [(Some("interactive"), 3), (Some("offline"), 1), (None, 1)] {
+            let spheres = CloudFlags {
+                quality: quality.map(str::to_string),
+                ..on()
+            }
+            .sphere_settings()
+            .unwrap();
+            assert_eq!(spheres.resolution_divisor, divisor, "{quality:?}");
+        }
         let e = CloudFlags {
             form: Some("volume".into()),
             ..on()

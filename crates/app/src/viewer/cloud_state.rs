@@ -4,7 +4,6 @@
 //! layer) and given to the renderer before each frame.
 
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
-use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, SkyModel};
@@ -82,7 +81,7 @@ impl CloudState {
             settings: layer,
             light,
             form: flags.form()?,
-            spheres: SphereSettings::default(),
+            spheres: flags.sphere_settings()?,
             prune: true,
             shafts: flags.shafts.unwrap_or(true),
         }))?;

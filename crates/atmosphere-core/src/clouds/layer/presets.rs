@@ -87,6 +87,16 @@ impl MarchQuality {
     }
 }
 
+impl MarchQuality {
+    /// The divisor of the cloud spheres' resolution in frames at this quality
+    /// (`SphereSettings::resolution_divisor`): the layer's march's, so that one quality
+    /// reduces both forms alike (for flight one ray per 3 x 3 pixels; for recordings and
+    /// measurements every pixel).
+    pub fn sphere_resolution_divisor(self) -> u32 {
+        self.march().resolution_divisor
+    }
+}
+
 impl fmt::Display for MarchQuality {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
