@@ -157,6 +157,9 @@ fn the_gpu_upsamples_its_reduced_walk_as_the_cpu_does() {
         ("sphere_spotlight.toml", 64, 96),
         ("stained_glass_room.toml", 64, 48),
         ("point_lamp.toml", 64, 36),
+        // glTF meshes: the pixels walked at full size read the frame's traced ray ends.
+        ("teapot_spotlight.toml", 64, 48),
+        ("stage_five_spots.toml", 64, 48),
     ] {
         let s = shipped_scene(name, width, height);
         let walk = qtable_with(&s, &["epsilon=0.01"]);
@@ -227,16 +230,4 @@ fn samples_weighted_and_counted_per_ray_match_the_cpu() {
         apart * 100 <= cpu.len() && worst < 0.1,
         "{apart} apart, {worst}"
     );
-}
-
-#[test]
-fn a_reduced_walk_with_meshes_is_refused_on_the_gpu() {
-    let Some(gpu) = gpu_or_skip("beams qtable upsample with meshes") else {
-        return;
-    };
-    let pass = QtablePass::new(&gpu).unwrap();
-    let s = shipped_scene("stage_five_spots.toml", 32, 24);
-    let reduced = qtable_with(&s, &["resolution_divisor=4"]);
-    let err = pass.render(&gpu, &GpuQtable::new(&reduced)).unwrap_err();
-    assert!(err.to_string().contains("resolution_divisor"), "{err}");
 }

@@ -11,7 +11,8 @@ struct QtableParams {
     // Nodes along u and along v.
     nodes: vec4<u32>,
     // A reduced walk's upsampling (`qtable_upsample.wgsl`): the taps' largest spread of
-    // radiance (x, a share of the brightest) and of ray ends (y, of the nearest).
+    // radiance (x, a share of the brightest) and of ray ends (y, of the nearest); z: 1
+    // where the frame's own ray ends are given (the scene has glTF meshes).
     upsample: vec4<f32>,
 }
 

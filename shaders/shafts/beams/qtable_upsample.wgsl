@@ -4,13 +4,18 @@
 // `beams/methods/qtable2002/upsample.rs` (`upsampled`).
 //
 // First one triangle over the frame (`fragment`): each pixel reads the four reduced
-// pixels about it (the reduced walk's radiance and ray ends, group 1 bindings 4 and 1)
+// pixels about it (the reduced walk's radiance and ray ends, group 1 bindings 4 and 5)
 // and takes their bilinear mean where their ray ends and radiances agree within the
 // tolerances of `qtable.upsample`, depth 0; elsewhere (an occluder's outline, a beam's
 // or a shadow's edge between them) it adds nothing and marks the pixel with depth 1. Then each light's rectangle
 // (`walk_vertex`, `walk_fragment`, drawn at depth 0.5 and tested against the marks)
 // walks the light's planes at the marked pixels alone, along their own ray ended where
-// it meets an occluder: one light per fragment, as the walk itself draws them.
+// it meets an occluder: one light per fragment, as the walk itself draws them. Where the
+// scene has glTF meshes (`qtable.upsample.z` 1) the frame's own ray ends, traced for
+// every pixel before (binding 1), give that end: the meshes' BVH traversal and the walk
+// in one invocation came out short of light on lavapipe (docs/beams/qtable2002.md);
+// without meshes the marked pixels trace their end themselves (binding 1 then holds the
+// reduced ends too).
 
 #import shafts/beams/bindings.wgsl
 #import shafts/beams/occluders.wgsl
@@ -18,8 +23,9 @@
 #import shafts/beams/qtable_walk_light.wgsl
 #import shafts/beams/screen_rectangle.wgsl
 
-// The reduced walk's radiance (xyz).
+// The reduced walk's radiance (xyz) and its rays' ends, m.
 @group(1) @binding(4) var reduced_radiance: texture_2d<f32>;
+@group(1) @binding(5) var reduced_ray_end: texture_2d<f32>;
 
 @vertex
 fn vertex(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
@@ -63,6 +69,10 @@ fn walk_vertex(
 @fragment
 fn walk_fragment(in: LightWalk) -> @location(0) vec4<f32> {
     let dir = pixel_direction(in.position.xy);
+    if qtable.upsample.z > 0.5 {
+        let t_end = textureLoad(ray_end, vec2<i32>(in.position.xy), 0).x;
+        return vec4<f32>(walk_light(in.walk, in.first_depth_m, dir, t_end), 0.0);
+    }
     let limit = params.camera_forward.w;
     let span = beam_span(lights[in.walk.x], dir, limit);
     if span.x > span.y {
@@ -92,7 +102,7 @@ fn fragment(@builtin(position) position: vec4<f32>) -> Interpolated {
     var mean = vec3<f32>(0.0);
     for (var k = 0u; k < 4u; k++) {
         let radiance = textureLoad(reduced_radiance, taps[k], 0).xyz;
-        let end = textureLoad(ray_end, taps[k], 0).x;
+        let end = textureLoad(reduced_ray_end, taps[k], 0).x;
         lo = min(lo, radiance);
         hi = max(hi, radiance);
         near = min(near, end);

@@ -198,11 +198,7 @@ pub fn measure(
                 .sum::<f64>()
                 / truth.iter().sum::<f64>().max(f64::MIN_POSITIVE);
             let gpu_ms = match gpu {
-                // The GPU refuses a reduced walk in a scene with meshes (qtable_pass.rs).
-                Some(gpu)
-                    if GPU_BEAM_METHODS.contains(&method)
-                        && (!reduced_walk(&options) || full.occluders.triangles.is_empty()) =>
-                {
+                Some(gpu) if GPU_BEAM_METHODS.contains(&method) => {
                     gpu_frame_ms(gpu, &full, method, &options)?
                 }
                 _ => None,
@@ -256,16 +252,6 @@ fn frame_sized(options: &[String]) -> bool {
     })
 }
 
-/// Whether a setting walks at a reduced resolution (`resolution_divisor` above 1), which
-/// the GPU refuses in a scene with glTF meshes; the divisor 1 is the walk itself.
-fn reduced_walk(options: &[String]) -> bool {
-    options.iter().any(|o| {
-        o.split_once('=').is_some_and(|(k, v)| {
-            k.trim() == RESOLUTION_DIVISOR.key && v.trim().parse::<usize>().is_ok_and(|d| d > 1)
-        })
-    })
-}
-
 /// The second of two 1280 x 720 frames of `method` on `scene`, ms (the first compiles
 /// and uploads); `None` without timestamps.
 fn gpu_frame_ms(
@@ -295,9 +281,7 @@ pub fn markdown(rows: &[BeamRow], width: u32) -> String {
          largest |L - L_ref| / max(L_ref, 1 % of the brightest L_ref) of luminance; the \
          mean |L - L_ref| over the mean L_ref (Dobashi et al. 2002's average error); CPU time \
          of a 1280 x 720 frame on one thread (preparation plus time per ray); GPU time of a \
-         1280 x 720 frame (ms, `-` off the GPU, without timestamps or where the GPU \
-         refuses the setting: a reduced walk, `resolution_divisor` above 1, in a scene \
-         with glTF meshes). A setting that names `resolution_divisor` is prepared for the \
+         1280 x 720 frame (ms, `-` off the GPU or without timestamps). A setting that names `resolution_divisor` is prepared for the \
          1280 x 720 frame and asked at as many of its pixels, one in each block of the \
          grid moved within it by a fixed scramble (`resolution_divisor=1`: every pixel \
          walked, asked alike); those pixels come nearer the lights than the grid's \
@@ -436,17 +420,13 @@ mod tests {
         println!("{}", markdown(&rows, 12));
     }
 
-    /// A named divisor sizes the setting for the frame; only one above 1 is a reduced
-    /// walk, which the GPU refuses with meshes.
+    /// A named divisor, 1 included, sizes the setting for the frame.
     #[test]
-    fn frame_sized_and_reduced_settings_are_told_apart() {
+    fn frame_sized_settings_are_told_apart() {
         let options = |o: &str| vec![o.to_string()];
         assert!(frame_sized(&options("resolution_divisor=4")));
         assert!(frame_sized(&options("resolution_divisor=1")));
         assert!(!frame_sized(&options("epsilon=0.1")));
-        assert!(reduced_walk(&options("resolution_divisor=4")));
-        assert!(!reduced_walk(&options("resolution_divisor=1")));
-        assert!(!reduced_walk(&options("epsilon=0.1")));
     }
 
     #[test]

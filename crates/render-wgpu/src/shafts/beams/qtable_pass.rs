@@ -40,7 +40,9 @@ pub struct QtableUniform {
     /// Nodes along u and along v.
     pub nodes: [u32; 4],
     /// The upsample's tolerances: the taps' spread of radiance (x, a share of the
-    /// brightest) and of ray ends (y, a share of the nearest).
+    /// brightest) and of ray ends (y, a share of the nearest); z: 1 where the frame's
+    /// own ray ends are traced first for the pixels walked at full size (the scene has
+    /// glTF meshes).
     pub upsample: [f32; 4],
 }
 
@@ -110,6 +112,7 @@ impl GpuQtable {
             .map(|up| GpuUpsample::new(&up, (width, height), WalkedPlanes::new(method)));
         let tolerance = method.upsample().map_or(0.0, |up| up.tolerance as f32);
         let per_ray = method.subplanes_per_ray();
+        let meshes = !scene.triangles.is_empty();
         GpuQtable {
             scene,
             uniform: QtableUniform {
@@ -121,7 +124,12 @@ impl GpuQtable {
                 ],
                 ranges: [x.0, x.1, y.0, y.1].map(|v| v as f32),
                 nodes: [nu as u32, nv as u32, 0, 0],
-                upsample: [tolerance, DEPTH_TOLERANCE as f32, 0.0, 0.0],
+                upsample: [
+                    tolerance,
+                    DEPTH_TOLERANCE as f32,
+                    f32::from(u8::from(meshes)),
+                    0.0,
+                ],
             },
             table: texels,
             planes,
@@ -230,18 +238,6 @@ impl QtablePass {
             let (image, ms, _) = self.planes_frame(gpu, qtable, &qtable.scene, &table_view)?;
             return Ok((image, ms));
         };
-        if !qtable.scene.triangles.is_empty() {
-            // The pixels walked at full size trace their ray's end through the meshes'
-            // BVH in the invocation that walks the planes; with both, the walk came out
-            // short of light on lavapipe (presumably its silent loop budget,
-            // `models/gpu_loops.rs`; docs/beams/qtable2002.md).
-            return Err(RenderError::BeamsTooLarge(
-                "qtable2002 resolution_divisor above 1 with glTF meshes in the scene: the \
-                 pixels walked at full size would exceed the GPU's loop budget (use \
-                 resolution_divisor=1)"
-                    .into(),
-            ));
-        }
         let mut reduced = qtable.scene.clone();
         let (w, h) = upsample.reduced;
         reduced.uniform.size_steps_lights[..2].copy_from_slice(&[w, h]);
@@ -249,6 +245,17 @@ impl QtablePass {
         let samples = upsample.walked.texture(gpu)?;
         let samples_view = samples.create_view(&Default::default());
         let low_view = low.radiance.create_view(&Default::default());
+        let low_end_view = low_end.create_view(&Default::default());
+        // With glTF meshes the pixels walked at full size read their ray's end from the
+        // frame's own, traced for every pixel first: tracing it through the meshes' BVH
+        // in the invocation that walks the planes came out short of light on lavapipe
+        // (presumably its silent loop budget, `models/gpu_loops.rs`). Without meshes
+        // they trace it themselves, and the frame takes no ray-end pass of its own.
+        let ray_ends = if qtable.uniform.upsample[2] > 0.5 {
+            RayEnds::Traced(&self.ray_end)
+        } else {
+            RayEnds::Given(&low_end)
+        };
         let walks = &upsample.walked.lights;
         let instances = (!walks.is_empty()).then(|| {
             gpu.device
@@ -260,7 +267,7 @@ impl QtablePass {
         });
         let mut frame = PlanesFrame::begin(
             gpu,
-            RayEnds::Given(&low_end),
+            ray_ends,
             &self.upsample.interpolate,
             "beams qtable2002 upsample",
             &qtable.scene,
@@ -269,6 +276,7 @@ impl QtablePass {
                 wgpu::BindingResource::TextureView(&table_view),
                 wgpu::BindingResource::TextureView(&samples_view),
                 wgpu::BindingResource::TextureView(&low_view),
+                wgpu::BindingResource::TextureView(&low_end_view),
             ],
         )?;
         let [width, height, ..] = qtable.scene.uniform.size_steps_lights;

@@ -4,7 +4,9 @@
 //! over the frame interpolates the reduced walk where its four taps agree and marks the
 //! pixels where they do not in a depth image, and each light's rectangle of the walk,
 //! depth-tested against it, walks that light at the marked pixels alone, one light per
-//! fragment as the walk does. (One pass that chose per pixel took most of the walk's
+//! fragment as the walk does, each marked pixel's ray ended where it meets an occluder:
+//! traced there, or, in a scene with glTF meshes, read from the frame's own ray ends
+//! traced for every pixel first. (One pass that chose per pixel took most of the walk's
 //! time on lavapipe even where it chose no walk at all: the walk's code in a fragment
 //! costs there whether it runs or not.) CPU twin: atmosphere-core's
 //! `beams/methods/qtable2002/upsample.rs`.
@@ -51,7 +53,8 @@ pub struct UpsamplePipelines {
 
 impl UpsamplePipelines {
     /// Group 1 laid out by `table_entries` (the uniform, ray ends, table and sample
-    /// counts of the walk) and the reduced radiance (binding 4); `interpolate` draws one
+    /// counts of the walk), the reduced radiance (binding 4) and the reduced ray ends
+    /// (binding 5); `interpolate` draws one
     /// triangle without vertex buffers, `walk` the walk's instances of `walk_buffers`.
     pub fn new(
         gpu: &GpuContext,
@@ -60,10 +63,12 @@ impl UpsamplePipelines {
     ) -> Result<UpsamplePipelines, RenderError> {
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let mut entries = table_entries.to_vec();
-        entries.push(in_stage(
-            fragment,
-            texture_entry(4, wgpu::TextureViewDimension::D2),
-        ));
+        for binding in [4, 5] {
+            entries.push(in_stage(
+                fragment,
+                texture_entry(binding, wgpu::TextureViewDimension::D2),
+            ));
+        }
         let shader = "shafts/beams/qtable_upsample.wgsl";
         let depth = |write: bool, compare: wgpu::CompareFunction| wgpu::DepthStencilState {
             format: MARK_FORMAT,
