@@ -6,8 +6,6 @@
 
 mod common;
 
-use std::path::PathBuf;
-
 use atmosphere_core::beams::medium::MediumSpectra;
 use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
@@ -19,20 +17,6 @@ use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::optics::phase::PhaseFunction;
 use common::beams::*;
 use glam::DVec3;
-
-fn sphere_scene() -> BeamScene {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/scenes/beams/sphere_spotlight.toml");
-    BeamScene::load(&path).unwrap()
-}
-
-fn qtable(scene: &BeamScene, options: &[&str]) -> Qtable2002 {
-    let settings = BeamSettings {
-        options: ModelOptions::parse(options).unwrap(),
-        ..BeamSettings::default()
-    };
-    Qtable2002::new(scene, &settings).unwrap()
-}
 
 #[test]
 fn table_nodes_hold_eq_9_integrated_independently() {
@@ -116,21 +100,7 @@ fn converged_table_matches_the_point_light_closed_form_within_half_a_percent() {
 /// error in intensities").
 fn sphere_scene_error(s: &BeamScene, options: &[&str]) -> f64 {
     let truth = method(BeamMethodId::Reference, s, &[]);
-    let q = qtable(s, options);
-    let (w, h) = (f64::from(s.camera.width_px), f64::from(s.camera.height_px));
-    let (mut diff, mut total) = (0.0, 0.0);
-    for j in 0..12 {
-        for i in 0..8 {
-            let ray = s
-                .camera
-                .ray((i as f64 + 0.5) * w / 8.0, (j as f64 + 0.5) * h / 12.0);
-            let got = q.radiance(&ray).unwrap()[1];
-            let expected = truth.radiance(&ray).unwrap()[1];
-            diff += (got - expected).abs();
-            total += expected;
-        }
-    }
-    diff / total
+    grid_mean_error(s, &qtable(s, options), truth.as_ref(), (8, 12), 0.5)
 }
 
 #[test]

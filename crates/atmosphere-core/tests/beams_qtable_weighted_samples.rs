@@ -6,30 +6,12 @@
 
 mod common;
 
-use std::path::PathBuf;
-
 use atmosphere_core::beams::methods::id::BeamMethodId;
-use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
-use atmosphere_core::beams::methods::qtable2002::Qtable2002;
+use atmosphere_core::beams::methods::method::BeamMethod;
 use atmosphere_core::beams::ray::SceneRay;
 use atmosphere_core::beams::scene::BeamScene;
-use atmosphere_core::models::options::ModelOptions;
 use common::beams::*;
 use glam::DVec3;
-
-fn sphere_scene() -> BeamScene {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/scenes/beams/sphere_spotlight.toml");
-    BeamScene::load(&path).unwrap()
-}
-
-fn qtable(scene: &BeamScene, options: &[&str]) -> Qtable2002 {
-    let settings = BeamSettings {
-        options: ModelOptions::parse(options).unwrap(),
-        ..BeamSettings::default()
-    };
-    Qtable2002::new(scene, &settings).unwrap()
-}
 
 const BOTH: [&str; 2] = ["weighted_samples=true", "subplanes_per_ray=true"];
 
@@ -61,24 +43,10 @@ fn rays_that_pass_the_spotlight_closely_are_right_with_both_settings() {
     }
 }
 
-/// The mean |L_550 - L_ref| over the mean L_ref on a grid of 24 x 36 of the sphere
-/// scene's pixels (the paper's "average error in intensities").
+/// The mean error on a grid of 24 x 36 of the sphere scene's pixels, each ray a third
+/// of a cell from its cell's corner, so that a column runs beside the light.
 fn mean_error(s: &BeamScene, q: &dyn BeamMethod, truth: &dyn BeamMethod) -> f64 {
-    let (w, h) = (f64::from(s.camera.width_px), f64::from(s.camera.height_px));
-    let (mut diff, mut total) = (0.0, 0.0);
-    for j in 0..36 {
-        for i in 0..24 {
-            // Off the grid's centres by a third of a cell, so that a column runs beside
-            // the light.
-            let ray = s
-                .camera
-                .ray((i as f64 + 0.33) * w / 24.0, (j as f64 + 0.33) * h / 36.0);
-            let expected = truth.radiance(&ray).unwrap()[1];
-            diff += (q.radiance(&ray).unwrap()[1] - expected).abs();
-            total += expected;
-        }
-    }
-    diff / total
+    grid_mean_error(s, q, truth, (24, 36), 0.33)
 }
 
 #[test]

@@ -4,6 +4,7 @@ use std::path::Path;
 
 use atmosphere_core::beams::methods::id::BeamMethodId;
 use atmosphere_core::beams::methods::method::{BeamMethod, BeamSettings};
+use atmosphere_core::beams::methods::qtable2002::Qtable2002;
 use atmosphere_core::beams::methods::registry::prepare;
 use atmosphere_core::beams::scene::BeamScene;
 use atmosphere_core::models::options::ModelOptions;
@@ -17,6 +18,52 @@ pub const CAMERA: &str = "[camera]\nposition_m = [0, 2, 20]\nlook_at_m = [0, 2, 
 pub fn scene(medium: &str, rest: &str) -> BeamScene {
     let text = format!("[medium]\n{medium}\n{CAMERA}\n{rest}");
     BeamScene::from_toml(&text, "test.toml", Path::new(".")).unwrap()
+}
+
+/// The shipped sphere under a spotlight (Dobashi et al. 2002's Fig. 4 scene).
+pub fn sphere_scene() -> BeamScene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/scenes/beams/sphere_spotlight.toml");
+    BeamScene::load(&path).unwrap()
+}
+
+/// qtable2002 prepared for `scene` with the settings `options` ("key=value").
+pub fn qtable(scene: &BeamScene, options: &[&str]) -> Qtable2002 {
+    let settings = BeamSettings {
+        options: ModelOptions::parse(options).unwrap(),
+        ..BeamSettings::default()
+    };
+    Qtable2002::new(scene, &settings).unwrap()
+}
+
+/// The mean |L_550 - L_ref| of `method` against `truth` over the mean L_ref (Dobashi
+/// et al. 2002's "average error in intensities") on a `columns` x `rows` grid of the
+/// scene camera's pixels, each ray `offset` of a cell across and down from the cell's
+/// corner (0.5: its centre).
+pub fn grid_mean_error(
+    scene: &BeamScene,
+    method: &dyn BeamMethod,
+    truth: &dyn BeamMethod,
+    (columns, rows): (u32, u32),
+    offset: f64,
+) -> f64 {
+    let cell = (
+        f64::from(scene.camera.width_px) / f64::from(columns),
+        f64::from(scene.camera.height_px) / f64::from(rows),
+    );
+    let (mut diff, mut total) = (0.0, 0.0);
+    for j in 0..rows {
+        for i in 0..columns {
+            let ray = scene.camera.ray(
+                (f64::from(i) + offset) * cell.0,
+                (f64::from(j) + offset) * cell.1,
+            );
+            let expected = truth.radiance(&ray).unwrap()[1];
+            diff += (method.radiance(&ray).unwrap()[1] - expected).abs();
+            total += expected;
+        }
+    }
+    diff / total
 }
 
 /// Method `id` prepared for `scene` with the settings `options` ("key=value").
