@@ -1,6 +1,7 @@
-//! Extreme beams scenes give finite, bounded radiance from every method: a light inside
-//! an occluder, the camera inside a beam and at a light, a medium of density 0 and one
-//! of 1e3 m^-1.
+//! Extreme beams scenes give finite, bounded radiance from every method (and qtable2002
+//! at epsilon 0, its samples as the paper weighs them and weighted and counted per ray):
+//! a light inside an occluder, the camera inside a beam and at a light, a medium of
+//! density 0 and one of 1e3 m^-1.
 
 mod common;
 
@@ -12,12 +13,26 @@ use atmosphere_core::beams::scene::BeamScene;
 use common::beams::*;
 use glam::DVec3;
 
+/// Every method at its defaults, and qtable2002 at the most sub-planes (epsilon 0),
+/// with its samples as the paper weighs them and weighted and counted per ray.
 fn methods(scene: &BeamScene) -> Vec<(BeamMethodId, Box<dyn BeamMethod>)> {
     let settings = BeamSettings::default();
-    BeamMethodId::ALL
+    let mut all: Vec<(BeamMethodId, Box<dyn BeamMethod>)> = BeamMethodId::ALL
         .into_iter()
         .map(|id| (id, prepare(id, scene, &settings).unwrap()))
-        .collect()
+        .collect();
+    for options in [
+        &["epsilon=0"][..],
+        &[
+            "epsilon=0",
+            "weighted_samples=true",
+            "subplanes_per_ray=true",
+        ],
+    ] {
+        let q = BeamMethodId::Qtable2002;
+        all.push((q, method(q, scene, options)));
+    }
+    all
 }
 
 /// The camera's centre ray, and a ray from the camera to the light at (0, 3, 0).

@@ -59,7 +59,8 @@ fn fragment(in: PlaneSample) -> @location(0) vec4<f32> {
     let span = min(dt_ray, t_end - t_k);
     let m = in.plane.w;
     let spacing = dt_ray / f32(m);
-    let visible = clamp(u32(ceil(span / spacing)), 1u, m);
+    // The sliver by the end's surface is left out for sub-planes as for planes.
+    let visible = clamp(u32(ceil((t_end * (1.0 - 1e-3) - t_k) / spacing)), 1u, m);
     if in.plane.z >= visible {
         discard;
     }

@@ -125,7 +125,8 @@ fn walk_light(walk: vec4<u32>, first_depth_m: f32, dir: vec3<f32>, t_end: f32) -
             m = samples_for(max(interval_f_l.x, max(interval_f_l.y, interval_f_l.z)), unit, most);
         }
         let spacing = dt_ray / f32(m);
-        let visible = clamp(u32(ceil(covered / spacing)), 1u, m);
+        // The sliver by the end's surface is left out for sub-planes as for planes.
+        let visible = clamp(u32(ceil((t_end * (1.0 - 1e-3) - t_k) / spacing)), 1u, m);
         var f_h = vec3<f32>(0.0);
         var weight_sum = vec3<f32>(0.0);
         var base = -1.0;

@@ -527,10 +527,12 @@ impl Qtable2002 {
                     centre_m
                 };
                 // Eq. 10: the mean of I_l H over the main plane and its sub-planes in
-                // front of the ray's end (an occluder hides those behind it), each
+                // front of the ray's end (an occluder hides those behind it, and the
+                // sliver by its surface is left out for sub-planes as for planes), each
                 // sample weighted alike or by g at it (`sample_weights.rs`).
                 let spacing = dt_ray / m as f64;
-                let visible = ((length / spacing).ceil() as usize).clamp(1, m);
+                let in_front = t_end * (1.0 - 1e-3) - t_k;
+                let visible = ((in_front / spacing).ceil() as usize).clamp(1, m);
                 f_h.fill(0.0);
                 weight_sum.fill(0.0);
                 let mut base_m = None;
