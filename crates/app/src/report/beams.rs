@@ -508,6 +508,7 @@ mod tests {
         };
         let truth = luminance("reference");
         let total: f64 = truth.iter().sum();
+        let mut means = Vec::new();
         for variant in variants {
             let values = luminance(variant);
             let mut shares: Vec<(f64, usize)> = values
@@ -517,6 +518,7 @@ mod tests {
                 .zip(0..)
                 .collect();
             let mean: f64 = shares.iter().map(|s| s.0).sum();
+            means.push(mean);
             shares.sort_by(|a, b| b.0.total_cmp(&a.0));
             println!("{variant}: mean error {:.2} %", 100.0 * mean);
             for &(share, i) in &shares[..3] {
@@ -530,5 +532,9 @@ mod tests {
                 );
             }
         }
+        // The paper's 1.5 %: not met by the walk here, met with the weighted samples
+        // counted per ray, walked and at a quarter of the resolution.
+        assert!(means[0] > 0.015, "the walk: {}", means[0]);
+        assert!(means[5] < 0.015 && means[10] < 0.015, "{means:?}");
     }
 }

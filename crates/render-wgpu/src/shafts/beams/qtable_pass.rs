@@ -251,7 +251,7 @@ impl QtablePass {
         // in the invocation that walks the planes came out short of light on lavapipe
         // (presumably its silent loop budget, `models/gpu_loops.rs`). Without meshes
         // they trace it themselves, and the frame takes no ray-end pass of its own.
-        let ray_ends = if qtable.uniform.upsample[2] > 0.5 {
+        let ray_ends = if !qtable.scene.triangles.is_empty() {
             RayEnds::Traced(&self.ray_end)
         } else {
             RayEnds::Given(&low_end)

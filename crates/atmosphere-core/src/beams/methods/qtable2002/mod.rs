@@ -198,9 +198,9 @@ pub struct Qtable2002 {
     bounds: Vec<[f64; 4]>,
     gpu_raster_planes: bool,
     weighted_samples: bool,
-    /// [`SUBPLANES_PER_RAY`], counted by `rule`.
-    subplanes_per_ray: bool,
-    rule: SubPlaneRule,
+    /// The rule each ray counts its own sub-planes by ([`SUBPLANES_PER_RAY`]); `None`:
+    /// every ray takes the centre ray's m_k.
+    per_ray_rule: Option<SubPlaneRule>,
     upsample: Option<Upsample>,
 }
 
@@ -299,8 +299,7 @@ impl Qtable2002 {
             bounds,
             gpu_raster_planes: own.gpu_raster_planes,
             weighted_samples: own.weighted_samples,
-            subplanes_per_ray: own.subplanes_per_ray,
-            rule,
+            per_ray_rule: own.subplanes_per_ray.then_some(rule),
             upsample: own.upsample,
         })
     }
@@ -333,7 +332,7 @@ impl Qtable2002 {
     /// Whether each ray counts its own sub-planes ([`SUBPLANES_PER_RAY`]), and by what
     /// rule.
     pub fn subplanes_per_ray(&self) -> Option<SubPlaneRule> {
-        self.subplanes_per_ray.then_some(self.rule)
+        self.per_ray_rule
     }
 
     /// Each light's part of the screen, normalised device coordinates [x0, y0, x1, y1]:
@@ -507,9 +506,10 @@ impl Qtable2002 {
                     break;
                 }
                 let length = dt_ray.min(t_end - t_k);
-                // f_l of the interval (Eq. 7), the smooth factor of each wavelength.
-                for (w, f) in smooth.iter_mut().enumerate() {
-                    *f = f_l(
+                // f_l of the interval (Eq. 7) at each wavelength: first where the ray
+                // counts its own samples from it, else only where a sample is lit.
+                let interval_f_l = |w: usize| {
+                    f_l(
                         &self.table,
                         &self.scattering.medium,
                         phase,
@@ -519,12 +519,16 @@ impl Qtable2002 {
                         t_k,
                         length,
                         w,
-                    );
-                }
-                let m = if self.subplanes_per_ray {
-                    planes.samples_for(&self.rule, smooth.iter().copied().fold(0.0, f64::max))
-                } else {
-                    centre_m
+                    )
+                };
+                let m = match &self.per_ray_rule {
+                    Some(rule) => {
+                        for (w, f) in smooth.iter_mut().enumerate() {
+                            *f = interval_f_l(w);
+                        }
+                        planes.samples_for(rule, smooth.iter().copied().fold(0.0, f64::max))
+                    }
+                    None => centre_m,
                 };
                 // Eq. 10: the mean of I_l H over the main plane and its sub-planes in
                 // front of the ray's end (an occluder hides those behind it, and the
@@ -572,7 +576,12 @@ impl Qtable2002 {
                 }
                 for (w, s) in sum.iter_mut().enumerate() {
                     if f_h[w] > 0.0 {
-                        *s += f_h[w] / weight_sum[w] * smooth[w];
+                        let f = if self.per_ray_rule.is_some() {
+                            smooth[w]
+                        } else {
+                            interval_f_l(w)
+                        };
+                        *s += f_h[w] / weight_sum[w] * f;
                     }
                 }
             }
