@@ -1,5 +1,6 @@
-//! The reference's orders two and up on rays of the sky from 2 m, with and without
-//! guiding towards sunlit air, at a fixed number of paths: the estimate, its standard
+//! The reference's orders two and up on rays of the sky from 2 m, without guiding, with
+//! directions guided towards sunlit air, and with the later events drawn towards the
+//! light as well, at a fixed number of paths: the estimate, its standard
 //! error relative to the whole radiance, and the time.
 //!
 //! `cargo run --release -p atmosphere-core --example twilight_guiding -- SUN_ZENITH_DEG
@@ -51,7 +52,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         )?;
         let path = ViewPath::new(&a, &ray, Fineness::VIEW)?;
         let single = single_scattering(&a, &spectra, &path, ray.sun_direction, None)[0];
-        for guiding in [Guiding::Off, Guiding::TowardsLitAir] {
+        for guiding in [Guiding::Off, Guiding::Directions, Guiding::TowardsLitAir] {
             let mut sampler = Sampler::new(7);
             let start = Instant::now();
             let e = reference.multiple_scattering(

@@ -83,10 +83,13 @@ fn write_views(
          sun above the horizon. Reference std. error is the reference's mean relative \
          standard error of radiance; models are judged only on the rays whose reference \
          luminance is known to {:.0} % (`judged_rays.rs`: where the Monte Carlo has not \
-         converged, an error against it measures its noise), and the last column counts \
-         them; rays into space, with no light, count in no error either.\n\n\
-         | view | atmosphere | altitude | sun zenith | look | fov | rays | daytime | reference std. error | rays judged |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+         converged, an error against it measures its noise), and the next column counts \
+         them; rays into space, with no light, count in no error either. The last column \
+         is the RMS of the relative standard error of luminance over the judged rays: the \
+         noise a model's RMS error on the view carries from the reference, so an error \
+         near it says little more than that the model is within it.\n\n\
+         | view | atmosphere | altitude | sun zenith | look | fov | rays | daytime | reference std. error | rays judged | judged rays' std. error (RMS) |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
         100.0 * MAX_RELATIVE_STD_ERROR,
     );
     for (v, answers) in views.iter().zip(reference) {
@@ -95,10 +98,22 @@ fn write_views(
             .flat_map(|a| a.radiance.iter().zip(&a.radiance_std_error))
             .filter(|(l, _)| **l > 0.0)
             .fold((0.0, 0usize), |(s, n), (l, e)| (s + e / l, n + 1));
-        let judged = answers.iter().filter(|a| is_judged(a, color)).count();
+        let judged: Vec<f64> = answers
+            .iter()
+            .filter(|a| is_judged(a, color))
+            .map(|a| {
+                color.luminance_cd_m2(&a.radiance_std_error) / color.luminance_cd_m2(&a.radiance)
+            })
+            .collect();
+        let judged_noise = if judged.is_empty() {
+            "-".to_string()
+        } else {
+            let mean_square = judged.iter().map(|e| e * e).sum::<f64>() / judged.len() as f64;
+            format!("{:.2} %", 100.0 * mean_square.sqrt())
+        };
         let _ = writeln!(
             md,
-            "| {} | {} | {} m | {}° | {:.1}°, {}° | {}° | {}x{} | {} | {:.2} % | {judged} |",
+            "| {} | {} | {} m | {}° | {:.1}°, {}° | {}° | {}x{} | {} | {:.2} % | {} | {judged_noise} |",
             v.title,
             v.atmosphere,
             v.altitude_m,
@@ -110,6 +125,7 @@ fn write_views(
             v.rows,
             if v.is_daytime() { "yes" } else { "no" },
             if n > 0 { 100.0 * sum / n as f64 } else { 0.0 },
+            judged.len(),
         );
     }
     md.push('\n');

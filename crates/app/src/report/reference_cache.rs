@@ -34,7 +34,8 @@ const VIEW_MARK: &str = "# view ";
 
 /// The reference's settings for `view`: `base`, with the path cap `twilight_max_paths`
 /// where the sun is below the horizon and higher orders are computed (there the light of
-/// order two and up is nearly all the radiance and its paths are the least efficient).
+/// order two and up is nearly all the radiance and its paths are the least efficient),
+/// and `NAUTICAL_PATH_FACTOR` times that cap where the sun is more than 6 deg down.
 /// A cap equal to the reference's default is left unset, so the fingerprints stay those
 /// of the plain settings.
 pub fn reference_settings(
@@ -43,14 +44,31 @@ pub fn reference_settings(
     twilight_max_paths: usize,
 ) -> ModelSettings {
     let mut settings = base.clone();
-    if !view.is_daytime()
-        && base.max_orders != Some(1)
-        && twilight_max_paths != ReferenceSettings::default().max_paths
-    {
-        settings.options.set(MAX_PATHS.key, twilight_max_paths);
+    if view.is_daytime() || base.max_orders == Some(1) {
+        return settings;
+    }
+    let cap = if view.sun_zenith_deg > NAUTICAL_SUN_ZENITH_DEG {
+        twilight_max_paths
+            .saturating_mul(NAUTICAL_PATH_FACTOR)
+            .min(*MAX_PATHS.range.end())
+    } else {
+        twilight_max_paths
+    };
+    if cap != ReferenceSettings::default().max_paths {
+        settings.options.set(MAX_PATHS.key, cap);
     }
     settings
 }
+
+/// The sun's zenith angle past which twilight is nautical (the sun more than 6 deg
+/// below the horizon).
+const NAUTICAL_SUN_ZENITH_DEG: f64 = 96.0;
+
+/// How many times the twilight cap a view in nautical twilight takes: single scattering
+/// is dark on nearly all of its rays, so even the guided estimator's paths (towards the
+/// lit air above the shadow) leave most rays above 5 % standard error at the twilight
+/// cap, and the report could judge no model there.
+const NAUTICAL_PATH_FACTOR: usize = 8;
 
 /// A stable 64-bit hash (FNV-1a) of everything one view's reference answers depend on:
 /// the view, its atmosphere and the reference's settings.
@@ -377,7 +395,13 @@ mod tests {
         for view in report_views(2, 1) {
             let plain = fingerprint(&view, &base).unwrap();
             let same = reference_settings(&view, &base, default_cap);
-            assert_eq!(fingerprint(&view, &same).unwrap(), plain);
+            let nautical = view.sun_zenith_deg > NAUTICAL_SUN_ZENITH_DEG;
+            assert_eq!(
+                fingerprint(&view, &same).unwrap() != plain,
+                nautical,
+                "{}",
+                view.id
+            );
             let raised = reference_settings(&view, &base, 4 * default_cap);
             assert_eq!(
                 fingerprint(&view, &raised).unwrap() != plain,
@@ -392,6 +416,26 @@ mod tests {
         };
         let twilight = &report_views(2, 1)[2];
         assert_eq!(reference_settings(twilight, &single, 1 << 20), single);
+    }
+
+    #[test]
+    fn nautical_twilight_takes_eight_times_the_cap_within_its_range() {
+        let base = ModelSettings::default();
+        let views = report_views(2, 1);
+        let nautical = views.iter().find(|v| v.id == "nautical").unwrap();
+        let civil = views.iter().find(|v| v.id == "twilight").unwrap();
+        let cap = |view, twilight_cap| {
+            let settings = reference_settings(view, &base, twilight_cap);
+            settings
+                .options
+                .items()
+                .find(|(key, _)| *key == MAX_PATHS.key)
+                .map(|(_, value)| value.parse::<usize>().unwrap())
+        };
+        assert_eq!(cap(nautical, 1 << 17), Some(1 << 20));
+        assert_eq!(cap(civil, 1 << 17), None);
+        assert_eq!(cap(civil, 1 << 18), Some(1 << 18));
+        assert_eq!(cap(nautical, 1 << 25), Some(*MAX_PATHS.range.end()));
     }
 
     #[test]

@@ -33,7 +33,10 @@ pub enum Guiding {
     /// The phase function (or the ground's cosine) alone.
     Off,
     /// A mixture with a guide towards sunlit air, where the view ray's last events lie in
-    /// the umbra.
+    /// the umbra; the later events of those paths drawn by delta tracking.
+    Directions,
+    /// The directions as with `Directions`, and the later events of those paths drawn
+    /// towards the light as well (`towards_light.rs`).
     TowardsLitAir,
 }
 

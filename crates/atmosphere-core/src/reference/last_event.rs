@@ -115,6 +115,11 @@ impl LastEvents {
         })
     }
 
+    /// Whether any event has a guide towards sunlit air.
+    pub fn is_guided(&self) -> bool {
+        self.guides.iter().any(Option::is_some)
+    }
+
     /// The event at the uniform number `u`, its mass over its probability, and its guide.
     pub fn draw(&self, u: f64) -> (&LastEvent, f64, Option<&DirectionGuide>) {
         let end = *self.cdf.last().unwrap_or(&1.0);

@@ -10,6 +10,7 @@ mod guide;
 #[cfg(test)]
 mod guide_tests;
 mod last_event;
+mod light_proxy;
 mod majorant;
 mod path_tracer;
 mod scatterer;
@@ -17,16 +18,20 @@ mod settings;
 mod shadow;
 mod single_scattering;
 mod sun;
+mod towards_light;
 mod view_path;
+
+use std::sync::OnceLock;
 
 use glam::DVec3;
 
 pub use guide::{DirectionGuide, Guiding};
 use last_event::{LastEvent, LastEvents};
+pub use light_proxy::LightProxy;
 pub use majorant::DensityBounds;
 pub use path_tracer::PathTracer;
 use scatterer::Scatterer;
-pub use settings::{MAX_PATHS, MIN_PATHS, ReferenceSettings};
+pub use settings::{MAX_PATHS, MIN_PATHS, ReferenceSettings, TOWARDS_LIGHT};
 pub use single_scattering::single_scattering;
 pub use sun::disk_mean_transmittance;
 pub use view_path::{RayEnd, ViewPath};
@@ -61,9 +66,14 @@ pub struct Reference {
     settings: ModelSettings,
     /// The most paths per ray and wavelength.
     max_paths: usize,
+    /// How paths are guided where the view ray's last events lie in the umbra.
+    guiding: Guiding,
     table: TransmittanceTable,
     bounds: DensityBounds,
     mie_sampler: PhaseSampler,
+    /// Per wavelength, the light arriving at each point, built the first time a path at
+    /// that wavelength is guided through the umbra.
+    light: Vec<OnceLock<Option<LightProxy>>>,
 }
 
 /// Monte Carlo estimate of orders two and up, at one wavelength.
@@ -87,9 +97,15 @@ impl Reference {
             base: ModelBase::new(ModelId::Reference, atmosphere, settings),
             settings: settings.clone(),
             max_paths: own.max_paths,
+            guiding: if own.towards_light {
+                Guiding::TowardsLitAir
+            } else {
+                Guiding::Directions
+            },
             table: TransmittanceTable::build(atmosphere, w, h),
             bounds: DensityBounds::new(atmosphere),
             mie_sampler: PhaseSampler::new(&atmosphere.mie.phase),
+            light: empty_light(settings.wavelengths_nm.len()),
         })
     }
 
@@ -107,7 +123,15 @@ impl Reference {
             max_orders: self.settings.max_orders,
             sun_direction,
             guide: None,
+            light: None,
         }
+    }
+
+    /// The light proxy at wavelength index `w`, built on first use from `tracer`.
+    fn light_proxy(&self, w: usize, tracer: &PathTracer<'_>) -> Option<&LightProxy> {
+        self.light[w]
+            .get_or_init(|| LightProxy::new(tracer))
+            .as_ref()
     }
 
     /// Orders two and up along a discretised view ray at wavelength index `w`, refined
@@ -159,20 +183,26 @@ impl Reference {
             })
             .collect();
         let unguided = self.tracer(w, sun_direction);
-        let Some(last) = LastEvents::new(
-            events,
-            path.direction,
-            &unguided,
-            guiding == Guiding::TowardsLitAir,
-        ) else {
+        let Some(last) =
+            LastEvents::new(events, path.direction, &unguided, guiding != Guiding::Off)
+        else {
             return none;
+        };
+        let light = if guiding == Guiding::TowardsLitAir && last.is_guided() {
+            self.light_proxy(w, &unguided)
+        } else {
+            None
         };
         let darkness = DARKNESS * self.base.spectra.solar_irradiance[w];
         let (mut sum, mut sum_sq, mut n) = (0.0, 0.0, 0usize);
         loop {
             for _ in 0..BATCH {
                 let (event, mass_weight, guide) = last.draw(sampler.uniform());
-                let tracer = PathTracer { guide, ..unguided };
+                let tracer = PathTracer {
+                    guide,
+                    light,
+                    ..unguided
+                };
                 let (direction, weight) =
                     tracer.scatter(event.position, path.direction, event.scatterer, sampler);
                 let value = if weight > 0.0 {
@@ -221,6 +251,8 @@ impl SkyModel for Reference {
             || PhaseSampler::new(&atmosphere.mie.phase),
         );
         self.bounds = DensityBounds::new(atmosphere);
+        // Rebuilt on first use: it depends on every optical property and the albedo.
+        self.light = empty_light(self.light.len());
         Ok(update.rebuilt())
     }
 
@@ -265,8 +297,7 @@ impl Reference {
         let mut std_error = Vec::with_capacity(single.len());
         for (w, l1) in single.iter().enumerate() {
             let mut sampler = Sampler::new(mix_seed(&[seed, w as u64]));
-            let ms =
-                self.multiple_scattering(&path, sun, w, *l1, Guiding::TowardsLitAir, &mut sampler);
+            let ms = self.multiple_scattering(&path, sun, w, *l1, self.guiding, &mut sampler);
             radiance.push(l1 + ms.mean);
             std_error.push(ms.std_error);
         }
@@ -276,4 +307,9 @@ impl Reference {
             radiance_std_error: std_error,
         })
     }
+}
+
+/// One unbuilt light proxy per wavelength.
+fn empty_light(wavelengths: usize) -> Vec<OnceLock<Option<LightProxy>>> {
+    (0..wavelengths).map(|_| OnceLock::new()).collect()
 }

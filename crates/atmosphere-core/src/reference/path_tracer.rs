@@ -16,6 +16,7 @@ use crate::optics::phase::rayleigh;
 use crate::optics::phase_sampling::{PhaseSampler, sample_rayleigh};
 use crate::optics::transmittance_table::TransmittanceTable;
 use crate::reference::guide::DirectionGuide;
+use crate::reference::light_proxy::LightProxy;
 use crate::reference::majorant::DensityBounds;
 use crate::reference::scatterer::Scatterer;
 use crate::reference::view_path::altitude;
@@ -40,6 +41,9 @@ pub struct PathTracer<'a> {
     /// Directions towards sunlit air, mixed into the drawing of directions at events in
     /// the umbra (`guide.rs`); `None` draws from the phase function (or cosine) alone.
     pub guide: Option<&'a DirectionGuide>,
+    /// The light arriving at each point, by which the next events of paths in the umbra
+    /// are drawn towards it (`towards_light.rs`); `None` draws them by delta tracking.
+    pub light: Option<&'a LightProxy>,
 }
 
 /// Pieces of each direction's lit part on which the guide's radiance is estimated.
@@ -51,7 +55,7 @@ const GUIDE_PIECES: usize = 8;
 const GUIDE_SHARE: f64 = 0.7;
 
 /// Where a ray from a point inside the atmosphere next interacts.
-enum Event {
+pub(crate) enum Event {
     Scatter {
         position: DVec3,
         densities: [f64; 3],
@@ -100,8 +104,9 @@ impl PathTracer<'_> {
     /// scattered at least once (no direct sunlight), where the first event met along
     /// `direction` is of scattering order `first_order`.
     ///
-    /// Each event's next place is drawn by delta tracking, and a new direction from the
-    /// phase function or, on the ground, the cosine. The sunlight scattered once more on
+    /// Each event's next place is drawn by delta tracking (from the umbra, with a light
+    /// proxy, from a mixture towards the light: `towards_light.rs`), and a new direction
+    /// from the phase function or, on the ground, the cosine. The sunlight scattered once more on
     /// each segment is estimated by next-event estimation of the sun's disk at that event,
     /// or, on segments that cross the planet's umbra, by sampling their lit part
     /// (`shadow.rs`).
@@ -132,7 +137,10 @@ impl PathTracer<'_> {
             if last && !at_event {
                 return radiance;
             }
-            match self.next_event(position, direction, &segment, sampler) {
+            let (event, event_weight) =
+                self.next_event_towards_light(position, direction, &segment, sampler);
+            throughput *= event_weight;
+            match event {
                 Event::Escape => return radiance,
                 Event::Scatter {
                     position: p,
@@ -311,7 +319,7 @@ impl PathTracer<'_> {
     }
 
     /// Delta tracking along the segment to the next real collision, the ground, or space.
-    fn next_event(
+    pub(crate) fn next_event(
         &self,
         position: DVec3,
         direction: DVec3,

@@ -1,5 +1,6 @@
-//! The reference's own setting: how many Monte Carlo paths it may draw per ray and
-//! wavelength before it stops short of its target error (and reports the error reached).
+//! The reference's own settings: how many Monte Carlo paths it may draw per ray and
+//! wavelength before it stops short of its target error (and reports the error reached),
+//! and whether paths through the umbra draw their later events towards the light.
 
 use crate::models::error::ModelError;
 use crate::models::options::{ModelOptions, Setting};
@@ -15,16 +16,25 @@ pub const MAX_PATHS: Setting<usize> = Setting {
     range: MIN_PATHS..=1 << 26,
 };
 
+/// The key of [`ReferenceSettings::towards_light`].
+pub const TOWARDS_LIGHT: &str = "towards_light";
+
 /// The reference's settings read from `key=value` options.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReferenceSettings {
     pub max_paths: usize,
+    /// Paths guided through the umbra draw their later events towards the light as well
+    /// as their directions (`towards_light.rs`); off: by delta tracking.
+    pub towards_light: bool,
 }
 
 impl Default for ReferenceSettings {
     /// 2^17 paths: daylight rays reach 0.25 % well before it; twilight rays stop there.
     fn default() -> Self {
-        ReferenceSettings { max_paths: 1 << 17 }
+        ReferenceSettings {
+            max_paths: 1 << 17,
+            towards_light: false,
+        }
     }
 }
 
@@ -38,6 +48,7 @@ impl ReferenceSettings {
             |reader, defaults: ReferenceSettings| {
                 Ok(ReferenceSettings {
                     max_paths: reader.count(&MAX_PATHS, defaults.max_paths)?,
+                    towards_light: reader.flag(TOWARDS_LIGHT, defaults.towards_light)?,
                 })
             },
         )
@@ -59,6 +70,10 @@ mod tests {
             assert!(e.contains("outside 256..=67108864"), "{e}");
         }
         let e = read(&["paths=3"]).unwrap_err().to_string();
-        assert!(e.contains("its settings: max_paths"), "{e}");
+        assert!(e.contains("its settings: max_paths, towards_light"), "{e}");
+        assert!(read(&["towards_light=true"]).unwrap().towards_light);
+        assert!(!read(&[]).unwrap().towards_light);
+        let e = read(&["towards_light=2"]).unwrap_err().to_string();
+        assert!(e.contains("towards_light"), "{e}");
     }
 }
