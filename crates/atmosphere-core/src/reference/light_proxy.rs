@@ -15,8 +15,8 @@ use std::f64::consts::PI;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::atmosphere::Atmosphere;
 use crate::numerics::sampling::orthonormal_basis;
-use crate::reference::path_tracer::PathTracer;
 
 /// Nodes in altitude, crowded quadratically towards the ground.
 const ALTITUDES: usize = 24;
@@ -41,12 +41,17 @@ pub struct LightProxy {
 }
 
 impl LightProxy {
-    /// The table for `tracer`'s atmosphere and wavelength (its sun direction only sets
-    /// the frame); `None` where no cell sees any sunlit air.
-    pub fn new(tracer: &PathTracer<'_>) -> Option<LightProxy> {
-        let bottom = tracer.atmosphere.bottom_radius_m;
-        let top = tracer.atmosphere.top_radius_m - bottom;
-        let sun = tracer.sun_direction;
+    /// The table for `atmosphere` from `incoming(position, direction)`, the rough
+    /// once-scattered radiance arriving at a point from a direction with the sun towards
+    /// `sun` (which only sets the frame: `PathTracer::rough_incoming`); `None` where no
+    /// cell sees any sunlit air.
+    pub fn new(
+        atmosphere: &Atmosphere,
+        sun: DVec3,
+        incoming: impl Fn(DVec3, DVec3) -> f64 + Sync,
+    ) -> Option<LightProxy> {
+        let bottom = atmosphere.bottom_radius_m;
+        let top = atmosphere.top_radius_m - bottom;
         let (across, _) = orthonormal_basis(sun);
         let directions = sphere_directions();
         let values: Vec<f64> = (0..ALTITUDES * MU_S_NODES)
@@ -62,7 +67,7 @@ impl LightProxy {
                     .iter()
                     .map(|&(local, solid_angle)| {
                         let d = local.x * towards_sun + local.y * side + local.z * up;
-                        solid_angle * tracer.rough_incoming(position, d)
+                        solid_angle * incoming(position, d)
                     })
                     .sum::<f64>()
             })

@@ -130,7 +130,11 @@ impl Reference {
     /// The light proxy at wavelength index `w`, built on first use from `tracer`.
     fn light_proxy(&self, w: usize, tracer: &PathTracer<'_>) -> Option<&LightProxy> {
         self.light[w]
-            .get_or_init(|| LightProxy::new(tracer))
+            .get_or_init(|| {
+                LightProxy::new(&self.atmosphere, tracer.sun_direction, |p, d| {
+                    tracer.rough_incoming(p, d)
+                })
+            })
             .as_ref()
     }
 

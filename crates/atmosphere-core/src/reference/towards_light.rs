@@ -178,7 +178,8 @@ mod tests {
         let z = 102f64.to_radians();
         let sun = DVec3::new(z.sin(), 0.0, z.cos());
         let plain = reference.tracer(0, sun);
-        let light = LightProxy::new(&plain).expect("lit air in view");
+        let light = LightProxy::new(&earth, sun, |p, d| plain.rough_incoming(p, d))
+            .expect("lit air in view");
         let guided = PathTracer {
             light: Some(&light),
             ..plain
