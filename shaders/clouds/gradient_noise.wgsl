@@ -15,21 +15,15 @@ fn noise_mix(x_in: u32) -> u32 {
     return x;
 }
 
+// The dot product of `o` with cube-edge gradient `hash % 12`: (+-1, +-1, 0) for 0..3,
+// (+-1, 0, +-1) for 4..7, (0, +-1, +-1) for 8..11, bit 0 the first sign and bit 1 the
+// second. Picked by selects, not by a switch: a software rasteriser runs every case
+// that some lane of a SIMD group takes.
 fn gradient_dot(hash: u32, o: vec3<f32>) -> f32 {
-    switch hash % 12u {
-        case 0u: { return o.x + o.y; }
-        case 1u: { return -o.x + o.y; }
-        case 2u: { return o.x - o.y; }
-        case 3u: { return -o.x - o.y; }
-        case 4u: { return o.x + o.z; }
-        case 5u: { return -o.x + o.z; }
-        case 6u: { return o.x - o.z; }
-        case 7u: { return -o.x - o.z; }
-        case 8u: { return o.y + o.z; }
-        case 9u: { return -o.y + o.z; }
-        case 10u: { return o.y - o.z; }
-        default: { return -o.y - o.z; }
-    }
+    let h = hash % 12u;
+    let a = select(o.y, o.x, h < 8u);
+    let b = select(o.z, o.y, h < 4u);
+    return select(a, -a, (h & 1u) != 0u) + select(b, -b, (h & 2u) != 0u);
 }
 
 fn noise_fade(t: vec3<f32>) -> vec3<f32> {

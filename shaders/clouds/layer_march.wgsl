@@ -2,10 +2,18 @@
 // `clouds/layer/march.rs` (its documentation holds the equations): equal steps sampled
 // at their middles, the energy-conserving step integral (Hillaire 2016), the sun by
 // Riley et al. 2004's expected orders (Eq. 22, 25, 26), Wrenninge et al. 2013's
-// octaves or the delta-Eddington slab (`eddington.wgsl`), the sky as isotropic ambient, the shadow march through the density with
-// `noise.y` octaves or, where `noise.w` is 1 (`sun_light = map`), the optical depth
-// read from the frame's sun map (`sun_map_read.wgsl`, Dobashi et al. 2002 section 5.4)
-// in `counts.y` equal parts, stopping below the transmittance `detail.z`.
+// octaves or the delta-Eddington slab (`eddington.wgsl`), the sky as isotropic ambient,
+// the shadow march through the density with `noise.y` octaves or, with `SUN_FROM_MAP`
+// (`sun_light = map`), the optical depth read from the frame's sun map
+// (`sun_map_read.wgsl`, Dobashi et al. 2002 section 5.4) in `counts.y` equal parts,
+// stopping below the transmittance `detail.z`.
+//
+// The method, the sun's light and whether the shadow march reads noise are
+// pipeline-overridable constants: a pipeline holds one method's code only (render-wgpu's `clouds/march_variants.rs`). A
+// software rasteriser such as lavapipe runs every branch some lane of a SIMD group
+// takes and keeps the registers of all the code compiled in; with the three methods
+// and both lights in one shader a sample cost about twice as much, and the shadow
+// march's noise code, unread, a third more (docs/clouds.md).
 
 #import clouds/layer_medium.wgsl
 #import clouds/sun_map_read.wgsl
@@ -13,6 +21,19 @@
 #import clouds/orders.wgsl
 
 const MAX_SHADOW_STEPS: u32 = 64u;
+
+// The sun's light method: 0 Riley et al. 2004's orders, 1 the octaves, 2 delta-Eddington.
+override LAYER_METHOD: u32 = 0u;
+// Whether the sun's optical depth comes from the frame's sun map instead of a march.
+override SUN_FROM_MAP: bool = false;
+// Whether the shadow march reads detail noise (`noise.y` above 0); without it the
+// pipeline holds no noise code for the shadow march.
+override SHADOW_DETAIL: bool = true;
+
+// The octaves of detail noise the shadow march reads.
+fn shadow_octaves() -> u32 {
+    return select(0u, layer.noise.y, SHADOW_DETAIL);
+}
 
 // The single-scattering phase function's asymmetry g, each wavelength.
 fn asymmetry() -> vec3<f32> {
@@ -36,9 +57,21 @@ fn layer_depth(p: vec3<f32>, d: vec3<f32>) -> f32 {
     let ds = layer_boundary(p, d) / f32(steps);
     var tau = 0.0;
     for (var k = 0u; k < steps; k++) {
-        tau += layer_extinction(p + d * ((f32(k) + 0.5) * ds), layer.noise.y) * ds;
+        tau += layer_extinction(p + d * ((f32(k) + 0.5) * ds), shadow_octaves()) * ds;
     }
     return tau;
+}
+
+// The optical depth of part `k` of the shadow path from `p` towards the sun, the parts
+// counted inwards from the layer's boundary: a `length_m / steps` step of the shadow
+// march, or `tau_map / steps` where the sun map gives the whole path (`from_map`).
+fn shadow_part(p: vec3<f32>, k: u32, steps: u32, length_m: f32, tau_map: f32, from_map: bool) -> f32 {
+    if from_map {
+        return tau_map / f32(steps);
+    }
+    let ds = length_m / f32(steps);
+    let q = p + layer.sun_direction.xyz * (length_m - (f32(k) + 0.5) * ds);
+    return layer_extinction(q, shadow_octaves()) * ds;
 }
 
 // J_sun / E_sun at `p`, sr^-1, seen along `d`, `up` the local vertical, `g` the
@@ -46,24 +79,39 @@ fn layer_depth(p: vec3<f32>, d: vec3<f32>) -> f32 {
 fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32, g: vec3<f32>) -> SunParts {
     let s = layer.sun_direction.xyz;
     let steps = min(layer.counts.y, MAX_SHADOW_STEPS);
-    var depths: array<f32, MAX_SHADOW_STEPS>;
-    var tau = 0.0;
-    if layer.noise.w == 1u {
-        tau = cloud_sun_optical_depth(p);
-        let part = tau / f32(steps);
-        for (var k = 0u; k < steps; k++) {
-            depths[k] = part;
-        }
+    let from_map = SUN_FROM_MAP;
+    var tau_map = 0.0;
+    var length_m = 0.0;
+    if from_map {
+        tau_map = cloud_sun_optical_depth(p);
     } else {
-        let length_m = layer_boundary(p, s);
-        let ds = length_m / f32(steps);
+        length_m = layer_boundary(p, s);
+    }
+    if LAYER_METHOD == 0u {
+        var intensity = vec3<f32>(1.0);
+        var walked = 0.0;
         for (var k = 0u; k < steps; k++) {
-            let q = p + s * (length_m - (f32(k) + 0.5) * ds);
-            depths[k] = layer_extinction(q, layer.noise.y) * ds;
-            tau += depths[k];
+            let d = shadow_part(p, k, steps, length_m, tau_map, from_map);
+            if d > 0.0 {
+                let m = u32(floor(albedo * walked + 1.0 + d));
+                let kept = albedo * forward_fraction(m);
+                let t = exp(-d);
+                let kept_d = select(pow(kept, vec3<f32>(d)), vec3<f32>(0.0), kept <= vec3<f32>(0.0));
+                intensity *= t + (1.0 - t) * kept_d;
+                walked += d;
+            }
+        }
+        let tau = select(walked, tau_map, from_map);
+        let n = u32(floor(albedo * tau)) + 1u;
+        return SunParts(intensity * (distribution(n, nu) + layer.medium.w), vec3<f32>(0.0), vec3<f32>(0.0));
+    }
+    var tau = tau_map;
+    if !from_map {
+        for (var k = 0u; k < steps; k++) {
+            tau += shadow_part(p, k, steps, length_m, tau_map, false);
         }
     }
-    if layer.counts.z == 2u {
+    if LAYER_METHOD == 2u {
         let f = g * g;
         let broad = (1.0 - f) * eddington_henyey_greenstein(g / (1.0 + g), nu);
         let mu0 = dot(s, up);
@@ -80,23 +128,6 @@ fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32, g
             diffuse.beam + broad * exp(-(1.0 - albedo * f) * tau),
             diffuse.sky,
         );
-    }
-    if layer.counts.z == 0u {
-        var intensity = vec3<f32>(1.0);
-        var walked = 0.0;
-        for (var k = 0u; k < steps; k++) {
-            let d = depths[k];
-            if d > 0.0 {
-                let m = u32(floor(albedo * walked + 1.0 + d));
-                let kept = albedo * forward_fraction(m);
-                let t = exp(-d);
-                let kept_d = select(pow(kept, vec3<f32>(d)), vec3<f32>(0.0), kept <= vec3<f32>(0.0));
-                intensity *= t + (1.0 - t) * kept_d;
-                walked += d;
-            }
-        }
-        let n = u32(floor(albedo * tau)) + 1u;
-        return SunParts(intensity * (distribution(n, nu) + layer.medium.w), vec3<f32>(0.0), vec3<f32>(0.0));
     }
     let single = distribution(1u, nu);
     var j = vec3<f32>(0.0);
@@ -118,7 +149,7 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
     var transmittance = 1.0;
     // The delta-scaled view transmittance the delta-Eddington method's diffuse part sees.
     var scaled_transmittance = vec3<f32>(1.0);
-    let eddington = layer.counts.z == 2u;
+    let eddington = LAYER_METHOD == 2u;
     let dt = max(t1 - t0, 0.0) / f32(layer.counts.x);
     let nu = dot(d, layer.sun_direction.xyz);
     let up = normalize(o + d * t0);

@@ -64,12 +64,17 @@ fn layer_extinction(p: vec3<f32>, octaves: u32) -> f32 {
     if c <= 0.0 {
         return 0.0;
     }
+    // Above the cloud's top (or at its base) no noise can give it density.
+    let profile = vertical_profile(x, c);
+    if profile <= 0.0 {
+        return 0.0;
+    }
     var erosion = 1.0;
     if layer.detail.y > 0.0 {
         let n = fractal_noise(DETAIL_SEED, p / layer.detail.x, octaves, 0.5);
         erosion = 1.0 - layer.detail.y * (0.5 - 0.5 * clamp(n, -1.0, 1.0));
     }
-    return layer.medium.x * clamp(c * vertical_profile(x, c) * erosion, 0.0, 1.0);
+    return layer.medium.x * clamp(c * profile * erosion, 0.0, 1.0);
 }
 
 // (r mu)^2 - (r - radius)(r + radius), without the cancellation of the naive form.

@@ -22,12 +22,14 @@ struct LayerParams {
     medium: vec4<f32>,
     // detail_scale_m, detail_strength, min_transmittance (w unused).
     detail: vec4<f32>,
-    // steps, shadow_steps, method (0 riley, 1 octaves, 2 eddington), octaves.
+    // steps, shadow_steps, method (0 riley, 1 octaves, 2 eddington), octaves; the
+    // method picks the pipeline (its LAYER_METHOD constant) and is not read here.
     counts: vec4<u32>,
     // The cover grid's width and height, the image's width and height.
     sizes: vec4<u32>,
     // Octaves of detail noise read by the view march and by the shadow march, the
-    // resolution divisor, the sun's light (0: a shadow march, 1: the sun map).
+    // resolution divisor, the sun's light (0: a shadow march, 1: the sun map; it picks
+    // the pipeline, its SUN_FROM_MAP constant, and is not read here).
     noise: vec4<u32>,
 }
 

@@ -461,3 +461,24 @@ fn tables_for_other_than_three_wavelengths_are_refused_by_name() {
         "{e}"
     );
 }
+
+#[test]
+fn a_light_method_outside_its_range_is_refused_by_name() {
+    let Some(gpu) = support::gpu_or_skip("cloud layer method") else {
+        return;
+    };
+    let inputs = LayerInputs::new(&gpu, &cover(), &orders()).unwrap();
+    let pass = CloudLayerPass::new(&gpu).unwrap();
+    let settings = LayerSettings::default();
+    let mut params = LayerUniform::new(
+        &camera(500.0, 10.0),
+        &light(30.0),
+        &settings,
+        BOTTOM_M,
+        (2048, 1024),
+    )
+    .unwrap();
+    params.counts[2] = 3;
+    let e = pass.render(&gpu, (&params, &inputs), None).unwrap_err();
+    assert!(e.to_string().contains("light method 3"), "{e}");
+}

@@ -16,6 +16,7 @@
 use crate::clouds::frame_clouds::{CloudSteps, FrameClouds};
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::{LayerCamera, LayerUniform};
+use crate::clouds::march_variants::MarchVariants;
 use crate::clouds::spheres::frame_spheres::{FrameSpherePass, SphereImages, SphereScene};
 use crate::clouds::sun_map_texture::{SUN_MAP_BINDING, SunMapTexture};
 use crate::frame::Frame;
@@ -132,10 +133,10 @@ pub struct MarchScene<'a> {
 /// parameter buffers.
 #[derive(Debug)]
 pub struct CloudFramePass {
-    march: ComputePipeline,
-    march_reduced: ComputePipeline,
+    march: MarchVariants,
+    march_reduced: MarchVariants,
     upsample: ComputePipeline,
-    march_list: ComputePipeline,
+    march_list: MarchVariants,
     composite: ComputePipeline,
     spheres: FrameSpherePass,
     params: wgpu::Buffer,
@@ -187,20 +188,12 @@ impl CloudFramePass {
             uniform_entry(7, 16),
         ];
         Ok(CloudFramePass {
-            march: ComputePipeline::new(
-                gpu,
-                "clouds/frame_march.wgsl",
-                "main",
-                "cloud frame march",
-                &march,
-            )?,
-            march_reduced: ComputePipeline::new(
-                gpu,
+            march: MarchVariants::new("clouds/frame_march.wgsl", "cloud frame march", &march),
+            march_reduced: MarchVariants::new(
                 "clouds/frame_march_reduced.wgsl",
-                "main",
                 "cloud frame reduced march",
                 &reduced,
-            )?,
+            ),
             upsample: ComputePipeline::new(
                 gpu,
                 "clouds/frame_upsample.wgsl",
@@ -208,13 +201,11 @@ impl CloudFramePass {
                 "cloud frame upsample",
                 &upsample,
             )?,
-            march_list: ComputePipeline::new(
-                gpu,
+            march_list: MarchVariants::new(
                 "clouds/frame_march_list.wgsl",
-                "main",
                 "cloud frame listed march",
                 &list,
-            )?,
+            ),
             composite: ComputePipeline::new(
                 gpu,
                 "clouds/frame_composite.wgsl",
@@ -315,10 +306,9 @@ impl CloudFramePass {
         ];
         let divisor = scene.clouds.settings.resolution_divisor;
         if divisor <= 1 {
-            let bind_group = self
-                .march
-                .bind_group_numbered(gpu, &[shared.as_slice(), &full].concat());
-            self.march.dispatch(
+            let march = self.march.for_params(gpu, &params)?;
+            let bind_group = march.bind_group_numbered(gpu, &[shared.as_slice(), &full].concat());
+            march.dispatch(
                 encoder,
                 "cloud frame march",
                 &bind_group,
@@ -350,10 +340,10 @@ impl CloudFramePass {
             (3, wgpu::BindingResource::TextureView(&image)),
             (7, wgpu::BindingResource::TextureView(&segments)),
         ];
-        let bind_group = self
-            .march_reduced
-            .bind_group_numbered(gpu, &[shared.as_slice(), &reduced].concat());
-        self.march_reduced.dispatch(
+        let march_reduced = self.march_reduced.for_params(gpu, &params)?;
+        let bind_group =
+            march_reduced.bind_group_numbered(gpu, &[shared.as_slice(), &reduced].concat());
+        march_reduced.dispatch(
             encoder,
             "cloud frame reduced march",
             &bind_group,
@@ -378,10 +368,10 @@ impl CloudFramePass {
             None,
         );
         let listed = [(9, list.as_entire_binding())];
-        let bind_group = self
-            .march_list
-            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &listed].concat());
-        self.march_list.dispatch_indirect(
+        let march_list = self.march_list.for_params(gpu, &params)?;
+        let bind_group =
+            march_list.bind_group_numbered(gpu, &[shared.as_slice(), &full, &listed].concat());
+        march_list.dispatch_indirect(
             encoder,
             "cloud frame listed march",
             &bind_group,

@@ -8,6 +8,7 @@
 
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::LayerUniform;
+use crate::clouds::march_variants::MarchVariants;
 use crate::clouds::sun_map_texture::{SUN_MAP_BINDING, SunMapTexture};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
@@ -24,7 +25,7 @@ const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// empty sun map of marches without one.
 #[derive(Debug)]
 pub struct CloudLayerPass {
-    pipeline: ComputePipeline,
+    march: MarchVariants,
     upsample: ComputePipeline,
     params: wgpu::Buffer,
     no_map: SunMapTexture,
@@ -42,13 +43,7 @@ impl CloudLayerPass {
             texture_entry(SUN_MAP_BINDING, D2),
         ];
         Ok(CloudLayerPass {
-            pipeline: ComputePipeline::new(
-                gpu,
-                "clouds/layer_image.wgsl",
-                "main",
-                "cloud layer",
-                &entries,
-            )?,
+            march: MarchVariants::new("clouds/layer_image.wgsl", "cloud layer", &entries),
             upsample: ComputePipeline::new(
                 gpu,
                 "clouds/layer_upsample.wgsl",
@@ -87,8 +82,7 @@ impl CloudLayerPass {
         gpu.write_uniform(&self.params, params);
         let divisor = params.noise[2];
         if divisor <= 1 {
-            self.march(gpu, encoder, (inputs, sun_map), image, timestamps);
-            return Ok(());
+            return self.march(gpu, encoder, (params, inputs, sun_map), image, timestamps);
         }
         let reduced = texture_2d(
             &gpu.device,
@@ -98,7 +92,7 @@ impl CloudLayerPass {
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
         );
         let (start, end) = split_timestamps(timestamps);
-        self.march(gpu, encoder, (inputs, sun_map), &reduced, start);
+        self.march(gpu, encoder, (params, inputs, sun_map), &reduced, start)?;
         let source = reduced.create_view(&Default::default());
         let target = image.create_view(&Default::default());
         let bind_group = self.upsample.bind_group(
@@ -118,19 +112,21 @@ impl CloudLayerPass {
         Ok(())
     }
 
-    /// Records the march into `target`, the full or the reduced image.
+    /// Records the march of `params`' method and sun light into `target`, the full or
+    /// the reduced image.
     fn march(
         &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        (inputs, sun_map): (&LayerInputs, &SunMapTexture),
+        (params, inputs, sun_map): (&LayerUniform, &LayerInputs, &SunMapTexture),
         target: &wgpu::Texture,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    ) -> Result<(), RenderError> {
+        let pipeline = self.march.for_params(gpu, params)?;
         let cover = inputs.cover.create_view(&Default::default());
         let view = target.create_view(&Default::default());
         let map = sun_map.texture().create_view(&Default::default());
-        let bind_group = self.pipeline.bind_group_numbered(
+        let bind_group = pipeline.bind_group_numbered(
             gpu,
             &[
                 (0, self.params.as_entire_binding()),
@@ -141,13 +137,14 @@ impl CloudLayerPass {
                 (SUN_MAP_BINDING, wgpu::BindingResource::TextureView(&map)),
             ],
         );
-        self.pipeline.dispatch(
+        pipeline.dispatch(
             encoder,
             "cloud layer",
             &bind_group,
             texel_groups(target),
             timestamps,
         );
+        Ok(())
     }
 
     /// Renders the image of `params` (lit through `sun_map` where its settings say so)

@@ -1,7 +1,8 @@
 //! Clouds on the GPU: the cloud layer's ray march (`shaders/clouds/`), twin of
 //! atmosphere-core's `clouds/layer/` and checked against it pixel by pixel.
 //! [`layer_uniform`] holds the pass's parameters, [`layer_inputs`] the cover texture
-//! and the multiple-scattering tables, [`layer_pass`] the pass; [`frame_clouds`] the
+//! and the multiple-scattering tables, [`layer_pass`] the pass, [`march_variants`] its
+//! pipelines per light method; [`frame_clouds`] the
 //! layer of a renderer frame and the planner's rule, [`frame_pass`] its march and its
 //! composite with the frame's sky model; [`sun_map_texture`] and [`sun_map_pass`] the
 //! layer's attenuation of the sun over the view's region, which shades the surface,
@@ -16,6 +17,7 @@ pub mod frame_sun_map;
 pub mod layer_inputs;
 pub mod layer_pass;
 pub mod layer_uniform;
+pub mod march_variants;
 pub mod spheres;
 pub mod sun_map_pass;
 pub mod sun_map_texture;

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::profile::{density, detail_erosion};
+use super::profile::{density, detail_erosion, vertical_profile};
 use super::settings::LayerSettings;
 use super::shell::Shell;
 use crate::clouds::cover::grid::CoverGrid;
@@ -72,7 +72,8 @@ impl CloudLayer {
             return 0.0;
         }
         let cover = (self.cover.sample(point) * s.coverage_scale).min(1.0);
-        if cover <= 0.0 {
+        // Above the cloud's top (or at its base) no noise can give it density.
+        if cover <= 0.0 || vertical_profile(x, cover) <= 0.0 {
             return 0.0;
         }
         density(
