@@ -2,27 +2,20 @@
 
 use glam::DVec3;
 
-use crate::atmosphere::Atmosphere;
-use crate::models::settings::ModelSettings;
 use crate::numerics::sampling::Sampler;
 use crate::reference::Reference;
 use crate::reference::guide::DirectionGuide;
 use crate::reference::path_tracer::PathTracer;
 use crate::reference::scatterer::Scatterer;
+use crate::reference::twilight_fixture::nautical_twilight_at_440;
 
 /// Directions drawn from the mixture of guide and phase function (or cosine) carry
 /// weights whose mean is the integral of the phase function (or of cosine / pi over
 /// the hemisphere): 1. A guide whose density disagreed with its draws would miss it.
 #[test]
 fn mixture_weights_integrate_the_phase_function_and_the_cosine() {
-    let earth = Atmosphere::preset("earth").unwrap();
-    let settings = ModelSettings {
-        wavelengths_nm: vec![440.0],
-        ..ModelSettings::default()
-    };
+    let (earth, settings, sun) = nautical_twilight_at_440();
     let reference = Reference::prepare(&earth, &settings).unwrap();
-    let z = 102f64.to_radians();
-    let sun = DVec3::new(z.sin(), 0.0, z.cos());
     let unguided = reference.tracer(0, sun);
     let ground = DVec3::new(0.0, 0.0, earth.bottom_radius_m);
     let air = DVec3::new(0.0, 0.0, earth.bottom_radius_m + 12_000.0);

@@ -19,6 +19,8 @@ mod shadow;
 mod single_scattering;
 mod sun;
 mod towards_light;
+#[cfg(test)]
+mod twilight_fixture;
 mod view_path;
 
 use std::sync::OnceLock;

@@ -59,14 +59,13 @@ impl PathTracer<'_> {
         segment: &Segment,
         sampler: &mut Sampler,
     ) -> (Event, f64) {
-        let pieces = self
-            .light
-            .filter(|_| self.in_umbra(position))
-            .and_then(|light| self.light_pieces(light, position, direction, segment));
-        let Some(pieces) = pieces else {
+        let Some(light) = self.light.filter(|_| self.in_umbra(position)) else {
             return (self.next_event(position, direction, segment, sampler), 1.0);
         };
         let start = self.start_column(segment);
+        let Some(pieces) = self.light_pieces(light, (position, direction), segment, start) else {
+            return (self.next_event(position, direction, segment, sampler), 1.0);
+        };
         let free_flight = |t: f64, rho: &[f64; 3]| {
             let extinction: f64 = (0..3).map(|k| self.extinction[k] * rho[k]).sum();
             let column = self.column_along(segment, start, t);
@@ -114,19 +113,18 @@ impl PathTracer<'_> {
 
     /// Each piece's probability of holding the next event, in proportion to its
     /// free-flight probability times the light at its middle; `None` where no piece has
-    /// both.
+    /// both. `start` is the segment's [`PathTracer::start_column`].
     fn light_pieces(
         &self,
         light: &LightProxy,
-        position: DVec3,
-        direction: DVec3,
+        (position, direction): (DVec3, DVec3),
         segment: &Segment,
+        start: [f64; 3],
     ) -> Option<LightPieces> {
         let step = segment.length / PIECES as f64;
         if !(step > 0.0 && step.is_finite()) {
             return None;
         }
-        let start = self.start_column(segment);
         let transmittance =
             |t: f64| (-optical_depth(self.column_along(segment, start, t), self.extinction)).exp();
         let mut probability = [0.0; PIECES];
@@ -159,9 +157,8 @@ impl PathTracer<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::atmosphere::Atmosphere;
-    use crate::models::settings::ModelSettings;
     use crate::reference::Reference;
+    use crate::reference::twilight_fixture::nautical_twilight_at_440;
 
     /// The events drawn towards the light, with their weights, have the distribution of
     /// delta tracking's: the weighted share of collisions in each tenth of a climbing
@@ -169,14 +166,8 @@ mod tests {
     /// standard errors; and the mixture does draw more events high up.
     #[test]
     fn events_drawn_towards_the_light_keep_the_free_flight_distribution() {
-        let earth = Atmosphere::preset("earth").unwrap();
-        let settings = ModelSettings {
-            wavelengths_nm: vec![440.0],
-            ..ModelSettings::default()
-        };
+        let (earth, settings, sun) = nautical_twilight_at_440();
         let reference = Reference::prepare(&earth, &settings).unwrap();
-        let z = 102f64.to_radians();
-        let sun = DVec3::new(z.sin(), 0.0, z.cos());
         let plain = reference.tracer(0, sun);
         let light = LightProxy::new(&earth, sun, |p, d| plain.rough_incoming(p, d))
             .expect("lit air in view");
