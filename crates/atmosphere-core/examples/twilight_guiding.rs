@@ -4,7 +4,8 @@
 //! error relative to the whole radiance, and the time.
 //!
 //! `cargo run --release -p atmosphere-core --example twilight_guiding -- SUN_ZENITH_DEG
-//! PATHS [ORDERS]` (defaults 102, 32768, all orders); 440 nm.
+//! PATHS [ORDERS|all] [SEED]` (defaults 102, 32768, all orders, seed 7); 440 nm. Runs
+//! with different seeds are independent, so their spread checks the standard errors.
 
 use std::time::Instant;
 
@@ -29,7 +30,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let sun_zenith: f64 = args.get(1).map_or(Ok(102.0), |s| s.parse())?;
     let paths: usize = args.get(2).map_or(Ok(32768), |s| s.parse())?;
-    let max_orders: Option<u32> = args.get(3).map(|s| s.parse()).transpose()?;
+    let max_orders: Option<u32> = args
+        .get(3)
+        .filter(|s| *s != "all")
+        .map(|s| s.parse())
+        .transpose()?;
+    let seed: u64 = args.get(4).map_or(Ok(7), |s| s.parse())?;
     let a = Atmosphere::preset("earth")?;
     let mut settings = ModelSettings {
         wavelengths_nm: vec![440.0],
@@ -53,7 +59,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let path = ViewPath::new(&a, &ray, Fineness::VIEW)?;
         let single = single_scattering(&a, &spectra, &path, ray.sun_direction, None)[0];
         for guiding in [Guiding::Off, Guiding::Directions, Guiding::TowardsLitAir] {
-            let mut sampler = Sampler::new(7);
+            let mut sampler = Sampler::new(seed);
             let start = Instant::now();
             let e = reference.multiple_scattering(
                 &path,
