@@ -16,7 +16,7 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance};
-use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings};
+use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings, TOWARDS_LIGHT};
 use rayon::prelude::*;
 
 use crate::files::write_atomically;
@@ -35,9 +35,11 @@ const VIEW_MARK: &str = "# view ";
 /// The reference's settings for `view`: `base`, with the path cap `twilight_max_paths`
 /// where the sun is below the horizon and higher orders are computed (there the light of
 /// order two and up is nearly all the radiance and its paths are the least efficient),
-/// and `NAUTICAL_PATH_FACTOR` times that cap where the sun is more than 6 deg down.
-/// A cap equal to the reference's default is left unset, so the fingerprints stay those
-/// of the plain settings.
+/// and where the sun is more than 6 deg down: from inside the atmosphere, the later
+/// events of the paths in the umbra drawn towards the light (`towards_light`) at
+/// `UMBRA_PATH_FACTOR` times the cap; from above it, `NAUTICAL_PATH_FACTOR` times the
+/// cap. A cap equal to the reference's default is left unset, so the fingerprints stay
+/// those of the plain settings.
 pub fn reference_settings(
     view: &ReportView,
     base: &ModelSettings,
@@ -47,28 +49,48 @@ pub fn reference_settings(
     if view.is_daytime() || base.max_orders == Some(1) {
         return settings;
     }
-    let cap = if view.sun_zenith_deg > NAUTICAL_SUN_ZENITH_DEG {
-        twilight_max_paths
-            .saturating_mul(NAUTICAL_PATH_FACTOR)
-            .min(*MAX_PATHS.range.end())
+    let (factor, towards_light) = if view.sun_zenith_deg <= NAUTICAL_SUN_ZENITH_DEG {
+        (1, false)
+    } else if camera_inside_atmosphere(view) {
+        (UMBRA_PATH_FACTOR, true)
     } else {
-        twilight_max_paths
+        (NAUTICAL_PATH_FACTOR, false)
     };
+    let cap = twilight_max_paths
+        .saturating_mul(factor)
+        .min(*MAX_PATHS.range.end());
     if cap != ReferenceSettings::default().max_paths {
         settings.options.set(MAX_PATHS.key, cap);
     }
+    if towards_light {
+        settings.options.set(TOWARDS_LIGHT, true);
+    }
     settings
+}
+
+/// Whether `view`'s camera lies below the top of its atmosphere (an unknown preset
+/// counts as not: its reference fails by name later).
+fn camera_inside_atmosphere(view: &ReportView) -> bool {
+    Atmosphere::preset(view.atmosphere)
+        .is_ok_and(|a| view.altitude_m < a.top_radius_m - a.bottom_radius_m)
 }
 
 /// The sun's zenith angle past which twilight is nautical (the sun more than 6 deg
 /// below the horizon).
 const NAUTICAL_SUN_ZENITH_DEG: f64 = 96.0;
 
-/// How many times the twilight cap a view in nautical twilight takes: single scattering
-/// is dark on nearly all of its rays, so even the guided estimator's paths (towards the
-/// lit air above the shadow) leave most rays above 5 % standard error at the twilight
-/// cap, and the report could judge no model there.
+/// How many times the twilight cap a view in nautical twilight from above the
+/// atmosphere takes: single scattering is dark on nearly all of its rays, so even the
+/// guided estimator's paths (towards the lit air above the shadow) leave most rays
+/// above 5 % standard error at the twilight cap, and the report could judge no model
+/// there.
 const NAUTICAL_PATH_FACTOR: usize = 8;
+
+/// How many times the twilight cap a view in nautical twilight from inside the
+/// atmosphere takes, its later events drawn towards the light: per path their error is
+/// about half the directions-guided one's, whose estimate there lies 1 to 11 % low
+/// (docs/models/reference.md, "Sixteen independent runs"), at 2.3 times its time.
+const UMBRA_PATH_FACTOR: usize = 2;
 
 /// A stable 64-bit hash (FNV-1a) of everything one view's reference answers depend on:
 /// the view, its atmosphere and the reference's settings.
@@ -419,23 +441,36 @@ mod tests {
     }
 
     #[test]
-    fn nautical_twilight_takes_eight_times_the_cap_within_its_range() {
+    fn nautical_twilight_takes_its_factor_of_the_cap_within_its_range() {
         let base = ModelSettings::default();
         let views = report_views(2, 1);
-        let nautical = views.iter().find(|v| v.id == "nautical").unwrap();
-        let civil = views.iter().find(|v| v.id == "twilight").unwrap();
-        let cap = |view, twilight_cap| {
+        let by_id = |id| views.iter().find(|v| v.id == id).unwrap();
+        let (nautical, terminator) = (by_id("nautical"), by_id("orbit-twilight"));
+        let civil = by_id("twilight");
+        let option = |view, twilight_cap, key| {
             let settings = reference_settings(view, &base, twilight_cap);
             settings
                 .options
                 .items()
-                .find(|(key, _)| *key == MAX_PATHS.key)
-                .map(|(_, value)| value.parse::<usize>().unwrap())
+                .find(|(k, _)| *k == key)
+                .map(|(_, value)| value.to_string())
         };
-        assert_eq!(cap(nautical, 1 << 17), Some(1 << 20));
+        let cap = |view, twilight_cap| {
+            option(view, twilight_cap, MAX_PATHS.key).map(|v| v.parse::<usize>().unwrap())
+        };
+        assert_eq!(cap(nautical, 1 << 17), Some(1 << 18));
+        assert_eq!(cap(terminator, 1 << 17), Some(1 << 20));
         assert_eq!(cap(civil, 1 << 17), None);
         assert_eq!(cap(civil, 1 << 18), Some(1 << 18));
-        assert_eq!(cap(nautical, 1 << 25), Some(*MAX_PATHS.range.end()));
+        assert_eq!(cap(terminator, 1 << 25), Some(*MAX_PATHS.range.end()));
+        // Drawn towards the light from the ground in nautical twilight alone.
+        assert_eq!(
+            option(nautical, 1 << 17, TOWARDS_LIGHT),
+            Some("true".into())
+        );
+        for view in [terminator, civil] {
+            assert_eq!(option(view, 1 << 17, TOWARDS_LIGHT), None, "{}", view.id);
+        }
     }
 
     #[test]
