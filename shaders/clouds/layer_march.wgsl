@@ -11,9 +11,9 @@
 // The method, the sun's light and whether the shadow march reads noise are
 // pipeline-overridable constants: a pipeline holds one method's code only (render-wgpu's `clouds/march_variants.rs`). A
 // software rasteriser such as lavapipe runs every branch some lane of a SIMD group
-// takes and keeps the registers of all the code compiled in; with the three methods
-// and both lights in one shader a sample cost about twice as much, and the shadow
-// march's noise code, unread, a third more (docs/clouds.md).
+// takes and keeps the registers of all the code compiled in, so a shader holding every
+// method and light, or the shadow march's unread noise, made each sample dearer
+// (docs/clouds.md, "What brought it within the target").
 
 #import clouds/layer_medium.wgsl
 #import clouds/sun_map_read.wgsl

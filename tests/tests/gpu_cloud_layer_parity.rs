@@ -59,13 +59,30 @@ fn orders() -> ScatteringOrders {
     ScatteringOrders::new(&series).unwrap()
 }
 
-/// Cells about 15 km across near (0 N, 0 E), where the cameras are, on a 2048 x 1024
-/// grid (20 km texels): cover from 0 to 1 within a view.
+/// The test cover's grid: 20 km texels.
+const COVER_WIDTH: usize = 2048;
+const COVER_HEIGHT: usize = 1024;
+
+/// Cells about 15 km across near (0 N, 0 E), where the cameras are, on the
+/// `COVER_WIDTH` x `COVER_HEIGHT` grid: cover from 0 to 1 within a view.
 fn cover() -> CoverGrid {
-    CoverGrid::rasterize(2048, 1024, |p| {
+    CoverGrid::rasterize(COVER_WIDTH, COVER_HEIGHT, |p| {
         let (lat, lon) = lat_lon(p);
         0.5 + 0.8 * (lat * 400.0).sin() * (lon * 300.0).cos()
     })
+    .unwrap()
+}
+
+/// The pass's parameters for `camera` under a sun `sun_elevation_deg` up, over
+/// [`cover`]'s grid.
+fn params(camera: &LayerCamera, sun_elevation_deg: f64, settings: &LayerSettings) -> LayerUniform {
+    LayerUniform::new(
+        camera,
+        &light(sun_elevation_deg),
+        settings,
+        BOTTOM_M,
+        (COVER_WIDTH, COVER_HEIGHT),
+    )
     .unwrap()
 }
 
@@ -184,14 +201,7 @@ fn check_parity(
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     let layer = CloudLayer::new(settings, BOTTOM_M, cover.clone(), phase).unwrap();
     let light = light(sun_elevation);
-    let params = LayerUniform::new(
-        &camera,
-        &light,
-        &settings,
-        BOTTOM_M,
-        (cover.width(), cover.height()),
-    )
-    .unwrap();
+    let params = params(&camera, sun_elevation, &settings);
     let maps = (settings.sun_light == SunLight::Map)
         .then(|| sun_maps(gpu, inputs, (&layer, &camera, &light), &params));
     let gpu_image = pass
@@ -415,14 +425,7 @@ fn the_presets_match_the_cpu_and_the_reduced_march_stays_near_the_full() {
             resolution_divisor: 1,
             ..settings
         };
-        let params = LayerUniform::new(
-            &camera,
-            &light(sun_elevation),
-            &full,
-            BOTTOM_M,
-            (2048, 1024),
-        )
-        .unwrap();
+        let params = params(&camera, sun_elevation, &full);
         let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
         let layer = CloudLayer::new(full, BOTTOM_M, cover(), phase).unwrap();
         let light = light(sun_elevation);
@@ -469,15 +472,7 @@ fn a_light_method_outside_its_range_is_refused_by_name() {
     };
     let inputs = LayerInputs::new(&gpu, &cover(), &orders()).unwrap();
     let pass = CloudLayerPass::new(&gpu).unwrap();
-    let settings = LayerSettings::default();
-    let mut params = LayerUniform::new(
-        &camera(500.0, 10.0),
-        &light(30.0),
-        &settings,
-        BOTTOM_M,
-        (2048, 1024),
-    )
-    .unwrap();
+    let mut params = params(&camera(500.0, 10.0), 30.0, &LayerSettings::default());
     params.counts[2] = 3;
     let e = pass.render(&gpu, (&params, &inputs), None).unwrap_err();
     assert!(e.to_string().contains("light method 3"), "{e}");

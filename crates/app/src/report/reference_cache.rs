@@ -87,9 +87,9 @@ const NAUTICAL_SUN_ZENITH_DEG: f64 = 96.0;
 const NAUTICAL_PATH_FACTOR: usize = 8;
 
 /// How many times the twilight cap a view in nautical twilight from inside the
-/// atmosphere takes, its later events drawn towards the light: per path their error is
-/// about half the directions-guided one's, whose estimate there lies 1 to 11 % low
-/// (docs/models/reference.md, "Sixteen independent runs"), at 2.3 times its time.
+/// atmosphere takes, its later events drawn towards the light: their error per path is
+/// below the directions-guided estimate's, which lies low there, at a higher cost per
+/// path (docs/models/reference.md, "Sixteen independent runs").
 const UMBRA_PATH_FACTOR: usize = 2;
 
 /// A stable 64-bit hash (FNV-1a) of everything one view's reference answers depend on:

@@ -4,8 +4,9 @@
 //! (`LAYER_METHOD`, `SUN_FROM_MAP`, `SHADOW_DETAIL`) so that each pipeline holds the code
 //! of one case. A software rasteriser (lavapipe) runs every branch some lane of a SIMD
 //! group takes and allocates registers for all the code compiled in, so one shader with
-//! every method in it made each sample about twice as dear (docs/clouds.md, "Cost"). A
-//! variant is compiled the first time a pass asks for it: most frames use one.
+//! every method in it made each sample dearer (docs/clouds.md, "What brought it within
+//! the target"). A variant is compiled the first time a pass asks for it: most frames
+//! use one.
 
 use std::sync::OnceLock;
 
