@@ -3,8 +3,8 @@
 // atmosphere-core's `CloudSunMap::transmittance` at the point where
 // `clouds/layer/shadowed_surface.rs` lights the surface). Every model's pixel pass
 // multiplies its surface's sun by it (`common/surface.wgsl`); 1 where the pixel has no
-// surface. The other channels are hillaire's shafts, 0 here
-// (`sky/hillaire/cloud_shafts.wgsl` writes them).
+// surface. The other channels are the cloud's shadow in the air, 0 here
+// (`clouds/air_shadow.wgsl` writes them).
 
 #import common/frame_params.wgsl
 #import clouds/sun_map_read.wgsl

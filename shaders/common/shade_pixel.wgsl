@@ -34,6 +34,7 @@ fn shade_pixel(px: vec2<u32>) {
     var r = radiance_of_empty(s, direction);
     if s.hit {
         r = model_radiance(direction, s, r);
+        r.radiance = without_cloud_air_shadow(px, r.radiance);
     }
     if surface.present {
         let irradiance = model_surface_irradiance(r.end, surface.normal);

@@ -20,8 +20,9 @@
 @group(0) @binding(31) var surface_albedo: texture_2d<f32>;
 // x: the sun's transmittance through the cloud layer at each pixel's surface
 // (`clouds/sun_map_pixels.wgsl`), read where the sun map's flag (counts.w) is 1; y, z, w:
-// hillaire's shafts with the cloud (`sky/hillaire/cloud_shafts.wgsl`); the map's
-// parameters at 33 (`clouds/sun_map_params.wgsl`).
+// the single scattering per unit solar irradiance that the cloud's shadow takes out of
+// the air below its base (`clouds/air_shadow.wgsl`), read where the map shades the air;
+// the map's parameters at 33 (`clouds/sun_map_params.wgsl`).
 @group(0) @binding(32) var surface_cloud_sun: texture_2d<f32>;
 
 // This pixel's cloud transmittance, set by `frame_surface`: the surface elements the
@@ -64,6 +65,25 @@ fn frame_surface(px: vec2<u32>) -> Surface {
         pixel_cloud_sun = textureLoad(surface_cloud_sun, px, 0).x;
     }
     return out;
+}
+
+// The single scattering that the cloud layer's shadow takes out of pixel `px`'s view
+// segment below the layer's base beyond the terrain's shadow, per unit solar irradiance
+// (`clouds/air_shadow.wgsl`; CPU twin `AirShadow::cloud_single`): every model subtracts
+// it times its solar irradiance beside its own terrain shafts; 0 unless the frame's sun
+// map shades the air.
+fn pixel_cloud_air_loss(px: vec2<u32>) -> vec3<f32> {
+    if !cloud_shafts_on() {
+        return vec3<f32>(0.0);
+    }
+    return textureLoad(surface_cloud_sun, px, 0).yzw;
+}
+
+// `radiance` less the cloud's shadow in pixel `px`'s air (`pixel_cloud_air_loss`), at
+// least 0 (`CloudAirShadow::radiance`).
+fn without_cloud_air_shadow(px: vec2<u32>, radiance: vec3<f32>) -> vec3<f32> {
+    let lost = pixel_cloud_air_loss(px) * atmosphere.solar_irradiance.xyz;
+    return max(radiance - lost, vec3<f32>(0.0));
 }
 
 // A surface element in the variables the models look up (`SurfaceElement::new`).

@@ -1,11 +1,13 @@
 //! The cloud layer's shadow in the air in renderer frames (crepuscular rays under a deck
-//! with gaps): hillaire's shaft march multiplies the sun's visibility below the layer's
-//! base by the frame's sun map (`shaders/sky/hillaire/shafts.wgsl`), against its CPU
-//! twin, atmosphere-core's `clouds/layer/air_shadow.rs` (`radiance_with_cloud_shafts`
-//! for the whole ray and for the ray ended where it enters the cloud, composited with
-//! the CPU march by `composite.rs`), on a 64 x 36 frame 300 m up under the default
-//! layer over a cover with gaps, the sun 12 degrees up, no surface: the sun map is made
-//! for the air alone.
+//! with gaps): a pass after the sun map's fill marches what the cloud takes out below
+//! the layer's base (`shaders/clouds/air_shadow.wgsl`) and every model subtracts it,
+//! against the CPU twin, atmosphere-core's `clouds/layer/air_shadow.rs`
+//! (`CloudAirShadow::radiance` for the whole ray and for the ray ended where it enters
+//! the cloud, composited with the CPU march by `composite.rs`), on a 64 x 36 frame 300 m
+//! up under the default layer over a cover with gaps, the sun 12 degrees up, no surface:
+//! the sun map is made for the air alone. hillaire is checked whole; each other model's
+//! air loses what the CPU's march takes (`AirShadow::cloud_single`), within
+//! `LOSS_RELATIVE` of it and the f16 image's rounding of the two frames.
 //!
 //! Tolerance: the air's pixels (rays that meet no cloud) within `AIR_RELATIVE` of
 //! themselves (hillaire's own parity is 2e-3; the map's f32 fill and read add theirs,
@@ -24,7 +26,7 @@
 mod support;
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
-use atmosphere_core::clouds::layer::air_shadow::radiance_with_cloud_shafts;
+use atmosphere_core::clouds::layer::air_shadow::{AirShadow, CloudAirShadow};
 use atmosphere_core::clouds::layer::composite::composite;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::march::CloudSegment;
@@ -37,6 +39,7 @@ use atmosphere_core::models::hillaire::{Hillaire, HillaireSettings};
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::sky_model::{RayRadiance, ViewRay};
 use atmosphere_core::optics::phase::PhaseFunction;
+use atmosphere_core::optics::view_segment::ViewSegment;
 use glam::DVec3;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_cloud_shafts::{CLOUD_SHAFTS, NO_AIR_BELOW};
@@ -46,6 +49,9 @@ use render_wgpu::frame::{Frame, look_orientation};
 use support::clouds::{cpu_march, frame_sun_map};
 
 const AIR_RELATIVE: f64 = 0.02;
+const LOSS_RELATIVE: f64 = 0.02;
+/// The f16 image's rounding of one value, relative (2^-11), times the two frames.
+const HALF_ROUNDING: f64 = 2.0 * 4.9e-4;
 const RELATIVE: f64 = 0.04;
 const OF_BRIGHTEST: f64 = 0.01;
 const JUMP_FACTOR: f64 = 4.0;
@@ -150,6 +156,11 @@ fn cloud_shafts_darken_the_air_below_a_deck_with_gaps_as_the_cpu_twin_does() {
     let layer = CloudLayer::new(settings(), radius, cover, phase).unwrap();
     let map = frame_sun_map(&layer, &frame);
     let light = frame_light(&model, &frame, &settings()).unwrap();
+    let shadow = CloudAirShadow::new(&frame.atmosphere, &model);
+    let air_shadow = AirShadow {
+        terrain: None,
+        clouds: &map,
+    };
     let brightest = gpu
         .iter()
         .flat_map(|p| p[..3].to_vec())
@@ -161,7 +172,7 @@ fn cloud_shafts_darken_the_air_below_a_deck_with_gaps_as_the_cpu_twin_does() {
         for column in 0..frame.width {
             let k = (row * frame.width + column) as usize;
             let ray = frame.pixel_ray(column, row);
-            let full = radiance_with_cloud_shafts(&model, &ray, &map).unwrap();
+            let full = shadow.radiance(&model, &ray, &air_shadow).unwrap();
             let segment = layer
                 .shell()
                 .first_segment(ray.origin_m, ray.direction, f64::INFINITY);
@@ -179,15 +190,16 @@ fn cloud_shafts_darken_the_air_below_a_deck_with_gaps_as_the_cpu_twin_does() {
                 }
                 continue;
             };
-            let front = radiance_with_cloud_shafts(
-                &model,
-                &ViewRay {
-                    max_distance_m: Some(t0),
-                    ..ray
-                },
-                &map,
-            )
-            .unwrap();
+            let front = shadow
+                .radiance(
+                    &model,
+                    &ViewRay {
+                        max_distance_m: Some(t0),
+                        ..ray
+                    },
+                    &air_shadow,
+                )
+                .unwrap();
             let [r, g, b, t] = cpu_march(
                 &layer,
                 &orders,
@@ -233,6 +245,81 @@ fn cloud_shafts_darken_the_air_below_a_deck_with_gaps_as_the_cpu_twin_does() {
     );
     assert!(darkened * 4 >= 3 * air, "only {darkened} values darkened");
     assert_eq!(brighter, 0, "values brighter with the cloud's shadow");
+}
+
+#[test]
+fn every_model_subtracts_the_cloud_shadow_in_the_air() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud shafts of every model") else {
+        return;
+    };
+    let cover = cover();
+    renderer
+        .set_cloud_inputs(&cover, &support::clouds::orders())
+        .unwrap();
+    let hillaire = frame(300.0, 0.0);
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+    let radius = hillaire.atmosphere.bottom_radius_m;
+    let layer = CloudLayer::new(settings(), radius, cover, phase).unwrap();
+    let map = frame_sun_map(&layer, &hillaire);
+    let shadow = CloudAirShadow::new(&hillaire.atmosphere, &cpu_model(&hillaire));
+    let medium = shadow.medium();
+    let solar = &medium.spectra.solar_irradiance;
+    let air_shadow = AirShadow {
+        terrain: None,
+        clouds: &map,
+    };
+    for model in [
+        ModelId::Nishita,
+        ModelId::Oneil,
+        ModelId::Bruneton,
+        ModelId::Dobashi,
+        ModelId::Riley,
+    ] {
+        let frame = Frame {
+            model,
+            ..hillaire.clone()
+        };
+        let shaded = render(&mut renderer, &frame, clouds(&frame, true, true));
+        let plain = render(&mut renderer, &frame, clouds(&frame, false, true));
+        let (mut air, mut worst, mut taken) = (0, 0.0f64, 0);
+        for row in 0..frame.height {
+            for column in 0..frame.width {
+                let ray = frame.pixel_ray(column, row);
+                let through_cloud =
+                    layer
+                        .shell()
+                        .first_segment(ray.origin_m, ray.direction, f64::INFINITY);
+                let Some(segment) = ViewSegment::new(&frame.atmosphere, &ray).unwrap() else {
+                    continue;
+                };
+                if through_cloud.is_some() {
+                    continue;
+                }
+                air += 1;
+                let mut lost = vec![0.0; 3];
+                air_shadow.cloud_single(&medium, &segment, &mut lost);
+                let k = (row * frame.width + column) as usize;
+                for w in 0..3 {
+                    let (p, s) = (f64::from(plain[k][w]), f64::from(shaded[k][w]));
+                    // `CloudAirShadow::radiance` keeps the radiance at least 0.
+                    let expected = (lost[w] * solar[w]).min(p);
+                    let allowed = LOSS_RELATIVE * expected + HALF_ROUNDING * p;
+                    worst = worst.max(((p - s) - expected).abs() / allowed);
+                    taken += usize::from(expected > 0.1 * p);
+                }
+            }
+        }
+        println!(
+            "{model:?}: {air} air pixels, worst {worst:.3} of the tolerance, {taken} values \
+             losing more than a tenth"
+        );
+        assert!(air > 500, "{model:?}: {air} air pixels");
+        assert!(worst <= 1.0, "{model:?}: worst {worst:.3} of the tolerance");
+        assert!(
+            taken * 2 >= 3 * air,
+            "{model:?}: only {taken} values darkened"
+        );
+    }
 }
 
 #[test]

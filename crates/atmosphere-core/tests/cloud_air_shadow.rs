@@ -1,17 +1,22 @@
-//! The cloud layer's shadow in the air (`clouds/layer/air_shadow.rs`) for hillaire: under
+//! The cloud layer's shadow in the air (`clouds/layer/air_shadow.rs`): under
 //! an opaque deck with one gap a ray keeps the single scattering of its lit part only,
 //! against a fine march of the same visibility along the whole ray; an opaque deck takes
 //! all of it below the base; a block of terrain whose shadow falls in the gap takes its
-//! part too, once; a clear map, or a ray above the base, changes nothing.
+//! part too, once; a clear map, or a ray above the base, changes nothing; every model
+//! loses the same light (the march is the model's answer less one term, through the
+//! atmosphere's own table).
 
 use atmosphere_core::atmosphere::presets::earth;
-use atmosphere_core::clouds::layer::air_shadow::{AirShadow, radiance_with_cloud_shafts};
+use atmosphere_core::atmosphere::spectra::Spectra;
+use atmosphere_core::clouds::layer::air_shadow::{AirShadow, CloudAirShadow};
 use atmosphere_core::clouds::layer::sun_map::CloudSunMap;
 use atmosphere_core::models::hillaire::Hillaire;
 use atmosphere_core::models::hillaire::medium::Medium;
 use atmosphere_core::models::hillaire::settings::HillaireSettings;
 use atmosphere_core::models::hillaire::shafts::shadowed_single_over;
-use atmosphere_core::models::sky_model::{ModelSettings, SkyModel, ViewRay};
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry;
+use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, SkyModel, ViewRay};
 use atmosphere_core::optics::phase::rayleigh;
 use atmosphere_core::optics::view_segment::ViewSegment;
 use atmosphere_core::shafts::{GnomonicGrid, SHAFT_SAMPLES, ShadowMap, SunVisibility};
@@ -109,10 +114,22 @@ fn fine_shadowed_single(
     out
 }
 
+/// `ray`'s radiance in `model` with the cloud of `map` shadowing the air, beside the
+/// model's terrain shadow.
+fn with_cloud(model: &Hillaire, ray: &ViewRay, map: &CloudSunMap) -> RayRadiance {
+    let air = AirShadow {
+        terrain: model.terrain_shadow(),
+        clouds: map,
+    };
+    CloudAirShadow::new(&earth(), model)
+        .radiance(model, ray, &air)
+        .unwrap()
+}
+
 /// What the cloud takes out of `ray`'s radiance per unit solar irradiance.
 fn lost(model: &Hillaire, ray: &ViewRay, map: &CloudSunMap) -> Vec<f64> {
     let plain = model.radiance(ray).unwrap();
-    let shaded = radiance_with_cloud_shafts(model, ray, map).unwrap();
+    let shaded = with_cloud(model, ray, map);
     let solar = &model.medium().spectra.solar_irradiance;
     (0..solar.len())
         .map(|w| (plain.radiance[w] - shaded.radiance[w]) / solar[w])
@@ -143,9 +160,7 @@ fn a_gap_in_an_opaque_deck_keeps_the_light_of_the_lit_part_only() {
     );
     let all_lost = lost(&model, &ray, &opaque);
     // The same march with 2,000 samples over its span: the error is the samples'.
-    let (span, samples) = air
-        .span(&segment, medium.atmosphere.bottom_radius_m)
-        .unwrap();
+    let (span, samples) = air.span(&segment).unwrap();
     assert_eq!(samples, SHAFT_SAMPLES);
     let mut dense = vec![0.0; 3];
     shadowed_single_over(&medium, &segment, &air, span, 2_000, &mut dense);
@@ -184,14 +199,14 @@ fn a_clear_map_or_a_ray_above_the_base_changes_nothing() {
                 continue;
             }
             let plain = model.radiance(&ray).unwrap();
-            let shaded = radiance_with_cloud_shafts(&model, &ray, &map).unwrap();
+            let shaded = with_cloud(&model, &ray, &map);
             assert_eq!(plain.radiance, shaded.radiance, "altitude {altitude}");
             assert_eq!(plain.transmittance, shaded.transmittance);
         }
     }
     let ray = ray(1_000.0);
     let plain = model.radiance(&ray).unwrap();
-    let clear = radiance_with_cloud_shafts(&model, &ray, &deck(&ray, |_, _| 0.0)).unwrap();
+    let clear = with_cloud(&model, &ray, &deck(&ray, |_, _| 0.0));
     assert_eq!(plain.radiance, clear.radiance);
 }
 
@@ -222,7 +237,7 @@ fn terrain_and_cloud_shadows_multiply() {
     model.set_terrain_shadow(Some(block.clone()));
     let medium = model.medium();
     let segment = ViewSegment::new(medium.atmosphere, &ray).unwrap().unwrap();
-    let shaded = radiance_with_cloud_shafts(&model, &ray, &gap).unwrap();
+    let shaded = with_cloud(&model, &ray, &gap);
     let unshadowed = {
         let mut m = self::model();
         m.set_terrain_shadow(None);
@@ -263,4 +278,44 @@ fn terrain_and_cloud_shadows_multiply() {
             "w{w}: {taken} against {e}"
         );
     }
+}
+
+#[test]
+fn every_model_loses_the_same_light_under_the_deck() {
+    let ray = ray(1_000.0);
+    let gap = deck_with_gap(&ray);
+    let air = AirShadow {
+        terrain: None,
+        clouds: &gap,
+    };
+    let settings = ModelSettings {
+        wavelengths_nm: vec![680.0, 550.0, 440.0],
+        ..ModelSettings::default()
+    };
+    let expected = lost(&model(), &ray, &gap);
+    for id in [ModelId::Nishita, ModelId::Riley] {
+        let model = registry::prepare(id, &earth(), &settings).unwrap();
+        let plain = model.radiance(&ray).unwrap();
+        let shaded = CloudAirShadow::new(&earth(), model.as_ref())
+            .radiance(model.as_ref(), &ray, &air)
+            .unwrap();
+        for w in 0..3 {
+            let taken = (plain.radiance[w] - shaded.radiance[w]) / settings_solar(&settings, w);
+            eprintln!(
+                "{id:?} w{w}: lost {taken:.4e}, hillaire {:.4e}",
+                expected[w]
+            );
+            assert!(expected[w] > 0.0);
+            assert!(
+                (taken - expected[w]).abs() <= 1e-9 * expected[w],
+                "{id:?} w{w}: {taken} against {}",
+                expected[w]
+            );
+        }
+    }
+}
+
+/// The solar irradiance at wavelength `w` of `settings`.
+fn settings_solar(settings: &ModelSettings, w: usize) -> f64 {
+    Spectra::new(&earth(), &settings.wavelengths_nm).solar_irradiance[w]
 }

@@ -397,16 +397,6 @@ impl Renderer {
         // With clouds, the model's pixels go to the cloud steps' `full` image and the
         // composite writes the HDR target.
         let cloud_targets = targets.clouds.as_ref().filter(|_| cloud_steps.is_some());
-        let io = PassIo {
-            atmosphere: &self.atmosphere,
-            frame: &self.frame,
-            hdr: cloud_targets.map_or(&targets.hdr, |c| &c.full),
-            surface: &surface_views,
-            has_surface,
-            has_sea,
-            shadow: &self.shadow_texture,
-            sun_map: self.sun_map.texture(),
-        };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         if let Some(terrain) = self.terrain.as_ref().filter(|_| draws_terrain) {
             terrain.encode(
@@ -423,6 +413,22 @@ impl Renderer {
             &self.clouds,
             &self.cloud_inputs,
         ) {
+            let pixels = PixelInputs {
+                atmosphere: &self.atmosphere,
+                frame: &self.frame,
+                geometry: &surface_views[0],
+                has_surface,
+                shadow: &self.shadow_texture,
+            };
+            let writes = [self.sun_map.step(), self.sun_map.air_step()]
+                .map(|step| timer.zip(step).map(|(t, s)| t.compute_writes(s)));
+            let mapped = (self.sun_map).encode(
+                gpu,
+                &mut encoder,
+                (frame, clouds, inputs),
+                (pixels, &atmosphere),
+                writes,
+            );
             let scene = MarchScene {
                 frame,
                 clouds,
@@ -432,21 +438,23 @@ impl Renderer {
                 has_front: front_needed,
                 sun_map: self.sun_map.texture(),
             };
-            let pixels = PixelInputs {
-                atmosphere: &self.atmosphere,
-                frame: &self.frame,
-                geometry: &surface_views[0],
-            };
-            let writes = timer.zip(self.sun_map.step());
-            let writes = writes.map(|(t, s)| t.compute_writes(s));
-            let marched = (self.sun_map)
-                .encode(gpu, &mut encoder, (frame, clouds, inputs), pixels, writes)
+            let marched = mapped
                 .and_then(|()| pass.encode_clouds(gpu, &mut encoder, &scene, c, (&steps, timer)));
             if let Err(e) = marched {
                 self.targets = Some(targets);
                 return Err(e);
             }
         }
+        let io = PassIo {
+            atmosphere: &self.atmosphere,
+            frame: &self.frame,
+            hdr: cloud_targets.map_or(&targets.hdr, |c| &c.full),
+            surface: &surface_views,
+            has_surface,
+            has_sea,
+            shadow: &self.shadow_texture,
+            sun_map: self.sun_map.texture(),
+        };
         model.encode_planned(&mut FrameRecorder {
             gpu,
             io: &io,

@@ -240,6 +240,7 @@ fn shade(px: vec2<u32>, inside: bool) {
     let direction = pixel_direction(px);
     let surface = frame_surface(px);
     var r = bruneton_radiance(direction, surface.distance, inside);
+    r.radiance = without_cloud_air_shadow(px, r.radiance);
     if surface.present {
         let e = bruneton_surface_irradiance(r.end, surface.normal);
         if SEA && surface.water {

@@ -16,9 +16,9 @@
 //   (`common/sea_surface.wgsl`) with the sky along the mirror direction marched;
 // - the limb-darkened sun disk times the transmittance where the ray reaches space;
 // - with light shafts, less the single scattering the terrain's shadow takes out
-//   (`shafts_loss`, `sky/hillaire/shafts.wgsl`; `models/hillaire/shafts.rs`), or, when
-//   the cloud's sun map shades the air, what the terrain and the cloud take out, read
-//   per pixel (`sky/hillaire/cloud_shafts.wgsl`; `clouds/layer/air_shadow.rs`).
+//   (`shafts_loss`, `sky/hillaire/shafts.wgsl`; `models/hillaire/shafts.rs`), and, when
+//   the cloud's sun map shades the air, what the cloud takes out beyond it, read per
+//   pixel (`pixel_cloud_air_loss`, `common/surface.wgsl`; `clouds/layer/air_shadow.rs`).
 // Writes spectral radiance (W m^-2 sr^-1 nm^-1) at the three channels to the HDR target,
 // clamped to the largest finite f16. The transmittance table, the sky view and the volume
 // are read through the texture unit's linear filter where the device filters Rgba32Float
@@ -185,21 +185,11 @@ fn hillaire_radiance(px: vec2<u32>, direction: vec3<f32>, object_m: f32, tables:
         m = march_run(view_ray(s.q, s.r_mu, s.start_dot_sun, nu), s.length,
             hillaire.march_samples);
     }
-    m.radiance -= pixel_shafts_loss(px, s, direction, nu);
+    m.radiance -= shafts_loss(s, direction, nu) + pixel_cloud_air_loss(px);
     m = with_ground(m, s, nu);
     out.radiance = max(m.radiance * atmosphere.solar_irradiance.xyz, vec3<f32>(0.0));
     out.transmittance = clamp(m.throughput, vec3<f32>(0.0), vec3<f32>(1.0));
     return out;
-}
-
-// The single scattering the shafts take out of pixel `px`'s segment `s`: read from the
-// per-pixel image (y, z, w) where the cloud's sun map shades the air, else the terrain's
-// marched here.
-fn pixel_shafts_loss(px: vec2<u32>, s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
-    if cloud_shafts_on() {
-        return textureLoad(surface_cloud_sun, px, 0).yzw;
-    }
-    return shafts_loss(s, direction, nu);
 }
 
 // `m`, the light along segment `s` at cosine `nu` to the sun, with the Lambertian ground

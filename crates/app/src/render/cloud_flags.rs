@@ -80,7 +80,8 @@ pub struct CloudFlags {
     #[arg(long = "cloud-sphere-divisor", value_name = "N")]
     pub sphere_divisor: Option<u32>,
     /// The cloud's shadow in the air below its base (crepuscular rays under a deck with
-    /// gaps), taken by hillaire's light-shaft march (docs/clouds.md) [default: true].
+    /// gaps), marched per pixel and taken out by every model (docs/clouds.md)
+    /// [default: true].
     #[arg(id = "cloud_shafts", long = "cloud-shafts", value_name = "BOOL")]
     pub shafts: Option<bool>,
 }

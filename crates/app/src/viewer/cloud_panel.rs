@@ -79,7 +79,7 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
             ui.checkbox(&mut clouds.shafts, "cloud shafts")
                 .on_hover_text(
                     "the cloud's shadow in the air below its base (crepuscular rays under a \
-                 deck with gaps; the hillaire model)",
+                 deck with gaps; every model)",
                 );
         });
     });

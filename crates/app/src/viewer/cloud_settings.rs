@@ -29,7 +29,7 @@ pub struct CloudSettings {
     pub quality: String,
     /// The form the cloud takes: `auto` (by altitude), `layer` or `spheres`.
     pub form: String,
-    /// The cloud's shadow in the air below its base (hillaire's cloud shafts).
+    /// The cloud's shadow in the air below its base (every model's cloud shafts).
     pub shafts: bool,
 }
 

@@ -1,10 +1,9 @@
 //! The planner's rule for the cloud layer's shadow in the air (crepuscular rays under a
-//! deck; docs/clouds.md, "Cloud shadows in the air"): hillaire's shaft march multiplies
-//! the sun's visibility below the layer's base by the frame's sun map, so the map is
-//! made for a frame without a surface too when some pixel sees air below the base.
+//! deck; docs/clouds.md, "Cloud shadows in the air"): a pass after the sun map's fill
+//! marches the cloud's part of the shadow below the layer's base for every model
+//! (`air_shadow_pass.rs`), so the map is made for a frame without a surface too when some
+//! pixel sees air below the base.
 //! Conservative: a frame the rule prunes has no pixel whose ray dips below the base.
-
-use atmosphere_core::models::id::ModelId;
 
 use crate::clouds::frame_clouds::FrameClouds;
 use crate::frame::Frame;
@@ -14,27 +13,22 @@ use crate::frame::ground_in_view::ground_within;
 pub const CLOUD_SHAFTS: &str = "cloud_shafts";
 /// Why it is left out when [`FrameClouds::shafts`] is off.
 pub const CLOUD_SHAFTS_OFF: &str = "cloud shafts off";
-/// Why it is left out of a model whose shafts do not take the cloud.
-pub const NO_CLOUD_SHAFTS: &str = "the model has no cloud shafts";
 /// Why it is left out when no pixel's ray comes down below the layer's base.
 pub const NO_AIR_BELOW: &str = "no air below the cloud layer's base in view";
 /// Why it is left out when the cloud steps are.
 pub const NO_CLOUD_STEPS: &str = "the cloud steps are left out";
 
 /// Why `frame` with `clouds` needs no cloud shadow in the air, if it does not: the
-/// setting is off, the model is not hillaire, or the camera is above the layer's base
-/// and no pixel's ray comes down to it (the ground test of `frame/ground_in_view.rs` on
-/// a planet as large as the base sphere, as the terrain shafts' rule does with their
-/// shadow's top). The last two are prunings, applied when `clouds.prune`.
+/// setting is off, or the camera is above the layer's base and no pixel's ray comes down
+/// to it (the ground test of `frame/ground_in_view.rs` on a planet as large as the base
+/// sphere, as the terrain shafts' rule does with their shadow's top), a pruning applied
+/// when `clouds.prune`.
 pub fn why_no_cloud_shafts(frame: &Frame, clouds: &FrameClouds) -> Option<&'static str> {
     if !clouds.shafts {
         return Some(CLOUD_SHAFTS_OFF);
     }
     if !clouds.prune {
         return None;
-    }
-    if frame.model != ModelId::Hillaire {
-        return Some(NO_CLOUD_SHAFTS);
     }
     let (base_m, _) = clouds.settings.radii_m(frame.atmosphere.bottom_radius_m);
     if frame.camera_position_m.length() > base_m {
@@ -54,6 +48,7 @@ mod tests {
     use atmosphere_core::clouds::layer::settings::LayerSettings;
     use atmosphere_core::clouds::spheres::handover::CloudForm;
     use atmosphere_core::clouds::spheres::settings::SphereSettings;
+    use atmosphere_core::models::id::ModelId;
     use glam::DVec3;
 
     use super::*;
@@ -96,7 +91,7 @@ mod tests {
     }
 
     #[test]
-    fn the_air_below_the_base_needs_a_view_of_it_hillaire_and_the_setting() {
+    fn the_air_below_the_base_needs_a_view_of_it_and_the_setting() {
         let (on, off) = (clouds(true, true), clouds(false, true));
         // Under the default layer's base (1.5 km) the camera is in that air.
         assert_eq!(why_no_cloud_shafts(&frame(500.0, 30.0), &on), None);
@@ -104,9 +99,14 @@ mod tests {
             why_no_cloud_shafts(&frame(500.0, 30.0), &off),
             Some(CLOUD_SHAFTS_OFF)
         );
-        let mut nishita = frame(500.0, 30.0);
-        nishita.model = ModelId::Nishita;
-        assert_eq!(why_no_cloud_shafts(&nishita, &on), Some(NO_CLOUD_SHAFTS));
+        // Every model takes it.
+        for model in [ModelId::Nishita, ModelId::Bruneton, ModelId::Riley] {
+            let other = Frame {
+                model,
+                ..frame(500.0, 30.0)
+            };
+            assert_eq!(why_no_cloud_shafts(&other, &on), None, "{model:?}");
+        }
         // Inside the layer looking up, no ray comes down to the base; looking down,
         // rays do.
         assert_eq!(

@@ -2,13 +2,15 @@
 //! ([`why_no_sun_map`]), its grid under the frame's camera, and its fill before the
 //! cloud's march, which reads it with `sun_light = map`, and the model's passes, which
 //! multiply the surface's sun by its transmittance (the clouds' shadows on the terrain;
-//! docs/clouds.md, "Cloud shadows") and, in hillaire's shafts, the sun's visibility in
-//! the air below the layer's base (`frame_cloud_shafts.rs`).
+//! docs/clouds.md, "Cloud shadows") and, after the fill, the cloud's shadow in the air
+//! below the layer's base (`air_shadow_pass.rs`, planned by `frame_cloud_shafts.rs`),
+//! which every model's pixel pass subtracts.
 
 use atmosphere_core::clouds::layer::settings::SunLight;
 use atmosphere_core::clouds::layer::shell::Shell;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution, half_width_m};
 
+use crate::clouds::air_shadow_pass::AirShadowPass;
 use crate::clouds::frame_cloud_shafts::{CLOUD_SHAFTS, NO_CLOUD_STEPS, why_no_cloud_shafts};
 use crate::clouds::frame_clouds::FrameClouds;
 use crate::clouds::frame_pass::frame_camera;
@@ -17,6 +19,7 @@ use crate::clouds::layer_uniform::LayerUniform;
 use crate::clouds::sun_map_pass::{PixelInputs, SunMapPass};
 use crate::clouds::sun_map_texture::{SunMapTexture, SunMapUniform};
 use crate::frame::Frame;
+use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::plan::{FramePlan, StepKind};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
@@ -47,13 +50,16 @@ pub fn why_no_sun_map(frame: &Frame, shades: bool, shell: &Shell) -> Option<&'st
     (elevation < -below).then_some(SUN_DOWN)
 }
 
-/// The frame's sun map: its texture (bound by every pixel pass), its fill pass (made on
-/// first use), the step it runs as in this frame and whether a surface reads it.
+/// The frame's sun map: its texture (bound by every pixel pass), its fill pass and the
+/// pass of the cloud's shadow in the air (each made on first use), the steps they run as
+/// in this frame and whether a surface reads the map.
 #[derive(Debug)]
 pub struct FrameSunMap {
     texture: SunMapTexture,
     pass: Option<SunMapPass>,
+    air: Option<AirShadowPass>,
     step: Option<u32>,
+    air_step: Option<u32>,
     shades_surface: bool,
 }
 
@@ -62,7 +68,9 @@ impl FrameSunMap {
         FrameSunMap {
             texture: SunMapTexture::new(gpu),
             pass: None,
+            air: None,
             step: None,
+            air_step: None,
             shades_surface: false,
         }
     }
@@ -76,8 +84,8 @@ impl FrameSunMap {
     /// (`cloud_shadow`, or skipped with why by [`why_no_sun_map`] when the clouds
     /// prune; never skipped when the layer is lit by it, whose resolution is then
     /// [`SunMapResolution::LIT`]), with the cloud's shadow in the air where
-    /// [`why_no_cloud_shafts`] finds none missing (else `cloud_shafts` skipped with
-    /// why), and sets the parameters the pixel passes read.
+    /// [`why_no_cloud_shafts`] finds none missing (the step `cloud_shafts` after the
+    /// fill, else skipped with why), and sets the parameters the pixel passes read.
     pub fn plan(
         &mut self,
         gpu: &GpuContext,
@@ -87,6 +95,7 @@ impl FrameSunMap {
         plan: &mut FramePlan,
     ) -> Result<(), RenderError> {
         self.step = None;
+        self.air_step = None;
         self.shades_surface = has_surface;
         let pixels = (frame.width, frame.height);
         let clouds = match clouds {
@@ -145,6 +154,16 @@ impl FrameSunMap {
         plan.cloud_shafts = air;
         plan.run("cloud_shadow", StepKind::Pass);
         self.step = Some(plan.steps.len() as u32 - 1);
+        if air {
+            if self.air.is_none() {
+                self.air = Some(AirShadowPass::new(gpu)?);
+            }
+            if let Some(pass) = self.air.as_mut() {
+                pass.plan(&frame.atmosphere);
+            }
+            plan.run(CLOUD_SHAFTS, StepKind::Pass);
+            self.air_step = Some(plan.steps.len() as u32 - 1);
+        }
         Ok(())
     }
 
@@ -153,16 +172,22 @@ impl FrameSunMap {
         self.step
     }
 
-    /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover
-    /// (timed by `timestamps`), then its read at each pixel's surface where the frame
-    /// has one.
+    /// The index of the planned step of the cloud's shadow in the air, if it runs.
+    pub fn air_step(&self) -> Option<u32> {
+        self.air_step
+    }
+
+    /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover,
+    /// then the cloud's shadow in the air where it is planned (with the frame's
+    /// `atmosphere` for its table), else the map's read at each pixel's surface where
+    /// the frame has one; `timestamps` (of the fill, of the air's step) time them.
     pub fn encode(
-        &self,
+        &mut self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         scene: (&Frame, &FrameClouds, &LayerInputs),
-        pixels: PixelInputs<'_>,
-        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        (pixels, atmosphere): (PixelInputs<'_>, &AtmosphereUniform),
+        timestamps: [Option<wgpu::ComputePassTimestampWrites<'_>>; 2],
     ) -> Result<(), RenderError> {
         let (frame, clouds, inputs) = scene;
         let (Some(_), Some(pass)) = (self.step, &self.pass) else {
@@ -175,15 +200,11 @@ impl FrameSunMap {
             frame.atmosphere.bottom_radius_m,
             inputs.cover_size,
         )?;
-        pass.encode(
-            gpu,
-            encoder,
-            &layer,
-            &inputs.cover,
-            &self.texture,
-            timestamps,
-        );
-        if self.shades_surface {
+        let [fill, air] = timestamps;
+        pass.encode(gpu, encoder, &layer, &inputs.cover, &self.texture, fill);
+        if let (Some(_), Some(air_pass)) = (self.air_step, self.air.as_mut()) {
+            air_pass.encode(gpu, encoder, (pixels, atmosphere), &self.texture, air);
+        } else if self.shades_surface {
             pass.encode_pixels(gpu, encoder, pixels, &self.texture);
         }
         Ok(())

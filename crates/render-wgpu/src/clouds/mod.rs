@@ -7,9 +7,11 @@
 //! composite with the frame's sky model; [`sun_map_texture`] and [`sun_map_pass`] the
 //! layer's attenuation of the sun over the view's region, which shades the surface,
 //! and [`frame_sun_map`] its place in a renderer frame, [`frame_cloud_shafts`] the
-//! planner's rule for its shadow in the air (hillaire's shafts); [`spheres`] the cloud spheres
+//! planner's rule for its shadow in the air and [`air_shadow_pass`] that shadow per
+//! pixel, which every model subtracts; [`spheres`] the cloud spheres
 //! seen from far away; [`volume`] a voxel cloud by half-angle slicing.
 
+pub mod air_shadow_pass;
 pub mod frame_cloud_shafts;
 pub mod frame_clouds;
 pub mod frame_pass;

@@ -17,6 +17,7 @@ use crate::gpu::pipeline::{
     ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_buffer,
     uniform_entry,
 };
+use crate::shafts::terrain::shadow_texture::ShadowTexture;
 
 /// The fill and per-pixel pipelines and the layer's parameters the fill reads.
 #[derive(Debug)]
@@ -26,13 +27,16 @@ pub struct SunMapPass {
     layer: wgpu::Buffer,
 }
 
-/// What the per-pixel pass reads besides the map: the frame's atmosphere and frame
-/// uniforms and its surface geometry.
+/// What the per-pixel passes read besides the map: the frame's atmosphere and frame
+/// uniforms, its surface geometry and whether it has a surface, and the terrain's
+/// shadow map (the cloud's shadow in the air, `air_shadow_pass.rs`).
 #[derive(Clone, Copy, Debug)]
 pub struct PixelInputs<'a> {
     pub atmosphere: &'a wgpu::Buffer,
     pub frame: &'a wgpu::Buffer,
     pub geometry: &'a wgpu::TextureView,
+    pub has_surface: bool,
+    pub shadow: &'a ShadowTexture,
 }
 
 impl SunMapPass {

@@ -1,7 +1,7 @@
 //! The cloud layer's sun map on the GPU (atmosphere-core's `clouds/layer/sun_map.rs`):
 //! its optical depths in an `R32Float` texture, level k in rows k n to k n + n - 1, its
 //! parameters in a uniform, and the map's transmittance at each pixel's surface (and,
-//! beside it, hillaire's shafts with the cloud, `sky/hillaire/cloud_shafts.rs`)
+//! beside it, the cloud's shadow in the air, `air_shadow_pass.rs`)
 //! (`shaders/clouds/sun_map_pixels.wgsl`), which every model's pixel pass binds at 32
 //! with the parameters at 33 (`shaders/common/surface.wgsl`) and multiplies its
 //! surface's sun by. A frame without the map binds small textures with the flag off.
@@ -18,7 +18,8 @@ use crate::gpu::pipeline::{texture_2d, texture_entry, uniform_buffer, uniform_en
 /// The texture's format: one optical depth per texel.
 pub const SUN_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// The per-pixel image's format: the transmittance at the pixel's surface, then the
-/// single scattering per unit solar irradiance that hillaire's shafts take out.
+/// single scattering per unit solar irradiance that the cloud's shadow takes out of the
+/// air.
 pub const PIXELS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The bindings, in the model's pixel passes, of the per-pixel transmittance and of the
 /// parameters; in the per-pixel pass, of the per-pixel output and of the map.
@@ -39,7 +40,7 @@ pub struct SunMapUniform {
     /// Unit vector towards the sun.
     pub sun: [f32; 4],
     /// Radii of the layer's base and top, m; 1 when the map shades the air under the
-    /// base (hillaire's shafts), else 0; 0.
+    /// base (`air_shadow_pass.rs`), else 0; 0.
     pub radii: [f32; 4],
     /// Cells per side, levels, march steps per texel, 1.
     pub counts: [u32; 4],
@@ -176,7 +177,7 @@ impl SunMapTexture {
 }
 
 impl SunMapTexture {
-    /// The map itself at 35 (hillaire's cloud shafts read it).
+    /// The map itself at 35 (the shadow in the air reads it).
     pub fn map_binding(&self) -> (u32, wgpu::BindingResource<'_>) {
         (
             SUN_MAP_BINDING,

@@ -49,8 +49,19 @@ impl ColumnsTable {
     /// Records into `cx` the build planned by [`ColumnsTable::plan`], from `atmosphere`
     /// (the planned atmosphere in the GPU's layout).
     pub fn encode(&mut self, atmosphere: &AtmosphereUniform, cx: StepContext<'_>) {
-        self.pass
-            .encode(cx.gpu, atmosphere, cx.encoder, cx.timestamps);
+        self.build(cx.gpu, atmosphere, cx.encoder, cx.timestamps);
+    }
+
+    /// [`ColumnsTable::encode`] outside a model's steps: into `encoder` on `gpu`, timed
+    /// by `timestamps`.
+    pub fn build(
+        &mut self,
+        gpu: &GpuContext,
+        atmosphere: &AtmosphereUniform,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        self.pass.encode(gpu, atmosphere, encoder, timestamps);
         if let Some(now) = self.pending.take() {
             self.built_from = Some(now);
         }

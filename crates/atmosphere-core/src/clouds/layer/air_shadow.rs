@@ -1,29 +1,37 @@
 //! The cloud layer's shadow in the air under it (crepuscular rays from gaps in a deck),
-//! for the hillaire model: its light-shaft march (`models::hillaire::shafts`, after
-//! Bruneton and Neyret 2008 section 5, Eq. 17-18, the shadowed part marched) with the
-//! sun's visibility at each sample the terrain's times the cloud's transmittance from the
-//! frame's sun map (`sun_map.rs`, Dobashi, Yamamoto and Nishita 2002 section 5.4's
-//! attenuation ratio):
+//! for every sky model: the light-shaft march (Bruneton and Neyret 2008 section 5,
+//! Eq. 17-18, the shadowed part marched; `models::hillaire::shafts`) of the single
+//! scattering that the cloud takes from the sun beyond the terrain's shadow, with the
+//! cloud's transmittance from the frame's sun map (`sun_map.rs`, Dobashi, Yamamoto and
+//! Nishita 2002 section 5.4's attenuation ratio). The sun's visibility at a point x is
 //!
 //! `V(x) = V_terrain(x) T_cloud(x)` below the layer's base, `V_terrain(x)` above it,
 //!
-//! `dL = sum_k T(x, x_k) (1 - V(x_k)) T_sun(x_k) (sigma_s,R p_R + sigma_s,M p_M) w_k`.
+//! so what the cloud adds to the terrain's shadow `1 - V_terrain` is
+//! `V_terrain(x) (1 - T_cloud(x))` below the base, and
+//!
+//! `dL = sum_k T(x, x_k) V_terrain(x_k) (1 - T_cloud(x_k)) T_sun(x_k) (sigma_s,R p_R + sigma_s,M p_M) w_k`
+//!
+//! is taken out of the model's answer, beside the model's own terrain shafts: a point in
+//! both shadows is counted once. The march runs over the part of the ray below the
+//! layer's base, as far as the map reaches, with two samples per cell, within the shafts'
+//! fewest and most samples (`shafts::shaft_samples`), through the atmosphere's own
+//! columns table ([`CloudAirShadow`]), the same for every model.
 //!
 //! Inside the layer the air is left to the layer's compositing (`composite.rs`): the
 //! air's light there is attenuated by the cloud's transmittance, and its own shadow is
-//! not taken. The march runs over the part of the ray below the higher of the terrain
-//! shadow's top and the layer's base (`shafts::shaft_span_m`), as far as the wider of the
-//! two maps, with two samples per cell of the finer one, within the shafts' fewest and
-//! most samples (`shafts::shaft_samples`).
+//! not taken.
 
 use glam::DVec3;
 
 use super::sun_map::CloudSunMap;
+use crate::atmosphere::Atmosphere;
+use crate::atmosphere::spectra::Spectra;
 use crate::models::error::ModelError;
-use crate::models::hillaire::Hillaire;
 use crate::models::hillaire::medium::Medium;
-use crate::models::hillaire::shafts::{shadowed_single, shadowed_single_over};
+use crate::models::hillaire::shafts::shadowed_single_over;
 use crate::models::sky_model::{RayRadiance, SkyModel, ViewRay};
+use crate::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable};
 use crate::optics::view_segment::ViewSegment;
 use crate::shafts::{ShadowMap, SunVisibility, shaft_samples, shaft_span_m};
 
@@ -46,63 +54,99 @@ impl SunVisibility for AirShadow<'_> {
     }
 }
 
-impl AirShadow<'_> {
-    /// The part of `segment` (distances from its start, m) the march covers over a
-    /// ground sphere of radius `bottom_radius_m`, and its samples; `None` when the ray
-    /// stays above both the terrain's shadow and the layer's base.
-    pub fn span(&self, segment: &ViewSegment, bottom_radius_m: f64) -> Option<((f64, f64), usize)> {
-        let clouds = &self.clouds.grid;
-        let (mut top, mut width, mut cell) = (
-            self.clouds.base_radius_m,
-            clouds.cell_m * clouds.size as f64,
-            clouds.cell_m,
-        );
-        if let Some(map) = self.terrain {
-            top = top.max(bottom_radius_m + f64::from(map.max_top_m));
-            width = width.max(map.width_m());
-            cell = cell.min(map.sample_cell_m());
+/// One less the share of the sun that the cloud hides beyond the terrain's shadow,
+/// `1 - V_terrain (1 - T_cloud)` below the base: the march's `1 - V` is then the
+/// cloud's part of the shadow alone.
+struct CloudPart<'a>(AirShadow<'a>);
+
+impl SunVisibility for CloudPart<'_> {
+    fn sun_visible(&self, point_m: DVec3, sun: DVec3) -> f64 {
+        let AirShadow { terrain, clouds } = self.0;
+        if point_m.length() >= clouds.base_radius_m {
+            return 1.0;
         }
+        let terrain = terrain.map_or(1.0, |m| m.sun_visible(point_m, sun));
+        1.0 - terrain * (1.0 - clouds.transmittance(point_m))
+    }
+}
+
+impl AirShadow<'_> {
+    /// The part of `segment` (distances from its start, m) below the layer's base as far
+    /// as the map reaches, and its samples; `None` when the ray stays above the base.
+    pub fn span(&self, segment: &ViewSegment) -> Option<((f64, f64), usize)> {
+        let grid = &self.clouds.grid;
+        let width = grid.cell_m * grid.size as f64;
+        let top = self.clouds.base_radius_m;
         let span = shaft_span_m(segment.r, segment.mu, segment.length, top, width)?;
-        Some((span, shaft_samples(span.1 - span.0, cell)))
+        Some((span, shaft_samples(span.1 - span.0, grid.cell_m)))
     }
 
-    /// The single scattering per unit solar irradiance (sr^-1) that the terrain and the
-    /// cloud take out of `segment`, per wavelength, into `out`.
-    pub fn shadowed_single(&self, medium: &Medium<'_>, segment: &ViewSegment, out: &mut [f64]) {
+    /// The single scattering per unit solar irradiance (sr^-1) that the cloud takes out
+    /// of `segment` beyond the terrain's shadow, per wavelength, into `out`.
+    pub fn cloud_single(&self, medium: &Medium<'_>, segment: &ViewSegment, out: &mut [f64]) {
         out.fill(0.0);
-        if let Some((span, samples)) = self.span(segment, medium.atmosphere.bottom_radius_m) {
-            shadowed_single_over(medium, segment, self, span, samples, out);
+        if let Some((span, samples)) = self.span(segment) {
+            shadowed_single_over(medium, segment, &CloudPart(*self), span, samples, out);
         }
     }
 }
 
-/// The radiance of `ray` in `model` with the cloud of `clouds` shadowing the air below
-/// the layer's base as well as the model's terrain map (when it has one): the model's
-/// answer with its terrain-only shaft term replaced by [`AirShadow::shadowed_single`]'s.
-pub fn radiance_with_cloud_shafts(
-    model: &Hillaire,
-    ray: &ViewRay,
-    clouds: &CloudSunMap,
-) -> Result<RayRadiance, ModelError> {
-    let mut answer = model.radiance(ray)?;
-    let medium = model.medium();
-    let Some(segment) = ViewSegment::new(medium.atmosphere, ray)? else {
-        return Ok(answer);
-    };
-    let n = medium.wavelengths();
-    let mut terrain_only = vec![0.0; n];
-    if let Some(map) = model.terrain_shadow() {
-        shadowed_single(&medium, &segment, map, &mut terrain_only);
+/// The medium the cloud's shadow in the air is marched through, whichever model draws
+/// the sky: the atmosphere's coefficients at the model's wavelengths and a columns table
+/// of its own, of the GPU pass's size.
+#[derive(Clone, Debug)]
+pub struct CloudAirShadow {
+    atmosphere: Atmosphere,
+    spectra: Spectra,
+    table: TransmittanceTable,
+}
+
+impl CloudAirShadow {
+    /// The columns table's size (sun angles, radii), as the GPU pass's
+    /// (render-wgpu's `clouds/air_shadow_pass.rs`).
+    pub const TABLE_SIZE: (usize, usize) = BRUNETON_TABLE_SIZE;
+
+    /// The medium of `atmosphere` at `model`'s wavelengths.
+    pub fn new(atmosphere: &Atmosphere, model: &dyn SkyModel) -> CloudAirShadow {
+        let (width, height) = CloudAirShadow::TABLE_SIZE;
+        CloudAirShadow {
+            atmosphere: atmosphere.clone(),
+            spectra: model.spectra().clone(),
+            table: TransmittanceTable::build(atmosphere, width, height),
+        }
     }
-    let air = AirShadow {
-        terrain: model.terrain_shadow(),
-        clouds,
-    };
-    let mut both = vec![0.0; n];
-    air.shadowed_single(&medium, &segment, &mut both);
-    for (w, l) in answer.radiance.iter_mut().enumerate() {
-        let solar = medium.spectra.solar_irradiance[w];
-        *l = (*l + (terrain_only[w] - both[w]) * solar).max(0.0);
+
+    /// The medium as the march sees it.
+    pub fn medium(&self) -> Medium<'_> {
+        Medium {
+            atmosphere: &self.atmosphere,
+            spectra: &self.spectra,
+            transmittance: &self.table,
+            mie: true,
+            diffuse: None,
+        }
     }
-    Ok(answer)
+
+    /// The radiance of `ray` in `model` with the cloud of `air` shadowing the air below
+    /// the layer's base: the model's answer (with its own terrain shafts, when it has
+    /// them, from the map `air.terrain` should be) less the cloud's part of the shadow,
+    /// [`AirShadow::cloud_single`] times the solar irradiance, at least 0.
+    pub fn radiance(
+        &self,
+        model: &dyn SkyModel,
+        ray: &ViewRay,
+        air: &AirShadow<'_>,
+    ) -> Result<RayRadiance, ModelError> {
+        let mut answer = model.radiance(ray)?;
+        let Some(segment) = ViewSegment::new(&self.atmosphere, ray)? else {
+            return Ok(answer);
+        };
+        let mut lost = vec![0.0; self.spectra.wavelengths_nm.len()];
+        air.cloud_single(&self.medium(), &segment, &mut lost);
+        let solar = &self.spectra.solar_irradiance;
+        for (w, l) in answer.radiance.iter_mut().enumerate() {
+            *l = (*l - lost[w] * solar[w]).max(0.0);
+        }
+        Ok(answer)
+    }
 }

@@ -16,10 +16,9 @@
 //! - `hillaire`: the pass, every frame. It reads the transmittance table, the sky view
 //!   and the volume through the texture unit's filter where the device can
 //!   (`table_sampling`): one read per look-up instead of 4 (8 for the volume's trilinear
-//!   one); before it, where the cloud's sun map shades the air, `cloud_shafts.rs`
-//!   (the shafts with the cloud's shadow, per pixel).
+//!   one); where the cloud's sun map shades the air it subtracts the cloud's shadow
+//!   there, per pixel, as every model does (`clouds/air_shadow_pass.rs`).
 
-pub mod cloud_shafts;
 pub mod pass;
 pub mod step;
 pub mod tables;

@@ -17,7 +17,6 @@ use crate::gpu::pipeline::{
 };
 use crate::gpu::readback::read_texture;
 use crate::shafts::terrain::uniform::ShadowMapUniform;
-use crate::sky::hillaire::cloud_shafts::CloudShaftsPass;
 use crate::sky::hillaire::step::HillaireStep;
 use crate::sky::hillaire::tables::{Source, Table, Tables};
 use crate::sky::hillaire::uniform::HillaireUniform;
@@ -49,10 +48,6 @@ pub struct HillairePass {
     variant: usize,
     /// How the table builds read their tables.
     sampling: TableSampling,
-    /// The shafts with the cloud's shadow (made on first use), and whether the frame
-    /// being planned runs them.
-    cloud_shafts: Option<CloudShaftsPass>,
-    cloud_shafts_on: bool,
 }
 
 impl HillairePass {
@@ -138,8 +133,6 @@ impl HillairePass {
             pending: None,
             variant: 0,
             sampling,
-            cloud_shafts: None,
-            cloud_shafts_on: false,
         })
     }
 
@@ -301,17 +294,13 @@ impl ModelPass for HillairePass {
             (true, false) => 1,
             (false, _) => 2,
         };
-        self.cloud_shafts_on = plan.cloud_shafts();
-        if self.cloud_shafts_on && self.cloud_shafts.is_none() {
-            self.cloud_shafts = Some(CloudShaftsPass::new(gpu, &self.sampling)?);
-        }
         plan.run(HillaireStep::Pass);
         self.pending = Some(source);
         gpu.write_uniform(&self.params, &params);
         Ok(())
     }
 
-    fn encode(&mut self, step: HillaireStep, mut cx: StepContext<'_>) {
+    fn encode(&mut self, step: HillaireStep, cx: StepContext<'_>) {
         match step {
             HillaireStep::Table(table) => {
                 self.encode_table(table, cx);
@@ -328,9 +317,6 @@ impl ModelPass for HillairePass {
                     &t.aerial_transmittance,
                 ]
                 .map(|t| t.create_view(&Default::default()));
-                if let Some(pass) = self.cloud_shafts.as_ref().filter(|_| self.cloud_shafts_on) {
-                    pass.encode(&mut cx, (&self.params, &views[0]), &self.sampling);
-                }
                 let shadow = cx.io.shadow.view();
                 let mut tables: Vec<_> = views
                     .iter()

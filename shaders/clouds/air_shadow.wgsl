@@ -1,15 +1,17 @@
-// Entry pass: hillaire's light shafts with the cloud layer's shadow in the air, per
-// pixel (render-wgpu's `sky/hillaire/cloud_shafts.rs`), run before the hillaire pass
-// when the frame's sun map shades the air: the single scattering that the terrain and,
-// below the layer's base, the cloud take out of the pixel's view segment. CPU twin:
-// atmosphere-core's `clouds/layer/air_shadow.rs` (`AirShadow`); method: docs/clouds.md,
-// "Cloud shadows in the air". Writes, per pixel, the sun map's transmittance at the
-// pixel's surface (as `clouds/sun_map_pixels.wgsl` does) and that single scattering per
-// unit solar irradiance into the image the pixel passes read at 32
-// (`common/surface.wgsl`); the hillaire pass subtracts it instead of marching its own
-// (`sky/hillaire/shafts.wgsl`). The map is read here, not inside the hillaire pass:
-// bound and read there, the pass crashed lavapipe (Mesa 22.3.6) in its worker thread, as
-// riley's had.
+// Entry pass: the cloud layer's shadow in the air below its base, per pixel, for every
+// sky model (render-wgpu's `clouds/air_shadow_pass.rs`), run after the sun map's fill
+// when the map shades the air: the single scattering that the cloud takes from the
+// sun beyond the terrain's shadow, V_terrain (1 - T_cloud), out of the pixel's view
+// segment. CPU twin: atmosphere-core's `clouds/layer/air_shadow.rs` (`AirShadow::
+// cloud_single`); method: docs/clouds.md, "Cloud shadows in the air". Writes, per
+// pixel, the sun map's transmittance at the pixel's surface (as
+// `clouds/sun_map_pixels.wgsl` does) and that single scattering per unit solar
+// irradiance into the image the pixel passes read at 32 (`common/surface.wgsl`); each
+// model subtracts it beside its own terrain shafts (`pixel_cloud_air_loss`). The march
+// is the light shafts' (`sky/hillaire/shafts.wgsl`) through this pass's own columns
+// table at 3; the hillaire uniform that library declares at 2 is not read. The map is
+// read here, not inside the models' pixel passes: bound and read there, it crashed
+// lavapipe (Mesa 22.3.6) in its worker thread.
 
 #import sky/hillaire/shafts.wgsl
 #import clouds/sun_map_read.wgsl
@@ -23,40 +25,33 @@ override SURFACE: bool = true;
 @group(0) @binding(30) var pixel_geometry: texture_2d<f32>;
 @group(0) @binding(34) var pixel_shafts: texture_storage_2d<rgba32float, write>;
 
-// `AirShadow::span` (and `shaft_span` without the cloud): x, y the part of the segment
-// below the higher of the terrain shadow's top and the layer's base, as far as the wider
-// of the two maps; z: its samples, two per cell of the finer map.
-fn air_span(s: Segment, terrain: bool, clouds: bool) -> vec3<f32> {
+// `AirShadow::span`: x, y the part of the segment below the layer's base, as far as the
+// map reaches; z: its samples, two per cell; empty unless the map shades the air
+// (`clouds`). Lavapipe (Mesa 22.3.6) crashed running the march with the span taken
+// from the map's parameters without that flag.
+fn air_span(s: Segment, clouds: bool) -> vec3<f32> {
     var h = 0.0;
     var width = 0.0;
     var cell = 1e30;
-    if terrain {
-        h = shadow_map.up_top.w;
-        width = shadow_map_width(shadow_map);
-        cell = width / f32(shadow_map.size.x);
-    }
     if clouds {
         let m = sun_map_params;
-        h = max(h, m.radii.x - atmosphere.bottom_radius_m);
-        width = max(width, m.east_cell.w * f32(m.counts.x));
-        cell = min(cell, m.east_cell.w);
+        h = m.radii.x - atmosphere.bottom_radius_m;
+        width = m.east_cell.w * f32(m.counts.x);
+        cell = m.east_cell.w;
     }
     let span = span_below(s, h, width);
-    var samples = shaft_samples(shadow_map, span.y - span.x);
-    if clouds {
-        samples = samples_per_cell(shadow_map, span.y - span.x, cell);
-    }
+    let samples = samples_per_cell(shadow_map, span.y - span.x, cell);
     return vec3<f32>(span, f32(samples));
 }
 
-// `AirShadow::shadowed_single`: per unit solar irradiance, in equal segments of the
-// span; the sun's visibility at a sample is the terrain's times, below the layer's
-// base, the sun map's transmittance.
-fn air_shafts_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
+// `AirShadow::cloud_single`: per unit solar irradiance, in equal segments of the span;
+// the cloud's part of the shadow at a sample is the terrain's visibility times one
+// less the sun map's transmittance.
+fn cloud_air_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
     var loss = vec3<f32>(0.0);
     let terrain = shadow_map.size.y != 0u;
     let clouds = cloud_shafts_on();
-    let part = air_span(s, terrain, clouds);
+    let part = air_span(s, clouds);
     let samples = u32(part.z);
     if part.y <= part.x || samples == 0u {
         return loss;
@@ -77,10 +72,10 @@ fn air_shafts_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
         if terrain {
             visible = shadow_map_visible(shadow_tops, shadow_map, bottom, position, altitude);
         }
+        var shadow = 0.0;
         if clouds && visible > 0.0 && p.r < base {
-            visible *= cloud_sun_transmittance(position);
+            shadow = visible * (1.0 - cloud_sun_transmittance(position));
         }
-        let shadow = 1.0 - visible;
         let w = segment_weight(optical_depth(rho), dt);
         if shadow > 0.0 {
             let s_r = atmosphere.rayleigh_scattering_per_m.xyz * rho.x;
@@ -110,7 +105,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let s = view_segment(direction, distance);
     var loss = vec3<f32>(0.0);
     if s.hit {
-        loss = air_shafts_loss(s, direction, dot(direction, frame.sun_direction.xyz));
+        loss = cloud_air_loss(s, direction, dot(direction, frame.sun_direction.xyz));
     }
     textureStore(pixel_shafts, id.xy, vec4<f32>(t, loss));
 }
