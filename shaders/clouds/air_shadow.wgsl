@@ -4,14 +4,18 @@
 // sun beyond the terrain's shadow, V_terrain (1 - T_cloud), out of the pixel's view
 // segment. CPU twin: atmosphere-core's `clouds/layer/air_shadow.rs` (`AirShadow::
 // cloud_single`); method: docs/clouds.md, "Cloud shadows in the air". Writes, per
-// pixel, the sun map's transmittance at the pixel's surface (as
-// `clouds/sun_map_pixels.wgsl` does) and that single scattering per unit solar
+// pixel, the sun map's transmittance at the pixel's surface (copied from what
+// `clouds/sun_map_pixels.wgsl` wrote) and that single scattering per unit solar
 // irradiance into the image the pixel passes read at 32 (`common/surface.wgsl`); each
 // model subtracts it beside its own terrain shafts (`pixel_cloud_air_loss`). The march
 // is the light shafts' (`sky/hillaire/shafts.wgsl`) through this pass's own columns
 // table at 3; the hillaire uniform that library declares at 2 is not read. The map is
 // read here, not inside the models' pixel passes: bound and read there, it crashed
 // lavapipe (Mesa 22.3.6) in its worker thread.
+// At a resolution divisor above 1 (the cloud layer's, `resolution_divisor`), `reduced`
+// marches one ray per block of pixels first, and `main` reads its taps whose span below
+// the base ends as far as the pixel's own, marching a pixel only where none does. CPU
+// twin of that: `clouds/layer/air_shadow_upsample.rs`.
 
 #import sky/hillaire/shafts.wgsl
 #import clouds/sun_map_read.wgsl
@@ -21,9 +25,24 @@
 // is not read).
 override SURFACE: bool = true;
 
+// Whether `main` takes its loss from `reduced`'s taps (the pipeline's variant).
+override UPSAMPLE: bool = false;
+
+// `SPAN_TOLERANCE`, `MIN_SAME_WEIGHT` (`air_shadow_upsample.rs`).
+const SPAN_TOLERANCE: f32 = 0.25;
+const MIN_SAME_WEIGHT: f32 = 0.25;
+
 // xyz: the surface's normal; w: its distance along the pixel's ray, m (0: none).
 @group(0) @binding(30) var pixel_geometry: texture_2d<f32>;
 @group(0) @binding(34) var pixel_shafts: texture_storage_2d<rgba32float, write>;
+// The reduced march: rgb the loss, a the span's far end, m (-1: no span); written by
+// `reduced` at 36, read by `main` at 37.
+@group(0) @binding(36) var reduced_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(37) var reduced_in: texture_2d<f32>;
+// x: the surface's cloud transmittance per pixel, written by `sun_map_pixels.wgsl` before
+// this pass; read in the surface's variant and copied. Computed here from the map
+// instead, it crashed lavapipe (Mesa 22.3.6) in frames with a surface.
+@group(0) @binding(38) var surface_sun: texture_2d<f32>;
 
 // `AirShadow::span`: x, y the part of the segment below the layer's base, as far as the
 // map reaches; z: its samples, two per cell; empty unless the map shades the air
@@ -47,15 +66,11 @@ fn air_span(s: Segment, clouds: bool) -> vec3<f32> {
 // `AirShadow::cloud_single`: per unit solar irradiance, in equal segments of the span;
 // the cloud's part of the shadow at a sample is the terrain's visibility times one
 // less the sun map's transmittance.
-fn cloud_air_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
+fn cloud_air_loss(s: Segment, direction: vec3<f32>, nu: f32, part: vec3<f32>) -> vec3<f32> {
     var loss = vec3<f32>(0.0);
     let terrain = shadow_map.size.y != 0u;
     let clouds = cloud_shafts_on();
-    let part = air_span(s, clouds);
     let samples = u32(part.z);
-    if part.y <= part.x || samples == 0u {
-        return loss;
-    }
     let dt = (part.y - part.x) / f32(samples);
     let phase_r = rayleigh_phase(nu);
     let phase_m = mie_phase(nu);
@@ -88,24 +103,110 @@ fn cloud_air_loss(s: Segment, direction: vec3<f32>, nu: f32) -> vec3<f32> {
     return loss;
 }
 
+// Whether the span `part` (`air_span`) holds any air to march.
+fn span_holds_air(part: vec3<f32>) -> bool {
+    return part.y > part.x && part.z > 0.0;
+}
+
+// The surface's distance along full pixel `px`'s ray, m (0: none, or no surface).
+fn surface_distance(px: vec2<u32>) -> f32 {
+    if !SURFACE {
+        return 0.0;
+    }
+    return max(textureLoad(pixel_geometry, px, 0).w, 0.0);
+}
+
+// `direction_through` the full image's fractional pixel `p` (pixel x's centre at x).
+fn pixel_direction_at(p: vec2<f32>) -> vec3<f32> {
+    let size = vec2<f32>(frame.size_px.xy);
+    let ndc = vec2<f32>(2.0, -2.0) * (p + 0.5) / size + vec2<f32>(-1.0, 1.0);
+    return normalize(frame.forward.xyz + ndc.x * frame.right.xyz + ndc.y * frame.up.xyz);
+}
+
+// `axis_taps` (`clouds/layer/upsample.rs`): the two reduced pixels full pixel `x` of an
+// axis of `full` reads from an axis of `reduced`, and the weight of the second.
+fn axis_taps(x: u32, full: u32, reduced: u32) -> vec3<f32> {
+    let last = f32(reduced - 1u);
+    let u = clamp((f32(x) + 0.5) * f32(reduced) / f32(full) - 0.5, 0.0, last);
+    let i0 = floor(u);
+    return vec3<f32>(i0, min(i0 + 1.0, last), u - i0);
+}
+
+// `air_shadow_upsample::interpolate`: rgb the loss of full pixel `px`, whose span ends at
+// `end`, from the taps of its span; a: their weight (below `MIN_SAME_WEIGHT`: march).
+fn upsampled(px: vec2<u32>, end: f32) -> vec4<f32> {
+    let full = frame.size_px.xy;
+    let low = textureDimensions(reduced_in);
+    let tx = axis_taps(px.x, full.x, low.x);
+    let ty = axis_taps(px.y, full.y, low.y);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let right = (k & 1u) == 1u;
+        let down = k >= 2u;
+        let i = u32(select(tx.x, tx.y, right));
+        let j = u32(select(ty.x, ty.y, down));
+        let w = select(1.0 - tx.z, tx.z, right) * select(1.0 - ty.z, ty.z, down);
+        let tap = textureLoad(reduced_in, vec2<u32>(i, j), 0);
+        if w > 0.0 && tap.w >= 0.0 && abs(tap.w - end) <= SPAN_TOLERANCE * end {
+            sum += w * tap.xyz;
+            weight += w;
+        }
+    }
+    return vec4<f32>(sum / max(weight, 1e-30), weight);
+}
+
+// The reduced march: one ray per reduced pixel through `upsample.rs`'s marched
+// coordinate, ended on the surface of its nearest full pixel; rgb its loss, a its span's
+// far end (-1 where it has none).
+@compute @workgroup_size(8, 8)
+fn reduced(@builtin(global_invocation_id) id: vec3<u32>) {
+    let low = textureDimensions(reduced_out);
+    if any(id.xy >= low) {
+        return;
+    }
+    let full = frame.size_px.xy;
+    let p = (vec2<f32>(id.xy) + 0.5) * vec2<f32>(full) / vec2<f32>(low) - 0.5;
+    let nearest = vec2<u32>(clamp(floor(p + 0.5), vec2<f32>(0.0), vec2<f32>(full - 1u)));
+    let direction = pixel_direction_at(p);
+    let s = view_segment(direction, surface_distance(nearest));
+    var out = vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    if s.hit {
+        let part = air_span(s, cloud_shafts_on());
+        if span_holds_air(part) {
+            let nu = dot(direction, frame.sun_direction.xyz);
+            out = vec4<f32>(cloud_air_loss(s, direction, nu, part), part.y);
+        }
+    }
+    textureStore(reduced_out, id.xy, out);
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= frame.size_px.xy) {
         return;
     }
     let direction = pixel_direction(id.xy);
-    var distance = 0.0;
-    if SURFACE {
-        distance = max(textureLoad(pixel_geometry, id.xy, 0).w, 0.0);
-    }
+    let distance = surface_distance(id.xy);
     var t = 1.0;
-    if distance > 0.0 {
-        t = cloud_sun_transmittance(frame.camera_m.xyz + direction * distance);
+    if SURFACE {
+        t = textureLoad(surface_sun, id.xy, 0).x;
     }
     let s = view_segment(direction, distance);
     var loss = vec3<f32>(0.0);
     if s.hit {
-        loss = cloud_air_loss(s, direction, dot(direction, frame.sun_direction.xyz));
+        let part = air_span(s, cloud_shafts_on());
+        if span_holds_air(part) {
+            var taps = vec4<f32>(0.0);
+            if UPSAMPLE {
+                taps = upsampled(id.xy, part.y);
+            }
+            if taps.w >= MIN_SAME_WEIGHT {
+                loss = taps.xyz;
+            } else {
+                loss = cloud_air_loss(s, direction, dot(direction, frame.sun_direction.xyz), part);
+            }
+        }
     }
     textureStore(pixel_shafts, id.xy, vec4<f32>(t, loss));
 }

@@ -7,7 +7,11 @@
 //! up under the default layer over a cover with gaps, the sun 12 degrees up, no surface:
 //! the sun map is made for the air alone. hillaire is checked whole; each other model's
 //! air loses what the CPU's march takes (`AirShadow::cloud_single`), within
-//! `LOSS_RELATIVE` of it and the f16 image's rounding of the two frames.
+//! `LOSS_RELATIVE` of it and the f16 image's rounding of the two frames. With a wall 2 km
+//! off over a third of the frame and the layer's resolution divisor 3, the reduced march
+//! upsampled by span against its CPU twin (`air_shadow_upsample.rs`; one value in a
+//! hundred may be outside, none beyond `JUMP_FACTOR` times), and at divisor 1 against the
+//! full march.
 //!
 //! Tolerance: the air's pixels (rays that meet no cloud) within `AIR_RELATIVE` of
 //! themselves (hillaire's own parity is 2e-3; the map's f32 fill and read add theirs,
@@ -27,10 +31,14 @@ mod support;
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::air_shadow::{AirShadow, CloudAirShadow};
+use atmosphere_core::clouds::layer::air_shadow_upsample::{
+    ReducedAirShadow, interpolate, upsampled_loss,
+};
 use atmosphere_core::clouds::layer::composite::composite;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::march::CloudSegment;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::layer::upsample::{marched_coordinate, nearest_pixel, reduced_size};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::clouds::spheres::handover::CloudForm;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
@@ -45,6 +53,7 @@ use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_cloud_shafts::{CLOUD_SHAFTS, NO_AIR_BELOW};
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
 use render_wgpu::clouds::frame_sun_map::NO_SURFACE;
+use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::frame::{Frame, look_orientation};
 use support::clouds::{cpu_march, frame_sun_map};
 
@@ -320,6 +329,200 @@ fn every_model_subtracts_the_cloud_shadow_in_the_air() {
             "{model:?}: only {taken} values darkened"
         );
     }
+}
+
+/// A wall facing the camera 2 km away over the left third of the frame.
+fn wall(frame: &Frame) -> Vec<SurfaceTexel> {
+    let mut texels = Vec::new();
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            texels.push(if column < frame.width / 3 {
+                let d = frame.pixel_ray(column, row).direction;
+                SurfaceTexel {
+                    normal: (-d).as_vec3().to_array(),
+                    distance_m: 2_000.0,
+                    albedo: [0.3, 0.25, 0.2],
+                    water: false,
+                }
+            } else {
+                SurfaceTexel::default()
+            });
+        }
+    }
+    texels
+}
+
+/// The loss per unit solar irradiance and the span's end of the ray along `direction`
+/// from `frame`'s camera ended at `end_m` (0: no surface).
+fn cpu_air(
+    frame: &Frame,
+    (air, medium): (
+        &AirShadow<'_>,
+        &atmosphere_core::models::hillaire::medium::Medium<'_>,
+    ),
+    direction: DVec3,
+    end_m: f32,
+) -> ([f64; 3], Option<f64>) {
+    let ray = ViewRay {
+        origin_m: frame.camera_position_m,
+        direction,
+        sun_direction: frame.sun_direction.normalize(),
+        max_distance_m: (end_m > 0.0).then_some(f64::from(end_m)),
+    };
+    let Some(segment) = ViewSegment::new(&frame.atmosphere, &ray).unwrap() else {
+        return ([0.0; 3], None);
+    };
+    let mut lost = [0.0; 3];
+    air.cloud_single(medium, &segment, &mut lost);
+    (lost, air.span_end(&segment))
+}
+
+#[test]
+fn a_reduced_march_of_the_shadow_upsamples_by_span_as_the_cpu_twin_does() {
+    let Some(mut renderer) = support::renderer_or_skip("reduced cloud shafts") else {
+        return;
+    };
+    const DIVISOR: u32 = 3;
+    let cover = cover();
+    renderer
+        .set_cloud_inputs(&cover, &support::clouds::orders())
+        .unwrap();
+    let frame = Frame {
+        model: ModelId::Nishita,
+        ..frame(300.0, 0.0)
+    };
+    let surface = wall(&frame);
+    let reduced_settings = LayerSettings {
+        resolution_divisor: DIVISOR,
+        ..settings()
+    };
+    let with = |shafts: bool| FrameClouds {
+        settings: reduced_settings,
+        shafts,
+        ..clouds(&frame, shafts, true)
+    };
+    let mut render = |clouds: FrameClouds| {
+        renderer.set_clouds(Some(clouds)).unwrap();
+        let plan = renderer.render_with_surface(&frame, &surface).unwrap();
+        (plan, renderer.read_hdr().unwrap())
+    };
+    let (plan, shaded) = render(with(true));
+    assert!(plan.runs(CLOUD_SHAFTS), "{plan}");
+    let (_, plain) = render(with(false));
+    // The same frame at full resolution: every pixel marched.
+    let (_, shaded_full) = render(FrameClouds {
+        settings: settings(),
+        ..with(true)
+    });
+    let (_, plain_full) = render(FrameClouds {
+        settings: settings(),
+        ..with(false)
+    });
+
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
+    let radius = frame.atmosphere.bottom_radius_m;
+    let layer = CloudLayer::new(reduced_settings, radius, cover, phase).unwrap();
+    let map = frame_sun_map(&layer, &frame);
+    let shadow = CloudAirShadow::new(&frame.atmosphere, &cpu_model(&frame));
+    let medium = shadow.medium();
+    let solar = &medium.spectra.solar_irradiance;
+    let air = AirShadow {
+        terrain: None,
+        clouds: &map,
+    };
+    // The CPU twin: the reduced march, each ray ended on its nearest pixel's surface.
+    let (w, h) = reduced_size(frame.width, frame.height, DIVISOR);
+    let (mut loss, mut span_ends) = (Vec::new(), Vec::new());
+    for j in 0..h {
+        for i in 0..w {
+            let x = marched_coordinate(i, w, frame.width);
+            let y = marched_coordinate(j, h, frame.height);
+            let d = frame.direction_through(x + 0.5, y + 0.5).normalize();
+            let near = nearest_pixel(y, frame.height) * frame.width + nearest_pixel(x, frame.width);
+            let (l, end) = cpu_air(
+                &frame,
+                (&air, &medium),
+                d,
+                surface[near as usize].distance_m,
+            );
+            loss.push(l);
+            span_ends.push(end);
+        }
+    }
+    let reduced = ReducedAirShadow {
+        loss: &loss,
+        span_ends: &span_ends,
+        size: (w, h),
+    };
+    let size = (frame.width, frame.height);
+    let (mut air_pixels, mut marched, mut values, mut outside, mut far_outside) = (0, 0, 0, 0, 0);
+    let (mut worst, mut worst_full, mut full_error, mut full_lost) =
+        (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            let k = (row * frame.width + column) as usize;
+            let ray = frame.pixel_ray(column, row);
+            let end = surface[k].distance_m;
+            let far = if end > 0.0 {
+                f64::from(end)
+            } else {
+                f64::INFINITY
+            };
+            if layer
+                .shell()
+                .first_segment(ray.origin_m, ray.direction, far)
+                .is_some()
+            {
+                continue;
+            }
+            air_pixels += 1;
+            let (exact, span_end) = cpu_air(&frame, (&air, &medium), ray.direction, end);
+            if let Some(e) = span_end {
+                marched += usize::from(interpolate(&reduced, size, (column, row), e).is_none());
+            }
+            let twin = upsampled_loss(&reduced, size, (column, row), span_end, || exact);
+            for c in 0..3 {
+                let (p, s) = (f64::from(plain[k][c]), f64::from(shaded[k][c]));
+                let expected = (twin[c] * solar[c]).min(p);
+                let allowed = LOSS_RELATIVE * expected + HALF_ROUNDING * p;
+                let error = ((p - s) - expected).abs();
+                worst = worst.max(error / allowed);
+                outside += usize::from(error > allowed);
+                far_outside += usize::from(error > JUMP_FACTOR * allowed);
+                values += 1;
+                // The full-resolution frame against the full march.
+                let (pf, sf) = (f64::from(plain_full[k][c]), f64::from(shaded_full[k][c]));
+                let full = (exact[c] * solar[c]).min(pf);
+                let allowed_full = LOSS_RELATIVE * full + HALF_ROUNDING * pf;
+                worst_full = worst_full.max(((pf - sf) - full).abs() / allowed_full);
+                // The reduced frame against the full march: what the divisor costs.
+                full_error += ((p - s) - full).powi(2);
+                full_lost += full * full;
+            }
+        }
+    }
+    let rms = (full_error / full_lost).sqrt();
+    println!(
+        "{air_pixels} air pixels ({marched} marched in full): worst {worst:.3} of the \
+         tolerance, {outside} of {values} values outside it, {far_outside} beyond \
+         {JUMP_FACTOR}x; against the full-resolution march {:.2} % of the loss (RMS); \
+         the full-resolution frame: worst {worst_full:.3} of the tolerance",
+        100.0 * rms
+    );
+    assert!(
+        worst_full <= 1.0,
+        "full resolution: worst {worst_full:.3} of the tolerance"
+    );
+    assert!(air_pixels > 500, "{air_pixels} air pixels");
+    // Both ways are taken: the wall's edge is marched, the open air interpolated.
+    assert!(marched > 0 && marched * 4 < air_pixels, "{marched} marched");
+    assert!(
+        outside * 100 <= values && far_outside == 0,
+        "{outside} values outside, {far_outside} far outside"
+    );
+    // A reduced ray here spans 1.9 degrees, wider than the beams' edges seen 20 km off:
+    // the divisor blurs them (at 1280 x 720 a reduced ray spans 0.1 degree).
+    assert!(rms < 0.25, "{rms:.3} of the loss against the full march");
 }
 
 #[test]

@@ -5,12 +5,15 @@
 //! single scattering that the cloud takes out beyond the terrain's shadow beside the
 //! surface's cloud transmittance into the map's per-pixel image, which every model's
 //! pixel pass reads and subtracts. It marches through a columns table of its own,
-//! rebuilt when the atmosphere's columns change. The map is read here rather than inside
-//! the pixel passes, which crashed lavapipe (Mesa 22.3.6) with it (docs/clouds.md,
-//! "Cloud shadows in the air").
+//! rebuilt when the atmosphere's columns change; at a resolution divisor above 1 (the
+//! cloud layer's) one ray per block of pixels first, whose taps of the same span the
+//! full pass reads (atmosphere-core's `clouds/layer/air_shadow_upsample.rs`). The map is
+//! read here rather than inside the pixel passes, which crashed lavapipe (Mesa 22.3.6)
+//! with it (docs/clouds.md, "Cloud shadows in the air").
 
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::layer::air_shadow::CloudAirShadow;
+use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 use crate::clouds::sun_map_pass::PixelInputs;
 use crate::clouds::sun_map_texture::{
@@ -23,7 +26,7 @@ use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
 use crate::gpu::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, texture_entry, uniform_entry,
+    ComputePipeline, storage_texture_entry, texel_groups, texture_2d, texture_entry, uniform_entry,
 };
 use crate::shafts::terrain::uniform::ShadowMapUniform;
 use crate::sky::columns_table::ColumnsTable;
@@ -32,24 +35,50 @@ use crate::sky::table_sampling::TableSampling;
 /// The columns table's binding (that of `sky/hillaire/bindings.wgsl`, whose march the
 /// shader runs).
 const COLUMNS_BINDING: u32 = 3;
+/// The reduced march's image, written and read.
+const REDUCED_OUT_BINDING: u32 = 36;
+const REDUCED_IN_BINDING: u32 = 37;
+/// The surface's cloud transmittance per pixel, as `sun_map_pixels.wgsl` wrote it.
+const SURFACE_SUN_BINDING: u32 = 38;
 
-/// The pass in two variants (with the frame's surface and without, the buffer unread)
-/// and its columns table.
+/// The full pass in four variants (with the frame's surface and without, the buffer
+/// unread; from the reduced march's taps or not), the reduced march in two, its image
+/// (1 x 1 until a frame is reduced), the image of the surface's cloud transmittance the
+/// full pass copies (1 x 1 until a frame has a surface) and the columns table.
 #[derive(Debug)]
 pub struct AirShadowPass {
-    with_surface: ComputePipeline,
-    without_surface: ComputePipeline,
+    /// Indexed by `2 surface + upsample`.
+    full: [ComputePipeline; 4],
+    /// Indexed by `surface`.
+    reduced: [ComputePipeline; 2],
+    image: wgpu::Texture,
+    surface_sun: wgpu::Texture,
     sampling: TableSampling,
     columns: ColumnsTable,
     stale: bool,
 }
 
+/// An image of the per-pixel image's format of `size`, written by one pass and read by
+/// the next.
+fn pass_image(gpu: &GpuContext, label: &str, size: (u32, u32)) -> wgpu::Texture {
+    texture_2d(
+        &gpu.device,
+        label,
+        size,
+        PIXELS_FORMAT,
+        wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+    )
+}
+
+const REDUCED_LABEL: &str = "cloud shadow in the air, reduced";
+const SURFACE_SUN_LABEL: &str = "cloud shadow in the air, the surface's sun";
+
 impl AirShadowPass {
-    /// Compiles both variants; the table, of [`CloudAirShadow::TABLE_SIZE`], unbuilt.
+    /// Compiles every variant; the table, of [`CloudAirShadow::TABLE_SIZE`], unbuilt.
     pub fn new(gpu: &GpuContext) -> Result<AirShadowPass, GpuError> {
         use wgpu::TextureViewDimension::D2;
         let sampling = TableSampling::new(gpu);
-        let entries = [
+        let shared = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
             sampling.texture_entry(COLUMNS_BINDING, D2),
@@ -57,28 +86,78 @@ impl AirShadowPass {
             uniform_entry(10, size_of::<ShadowMapUniform>()),
             texture_entry(GEOMETRY_BINDING, D2),
             uniform_entry(SUN_MAP_PARAMS_BINDING, size_of::<SunMapUniform>()),
-            storage_texture_entry(PIXELS_OUT_BINDING, PIXELS_FORMAT, D2),
             texture_entry(SUN_MAP_BINDING, D2),
             sampling.sampler_entry(),
         ];
-        let variant = |surface: f64| {
+        let full_entries: Vec<_> = shared
+            .iter()
+            .cloned()
+            .chain([
+                storage_texture_entry(PIXELS_OUT_BINDING, PIXELS_FORMAT, D2),
+                texture_entry(REDUCED_IN_BINDING, D2),
+                texture_entry(SURFACE_SUN_BINDING, D2),
+            ])
+            .collect();
+        let reduced_entries: Vec<_> = shared
+            .iter()
+            .cloned()
+            .chain([storage_texture_entry(
+                REDUCED_OUT_BINDING,
+                PIXELS_FORMAT,
+                D2,
+            )])
+            .collect();
+        let flag = |on: bool| f64::from(u8::from(on));
+        let full = |surface: bool, upsample: bool| {
             ComputePipeline::with_constants(
                 gpu,
                 "clouds/air_shadow.wgsl",
                 "main",
                 "cloud shadow in the air",
-                &entries,
-                &[("SURFACE", surface), sampling.constant()],
+                &full_entries,
+                &[
+                    ("SURFACE", flag(surface)),
+                    ("UPSAMPLE", flag(upsample)),
+                    sampling.constant(),
+                ],
+            )
+        };
+        let reduced = |surface: bool| {
+            ComputePipeline::with_constants(
+                gpu,
+                "clouds/air_shadow.wgsl",
+                "reduced",
+                "cloud shadow in the air, reduced",
+                &reduced_entries,
+                &[("SURFACE", flag(surface)), sampling.constant()],
             )
         };
         let (width, height) = CloudAirShadow::TABLE_SIZE;
         Ok(AirShadowPass {
-            with_surface: variant(1.0)?,
-            without_surface: variant(0.0)?,
+            full: [
+                full(false, false)?,
+                full(false, true)?,
+                full(true, false)?,
+                full(true, true)?,
+            ],
+            reduced: [reduced(false)?, reduced(true)?],
+            image: pass_image(gpu, REDUCED_LABEL, (1, 1)),
+            surface_sun: pass_image(gpu, SURFACE_SUN_LABEL, (1, 1)),
             columns: ColumnsTable::new(gpu, (width as u32, height as u32))?,
             sampling,
             stale: false,
         })
+    }
+
+    /// The image the sun map's per-pixel read writes the surface's cloud transmittance
+    /// to in a frame of `size` with a surface, which the full pass copies into the
+    /// per-pixel image beside the loss (computed there instead, the read crashed
+    /// lavapipe, Mesa 22.3.6).
+    pub fn surface_sun_target(&mut self, gpu: &GpuContext, size: (u32, u32)) -> &wgpu::Texture {
+        if (self.surface_sun.width(), self.surface_sun.height()) != size {
+            self.surface_sun = pass_image(gpu, SURFACE_SUN_LABEL, size);
+        }
+        &self.surface_sun
     }
 
     /// Plans the table's build for a frame of `atmosphere` when its columns changed.
@@ -88,22 +167,35 @@ impl AirShadowPass {
 
     /// Records the table's planned build, from `atmosphere` in the GPU's layout, then the
     /// pass over every pixel of the frame of `inputs` into `map`'s per-pixel image (after
-    /// the map's fill), timed by `timestamps`.
+    /// the map's fill), from a reduced march of one ray per `divisor` x `divisor` pixels
+    /// when `divisor` is above 1; `timestamps` open the first pass and close the last.
     pub fn encode(
         &mut self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         (inputs, atmosphere): (PixelInputs<'_>, &AtmosphereUniform),
-        map: &SunMapTexture,
+        (map, divisor): (&SunMapTexture, u32),
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         if std::mem::take(&mut self.stale) {
             self.columns.build(gpu, atmosphere, encoder, None);
         }
-        let out = map.pixels().create_view(&Default::default());
-        let columns = self.columns.texture().create_view(&Default::default());
+        let frame = (map.pixels().width(), map.pixels().height());
+        let upsample = divisor > 1;
+        let low = if upsample {
+            reduced_size(frame.0, frame.1, divisor)
+        } else {
+            (1, 1)
+        };
+        if (self.image.width(), self.image.height()) != low {
+            self.image = pass_image(gpu, REDUCED_LABEL, low);
+        }
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let (out, image) = (view(map.pixels()), view(&self.image));
+        let surface_sun = view(&self.surface_sun);
+        let columns = view(self.columns.texture());
         let shadow = inputs.shadow.view();
-        let resources = [
+        let shared = [
             (0, inputs.atmosphere.as_entire_binding()),
             (1, inputs.frame.as_entire_binding()),
             (
@@ -117,23 +209,66 @@ impl AirShadowPass {
                 wgpu::BindingResource::TextureView(inputs.geometry),
             ),
             (SUN_MAP_PARAMS_BINDING, map.params().as_entire_binding()),
-            (PIXELS_OUT_BINDING, wgpu::BindingResource::TextureView(&out)),
             map.map_binding(),
             self.sampling.sampler_binding(),
         ];
-        let pipeline = if inputs.has_surface {
-            &self.with_surface
-        } else {
-            &self.without_surface
+        let surface = usize::from(inputs.has_surface);
+        // Reduced first: it opens the step's timing and the full pass closes it.
+        let (reduced_writes, full_writes) = match (upsample, timestamps) {
+            (true, Some(t)) => (
+                Some(wgpu::ComputePassTimestampWrites {
+                    end_of_pass_write_index: None,
+                    ..t.clone()
+                }),
+                Some(wgpu::ComputePassTimestampWrites {
+                    beginning_of_pass_write_index: None,
+                    ..t
+                }),
+            ),
+            (_, t) => (None, t),
         };
+        if upsample {
+            let pipeline = &self.reduced[surface];
+            let resources: Vec<_> = shared
+                .iter()
+                .cloned()
+                .chain([(
+                    REDUCED_OUT_BINDING,
+                    wgpu::BindingResource::TextureView(&image),
+                )])
+                .collect();
+            let bind_group = pipeline.bind_group_numbered(gpu, &resources);
+            pipeline.dispatch(
+                encoder,
+                "cloud shadow in the air, reduced",
+                &bind_group,
+                texel_groups(&self.image),
+                reduced_writes,
+            );
+        }
+        let pipeline = &self.full[2 * surface + usize::from(upsample)];
+        let resources: Vec<_> = shared
+            .iter()
+            .cloned()
+            .chain([
+                (PIXELS_OUT_BINDING, wgpu::BindingResource::TextureView(&out)),
+                (
+                    REDUCED_IN_BINDING,
+                    wgpu::BindingResource::TextureView(&image),
+                ),
+                (
+                    SURFACE_SUN_BINDING,
+                    wgpu::BindingResource::TextureView(&surface_sun),
+                ),
+            ])
+            .collect();
         let bind_group = pipeline.bind_group_numbered(gpu, &resources);
-        let groups = texel_groups(map.pixels());
         pipeline.dispatch(
             encoder,
             "cloud shadow in the air",
             &bind_group,
-            groups,
-            timestamps,
+            texel_groups(map.pixels()),
+            full_writes,
         );
     }
 }

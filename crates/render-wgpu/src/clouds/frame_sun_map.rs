@@ -203,7 +203,19 @@ impl FrameSunMap {
         let [fill, air] = timestamps;
         pass.encode(gpu, encoder, &layer, &inputs.cover, &self.texture, fill);
         if let (Some(_), Some(air_pass)) = (self.air_step, self.air.as_mut()) {
-            air_pass.encode(gpu, encoder, (pixels, atmosphere), &self.texture, air);
+            if self.shades_surface {
+                let size = (frame.width, frame.height);
+                let target = air_pass.surface_sun_target(gpu, size);
+                pass.encode_pixels_into(gpu, encoder, pixels, &self.texture, target);
+            }
+            let divisor = clouds.settings.resolution_divisor;
+            air_pass.encode(
+                gpu,
+                encoder,
+                (pixels, atmosphere),
+                (&self.texture, divisor),
+                air,
+            );
         } else if self.shades_surface {
             pass.encode_pixels(gpu, encoder, pixels, &self.texture);
         }

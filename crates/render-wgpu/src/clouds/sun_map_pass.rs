@@ -124,8 +124,21 @@ impl SunMapPass {
         inputs: PixelInputs<'_>,
         map: &SunMapTexture,
     ) {
+        self.encode_pixels_into(gpu, encoder, inputs, map, map.pixels());
+    }
+
+    /// [`SunMapPass::encode_pixels`] into `out`, a texture of the per-pixel image's size
+    /// and format (the cloud's shadow in the air copies it from there).
+    pub fn encode_pixels_into(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: PixelInputs<'_>,
+        map: &SunMapTexture,
+        out: &wgpu::Texture,
+    ) {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let (out, texture) = (view(map.pixels()), view(map.texture()));
+        let (out, texture) = (view(out), view(map.texture()));
         let bind_group = self.pixels.bind_group_numbered(
             gpu,
             &[

@@ -81,6 +81,14 @@ impl AirShadow<'_> {
         Some((span, shaft_samples(span.1 - span.0, grid.cell_m)))
     }
 
+    /// The far end of [`AirShadow::span`] where the span holds any air
+    /// (`air_shadow_upsample::SpanEnd`).
+    pub fn span_end(&self, segment: &ViewSegment) -> Option<f64> {
+        self.span(segment)
+            .filter(|((start, end), _)| end > start)
+            .map(|((_, end), _)| end)
+    }
+
     /// The single scattering per unit solar irradiance (sr^-1) that the cloud takes out
     /// of `segment` beyond the terrain's shadow, per wavelength, into `out`.
     pub fn cloud_single(&self, medium: &Medium<'_>, segment: &ViewSegment, out: &mut [f64]) {

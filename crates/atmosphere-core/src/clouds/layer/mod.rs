@@ -9,9 +9,10 @@
 //! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]); the
 //! sun's attenuation through the layer over the view's region, once a frame
 //! ([`sun_map`]), the surface in its shadow ([`shadowed_surface`]) and the air under it
-//! ([`air_shadow`]).
+//! ([`air_shadow`], at a reduced resolution [`air_shadow_upsample`]).
 
 pub mod air_shadow;
+pub mod air_shadow_upsample;
 pub mod composite;
 pub mod droplets;
 pub mod eddington;

@@ -143,7 +143,8 @@ pub struct LayerSettings {
     /// The view transmittance below which the march stops, in [1e-6, 0.1].
     pub min_transmittance: f64,
     /// The march's resolution is the image's divided by this in each direction, the
-    /// rest interpolated (`upsample.rs`), in [1, 4].
+    /// rest interpolated (`upsample.rs`), in [1, 4]; the cloud's shadow in the air is
+    /// marched at the same (`air_shadow_upsample.rs`).
     pub resolution_divisor: u32,
 }
 
