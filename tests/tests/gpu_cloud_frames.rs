@@ -115,23 +115,7 @@ fn layer_clouds(settings: LayerSettings, light: &CloudLight, prune: bool) -> Fra
 /// A wall facing the camera 2 km away over the left third of the frame: in front of the
 /// cloud's base low in the frame, inside the layer high in it.
 fn mountain(frame: &Frame) -> Vec<SurfaceTexel> {
-    let mut texels = Vec::new();
-    for row in 0..frame.height {
-        for column in 0..frame.width {
-            texels.push(if column < MOUNTAIN_COLUMNS {
-                let d = frame.pixel_ray(column, row).direction;
-                SurfaceTexel {
-                    normal: (-d).as_vec3().to_array(),
-                    distance_m: MOUNTAIN_M,
-                    albedo: [0.3, 0.25, 0.2],
-                    water: false,
-                }
-            } else {
-                SurfaceTexel::default()
-            });
-        }
-    }
-    texels
+    support::wall(frame, MOUNTAIN_COLUMNS, MOUNTAIN_M)
 }
 
 /// The segment of the layer that pixel (column, row)'s ray crosses before `texel`.

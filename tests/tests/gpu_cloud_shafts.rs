@@ -53,7 +53,6 @@ use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_cloud_shafts::{CLOUD_SHAFTS, NO_AIR_BELOW};
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
 use render_wgpu::clouds::frame_sun_map::NO_SURFACE;
-use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::frame::{Frame, look_orientation};
 use support::clouds::{cpu_march, frame_sun_map};
 
@@ -331,27 +330,6 @@ fn every_model_subtracts_the_cloud_shadow_in_the_air() {
     }
 }
 
-/// A wall facing the camera 2 km away over the left third of the frame.
-fn wall(frame: &Frame) -> Vec<SurfaceTexel> {
-    let mut texels = Vec::new();
-    for row in 0..frame.height {
-        for column in 0..frame.width {
-            texels.push(if column < frame.width / 3 {
-                let d = frame.pixel_ray(column, row).direction;
-                SurfaceTexel {
-                    normal: (-d).as_vec3().to_array(),
-                    distance_m: 2_000.0,
-                    albedo: [0.3, 0.25, 0.2],
-                    water: false,
-                }
-            } else {
-                SurfaceTexel::default()
-            });
-        }
-    }
-    texels
-}
-
 /// The loss per unit solar irradiance and the span's end of the ray along `direction`
 /// from `frame`'s camera ended at `end_m` (0: no surface).
 fn cpu_air(
@@ -391,7 +369,7 @@ fn a_reduced_march_of_the_shadow_upsamples_by_span_as_the_cpu_twin_does() {
         model: ModelId::Nishita,
         ..frame(300.0, 0.0)
     };
-    let surface = wall(&frame);
+    let surface = support::wall(&frame, frame.width / 3, 2_000.0);
     let reduced_settings = LayerSettings {
         resolution_divisor: DIVISOR,
         ..settings()

@@ -105,23 +105,7 @@ fn volumes(
 }
 
 fn wall(frame: &Frame) -> Vec<SurfaceTexel> {
-    let mut texels = Vec::new();
-    for row in 0..frame.height {
-        for column in 0..frame.width {
-            texels.push(if column < WALL_COLUMNS {
-                let d = frame.pixel_ray(column, row).direction;
-                SurfaceTexel {
-                    normal: (-d).as_vec3().to_array(),
-                    distance_m: WALL_M,
-                    albedo: [0.3, 0.25, 0.2],
-                    water: false,
-                }
-            } else {
-                SurfaceTexel::default()
-            });
-        }
-    }
-    texels
+    support::wall(frame, WALL_COLUMNS, WALL_M)
 }
 
 /// Renders `frame` over `surface` without volumes and with `lit` marched at `divisor`,

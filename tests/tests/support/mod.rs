@@ -500,3 +500,25 @@ pub fn synthetic_surface(frame: &Frame) -> Vec<SurfaceTexel> {
     }
     texels
 }
+
+/// A wall facing the camera `distance_m` away over the frame's first `columns` columns,
+/// of a rock's albedo; no surface elsewhere.
+pub fn wall(frame: &Frame, columns: u32, distance_m: f32) -> Vec<SurfaceTexel> {
+    let mut texels = Vec::new();
+    for row in 0..frame.height {
+        for column in 0..frame.width {
+            texels.push(if column < columns {
+                let d = frame.pixel_ray(column, row).direction;
+                SurfaceTexel {
+                    normal: (-d).as_vec3().to_array(),
+                    distance_m,
+                    albedo: [0.3, 0.25, 0.2],
+                    water: false,
+                }
+            } else {
+                SurfaceTexel::default()
+            });
+        }
+    }
+    texels
+}

@@ -12,7 +12,7 @@
 //! edges are the sun map's cells, seen from afar), and the loss grows smoothly with the
 //! span's end, so the taps of the same span stand for the pixel.
 
-use super::upsample::axis_taps;
+use super::upsample::bilinear_taps;
 
 /// How far the span's end of a tap may lie from a pixel's, relative to the pixel's.
 pub const SPAN_TOLERANCE: f64 = 0.25;
@@ -45,19 +45,9 @@ pub fn interpolate(
     (x, y): (u32, u32),
     end: f64,
 ) -> Option<[f64; 3]> {
-    let (lw, lh) = reduced.size;
-    let (i0, i1, fx) = axis_taps(x, width, lw);
-    let (j0, j1, fy) = axis_taps(y, height, lh);
-    let taps = [
-        (i0, j0, (1.0 - fx) * (1.0 - fy)),
-        (i1, j0, fx * (1.0 - fy)),
-        (i0, j1, (1.0 - fx) * fy),
-        (i1, j1, fx * fy),
-    ];
     let mut sum = [0.0; 3];
     let mut weight = 0.0;
-    for (i, j, w) in taps {
-        let k = (j * lw + i) as usize;
+    for (k, w) in bilinear_taps((width, height), reduced.size, (x, y)) {
         if w > 0.0 && same_span(end, reduced.span_ends[k]) {
             weight += w;
             for (s, v) in sum.iter_mut().zip(reduced.loss[k]) {

@@ -13,7 +13,7 @@
 //! crossed the same stretch of cloud, and a pixel on a mountain in front of a cloud
 //! stays as clear as the mountain.
 
-use super::upsample::axis_taps;
+use super::upsample::bilinear_taps;
 
 /// How far the segments of a tap and a pixel may differ, relative to the pixel's end.
 pub const SEGMENT_TOLERANCE: f64 = 0.25;
@@ -52,19 +52,9 @@ pub fn interpolate(
     (x, y): (u32, u32),
     segment: (f64, f64),
 ) -> Option<[f64; 4]> {
-    let (lw, lh) = reduced.size;
-    let (i0, i1, fx) = axis_taps(x, width, lw);
-    let (j0, j1, fy) = axis_taps(y, height, lh);
-    let taps = [
-        (i0, j0, (1.0 - fx) * (1.0 - fy)),
-        (i1, j0, fx * (1.0 - fy)),
-        (i0, j1, (1.0 - fx) * fy),
-        (i1, j1, fx * fy),
-    ];
     let mut sum = [0.0; 4];
     let mut weight = 0.0;
-    for (i, j, w) in taps {
-        let k = (j * lw + i) as usize;
+    for (k, w) in bilinear_taps((width, height), reduced.size, (x, y)) {
         if w > 0.0 && same_segment(segment, reduced.segments[k], reduced.extinction_per_m) {
             weight += w;
             for (s, v) in sum.iter_mut().zip(reduced.image[k]) {

@@ -29,6 +29,24 @@ pub fn axis_taps(x: u32, full: u32, reduced: u32) -> (u32, u32, f64) {
     (i0, (i0 + 1).min(reduced - 1), u - f64::from(i0))
 }
 
+/// The four reduced pixels (row-major indices into an image of `reduced` size) that full
+/// pixel (x, y) of a `full`-sized image reads, and their bilinear weights.
+pub fn bilinear_taps(
+    full: (u32, u32),
+    reduced: (u32, u32),
+    (x, y): (u32, u32),
+) -> [(usize, f64); 4] {
+    let (i0, i1, fx) = axis_taps(x, full.0, reduced.0);
+    let (j0, j1, fy) = axis_taps(y, full.1, reduced.1);
+    let at = |i: u32, j: u32| (j * reduced.0 + i) as usize;
+    [
+        (at(i0, j0), (1.0 - fx) * (1.0 - fy)),
+        (at(i1, j0), fx * (1.0 - fy)),
+        (at(i0, j1), (1.0 - fx) * fy),
+        (at(i1, j1), fx * fy),
+    ]
+}
+
 /// The full pixel nearest to the fractional pixel coordinate `x` on an axis of `full`
 /// pixels: where a reduced ray reads the frame's surface.
 pub fn nearest_pixel(x: f64, full: u32) -> u32 {
