@@ -420,15 +420,8 @@ impl Renderer {
                 has_surface,
                 shadow: &self.shadow_texture,
             };
-            let writes = [self.sun_map.step(), self.sun_map.air_step()]
-                .map(|step| timer.zip(step).map(|(t, s)| t.compute_writes(s)));
-            let mapped = (self.sun_map).encode(
-                gpu,
-                &mut encoder,
-                (frame, clouds, inputs),
-                (pixels, &atmosphere),
-                writes,
-            );
+            let scene = (frame, clouds, inputs);
+            let mapped = (self.sun_map).encode(gpu, &mut encoder, scene, pixels, timer);
             let scene = MarchScene {
                 frame,
                 clouds,

@@ -20,7 +20,7 @@ use crate::clouds::sun_map_texture::{
     PIXELS_FORMAT, PIXELS_OUT_BINDING, SUN_MAP_BINDING, SUN_MAP_PARAMS_BINDING, SunMapTexture,
     SunMapUniform,
 };
-use crate::frame::atmosphere_uniform::AtmosphereUniform;
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::frame::surface_buffer::GEOMETRY_BINDING;
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
@@ -55,7 +55,8 @@ pub struct AirShadowPass {
     surface_sun: wgpu::Texture,
     sampling: TableSampling,
     columns: ColumnsTable,
-    stale: bool,
+    /// The atmosphere of the table's planned build, in the GPU's layout.
+    pending: Option<AtmosphereUniform>,
 }
 
 /// An image of the per-pixel image's format of `size`, written by one pass and read by
@@ -145,7 +146,7 @@ impl AirShadowPass {
             surface_sun: pass_image(gpu, SURFACE_SUN_LABEL, (1, 1)),
             columns: ColumnsTable::new(gpu, (width as u32, height as u32))?,
             sampling,
-            stale: false,
+            pending: None,
         })
     }
 
@@ -161,11 +162,15 @@ impl AirShadowPass {
     }
 
     /// Plans the table's build for a frame of `atmosphere` when its columns changed.
-    pub fn plan(&mut self, atmosphere: &Atmosphere) {
-        self.stale = self.columns.plan(atmosphere);
+    pub fn plan(&mut self, atmosphere: &Atmosphere) -> Result<(), GpuError> {
+        self.pending = None;
+        if self.columns.plan(atmosphere) {
+            self.pending = Some(AtmosphereUniform::new(atmosphere, RGB_WAVELENGTHS_NM)?);
+        }
+        Ok(())
     }
 
-    /// Records the table's planned build, from `atmosphere` in the GPU's layout, then the
+    /// Records the table's planned build, from the frame's atmosphere, then the
     /// pass over every pixel of the frame of `inputs` into `map`'s per-pixel image (after
     /// the map's fill), from a reduced march of one ray per `divisor` x `divisor` pixels
     /// when `divisor` is above 1; `timestamps` open the first pass and close the last.
@@ -173,12 +178,12 @@ impl AirShadowPass {
         &mut self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        (inputs, atmosphere): (PixelInputs<'_>, &AtmosphereUniform),
+        inputs: PixelInputs<'_>,
         (map, divisor): (&SunMapTexture, u32),
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
-        if std::mem::take(&mut self.stale) {
-            self.columns.build(gpu, atmosphere, encoder, None);
+        if let Some(atmosphere) = self.pending.take() {
+            self.columns.build(gpu, &atmosphere, encoder, None);
         }
         let frame = (map.pixels().width(), map.pixels().height());
         let upsample = divisor > 1;

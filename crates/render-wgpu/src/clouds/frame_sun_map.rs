@@ -19,10 +19,10 @@ use crate::clouds::layer_uniform::LayerUniform;
 use crate::clouds::sun_map_pass::{PixelInputs, SunMapPass};
 use crate::clouds::sun_map_texture::{SunMapTexture, SunMapUniform};
 use crate::frame::Frame;
-use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::plan::{FramePlan, StepKind};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;
+use crate::gpu::timer::GpuTimer;
 
 /// Why the planner leaves the sun map out of a frame whose rays end on no surface and
 /// whose air the cloud does not shade.
@@ -159,7 +159,7 @@ impl FrameSunMap {
                 self.air = Some(AirShadowPass::new(gpu)?);
             }
             if let Some(pass) = self.air.as_mut() {
-                pass.plan(&frame.atmosphere);
+                pass.plan(&frame.atmosphere)?;
             }
             plan.run(CLOUD_SHAFTS, StepKind::Pass);
             self.air_step = Some(plan.steps.len() as u32 - 1);
@@ -172,22 +172,17 @@ impl FrameSunMap {
         self.step
     }
 
-    /// The index of the planned step of the cloud's shadow in the air, if it runs.
-    pub fn air_step(&self) -> Option<u32> {
-        self.air_step
-    }
-
     /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover,
-    /// then the cloud's shadow in the air where it is planned (with the frame's
-    /// `atmosphere` for its table), else the map's read at each pixel's surface where
-    /// the frame has one; `timestamps` (of the fill, of the air's step) time them.
+    /// then the cloud's shadow in the air where it is planned, else the map's read at each pixel's surface where
+    /// the frame has one; `timer`, when the frame is timed, times the fill's and the air's
+    /// steps.
     pub fn encode(
         &mut self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         scene: (&Frame, &FrameClouds, &LayerInputs),
-        (pixels, atmosphere): (PixelInputs<'_>, &AtmosphereUniform),
-        timestamps: [Option<wgpu::ComputePassTimestampWrites<'_>>; 2],
+        pixels: PixelInputs<'_>,
+        timer: Option<&GpuTimer>,
     ) -> Result<(), RenderError> {
         let (frame, clouds, inputs) = scene;
         let (Some(_), Some(pass)) = (self.step, &self.pass) else {
@@ -200,7 +195,8 @@ impl FrameSunMap {
             frame.atmosphere.bottom_radius_m,
             inputs.cover_size,
         )?;
-        let [fill, air] = timestamps;
+        let [fill, air] = [self.step, self.air_step]
+            .map(|step| timer.zip(step).map(|(t, s)| t.compute_writes(s)));
         pass.encode(gpu, encoder, &layer, &inputs.cover, &self.texture, fill);
         if let (Some(_), Some(air_pass)) = (self.air_step, self.air.as_mut()) {
             if self.shades_surface {
@@ -209,13 +205,7 @@ impl FrameSunMap {
                 pass.encode_pixels_into(gpu, encoder, pixels, &self.texture, target);
             }
             let divisor = clouds.settings.resolution_divisor;
-            air_pass.encode(
-                gpu,
-                encoder,
-                (pixels, atmosphere),
-                (&self.texture, divisor),
-                air,
-            );
+            air_pass.encode(gpu, encoder, pixels, (&self.texture, divisor), air);
         } else if self.shades_surface {
             pass.encode_pixels(gpu, encoder, pixels, &self.texture);
         }
