@@ -8,7 +8,7 @@
 //! `--frames` pairs after a warm-up pair. Each quality is measured with its preset's
 //! sun light and again with the other (`sun_light = march`, a shadow march per sample;
 //! `map`, the frame's sun map), for comparison, without the cloud's shadow in the air;
-//! then what that shadow (hillaire's cloud shafts) adds to the frame with clouds, each
+//! then what that shadow (the cloud shafts' own pass) adds to the frame with clouds, each
 //! frame with them interleaved with the same frame without.
 
 use atmosphere_core::clouds::spheres::handover::CloudForm;

@@ -103,7 +103,7 @@ fn measure(
         form: row.form(),
         spheres: SphereSettings::default(),
         prune: true,
-        // The cloud methods' own cost, without hillaire's cloud shafts.
+        // The cloud methods' own cost, without the cloud's shadow in the air.
         shafts: false,
     };
     let step = match row {

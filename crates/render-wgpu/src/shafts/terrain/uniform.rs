@@ -5,7 +5,7 @@ use bytemuck::{Pod, Zeroable};
 
 /// The shadow map's grid (the finest level's; the levels share its centre and axes) and
 /// bounds, 64 bytes; all zero but the sample counts (with `size[1] = 0`) for a frame
-/// without terrain shafts (hillaire's cloud shafts take those counts too).
+/// without terrain shafts (the cloud's shadow in the air takes those counts too).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct ShadowMapUniform {
