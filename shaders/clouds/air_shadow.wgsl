@@ -116,13 +116,6 @@ fn surface_distance(px: vec2<u32>) -> f32 {
     return max(textureLoad(pixel_geometry, px, 0).w, 0.0);
 }
 
-// `direction_through` the full image's fractional pixel `p` (pixel x's centre at x).
-fn pixel_direction_at(p: vec2<f32>) -> vec3<f32> {
-    let size = vec2<f32>(frame.size_px.xy);
-    let ndc = vec2<f32>(2.0, -2.0) * (p + 0.5) / size + vec2<f32>(-1.0, 1.0);
-    return normalize(frame.forward.xyz + ndc.x * frame.right.xyz + ndc.y * frame.up.xyz);
-}
-
 // `axis_taps` (`clouds/layer/upsample.rs`): the two reduced pixels full pixel `x` of an
 // axis of `full` reads from an axis of `reduced`, and the weight of the second.
 fn axis_taps(x: u32, full: u32, reduced: u32) -> vec3<f32> {

@@ -71,8 +71,14 @@ fn frame_sun_disk(direction: vec3<f32>, transmittance: vec3<f32>) -> vec3<f32> {
 
 // The unit direction through the centre of pixel `px` (`Frame::pixel_ray`).
 fn pixel_direction(px: vec2<u32>) -> vec3<f32> {
+    return pixel_direction_at(vec2<f32>(px));
+}
+
+// The unit direction through the fractional pixel `p`, pixel x's centre at x
+// (`Frame::direction_through(x + 0.5, y + 0.5)`): a reduced-resolution pass's rays.
+fn pixel_direction_at(p: vec2<f32>) -> vec3<f32> {
     let size = vec2<f32>(frame.size_px.xy);
-    let ndc = vec2<f32>(2.0, -2.0) * (vec2<f32>(px) + 0.5) / size + vec2<f32>(-1.0, 1.0);
+    let ndc = vec2<f32>(2.0, -2.0) * (p + 0.5) / size + vec2<f32>(-1.0, 1.0);
     return normalize(frame.forward.xyz + ndc.x * frame.right.xyz + ndc.y * frame.up.xyz);
 }
 

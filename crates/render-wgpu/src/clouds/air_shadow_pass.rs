@@ -20,7 +20,7 @@ use crate::clouds::sun_map_texture::{
     PIXELS_FORMAT, PIXELS_OUT_BINDING, SUN_MAP_BINDING, SUN_MAP_PARAMS_BINDING, SunMapTexture,
     SunMapUniform,
 };
-use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
+use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::surface_buffer::GEOMETRY_BINDING;
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
@@ -55,8 +55,6 @@ pub struct AirShadowPass {
     surface_sun: wgpu::Texture,
     sampling: TableSampling,
     columns: ColumnsTable,
-    /// The atmosphere of the table's planned build, in the GPU's layout.
-    pending: Option<AtmosphereUniform>,
 }
 
 /// An image of the per-pixel image's format of `size`, written by one pass and read by
@@ -146,7 +144,6 @@ impl AirShadowPass {
             surface_sun: pass_image(gpu, SURFACE_SUN_LABEL, (1, 1)),
             columns: ColumnsTable::new(gpu, (width as u32, height as u32))?,
             sampling,
-            pending: None,
         })
     }
 
@@ -162,12 +159,8 @@ impl AirShadowPass {
     }
 
     /// Plans the table's build for a frame of `atmosphere` when its columns changed.
-    pub fn plan(&mut self, atmosphere: &Atmosphere) -> Result<(), GpuError> {
-        self.pending = None;
-        if self.columns.plan(atmosphere) {
-            self.pending = Some(AtmosphereUniform::new(atmosphere, RGB_WAVELENGTHS_NM)?);
-        }
-        Ok(())
+    pub fn plan(&mut self, atmosphere: &Atmosphere) {
+        self.columns.plan(atmosphere);
     }
 
     /// Records the table's planned build, from the frame's atmosphere, then the
@@ -181,10 +174,8 @@ impl AirShadowPass {
         inputs: PixelInputs<'_>,
         (map, divisor): (&SunMapTexture, u32),
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
-        if let Some(atmosphere) = self.pending.take() {
-            self.columns.build(gpu, &atmosphere, encoder, None);
-        }
+    ) -> Result<(), GpuError> {
+        self.columns.build_planned(gpu, encoder)?;
         let frame = (map.pixels().width(), map.pixels().height());
         let upsample = divisor > 1;
         let low = if upsample {
@@ -275,5 +266,6 @@ impl AirShadowPass {
             texel_groups(map.pixels()),
             full_writes,
         );
+        Ok(())
     }
 }

@@ -159,7 +159,7 @@ impl FrameSunMap {
                 self.air = Some(AirShadowPass::new(gpu)?);
             }
             if let Some(pass) = self.air.as_mut() {
-                pass.plan(&frame.atmosphere)?;
+                pass.plan(&frame.atmosphere);
             }
             plan.run(CLOUD_SHAFTS, StepKind::Pass);
             self.air_step = Some(plan.steps.len() as u32 - 1);
@@ -205,7 +205,7 @@ impl FrameSunMap {
                 pass.encode_pixels_into(gpu, encoder, pixels, &self.texture, target);
             }
             let divisor = clouds.settings.resolution_divisor;
-            air_pass.encode(gpu, encoder, pixels, (&self.texture, divisor), air);
+            air_pass.encode(gpu, encoder, pixels, (&self.texture, divisor), air)?;
         } else if self.shades_surface {
             pass.encode_pixels(gpu, encoder, pixels, &self.texture);
         }

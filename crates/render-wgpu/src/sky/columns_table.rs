@@ -5,7 +5,7 @@
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::atmosphere::table_inputs::Inputs;
 
-use crate::frame::atmosphere_uniform::AtmosphereUniform;
+use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
 use crate::sky::model_pass::StepContext;
@@ -52,9 +52,22 @@ impl ColumnsTable {
         self.build(cx.gpu, atmosphere, cx.encoder, cx.timestamps);
     }
 
-    /// [`ColumnsTable::encode`] outside a model's steps: into `encoder` on `gpu`, timed
-    /// by `timestamps`.
-    pub fn build(
+    /// [`ColumnsTable::encode`] outside a model's steps, from the atmosphere planned (the
+    /// columns of matter do not depend on the wavelengths): into `encoder` on `gpu`; nothing
+    /// when no build is planned.
+    pub fn build_planned(
+        &mut self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<(), GpuError> {
+        if let Some(now) = &self.pending {
+            let atmosphere = AtmosphereUniform::new(now, RGB_WAVELENGTHS_NM)?;
+            self.build(gpu, &atmosphere, encoder, None);
+        }
+        Ok(())
+    }
+
+    fn build(
         &mut self,
         gpu: &GpuContext,
         atmosphere: &AtmosphereUniform,
