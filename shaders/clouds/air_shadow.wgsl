@@ -12,14 +12,16 @@
 // table at 3; the hillaire uniform that library declares at 2 is not read. The map is
 // read here, not inside the models' pixel passes: bound and read there, it crashed
 // lavapipe (Mesa 22.3.6) in its worker thread.
-// At a resolution divisor above 1 (the cloud layer's, `resolution_divisor`), `reduced`
+// At a resolution divisor above 1 (the layer settings' `air_shadow_divisor`), `reduced`
 // marches one ray per block of pixels first, and `main` reads its taps whose span below
-// the base ends as far as the pixel's own, marching a pixel only where none does. CPU
-// twin of that: `clouds/layer/air_shadow_upsample.rs`.
+// the base ends as far as the pixel's own; where none does it lists the pixel
+// (`common/pixel_list.wgsl`) for `listed` to march. CPU twin of that:
+// `clouds/layer/air_shadow_upsample.rs`.
 
 #import sky/hillaire/shafts.wgsl
 #import clouds/sun_map_read.wgsl
 #import common/frame_params.wgsl
+#import common/pixel_list.wgsl
 
 // Whether the pixels end on a surface (the pipeline's variant; without one the buffer
 // is not read).
@@ -43,6 +45,9 @@ const MIN_SAME_WEIGHT: f32 = 0.25;
 // this pass; read in the surface's variant and copied. Computed here from the map
 // instead, it crashed lavapipe (Mesa 22.3.6) in frames with a surface.
 @group(0) @binding(38) var surface_sun: texture_2d<f32>;
+// The pixels `main` lists for `listed` to march, and that march's dispatch.
+@group(0) @binding(39) var<storage, read_write> march_list: MarchList;
+@group(0) @binding(40) var<storage, read_write> list_dispatch: ListDispatch;
 
 // `AirShadow::span`: x, y the part of the segment below the layer's base, as far as the
 // map reaches; z: its samples, two per cell; empty unless the map shades the air
@@ -174,32 +179,66 @@ fn reduced(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(reduced_out, id.xy, out);
 }
 
+// The surface's cloud transmittance at full pixel `px` (1 without a surface).
+fn surface_transmittance(px: vec2<u32>) -> f32 {
+    if !SURFACE {
+        return 1.0;
+    }
+    return textureLoad(surface_sun, px, 0).x;
+}
+
+// The loss of full pixel `px` marched along its own ray.
+fn marched_loss(px: vec2<u32>) -> vec3<f32> {
+    let direction = pixel_direction(px);
+    let s = view_segment(direction, surface_distance(px));
+    var loss = vec3<f32>(0.0);
+    if s.hit {
+        let part = air_span(s, cloud_shafts_on());
+        if span_holds_air(part) {
+            loss = cloud_air_loss(s, direction, dot(direction, frame.sun_direction.xyz), part);
+        }
+    }
+    return loss;
+}
+
+// Every pixel: marched, or (`UPSAMPLE`) from the reduced march's taps of the same span,
+// else listed for `listed`.
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= frame.size_px.xy) {
         return;
     }
-    let direction = pixel_direction(id.xy);
-    let distance = surface_distance(id.xy);
-    var t = 1.0;
-    if SURFACE {
-        t = textureLoad(surface_sun, id.xy, 0).x;
-    }
-    let s = view_segment(direction, distance);
     var loss = vec3<f32>(0.0);
-    if s.hit {
-        let part = air_span(s, cloud_shafts_on());
-        if span_holds_air(part) {
-            var taps = vec4<f32>(0.0);
-            if UPSAMPLE {
-                taps = upsampled(id.xy, part.y);
-            }
-            if taps.w >= MIN_SAME_WEIGHT {
-                loss = taps.xyz;
-            } else {
-                loss = cloud_air_loss(s, direction, dot(direction, frame.sun_direction.xyz), part);
+    if UPSAMPLE {
+        let direction = pixel_direction(id.xy);
+        let s = view_segment(direction, surface_distance(id.xy));
+        if s.hit {
+            let part = air_span(s, cloud_shafts_on());
+            if span_holds_air(part) {
+                let taps = upsampled(id.xy, part.y);
+                if taps.w >= MIN_SAME_WEIGHT {
+                    loss = taps.xyz;
+                } else {
+                    list_pixel(id.xy);
+                }
             }
         }
+    } else {
+        loss = marched_loss(id.xy);
     }
-    textureStore(pixel_shafts, id.xy, vec4<f32>(t, loss));
+    textureStore(pixel_shafts, id.xy, vec4<f32>(surface_transmittance(id.xy), loss));
+}
+
+// The pixels `main` listed, marched, each invocation taking every (groups x 256)-th
+// entry; dispatched indirectly with the workgroup count `main` wrote.
+@compute @workgroup_size(256)
+fn listed(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+) {
+    let count = atomicLoad(&march_list.count);
+    for (var i = id.x; i < count; i += groups.x * LIST_GROUP) {
+        let px = listed_pixel(i);
+        textureStore(pixel_shafts, px, vec4<f32>(surface_transmittance(px), marched_loss(px)));
+    }
 }

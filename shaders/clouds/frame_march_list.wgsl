@@ -11,7 +11,6 @@ fn main(
 ) {
     let count = atomicLoad(&march_list.count);
     for (var i = id.x; i < count; i += groups.x * LIST_GROUP) {
-        let packed = march_list.pixels[i];
-        march_pixel(vec2<u32>(packed & 0xffffu, packed >> 16u));
+        march_pixel(listed_pixel(i));
     }
 }

@@ -8,10 +8,11 @@
 //! the sun map is made for the air alone. hillaire is checked whole; each other model's
 //! air loses what the CPU's march takes (`AirShadow::cloud_single`), within
 //! `LOSS_RELATIVE` of it and the f16 image's rounding of the two frames. With a wall 2 km
-//! off over a third of the frame and the layer's resolution divisor 3, the reduced march
-//! upsampled by span against its CPU twin (`air_shadow_upsample.rs`; one value in a
-//! hundred may be outside, none beyond `JUMP_FACTOR` times), and at divisor 1 against the
-//! full march.
+//! off over a third of the frame and the shadow's resolution divisor 3
+//! (`air_shadow_divisor`), the reduced march upsampled by span, its pixels without taps
+//! of their span marched by a pass of their own, against its CPU twin
+//! (`air_shadow_upsample.rs`; one value in a hundred may be outside, none beyond
+//! `JUMP_FACTOR` times), and at divisor 1 against the full march.
 //!
 //! Tolerance: the air's pixels (rays that meet no cloud) within `AIR_RELATIVE` of
 //! themselves (hillaire's own parity is 2e-3; the map's f32 fill and read add theirs,
@@ -371,7 +372,7 @@ fn a_reduced_march_of_the_shadow_upsamples_by_span_as_the_cpu_twin_does() {
     };
     let surface = support::wall(&frame, frame.width / 3, 2_000.0);
     let reduced_settings = LayerSettings {
-        resolution_divisor: DIVISOR,
+        air_shadow_divisor: DIVISOR,
         ..settings()
     };
     let with = |shafts: bool| FrameClouds {
@@ -499,7 +500,8 @@ fn a_reduced_march_of_the_shadow_upsamples_by_span_as_the_cpu_twin_does() {
         "{outside} values outside, {far_outside} far outside"
     );
     // A reduced ray here spans 1.9 degrees, wider than the beams' edges seen 20 km off:
-    // the divisor blurs them (at 1280 x 720 a reduced ray spans 0.1 degree).
+    // the divisor blurs them (at 1280 x 720 a reduced ray of the interactive quality's
+    // divisor 6 spans 0.5 degree).
     assert!(rms < 0.25, "{rms:.3} of the loss against the full march");
 }
 

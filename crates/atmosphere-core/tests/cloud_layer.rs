@@ -292,6 +292,13 @@ fn bad_settings_and_tables_are_refused_by_name() {
             },
             "cloud resolution_divisor = 5 must lie in [1, 4]",
         ),
+        (
+            LayerSettings {
+                air_shadow_divisor: 9,
+                ..LayerSettings::default()
+            },
+            "cloud air_shadow_divisor = 9 must lie in [1, 8]",
+        ),
     ];
     for (settings, message) in cases {
         let e = settings.check().unwrap_err();

@@ -60,7 +60,8 @@ pub struct CloudFlags {
     #[arg(long = "cloud-method", value_name = "riley|octaves|eddington")]
     pub method: Option<String>,
     /// The march's quality: interactive (20 steps at a third of the resolution, the
-    /// cloud spheres and the cloud's shadow in the air at a third too, for flight) or
+    /// cloud spheres at a third too, the cloud's shadow in the air at a sixth, for
+    /// flight) or
     /// offline (128 steps, full resolution, for recordings) [default: offline].
     #[arg(long = "cloud-quality", value_name = "interactive|offline")]
     pub quality: Option<String>,

@@ -59,8 +59,9 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
                 })
                 .response
                 .on_hover_text(
-                    "interactive: 20 steps at a third of the resolution and the cloud \
-                     spheres at a third, for flight; offline: 128 steps and the spheres at \
+                    "interactive: 20 steps at a third of the resolution, the cloud \
+                     spheres at a third and the cloud's shadow in the air at a sixth, for \
+                     flight; offline: 128 steps and the spheres at \
                      full resolution, for recordings",
                 );
             egui::ComboBox::from_label("form")

@@ -7,7 +7,8 @@
 //! pixel pass reads and subtracts. It marches through a columns table of its own,
 //! rebuilt when the atmosphere's columns change; at a resolution divisor above 1 (the
 //! cloud layer's) one ray per block of pixels first, whose taps of the same span the
-//! full pass reads (atmosphere-core's `clouds/layer/air_shadow_upsample.rs`). The map is
+//! full pass reads (atmosphere-core's `clouds/layer/air_shadow_upsample.rs`), listing the
+//! pixels without such taps for a pass of their own to march ([`PixelList`]). The map is
 //! read here rather than inside the pixel passes, which crashed lavapipe (Mesa 22.3.6)
 //! with it (docs/clouds.md, "Cloud shadows in the air").
 
@@ -24,10 +25,12 @@ use crate::frame::atmosphere_uniform::AtmosphereUniform;
 use crate::frame::surface_buffer::GEOMETRY_BINDING;
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
-use crate::gpu::error::GpuError;
+use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, storage_texture_entry, texel_groups, texture_2d, texture_entry, uniform_entry,
+    ComputePipeline, split_timestamps, storage_texture_entry, texel_groups, texture_2d,
+    texture_entry, uniform_entry,
 };
+use crate::gpu::pixel_list::PixelList;
 use crate::shafts::terrain::uniform::ShadowMapUniform;
 use crate::sky::columns_table::ColumnsTable;
 use crate::sky::table_sampling::TableSampling;
@@ -40,9 +43,13 @@ const REDUCED_OUT_BINDING: u32 = 36;
 const REDUCED_IN_BINDING: u32 = 37;
 /// The surface's cloud transmittance per pixel, as `sun_map_pixels.wgsl` wrote it.
 const SURFACE_SUN_BINDING: u32 = 38;
+/// The pixels the full pass lists for the listed march, and that march's dispatch.
+const LIST_BINDING: u32 = 39;
+const LIST_DISPATCH_BINDING: u32 = 40;
 
 /// The full pass in four variants (with the frame's surface and without, the buffer
-/// unread; from the reduced march's taps or not), the reduced march in two, its image
+/// unread; from the reduced march's taps or not), the reduced march and the listed
+/// pixels' march in two each, the reduced march's image
 /// (1 x 1 until a frame is reduced), the image of the surface's cloud transmittance the
 /// full pass copies (1 x 1 until a frame has a surface) and the columns table.
 #[derive(Debug)]
@@ -51,6 +58,8 @@ pub struct AirShadowPass {
     full: [ComputePipeline; 4],
     /// Indexed by `surface`.
     reduced: [ComputePipeline; 2],
+    /// Indexed by `surface`.
+    listed: [ComputePipeline; 2],
     image: wgpu::Texture,
     surface_sun: wgpu::Texture,
     sampling: TableSampling,
@@ -95,6 +104,17 @@ impl AirShadowPass {
                 storage_texture_entry(PIXELS_OUT_BINDING, PIXELS_FORMAT, D2),
                 texture_entry(REDUCED_IN_BINDING, D2),
                 texture_entry(SURFACE_SUN_BINDING, D2),
+                PixelList::list_entry(LIST_BINDING),
+                PixelList::dispatch_entry(LIST_DISPATCH_BINDING),
+            ])
+            .collect();
+        let listed_entries: Vec<_> = shared
+            .iter()
+            .cloned()
+            .chain([
+                storage_texture_entry(PIXELS_OUT_BINDING, PIXELS_FORMAT, D2),
+                texture_entry(SURFACE_SUN_BINDING, D2),
+                PixelList::list_entry(LIST_BINDING),
             ])
             .collect();
         let reduced_entries: Vec<_> = shared
@@ -131,6 +151,16 @@ impl AirShadowPass {
                 &[("SURFACE", flag(surface)), sampling.constant()],
             )
         };
+        let listed = |surface: bool| {
+            ComputePipeline::with_constants(
+                gpu,
+                "clouds/air_shadow.wgsl",
+                "listed",
+                "cloud shadow in the air, listed pixels",
+                &listed_entries,
+                &[("SURFACE", flag(surface)), sampling.constant()],
+            )
+        };
         let (width, height) = CloudAirShadow::TABLE_SIZE;
         Ok(AirShadowPass {
             full: [
@@ -140,6 +170,7 @@ impl AirShadowPass {
                 full(true, true)?,
             ],
             reduced: [reduced(false)?, reduced(true)?],
+            listed: [listed(false)?, listed(true)?],
             image: pass_image(gpu, REDUCED_LABEL, (1, 1)),
             surface_sun: pass_image(gpu, SURFACE_SUN_LABEL, (1, 1)),
             columns: ColumnsTable::new(gpu, (width as u32, height as u32))?,
@@ -166,7 +197,8 @@ impl AirShadowPass {
     /// Records the table's planned build, from the frame's atmosphere, then the
     /// pass over every pixel of the frame of `inputs` into `map`'s per-pixel image (after
     /// the map's fill), from a reduced march of one ray per `divisor` x `divisor` pixels
-    /// when `divisor` is above 1; `timestamps` open the first pass and close the last.
+    /// when `divisor` is above 1 (then the pixels without taps of their span marched by a
+    /// pass of their own); `timestamps` open the first pass and close the last.
     pub fn encode(
         &mut self,
         gpu: &GpuContext,
@@ -174,7 +206,7 @@ impl AirShadowPass {
         inputs: PixelInputs<'_>,
         (map, divisor): (&SunMapTexture, u32),
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) -> Result<(), GpuError> {
+    ) -> Result<(), RenderError> {
         self.columns.build_planned(gpu, encoder)?;
         let frame = (map.pixels().width(), map.pixels().height());
         let upsample = divisor > 1;
@@ -209,63 +241,69 @@ impl AirShadowPass {
             self.sampling.sampler_binding(),
         ];
         let surface = usize::from(inputs.has_surface);
-        // Reduced first: it opens the step's timing and the full pass closes it.
-        let (reduced_writes, full_writes) = match (upsample, timestamps) {
-            (true, Some(t)) => (
-                Some(wgpu::ComputePassTimestampWrites {
-                    end_of_pass_write_index: None,
-                    ..t.clone()
-                }),
-                Some(wgpu::ComputePassTimestampWrites {
-                    beginning_of_pass_write_index: None,
-                    ..t
-                }),
-            ),
-            (_, t) => (None, t),
+        let list_size = if upsample { frame } else { (1, 1) };
+        let PixelList { list, dispatch } =
+            PixelList::new(gpu, "cloud shadow in the air", list_size).map_err(|e| {
+                RenderError::Frame(format!(
+                    "the cloud's shadow in the air at a reduced resolution: {e}; use the \
+                     offline cloud quality (resolution divisor 1) or a smaller frame"
+                ))
+            })?;
+        // The first pass opens the step's timing and the last closes it.
+        let (mut first, last) = match upsample {
+            true => split_timestamps(timestamps),
+            false => (timestamps, None),
         };
+        let target = [
+            (PIXELS_OUT_BINDING, wgpu::BindingResource::TextureView(&out)),
+            (
+                SURFACE_SUN_BINDING,
+                wgpu::BindingResource::TextureView(&surface_sun),
+            ),
+            (LIST_BINDING, list.as_entire_binding()),
+        ];
         if upsample {
             let pipeline = &self.reduced[surface];
-            let resources: Vec<_> = shared
-                .iter()
-                .cloned()
-                .chain([(
-                    REDUCED_OUT_BINDING,
-                    wgpu::BindingResource::TextureView(&image),
-                )])
-                .collect();
-            let bind_group = pipeline.bind_group_numbered(gpu, &resources);
+            let reduced = [(
+                REDUCED_OUT_BINDING,
+                wgpu::BindingResource::TextureView(&image),
+            )];
+            let bind_group = pipeline.bind_group_numbered(gpu, &[&shared[..], &reduced].concat());
             pipeline.dispatch(
                 encoder,
                 "cloud shadow in the air, reduced",
                 &bind_group,
                 texel_groups(&self.image),
-                reduced_writes,
+                first.take(),
             );
         }
         let pipeline = &self.full[2 * surface + usize::from(upsample)];
-        let resources: Vec<_> = shared
-            .iter()
-            .cloned()
-            .chain([
-                (PIXELS_OUT_BINDING, wgpu::BindingResource::TextureView(&out)),
-                (
-                    REDUCED_IN_BINDING,
-                    wgpu::BindingResource::TextureView(&image),
-                ),
-                (
-                    SURFACE_SUN_BINDING,
-                    wgpu::BindingResource::TextureView(&surface_sun),
-                ),
-            ])
-            .collect();
-        let bind_group = pipeline.bind_group_numbered(gpu, &resources);
+        let taps = [
+            (
+                REDUCED_IN_BINDING,
+                wgpu::BindingResource::TextureView(&image),
+            ),
+            (LIST_DISPATCH_BINDING, dispatch.as_entire_binding()),
+        ];
+        let bind_group = pipeline.bind_group_numbered(gpu, &[&shared[..], &target, &taps].concat());
         pipeline.dispatch(
             encoder,
             "cloud shadow in the air",
             &bind_group,
             texel_groups(map.pixels()),
-            full_writes,
+            first.take(),
         );
+        if upsample {
+            let pipeline = &self.listed[surface];
+            let bind_group = pipeline.bind_group_numbered(gpu, &[&shared[..], &target].concat());
+            pipeline.dispatch_indirect(
+                encoder,
+                "cloud shadow in the air, listed pixels",
+                &bind_group,
+                &dispatch,
+                last,
+            );
+        }
         Ok(())
     }
 }

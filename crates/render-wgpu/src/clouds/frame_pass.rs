@@ -27,18 +27,16 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_buffer_entry,
-    storage_texture_entry, texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
+    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
+use crate::gpu::pixel_list::PixelList;
 use crate::gpu::timer::GpuTimer;
 use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The reduced march's segments, (t0, t1) per ray.
 const SEGMENT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
-/// The list of pixels to march (`shaders/clouds/frame_list.wgsl`): the count, then one
-/// u32 per pixel.
-const LIST_HEADER_BYTES: usize = 4;
 
 /// The images of one frame size the cloud steps write and read.
 #[derive(Debug)]
@@ -172,11 +170,11 @@ impl CloudFramePass {
         upsample.extend([
             texture_entry(7, D2),
             texture_entry(8, D2),
-            storage_buffer_entry(9, LIST_HEADER_BYTES + 4),
-            storage_buffer_entry(10, 12),
+            PixelList::list_entry(9),
+            PixelList::dispatch_entry(10),
         ]);
         let mut list = march.to_vec();
-        list.push(storage_buffer_entry(9, LIST_HEADER_BYTES + 4));
+        list.push(PixelList::list_entry(9));
         let composite = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -350,7 +348,13 @@ impl CloudFramePass {
             groups,
             start,
         );
-        let (list, dispatch) = self.march_list_buffers(gpu, frame)?;
+        let PixelList { list, dispatch } =
+            PixelList::new(gpu, "cloud frame", (frame.width, frame.height)).map_err(|e| {
+                RenderError::Frame(format!(
+                    "clouds at a reduced resolution: {e}; use the offline quality \
+                     (resolution divisor 1) or a smaller frame"
+                ))
+            })?;
         let read = [
             (7, wgpu::BindingResource::TextureView(&image)),
             (8, wgpu::BindingResource::TextureView(&segments)),
@@ -379,45 +383,6 @@ impl CloudFramePass {
             end,
         );
         Ok(())
-    }
-
-    /// An empty list of pixels to march for `frame`, with a place for each pixel, and its
-    /// indirect dispatch's workgroup counts (0, 1, 1).
-    fn march_list_buffers(
-        &self,
-        gpu: &GpuContext,
-        frame: &Frame,
-    ) -> Result<(wgpu::Buffer, wgpu::Buffer), RenderError> {
-        let pixels = frame.width as usize * frame.height as usize;
-        let bytes = LIST_HEADER_BYTES + 4 * pixels;
-        let limit = gpu.device.limits().max_storage_buffer_binding_size as usize;
-        if bytes > limit {
-            return Err(RenderError::Frame(format!(
-                "clouds at a reduced resolution: a {} x {} frame needs a list of {bytes} \
-                 bytes, over the device's storage binding limit of {limit}; use the offline \
-                 quality (resolution divisor 1) or a smaller frame",
-                frame.width, frame.height
-            )));
-        }
-        let buffer = |label, size: usize, usage| {
-            gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size as u64,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | usage,
-                mapped_at_creation: false,
-            })
-        };
-        let list = buffer("cloud frame march list", bytes, wgpu::BufferUsages::empty());
-        let dispatch = buffer(
-            "cloud frame march list dispatch",
-            12,
-            wgpu::BufferUsages::INDIRECT,
-        );
-        gpu.queue
-            .write_buffer(&list, 0, bytemuck::cast_slice(&[0u32]));
-        gpu.queue
-            .write_buffer(&dispatch, 0, bytemuck::cast_slice(&[0u32, 1, 1]));
-        Ok((list, dispatch))
     }
 
     /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and

@@ -204,7 +204,7 @@ impl FrameSunMap {
                 let target = air_pass.surface_sun_target(gpu, size);
                 pass.encode_pixels_into(gpu, encoder, pixels, &self.texture, target);
             }
-            let divisor = clouds.settings.resolution_divisor;
+            let divisor = clouds.settings.air_shadow_divisor;
             air_pass.encode(gpu, encoder, pixels, (&self.texture, divisor), air)?;
         } else if self.shades_surface {
             pass.encode_pixels(gpu, encoder, pixels, &self.texture);

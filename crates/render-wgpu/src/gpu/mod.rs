@@ -6,6 +6,7 @@ pub mod context;
 pub mod error;
 pub mod formats;
 pub mod pipeline;
+pub mod pixel_list;
 pub mod readback;
 pub mod requirements;
 pub mod shaders;

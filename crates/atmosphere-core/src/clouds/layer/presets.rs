@@ -17,7 +17,8 @@ pub enum MarchQuality {
     /// For flight: few view steps through one octave of detail, a two-step shadow
     /// march through the cover and profile alone (the noise's mean; the frame's sun map
     /// instead costs no less, docs/clouds.md "The sun light from the sun map"), a stop
-    /// once 2 % of the light behind is left, one ray per 3 x 3 pixels.
+    /// once 2 % of the light behind is left, one ray per 3 x 3 pixels (per 6 x 6 for the
+    /// cloud's shadow in the air).
     Interactive,
     /// For recordings: more steps than the defaults and the full noise everywhere.
     Offline,
@@ -27,7 +28,8 @@ pub enum MarchQuality {
 }
 
 /// The view steps, sun light, shadow steps, view octaves, shadow octaves, stopping
-/// transmittance and resolution divisor of a quality.
+/// transmittance and resolution divisors (the layer's, its shadow in the air's) of a
+/// quality.
 struct March {
     steps: u32,
     sun_light: SunLight,
@@ -36,6 +38,7 @@ struct March {
     shadow_octaves: u32,
     min_transmittance: f64,
     resolution_divisor: u32,
+    air_shadow_divisor: u32,
 }
 
 impl MarchQuality {
@@ -49,6 +52,7 @@ impl MarchQuality {
                 shadow_octaves: 0,
                 min_transmittance: 0.02,
                 resolution_divisor: 3,
+                air_shadow_divisor: 6,
             },
             MarchQuality::Offline => March {
                 steps: 128,
@@ -58,6 +62,7 @@ impl MarchQuality {
                 shadow_octaves: MAX_DETAIL_OCTAVES,
                 min_transmittance: 1e-4,
                 resolution_divisor: 1,
+                air_shadow_divisor: 1,
             },
             MarchQuality::Finest => March {
                 steps: MAX_STEPS,
@@ -67,6 +72,7 @@ impl MarchQuality {
                 shadow_octaves: MAX_DETAIL_OCTAVES,
                 min_transmittance: 1e-6,
                 resolution_divisor: 1,
+                air_shadow_divisor: 1,
             },
         }
     }
@@ -82,6 +88,7 @@ impl MarchQuality {
             shadow_octaves: m.shadow_octaves,
             min_transmittance: m.min_transmittance,
             resolution_divisor: m.resolution_divisor,
+            air_shadow_divisor: m.air_shadow_divisor,
             ..settings
         }
     }

@@ -104,6 +104,8 @@ pub const MIN_STOP_TRANSMITTANCE: f64 = 1e-6;
 pub const MAX_STOP_TRANSMITTANCE: f64 = 0.1;
 /// The coarsest march: one ray per 4 x 4 pixels.
 pub const MAX_RESOLUTION_DIVISOR: u32 = 4;
+/// The coarsest march of the cloud's shadow in the air: one ray per 8 x 8 pixels.
+pub const MAX_AIR_SHADOW_DIVISOR: u32 = 8;
 
 /// The cloud layer's settings. Every field has a range ([`LayerSettings::check`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -143,9 +145,11 @@ pub struct LayerSettings {
     /// The view transmittance below which the march stops, in [1e-6, 0.1].
     pub min_transmittance: f64,
     /// The march's resolution is the image's divided by this in each direction, the
-    /// rest interpolated (`upsample.rs`), in [1, 4]; the cloud's shadow in the air is
-    /// marched at the same (`air_shadow_upsample.rs`).
+    /// rest interpolated (`upsample.rs`), in [1, 4].
     pub resolution_divisor: u32,
+    /// The same for the march of the cloud's shadow in the air below the base
+    /// (`air_shadow_upsample.rs`), in [1, 8]: the beams are smoother than the cloud.
+    pub air_shadow_divisor: u32,
 }
 
 impl Default for LayerSettings {
@@ -168,6 +172,7 @@ impl Default for LayerSettings {
             shadow_octaves: MAX_DETAIL_OCTAVES,
             min_transmittance: 1e-4,
             resolution_divisor: 1,
+            air_shadow_divisor: 1,
         }
     }
 }
@@ -218,6 +223,11 @@ impl LayerSettings {
             "cloud resolution_divisor",
             self.resolution_divisor,
             MAX_RESOLUTION_DIVISOR,
+        )?;
+        check_count(
+            "cloud air_shadow_divisor",
+            self.air_shadow_divisor,
+            MAX_AIR_SHADOW_DIVISOR,
         )
     }
 
