@@ -8,8 +8,9 @@
 //! `--frames` pairs after a warm-up pair. Each quality is measured with its preset's
 //! sun light and again with the other (`sun_light = march`, a shadow march per sample;
 //! `map`, the frame's sun map), for comparison, without the cloud's shadow in the air;
-//! then what that shadow (the cloud shafts' own pass) adds to the frame with clouds, each
-//! frame with them interleaved with the same frame without.
+//! then the quality as a user gets it, the clouds with that shadow (the cloud shafts'
+//! own pass), in rounds of three frames (without clouds, with clouds, with clouds and
+//! their shadow): what both add to the frame without clouds, and the shadow's share.
 
 use atmosphere_core::clouds::spheres::handover::CloudForm;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
@@ -92,29 +93,36 @@ fn variants(quality: MarchQuality) -> [LayerSettings; 2] {
     ]
 }
 
-/// Frames the bench renders for `quality` (the warm-up pair included, two each, for
-/// each of its variants and the cloud shafts).
+/// Frames the bench renders for `quality` (the warm-up round included: a pair for each
+/// of its variants, three frames for the cloud shafts).
 pub fn frames_per_quality(quality: MarchQuality, frames: usize) -> usize {
-    2 * (1 + frames) * (variants(quality).len() + 1)
+    (1 + frames) * (2 * variants(quality).len() + 3)
 }
 
-/// What the cloud's shadow in the air added to one quality's frame with clouds, ms.
+/// What one quality's clouds with their shadow in the air (the quality as a user gets
+/// it) added to the frame without clouds, and the shadow's share, ms.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShaftTimes {
     pub quality: MarchQuality,
-    /// Median of the pairs' differences of wall-clock time, with less without.
+    /// Median of the rounds' differences of wall-clock time, the frame with clouds and
+    /// their shadow less the frame without clouds.
+    pub total_added_wall_ms: f64,
+    /// Median of the rounds' differences, the frame with clouds and their shadow less
+    /// the frame with clouds alone.
     pub added_wall_ms: f64,
-    /// Median wall-clock time of the frame with clouds, without the shafts.
-    pub without_wall_ms: f64,
-    /// Median GPU time of the hillaire pass (in the frames without the shadow).
+    /// Median wall-clock time of the frame without clouds.
+    pub clear_wall_ms: f64,
+    /// The hillaire pass as the clouds' rounds of the same quality timed it
+    /// ([`CloudTimes::sky_pass_ms`]): lavapipe's timestamps in these rounds, frames
+    /// without clouds included, read from 0.1 ms to the pass's time.
     pub sky_pass_ms: Option<f64>,
     /// Median GPU time of the pass of the cloud's shadow in the air (`cloud_shafts`).
     pub air_pass_ms: Option<f64>,
 }
 
 /// Measures the cloud shafts of `quality` on `renderer` in `atmosphere` at `size`,
-/// `frames` pairs after a warm-up pair: the frame with clouds with them, interleaved
-/// with the same frame without.
+/// `frames` rounds after a warm-up round, each the frame without clouds, with clouds,
+/// and with clouds and their shadow in the air, interleaved.
 fn measure_shafts(
     renderer: &mut Renderer,
     (frame, model): (&Frame, &dyn SkyModel),
@@ -135,10 +143,13 @@ fn measure_shafts(
         shafts: true,
         ..without.clone()
     };
-    let (mut added, mut base, mut sky, mut air) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut total, mut added, mut clear, mut air) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for k in 0..=frames {
+        renderer.set_clouds(None)?;
+        let (_, none_ms) = timed(renderer, frame)?;
+        progress.inc();
         renderer.set_clouds(Some(without.clone()))?;
-        let (plain, plain_ms) = timed(renderer, frame)?;
+        let (_, plain_ms) = timed(renderer, frame)?;
         progress.inc();
         renderer.set_clouds(Some(with.clone()))?;
         let (shafts, shafts_ms) = timed(renderer, frame)?;
@@ -148,18 +159,19 @@ fn measure_shafts(
             "the flight view's plan has no cloud shafts: {shafts}"
         );
         if k > 0 {
+            total.push(shafts_ms - none_ms);
             added.push(shafts_ms - plain_ms);
-            base.push(plain_ms);
-            sky.extend(step_gpu_ms(&plain, "hillaire"));
+            clear.push(none_ms);
             air.extend(step_gpu_ms(&shafts, CLOUD_SHAFTS));
         }
     }
     let pass = |times: &[f64]| (times.len() == frames).then(|| median(times)).flatten();
     Ok(ShaftTimes {
         quality,
+        total_added_wall_ms: median(&total).unwrap_or(f64::NAN),
         added_wall_ms: median(&added).unwrap_or(f64::NAN),
-        without_wall_ms: median(&base).unwrap_or(f64::NAN),
-        sky_pass_ms: pass(&sky),
+        clear_wall_ms: median(&clear).unwrap_or(f64::NAN),
+        sky_pass_ms: None,
         air_pass_ms: pass(&air),
     })
 }
@@ -220,7 +232,14 @@ pub fn measure(
     let mut shafts = Vec::new();
     for &quality in qualities {
         let scene = (&frame, model.as_ref());
-        shafts.push(measure_shafts(renderer, scene, quality, frames, progress)?);
+        let sky_pass_ms = out
+            .iter()
+            .find(|t| t.quality == quality)
+            .and_then(|t| t.sky_pass_ms);
+        shafts.push(ShaftTimes {
+            sky_pass_ms,
+            ..measure_shafts(renderer, scene, quality, frames, progress)?
+        });
     }
     renderer.set_clouds(None)?;
     Ok((out, shafts))
@@ -231,29 +250,32 @@ pub fn shafts_markdown(results: &[ShaftTimes]) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "\nCloud shafts, the same view: each frame with clouds and their shadow in the air \
-         (its own pass, `cloud_shafts`, which every model subtracts) interleaved with the \
-         same frame with clouds without it; medians.\n"
+        "\nClouds with their shadow in the air (the cloud shafts: a pass of their own, \
+         `cloud_shafts`, which every model subtracts; on by default), the same view: each \
+         round the frame without clouds, with clouds, and with clouds and their shadow, \
+         interleaved; medians of the rounds' differences. The hillaire pass is the \
+         table's above (lavapipe's timestamps in these rounds are not to be trusted).\n"
     );
     let _ = writeln!(
         out,
-        "| cloud quality | added wall ms | frame with clouds, wall ms | hillaire pass, GPU ms | shadow pass, GPU ms | added / hillaire pass | shadow pass / hillaire pass |"
+        "| cloud quality | clouds and shadow added, wall ms | the shadow's share, wall ms | frame without clouds, wall ms | hillaire pass, GPU ms | shadow pass, GPU ms | clouds and shadow / hillaire pass | shadow / hillaire pass |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
     let cell =
         |v: Option<f64>, digits: usize| v.map_or_else(|| "-".into(), |x| format!("{x:.digits$}"));
     for r in results {
         let (sky, air) = (r.sky_pass_ms, r.air_pass_ms);
         let _ = writeln!(
             out,
-            "| {} | {:.1} | {:.1} | {} | {} | {} | {} |",
+            "| {} | {:.1} | {:.1} | {:.1} | {} | {} | {} | {} |",
             r.quality,
+            r.total_added_wall_ms,
             r.added_wall_ms,
-            r.without_wall_ms,
+            r.clear_wall_ms,
             cell(sky, 1),
             cell(air, 1),
-            cell(sky.map(|s| r.added_wall_ms / s), 2),
-            cell(air.zip(sky).map(|(a, s)| a / s), 2)
+            cell(sky.map(|s| r.total_added_wall_ms / s), 2),
+            cell(sky.map(|s| r.added_wall_ms / s), 2)
         );
     }
     out
