@@ -143,7 +143,8 @@ fn measure_shafts(
         shafts: true,
         ..without.clone()
     };
-    let (mut total, mut added, mut clear, mut air) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut total, mut added, mut clear, mut air) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for k in 0..=frames {
         renderer.set_clouds(None)?;
         let (_, none_ms) = timed(renderer, frame)?;
