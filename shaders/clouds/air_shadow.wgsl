@@ -32,7 +32,7 @@ override UPSAMPLE: bool = false;
 
 // `SPAN_TOLERANCE`, `MIN_SAME_WEIGHT` (`air_shadow_upsample.rs`).
 const SPAN_TOLERANCE: f32 = 0.25;
-const MIN_SAME_WEIGHT: f32 = 0.25;
+const MIN_SAME_WEIGHT: f32 = 0.5;
 
 // xyz: the surface's normal; w: its distance along the pixel's ray, m (0: none).
 @group(0) @binding(30) var pixel_geometry: texture_2d<f32>;

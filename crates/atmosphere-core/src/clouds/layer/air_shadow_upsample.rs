@@ -16,8 +16,11 @@ use super::upsample::bilinear_taps;
 
 /// How far the span's end of a tap may lie from a pixel's, relative to the pixel's.
 pub const SPAN_TOLERANCE: f64 = 0.25;
-/// The least bilinear weight of matching taps for a pixel to be interpolated.
-pub const MIN_SAME_WEIGHT: f64 = 0.25;
+/// The least bilinear weight of matching taps for a pixel to be interpolated: half, so
+/// that no pixel takes its loss from a single tap of a lesser weight (at a quarter those
+/// pixels, a dotted row along the base's rim, carried most of the upsample's error:
+/// docs/clouds.md, "At a reduced resolution").
+pub const MIN_SAME_WEIGHT: f64 = 0.5;
 
 /// The far end of a ray's span below the base, m (distance from its segment's start);
 /// `None`: the ray does not dip below the base within the map.
