@@ -6,7 +6,7 @@
 //! surface's cloud transmittance into the map's per-pixel image, which every model's
 //! pixel pass reads and subtracts. It marches through a columns table of its own,
 //! rebuilt when the atmosphere's columns change; at a resolution divisor above 1 (the
-//! cloud layer's) one ray per block of pixels first, whose taps of the same span the
+//! layer settings' `air_shadow_divisor`) one ray per block of pixels first, whose taps of the same span the
 //! full pass reads (atmosphere-core's `clouds/layer/air_shadow_upsample.rs`), listing the
 //! pixels without such taps for a pass of their own to march ([`PixelList`]). The map is
 //! read here rather than inside the pixel passes, which crashed lavapipe (Mesa 22.3.6)
@@ -246,7 +246,7 @@ impl AirShadowPass {
             PixelList::new(gpu, "cloud shadow in the air", list_size).map_err(|e| {
                 RenderError::Frame(format!(
                     "the cloud's shadow in the air at a reduced resolution: {e}; use the \
-                     offline cloud quality (resolution divisor 1) or a smaller frame"
+                     offline cloud quality (air_shadow_divisor 1) or a smaller frame"
                 ))
             })?;
         // The first pass opens the step's timing and the last closes it.
