@@ -122,11 +122,12 @@ pub struct ShaftTimes {
 
 /// Measures the cloud shafts of `quality` on `renderer` in `atmosphere` at `size`,
 /// `frames` rounds after a warm-up round, each the frame without clouds, with clouds,
-/// and with clouds and their shadow in the air, interleaved.
+/// and with clouds and their shadow in the air, interleaved; `sky_pass_ms` the hillaire
+/// pass the clouds' rounds of the quality timed.
 fn measure_shafts(
     renderer: &mut Renderer,
     (frame, model): (&Frame, &dyn SkyModel),
-    quality: MarchQuality,
+    (quality, sky_pass_ms): (MarchQuality, Option<f64>),
     frames: usize,
     progress: &Progress,
 ) -> anyhow::Result<ShaftTimes> {
@@ -172,7 +173,7 @@ fn measure_shafts(
         total_added_wall_ms: median(&total).unwrap_or(f64::NAN),
         added_wall_ms: median(&added).unwrap_or(f64::NAN),
         clear_wall_ms: median(&clear).unwrap_or(f64::NAN),
-        sky_pass_ms: None,
+        sky_pass_ms,
         air_pass_ms: pass(&air),
     })
 }
@@ -237,10 +238,8 @@ pub fn measure(
             .iter()
             .find(|t| t.quality == quality)
             .and_then(|t| t.sky_pass_ms);
-        shafts.push(ShaftTimes {
-            sky_pass_ms,
-            ..measure_shafts(renderer, scene, quality, frames, progress)?
-        });
+        let timed = (quality, sky_pass_ms);
+        shafts.push(measure_shafts(renderer, scene, timed, frames, progress)?);
     }
     renderer.set_clouds(None)?;
     Ok((out, shafts))

@@ -49,8 +49,8 @@ const LIST_DISPATCH_BINDING: u32 = 40;
 
 /// The full pass in four variants (with the frame's surface and without, the buffer
 /// unread; from the reduced march's taps or not), the reduced march and the listed
-/// pixels' march in two each, the reduced march's image
-/// (1 x 1 until a frame is reduced), the image of the surface's cloud transmittance the
+/// pixels' march in two each, the reduced march's image (1 x 1 until a frame is reduced)
+/// and the list of pixels to march (made for the first frame's size), the image of the surface's cloud transmittance the
 /// full pass copies (1 x 1 until a frame has a surface) and the columns table.
 #[derive(Debug)]
 pub struct AirShadowPass {
@@ -61,6 +61,7 @@ pub struct AirShadowPass {
     /// Indexed by `surface`.
     listed: [ComputePipeline; 2],
     image: wgpu::Texture,
+    list: Option<PixelList>,
     surface_sun: wgpu::Texture,
     sampling: TableSampling,
     columns: ColumnsTable,
@@ -172,6 +173,7 @@ impl AirShadowPass {
             reduced: [reduced(false)?, reduced(true)?],
             listed: [listed(false)?, listed(true)?],
             image: pass_image(gpu, REDUCED_LABEL, (1, 1)),
+            list: None,
             surface_sun: pass_image(gpu, SURFACE_SUN_LABEL, (1, 1)),
             columns: ColumnsTable::new(gpu, (width as u32, height as u32))?,
             sampling,
@@ -242,13 +244,19 @@ impl AirShadowPass {
         ];
         let surface = usize::from(inputs.has_surface);
         let list_size = if upsample { frame } else { (1, 1) };
-        let PixelList { list, dispatch } =
-            PixelList::new(gpu, "cloud shadow in the air", list_size).map_err(|e| {
+        let kept = match self.list.take() {
+            Some(kept) if kept.size == list_size => {
+                kept.reset(gpu);
+                kept
+            }
+            _ => PixelList::new(gpu, "cloud shadow in the air", list_size).map_err(|e| {
                 RenderError::Frame(format!(
                     "the cloud's shadow in the air at a reduced resolution: {e}; use the \
                      offline cloud quality (air_shadow_divisor 1) or a smaller frame"
                 ))
-            })?;
+            })?,
+        };
+        let PixelList { list, dispatch, .. } = self.list.insert(kept);
         // The first pass opens the step's timing and the last closes it.
         let (mut first, last) = match upsample {
             true => split_timestamps(timestamps),
@@ -300,7 +308,7 @@ impl AirShadowPass {
                 encoder,
                 "cloud shadow in the air, listed pixels",
                 &bind_group,
-                &dispatch,
+                dispatch,
                 last,
             );
         }

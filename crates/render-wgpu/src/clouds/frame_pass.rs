@@ -38,7 +38,8 @@ const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The reduced march's segments, (t0, t1) per ray.
 const SEGMENT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
-/// The images of one frame size the cloud steps write and read.
+/// The images (and the list of pixels to march) of one frame size the cloud steps write
+/// and read.
 #[derive(Debug)]
 pub struct CloudTargets {
     /// The model's pixels, whole (L_full).
@@ -53,6 +54,9 @@ pub struct CloudTargets {
     pub front_geometry: wgpu::Texture,
     /// Its albedo: 0, Lambertian.
     pub front_albedo: wgpu::Texture,
+    /// The pixels a reduced march's upsample leaves to the listed march, or why the
+    /// device cannot hold a list of this size.
+    pub march_list: Result<PixelList, String>,
 }
 
 impl CloudTargets {
@@ -84,6 +88,7 @@ impl CloudTargets {
             spheres: image("cloud spheres image", CLOUD_FORMAT),
             front_geometry: image("cloud front geometry", GEOMETRY_FORMAT),
             front_albedo,
+            march_list: PixelList::new(gpu, "cloud frame", (width, height)),
         }
     }
 
@@ -348,13 +353,14 @@ impl CloudFramePass {
             groups,
             start,
         );
-        let PixelList { list, dispatch } =
-            PixelList::new(gpu, "cloud frame", (frame.width, frame.height)).map_err(|e| {
-                RenderError::Frame(format!(
-                    "clouds at a reduced resolution: {e}; use the offline quality \
-                     (resolution divisor 1) or a smaller frame"
-                ))
-            })?;
+        let kept = targets.march_list.as_ref().map_err(|e| {
+            RenderError::Frame(format!(
+                "clouds at a reduced resolution: {e}; use the offline quality \
+                 (resolution divisor 1) or a smaller frame"
+            ))
+        })?;
+        kept.reset(gpu);
+        let PixelList { list, dispatch, .. } = kept;
         let read = [
             (7, wgpu::BindingResource::TextureView(&image)),
             (8, wgpu::BindingResource::TextureView(&segments)),
@@ -379,7 +385,7 @@ impl CloudFramePass {
             encoder,
             "cloud frame listed march",
             &bind_group,
-            &dispatch,
+            dispatch,
             end,
         );
         Ok(())

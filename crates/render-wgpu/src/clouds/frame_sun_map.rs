@@ -173,9 +173,9 @@ impl FrameSunMap {
     }
 
     /// Records the fill of the planned map of `frame` with `clouds` over `inputs`' cover,
-    /// then the cloud's shadow in the air where it is planned, else the map's read at each pixel's surface where
-    /// the frame has one; `timer`, when the frame is timed, times the fill's and the air's
-    /// steps.
+    /// then the cloud's shadow in the air where it is planned, else the map's read at
+    /// each pixel's surface where the frame has one; `timer`, when the frame is timed,
+    /// times the fill's and the air's steps.
     pub fn encode(
         &mut self,
         gpu: &GpuContext,

@@ -13,12 +13,13 @@ const HEADER_BYTES: usize = 4;
 /// The indirect dispatch's three workgroup counts.
 const DISPATCH_BYTES: usize = 12;
 
-/// An empty list with a place for each pixel of a frame, and the workgroup counts of the
-/// dispatch that marches it, (0, 1, 1) until the upsample lists a pixel.
+/// A list with a place for each pixel of a frame of `size`, and the workgroup counts of
+/// the dispatch that marches it; empty, (0, 1, 1), once [`PixelList::reset`].
 #[derive(Debug)]
 pub struct PixelList {
     pub list: wgpu::Buffer,
     pub dispatch: wgpu::Buffer,
+    pub size: (u32, u32),
 }
 
 impl PixelList {
@@ -59,10 +60,21 @@ impl PixelList {
             DISPATCH_BYTES,
             wgpu::BufferUsages::INDIRECT,
         );
+        let made = PixelList {
+            list,
+            dispatch,
+            size,
+        };
+        made.reset(gpu);
+        Ok(made)
+    }
+
+    /// Empties the list before the next submission's commands: each frame that marches
+    /// from it resets it first (a list is kept for the frames of its size that follow).
+    pub fn reset(&self, gpu: &GpuContext) {
         gpu.queue
-            .write_buffer(&list, 0, bytemuck::cast_slice(&[0u32]));
+            .write_buffer(&self.list, 0, bytemuck::cast_slice(&[0u32]));
         gpu.queue
-            .write_buffer(&dispatch, 0, bytemuck::cast_slice(&[0u32, 1, 1]));
-        Ok(PixelList { list, dispatch })
+            .write_buffer(&self.dispatch, 0, bytemuck::cast_slice(&[0u32, 1, 1]));
     }
 }
