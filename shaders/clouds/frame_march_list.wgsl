@@ -11,6 +11,7 @@ fn main(
 ) {
     let count = atomicLoad(&march_list.count);
     for (var i = id.x; i < count; i += groups.x * LIST_GROUP) {
-        march_pixel(listed_pixel(i));
+        let px = listed_pixel(i);
+        store_pixel_cloud(px, march_pixel(px));
     }
 }

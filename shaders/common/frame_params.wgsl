@@ -6,6 +6,7 @@
 
 #import common/atmosphere_params.wgsl
 #import common/sun_disk.wgsl
+#import common/f16_max.wgsl
 
 struct FrameParams {
     // xyz: camera position relative to the planet's centre (f32), m; w: its radius.
@@ -29,9 +30,6 @@ struct FrameParams {
 }
 
 @group(0) @binding(1) var<uniform> frame: FrameParams;
-
-// The largest finite f16, the HDR target's ceiling.
-const F16_MAX: f32 = 65504.0;
 
 // What a model answers for a view ray: the radiance scattered and reflected towards the
 // camera (sun disk excluded) and the ray's transmittance, per channel.

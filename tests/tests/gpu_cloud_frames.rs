@@ -3,7 +3,9 @@
 //! atmosphere-core's `clouds/layer/composite.rs`, on whole 48 x 27 frames of three
 //! models, with a surface in front of, inside and behind the cloud (in its shadow); the
 //! interactive preset's march at a third of the resolution against `segment_upsample.rs`,
-//! the mountain in front of the cloud left as at full resolution; cover 0 leaves the
+//! the mountain in front of the cloud left as at full resolution, and inside the layer,
+//! where the upsample composites each pixel itself (`frame_upsample_over.wgsl`, no
+//! composite pass); cover 0 leaves the
 //! frame exactly as without clouds; pruning changes nothing; bad input is named. The
 //! interactive frame's layer is lit by the frame's sun map (`sun_light = map`), its CPU
 //! twin by `march_in_sun_map` with the CPU's map.
@@ -21,17 +23,14 @@
 mod support;
 
 use atmosphere_core::clouds::cover::grid::CoverGrid;
-use atmosphere_core::clouds::layer::composite::composite;
 use atmosphere_core::clouds::layer::field::CloudLayer;
-use atmosphere_core::clouds::layer::march::{CloudLight, CloudSegment};
+use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::segment_upsample::{
     ReducedMarch, Segment, upsample_by_segment,
 };
 use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLight};
-use atmosphere_core::clouds::layer::shadowed_surface::radiance_with_shadowed_surface as shaded;
-use atmosphere_core::clouds::layer::sun_map::CloudSunMap;
 use atmosphere_core::clouds::layer::upsample::{marched_coordinate, nearest_pixel, reduced_size};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::clouds::spheres::handover::CloudForm;
@@ -39,18 +38,18 @@ use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::geo::equirectangular::lat_lon;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
-use atmosphere_core::models::sky_model::{RayRadiance, SkyModel, ViewRay};
+use atmosphere_core::models::sky_model::{RayRadiance, SkyModel};
 use atmosphere_core::optics::phase::PhaseFunction;
-use atmosphere_core::optics::surface_lighting::SurfaceHit;
 use glam::DVec3;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_clouds::{
-    CAMERA_IN_LAYER, FrameClouds, LAYER_NOT_IN_VIEW, NO_CLOUD_IN_COVER, frame_light,
+    CAMERA_IN_LAYER, COMPOSITE_IN_UPSAMPLE, FrameClouds, LAYER_NOT_IN_VIEW, NO_CLOUD_IN_COVER,
+    frame_light,
 };
 use render_wgpu::clouds::frame_pass::frame_camera;
 use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::frame::{Frame, look_orientation};
-use support::clouds::cpu_march;
+use support::clouds::{cpu_march, cpu_pixel, pixel_segment};
 
 const RELATIVE: f64 = 0.04;
 const OF_BRIGHTEST: f64 = 0.01;
@@ -116,66 +115,6 @@ fn layer_clouds(settings: LayerSettings, light: &CloudLight, prune: bool) -> Fra
 /// cloud's base low in the frame, inside the layer high in it.
 fn mountain(frame: &Frame) -> Vec<SurfaceTexel> {
     support::wall(frame, MOUNTAIN_COLUMNS, MOUNTAIN_M)
-}
-
-/// The segment of the layer that pixel (column, row)'s ray crosses before `texel`.
-fn pixel_segment(
-    layer: &CloudLayer,
-    frame: &Frame,
-    (column, row): (u32, u32),
-    texel: &SurfaceTexel,
-) -> Segment {
-    let ray = frame.pixel_ray(column, row);
-    let end = if texel.distance_m > 0.0 {
-        f64::from(texel.distance_m)
-    } else {
-        f64::INFINITY
-    };
-    layer
-        .shell()
-        .first_segment(ray.origin_m, ray.direction, end)
-}
-
-/// The CPU's composite of pixel (column, row) with `cloud` (where its ray enters the
-/// cloud and the cloud's [radiance x 3, transmittance]): `composite.rs` with the model's
-/// answers for the whole ray (ended on the surface, in the shadow of `map`) and for the
-/// ray ended at the cloud.
-fn cpu_pixel(
-    model: &dyn SkyModel,
-    frame: &Frame,
-    (column, row): (u32, u32),
-    (texel, map): (&SurfaceTexel, &CloudSunMap),
-    cloud: Option<(f64, [f64; 4])>,
-) -> RayRadiance {
-    let ray = frame.pixel_ray(column, row);
-    let full = if texel.distance_m > 0.0 {
-        let hit = SurfaceHit {
-            distance_m: f64::from(texel.distance_m),
-            normal: glam::Vec3::from_array(texel.normal).as_dvec3(),
-            albedo: texel.stored_albedo().map(f64::from).to_vec(),
-        };
-        shaded(model, &frame.atmosphere, &ray, &hit, map).unwrap()
-    } else {
-        model.radiance(&ray).unwrap()
-    };
-    let Some((t0, [r, g, b, t])) = cloud else {
-        return full;
-    };
-    let front = if t0 > 0.0 {
-        model
-            .radiance(&ViewRay {
-                max_distance_m: Some(t0),
-                ..ray
-            })
-            .unwrap()
-    } else {
-        RayRadiance::unattenuated(3)
-    };
-    let cloud = CloudSegment {
-        radiance: vec![r, g, b],
-        transmittance: vec![t; 3],
-    };
-    composite(&full, &front, &cloud)
 }
 
 /// How far `gpu` lies from `cpu`: the worst error over the tolerance, how many values
@@ -328,45 +267,60 @@ fn composited_frames_match_the_cpu_composite_for_three_models() {
     }
 }
 
-#[test]
-fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mountain_clear() {
-    let Some(mut renderer) = support::renderer_or_skip("cloud frames interactive") else {
-        return;
-    };
+/// The interactive preset's frame of `frame` over the mountain, and what it is checked
+/// against.
+struct Interactive {
+    gpu: Vec<[f32; 4]>,
+    /// The same frame with the layer marched at full resolution.
+    full_resolution: Vec<[f32; 4]>,
+    /// Each pixel's segment of the layer.
+    segments: Vec<Segment>,
+    /// The pixels the CPU's upsample marched itself.
+    marched: usize,
+    /// The plan of the interactive frame.
+    plan: render_wgpu::frame::plan::FramePlan,
+}
+
+/// Renders `frame` over the mountain at the interactive preset (lit by the sun map) with
+/// the light `method` and asserts it within the tolerance of its CPU twin: the reduced
+/// march, each ray ended on its nearest pixel's surface, brought to full size by
+/// `segment_upsample.rs` and composited over the model's pixels.
+fn interactive_against_cpu(
+    renderer: &mut Renderer,
+    frame: &Frame,
+    method: LayerMethod,
+) -> Interactive {
     let orders = support::clouds::orders();
     let cover = cover(1.0);
     renderer.set_cloud_inputs(&cover, &orders).unwrap();
-    let frame = frame(ModelId::Nishita);
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let settings = LayerSettings {
         sun_light: SunLight::Map,
+        method,
         ..MarchQuality::Interactive.apply(LayerSettings::default())
     };
     assert_eq!(settings.resolution_divisor, 3);
-    let light = frame_light(model.as_ref(), &frame, &settings).unwrap();
+    let light = frame_light(model.as_ref(), frame, &settings).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
     let radius = frame.atmosphere.bottom_radius_m;
     let layer = CloudLayer::new(settings, radius, cover.clone(), phase).unwrap();
-    let surface = mountain(&frame);
-    let map = support::clouds::frame_sun_map(&layer, &frame);
-    // The same layer marched at full resolution: in front of the cloud both frames keep
-    // the model's pixels, the surface in the cloud's shadow, as they are.
+    let surface = mountain(frame);
+    let map = support::clouds::frame_sun_map(&layer, frame);
     let full = LayerSettings {
         resolution_divisor: 1,
         ..settings
     };
     let clouds = |settings| layer_clouds(settings, &light, true);
     renderer.set_clouds(Some(clouds(full))).unwrap();
-    renderer.render_with_surface(&frame, &surface).unwrap();
-    let clear = renderer.read_hdr().unwrap();
+    renderer.render_with_surface(frame, &surface).unwrap();
+    let full_resolution = renderer.read_hdr().unwrap();
     renderer.set_clouds(Some(clouds(settings))).unwrap();
-    renderer.render_with_surface(&frame, &surface).unwrap();
+    let plan = renderer.render_with_surface(frame, &surface).unwrap();
     let gpu = renderer.read_hdr().unwrap();
 
-    // The CPU twin: the reduced march, each ray ended on its nearest pixel's surface.
-    let camera = frame_camera(&frame);
+    let camera = frame_camera(frame);
     let (w, h) = reduced_size(frame.width, frame.height, settings.resolution_divisor);
-    let (mut image, mut segments) = (Vec::new(), Vec::new());
+    let (mut image, mut reduced_segments) = (Vec::new(), Vec::new());
     for j in 0..h {
         for i in 0..w {
             let x = marched_coordinate(i, w, frame.width);
@@ -386,20 +340,20 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
             image.push(segment.map_or([0.0, 0.0, 0.0, 1.0], |s| {
                 cpu_march(&layer, &orders, (&light, &map), (camera.position_m, d), s)
             }));
-            segments.push(segment);
+            reduced_segments.push(segment);
         }
     }
     let pixels: Vec<(u32, u32)> = (0..frame.height)
         .flat_map(|row| (0..frame.width).map(move |column| (column, row)))
         .collect();
-    let full_segments: Vec<Segment> = pixels
+    let segments: Vec<Segment> = pixels
         .iter()
         .zip(&surface)
-        .map(|(&px, texel)| pixel_segment(&layer, &frame, px, texel))
+        .map(|(&px, texel)| pixel_segment(&layer, frame, px, texel))
         .collect();
     let reduced = ReducedMarch {
         image: &image,
-        segments: &segments,
+        segments: &reduced_segments,
         size: (w, h),
         extinction_per_m: settings.extinction_per_m,
     };
@@ -407,53 +361,87 @@ fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mounta
     let clouds = upsample_by_segment(
         &reduced,
         (frame.width, frame.height),
-        &full_segments,
+        &segments,
         |x, y, s| {
             marched += 1;
             let ray = frame.pixel_ray(x, y);
-            cpu_march(
-                &layer,
-                &orders,
-                (&light, &map),
-                (ray.origin_m, ray.direction),
-                s,
-            )
+            let o_d = (ray.origin_m, ray.direction);
+            cpu_march(&layer, &orders, (&light, &map), o_d, s)
         },
     );
     let cpu: Vec<RayRadiance> = pixels
         .iter()
         .zip(&surface)
-        .zip(full_segments.iter().zip(&clouds))
+        .zip(segments.iter().zip(&clouds))
         .map(|((&px, texel), (segment, cloud))| {
             let cloud = segment.map(|s| (s.0, *cloud));
-            cpu_pixel(model.as_ref(), &frame, px, (texel, &map), cloud)
+            cpu_pixel(model.as_ref(), frame, px, (texel, &map), cloud)
         })
         .collect();
     let (worst, outside) = assert_within_tolerance("interactive", &gpu, &cpu);
+    println!(
+        "interactive, {:.0} m up: worst {worst:.2} of the tolerance, {outside} of {} values \
+         outside; {marched} pixels marched themselves; {plan}",
+        frame.camera_position_m.length() - radius,
+        3 * cpu.len()
+    );
+    Interactive {
+        gpu,
+        full_resolution,
+        segments,
+        marched,
+        plan,
+    }
+}
 
-    // The mountain in front of the cloud stays exactly as without clouds, its edge
+#[test]
+fn an_interactive_frame_matches_the_cpu_upsample_by_segment_and_keeps_the_mountain_clear() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud frames interactive") else {
+        return;
+    };
+    let frame = frame(ModelId::Nishita);
+    let checked = interactive_against_cpu(&mut renderer, &frame, LayerMethod::Riley);
+    assert!(checked.plan.runs("cloud_composite"), "{}", checked.plan);
+    // The mountain in front of the cloud stays exactly as at full resolution, its edge
     // included, where a plain bilinear read would mix in the cloud beside it.
     let (mut kept, mut at_edge) = (0, 0);
-    for (k, segment) in full_segments.iter().enumerate() {
+    for (k, segment) in checked.segments.iter().enumerate() {
         let column = k as u32 % frame.width;
         if segment.is_none() && column < MOUNTAIN_COLUMNS {
-            assert_eq!(gpu[k], clear[k], "pixel {k} of the mountain changed");
+            let (gpu, full) = (checked.gpu[k], checked.full_resolution[k]);
+            assert_eq!(gpu, full, "pixel {k} of the mountain changed");
             kept += 1;
             at_edge += usize::from(column + 2 >= MOUNTAIN_COLUMNS);
         }
     }
-    println!(
-        "interactive: worst {worst:.2} of the tolerance, {outside} of {} values outside; \
-         {marched} pixels marched themselves, {kept} mountain pixels kept ({at_edge} at \
-         its edge)",
-        3 * cpu.len()
-    );
+    println!("{kept} mountain pixels kept ({at_edge} at its edge)");
     assert!(
         at_edge >= 10 && kept >= 100,
         "{kept} kept, {at_edge} at the edge"
     );
     // The mountain's edge inside the layer has no matching tap on its other side.
-    assert!(marched > 0, "no pixel was marched itself");
+    assert!(checked.marched > 0, "no pixel was marched itself");
+}
+
+#[test]
+fn inside_the_layer_the_interactive_upsample_composites_and_matches_the_cpu() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud frames interactive inside") else {
+        return;
+    };
+    let mut frame = frame(ModelId::Nishita);
+    frame.camera_position_m = DVec3::X * (frame.atmosphere.bottom_radius_m + 2_000.0);
+    // Octaves: Riley's order index jumps too often inside the layer for this tolerance,
+    // as in the test above at full resolution.
+    let checked = interactive_against_cpu(&mut renderer, &frame, LayerMethod::Octaves);
+    let plan = &checked.plan;
+    assert!(
+        plan.skipped
+            .contains(&("cloud_composite", COMPOSITE_IN_UPSAMPLE))
+            && plan.skipped.contains(&("cloud_front", CAMERA_IN_LAYER)),
+        "{plan}"
+    );
+    // The mountain inside the layer ends rays that reduced rays beside it cross.
+    assert!(checked.marched > 0, "no pixel was marched itself");
 }
 
 /// Renders `frame` over `surface` with `clouds` and returns the HDR image and the plan.

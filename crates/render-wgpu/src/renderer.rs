@@ -10,7 +10,7 @@ use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
-use crate::clouds::frame_clouds::{FrameClouds, plan_clouds};
+use crate::clouds::frame_clouds::{FrameClouds, plan_after_model, plan_clouds};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
 use crate::clouds::frame_sun_map::FrameSunMap;
 use crate::clouds::layer_inputs::LayerInputs;
@@ -19,7 +19,7 @@ use crate::clouds::sun_map_pass::PixelInputs;
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::{AtmosphereUniform, RGB_WAVELENGTHS_NM};
 use crate::frame::plan::{FramePlan, StepKind};
-use crate::frame::surface_buffer::SurfaceTexel;
+use crate::frame::surface_buffer::{SurfaceTexel, check_surface};
 use crate::frame::uniform::FrameUniform;
 use crate::frame_targets::Targets;
 use crate::gpu::context::GpuContext;
@@ -246,21 +246,7 @@ impl Renderer {
         frame: &Frame,
         surface: &[SurfaceTexel],
     ) -> Result<FramePlan, RenderError> {
-        let pixels = frame.width as usize * frame.height as usize;
-        if surface.len() != pixels {
-            return Err(RenderError::Frame(format!(
-                "the surface has {} texels for {pixels} pixels",
-                surface.len()
-            )));
-        }
-        if let Some(bad) = surface.iter().position(|t| {
-            !(t.distance_m.is_finite() && t.distance_m >= 0.0)
-                || t.distance_m > 0.0 && glam::Vec3::from_array(t.normal).try_normalize().is_none()
-        }) {
-            return Err(RenderError::Frame(format!(
-                "surface texel {bad}: the distance must be finite and >= 0 and the normal non-zero"
-            )));
-        }
+        check_surface(surface, frame.width as usize * frame.height as usize)?;
         self.render_over(frame, Some(surface))
     }
 
@@ -369,12 +355,8 @@ impl Renderer {
         }
         // (march, the second run's first step, the composite).
         let cloud_steps = clouds_step.map(|steps| {
-            let front = front_needed.then(|| {
-                plan.run("cloud_front", StepKind::Pass);
-                plan.steps.len() as u32 - 1
-            });
-            plan.run("cloud_composite", StepKind::Pass);
-            (steps, front, plan.steps.len() as u32 - 1)
+            let (front, composite) = plan_after_model(&steps, front_needed, &mut plan);
+            (steps, front, composite)
         });
         let volumes_step = plan_volumes(frame, &self.volumes, &mut plan);
         if volumes_step.is_some() && self.volumes_pass.is_none() {
@@ -406,13 +388,10 @@ impl Renderer {
                 timer.map(|t| t.render_writes(0)),
             );
         }
-        if let (Some((steps, _, _)), Some(c), Some(pass), Some(clouds), Some((inputs, _))) = (
-            cloud_steps,
-            cloud_targets,
-            &self.cloud_pass,
-            &self.clouds,
-            &self.cloud_inputs,
-        ) {
+        // The clouds' shadows first, which the model's passes read.
+        if let (Some(_), Some(clouds), Some((inputs, _))) =
+            (cloud_steps, &self.clouds, &self.cloud_inputs)
+        {
             let pixels = PixelInputs {
                 atmosphere: &self.atmosphere,
                 frame: &self.frame,
@@ -422,18 +401,7 @@ impl Renderer {
             };
             let scene = (frame, clouds, inputs);
             let mapped = (self.sun_map).encode(gpu, &mut encoder, scene, pixels, timer);
-            let scene = MarchScene {
-                frame,
-                clouds,
-                inputs,
-                surface: &surface_views[0],
-                has_surface,
-                has_front: front_needed,
-                sun_map: self.sun_map.texture(),
-            };
-            let marched = mapped
-                .and_then(|()| pass.encode_clouds(gpu, &mut encoder, &scene, c, (&steps, timer)));
-            if let Err(e) = marched {
+            if let Err(e) = mapped {
                 self.targets = Some(targets);
                 return Err(e);
             }
@@ -454,9 +422,36 @@ impl Renderer {
             encoder: &mut encoder,
             timer,
         });
-        if let (Some((steps, front, composite)), Some(c), Some(pass)) =
-            (cloud_steps, cloud_targets, &self.cloud_pass)
-        {
+        // The cloud over the model's pixels.
+        if let (
+            Some((steps, front, composite)),
+            Some(c),
+            Some(pass),
+            Some(clouds),
+            Some((inputs, _)),
+        ) = (
+            cloud_steps,
+            cloud_targets,
+            &self.cloud_pass,
+            &self.clouds,
+            &self.cloud_inputs,
+        ) {
+            let scene = MarchScene {
+                frame,
+                clouds,
+                inputs,
+                surface: &surface_views[0],
+                has_surface,
+                has_front: front_needed,
+                sun_map: self.sun_map.texture(),
+                model_pixels: &c.full,
+                hdr: &targets.hdr,
+            };
+            let marched = pass.encode_clouds(gpu, &mut encoder, &scene, c, (&steps, timer));
+            if let Err(e) = marched {
+                self.targets = Some(targets);
+                return Err(e);
+            }
             if let Some(front) = front {
                 let front_surface = c.front_surface();
                 let front_io = PassIo {
@@ -476,14 +471,16 @@ impl Renderer {
                     front,
                 );
             }
-            pass.encode_composite(
-                gpu,
-                &mut encoder,
-                (&self.atmosphere, &self.frame),
-                (c, &steps),
-                &targets.hdr,
-                timer.map(|t| t.compute_writes(composite)),
-            );
+            if let Some(composite) = composite {
+                pass.encode_composite(
+                    gpu,
+                    &mut encoder,
+                    (&self.atmosphere, &self.frame),
+                    (c, &steps),
+                    &targets.hdr,
+                    timer.map(|t| t.compute_writes(composite)),
+                );
+            }
         }
         if let (Some(step), Some(pass)) = (volumes_step, self.volumes_pass.as_ref()) {
             let scene = VolumesScene {

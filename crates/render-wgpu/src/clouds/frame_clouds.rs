@@ -26,6 +26,12 @@ pub const LAYER_NOT_IN_VIEW: &str = "the cloud layer is not in view";
 /// inside the layer: every ray enters the cloud at the camera, with no air in front.
 pub const CAMERA_IN_LAYER: &str = "the camera is inside the cloud layer";
 
+/// Why the composite is no step of its own when the camera is inside the layer at a
+/// reduced resolution: with no air in front of the cloud, the upsample composites each
+/// pixel over the model's as it finds it (`frame_pass.rs`).
+pub const COMPOSITE_IN_UPSAMPLE: &str =
+    "the camera is inside the cloud layer: the upsample composites each pixel";
+
 /// Why the planner leaves out the spheres under the hand-over band (`CloudForm::Auto`).
 pub const BELOW_HANDOVER: &str = "the camera is below the hand-over to the cloud spheres (50 km)";
 /// Why the planner leaves out the layer's march above the hand-over band.
@@ -125,6 +131,9 @@ pub struct CloudSteps {
     pub spheres: Option<u32>,
     /// The spheres' share of the cloud, in [0, 1] (`handover.rs`'s `sphere_weight`).
     pub weight: f64,
+    /// Whether the march's upsample composites each pixel over the model's, so that the
+    /// composite is no step of its own ([`COMPOSITE_IN_UPSAMPLE`]).
+    pub composite_in_upsample: bool,
 }
 
 /// The cloud steps of `frame` in `plan` (`None`: no clouds, or pruned with the reason
@@ -173,18 +182,46 @@ pub fn plan_clouds(
     };
     let march = step("clouds", weight < 1.0, why_no_march);
     let spheres = step("cloud_spheres", weight > 0.0, why_no_spheres);
-    let steps = Some(CloudSteps {
+    let front = why_nothing_in_front(frame, &clouds.settings);
+    if let Some(why) = front {
+        plan.skip("cloud_front", why);
+    }
+    let steps = CloudSteps {
         march,
         spheres,
         weight,
-    });
-    match why_nothing_in_front(frame, &clouds.settings) {
-        Some(why) => {
-            plan.skip("cloud_front", why);
-            Ok((steps, false))
-        }
-        None => Ok((steps, true)),
-    }
+        composite_in_upsample: march.is_some()
+            && spheres.is_none()
+            && clouds.settings.resolution_divisor > 1
+            && front.is_some(),
+    };
+    Ok((Some(steps), front.is_none()))
+}
+
+/// The cloud steps that follow the model's pixel passes in `plan`: the model's second
+/// run in front of the cloud when `front_needed`, and the composite unless the upsample
+/// does it; their indices in the plan.
+pub fn plan_after_model(
+    steps: &CloudSteps,
+    front_needed: bool,
+    plan: &mut FramePlan,
+) -> (Option<u32>, Option<u32>) {
+    let mut run = |name| {
+        plan.run(name, StepKind::Pass);
+        Some(plan.steps.len() as u32 - 1)
+    };
+    let front = if front_needed {
+        run("cloud_front")
+    } else {
+        None
+    };
+    let composite = if steps.composite_in_upsample {
+        plan.skip("cloud_composite", COMPOSITE_IN_UPSAMPLE);
+        None
+    } else {
+        run("cloud_composite")
+    };
+    (front, composite)
 }
 
 #[cfg(test)]

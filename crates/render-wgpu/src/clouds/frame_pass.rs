@@ -8,10 +8,16 @@
 //! radiance in front of the cloud, its aerial perspective), and the composite of the
 //! cloud with the model's two runs into the HDR target
 //! (`shaders/clouds/frame_composite.wgsl`). The compositing is atmosphere-core's
-//! `clouds/layer/composite.rs`. With `sun_light = map` the marches read the frame's
-//! sun map (`clouds/frame_sun_map.rs`, filled before them) at 33 and 35. Above the
-//! hand-over the cloud spheres (`spheres/frame_spheres.rs`) take the march's place, or
-//! blend with it in the band, and the composite reads their image.
+//! `clouds/layer/composite.rs`. Where the camera is inside the layer at a reduced
+//! resolution (no second run, no spheres) the upsample and the listed march composite
+//! each pixel over the model's as they find it (`frame_upsample_over.wgsl`,
+//! `frame_march_list_over.wgsl`) and the composite is no pass of its own: on a software
+//! rasteriser each full-size pass costs tens of milliseconds even where it does little
+//! (docs/clouds.md, "Clouds in frames"). The march therefore runs after the model's
+//! pixels. With `sun_light = map` the marches read the frame's sun map
+//! (`clouds/frame_sun_map.rs`, filled before them) at 33 and 35. Above the hand-over the
+//! cloud spheres (`spheres/frame_spheres.rs`) take the march's place, or blend with it in
+//! the band, and the composite reads their image.
 
 use crate::clouds::frame_clouds::{CloudSteps, FrameClouds};
 use crate::clouds::layer_inputs::LayerInputs;
@@ -130,6 +136,10 @@ pub struct MarchScene<'a> {
     pub has_front: bool,
     /// The frame's sun map, filled when the layer is lit by it.
     pub sun_map: &'a SunMapTexture,
+    /// The model's pixels and the frame's HDR target, which the upsample writes when it
+    /// composites ([`CloudSteps::composite_in_upsample`]).
+    pub model_pixels: &'a wgpu::Texture,
+    pub hdr: &'a wgpu::Texture,
 }
 
 /// The march (full or reduced, and the upsample) and composite pipelines and their
@@ -140,6 +150,9 @@ pub struct CloudFramePass {
     march_reduced: MarchVariants,
     upsample: ComputePipeline,
     march_list: MarchVariants,
+    /// The upsample and the listed march that composite over the model's pixels.
+    upsample_over: ComputePipeline,
+    march_list_over: MarchVariants,
     composite: ComputePipeline,
     spheres: FrameSpherePass,
     params: wgpu::Buffer,
@@ -180,6 +193,12 @@ impl CloudFramePass {
         ]);
         let mut list = march.to_vec();
         list.push(PixelList::list_entry(9));
+        let over = [
+            texture_entry(11, D2),
+            storage_texture_entry(12, HDR_FORMAT, D2),
+        ];
+        let upsample_over = [upsample.as_slice(), &over].concat();
+        let list_over = [list.as_slice(), &over].concat();
         let composite = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -208,6 +227,18 @@ impl CloudFramePass {
                 "clouds/frame_march_list.wgsl",
                 "cloud frame listed march",
                 &list,
+            ),
+            upsample_over: ComputePipeline::new(
+                gpu,
+                "clouds/frame_upsample_over.wgsl",
+                "main",
+                "cloud frame upsample over the model",
+                &upsample_over,
+            )?,
+            march_list_over: MarchVariants::new(
+                "clouds/frame_march_list_over.wgsl",
+                "cloud frame listed march over the model",
+                &list_over,
             ),
             composite: ComputePipeline::new(
                 gpu,
@@ -242,7 +273,8 @@ impl CloudFramePass {
         gpu.write_uniform(&self.flags, &flags);
         if let Some(march) = steps.march {
             let writes = timer.map(|t| t.compute_writes(march));
-            self.encode_march(gpu, encoder, scene, targets, writes)?;
+            let over = steps.composite_in_upsample;
+            self.encode_march(gpu, encoder, (scene, over), targets, writes)?;
         }
         let Some(step) = steps.spheres else {
             return Ok(());
@@ -271,12 +303,13 @@ impl CloudFramePass {
     /// Records the march of `scene`'s pixels into `targets.cloud` and
     /// `targets.front_geometry`: at full resolution, or reduced and brought to full size
     /// when the settings' resolution divisor is above 1 (timed from the march's start to
-    /// the listed pixels' end).
+    /// the listed pixels' end), composited over the model's pixels into the HDR target
+    /// instead when `over`.
     fn encode_march(
         &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        scene: &MarchScene<'_>,
+        (scene, over): (&MarchScene<'_>, bool),
         targets: &CloudTargets,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), RenderError> {
@@ -361,16 +394,24 @@ impl CloudFramePass {
         })?;
         kept.reset(gpu);
         let PixelList { list, dispatch, .. } = kept;
+        let (model_pixels, hdr) = (view(scene.model_pixels), view(scene.hdr));
         let read = [
             (7, wgpu::BindingResource::TextureView(&image)),
             (8, wgpu::BindingResource::TextureView(&segments)),
             (9, list.as_entire_binding()),
             (10, dispatch.as_entire_binding()),
         ];
-        let bind_group = self
-            .upsample
-            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &read].concat());
-        self.upsample.dispatch(
+        let composited = [
+            (11, wgpu::BindingResource::TextureView(&model_pixels)),
+            (12, wgpu::BindingResource::TextureView(&hdr)),
+        ];
+        let (upsample, march_list, writes) = match over {
+            true => (&self.upsample_over, &self.march_list_over, &composited[..]),
+            false => (&self.upsample, &self.march_list, &[][..]),
+        };
+        let bind_group =
+            upsample.bind_group_numbered(gpu, &[shared.as_slice(), &full, &read, writes].concat());
+        upsample.dispatch(
             encoder,
             "cloud frame upsample",
             &bind_group,
@@ -378,9 +419,9 @@ impl CloudFramePass {
             None,
         );
         let listed = [(9, list.as_entire_binding())];
-        let march_list = self.march_list.for_params(gpu, &params)?;
-        let bind_group =
-            march_list.bind_group_numbered(gpu, &[shared.as_slice(), &full, &listed].concat());
+        let march_list = march_list.for_params(gpu, &params)?;
+        let bind_group = march_list
+            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &listed, writes].concat());
         march_list.dispatch_indirect(
             encoder,
             "cloud frame listed march",

@@ -5,6 +5,7 @@
 //! perspective. Its CPU twin is atmosphere-core's `surface_lighting::radiance_with_surface`.
 
 use crate::gpu::context::GpuContext;
+use crate::gpu::error::RenderError;
 use crate::gpu::pipeline::texture_2d;
 
 /// Per pixel: xyz the outward unit normal, w the distance from the camera along the
@@ -35,6 +36,26 @@ impl SurfaceTexel {
     /// The albedo as the GPU reads it back from 8 bits.
     pub fn stored_albedo(&self) -> [f32; 3] {
         self.albedo.map(|a| unorm8(a) as f32 / 255.0)
+    }
+}
+
+/// Checks a caller's `surface` for a frame of `pixels` pixels: one texel each, every
+/// distance finite and >= 0, every normal of a surface non-zero.
+pub fn check_surface(surface: &[SurfaceTexel], pixels: usize) -> Result<(), RenderError> {
+    if surface.len() != pixels {
+        return Err(RenderError::Frame(format!(
+            "the surface has {} texels for {pixels} pixels",
+            surface.len()
+        )));
+    }
+    match surface.iter().position(|t| {
+        !(t.distance_m.is_finite() && t.distance_m >= 0.0)
+            || t.distance_m > 0.0 && glam::Vec3::from_array(t.normal).try_normalize().is_none()
+    }) {
+        Some(bad) => Err(RenderError::Frame(format!(
+            "surface texel {bad}: the distance must be finite and >= 0 and the normal non-zero"
+        ))),
+        None => Ok(()),
     }
 }
 
