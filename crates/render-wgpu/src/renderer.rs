@@ -325,8 +325,12 @@ impl Renderer {
             Some(t) if (t.hdr.width(), t.hdr.height()) == (frame.width, frame.height) => t,
             _ => Targets::new(&self.gpu, frame.width, frame.height),
         };
-        if clouds_step.is_some() && targets.clouds.is_none() {
-            targets.clouds = Some(CloudTargets::new(&self.gpu, frame.width, frame.height));
+        if let (Some(_), Some(clouds)) = (clouds_step, &self.clouds) {
+            let divisor = clouds.settings.resolution_divisor;
+            if targets.clouds.as_ref().is_none_or(|c| c.divisor != divisor) {
+                let size = (frame.width, frame.height);
+                targets.clouds = Some(CloudTargets::new(&self.gpu, size, divisor));
+            }
         }
         if let Some(texels) = surface {
             targets.surface.upload(&self.gpu, texels);
@@ -354,10 +358,7 @@ impl Renderer {
             return Err(e);
         }
         // (march, the second run's first step, the composite).
-        let cloud_steps = clouds_step.map(|steps| {
-            let (front, composite) = plan_after_model(&steps, front_needed, &mut plan);
-            (steps, front, composite)
-        });
+        let cloud_steps = clouds_step.map(|steps| plan_after_model(steps, front_needed, &mut plan));
         let volumes_step = plan_volumes(frame, &self.volumes, &mut plan);
         if volumes_step.is_some() && self.volumes_pass.is_none() {
             match VolumesPass::new(gpu) {

@@ -200,12 +200,12 @@ pub fn plan_clouds(
 
 /// The cloud steps that follow the model's pixel passes in `plan`: the model's second
 /// run in front of the cloud when `front_needed`, and the composite unless the upsample
-/// does it; their indices in the plan.
+/// does it; `steps` with their indices in the plan.
 pub fn plan_after_model(
-    steps: &CloudSteps,
+    steps: CloudSteps,
     front_needed: bool,
     plan: &mut FramePlan,
-) -> (Option<u32>, Option<u32>) {
+) -> (CloudSteps, Option<u32>, Option<u32>) {
     let mut run = |name| {
         plan.run(name, StepKind::Pass);
         Some(plan.steps.len() as u32 - 1)
@@ -221,7 +221,7 @@ pub fn plan_after_model(
     } else {
         run("cloud_composite")
     };
-    (front, composite)
+    (steps, front, composite)
 }
 
 #[cfg(test)]

@@ -63,10 +63,16 @@ pub struct CloudTargets {
     /// The pixels a reduced march's upsample leaves to the listed march, or why the
     /// device cannot hold a list of this size.
     pub march_list: Result<PixelList, String>,
+    /// The resolution divisor these were made for, and above 1 the reduced march's
+    /// image and segments.
+    pub divisor: u32,
+    reduced: Option<[wgpu::Texture; 2]>,
 }
 
 impl CloudTargets {
-    pub fn new(gpu: &GpuContext, width: u32, height: u32) -> CloudTargets {
+    /// The targets of a frame of `width` x `height` whose layer is marched at one pixel
+    /// in `divisor` x `divisor`.
+    pub fn new(gpu: &GpuContext, (width, height): (u32, u32), divisor: u32) -> CloudTargets {
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
         let image = |label, format| texture_2d(&gpu.device, label, (width, height), format, usage);
         let front_albedo = texture_2d(
@@ -95,6 +101,26 @@ impl CloudTargets {
             front_geometry: image("cloud front geometry", GEOMETRY_FORMAT),
             front_albedo,
             march_list: PixelList::new(gpu, "cloud frame", (width, height)),
+            divisor,
+            reduced: (divisor > 1).then(|| {
+                let size = reduced_size(width, height, divisor);
+                [
+                    texture_2d(
+                        &gpu.device,
+                        "cloud reduced image",
+                        size,
+                        CLOUD_FORMAT,
+                        usage,
+                    ),
+                    texture_2d(
+                        &gpu.device,
+                        "cloud reduced segments",
+                        size,
+                        SEGMENT_FORMAT,
+                        usage,
+                    ),
+                ]
+            }),
         }
     }
 
@@ -353,24 +379,18 @@ impl CloudFramePass {
             );
             return Ok(());
         }
-        let size = reduced_size(frame.width, frame.height, divisor);
-        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-        let image = texture_2d(
-            &gpu.device,
-            "cloud reduced image",
-            size,
-            CLOUD_FORMAT,
-            usage,
-        );
-        let segments = texture_2d(
-            &gpu.device,
-            "cloud reduced segments",
-            size,
-            SEGMENT_FORMAT,
-            usage,
-        );
-        let groups = texel_groups(&image);
-        let (image, segments) = (view(&image), view(&segments));
+        let Some([image, segments]) = targets
+            .reduced
+            .as_ref()
+            .filter(|_| targets.divisor == divisor)
+        else {
+            return Err(RenderError::Frame(format!(
+                "the cloud targets were made for resolution divisor {}, not {divisor}",
+                targets.divisor
+            )));
+        };
+        let groups = texel_groups(image);
+        let (image, segments) = (view(image), view(segments));
         let (start, end) = split_timestamps(timestamps);
         let reduced = [
             (3, wgpu::BindingResource::TextureView(&image)),
