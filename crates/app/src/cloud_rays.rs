@@ -14,11 +14,14 @@
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
+use atmosphere_core::clouds::layer::air_shadow::{AirShadow, CloudAirShadow};
 use atmosphere_core::clouds::layer::composite::radiance_with_cloud_segment;
+use atmosphere_core::clouds::layer::direct_shade::DirectCloudShade;
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::orders::{ANGLES, ScatteringOrders};
 use atmosphere_core::clouds::layer::settings::{LayerSettings, MAX_DETAIL_OCTAVES};
+use atmosphere_core::clouds::layer::shadowed_air::ShadowedAir;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::clouds::reference::camera_path::PathScene;
@@ -53,7 +56,22 @@ pub struct CloudRays {
     orders: ScatteringOrders,
     phases: Vec<PhaseTableSampler>,
     sun: SunThroughAtmosphere,
+    /// The medium of the cloud's shadow in the air below the base, when the rays take
+    /// it ([`CloudRays::shading_air`]).
+    air_shadow: Option<CloudAirShadow>,
 }
+
+/// The sun maps of a frame whose camera stands at a ray's origin: the one its layer is
+/// lit by (`sun_light = map`), and the one of the cloud's shadow in the air.
+#[derive(Debug, Default)]
+pub struct RayMaps {
+    pub light: Option<CloudSunMap>,
+    pub air: Option<CloudSunMap>,
+}
+
+/// The steps of the reference's march towards the sun through the layer from each
+/// sample of its shadow in the air, and the longest sample along the view ray, m.
+const DIRECT_SHADE: (usize, f64) = (64, 100.0);
 
 impl CloudRays {
     /// The layer of `settings` over `cover` on `atmosphere`'s planet; `orders` (A_n and
@@ -97,7 +115,22 @@ impl CloudRays {
                 .collect(),
             orders,
             sun: SunThroughAtmosphere::new(atmosphere, sky.spectra()),
+            air_shadow: None,
         })
+    }
+
+    /// These rays with the cloud's shadow in the air below the base when `shafts`, as
+    /// frames shade it (docs/clouds.md, "Cloud shadows in the air"): a method's air from
+    /// the frame's sun map, the path tracer's from the field itself (`direct_shade.rs`),
+    /// through `atmosphere` at `sky`'s wavelengths.
+    pub fn shading_air(
+        mut self,
+        shafts: bool,
+        atmosphere: &Atmosphere,
+        sky: &dyn SkyModel,
+    ) -> CloudRays {
+        self.air_shadow = shafts.then(|| CloudAirShadow::new(atmosphere, sky));
+        self
     }
 
     pub fn settings(&self) -> &LayerSettings {
@@ -109,17 +142,25 @@ impl CloudRays {
         self.layer.shell().ground_radius_m
     }
 
-    /// The sun map of a frame whose camera is at `camera_m`, at the resolution frames
-    /// light their layer with (`SunMapResolution::LIT`); `None` unless the layer is lit
-    /// by the map.
-    pub fn sun_map(&self, camera_m: DVec3, sun: DVec3) -> anyhow::Result<Option<CloudSunMap>> {
+    /// The sun maps of a frame whose camera is at `camera_m` with the unit `sun`: the
+    /// one it lights its layer with when the layer is lit by the map
+    /// (`SunMapResolution::LIT`), and the one of the shadow in the air when the rays
+    /// take it (one level, as frames without a surface make it).
+    pub fn maps(&self, camera_m: DVec3, sun: DVec3) -> anyhow::Result<RayMaps> {
         use atmosphere_core::clouds::layer::settings::SunLight;
-        if self.settings().sun_light != SunLight::Map {
-            return Ok(None);
-        }
-        let resolution = SunMapResolution::LIT;
-        let grid = CloudSunMap::grid_for(self.layer.shell(), camera_m, &resolution)?;
-        Ok(Some(CloudSunMap::new(&self.layer, grid, sun, &resolution)?))
+        let map = |resolution: SunMapResolution| -> anyhow::Result<CloudSunMap> {
+            let grid = CloudSunMap::grid_for(self.layer.shell(), camera_m, &resolution)?;
+            Ok(CloudSunMap::new(&self.layer, grid, sun, &resolution)?)
+        };
+        let lit = self.settings().sun_light == SunLight::Map;
+        let air = SunMapResolution {
+            levels: 1,
+            ..SunMapResolution::default()
+        };
+        Ok(RayMaps {
+            light: lit.then(|| map(SunMapResolution::LIT)).transpose()?,
+            air: self.air_shadow.as_ref().map(|_| map(air)).transpose()?,
+        })
     }
 
     /// `ray` by `model` with the layer's march; `sun_map` is [`CloudRays::sun_map`] at
@@ -140,19 +181,35 @@ impl CloudRays {
     }
 
     /// `ray` by the path tracer through the finest field, with `air` the sky model in
-    /// front of, behind and around the cloud.
+    /// front of, behind and around the cloud, the view ray's own air in the field's
+    /// shadow when the rays take it.
     pub fn reference(
         &self,
         air: &dyn SkyModel,
         ray: &ViewRay,
         paths: &PathSettings,
     ) -> Result<CloudAnswer, ModelError> {
+        let (steps, sample_m) = DIRECT_SHADE;
+        let direct = DirectCloudShade {
+            layer: &self.finest,
+            steps,
+            sample_m,
+        };
+        let shaded = self.air_shadow.as_ref().map(|shadow| ShadowedAir {
+            model: air,
+            shadow,
+            air: AirShadow {
+                terrain: None,
+                clouds: &direct,
+            },
+        });
         let scene = PathScene {
             layer: &self.finest,
             orders: &self.orders,
             phases: &self.phases,
             sun: &self.sun,
             sky: air,
+            view_air: shaded.as_ref().map(|s| s as &dyn SkyModel),
             sun_direction: ray.sun_direction.normalize(),
         };
         let traced = radiance_path_traced(&scene, ray, paths)?;
@@ -203,14 +260,29 @@ impl CloudRays {
     /// `ray` by `model` in the cloud's `form`: the layer's march, the spheres, or
     /// (`auto`) both blended by the spheres' weight at the ray origin's altitude, as
     /// frames blend the two images; `spheres` must be given where the weight is not 0.
+    /// `maps` are [`CloudRays::maps`] at the ray's origin; with the shadow in the air,
+    /// the model's air is shaded by `maps.air`.
     pub fn in_form(
         &self,
         model: &dyn SkyModel,
         ray: &ViewRay,
         form: CloudForm,
-        sun_map: Option<&CloudSunMap>,
+        maps: &RayMaps,
         spheres: Option<&CloudSpheres>,
     ) -> Result<CloudAnswer, ModelError> {
+        let shaded = match (&self.air_shadow, &maps.air) {
+            (Some(shadow), Some(map)) => Some(ShadowedAir {
+                model,
+                shadow,
+                air: AirShadow {
+                    terrain: None,
+                    clouds: map,
+                },
+            }),
+            _ => None,
+        };
+        let model = shaded.as_ref().map_or(model, |s| s as &dyn SkyModel);
+        let sun_map = maps.light.as_ref();
         let altitude_m = ray.origin_m.length() - self.ground_radius_m();
         let w = sphere_weight(form, altitude_m);
         if w <= 0.0 {

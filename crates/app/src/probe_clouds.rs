@@ -93,7 +93,11 @@ pub fn evaluate(
         ),
         other => (prepare(other, atmosphere, settings)?, None),
     };
-    let clouds = CloudRays::new(layer, cover, orders, atmosphere, sky.as_ref())?;
+    let clouds = CloudRays::new(layer, cover, orders, atmosphere, sky.as_ref())?.shading_air(
+        args.clouds.shafts.unwrap_or(true),
+        atmosphere,
+        sky.as_ref(),
+    );
     let placed: Vec<ViewRay> = rays.iter().map(|ray| place.placed(ray)).collect();
     let spheres = match paths {
         Some(_) => Vec::new(),
@@ -103,12 +107,12 @@ pub fn evaluate(
         map_with_progress("probe", "rays", &placed, |ray| match &paths {
             Some(paths) => clouds.reference(sky.as_ref(), ray, paths),
             None => {
-                let map = clouds
-                    .sun_map(ray.origin_m, ray.sun_direction.normalize())
+                let maps = clouds
+                    .maps(ray.origin_m, ray.sun_direction.normalize())
                     .map_err(|e| ModelError::Settings(format!("{e:#}")))?;
                 let sun = ray.sun_direction.normalize();
                 let made = spheres.iter().find(|(s, _)| *s == sun).map(|(_, m)| m);
-                clouds.in_form(sky.as_ref(), ray, form, map.as_ref(), made)
+                clouds.in_form(sky.as_ref(), ray, form, &maps, made)
             }
         });
     let mut names = vec!["T_cloud".to_string()];

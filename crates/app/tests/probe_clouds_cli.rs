@@ -144,6 +144,77 @@ fn below_an_opaque_deck_riley_is_too_dark_and_eddington_follows_the_path_tracer(
     }
 }
 
+/// `cover.png` in `dir`: a deck in stripes along the meridians, one texel of cloud and
+/// one of clear sky over 4096 x 2048 (a period of about 19 km at 10 N).
+fn striped_cover(dir: &Path) -> PathBuf {
+    let cover = dir.join("striped.png");
+    image::GrayImage::from_fn(4096, 2048, |x, _| {
+        image::Luma([if x % 2 == 0 { 255 } else { 0 }])
+    })
+    .save(&cover)
+    .unwrap();
+    cover
+}
+
+#[test]
+fn under_a_deck_with_gaps_the_air_lies_in_its_shadow_for_the_methods_and_the_path_tracer() {
+    // From 1 km, 3 degrees below the horizon towards the sun 30 degrees up: 15 to 20 km
+    // of air below a deck at 2 km in stripes, the ray meeting no cloud.
+    let (dir, csv, _) = inputs("1000,93,60,0\n");
+    let cover = striped_cover(dir.path());
+    let mut clouds = vec![
+        "--clouds",
+        "--cloud-cover",
+        cover.to_str().unwrap(),
+        "--cloud-base-m",
+        "2000",
+        "--cloud-thickness-m",
+        "1000",
+    ];
+    clouds.extend(PLACE);
+    let with = |more: &[&'static str]| {
+        let mut flags = clouds.clone();
+        flags.extend(more);
+        flags
+    };
+    let (header, shaded) = probe("hillaire", &csv, &with(&[]));
+    let (_, lit) = probe("hillaire", &csv, &with(&["--cloud-shafts", "false"]));
+    let (traced_header, traced) = probe("reference", &csv, &with(&["--target-error", "0.05"]));
+    let (_, traced_lit) = probe(
+        "reference",
+        &csv,
+        &with(&["--target-error", "0.05", "--cloud-shafts", "false"]),
+    );
+    assert_eq!(shaded[0][column(&header, "T_cloud")], 1.0);
+    assert_eq!(traced[0][column(&traced_header, "paths")], 0.0);
+    for nm in ["680", "550", "440"] {
+        let l = format!("L_{nm}");
+        let (map, direct) = (
+            shaded[0][column(&header, &l)],
+            traced[0][column(&traced_header, &l)],
+        );
+        let (plain, plain_traced) = (
+            lit[0][column(&header, &l)],
+            traced_lit[0][column(&traced_header, &l)],
+        );
+        println!("{nm} nm: lit {plain:.5}, the map's shadow {map:.5}, the field's {direct:.5}");
+        // Without the shadow both answer the model's air alone.
+        assert_eq!(plain, plain_traced, "{nm} nm");
+        // The stripes' shadow takes a visible share of the air's light...
+        assert!(
+            map < 0.97 * plain,
+            "{nm} nm: {map} against {plain} unshaded"
+        );
+        // ...and the frames' map (1.6 km cells, 16 steps) gives the field's own within
+        // a few per cent of what the shadow takes.
+        let loss = plain - direct;
+        assert!(
+            (map - direct).abs() < 0.1 * loss,
+            "{nm} nm: map {map}, field {direct}, unshaded {plain}"
+        );
+    }
+}
+
 #[test]
 fn bad_cloud_flags_are_named() {
     let (_dir, csv, _cover) = inputs("0,20,40,180\n");

@@ -120,6 +120,7 @@ fn without_cloud_the_answer_is_the_models_and_bad_settings_are_named() {
         phases: &phases,
         sun: &sun,
         sky: sky.as_ref(),
+        view_air: None,
         sun_direction: ray.sun_direction,
     };
     let traced = radiance_path_traced(&scene, &ray, &PathSettings::default()).unwrap();

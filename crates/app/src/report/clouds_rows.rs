@@ -14,7 +14,7 @@ use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings, SunLi
 use atmosphere_core::clouds::spheres::handover::CloudForm;
 use atmosphere_core::models::sky_model::ViewRay;
 
-use crate::cloud_rays::CloudAnswer;
+use crate::cloud_rays::{CloudAnswer, RayMaps};
 use crate::report::clouds_scene::ViewScene;
 
 /// Pixels of the 1280 x 720 frame a CPU time per ray is scaled to.
@@ -177,18 +177,16 @@ pub fn answer(row: &CloudRow, scene: &ViewScene) -> anyhow::Result<Option<RowAns
     let camera = scene.rays[0].origin_m;
     let sun = scene.rays[0].sun_direction.normalize();
     let start = Instant::now();
-    let map = match row {
-        CloudRow::Layer { .. } => clouds.sun_map(camera, sun)?,
-        CloudRow::Spheres => None,
+    let maps = match row {
+        CloudRow::Layer { .. } => clouds.maps(camera, sun)?,
+        CloudRow::Spheres => RayMaps::default(),
     };
     let spheres = match row {
         CloudRow::Spheres => Some(clouds.spheres(sun)?),
         CloudRow::Layer { .. } => None,
     };
     let per_frame_s = start.elapsed().as_secs_f64();
-    let one = |ray: &ViewRay| {
-        clouds.in_form(scene.air(), ray, row.form(), map.as_ref(), spheres.as_ref())
-    };
+    let one = |ray: &ViewRay| clouds.in_form(scene.air(), ray, row.form(), &maps, spheres.as_ref());
     let answers = scene
         .rays
         .iter()

@@ -3,7 +3,8 @@
 //! Eq. 17-18, the shadowed part marched; `models::hillaire::shafts`) of the single
 //! scattering that the cloud takes from the sun beyond the terrain's shadow, with the
 //! cloud's transmittance from the frame's sun map (`sun_map.rs`, Dobashi, Yamamoto and
-//! Nishita 2002 section 5.4's attenuation ratio). The sun's visibility at a point x is
+//! Nishita 2002 section 5.4's attenuation ratio), or for the path-traced reference from
+//! the field itself (`direct_shade.rs`; [`CloudShade`]). The sun's visibility at a point x is
 //!
 //! `V(x) = V_terrain(x) T_cloud(x)` below the layer's base, `V_terrain(x)` above it,
 //!
@@ -35,19 +36,55 @@ use crate::optics::transmittance_table::{BRUNETON_TABLE_SIZE, TransmittanceTable
 use crate::optics::view_segment::ViewSegment;
 use crate::shafts::{ShadowMap, SunVisibility, shaft_samples, shaft_span_m};
 
+/// What the cloud's shadow in the air is taken from: the sun's transmittance through the
+/// layer from a point below its base, how far along a view ray the shadow is marched
+/// and in how many samples. Frames take the frame's sun map ([`CloudSunMap`]); the
+/// path-traced reference marches the field itself (`direct_shade.rs`).
+pub trait CloudShade: std::fmt::Debug + Sync {
+    /// The radius of the layer's base, m.
+    fn base_radius_m(&self) -> f64;
+    /// The sun's transmittance through the cloud from `point_m` (planet-centred, below
+    /// the base) along the unit `sun`.
+    fn sun_transmittance(&self, point_m: DVec3, sun: DVec3) -> f64;
+    /// How far the shadow reaches along a ray below the base, m (the map's width).
+    fn reach_m(&self) -> f64;
+    /// The samples of a span `span_m` long.
+    fn samples(&self, span_m: f64) -> usize;
+}
+
+/// The frame's map: the shadow as far as the map reaches, two samples per cell within
+/// the shafts' fewest and most (`shafts::shaft_samples`).
+impl CloudShade for CloudSunMap {
+    fn base_radius_m(&self) -> f64 {
+        self.base_radius_m
+    }
+
+    fn sun_transmittance(&self, point_m: DVec3, _sun: DVec3) -> f64 {
+        self.transmittance(point_m)
+    }
+
+    fn reach_m(&self) -> f64 {
+        self.grid.cell_m * self.grid.size as f64
+    }
+
+    fn samples(&self, span_m: f64) -> usize {
+        shaft_samples(span_m, self.grid.cell_m)
+    }
+}
+
 /// The sun's visibility from a point of the air past the terrain (when there is a map)
 /// and the cloud layer's base.
 #[derive(Clone, Copy, Debug)]
 pub struct AirShadow<'a> {
     pub terrain: Option<&'a ShadowMap>,
-    pub clouds: &'a CloudSunMap,
+    pub clouds: &'a dyn CloudShade,
 }
 
 impl SunVisibility for AirShadow<'_> {
     fn sun_visible(&self, point_m: DVec3, sun: DVec3) -> f64 {
         let terrain = self.terrain.map_or(1.0, |m| m.sun_visible(point_m, sun));
-        if terrain > 0.0 && point_m.length() < self.clouds.base_radius_m {
-            terrain * self.clouds.transmittance(point_m)
+        if terrain > 0.0 && point_m.length() < self.clouds.base_radius_m() {
+            terrain * self.clouds.sun_transmittance(point_m, sun)
         } else {
             terrain
         }
@@ -62,23 +99,21 @@ struct CloudPart<'a>(AirShadow<'a>);
 impl SunVisibility for CloudPart<'_> {
     fn sun_visible(&self, point_m: DVec3, sun: DVec3) -> f64 {
         let AirShadow { terrain, clouds } = self.0;
-        if point_m.length() >= clouds.base_radius_m {
+        if point_m.length() >= clouds.base_radius_m() {
             return 1.0;
         }
         let terrain = terrain.map_or(1.0, |m| m.sun_visible(point_m, sun));
-        1.0 - terrain * (1.0 - clouds.transmittance(point_m))
+        1.0 - terrain * (1.0 - clouds.sun_transmittance(point_m, sun))
     }
 }
 
 impl AirShadow<'_> {
     /// The part of `segment` (distances from its start, m) below the layer's base as far
-    /// as the map reaches, and its samples; `None` when the ray stays above the base.
+    /// as the shade reaches, and its samples; `None` when the ray stays above the base.
     pub fn span(&self, segment: &ViewSegment) -> Option<((f64, f64), usize)> {
-        let grid = &self.clouds.grid;
-        let width = grid.cell_m * grid.size as f64;
-        let top = self.clouds.base_radius_m;
-        let span = shaft_span_m(segment.r, segment.mu, segment.length, top, width)?;
-        Some((span, shaft_samples(span.1 - span.0, grid.cell_m)))
+        let (top, reach) = (self.clouds.base_radius_m(), self.clouds.reach_m());
+        let span = shaft_span_m(segment.r, segment.mu, segment.length, top, reach)?;
+        Some((span, self.clouds.samples(span.1 - span.0)))
     }
 
     /// The far end of [`AirShadow::span`] where the span holds any air

@@ -14,6 +14,7 @@
 pub mod air_shadow;
 pub mod air_shadow_upsample;
 pub mod composite;
+pub mod direct_shade;
 pub mod droplets;
 pub mod eddington;
 pub mod field;
@@ -23,6 +24,7 @@ pub mod presets;
 pub mod profile;
 pub mod segment_upsample;
 pub mod settings;
+pub mod shadowed_air;
 pub mod shadowed_surface;
 pub mod shell;
 pub mod sun_map;

@@ -93,7 +93,7 @@ pub fn optical_depth_to_sun(layer: &CloudLayer, point: DVec3, sun: DVec3, steps:
 
 /// From `point` inside the sphere of `radius` along the unit `sun`: the distance to where
 /// the ray leaves it.
-fn base_crossing(point: DVec3, sun: DVec3, radius: f64) -> f64 {
+pub fn base_crossing(point: DVec3, sun: DVec3, radius: f64) -> f64 {
     let r = point.length();
     distance_to_exit(r, (point.dot(sun) / r).clamp(-1.0, 1.0), radius)
 }

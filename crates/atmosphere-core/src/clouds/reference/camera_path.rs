@@ -101,6 +101,9 @@ pub struct PathScene<'a> {
     /// The air around the cloud: the composite's answers, and the light where a path
     /// leaves the layer (tabulated per view ray, `environment.rs`).
     pub sky: &'a dyn SkyModel,
+    /// The view ray's own air for the composite (L_full, L_front) where it differs from
+    /// `sky`: the cloud's shadow in it (`layer/shadowed_air.rs`); `None`: `sky`'s.
+    pub view_air: Option<&'a dyn SkyModel>,
     /// Unit vector towards the sun.
     pub sun_direction: DVec3,
 }

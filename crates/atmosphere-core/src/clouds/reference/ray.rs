@@ -1,7 +1,8 @@
 //! A view ray's radiance through the sky model's air and the cloud layer by the path
 //! tracer: the layer's composite (`layer/composite.rs`),
 //!     L = L_front + T_front L_cloud + T_cloud (L_full - L_front),
-//! with the same model answers L_full, L_front, T_front as the march's, but the cloud's
+//! with the same model answers L_full, L_front, T_front as the march's (the cloud's
+//! shadow in them where `PathScene::view_air` gives it), but the cloud's
 //! own light L_cloud path traced (`camera_path.rs`) and its transmittance T_cloud
 //! integrated along the ray's first crossing of the layer by the midpoint rule in steps
 //! of at most [`TRANSMITTANCE_STEP_M`]. Each path draws its first collision on the
@@ -60,7 +61,8 @@ pub fn radiance_path_traced(
             scene.sky.wavelengths_nm().len()
         )));
     }
-    let full = scene.sky.radiance(ray)?;
+    let view_air = scene.view_air.unwrap_or(scene.sky);
+    let full = view_air.radiance(ray)?;
     let direction = ray.direction.normalize();
     let Some((t0, t1)) = scene.layer.shell().first_segment(
         ray.origin_m,
@@ -74,7 +76,7 @@ pub fn radiance_path_traced(
         });
     };
     let front = if t0 > 0.0 {
-        scene.sky.radiance(&ViewRay {
+        view_air.radiance(&ViewRay {
             max_distance_m: Some(t0),
             ..*ray
         })?
