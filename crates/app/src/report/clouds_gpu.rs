@@ -103,8 +103,8 @@ fn measure(
         form: row.form(),
         spheres: SphereSettings::default(),
         prune: true,
-        // The cloud methods' own cost, without the cloud's shadow in the air.
-        shafts: false,
+        // The cloud's shadow in the air as the rows' errors take it.
+        shafts: scene.view.shafts,
     };
     let step = match row {
         CloudRow::Layer { .. } => "clouds",

@@ -99,8 +99,10 @@ pub fn markdown(m: &Measured) -> String {
          answers the same rays as the cloud path tracer (all orders, next-event estimation \
          of the sun through the atmosphere, the droplets' Lorenz-Mie phase function; its \
          answers cached in `clouds_reference.csv` with their standard errors), \
-         composited with the same air (hillaire) at 680, 550 and 440 nm, as `atmos probe \
-         --clouds` answers them (docs/clouds.md). Every view stands at {} N, {} E with the \
+         composited with the same air (hillaire) at 680, 550 and 440 nm, below the \
+         cloud's base in the cloud's shadow (the methods' from the frame's sun map, the \
+         path tracer's from the field), as `atmos probe --clouds` answers them \
+         (docs/clouds.md). Every view stands at {} N, {} E with the \
          sun at azimuth {} (east); look: elevation of the optical axis, azimuth from the \
          sun's.\n",
         PLACE.latitude_deg, PLACE.longitude_deg, PLACE.sun_azimuth_deg

@@ -52,7 +52,8 @@ impl ViewScene {
             &atmosphere,
             air.as_ref(),
         )
-        .with_context(|| format!("view {}", view.id()))?;
+        .with_context(|| format!("view {}", view.id()))?
+        .shading_air(view.shafts, &atmosphere, air.as_ref());
         Ok(ViewScene {
             rays: view.rays()?,
             view,
@@ -93,13 +94,14 @@ impl ViewScene {
 
     /// The rays of the layer marched with `march`'s settings ([`ViewScene::cloud_with`]).
     pub fn marched(&self, march: &LayerSettings) -> anyhow::Result<CloudRays> {
-        CloudRays::new(
+        let rays = CloudRays::new(
             self.cloud_with(march),
             self.cover.clone(),
             self.orders.clone(),
             &self.atmosphere,
             self.air(),
-        )
+        )?;
+        Ok(rays.shading_air(self.view.shafts, &self.atmosphere, self.air()))
     }
 
     /// The path tracer's answer for `ray`, to the view's stopping rule.

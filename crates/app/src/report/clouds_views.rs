@@ -68,6 +68,10 @@ pub struct CloudView {
     pub paths: PathSettings,
     /// Whether the cloud spheres' row is measured here (the view from orbit).
     pub spheres: bool,
+    /// Whether the cloud shadows the air below its base, as frames take it by default
+    /// (`--cloud-shafts`): the methods' air from the sun map, the path tracer's from
+    /// the field (`cloud_rays.rs`).
+    pub shafts: bool,
 }
 
 impl CloudView {
@@ -136,6 +140,7 @@ pub fn cloud_views(columns: usize, rows: usize) -> Vec<CloudView> {
             cover: ViewCover::Uniform(1.0),
             paths: paths(0.04, 40_000),
             spheres: false,
+            shafts: true,
         },
         // 2 km above a full deck of optical depth about 11, looking 30 degrees down
         // across the sun's azimuth.
@@ -153,6 +158,7 @@ pub fn cloud_views(columns: usize, rows: usize) -> Vec<CloudView> {
             cover: ViewCover::Uniform(1.0),
             paths: paths(0.04, 40_000),
             spheres: false,
+            shafts: true,
         },
         // The layer's own cumulus-type cloud: a thin cover makes shallow clouds (their
         // top at 0.35 + 0.65 cover of the layer) and full-strength detail noise breaks
@@ -172,6 +178,7 @@ pub fn cloud_views(columns: usize, rows: usize) -> Vec<CloudView> {
             cover: ViewCover::Uniform(0.4),
             paths: paths(0.05, 40_000),
             spheres: false,
+            shafts: true,
         },
         // 400 km up, looking 60 degrees down at cells of deck about 300 km across.
         CloudView {
@@ -188,6 +195,7 @@ pub fn cloud_views(columns: usize, rows: usize) -> Vec<CloudView> {
             cover: ViewCover::Cells { per_radian: 70.0 },
             paths: paths(0.05, 40_000),
             spheres: true,
+            shafts: true,
         },
     ]
 }
