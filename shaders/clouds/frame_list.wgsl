@@ -1,8 +1,7 @@
 // Library: the list of a frame's pixels that the upsample by segment
 // (`frame_upsample_pixel.wgsl`) cannot interpolate (`common/pixel_list.wgsl`), and the
-// march of one listed pixel, which `frame_march_list.wgsl` (or, composited over the
-// model's pixels, `frame_march_list_over.wgsl`) runs by an indirect dispatch over the
-// list alone (render-wgpu's `clouds/frame_pass.rs`). CPU twin: atmosphere-core's
+// march of one listed pixel, which `frame_march_list.wgsl` runs by an indirect dispatch
+// over the list alone (render-wgpu's `clouds/frame_pass.rs`). CPU twin: atmosphere-core's
 // `clouds/layer/segment_upsample.rs` (`upsample_by_segment`'s `march`).
 
 #import clouds/frame_pixel_cloud.wgsl

@@ -4,8 +4,7 @@
 // otherwise it interpolates bilinearly between the reduced rays that marched the same
 // segment of the layer (`segment_taps.wgsl`); where they weigh too little (the edge of a
 // mountain in front of or inside the cloud) the pixel is listed (`frame_list.wgsl`) for
-// a pass that marches the list. Used by `frame_upsample.wgsl` and
-// `frame_upsample_over.wgsl`.
+// a pass that marches the list. Used by `frame_upsample.wgsl`.
 
 #import clouds/frame_list.wgsl
 #import clouds/segment_taps.wgsl

@@ -4,7 +4,7 @@
 //! models, with a surface in front of, inside and behind the cloud (in its shadow); the
 //! interactive preset's march at a third of the resolution against `segment_upsample.rs`,
 //! the mountain in front of the cloud left as at full resolution, and inside the layer,
-//! where the upsample composites each pixel itself (`frame_upsample_over.wgsl`, no
+//! where the upsample composites each pixel itself (`frame_upsample.wgsl`'s `OVER_MODEL`, no
 //! composite pass); cover 0 leaves the
 //! frame exactly as without clouds; pruning changes nothing; bad input is named. The
 //! interactive frame's layer is lit by the frame's sun map (`sun_light = map`), its CPU

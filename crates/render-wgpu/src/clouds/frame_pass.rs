@@ -10,8 +10,8 @@
 //! (`shaders/clouds/frame_composite.wgsl`). The compositing is atmosphere-core's
 //! `clouds/layer/composite.rs`. Where the camera is inside the layer at a reduced
 //! resolution (no second run, no spheres) the upsample and the listed march composite
-//! each pixel over the model's as they find it (`frame_upsample_over.wgsl`,
-//! `frame_march_list_over.wgsl`) and the composite is no pass of its own: on a software
+//! each pixel over the model's as they find it (their `OVER_MODEL` variants,
+//! `frame_over_full.wgsl`) and the composite is no pass of its own: on a software
 //! rasteriser each full-size pass costs tens of milliseconds even where it does little
 //! (docs/clouds.md, "Clouds in frames"). The march therefore runs after the model's
 //! pixels. With `sun_light = map` the marches read the frame's sun map
@@ -210,6 +210,12 @@ impl CloudFramePass {
             march[8],
             storage_texture_entry(7, SEGMENT_FORMAT, D2),
         ];
+        // Both variants of the upsample and the listed march bind the model's pixels and
+        // the HDR target (11, 12), which `OVER_MODEL` writes.
+        let over = [
+            texture_entry(11, D2),
+            storage_texture_entry(12, HDR_FORMAT, D2),
+        ];
         let mut upsample = march.to_vec();
         upsample.extend([
             texture_entry(7, D2),
@@ -217,14 +223,24 @@ impl CloudFramePass {
             PixelList::list_entry(9),
             PixelList::dispatch_entry(10),
         ]);
+        upsample.extend(over);
         let mut list = march.to_vec();
         list.push(PixelList::list_entry(9));
-        let over = [
-            texture_entry(11, D2),
-            storage_texture_entry(12, HDR_FORMAT, D2),
-        ];
-        let upsample_over = [upsample.as_slice(), &over].concat();
-        let list_over = [list.as_slice(), &over].concat();
+        list.extend(over);
+        let upsample_variant = |over_model: bool, label| {
+            ComputePipeline::with_constants(
+                gpu,
+                "clouds/frame_upsample.wgsl",
+                "main",
+                label,
+                &upsample,
+                &[("OVER_MODEL", f64::from(u8::from(over_model)))],
+            )
+        };
+        let list_variant = |over_model: bool, label| {
+            MarchVariants::new("clouds/frame_march_list.wgsl", label, &list)
+                .with_constant("OVER_MODEL", f64::from(u8::from(over_model)))
+        };
         let composite = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -242,30 +258,10 @@ impl CloudFramePass {
                 "cloud frame reduced march",
                 &reduced,
             ),
-            upsample: ComputePipeline::new(
-                gpu,
-                "clouds/frame_upsample.wgsl",
-                "main",
-                "cloud frame upsample",
-                &upsample,
-            )?,
-            march_list: MarchVariants::new(
-                "clouds/frame_march_list.wgsl",
-                "cloud frame listed march",
-                &list,
-            ),
-            upsample_over: ComputePipeline::new(
-                gpu,
-                "clouds/frame_upsample_over.wgsl",
-                "main",
-                "cloud frame upsample over the model",
-                &upsample_over,
-            )?,
-            march_list_over: MarchVariants::new(
-                "clouds/frame_march_list_over.wgsl",
-                "cloud frame listed march over the model",
-                &list_over,
-            ),
+            upsample: upsample_variant(false, "cloud frame upsample")?,
+            march_list: list_variant(false, "cloud frame listed march"),
+            upsample_over: upsample_variant(true, "cloud frame upsample over the model")?,
+            march_list_over: list_variant(true, "cloud frame listed march over the model"),
             composite: ComputePipeline::new(
                 gpu,
                 "clouds/frame_composite.wgsl",
@@ -425,12 +421,14 @@ impl CloudFramePass {
             (11, wgpu::BindingResource::TextureView(&model_pixels)),
             (12, wgpu::BindingResource::TextureView(&hdr)),
         ];
-        let (upsample, march_list, writes) = match over {
-            true => (&self.upsample_over, &self.march_list_over, &composited[..]),
-            false => (&self.upsample, &self.march_list, &[][..]),
+        let (upsample, march_list) = match over {
+            true => (&self.upsample_over, &self.march_list_over),
+            false => (&self.upsample, &self.march_list),
         };
-        let bind_group =
-            upsample.bind_group_numbered(gpu, &[shared.as_slice(), &full, &read, writes].concat());
+        let bind_group = upsample.bind_group_numbered(
+            gpu,
+            &[shared.as_slice(), &full, &read, &composited].concat(),
+        );
         upsample.dispatch(
             encoder,
             "cloud frame upsample",
@@ -440,8 +438,10 @@ impl CloudFramePass {
         );
         let listed = [(9, list.as_entire_binding())];
         let march_list = march_list.for_params(gpu, &params)?;
-        let bind_group = march_list
-            .bind_group_numbered(gpu, &[shared.as_slice(), &full, &listed, writes].concat());
+        let bind_group = march_list.bind_group_numbered(
+            gpu,
+            &[shared.as_slice(), &full, &listed, &composited].concat(),
+        );
         march_list.dispatch_indirect(
             encoder,
             "cloud frame listed march",

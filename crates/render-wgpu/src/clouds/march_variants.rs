@@ -25,6 +25,8 @@ pub struct MarchVariants {
     shader: &'static str,
     label: &'static str,
     entries: Vec<wgpu::BindGroupLayoutEntry>,
+    /// Constants every variant of this entry point takes alike.
+    fixed: Vec<(&'static str, f64)>,
     built: [OnceLock<ComputePipeline>; VARIANTS],
 }
 
@@ -40,8 +42,15 @@ impl MarchVariants {
             shader,
             label,
             entries: entries.to_vec(),
+            fixed: Vec::new(),
             built: Default::default(),
         }
+    }
+
+    /// These variants with the pipeline-overridable constant `name` at `value` in each.
+    pub fn with_constant(mut self, name: &'static str, value: f64) -> MarchVariants {
+        self.fixed.push((name, value));
+        self
     }
 
     /// The pipeline for the method (`counts[2]`), sun light (`noise[3]`) and shadow
@@ -85,7 +94,10 @@ impl MarchVariants {
                 ("LAYER_METHOD", f64::from(method)),
                 ("SUN_FROM_MAP", f64::from(u8::from(from_map))),
                 ("SHADOW_DETAIL", f64::from(u8::from(shadow_detail))),
-            ],
+            ]
+            .into_iter()
+            .chain(self.fixed.iter().copied())
+            .collect::<Vec<_>>(),
         )
     }
 }
