@@ -14,7 +14,7 @@
 use anyhow::Context;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
-use atmosphere_core::clouds::layer::air_shadow::{AirShadow, CloudAirShadow};
+use atmosphere_core::clouds::layer::air_shadow::{AirShadow, CloudAirShadow, CloudShade};
 use atmosphere_core::clouds::layer::composite::radiance_with_cloud_segment;
 use atmosphere_core::clouds::layer::direct_shade::DirectCloudShade;
 use atmosphere_core::clouds::layer::field::CloudLayer;
@@ -68,10 +68,6 @@ pub struct RayMaps {
     pub light: Option<CloudSunMap>,
     pub air: Option<CloudSunMap>,
 }
-
-/// The steps of the reference's march towards the sun through the layer from each
-/// sample of its shadow in the air, and the longest sample along the view ray, m.
-const DIRECT_SHADE: (usize, f64) = (64, 100.0);
 
 impl CloudRays {
     /// The layer of `settings` over `cover` on `atmosphere`'s planet; `orders` (A_n and
@@ -133,6 +129,24 @@ impl CloudRays {
         self
     }
 
+    /// `model` with its air in the shadow of `shade`, when the rays take the shadow and
+    /// a shade is given.
+    fn shaded<'a>(
+        &'a self,
+        model: &'a dyn SkyModel,
+        shade: Option<&'a dyn CloudShade>,
+    ) -> Option<ShadowedAir<'a>> {
+        let (shadow, clouds) = (self.air_shadow.as_ref()?, shade?);
+        Some(ShadowedAir {
+            model,
+            shadow,
+            air: AirShadow {
+                terrain: None,
+                clouds,
+            },
+        })
+    }
+
     pub fn settings(&self) -> &LayerSettings {
         self.layer.settings()
     }
@@ -189,20 +203,8 @@ impl CloudRays {
         ray: &ViewRay,
         paths: &PathSettings,
     ) -> Result<CloudAnswer, ModelError> {
-        let (steps, sample_m) = DIRECT_SHADE;
-        let direct = DirectCloudShade {
-            layer: &self.finest,
-            steps,
-            sample_m,
-        };
-        let shaded = self.air_shadow.as_ref().map(|shadow| ShadowedAir {
-            model: air,
-            shadow,
-            air: AirShadow {
-                terrain: None,
-                clouds: &direct,
-            },
-        });
+        let direct = DirectCloudShade::reference(&self.finest);
+        let shaded = self.shaded(air, Some(&direct));
         let scene = PathScene {
             layer: &self.finest,
             orders: &self.orders,
@@ -270,17 +272,7 @@ impl CloudRays {
         maps: &RayMaps,
         spheres: Option<&CloudSpheres>,
     ) -> Result<CloudAnswer, ModelError> {
-        let shaded = match (&self.air_shadow, &maps.air) {
-            (Some(shadow), Some(map)) => Some(ShadowedAir {
-                model,
-                shadow,
-                air: AirShadow {
-                    terrain: None,
-                    clouds: map,
-                },
-            }),
-            _ => None,
-        };
+        let shaded = self.shaded(model, maps.air.as_ref().map(|m| m as &dyn CloudShade));
         let model = shaded.as_ref().map_or(model, |s| s as &dyn SkyModel);
         let sun_map = maps.light.as_ref();
         let altitude_m = ray.origin_m.length() - self.ground_radius_m();

@@ -24,7 +24,7 @@ use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance, ViewRay};
 use glam::DVec3;
 
-use crate::cloud_rays::{CloudAnswer, CloudRays};
+use crate::cloud_rays::{CloudAnswer, CloudRays, RayMaps};
 use crate::probe_args::ProbeArgs;
 use crate::probe_table::ExtraColumns;
 use crate::probe_terrain::TerrainPlace;
@@ -99,20 +99,26 @@ pub fn evaluate(
         sky.as_ref(),
     );
     let placed: Vec<ViewRay> = rays.iter().map(|ray| place.placed(ray)).collect();
-    let spheres = match paths {
-        Some(_) => Vec::new(),
-        None => spheres_by_sun(&clouds, &placed, form)?,
+    let (spheres, maps) = match paths {
+        Some(_) => (Vec::new(), Vec::new()),
+        None => (
+            spheres_by_sun(&clouds, &placed, form)?,
+            maps_by_camera(&clouds, &placed)?,
+        ),
     };
     let answers: Vec<Result<CloudAnswer, ModelError>> =
         map_with_progress("probe", "rays", &placed, |ray| match &paths {
             Some(paths) => clouds.reference(sky.as_ref(), ray, paths),
             None => {
-                let maps = clouds
-                    .maps(ray.origin_m, ray.sun_direction.normalize())
-                    .map_err(|e| ModelError::Settings(format!("{e:#}")))?;
                 let sun = ray.sun_direction.normalize();
                 let made = spheres.iter().find(|(s, _)| *s == sun).map(|(_, m)| m);
-                clouds.in_form(sky.as_ref(), ray, form, &maps, made)
+                let camera = (ray.origin_m, sun);
+                let Some((_, maps)) = maps.iter().find(|(c, _)| *c == camera) else {
+                    return Err(ModelError::Settings(
+                        "no sun maps were made for this ray's camera".into(),
+                    ));
+                };
+                clouds.in_form(sky.as_ref(), ray, form, maps, made)
             }
         });
     let mut names = vec!["T_cloud".to_string()];
@@ -139,6 +145,22 @@ pub fn evaluate(
         }
     }
     Ok((sky.solar_irradiance_w_m2_nm().to_vec(), results, extra))
+}
+
+/// The sun maps ([`CloudRays::maps`]) for each camera and sun of the `rays`, made once
+/// for the rays that share them.
+fn maps_by_camera(
+    clouds: &CloudRays,
+    rays: &[ViewRay],
+) -> anyhow::Result<Vec<((DVec3, DVec3), RayMaps)>> {
+    let mut made: Vec<((DVec3, DVec3), RayMaps)> = Vec::new();
+    for ray in rays {
+        let camera = (ray.origin_m, ray.sun_direction.normalize());
+        if !made.iter().any(|(c, _)| *c == camera) {
+            made.push((camera, clouds.maps(camera.0, camera.1)?));
+        }
+    }
+    Ok(made)
 }
 
 /// The cloud spheres for each sun direction of the `rays` whose camera sees them in

@@ -8,7 +8,9 @@
 use atmosphere_core::atmosphere::presets::earth;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::air_shadow::{AirShadow, CloudAirShadow, CloudShade};
-use atmosphere_core::clouds::layer::direct_shade::DirectCloudShade;
+use atmosphere_core::clouds::layer::direct_shade::{
+    DirectCloudShade, REFERENCE_SAMPLE_M, REFERENCE_STEPS,
+};
 use atmosphere_core::clouds::layer::field::CloudLayer;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::layer::sun_map::{CloudSunMap, SunMapResolution};
@@ -84,8 +86,8 @@ fn the_shade_is_converged_at_its_steps_and_near_the_frames_map() {
         steps,
         sample_m,
     };
-    let shipped = lost(&direct(64, 100.0));
-    let finer = lost(&direct(256, 25.0));
+    let shipped = lost(&DirectCloudShade::reference(&layer));
+    let finer = lost(&direct(4 * REFERENCE_STEPS, REFERENCE_SAMPLE_M / 4.0));
     let ray = ray();
     let resolution = SunMapResolution {
         levels: 1,
@@ -95,14 +97,10 @@ fn the_shade_is_converged_at_its_steps_and_near_the_frames_map() {
     let map = CloudSunMap::new(&layer, grid, ray.sun_direction, &resolution).unwrap();
     let mapped = lost(&map);
     let empty = cloud_layer(0.0);
-    let unshaded = lost(&DirectCloudShade {
-        layer: &empty,
-        steps: 64,
-        sample_m: 100.0,
-    });
-    // The whole part below the base, to the ground, in samples of 100 m.
+    let unshaded = lost(&DirectCloudShade::reference(&empty));
+    // The whole part below the base, to the ground, in samples of at most 100 m.
     let segment = ViewSegment::new(&earth(), &ray).unwrap().unwrap();
-    let shade = direct(64, 100.0);
+    let shade = DirectCloudShade::reference(&layer);
     let ((start, end), samples) = AirShadow {
         terrain: None,
         clouds: &shade,
@@ -113,7 +111,7 @@ fn the_shade_is_converged_at_its_steps_and_near_the_frames_map() {
         start == 0.0 && (end - segment.length).abs() < 1.0,
         "{start} {end}"
     );
-    assert_eq!(samples, (end / 100.0).ceil() as usize);
+    assert_eq!(samples, (end / REFERENCE_SAMPLE_M).ceil() as usize);
     // The ray passes under cloud and under a gap: the loss has edges to resolve.
     let seen: Vec<f64> = (0..100)
         .map(|k| {

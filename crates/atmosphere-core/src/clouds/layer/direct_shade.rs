@@ -16,6 +16,10 @@ use crate::shafts::MIN_SHAFT_SAMPLES;
 
 /// The most samples of one ray's span.
 pub const MAX_DIRECT_SAMPLES: usize = 4096;
+/// The path-traced reference's steps towards the sun and longest sample, m
+/// ([`DirectCloudShade::reference`]; `tests/cloud_direct_shade.rs` shows them converged).
+pub const REFERENCE_STEPS: usize = 64;
+pub const REFERENCE_SAMPLE_M: f64 = 100.0;
 
 /// The layer's own shade of the air below its base.
 #[derive(Clone, Copy, Debug)]
@@ -27,7 +31,16 @@ pub struct DirectCloudShade<'a> {
     pub sample_m: f64,
 }
 
-impl DirectCloudShade<'_> {
+impl<'a> DirectCloudShade<'a> {
+    /// The shade the path-traced reference takes for `layer`.
+    pub fn reference(layer: &'a CloudLayer) -> DirectCloudShade<'a> {
+        DirectCloudShade {
+            layer,
+            steps: REFERENCE_STEPS,
+            sample_m: REFERENCE_SAMPLE_M,
+        }
+    }
+
     /// The optical depth from `point_m` below the base through the layer along the unit
     /// `sun`; 0 where the sun's ray never reaches the base's sphere from inside it.
     pub fn optical_depth(&self, point_m: DVec3, sun: DVec3) -> f64 {
