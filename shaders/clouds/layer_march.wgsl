@@ -2,7 +2,8 @@
 // `clouds/layer/march.rs` (its documentation holds the equations): equal steps sampled
 // at their middles, the energy-conserving step integral (Hillaire 2016), the sun by
 // Riley et al. 2004's expected orders (Eq. 22, 25, 26), Wrenninge et al. 2013's
-// octaves or the delta-Eddington slab (`eddington.wgsl`), the sky as isotropic ambient,
+// octaves or a slab: delta-Eddington's (`eddington.wgsl`) or delta-M four-stream's
+// (`four_stream.wgsl`), the sky as isotropic ambient,
 // the shadow march through the density with `noise.y` octaves or, with `SUN_FROM_MAP`
 // (`sun_light = map`), the optical depth read from the frame's sun map
 // (`sun_map_read.wgsl`, Dobashi et al. 2002 section 5.4) in `counts.y` equal parts,
@@ -18,11 +19,13 @@
 #import clouds/layer_medium.wgsl
 #import clouds/sun_map_read.wgsl
 #import clouds/eddington.wgsl
+#import clouds/four_stream.wgsl
 #import clouds/orders.wgsl
 
 const MAX_SHADOW_STEPS: u32 = 64u;
 
-// The sun's light method: 0 Riley et al. 2004's orders, 1 the octaves, 2 delta-Eddington.
+// The sun's light method: 0 Riley et al. 2004's orders, 1 the octaves, 2 delta-Eddington,
+// 3 delta-M four-stream (2 and 3 the slab methods).
 override LAYER_METHOD: u32 = 0u;
 // Whether the sun's optical depth comes from the frame's sun map instead of a march.
 override SUN_FROM_MAP: bool = false;
@@ -41,8 +44,23 @@ fn asymmetry() -> vec3<f32> {
     return vec3<f32>(orders[base], orders[base + 1u], orders[base + 2u]);
 }
 
+// The single-scattering phase function's Legendre moments chi_1..chi_4 at wavelength `w`.
+fn phase_moments(w: u32) -> vec4<f32> {
+    let base = WAVES * ORDERS * (ANGLES + 1u) + 3u + 4u * w;
+    return vec4<f32>(orders[base], orders[base + 1u], orders[base + 2u], orders[base + 3u]);
+}
+
+// The forward peak's share f a slab method puts back into the beam, each wavelength:
+// g^2 (delta-Eddington) or chi_4 (delta-M, four streams).
+fn peak_share(g: vec3<f32>) -> vec3<f32> {
+    if LAYER_METHOD == 3u {
+        return clamp(vec3<f32>(phase_moments(0u).w, phase_moments(1u).w, phase_moments(2u).w), vec3<f32>(0.0), vec3<f32>(0.999));
+    }
+    return g * g;
+}
+
 // What a sample scatters towards the eye per unit of extinction and albedo, sr^-1:
-// J_sun / E_sun seen through the real medium and, for the delta-Eddington method,
+// J_sun / E_sun seen through the real medium and, for the slab methods,
 // J_sun / E_sun and J_sky / E_sky seen through the delta-scaled one.
 struct SunParts {
     unscaled: vec3<f32>,
@@ -75,7 +93,7 @@ fn shadow_part(p: vec3<f32>, k: u32, steps: u32, length_m: f32, tau_map: f32, fr
 }
 
 // J_sun / E_sun at `p`, sr^-1, seen along `d`, `up` the local vertical, `g` the
-// droplets' asymmetry (read by the delta-Eddington method only).
+// droplets' asymmetry (read by the slab methods only).
 fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32, g: vec3<f32>) -> SunParts {
     let s = layer.sun_direction.xyz;
     let steps = min(layer.counts.y, MAX_SHADOW_STEPS);
@@ -111,18 +129,23 @@ fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32, g
             tau += shadow_part(p, k, steps, length_m, tau_map, false);
         }
     }
-    if LAYER_METHOD == 2u {
-        let f = g * g;
-        let broad = (1.0 - f) * eddington_henyey_greenstein(g / (1.0 + g), nu);
+    if LAYER_METHOD >= 2u {
+        let f = peak_share(g);
+        let broad = (1.0 - f) * eddington_henyey_greenstein((g - f) / (1.0 - f), nu);
         let mu0 = dot(s, up);
-        let diffuse = eddington_diffuse(
-            tau * max(mu0, EDDINGTON_MIN_SUN_COSINE),
-            layer_depth(p, -up),
-            mu0,
-            albedo,
-            g,
-            -dot(d, up),
-        );
+        let tau_above = tau * max(mu0, EDDINGTON_MIN_SUN_COSINE);
+        let tau_below = layer_depth(p, -up);
+        let mu_out = -dot(d, up);
+        var diffuse = EddingtonDiffuse(vec3<f32>(0.0), vec3<f32>(0.0));
+        if LAYER_METHOD == 3u {
+            for (var w = 0u; w < 3u; w++) {
+                let j = four_stream_diffuse(tau_above, tau_below, mu0, albedo, phase_moments(w), mu_out);
+                diffuse.beam[w] = j.x;
+                diffuse.sky[w] = j.y;
+            }
+        } else {
+            diffuse = eddington_diffuse(tau_above, tau_below, mu0, albedo, g, mu_out);
+        }
         return SunParts(
             (distribution(1u, nu) - broad) * exp(-tau),
             diffuse.beam + broad * exp(-(1.0 - albedo * f) * tau),
@@ -147,15 +170,15 @@ fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32, g
 fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
     var radiance = vec3<f32>(0.0);
     var transmittance = 1.0;
-    // The delta-scaled view transmittance the delta-Eddington method's diffuse part sees.
+    // The delta-scaled view transmittance the slab methods' diffuse part sees.
     var scaled_transmittance = vec3<f32>(1.0);
-    let eddington = LAYER_METHOD == 2u;
+    let slab_method = LAYER_METHOD >= 2u;
     let dt = max(t1 - t0, 0.0) / f32(layer.counts.x);
     let nu = dot(d, layer.sun_direction.xyz);
     let up = normalize(o + d * t0);
     let albedo = layer.medium.y;
     let g = asymmetry();
-    let scale = 1.0 - albedo * g * g;
+    let scale = 1.0 - albedo * peak_share(g);
     for (var i = 0u; i < layer.counts.x; i++) {
         let p = o + d * (t0 + (f32(i) + 0.5) * dt);
         let sigma = layer_extinction(p, layer.noise.x);
@@ -168,7 +191,7 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
         let sun = sun_source(p, d, up, nu, albedo, g);
         transmittance *= step_t;
         var seen = transmittance;
-        if eddington {
+        if slab_method {
             radiance += weight * layer.sun_irradiance.xyz * sun.unscaled;
             let step = exp(-scale * sigma * dt);
             let scattered = layer.sun_irradiance.xyz * sun.scaled + layer.sky_irradiance.xyz * sun.scaled_sky;

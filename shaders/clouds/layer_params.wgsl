@@ -22,7 +22,7 @@ struct LayerParams {
     medium: vec4<f32>,
     // detail_scale_m, detail_strength, min_transmittance (w unused).
     detail: vec4<f32>,
-    // steps, shadow_steps, method (0 riley, 1 octaves, 2 eddington), octaves; the
+    // steps, shadow_steps, method (0 riley, 1 octaves, 2 eddington, 3 four-stream), octaves; the
     // method picks the pipeline (its LAYER_METHOD constant) and is not read here.
     counts: vec4<u32>,
     // The cover grid's width and height, the image's width and height.

@@ -337,6 +337,27 @@ fn the_gpu_march_matches_the_cpu_from_below_inside_and_above() {
             50.0,
             march,
         ),
+        (
+            "below, four-stream",
+            camera(10.0, 35.0),
+            LayerMethod::FourStream,
+            40.0,
+            march,
+        ),
+        (
+            "inside, four-stream, map, low sun",
+            camera(2200.0, 5.0),
+            LayerMethod::FourStream,
+            10.0,
+            map,
+        ),
+        (
+            "above, four-stream",
+            camera(5000.0, -30.0),
+            LayerMethod::FourStream,
+            50.0,
+            march,
+        ),
     ];
     for (name, camera, method, sun_elevation, sun_light) in views {
         let settings = LayerSettings {

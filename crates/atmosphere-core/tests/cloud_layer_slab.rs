@@ -197,16 +197,18 @@ fn slabs_reflect_within_the_stated_error_of_the_path_tracer() {
     }
 }
 
-/// delta-Eddington's method in the march: the reflected and the diffusely transmitted
+/// The slab methods in the march: the reflected and the diffusely transmitted
 /// fractions of non-absorbing slabs against the path tracer (its direct beam taken out
 /// of the transmitted fraction), printing the table of `docs/clouds.md`
-/// (`-- --nocapture`). Reflected within 25 % from tau 1 to 60; transmitted within 15 %
-/// from tau 10 on, and within 35 % below, where the light scattered about the forward
-/// peak more than once, which the scaled beam carries, is not seen.
+/// (`-- --nocapture`). delta-Eddington: reflected within 25 % from tau 1 to 60;
+/// transmitted within 15 % from tau 10 on, and within 35 % below, where the light
+/// scattered about the forward peak more than once, which the scaled beam carries, is
+/// not seen. Four streams: both within 10 % from tau 4 on and within 20 % at tau 1.
 #[test]
-fn eddington_reflects_and_transmits_what_the_path_tracer_does() {
+fn slab_methods_reflect_and_transmit_what_the_path_tracer_does() {
     let orders = orders();
-    let s = settings(LayerMethod::Eddington, 0.0, 1);
+    let eddington = settings(LayerMethod::Eddington, 0.0, 1);
+    let four = settings(LayerMethod::FourStream, 0.0, 1);
     for &(tau, mu0) in &[
         (1.0, 0.8),
         (4.0, 0.6),
@@ -216,22 +218,39 @@ fn eddington_reflects_and_transmits_what_the_path_tracer_does() {
     ] {
         let slab = slab(tau);
         let mc = slab_fractions(&slab, mu0, 20_000, 11).unwrap();
-        let r = march_reflectance(&slab, mu0, &orders, &s);
-        let t = march_transmittance(&slab, mu0, &orders, &s);
         let diffuse = mc.transmitted.mean - mc.transmitted_direct.mean;
+        let (r, t) = (
+            march_reflectance(&slab, mu0, &orders, &eddington),
+            march_transmittance(&slab, mu0, &orders, &eddington),
+        );
+        let (r4, t4) = (
+            march_reflectance(&slab, mu0, &orders, &four),
+            march_transmittance(&slab, mu0, &orders, &four),
+        );
         println!(
-            "| {tau} | {mu0} | {:.4} +- {:.4} | {r:.4} | {diffuse:.4} +- {:.4} | {t:.4} |",
+            "| {tau} | {mu0} | {:.4} +- {:.4} | {r:.4} | {r4:.4} | {diffuse:.4} +- {:.4} | {t:.4} | {t4:.4} |",
             mc.reflected.mean, mc.reflected.standard_error, mc.transmitted.standard_error
         );
-        assert!(
-            (r / mc.reflected.mean - 1.0).abs() < 0.25,
-            "tau {tau} mu0 {mu0}: reflected {r} against {}",
-            mc.reflected.mean
+        let check = |method: &str, value: f64, truth: f64, tolerance: f64| {
+            assert!(
+                (value / truth - 1.0).abs() < tolerance,
+                "{method}, tau {tau} mu0 {mu0}: {value} against {truth}"
+            );
+        };
+        check("eddington reflected", r, mc.reflected.mean, 0.25);
+        check(
+            "eddington transmitted",
+            t,
+            diffuse,
+            if tau >= 10.0 { 0.15 } else { 0.35 },
         );
-        let t_error = if tau >= 10.0 { 0.15 } else { 0.35 };
-        assert!(
-            (t / diffuse - 1.0).abs() < t_error,
-            "tau {tau} mu0 {mu0}: transmitted {t} against {diffuse}"
+        let four_tolerance = if tau >= 4.0 { 0.10 } else { 0.20 };
+        check(
+            "four-stream reflected",
+            r4,
+            mc.reflected.mean,
+            four_tolerance,
         );
+        check("four-stream transmitted", t4, diffuse, four_tolerance);
     }
 }

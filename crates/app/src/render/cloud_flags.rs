@@ -55,9 +55,13 @@ pub struct CloudFlags {
     #[arg(long = "cloud-density", value_name = "PER_M")]
     pub density_per_m: Option<f64>,
     /// How light scattered more than once is computed: riley (Riley et al. 2004),
-    /// octaves (Wrenninge et al. 2013) or eddington (the delta-Eddington slab of Joseph,
-    /// Wiscombe and Weinman 1976, for thick layers) [default: riley].
-    #[arg(long = "cloud-method", value_name = "riley|octaves|eddington")]
+    /// octaves (Wrenninge et al. 2013), eddington (the delta-Eddington slab of Joseph,
+    /// Wiscombe and Weinman 1976, for thick layers) or four-stream (a delta-M
+    /// four-stream slab, Liou 1974 and Wiscombe 1977: closer, dearer) [default: riley].
+    #[arg(
+        long = "cloud-method",
+        value_name = "riley|octaves|eddington|four-stream"
+    )]
     pub method: Option<String>,
     /// The march's quality: interactive (20 steps at a third of the resolution, the
     /// cloud spheres at a third too, the cloud's shadow in the air at a sixth, for

@@ -51,7 +51,7 @@ impl fmt::Display for CloudRow {
 }
 
 impl CloudRow {
-    /// A row as `--variant` writes it: `spheres`, or a method (riley, octaves, eddington), a
+    /// A row as `--variant` writes it: `spheres`, or a method (riley, octaves, eddington, four-stream), a
     /// quality (interactive, offline) and a sun light (march, map) in any order, the
     /// method required, the others by default offline and march. Errors name the
     /// word and what it may be.
@@ -71,13 +71,13 @@ impl CloudRow {
             } else {
                 bail!(
                     "clouds variant \"{text}\": \"{word}\" is none of spheres, riley, octaves, \
-                     eddington, interactive, offline, march, map"
+                     eddington, four-stream, interactive, offline, march, map"
                 );
             }
         }
         let Some(method) = method else {
             bail!(
-                "clouds variant \"{text}\" names no method: riley, octaves or eddington (with interactive \
+                "clouds variant \"{text}\" names no method: riley, octaves, eddington or four-stream (with interactive \
                  or offline, march or map), or spheres"
             );
         };
@@ -123,7 +123,7 @@ impl CloudRow {
     }
 }
 
-/// The report's rows: the three methods, both qualities, both sun lights, and the
+/// The report's rows: the four methods, both qualities, both sun lights, and the
 /// spheres.
 pub fn cloud_rows() -> Vec<CloudRow> {
     let mut rows = Vec::new();
@@ -131,6 +131,7 @@ pub fn cloud_rows() -> Vec<CloudRow> {
         LayerMethod::Riley,
         LayerMethod::Octaves,
         LayerMethod::Eddington,
+        LayerMethod::FourStream,
     ] {
         for quality in [MarchQuality::Interactive, MarchQuality::Offline] {
             for sun_light in [SunLight::March, SunLight::Map] {

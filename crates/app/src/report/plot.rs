@@ -152,6 +152,7 @@ fn series_color(series: Series) -> RGBColor {
                 Some(LayerMethod::Riley) => RGBColor(214, 39, 40),
                 Some(LayerMethod::Octaves) => RGBColor(31, 119, 180),
                 Some(LayerMethod::Eddington) => RGBColor(148, 103, 189),
+                Some(LayerMethod::FourStream) => RGBColor(255, 127, 14),
                 None => RGBColor(44, 160, 44),
             };
         }

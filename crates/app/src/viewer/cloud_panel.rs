@@ -40,7 +40,7 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
             egui::ComboBox::from_label("method")
                 .selected_text(clouds.method.as_str())
                 .show_ui(ui, |ui| {
-                    for method in ["riley", "octaves", "eddington"] {
+                    for method in ["riley", "octaves", "eddington", "four-stream"] {
                         ui.selectable_value(&mut clouds.method, method.to_string(), method);
                     }
                 })
@@ -48,7 +48,9 @@ pub fn show(ui: &mut egui::Ui, clouds: &mut CloudSettings) {
                 .on_hover_text(
                     "riley: Riley et al. 2004's expected orders of scattering; octaves: \
                      Wrenninge et al. 2013's production approximation; eddington: the \
-                     light that diffuses through thick cloud (delta-Eddington slab)",
+                     light that diffuses through thick cloud (delta-Eddington slab); \
+                     four-stream: the same from a delta-M four-stream slab, closer to the \
+                     path tracer, dearer",
                 );
             egui::ComboBox::from_label("quality")
                 .selected_text(clouds.quality.as_str())

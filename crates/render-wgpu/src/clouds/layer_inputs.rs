@@ -62,7 +62,7 @@ impl LayerInputs {
             },
             texture.size(),
         );
-        let mut values: Vec<f32> = Vec::with_capacity(3 * ORDERS * (ANGLES + 1) + 3);
+        let mut values: Vec<f32> = Vec::with_capacity(3 * ORDERS * (ANGLES + 1) + 15);
         for w in 0..3 {
             values.extend(orders.table(w).iter().map(|&a| a as f32));
         }
@@ -70,6 +70,9 @@ impl LayerInputs {
             values.extend((1..=ORDERS).map(|n| orders.forward_fraction(w, n) as f32));
         }
         values.extend((0..3).map(|w| orders.asymmetry(w) as f32));
+        for w in 0..3 {
+            values.extend(orders.moments(w)[1..].iter().map(|&chi| chi as f32));
+        }
         let buffer = gpu
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {

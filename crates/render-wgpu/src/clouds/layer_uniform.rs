@@ -141,6 +141,7 @@ impl LayerUniform {
                     LayerMethod::Riley => 0,
                     LayerMethod::Octaves => 1,
                     LayerMethod::Eddington => 2,
+                    LayerMethod::FourStream => 3,
                 },
                 settings.octaves,
             ],

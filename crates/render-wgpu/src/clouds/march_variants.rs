@@ -15,9 +15,9 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::ComputePipeline;
 
-/// The methods (riley, octaves, eddington) times the sun's lights (march, map) times
-/// the shadow march with and without noise.
-const VARIANTS: usize = 3 * 2 * 2;
+/// The methods (riley, octaves, eddington, four-stream) times the sun's lights (march,
+/// map) times the shadow march with and without noise.
+const VARIANTS: usize = 4 * 2 * 2;
 
 /// Entry point `main` of one march shader, compiled lazily per case.
 #[derive(Debug)]
@@ -62,9 +62,9 @@ impl MarchVariants {
         params: &LayerUniform,
     ) -> Result<&ComputePipeline, RenderError> {
         let (method, map) = (params.counts[2], params.noise[3]);
-        if method > 2 || map > 1 {
+        if method > 3 || map > 1 {
             return Err(RenderError::Frame(format!(
-                "{}: light method {method} (0..=2) or sun light {map} (0..=1) out of range",
+                "{}: light method {method} (0..=3) or sun light {map} (0..=1) out of range",
                 self.label
             )));
         }

@@ -29,6 +29,9 @@
 //!   towards the eye), the rest through the real one; the sky's term below is the
 //!   slab's instead. The march stops once the scaled view transmittance, not the real
 //!   one, falls below `min_transmittance`.
+//! - delta-M four-stream ([`LayerMethod::FourStream`], `four_stream.rs`): the same, with
+//!   the slab's diffuse light from four streams, the forward peak's share f = chi_4
+//!   instead of g^2 and the smooth part (1 - f) p_HG((g - f) / (1 - f), theta).
 //!
 //! The sky's light is isotropic from the upper hemisphere: a horizontal irradiance E_sky
 //! is a radiance E_sky / pi over 2 pi sr, of which an isotropic scatterer sends
@@ -47,10 +50,11 @@
 
 use glam::DVec3;
 
-use super::eddington::{MIN_SUN_COSINE, diffuse_source};
+use super::eddington::MIN_SUN_COSINE;
 use super::orders::ScatteringOrders;
 use super::settings::{LayerMethod, LayerSettings, MAX_SHADOW_STEPS};
 use super::sun_map::CloudSunMap;
+use super::{eddington, four_stream};
 use crate::clouds::medium::CloudMedium;
 use crate::optics::phase::henyey_greenstein;
 
@@ -142,9 +146,9 @@ fn march_lit(
     let mut radiance = vec![0.0; waves];
     let mut transmittance = 1.0;
     // The view's transmittance through the delta-scaled medium, which the diffuse part
-    // of [`LayerMethod::Eddington`]'s light sees (1 - albedo g^2 of the extinction).
+    // of a slab method's light sees (1 - albedo f of the extinction).
     let mut scaled_transmittance = vec![1.0; waves];
-    let eddington = settings.method == LayerMethod::Eddington;
+    let slab_method = settings.method.is_slab();
     let dt = (ray.t1 - ray.t0).max(0.0) / settings.steps as f64;
     let nu = ray.direction.dot(light.sun_direction);
     for i in 0..settings.steps {
@@ -162,7 +166,7 @@ fn march_lit(
         let slab = SlabGeometry {
             mu0: light.sun_direction.dot(light.up),
             mu_out: -ray.direction.dot(light.up),
-            tau_below: if eddington {
+            tau_below: if slab_method {
                 vertical_depth(medium, p, -light.up, settings)
             } else {
                 0.0
@@ -172,9 +176,9 @@ fn march_lit(
         for w in 0..waves {
             let sun = light.sun_irradiance[w];
             let sky_light = light.sky_irradiance[w];
-            if eddington {
+            if slab_method {
                 radiance[w] += weight * sun * sources.unscaled[w];
-                let scale = 1.0 - albedo * orders.asymmetry(w).powi(2);
+                let scale = 1.0 - albedo * peak_share(settings.method, orders, w);
                 let step = (-scale * sigma * dt).exp();
                 radiance[w] += scaled_transmittance[w] * (1.0 - step) / scale
                     * albedo
@@ -185,7 +189,7 @@ fn march_lit(
             }
         }
         transmittance *= step_t;
-        let seen = if eddington {
+        let seen = if slab_method {
             scaled_transmittance.iter().copied().fold(0.0, f64::max)
         } else {
             transmittance
@@ -234,8 +238,8 @@ fn vertical_depth(
         .sum()
 }
 
-/// Where a sample lies in the slab [`LayerMethod::Eddington`] takes around it (only
-/// that method reads `tau_below`).
+/// Where a sample lies in the slab a slab method ([`LayerMethod::is_slab`]) takes
+/// around it (only those read `tau_below`).
 struct SlabGeometry {
     /// The sun's cosine from the upward vertical.
     mu0: f64,
@@ -245,11 +249,22 @@ struct SlabGeometry {
     tau_below: f64,
 }
 
-/// J_sun / E_sun at wavelength `w`, sr^-1, of [`LayerMethod::Eddington`] (the
-/// module's equations), for the optical depth `tau` of the path towards the sun: the
-/// part seen through the delta-scaled medium and the part seen through the real one;
-/// then J_sky / E_sky, seen through the scaled medium.
-fn eddington_source(
+/// The forward peak's share f of the droplets' scattering that a slab method puts back
+/// into the beam at wavelength `w`: g^2 (delta-Eddington) or chi_4 (delta-M, four
+/// streams).
+fn peak_share(method: LayerMethod, orders: &ScatteringOrders, w: usize) -> f64 {
+    match method {
+        LayerMethod::FourStream => four_stream::truncation(&orders.moments(w)).0,
+        _ => orders.asymmetry(w).powi(2),
+    }
+}
+
+/// J_sun / E_sun at wavelength `w`, sr^-1, of a slab method (the module's equations),
+/// for the optical depth `tau` of the path towards the sun: the part seen through the
+/// delta-scaled medium and the part seen through the real one; then J_sky / E_sky,
+/// seen through the scaled medium.
+fn slab_source(
+    method: LayerMethod,
     w: usize,
     tau: f64,
     orders: &ScatteringOrders,
@@ -258,13 +273,22 @@ fn eddington_source(
     albedo: f64,
 ) -> (f64, f64, f64) {
     let g = orders.asymmetry(w);
-    let f = g * g;
-    let broad = (1.0 - f) * henyey_greenstein(g / (1.0 + g), nu);
+    let f = peak_share(method, orders, w);
+    let broad = (1.0 - f) * henyey_greenstein((g - f) / (1.0 - f), nu);
     let scaled_beam = (-(1.0 - albedo * f) * tau).exp();
     let beam = (-tau).exp();
     let tau_above = tau * slab.mu0.max(MIN_SUN_COSINE);
-    let (diffuse, sky) =
-        diffuse_source(tau_above, slab.tau_below, slab.mu0, albedo, g, slab.mu_out);
+    let (diffuse, sky) = match method {
+        LayerMethod::FourStream => four_stream::diffuse_source(
+            tau_above,
+            slab.tau_below,
+            slab.mu0,
+            albedo,
+            &orders.moments(w),
+            slab.mu_out,
+        ),
+        _ => eddington::diffuse_source(tau_above, slab.tau_below, slab.mu0, albedo, g, slab.mu_out),
+    };
     (
         diffuse + broad * scaled_beam,
         (orders.distribution(w, 1, nu) - broad) * beam,
@@ -274,7 +298,7 @@ fn eddington_source(
 
 /// What a sample scatters towards the eye per unit of extinction and albedo, per
 /// wavelength, sr^-1: J_sun / E_sun seen through the real medium and, for
-/// [`LayerMethod::Eddington`], J_sun / E_sun and J_sky / E_sky seen through the
+/// a slab method, J_sun / E_sun and J_sky / E_sky seen through the
 /// delta-scaled one (zero for the other methods, whose sky term is the march's).
 struct SampleSources {
     unscaled: Vec<f64>,
@@ -327,10 +351,11 @@ fn sample_sources(
                 .map(|w| octaves_source(orders, w, tau, nu, settings.octaves))
                 .collect(),
         ),
-        LayerMethod::Eddington => {
+        LayerMethod::Eddington | LayerMethod::FourStream => {
             let mut sources = unscaled_only(vec![0.0; waves]);
             for w in 0..waves {
-                let (scaled, unscaled, sky) = eddington_source(w, tau, orders, slab, nu, albedo);
+                let (scaled, unscaled, sky) =
+                    slab_source(settings.method, w, tau, orders, slab, nu, albedo);
                 sources.unscaled[w] = unscaled;
                 sources.scaled[w] = scaled;
                 sources.scaled_sky[w] = sky;

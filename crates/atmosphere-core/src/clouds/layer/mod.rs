@@ -18,6 +18,7 @@ pub mod direct_shade;
 pub mod droplets;
 pub mod eddington;
 pub mod field;
+pub mod four_stream;
 pub mod march;
 pub mod orders;
 pub mod presets;

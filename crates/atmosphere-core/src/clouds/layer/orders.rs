@@ -20,8 +20,9 @@ pub struct ScatteringOrders {
     distributions: Vec<Vec<f64>>,
     /// `[wavelength][n - 1]`.
     forward: Vec<Vec<f64>>,
-    /// The single-scattering phase function's asymmetry g, `[wavelength]`.
-    asymmetry: Vec<f64>,
+    /// The single-scattering phase function's Legendre moments chi_0..=chi_4,
+    /// `[wavelength]` (chi_1 = g).
+    moments: Vec<[f64; 5]>,
 }
 
 impl ScatteringOrders {
@@ -34,7 +35,12 @@ impl ScatteringOrders {
         }
         let mut distributions = Vec::with_capacity(series.len());
         let mut forward = Vec::with_capacity(series.len());
-        let asymmetry = series.iter().map(LegendreSeries::asymmetry).collect();
+        let moments = series
+            .iter()
+            .map(|single| {
+                std::array::from_fn(|l| single.coefficients().get(l).copied().unwrap_or(0.0))
+            })
+            .collect();
         for single in series {
             let orders = MultipleScatteringPhase::new(single, RILEY_MAX_ORDER);
             let mut table = Vec::with_capacity(ORDERS * ANGLES);
@@ -54,7 +60,7 @@ impl ScatteringOrders {
         Ok(ScatteringOrders {
             distributions,
             forward,
-            asymmetry,
+            moments,
         })
     }
 
@@ -79,7 +85,13 @@ impl ScatteringOrders {
 
     /// The asymmetry g of the single-scattering phase function at wavelength `w`.
     pub fn asymmetry(&self, w: usize) -> f64 {
-        self.asymmetry[w]
+        self.moments[w][1]
+    }
+
+    /// The Legendre moments chi_0..=chi_4 of the single-scattering phase function at
+    /// wavelength `w` (what the four-stream slab keeps of it).
+    pub fn moments(&self, w: usize) -> [f64; 5] {
+        self.moments[w]
     }
 
     /// F_n, n clamped to 1..=26.

@@ -22,6 +22,20 @@ pub enum LayerMethod {
     /// (Joseph, Wiscombe and Weinman 1976; `eddington.rs`): the light that diffuses
     /// through a thick layer, which the other two lose.
     Eddington,
+    /// As [`LayerMethod::Eddington`], with the slab solved by delta-M four-stream
+    /// discrete ordinates (Liou 1974, Wiscombe 1977; `four_stream.rs`): the forward peak
+    /// truncated at the fourth Legendre moment, the diffuse field at four directions
+    /// instead of two terms, so the light the source-function technique sends to the
+    /// eye keeps the slab's energy.
+    FourStream,
+}
+
+impl LayerMethod {
+    /// Whether the method takes the light that diffuses through from a slab around each
+    /// sample (its diffuse part seen through the delta-scaled medium).
+    pub fn is_slab(self) -> bool {
+        matches!(self, LayerMethod::Eddington | LayerMethod::FourStream)
+    }
 }
 
 impl fmt::Display for LayerMethod {
@@ -30,6 +44,7 @@ impl fmt::Display for LayerMethod {
             LayerMethod::Riley => "riley",
             LayerMethod::Octaves => "octaves",
             LayerMethod::Eddington => "eddington",
+            LayerMethod::FourStream => "four-stream",
         })
     }
 }
@@ -42,8 +57,9 @@ impl FromStr for LayerMethod {
             "riley" => Ok(LayerMethod::Riley),
             "octaves" => Ok(LayerMethod::Octaves),
             "eddington" => Ok(LayerMethod::Eddington),
+            "four-stream" => Ok(LayerMethod::FourStream),
             other => Err(CloudError(format!(
-                "cloud method {other:?} is not one of riley, octaves, eddington"
+                "cloud method {other:?} is not one of riley, octaves, eddington, four-stream"
             ))),
         }
     }

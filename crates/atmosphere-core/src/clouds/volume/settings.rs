@@ -93,12 +93,12 @@ impl VolumeSettings {
     /// `Ok` when every field lies in its range, else an error naming the first that does
     /// not, with its value and range.
     pub fn check(&self) -> Result<(), CloudError> {
-        if self.light == LayerMethod::Eddington {
-            return Err(CloudError(
-                "volume light = eddington: the delta-Eddington slab is the planet layer's \
-                 (a horizontal layer); a local volume takes riley or octaves"
-                    .into(),
-            ));
+        if self.light.is_slab() {
+            return Err(CloudError(format!(
+                "volume light = {}: the slab methods are the planet layer's (a horizontal \
+                 layer); a local volume takes riley or octaves",
+                self.light
+            )));
         }
         check_count("volume slices", self.slices, MIN_SLICES, MAX_SLICES)?;
         check_count(

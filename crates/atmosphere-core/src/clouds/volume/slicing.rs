@@ -82,8 +82,8 @@ pub fn slicing_image(
                         nu,
                         settings.backscatter_xi,
                     ),
-                    // `check` refuses eddington for a volume.
-                    LayerMethod::Octaves | LayerMethod::Eddington => {
+                    // `check` refuses the slab methods for a volume.
+                    LayerMethod::Octaves | LayerMethod::Eddington | LayerMethod::FourStream => {
                         octaves_source(orders, w, tau, nu, settings.octaves)
                     }
                 };

@@ -88,8 +88,8 @@ impl SlicingUniform {
                 dims[2] as u32,
                 match settings.light {
                     LayerMethod::Riley => 0,
-                    // `VolumeSettings::check` refuses eddington for a volume.
-                    LayerMethod::Octaves | LayerMethod::Eddington => 1,
+                    // `VolumeSettings::check` refuses the slab methods for a volume.
+                    LayerMethod::Octaves | LayerMethod::Eddington | LayerMethod::FourStream => 1,
                 },
             ],
             misc: [
