@@ -114,9 +114,11 @@ fn a_thousand_times_the_density_stays_finite_and_opaque() {
         (LayerMethod::Riley, LayerSettings::default()),
         (LayerMethod::Octaves, LayerSettings::default()),
         (LayerMethod::Eddington, LayerSettings::default()),
+        (LayerMethod::FourStream, LayerSettings::default()),
         (LayerMethod::Riley, interactive),
         (LayerMethod::Octaves, interactive),
         (LayerMethod::Eddington, interactive),
+        (LayerMethod::FourStream, interactive),
     ] {
         for extinction_per_m in [0.001, 1.0] {
             let l = layer(
@@ -192,6 +194,7 @@ fn a_sun_ten_degrees_below_the_horizon_leaves_only_a_dim_cloud() {
         LayerMethod::Riley,
         LayerMethod::Octaves,
         LayerMethod::Eddington,
+        LayerMethod::FourStream,
     ] {
         let l = layer(
             1.0,

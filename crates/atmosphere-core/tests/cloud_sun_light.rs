@@ -237,6 +237,7 @@ fn lit_by_the_map_dense_inside_and_night_stay_finite() {
         LayerMethod::Riley,
         LayerMethod::Octaves,
         LayerMethod::Eddington,
+        LayerMethod::FourStream,
     ] {
         for extinction_per_m in [0.04, 1.0] {
             let settings = LayerSettings {

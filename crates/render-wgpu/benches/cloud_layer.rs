@@ -65,6 +65,10 @@ fn rows() -> Vec<Row> {
         method: LayerMethod::Eddington,
         ..riley
     };
+    let four_stream = LayerSettings {
+        method: LayerMethod::FourStream,
+        ..riley
+    };
     vec![
         Row {
             name: "riley, default",
@@ -85,6 +89,10 @@ fn rows() -> Vec<Row> {
         Row {
             name: "eddington, interactive",
             settings: MarchQuality::Interactive.apply(eddington),
+        },
+        Row {
+            name: "four-stream, interactive",
+            settings: MarchQuality::Interactive.apply(four_stream),
         },
         Row {
             name: "octaves, interactive",

@@ -26,7 +26,7 @@ pub enum LayerMethod {
     /// discrete ordinates (Liou 1974, Wiscombe 1977; `four_stream.rs`): the forward peak
     /// truncated at the fourth Legendre moment, the diffuse field at four directions
     /// instead of two terms, so the light the source-function technique sends to the
-    /// eye keeps the slab's energy.
+    /// eye loses less of the slab's energy.
     FourStream,
 }
 
