@@ -66,26 +66,14 @@ fn boundaries_and_absorption() {
     let (tau, mu0) = (20.0, 0.7);
     let top = diffuse_fluxes(0.0, tau, mu0, 1.0, &chi);
     let base = diffuse_fluxes(tau, 0.0, mu0, 1.0, &chi);
-    assert!(
-        top.beam_down.abs() < 1e-12,
-        "beam down at the top {}",
-        top.beam_down
-    );
-    assert!(
-        base.beam_up.abs() < 1e-12,
-        "beam up at the base {}",
-        base.beam_up
-    );
-    assert!(
-        (top.sky_down - 1.0).abs() < 1e-12,
-        "sky down at the top {}",
-        top.sky_down
-    );
-    assert!(
-        base.sky_up.abs() < 1e-12,
-        "sky up at the base {}",
-        base.sky_up
-    );
+    for (what, value, expected) in [
+        ("beam down at the top", top.beam_down, 0.0),
+        ("beam up at the base", base.beam_up, 0.0),
+        ("sky down at the top", top.sky_down, 1.0),
+        ("sky up at the base", base.sky_up, 0.0),
+    ] {
+        assert!((value - expected).abs() < 1e-12, "{what}: {value}");
+    }
     let absorbing = diffuse_fluxes(0.0, tau, mu0, 0.99, &chi).beam_up;
     assert!(
         absorbing < 0.8 * top.beam_up,
