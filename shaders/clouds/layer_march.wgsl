@@ -18,8 +18,7 @@
 
 #import clouds/layer_medium.wgsl
 #import clouds/sun_map_read.wgsl
-#import clouds/eddington.wgsl
-#import clouds/four_stream.wgsl
+#import clouds/slab_source.wgsl
 #import clouds/orders.wgsl
 
 const MAX_SHADOW_STEPS: u32 = 64u;
@@ -44,19 +43,15 @@ fn asymmetry() -> vec3<f32> {
     return vec3<f32>(orders[base], orders[base + 1u], orders[base + 2u]);
 }
 
-// The single-scattering phase function's Legendre moments chi_1..chi_4 at wavelength `w`.
-fn phase_moments(w: u32) -> vec4<f32> {
-    let base = WAVES * ORDERS * (ANGLES + 1u) + 3u + 4u * w;
-    return vec4<f32>(orders[base], orders[base + 1u], orders[base + 2u], orders[base + 3u]);
-}
-
-// The forward peak's share f a slab method puts back into the beam, each wavelength:
-// g^2 (delta-Eddington) or chi_4 (delta-M, four streams).
-fn peak_share(g: vec3<f32>) -> vec3<f32> {
-    if LAYER_METHOD == 3u {
-        return clamp(vec3<f32>(phase_moments(0u).w, phase_moments(1u).w, phase_moments(2u).w), vec3<f32>(0.0), vec3<f32>(0.999));
+// The single-scattering phase function's Legendre moments chi_1..chi_4, each wavelength.
+fn phase_moments() -> array<vec4<f32>, 3> {
+    let base = WAVES * ORDERS * (ANGLES + 1u) + 3u;
+    var m: array<vec4<f32>, 3>;
+    for (var w = 0u; w < 3u; w++) {
+        let i = base + 4u * w;
+        m[w] = vec4<f32>(orders[i], orders[i + 1u], orders[i + 2u], orders[i + 3u]);
     }
-    return g * g;
+    return m;
 }
 
 // What a sample scatters towards the eye per unit of extinction and albedo, sr^-1:
@@ -130,27 +125,19 @@ fn sun_source(p: vec3<f32>, d: vec3<f32>, up: vec3<f32>, nu: f32, albedo: f32, g
         }
     }
     if LAYER_METHOD >= 2u {
-        let f = peak_share(g);
-        let broad = (1.0 - f) * eddington_henyey_greenstein((g - f) / (1.0 - f), nu);
-        let mu0 = dot(s, up);
-        let tau_above = tau * max(mu0, EDDINGTON_MIN_SUN_COSINE);
-        let tau_below = layer_depth(p, -up);
-        let mu_out = -dot(d, up);
-        var diffuse = EddingtonDiffuse(vec3<f32>(0.0), vec3<f32>(0.0));
-        if LAYER_METHOD == 3u {
-            for (var w = 0u; w < 3u; w++) {
-                let j = four_stream_diffuse(tau_above, tau_below, mu0, albedo, phase_moments(w), mu_out);
-                diffuse.beam[w] = j.x;
-                diffuse.sky[w] = j.y;
-            }
-        } else {
-            diffuse = eddington_diffuse(tau_above, tau_below, mu0, albedo, g, mu_out);
-        }
-        return SunParts(
-            (distribution(1u, nu) - broad) * exp(-tau),
-            diffuse.beam + broad * exp(-(1.0 - albedo * f) * tau),
-            diffuse.sky,
+        let parts = slab_sources(
+            LAYER_METHOD == 3u,
+            tau,
+            dot(s, up),
+            layer_depth(p, -up),
+            -dot(d, up),
+            nu,
+            albedo,
+            distribution(1u, nu),
+            g,
+            phase_moments(),
         );
+        return SunParts(parts.real, parts.scaled, parts.scaled_sky);
     }
     let single = distribution(1u, nu);
     var j = vec3<f32>(0.0);
@@ -178,7 +165,7 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
     let up = normalize(o + d * t0);
     let albedo = layer.medium.y;
     let g = asymmetry();
-    let scale = 1.0 - albedo * peak_share(g);
+    let scale = 1.0 - albedo * slab_peak_share(LAYER_METHOD == 3u, g, phase_moments());
     for (var i = 0u; i < layer.counts.x; i++) {
         let p = o + d * (t0 + (f32(i) + 0.5) * dt);
         let sigma = layer_extinction(p, layer.noise.x);

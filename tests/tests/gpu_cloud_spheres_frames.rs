@@ -57,8 +57,12 @@ fn cover() -> CoverGrid {
 }
 
 fn settings() -> LayerSettings {
+    lit_by(LayerMethod::Octaves)
+}
+
+fn lit_by(method: LayerMethod) -> LayerSettings {
     LayerSettings {
-        method: LayerMethod::Octaves,
+        method,
         steps: 64,
         shadow_steps: 16,
         ..LayerSettings::default()
@@ -89,9 +93,13 @@ fn frame(altitude_m: f64, pitch_deg: f64, (width, height): (u32, u32)) -> Frame 
 }
 
 fn clouds(frame: &Frame, form: CloudForm) -> FrameClouds {
+    clouds_lit_by(frame, form, LayerMethod::Octaves)
+}
+
+fn clouds_lit_by(frame: &Frame, form: CloudForm, method: LayerMethod) -> FrameClouds {
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     FrameClouds {
-        settings: settings(),
+        settings: lit_by(method),
         light: frame_light(model.as_ref(), frame, &settings()).unwrap(),
         form,
         spheres: SphereSettings::default(),
@@ -100,12 +108,13 @@ fn clouds(frame: &Frame, form: CloudForm) -> FrameClouds {
     }
 }
 
-/// The CPU's frame: each pixel's spheres composited with riley's answers.
-fn cpu_frame(frame: &Frame, light: &CloudLight) -> Vec<RayRadiance> {
+/// The CPU's frame: each pixel's spheres, lit as `method` lights them, composited with
+/// riley's answers.
+fn cpu_frame(frame: &Frame, light: &CloudLight, method: LayerMethod) -> Vec<RayRadiance> {
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.0 }).unwrap();
-    let layer =
-        CloudLayer::new(settings(), frame.atmosphere.bottom_radius_m, cover(), phase).unwrap();
+    let bottom = frame.atmosphere.bottom_radius_m;
+    let layer = CloudLayer::new(lit_by(method), bottom, cover(), phase).unwrap();
     let spheres =
         CloudSpheres::new(&layer, &SphereSettings::default(), light.sun_direction).unwrap();
     let orders = support::clouds::orders();
@@ -142,6 +151,7 @@ fn render(renderer: &mut Renderer, frame: &Frame, clouds: Option<FrameClouds>) -
     renderer.read_hdr().unwrap()
 }
 
+/// Lit by the octaves and by the four-stream slab (`slab_light.rs`).
 #[test]
 fn a_frame_from_orbit_shows_the_spheres_as_the_cpu_does() {
     let Some(mut renderer) = support::renderer_or_skip("cloud spheres in a frame") else {
@@ -150,15 +160,21 @@ fn a_frame_from_orbit_shows_the_spheres_as_the_cpu_does() {
     renderer
         .set_cloud_inputs(&cover(), &support::clouds::orders())
         .unwrap();
+    for method in [LayerMethod::Octaves, LayerMethod::FourStream] {
+        orbit_frame_as_the_cpu(&mut renderer, method);
+    }
+}
+
+fn orbit_frame_as_the_cpu(renderer: &mut Renderer, method: LayerMethod) {
     let frame = frame(4e5, 50.0, (64, 36));
-    let clouds = clouds(&frame, CloudForm::Auto);
+    let clouds = clouds_lit_by(&frame, CloudForm::Auto, method);
     renderer.set_clouds(Some(clouds.clone())).unwrap();
     let plan = renderer.render(&frame).unwrap();
     assert!(plan.runs("cloud_spheres") && !plan.runs("clouds"), "{plan}");
     assert!(plan.skipped.contains(&("clouds", ABOVE_HANDOVER)), "{plan}");
     let gpu = renderer.read_hdr().unwrap();
-    let clear = render(&mut renderer, &frame, None);
-    let cpu = cpu_frame(&frame, &clouds.light);
+    let clear = render(renderer, &frame, None);
+    let cpu = cpu_frame(&frame, &clouds.light, method);
     let brightest = cpu
         .iter()
         .flat_map(|p| p.radiance.iter().copied())
@@ -183,7 +199,7 @@ fn a_frame_from_orbit_shows_the_spheres_as_the_cpu_does() {
             far += usize::from(error > OUTLIER_FACTOR * allowed);
         }
     }
-    println!("orbit frame: worst {worst:.3} of the tolerance, {outside} values outside");
+    println!("{method} orbit frame: worst {worst:.3} of the tolerance, {outside} values outside");
     assert!(
         outside * 100 <= 3 * cpu.len() && far == 0,
         "{outside} values outside the tolerance, {far} four times outside; worst {worst:.2}"

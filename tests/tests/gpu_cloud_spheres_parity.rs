@@ -74,9 +74,17 @@ fn layer_settings() -> LayerSettings {
     }
 }
 
-fn layer() -> CloudLayer {
+fn layer_lit_by(method: LayerMethod) -> CloudLayer {
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
-    CloudLayer::new(layer_settings(), BOTTOM_M, cover(), phase).unwrap()
+    let settings = LayerSettings {
+        method,
+        ..layer_settings()
+    };
+    CloudLayer::new(settings, BOTTOM_M, cover(), phase).unwrap()
+}
+
+fn layer() -> CloudLayer {
+    layer_lit_by(LayerMethod::Octaves)
 }
 
 fn camera(altitude_m: f64, pitch_deg: f64) -> LayerCamera {
@@ -111,15 +119,23 @@ fn the_spheres_match_the_cpu_pixel_by_pixel() {
     let Some(gpu) = support::gpu_or_skip("the_spheres_match_the_cpu_pixel_by_pixel") else {
         return;
     };
-    let layer = layer();
     let orders = orders();
     let pass = CloudSpherePass::new(&gpu).unwrap();
-    for (name, camera, sun_elevation) in [
+    let views = [
         ("400 km over the limb, sun 35 deg", camera(4e5, -35.0), 35.0),
         ("400 km over the limb, sun 4 deg", camera(4e5, -35.0), 4.0),
         ("30 km, 8 deg down", camera(3e4, -8.0), 35.0),
-    ] {
-        let light = light(sun_elevation);
+    ];
+    // The octaves on every view; the slab lights (`slab_light.rs`) from orbit and from
+    // 30 km.
+    let cases = views.iter().map(|v| (LayerMethod::Octaves, v)).chain(
+        [LayerMethod::Eddington, LayerMethod::FourStream]
+            .iter()
+            .flat_map(|&m| [(m, &views[0]), (m, &views[2])]),
+    );
+    for (method, (name, camera, sun_elevation)) in cases {
+        let layer = layer_lit_by(method);
+        let light = light(*sun_elevation);
         let settings = SphereSettings {
             count: 5,
             attenuation_width: 512,
@@ -127,8 +143,8 @@ fn the_spheres_match_the_cpu_pixel_by_pixel() {
         };
         let spheres = CloudSpheres::new(&layer, &settings, light.sun_direction).unwrap();
         let inputs = SphereInputs::new(&gpu, &spheres, &orders).unwrap();
-        let params = SphereUniform::new(&camera, &light, &spheres).unwrap();
-        let gpu_image = pass.render(&gpu, &params, &inputs).unwrap();
+        let params = SphereUniform::new(camera, &light, &spheres).unwrap();
+        let gpu_image = pass.render(&gpu, (&params, method), &inputs).unwrap();
         let mut cpu_image = Vec::new();
         for y in 0..camera.height {
             for x in 0..camera.width {
@@ -149,7 +165,7 @@ fn the_spheres_match_the_cpu_pixel_by_pixel() {
                 ]);
             }
         }
-        assert_within_tolerance(name, &cpu_image, &gpu_image);
+        assert_within_tolerance(&format!("{method}, {name}"), &cpu_image, &gpu_image);
     }
 }
 

@@ -178,7 +178,9 @@ fn main() {
                 .expect("the hillaire pass's GPU time"),
         );
         let start = Instant::now();
-        let pixels = pass.render(renderer.gpu(), &params, &inputs).unwrap();
+        let pixels = pass
+            .render(renderer.gpu(), (&params, spheres.method()), &inputs)
+            .unwrap();
         spheres_ms.push(start.elapsed().as_secs_f64() * 1e3);
         clouded = pixels.iter().filter(|p| p[3] < 0.5).count();
         for (k, spheres) in sphere_settings.iter().enumerate() {

@@ -1,10 +1,19 @@
 // Library: the cloud spheres' textures, crossings and light, twin of atmosphere-core's
 // `clouds/spheres/shells.rs`, `cloud_textures.rs`, `attenuation.rs` (the read) and
 // `field.rs` (whose documentation holds the equations: Dobashi et al. 2002 section 5.4,
-// the light integrated over each crossing with Wrenninge et al. 2013's octaves), and the
-// crossings of a ray composited front to back (`composite.rs`, `spheres_only`).
+// the light integrated over each crossing with Wrenninge et al. 2013's octaves, or by the
+// layer's slab methods, `slab_light.rs`), and the crossings of a ray composited front to
+// back (`composite.rs`, `spheres_only`).
 
 #import clouds/spheres/params.wgsl
+#import clouds/slab_source.wgsl
+
+// The spheres' light: 0 the octaves, 2 delta-Eddington's slab, 3 the four-stream slab
+// (the layer's LAYER_METHOD codes); a pipeline holds one (render-wgpu's
+// `clouds/spheres/sphere_variants.rs`).
+override SPHERE_LIGHT: u32 = 0u;
+// Steps of a crossing's view optical depth under a slab light (`slab_light::SLAB_STEPS`).
+const SLAB_STEPS: u32 = 4u;
 
 // The four texels around a point of a w x h equirectangular grid and their weights
 // (geo's `bilinear_taps`: wraps in longitude, clamps at the poles' rows).
@@ -122,16 +131,85 @@ fn phase_a1(nu: f32) -> vec3<f32> {
     return a;
 }
 
-// The radiance (rgb) and transmittance (a) of the crossing [t0, t1] of shell k by the
-// ray from o along the unit d, whose scattering angle gives A_1 = `single` (one read
-// per ray).
-fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32, single: vec3<f32>) -> vec4<f32> {
+// The droplets' asymmetry and Legendre moments chi_1..chi_4 per wavelength, stored after
+// A_1's tables.
+fn sphere_moments() -> array<vec4<f32>, 3> {
+    var m: array<vec4<f32>, 3>;
+    for (var w = 0u; w < 3u; w++) {
+        let i = 3u * ANGLES + 4u * w;
+        m[w] = vec4<f32>(single_phase[i], single_phase[i + 1u], single_phase[i + 2u], single_phase[i + 3u]);
+    }
+    return m;
+}
+
+// A crossing's light towards its start: `real` seen through the real medium in front,
+// `scaled` (the slab light's diffuse and broad parts) through the delta-scaled one; its
+// transmittance through either (`field.rs`'s SphereCrossing).
+struct SphereCrossing {
+    real: vec3<f32>,
+    scaled: vec3<f32>,
+    transmittance: f32,
+    scaled_transmittance: vec3<f32>,
+}
+
+// The crossing [t0, t1] of shell k by the ray from o along the unit d lit by a slab
+// method (`slab_light.rs`), of mean extinction `sigma`.
+fn shade_slab(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32, sigma: f32, single: vec3<f32>) -> SphereCrossing {
+    let four = SPHERE_LIGHT == 3u;
+    let moments = sphere_moments();
+    let g = vec3<f32>(moments[0].x, moments[1].x, moments[2].x);
+    let albedo = spheres.medium.x;
+    let scale = 1.0 - albedo * slab_peak_share(four, g, moments);
+    let s = spheres.sun_direction.xyz;
+    let nu = dot(d, s);
+    let inner = spheres.radii_m.y + f32(k) * spheres.radii_m.w;
+    let length_m = t1 - t0;
+    let step_depth = sigma * length_m / f32(SLAB_STEPS);
+    let step_real = exp(-step_depth);
+    let step_scaled = exp(-scale * step_depth);
+    var out = SphereCrossing(vec3<f32>(0.0), vec3<f32>(0.0), 1.0, vec3<f32>(1.0));
+    for (var i = 0u; i < SLAB_STEPS; i++) {
+        let p = o + d * (t0 + length_m * (f32(i) + 0.5) / f32(SLAB_STEPS));
+        let up = normalize(p);
+        let tau_sun = sun_depth_at(k, p, sigma);
+        var below = 0.0;
+        for (var j = 0u; j < k; j++) {
+            below += cloud_depth(j, p);
+        }
+        let parts = slab_sources(
+            four,
+            tau_sun,
+            dot(s, up),
+            sigma * max(length(p) - inner, 0.0) + below,
+            -dot(d, up),
+            nu,
+            albedo,
+            single,
+            g,
+            moments,
+        );
+        let sun = select(spheres.sun_irradiance.xyz, vec3<f32>(0.0), tau_sun >= SHADOWED_DEPTH);
+        out.real += out.transmittance * (1.0 - step_real) * albedo * sun * parts.real;
+        out.scaled += out.scaled_transmittance * (1.0 - step_scaled) / scale * albedo
+            * (sun * parts.scaled + spheres.sky_irradiance.xyz * parts.scaled_sky);
+        out.transmittance *= step_real;
+        out.scaled_transmittance *= step_scaled;
+    }
+    return out;
+}
+
+// The crossing [t0, t1] of shell k by the ray from o along the unit d, whose scattering
+// angle gives A_1 = `single` (one read per ray).
+fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32, single: vec3<f32>) -> SphereCrossing {
     let start = o + d * t0;
     let end = o + d * t1;
     let middle = (start + end) / 2.0;
     let sigma = cloud_depth(k, middle) / spheres.radii_m.w;
     if sigma <= 0.0 {
-        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+        return SphereCrossing(vec3<f32>(0.0), vec3<f32>(0.0), 1.0, vec3<f32>(1.0));
+    }
+    if SPHERE_LIGHT >= 2u {
+        return shade_slab(o, d, k, t0, t1, sigma, single);
     }
     let tau_v = sigma * (t1 - t0);
     let tau_a = sun_depth_at(k, start, sigma);
@@ -153,7 +231,8 @@ fn shade_crossing(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32, single: 
     }
     let radiance = spheres.medium.x
         * (spheres.sun_irradiance.xyz * sun + spheres.sky_irradiance.xyz * sky);
-    return vec4<f32>(radiance, exp(-tau_v));
+    let t = exp(-tau_v);
+    return SphereCrossing(radiance, vec3<f32>(0.0), t, vec3<f32>(t));
 }
 
 // Below this transmittance the crossings behind are left out (`composite.rs`'s
@@ -187,10 +266,12 @@ fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
     let m = spheres.counts.x;
     let single = phase_a1(dot(d, spheres.sun_direction.xyz));
     var result = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    // The crossings' delta-scaled transmittance so far (a slab light's scaled part).
+    var seen_scaled = vec3<f32>(1.0);
     var first = -1.0;
     for (var half = 0u; half < halves; half++) {
         for (var n = 0u; n < m; n++) {
-            if result.a < MIN_TRANSMITTANCE {
+            if max(result.a, seen_scaled.x) < MIN_TRANSMITTANCE {
                 break;
             }
             // First intervals from the outermost shell in, then second ones outwards.
@@ -221,10 +302,14 @@ fn spheres_along(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> SpheresAlong {
                     first = t0;
                 }
                 let c = shade_crossing(o, d, k, t0, t1, single);
-                result = vec4<f32>(result.rgb + result.a * c.rgb, result.a * c.a);
+                result = vec4<f32>(
+                    result.rgb + result.a * c.real + seen_scaled * c.scaled,
+                    result.a * c.transmittance,
+                );
+                seen_scaled *= c.scaled_transmittance;
             }
         }
-        if result.a < MIN_TRANSMITTANCE {
+        if max(result.a, seen_scaled.x) < MIN_TRANSMITTANCE {
             break;
         }
     }

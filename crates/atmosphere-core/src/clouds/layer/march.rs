@@ -240,19 +240,20 @@ fn vertical_depth(
 
 /// Where a sample lies in the slab a slab method ([`LayerMethod::is_slab`]) takes
 /// around it (only those read `tau_below`).
-struct SlabGeometry {
+#[derive(Clone, Copy, Debug)]
+pub struct SlabGeometry {
     /// The sun's cosine from the upward vertical.
-    mu0: f64,
+    pub mu0: f64,
     /// The cosine from the upward vertical of the light's way to the camera.
-    mu_out: f64,
+    pub mu_out: f64,
     /// The optical depth straight down to the medium's boundary.
-    tau_below: f64,
+    pub tau_below: f64,
 }
 
 /// The forward peak's share f of the droplets' scattering that a slab method puts back
 /// into the beam at wavelength `w`: g^2 (delta-Eddington) or chi_4 (delta-M, four
 /// streams).
-fn peak_share(method: LayerMethod, orders: &ScatteringOrders, w: usize) -> f64 {
+pub fn peak_share(method: LayerMethod, orders: &ScatteringOrders, w: usize) -> f64 {
     match method {
         LayerMethod::FourStream => four_stream::truncation(&orders.moments(w)).0,
         _ => orders.asymmetry(w).powi(2),
@@ -263,7 +264,7 @@ fn peak_share(method: LayerMethod, orders: &ScatteringOrders, w: usize) -> f64 {
 /// for the optical depth `tau` of the path towards the sun: the part seen through the
 /// delta-scaled medium and the part seen through the real one; then J_sky / E_sky,
 /// seen through the scaled medium.
-fn slab_source(
+pub fn slab_source(
     method: LayerMethod,
     w: usize,
     tau: f64,

@@ -15,6 +15,9 @@
 //! crossing this is `layer/composite.rs`'s L_front + T_front L_cloud + T_cloud L_behind.
 //! The transmittance is the model's times the product of the T_k. Crossings behind
 //! spheres whose transmittance has fallen below [`MIN_TRANSMITTANCE`] are left out.
+//! Under the layer's slab methods a crossing's light seen through the delta-scaled
+//! medium (`slab_light.rs`) is dimmed by the product of the crossings' scaled
+//! transmittances T'_j in front instead of the T_j, as in the layer's march.
 
 use glam::DVec3;
 
@@ -67,7 +70,7 @@ pub fn radiance_with_spheres(
         let entry = ray.origin_m + direction * crossing.t0;
         let light = light_at(model, entry, sun)?;
         let cloud = spheres.shade(ray.origin_m, direction, crossing, &light, orders);
-        seen_cloud *= cloud.transmittance[0];
+        seen_cloud *= cloud.transmittance[0].max(cloud.scaled_transmittance[0]);
         shaded.push((crossing.t0, cloud));
     }
     if shaded
@@ -78,6 +81,7 @@ pub fn radiance_with_spheres(
     }
     let mut answer = RayRadiance::unattenuated(waves);
     let mut seen = vec![1.0; waves];
+    let mut seen_scaled = vec![1.0; waves];
     let mut before = vec![0.0; waves];
     for (t0, cloud) in &shaded {
         let at = model.radiance(&ViewRay {
@@ -86,8 +90,10 @@ pub fn radiance_with_spheres(
         })?;
         for w in 0..waves {
             answer.radiance[w] += seen[w] * (at.radiance[w] - before[w]).max(0.0)
-                + seen[w] * at.transmittance[w] * cloud.radiance[w];
+                + at.transmittance[w]
+                    * (seen[w] * cloud.radiance[w] + seen_scaled[w] * cloud.scaled_radiance[w]);
             seen[w] *= cloud.transmittance[w];
+            seen_scaled[w] *= cloud.scaled_transmittance[w];
         }
         before.clone_from(&at.radiance);
     }
@@ -115,17 +121,20 @@ pub fn spheres_only(
         radiance: vec![0.0; waves],
         transmittance: vec![1.0; waves],
     };
+    let mut seen_scaled = vec![1.0; waves];
     let (crossings, _) = spheres
         .shells()
         .crossings(origin, direction, max_distance_m);
     for crossing in &crossings {
-        if total.transmittance[0] < MIN_TRANSMITTANCE {
+        if total.transmittance[0].max(seen_scaled[0]) < MIN_TRANSMITTANCE {
             break;
         }
         let cloud = spheres.shade(origin, direction, crossing, light, orders);
         for w in 0..waves {
-            total.radiance[w] += total.transmittance[w] * cloud.radiance[w];
+            total.radiance[w] += total.transmittance[w] * cloud.radiance[w]
+                + seen_scaled[w] * cloud.scaled_radiance[w];
             total.transmittance[w] *= cloud.transmittance[w];
+            seen_scaled[w] *= cloud.scaled_transmittance[w];
         }
     }
     (total, crossings.first().map(|c| c.t0))

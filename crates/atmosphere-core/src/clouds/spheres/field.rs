@@ -29,10 +29,36 @@ use super::attenuation::{AttenuationTextures, SHADOWED_DEPTH};
 use super::cloud_textures::CloudTextures;
 use super::settings::SphereSettings;
 use super::shells::{Crossing, Shells, roots};
+use super::slab_light::shade_slab;
 use crate::clouds::error::CloudError;
 use crate::clouds::layer::field::CloudLayer;
-use crate::clouds::layer::march::{CloudLight, CloudSegment, OCTAVE_A, OCTAVE_B, OCTAVE_C};
+use crate::clouds::layer::march::{CloudLight, OCTAVE_A, OCTAVE_B, OCTAVE_C};
 use crate::clouds::layer::orders::ScatteringOrders;
+use crate::clouds::layer::settings::LayerMethod;
+
+/// The light one crossing sends towards its start, per wavelength: `radiance` seen
+/// through the real medium in front of it, `scaled_radiance` (the slab methods' diffuse
+/// light and the broad part of the sun's, `slab_light.rs`; zero for the octaves) through
+/// the delta-scaled one, and the crossing's transmittance through either.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SphereCrossing {
+    pub radiance: Vec<f64>,
+    pub scaled_radiance: Vec<f64>,
+    pub transmittance: Vec<f64>,
+    pub scaled_transmittance: Vec<f64>,
+}
+
+impl SphereCrossing {
+    /// A crossing of no cloud.
+    pub fn clear(waves: usize) -> SphereCrossing {
+        SphereCrossing {
+            radiance: vec![0.0; waves],
+            scaled_radiance: vec![0.0; waves],
+            transmittance: vec![1.0; waves],
+            scaled_transmittance: vec![1.0; waves],
+        }
+    }
+}
 
 /// The spheres of a layer, lit by one sun.
 #[derive(Clone, Debug)]
@@ -42,6 +68,7 @@ pub struct CloudSpheres {
     attenuation: AttenuationTextures,
     albedo: f64,
     octaves: u32,
+    method: LayerMethod,
     extinction_per_m: f64,
 }
 
@@ -69,6 +96,7 @@ impl CloudSpheres {
             attenuation,
             albedo: layer.settings().albedo,
             octaves: layer.settings().octaves,
+            method: layer.settings().method,
             extinction_per_m: layer.settings().extinction_per_m,
         })
     }
@@ -93,6 +121,12 @@ impl CloudSpheres {
         self.octaves
     }
 
+    /// The layer's method: the slab methods shade by their slab (`slab_light.rs`), the
+    /// others by the octaves.
+    pub fn method(&self) -> LayerMethod {
+        self.method
+    }
+
     /// The layer's densest extinction, m^-1 (at full cover, no erosion).
     pub fn extinction_per_m(&self) -> f64 {
         self.extinction_per_m
@@ -100,7 +134,8 @@ impl CloudSpheres {
 
     /// The light `crossing` of the ray from `origin` along the unit `direction` sends
     /// towards its start, and its transmittance, lit by `light` (the module's
-    /// equations), with the droplets' tables `orders`.
+    /// equations, or `slab_light.rs`'s under a slab method), with the droplets' tables
+    /// `orders`.
     pub fn shade(
         &self,
         origin: DVec3,
@@ -108,7 +143,10 @@ impl CloudSpheres {
         crossing: &Crossing,
         light: &CloudLight,
         orders: &ScatteringOrders,
-    ) -> CloudSegment {
+    ) -> SphereCrossing {
+        if self.method.is_slab() {
+            return shade_slab(self, origin, direction, crossing, light, orders);
+        }
         let k = crossing.shell;
         let start = origin + direction * crossing.t0;
         let end = origin + direction * crossing.t1;
@@ -116,10 +154,7 @@ impl CloudSpheres {
         let sigma = self.clouds.extinction(k, middle);
         let waves = light.sun_irradiance.len();
         if sigma <= 0.0 {
-            return CloudSegment {
-                radiance: vec![0.0; waves],
-                transmittance: vec![1.0; waves],
-            };
+            return SphereCrossing::clear(waves);
         }
         let tau_v = sigma * (crossing.t1 - crossing.t0);
         let sun = light.sun_direction;
@@ -147,16 +182,18 @@ impl CloudSpheres {
                 self.albedo * (light.sun_irradiance[w] * sun_part + light.sky_irradiance[w] * sky)
             })
             .collect();
-        CloudSegment {
+        SphereCrossing {
             radiance,
+            scaled_radiance: vec![0.0; waves],
             transmittance: vec![(-tau_v).exp(); waves],
+            scaled_transmittance: vec![(-tau_v).exp(); waves],
         }
     }
 
     /// The sun's optical depth at `point` inside shell `k` of mean extinction `sigma`:
     /// the attenuation texture at the sphere under it, its own path through the shell
     /// swapped for the point's.
-    fn sun_depth_at(&self, k: usize, point: DVec3, sigma: f64, sun: DVec3) -> f64 {
+    pub fn sun_depth_at(&self, k: usize, point: DVec3, sigma: f64, sun: DVec3) -> f64 {
         let g = self.attenuation.depth(k, point);
         if g >= SHADOWED_DEPTH {
             return SHADOWED_DEPTH;

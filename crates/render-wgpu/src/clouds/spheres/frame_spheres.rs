@@ -16,12 +16,13 @@ use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use crate::clouds::layer_uniform::LayerCamera;
 use crate::clouds::spheres::sphere_cache::SphereCache;
 use crate::clouds::spheres::sphere_uniform::SphereUniform;
+use crate::clouds::spheres::sphere_variants::SphereVariants;
 use crate::frame::surface_buffer::GEOMETRY_FORMAT;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
-    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    read_only_storage_buffer_entry, split_timestamps, storage_texture_entry, texel_groups,
+    texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
 
@@ -62,9 +63,9 @@ pub struct SphereImages<'a> {
 /// The compiled passes (every pixel; reduced and upsampled) and their parameter buffers.
 #[derive(Debug)]
 pub struct FrameSpherePass {
-    pipeline: ComputePipeline,
-    reduced: ComputePipeline,
-    upsample: ComputePipeline,
+    pipeline: SphereVariants,
+    reduced: SphereVariants,
+    upsample: SphereVariants,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
 }
@@ -96,7 +97,7 @@ impl FrameSpherePass {
         let mut upsample = entries.to_vec();
         upsample.extend([texture_entry(9, D2), texture_entry(10, D2)]);
         let pipeline = |shader, label, entries: &[wgpu::BindGroupLayoutEntry]| {
-            ComputePipeline::new(gpu, shader, "main", label, entries)
+            SphereVariants::new(gpu, shader, label, entries)
         };
         Ok(FrameSpherePass {
             pipeline: pipeline(
@@ -165,6 +166,7 @@ impl FrameSpherePass {
         gpu.write_uniform(&self.flags, &flags);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (layer, out, front) = (view(images.layer), view(images.out), view(images.front));
+        let method = made.spheres.method();
         let inputs = [
             (0, self.params.as_entire_binding()),
             (1, made.inputs.cloud_depths.as_entire_binding()),
@@ -179,10 +181,10 @@ impl FrameSpherePass {
             (8, wgpu::BindingResource::TextureView(&layer)),
         ];
         if divisor <= 1 {
-            let bind_group = self
-                .pipeline
-                .bind_group_numbered(gpu, &[inputs.as_slice(), &written].concat());
-            self.pipeline.dispatch(
+            let pipeline = self.pipeline.for_method(gpu, method)?;
+            let bind_group =
+                pipeline.bind_group_numbered(gpu, &[inputs.as_slice(), &written].concat());
+            pipeline.dispatch(
                 encoder,
                 "cloud spheres in frames",
                 &bind_group,
@@ -214,10 +216,9 @@ impl FrameSpherePass {
             (4, wgpu::BindingResource::TextureView(&image)),
             (9, wgpu::BindingResource::TextureView(&spans)),
         ];
-        let bind_group = self
-            .reduced
-            .bind_group_numbered(gpu, &[inputs.as_slice(), &reduced].concat());
-        self.reduced.dispatch(
+        let pipeline = self.reduced.for_method(gpu, method)?;
+        let bind_group = pipeline.bind_group_numbered(gpu, &[inputs.as_slice(), &reduced].concat());
+        pipeline.dispatch(
             encoder,
             "cloud spheres in frames, reduced",
             &bind_group,
@@ -228,10 +229,10 @@ impl FrameSpherePass {
             (9, wgpu::BindingResource::TextureView(&image)),
             (10, wgpu::BindingResource::TextureView(&spans)),
         ];
-        let bind_group = self
-            .upsample
-            .bind_group_numbered(gpu, &[inputs.as_slice(), &written, &read].concat());
-        self.upsample.dispatch(
+        let pipeline = self.upsample.for_method(gpu, method)?;
+        let bind_group =
+            pipeline.bind_group_numbered(gpu, &[inputs.as_slice(), &written, &read].concat());
+        pipeline.dispatch(
             encoder,
             "cloud spheres in frames, upsample",
             &bind_group,

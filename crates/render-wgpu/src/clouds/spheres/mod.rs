@@ -11,3 +11,4 @@ pub mod sphere_cache;
 pub mod sphere_inputs;
 pub mod sphere_pass;
 pub mod sphere_uniform;
+pub mod sphere_variants;

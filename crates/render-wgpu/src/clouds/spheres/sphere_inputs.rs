@@ -1,7 +1,8 @@
 //! What the cloud spheres pass reads besides its parameters, as storage buffers in the
 //! layout `shaders/clouds/spheres/params.wgsl` documents: the cloud textures T_k (optical
 //! depths), the attenuation textures G_k (ratios, remade when the sun moves) and the droplets' phase function
-//! A_1 at three wavelengths.
+//! A_1 at three wavelengths, followed by their Legendre moments chi_1..chi_4 per
+//! wavelength (the slab lights').
 
 use atmosphere_core::clouds::layer::orders::{ANGLES, ScatteringOrders};
 use atmosphere_core::clouds::spheres::field::CloudSpheres;
@@ -49,9 +50,12 @@ impl SphereInputs {
                     usage: wgpu::BufferUsages::STORAGE,
                 }))
         };
-        let phase: Vec<f32> = (0..3)
+        let mut phase: Vec<f32> = (0..3)
             .flat_map(|w| orders.table(w)[..ANGLES].iter().map(|&a| a as f32))
             .collect();
+        for w in 0..3 {
+            phase.extend(orders.moments(w)[1..].iter().map(|&chi| chi as f32));
+        }
         Ok(SphereInputs {
             cloud_depths: upload("cloud sphere textures", spheres.clouds().values())?,
             sun_ratios: upload(

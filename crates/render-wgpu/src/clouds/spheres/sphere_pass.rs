@@ -2,13 +2,16 @@
 //! radiance of the spheres (rgb, at 680, 550, 440 nm) and their transmittance (a) into an
 //! `Rgba32Float` image; see atmosphere-core's `clouds/spheres/` for the equations.
 
+use atmosphere_core::clouds::layer::settings::LayerMethod;
+
 use crate::clouds::spheres::sphere_inputs::SphereInputs;
 use crate::clouds::spheres::sphere_uniform::SphereUniform;
+use crate::clouds::spheres::sphere_variants::SphereVariants;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::pipeline::{
-    ComputePipeline, read_only_storage_buffer_entry, storage_texture_entry, texel_groups,
-    texture_2d, uniform_buffer, uniform_entry,
+    read_only_storage_buffer_entry, storage_texture_entry, texel_groups, texture_2d,
+    uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
 
@@ -17,7 +20,7 @@ const IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// The compiled pass and its parameter buffer.
 #[derive(Debug)]
 pub struct CloudSpherePass {
-    pipeline: ComputePipeline,
+    pipeline: SphereVariants,
     params: wgpu::Buffer,
 }
 
@@ -32,10 +35,9 @@ impl CloudSpherePass {
             storage_texture_entry(4, IMAGE_FORMAT, D2),
         ];
         Ok(CloudSpherePass {
-            pipeline: ComputePipeline::new(
+            pipeline: SphereVariants::new(
                 gpu,
                 "clouds/spheres/image.wgsl",
-                "main",
                 "cloud spheres",
                 &entries,
             )?,
@@ -44,19 +46,21 @@ impl CloudSpherePass {
     }
 
     /// Records the pass into `encoder`, writing `image` (`Rgba32Float`, the size of
-    /// `params.counts.zw`), timed by `timestamps` when given.
+    /// `params.counts.zw`), the spheres lit as the layer's `method` lights them, timed by
+    /// `timestamps` when given.
     pub fn encode(
         &self,
         gpu: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        params: &SphereUniform,
+        (params, method): (&SphereUniform, LayerMethod),
         inputs: &SphereInputs,
         image: &wgpu::Texture,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    ) -> Result<(), GpuError> {
         gpu.write_uniform(&self.params, params);
         let view = image.create_view(&Default::default());
-        let bind_group = self.pipeline.bind_group(
+        let pipeline = self.pipeline.for_method(gpu, method)?;
+        let bind_group = pipeline.bind_group(
             gpu,
             &[
                 self.params.as_entire_binding(),
@@ -66,21 +70,22 @@ impl CloudSpherePass {
                 wgpu::BindingResource::TextureView(&view),
             ],
         );
-        self.pipeline.dispatch(
+        pipeline.dispatch(
             encoder,
             "cloud spheres",
             &bind_group,
             texel_groups(image),
             timestamps,
         );
+        Ok(())
     }
 
-    /// Renders the image of `params` and reads it back, row by row: [radiance at 680,
-    /// 550, 440 nm, transmittance] per pixel.
+    /// Renders the image of `params` (lit as `method` lights the spheres) and reads it
+    /// back, row by row: [radiance at 680, 550, 440 nm, transmittance] per pixel.
     pub fn render(
         &self,
         gpu: &GpuContext,
-        params: &SphereUniform,
+        (params, method): (&SphereUniform, LayerMethod),
         inputs: &SphereInputs,
     ) -> Result<Vec<[f32; 4]>, RenderError> {
         let image = texture_2d(
@@ -91,7 +96,7 @@ impl CloudSpherePass {
             wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
         );
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        self.encode(gpu, &mut encoder, params, inputs, &image, None);
+        self.encode(gpu, &mut encoder, (params, method), inputs, &image, None)?;
         gpu.queue.submit([encoder.finish()]);
         let bytes = read_texture(gpu, &image, 16)?;
         Ok(bytemuck::pod_collect_to_vec(&bytes))

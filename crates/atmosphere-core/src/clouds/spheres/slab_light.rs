@@ -1,0 +1,86 @@
+//! The light of a crossing of a cloud sphere's shell under the layer's slab methods
+//! (`eddington`, `four-stream`; `layer/march.rs`): the cloud spheres then shade as the
+//! layer's march does, so that the two forms agree where one hands over to the other and
+//! a thick deck seen from orbit keeps the light that diffuses through it.
+//!
+//! The crossing is cut into [`SLAB_STEPS`] equal steps of view optical depth, each
+//! sampled at its middle p. At p the sun's optical depth tau_s comes from the attenuation
+//! texture (`field.rs`, `sun_depth_at`); the slab around p has tau_above = tau_s mu0
+//! (mu0 the sun's cosine from p's vertical) and tau_below = sigma_k (r - r_k) plus the
+//! cloud textures' vertical optical depths T_j of the shells below (r_k the shell's inner
+//! radius). Its sources are the march's (`slab_source`): the diffuse light and the broad
+//! part of the sun's single scattering seen through the delta-scaled medium, the rest of
+//! A_1 through the real one, the sky's light the slab's. A step of optical depth d adds,
+//! with the march's energy-conserving step integral,
+//!     T (1 - e^(-d)) albedo J_real + T' (1 - e^(-s d)) / s albedo J_scaled,
+//! s = 1 - albedo f, T and T' the real and scaled transmittances from the crossing's
+//! start. In the planet's shadow (tau_s at the attenuation textures' cap) the sun adds
+//! nothing; the sky still does.
+
+use glam::DVec3;
+
+use super::attenuation::SHADOWED_DEPTH;
+use super::field::{CloudSpheres, SphereCrossing};
+use super::shells::Crossing;
+use crate::clouds::layer::march::{CloudLight, SlabGeometry, peak_share, slab_source};
+use crate::clouds::layer::orders::ScatteringOrders;
+
+/// Steps of a crossing's view optical depth (a shell is a fifth of the layer by default,
+/// so about as many steps through the layer as the interactive march takes through a
+/// deck's top).
+pub const SLAB_STEPS: usize = 4;
+
+/// The crossing's light under the spheres' slab method (the module's equations).
+pub fn shade_slab(
+    spheres: &CloudSpheres,
+    origin: DVec3,
+    direction: DVec3,
+    crossing: &Crossing,
+    light: &CloudLight,
+    orders: &ScatteringOrders,
+) -> SphereCrossing {
+    let waves = light.sun_irradiance.len();
+    let k = crossing.shell;
+    let start = origin + direction * crossing.t0;
+    let end = origin + direction * crossing.t1;
+    let sigma = spheres.clouds().extinction(k, (start + end) / 2.0);
+    let mut shaded = SphereCrossing::clear(waves);
+    if sigma <= 0.0 {
+        return shaded;
+    }
+    let method = spheres.method();
+    let albedo = spheres.albedo();
+    let scales: Vec<f64> = (0..waves)
+        .map(|w| 1.0 - albedo * peak_share(method, orders, w))
+        .collect();
+    let length = crossing.t1 - crossing.t0;
+    let d = sigma * length / SLAB_STEPS as f64;
+    let nu = direction.dot(light.sun_direction);
+    let inner = spheres.shells().bounds_m(k).0;
+    for step in 0..SLAB_STEPS {
+        let p = start + direction * (length * (step as f64 + 0.5) / SLAB_STEPS as f64);
+        let up = p.normalize();
+        let tau_sun = spheres.sun_depth_at(k, p, sigma, light.sun_direction);
+        let lit = if tau_sun >= SHADOWED_DEPTH { 0.0 } else { 1.0 };
+        let below: f64 = (0..k).map(|j| spheres.clouds().depth(j, p)).sum();
+        let slab = SlabGeometry {
+            mu0: light.sun_direction.dot(up),
+            mu_out: -direction.dot(up),
+            tau_below: sigma * (p.length() - inner).max(0.0) + below,
+        };
+        for w in 0..waves {
+            let (scaled, real, sky) = slab_source(method, w, tau_sun, orders, &slab, nu, albedo);
+            let sun = lit * light.sun_irradiance[w];
+            let step_real = (-d).exp();
+            let step_scaled = (-scales[w] * d).exp();
+            shaded.radiance[w] += shaded.transmittance[w] * (1.0 - step_real) * albedo * sun * real;
+            shaded.scaled_radiance[w] += shaded.scaled_transmittance[w] * (1.0 - step_scaled)
+                / scales[w]
+                * albedo
+                * (sun * scaled + light.sky_irradiance[w] * sky);
+            shaded.transmittance[w] *= step_real;
+            shaded.scaled_transmittance[w] *= step_scaled;
+        }
+    }
+    shaded
+}

@@ -1,0 +1,74 @@
+//! The pipelines of one cloud spheres shader, one per light (`SPHERE_LIGHT` in
+//! `shaders/clouds/spheres/shade.wgsl`): the octaves, delta-Eddington's slab or the
+//! four-stream slab, after the layer's method (`slab_light.rs`). Each pipeline holds one
+//! light's code, as the layer's march variants do (`march_variants.rs`: on a software
+//! rasteriser a shader with every light made each sample dearer); a variant is compiled
+//! the first time a frame asks for it.
+
+use std::sync::OnceLock;
+
+use atmosphere_core::clouds::layer::settings::LayerMethod;
+
+use crate::gpu::context::GpuContext;
+use crate::gpu::error::GpuError;
+use crate::gpu::pipeline::ComputePipeline;
+
+/// Entry point `main` of one spheres shader, compiled lazily per light.
+#[derive(Debug)]
+pub struct SphereVariants {
+    shader: &'static str,
+    label: &'static str,
+    entries: Vec<wgpu::BindGroupLayoutEntry>,
+    built: [OnceLock<ComputePipeline>; 3],
+}
+
+/// The light code and pipeline slot of the layer's `method`: the slab methods light the
+/// spheres by their slab, the others by the octaves.
+fn light_of(method: LayerMethod) -> (u32, usize) {
+    match method {
+        LayerMethod::Riley | LayerMethod::Octaves => (0, 0),
+        LayerMethod::Eddington => (2, 1),
+        LayerMethod::FourStream => (3, 2),
+    }
+}
+
+impl SphereVariants {
+    /// The variants of `shader`'s `main` with one bind group of `entries`; the octaves'
+    /// is compiled now, so that a shader error shows at once.
+    pub fn new(
+        gpu: &GpuContext,
+        shader: &'static str,
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+    ) -> Result<SphereVariants, GpuError> {
+        let variants = SphereVariants {
+            shader,
+            label,
+            entries: entries.to_vec(),
+            built: Default::default(),
+        };
+        variants.for_method(gpu, LayerMethod::Octaves)?;
+        Ok(variants)
+    }
+
+    /// The pipeline lighting the spheres as the layer's `method` does.
+    pub fn for_method(
+        &self,
+        gpu: &GpuContext,
+        method: LayerMethod,
+    ) -> Result<&ComputePipeline, GpuError> {
+        let (light, slot) = light_of(method);
+        if let Some(pipeline) = self.built[slot].get() {
+            return Ok(pipeline);
+        }
+        let pipeline = ComputePipeline::with_constants(
+            gpu,
+            self.shader,
+            "main",
+            self.label,
+            &self.entries,
+            &[("SPHERE_LIGHT", f64::from(light))],
+        )?;
+        Ok(self.built[slot].get_or_init(|| pipeline))
+    }
+}
