@@ -44,27 +44,38 @@ fn four_stream_mode(k: f32, total: f32, tau: f32, kind: u32, b: vec2<f32>, d: ve
     return vec4<f32>(b * delta, d * sigma);
 }
 
-// The diffuse field's source towards the eye (1 - f) (1/2) sum_j w_j (p'(mu, mu_j)
-// I(+mu_j) + p'(mu, -mu_j) I(-mu_j)), sr^-1, per unit sun irradiance (.x) and per unit
-// sky irradiance (.y), at optical depth `tau_above` below the top of a slab of optical
-// depth `tau_above + tau_below`, sun cosine `mu0_in`, the droplets' moments
-// chi_1..chi_4 in `moments`.
-fn four_stream_diffuse(
-    tau_above: f32,
-    tau_below: f32,
-    mu0_in: f32,
-    albedo: f32,
-    moments: vec4<f32>,
-    mu_out: f32,
-) -> vec2<f32> {
+// A solved slab (atmosphere-core's `FourStreamSlab`): the scaled moments, the peak's
+// share f, tau'/tau, the (perturbed) sun cosine, the scaled optical depth, the
+// eigenvalues, the eigenvectors d and B d of each, the beam's particular solution and the
+// constants of the beam's (.x) and the sky's (.y) solutions.
+struct FourStreamSlab {
+    chi: vec4<f32>,
+    f: f32,
+    scale: f32,
+    mu0: f32,
+    total: f32,
+    k: vec2<f32>,
+    d0: vec2<f32>,
+    d1: vec2<f32>,
+    b0: vec2<f32>,
+    b1: vec2<f32>,
+    zs: vec2<f32>,
+    zd: vec2<f32>,
+    c0: vec2<f32>,
+    c1: vec2<f32>,
+    c2: vec2<f32>,
+    c3: vec2<f32>,
+}
+
+// The slab of optical depth `tau_total` (unscaled) lit at the sun's cosine `mu0_in`, the
+// droplets' moments chi_1..chi_4 in `moments`.
+fn four_stream_solve(tau_total: f32, mu0_in: f32, albedo: f32, moments: vec4<f32>) -> FourStreamSlab {
     let absorption = max(1.0 - albedo, FOUR_STREAM_MIN_ABSORPTION);
     let f = clamp(moments.w, 0.0, 0.999);
     let scale = 1.0 - (1.0 - absorption) * f;
     let omega = 1.0 - absorption / scale;
     let chi = (vec4<f32>(1.0, moments.xyz) - f) / (1.0 - f);
-    let above = max(tau_above, 0.0);
-    let total = (above + max(tau_below, 0.0)) * scale;
-    let tau = above * scale;
+    let total = max(tau_total, 0.0) * scale;
     let mu = FOUR_STREAM_MU;
     let weights = FOUR_STREAM_W;
     // A (even moments) and B (odd), by their elements a_ij.
@@ -166,18 +177,31 @@ fn four_stream_diffuse(
         }
         r[row] = (r[row] - known) / rows[row][row];
     }
-    // The field at the sample: S and D of each solution (beam .x, sky .y per stream).
-    var s_beam = zs * exp(-tau / mu0);
-    var d_beam = zd * exp(-tau / mu0);
+    return FourStreamSlab(chi, f, scale, mu0, total, k, d[0], d[1], bd[0], bd[1], zs, zd, r[0], r[1], r[2], r[3]);
+}
+
+// The diffuse field's source towards the eye (1 - f) (1/2) sum_j w_j (p'(mu, mu_j)
+// I(+mu_j) + p'(mu, -mu_j) I(-mu_j)), sr^-1, per unit sun irradiance (.x) and per unit
+// sky irradiance (.y), at optical depth `tau_above` (unscaled, clamped to the slab)
+// below the top of `slab`, towards a direction of cosine `mu_out` from the upward vertical.
+fn four_stream_source(slab: FourStreamSlab, tau_above: f32, mu_out: f32) -> vec2<f32> {
+    let tau = min(max(tau_above, 0.0) * slab.scale, slab.total);
+    let mu = FOUR_STREAM_MU;
+    let chi = slab.chi;
+    var s_beam = slab.zs * exp(-tau / slab.mu0);
+    var d_beam = slab.zd * exp(-tau / slab.mu0);
     var s_sky = vec2<f32>(0.0);
     var d_sky = vec2<f32>(0.0);
+    var constants = array<vec2<f32>, 4>(slab.c0, slab.c1, slab.c2, slab.c3);
     for (var column = 0u; column < 4u; column++) {
-        let q = column / 2u;
-        let here = four_stream_mode(k[q], total, tau, column % 2u, bd[q], d[q]);
-        s_beam += r[column].x * here.xy;
-        d_beam += r[column].x * here.zw;
-        s_sky += r[column].y * here.xy;
-        d_sky += r[column].y * here.zw;
+        var here = four_stream_mode(slab.k.x, slab.total, tau, column % 2u, slab.b0, slab.d0);
+        if column >= 2u {
+            here = four_stream_mode(slab.k.y, slab.total, tau, column % 2u, slab.b1, slab.d1);
+        }
+        s_beam += constants[column].x * here.xy;
+        d_beam += constants[column].x * here.zw;
+        s_sky += constants[column].y * here.xy;
+        d_sky += constants[column].y * here.zw;
     }
     let to_eye_up = FOUR_STREAM_W * vec2<f32>(
         four_stream_phase(chi, mu_out, mu.x),
@@ -190,5 +214,20 @@ fn four_stream_diffuse(
     // I(+mu) = (S + D) / 2, I(-mu) = (S - D) / 2.
     let beam = dot(to_eye_up, s_beam + d_beam) + dot(to_eye_down, s_beam - d_beam);
     let sky = dot(to_eye_up, s_sky + d_sky) + dot(to_eye_down, s_sky - d_sky);
-    return max((1.0 - f) * 0.25 * vec2<f32>(beam, sky), vec2<f32>(0.0));
+    return max((1.0 - slab.f) * 0.25 * vec2<f32>(beam, sky), vec2<f32>(0.0));
+}
+
+// The source of `four_stream_source` at optical depth `tau_above` below the top of a
+// slab of optical depth `tau_above + tau_below`, sun cosine `mu0_in`.
+fn four_stream_diffuse(
+    tau_above: f32,
+    tau_below: f32,
+    mu0_in: f32,
+    albedo: f32,
+    moments: vec4<f32>,
+    mu_out: f32,
+) -> vec2<f32> {
+    let above = max(tau_above, 0.0);
+    let slab = four_stream_solve(above + max(tau_below, 0.0), mu0_in, albedo, moments);
+    return four_stream_source(slab, above, mu_out);
 }

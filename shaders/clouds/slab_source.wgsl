@@ -41,8 +41,6 @@ fn slab_sources(
     g: vec3<f32>,
     moments: array<vec4<f32>, 3>,
 ) -> SlabSources {
-    let f = slab_peak_share(four_stream, g, moments);
-    let broad = (1.0 - f) * eddington_henyey_greenstein((g - f) / (1.0 - f), nu);
     let tau_above = tau * max(mu0, EDDINGTON_MIN_SUN_COSINE);
     var diffuse = EddingtonDiffuse(vec3<f32>(0.0), vec3<f32>(0.0));
     if four_stream {
@@ -55,6 +53,24 @@ fn slab_sources(
     } else {
         diffuse = eddington_diffuse(tau_above, tau_below, mu0, albedo, g, mu_out);
     }
+    return slab_parts(four_stream, tau, nu, albedo, a1, g, moments, diffuse);
+}
+
+// `slab_sources` with the slab's diffuse sources given (march.rs's `slab_parts`): the
+// sun's single scattering split into its broad part from the scaled beam and the rest
+// of A_1 from the real one.
+fn slab_parts(
+    four_stream: bool,
+    tau: f32,
+    nu: f32,
+    albedo: f32,
+    a1: vec3<f32>,
+    g: vec3<f32>,
+    moments: array<vec4<f32>, 3>,
+    diffuse: EddingtonDiffuse,
+) -> SlabSources {
+    let f = slab_peak_share(four_stream, g, moments);
+    let broad = (1.0 - f) * eddington_henyey_greenstein((g - f) / (1.0 - f), nu);
     return SlabSources(
         (a1 - broad) * exp(-tau),
         diffuse.beam + broad * exp(-(1.0 - albedo * f) * tau),

@@ -494,7 +494,7 @@ fn a_light_method_outside_its_range_is_refused_by_name() {
     let inputs = LayerInputs::new(&gpu, &cover(), &orders()).unwrap();
     let pass = CloudLayerPass::new(&gpu).unwrap();
     let mut params = params(&camera(500.0, 10.0), 30.0, &LayerSettings::default());
-    params.counts[2] = 3;
+    params.counts[2] = 4;
     let e = pass.render(&gpu, (&params, &inputs), None).unwrap_err();
-    assert!(e.to_string().contains("light method 3"), "{e}");
+    assert!(e.to_string().contains("light method 4"), "{e}");
 }

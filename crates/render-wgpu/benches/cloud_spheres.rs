@@ -11,7 +11,9 @@
 //! resolution divisor, every pixel shaded (1) and reduced and upsampled by span (2, 3,
 //! 4), and each reduced image's error against the divisor 1 image is printed: the mean
 //! absolute radiance difference over the mean radiance, and the largest transmittance
-//! difference.
+//! difference. The frames' step is also timed lit by the layer's slab methods
+//! (`slab_light.rs`: eddington, four-stream) at divisors 1 and 3, each with its own
+//! spheres (made before the rounds).
 //!
 //! Run: `cargo bench -p render-wgpu --bench cloud_spheres` (on lavapipe:
 //! `WGPU_BACKEND=vulkan VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json`).
@@ -106,7 +108,7 @@ fn main() {
         ..LayerSettings::default()
     };
     let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.85 }).unwrap();
-    let layer = CloudLayer::new(settings, atmosphere.bottom_radius_m, grid, phase).unwrap();
+    let layer = CloudLayer::new(settings, atmosphere.bottom_radius_m, grid.clone(), phase).unwrap();
     let orders = orders_of_droplets();
     let start = Instant::now();
     let spheres =
@@ -164,6 +166,32 @@ fn main() {
     let reference = frame_pass
         .render(renderer.gpu(), &scene(&sphere_settings[0]))
         .unwrap();
+    // The slab lights: their layer settings and spheres, each at divisors 1 and 3.
+    let slab_lights: Vec<(LayerSettings, SphereCache)> =
+        [LayerMethod::Eddington, LayerMethod::FourStream]
+            .into_iter()
+            .map(|method| {
+                let lit = LayerSettings { method, ..settings };
+                (lit, SphereCache::new(grid.clone(), orders_of_droplets()))
+            })
+            .collect();
+    let slab_scenes: Vec<Vec<SphereScene>> = slab_lights
+        .iter()
+        .map(|(lit, cache)| {
+            [0, 2]
+                .into_iter()
+                .map(|k| SphereScene {
+                    layer: lit,
+                    cache,
+                    ..scene(&sphere_settings[k])
+                })
+                .collect()
+        })
+        .collect();
+    for scenes in &slab_scenes {
+        frame_pass.render(renderer.gpu(), &scenes[0]).unwrap();
+    }
+    let mut slab_ms = vec![[Vec::new(), Vec::new()]; slab_lights.len()];
     let (mut sky_ms, mut frame_ms, mut spheres_ms) = (Vec::new(), Vec::new(), Vec::new());
     let mut step_ms = vec![Vec::new(); DIVISORS.len()];
     let mut errors = vec![(0.0, 0.0); DIVISORS.len()];
@@ -189,6 +217,13 @@ fn main() {
             step_ms[k].push(start.elapsed().as_secs_f64() * 1e3);
             errors[k] = image_error(&image, &reference);
         }
+        for (scenes, times) in slab_scenes.iter().zip(slab_ms.iter_mut()) {
+            for (scene, divisor_times) in scenes.iter().zip(times.iter_mut()) {
+                let start = Instant::now();
+                frame_pass.render(renderer.gpu(), scene).unwrap();
+                divisor_times.push(start.elapsed().as_secs_f64() * 1e3);
+            }
+        }
     }
     let (sky, whole, spheres) = (median(sky_ms), median(frame_ms), median(spheres_ms));
     println!(
@@ -212,5 +247,16 @@ fn main() {
             step / sky,
             100.0 * radiance
         );
+    }
+    for ((lit, _), times) in slab_lights.iter().zip(slab_ms) {
+        for (divisor, divisor_times) in [1, 3].into_iter().zip(times) {
+            let step = median(divisor_times);
+            println!(
+                "frames' spheres step lit by {}, divisor {divisor}: {step:.1} ms (wall clock, \
+                 with read-back), {:.3} x the hillaire pass",
+                lit.method,
+                step / sky
+            );
+        }
     }
 }

@@ -168,26 +168,57 @@ fn shade_slab(o: vec3<f32>, d: vec3<f32>, k: u32, t0: f32, t1: f32, sigma: f32, 
     let step_real = exp(-step_depth);
     let step_scaled = exp(-scale * step_depth);
     var out = SphereCrossing(vec3<f32>(0.0), vec3<f32>(0.0), 1.0, vec3<f32>(1.0));
+    // Four streams: each wavelength's slab solved once, for the column at the crossing's
+    // middle (`slab_light.rs`).
+    var solved: array<FourStreamSlab, 3>;
+    if four {
+        let middle = o + d * (t0 + 0.5 * length_m);
+        let up = normalize(middle);
+        let mu0 = dot(s, up);
+        var below = 0.0;
+        for (var j = 0u; j < k; j++) {
+            below += cloud_depth(j, middle);
+        }
+        let column = sun_depth_at(k, middle, sigma) * max(mu0, EDDINGTON_MIN_SUN_COSINE)
+            + sigma * max(length(middle) - inner, 0.0) + below;
+        var chi = moments;
+        for (var w = 0u; w < 3u; w++) {
+            solved[w] = four_stream_solve(column, mu0, albedo, chi[w]);
+        }
+    }
     for (var i = 0u; i < SLAB_STEPS; i++) {
         let p = o + d * (t0 + length_m * (f32(i) + 0.5) / f32(SLAB_STEPS));
         let up = normalize(p);
         let tau_sun = sun_depth_at(k, p, sigma);
-        var below = 0.0;
-        for (var j = 0u; j < k; j++) {
-            below += cloud_depth(j, p);
+        let mu0 = dot(s, up);
+        var parts: SlabSources;
+        if four {
+            var diffuse = EddingtonDiffuse(vec3<f32>(0.0), vec3<f32>(0.0));
+            let above = tau_sun * max(mu0, EDDINGTON_MIN_SUN_COSINE);
+            for (var w = 0u; w < 3u; w++) {
+                let j = four_stream_source(solved[w], above, -dot(d, up));
+                diffuse.beam[w] = j.x;
+                diffuse.sky[w] = j.y;
+            }
+            parts = slab_parts(four, tau_sun, nu, albedo, single, g, moments, diffuse);
+        } else {
+            var below = 0.0;
+            for (var j = 0u; j < k; j++) {
+                below += cloud_depth(j, p);
+            }
+            parts = slab_sources(
+                four,
+                tau_sun,
+                mu0,
+                sigma * max(length(p) - inner, 0.0) + below,
+                -dot(d, up),
+                nu,
+                albedo,
+                single,
+                g,
+                moments,
+            );
         }
-        let parts = slab_sources(
-            four,
-            tau_sun,
-            dot(s, up),
-            sigma * max(length(p) - inner, 0.0) + below,
-            -dot(d, up),
-            nu,
-            albedo,
-            single,
-            g,
-            moments,
-        );
         let sun = select(spheres.sun_irradiance.xyz, vec3<f32>(0.0), tau_sun >= SHADOWED_DEPTH);
         out.real += out.transmittance * (1.0 - step_real) * albedo * sun * parts.real;
         out.scaled += out.scaled_transmittance * (1.0 - step_scaled) / scale * albedo

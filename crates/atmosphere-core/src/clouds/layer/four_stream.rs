@@ -94,11 +94,14 @@ pub fn truncation(chi: &[f64; 5]) -> (f64, f64) {
     (f, (chi[1] - f) / (1.0 - f))
 }
 
-/// The solved slab: the homogeneous solutions' vectors and the constants of the beam's
+/// A solved slab: the homogeneous solutions' vectors and the constants of the beam's
 /// and the sky's solutions, everything the field at any depth needs.
-struct Slab {
+#[derive(Clone, Debug)]
+pub struct FourStreamSlab {
     chi: [f64; 4],
     f: f64,
+    /// tau' / tau, the delta-M scaling of the optical depth.
+    scale: f64,
     mu0: f64,
     total: f64,
     k: Vec2,
@@ -111,7 +114,7 @@ struct Slab {
 }
 
 /// The slab of optical depth `tau` (unscaled) lit at the sun's cosine `mu0`.
-fn solve(tau: f64, mu0: f64, albedo: f64, moments: &[f64; 5]) -> Slab {
+fn solve(tau: f64, mu0: f64, albedo: f64, moments: &[f64; 5]) -> FourStreamSlab {
     let absorption = (1.0 - albedo).max(MIN_ABSORPTION);
     let (f, _) = truncation(moments);
     let scale = 1.0 - (1.0 - absorption) * f;
@@ -206,9 +209,10 @@ fn solve(tau: f64, mu0: f64, albedo: f64, moments: &[f64; 5]) -> Slab {
     let sky_radiance = 1.0 / (2.0 * PI * (WEIGHTS[0] * STREAMS[0] + WEIGHTS[1] * STREAMS[1]));
     let sky_rhs = [2.0 * sky_radiance, 2.0 * sky_radiance, 0.0, 0.0];
     let [beam, sky] = solve_4x4(matrix, [beam_rhs, sky_rhs]);
-    Slab {
+    FourStreamSlab {
         chi,
         f,
+        scale,
         mu0,
         total,
         k,
@@ -270,7 +274,24 @@ fn solve_4x4(mut m: [[f64; 4]; 4], mut rhs: [[f64; 4]; 2]) -> [[f64; 4]; 2] {
     rhs
 }
 
-impl Slab {
+impl FourStreamSlab {
+    /// The slab of optical depth `tau` (unscaled, non-negative) lit at the sun's cosine
+    /// `mu0` from the upward vertical, single-scattering albedo `albedo` in [0, 1], the
+    /// droplets' Legendre moments `moments` (chi_0..=chi_4).
+    pub fn new(tau: f64, mu0: f64, albedo: f64, moments: &[f64; 5]) -> FourStreamSlab {
+        solve(tau, mu0, albedo, moments)
+    }
+
+    /// [`diffuse_source`] at optical depth `tau_above` (unscaled, clamped to the slab)
+    /// below the top, towards a direction of cosine `mu_out` from the upward vertical.
+    pub fn diffuse_source(&self, tau_above: f64, mu_out: f64) -> (f64, f64) {
+        let tau = (tau_above.max(0.0) * self.scale).min(self.total);
+        (
+            self.source(self.field(tau, &self.beam, true), mu_out),
+            self.source(self.field(tau, &self.sky, false), mu_out),
+        )
+    }
+
     /// I(+mu_i) and I(-mu_i) at scaled depth `tau` of the solution with `constants`,
     /// with the beam's particular part when `beam`.
     fn field(&self, tau: f64, constants: &[f64; 4], beam: bool) -> (Vec2, Vec2) {
@@ -324,12 +345,7 @@ pub fn diffuse_source(
     mu_out: f64,
 ) -> (f64, f64) {
     let above = tau_above.max(0.0);
-    let slab = solve(above + tau_below.max(0.0), mu0, albedo, moments);
-    let tau = above * (slab.total / (above + tau_below.max(0.0)).max(1e-300));
-    (
-        slab.source(slab.field(tau, &slab.beam, true), mu_out),
-        slab.source(slab.field(tau, &slab.sky, false), mu_out),
-    )
+    solve(above + tau_below.max(0.0), mu0, albedo, moments).diffuse_source(above, mu_out)
 }
 
 /// The diffuse fluxes through a depth of the slab, by the four streams' quadrature
@@ -354,7 +370,7 @@ pub fn diffuse_fluxes(
 ) -> DiffuseFluxes {
     let above = tau_above.max(0.0);
     let slab = solve(above + tau_below.max(0.0), mu0, albedo, moments);
-    let tau = above * (slab.total / (above + tau_below.max(0.0)).max(1e-300));
+    let tau = (above * slab.scale).min(slab.total);
     let flux = |values: Vec2| {
         2.0 * PI
             * (0..2)

@@ -273,13 +273,8 @@ pub fn slab_source(
     nu: f64,
     albedo: f64,
 ) -> (f64, f64, f64) {
-    let g = orders.asymmetry(w);
-    let f = peak_share(method, orders, w);
-    let broad = (1.0 - f) * henyey_greenstein((g - f) / (1.0 - f), nu);
-    let scaled_beam = (-(1.0 - albedo * f) * tau).exp();
-    let beam = (-tau).exp();
     let tau_above = tau * slab.mu0.max(MIN_SUN_COSINE);
-    let (diffuse, sky) = match method {
+    let diffuse = match method {
         LayerMethod::FourStream => four_stream::diffuse_source(
             tau_above,
             slab.tau_below,
@@ -288,8 +283,30 @@ pub fn slab_source(
             &orders.moments(w),
             slab.mu_out,
         ),
-        _ => eddington::diffuse_source(tau_above, slab.tau_below, slab.mu0, albedo, g, slab.mu_out),
+        _ => {
+            let g = orders.asymmetry(w);
+            eddington::diffuse_source(tau_above, slab.tau_below, slab.mu0, albedo, g, slab.mu_out)
+        }
     };
+    slab_parts(method, w, tau, orders, (nu, albedo), diffuse)
+}
+
+/// [`slab_source`] with the slab's diffuse sources (beam, sky) given: the sun's single
+/// scattering split into its broad part (1 - f) p_HG((g - f) / (1 - f)) from the scaled
+/// beam and the rest of A_1 from the real one, at the scattering angle of cosine `nu`.
+pub fn slab_parts(
+    method: LayerMethod,
+    w: usize,
+    tau: f64,
+    orders: &ScatteringOrders,
+    (nu, albedo): (f64, f64),
+    (diffuse, sky): (f64, f64),
+) -> (f64, f64, f64) {
+    let g = orders.asymmetry(w);
+    let f = peak_share(method, orders, w);
+    let broad = (1.0 - f) * henyey_greenstein((g - f) / (1.0 - f), nu);
+    let scaled_beam = (-(1.0 - albedo * f) * tau).exp();
+    let beam = (-tau).exp();
     (
         diffuse + broad * scaled_beam,
         (orders.distribution(w, 1, nu) - broad) * beam,

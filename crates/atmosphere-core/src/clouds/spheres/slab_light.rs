@@ -22,8 +22,11 @@ use glam::DVec3;
 use super::attenuation::SHADOWED_DEPTH;
 use super::field::{CloudSpheres, SphereCrossing};
 use super::shells::Crossing;
-use crate::clouds::layer::march::{CloudLight, SlabGeometry, peak_share, slab_source};
+use crate::clouds::layer::eddington::MIN_SUN_COSINE;
+use crate::clouds::layer::four_stream::FourStreamSlab;
+use crate::clouds::layer::march::{CloudLight, SlabGeometry, peak_share, slab_parts, slab_source};
 use crate::clouds::layer::orders::ScatteringOrders;
+use crate::clouds::layer::settings::LayerMethod;
 
 /// Steps of a crossing's view optical depth (a shell is a fifth of the layer by default,
 /// so about as many steps through the layer as the interactive march takes through a
@@ -57,19 +60,44 @@ pub fn shade_slab(
     let d = sigma * length / SLAB_STEPS as f64;
     let nu = direction.dot(light.sun_direction);
     let inner = spheres.shells().bounds_m(k).0;
-    for step in 0..SLAB_STEPS {
-        let p = start + direction * (length * (step as f64 + 0.5) / SLAB_STEPS as f64);
+    let sun = light.sun_direction;
+    // Where a point lies in its column: its sun depth, the sun's cosine, the slab.
+    let place = |p: DVec3| {
         let up = p.normalize();
-        let tau_sun = spheres.sun_depth_at(k, p, sigma, light.sun_direction);
-        let lit = if tau_sun >= SHADOWED_DEPTH { 0.0 } else { 1.0 };
+        let tau_sun = spheres.sun_depth_at(k, p, sigma, sun);
         let below: f64 = (0..k).map(|j| spheres.clouds().depth(j, p)).sum();
         let slab = SlabGeometry {
-            mu0: light.sun_direction.dot(up),
+            mu0: sun.dot(up),
             mu_out: -direction.dot(up),
             tau_below: sigma * (p.length() - inner).max(0.0) + below,
         };
+        (tau_sun, slab)
+    };
+    let solved: Vec<FourStreamSlab> = if method == LayerMethod::FourStream {
+        let (tau_sun, middle) = place((start + end) / 2.0);
+        let mu0 = middle.mu0.max(MIN_SUN_COSINE);
+        (0..waves)
+            .map(|w| {
+                let column = tau_sun * mu0 + middle.tau_below;
+                FourStreamSlab::new(column, middle.mu0, albedo, &orders.moments(w))
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for step in 0..SLAB_STEPS {
+        let p = start + direction * (length * (step as f64 + 0.5) / SLAB_STEPS as f64);
+        let (tau_sun, slab) = place(p);
+        let lit = if tau_sun >= SHADOWED_DEPTH { 0.0 } else { 1.0 };
         for w in 0..waves {
-            let (scaled, real, sky) = slab_source(method, w, tau_sun, orders, &slab, nu, albedo);
+            let (scaled, real, sky) = match solved.get(w) {
+                Some(column) => {
+                    let above = tau_sun * slab.mu0.max(MIN_SUN_COSINE);
+                    let diffuse = column.diffuse_source(above, slab.mu_out);
+                    slab_parts(method, w, tau_sun, orders, (nu, albedo), diffuse)
+                }
+                None => slab_source(method, w, tau_sun, orders, &slab, nu, albedo),
+            };
             let sun = lit * light.sun_irradiance[w];
             let step_real = (-d).exp();
             let step_scaled = (-scales[w] * d).exp();
