@@ -498,3 +498,43 @@ fn a_light_method_outside_its_range_is_refused_by_name() {
     let e = pass.render(&gpu, (&params, &inputs), None).unwrap_err();
     assert!(e.to_string().contains("light method 4"), "{e}");
 }
+
+/// The slab methods on the GPU stay finite and non-negative where their slab is extreme:
+/// a thousand times the default deck's optical depth (extinction 1 m^-1 over 1.5 km:
+/// 1,500) seen from inside and from above, and the sun 10 degrees below the horizon.
+#[test]
+fn the_slab_methods_stay_finite_in_dense_cloud_and_at_night() {
+    let Some(gpu) = support::gpu_or_skip("cloud layer slab methods, dense and at night") else {
+        return;
+    };
+    let inputs = LayerInputs::new(&gpu, &cover(), &orders()).unwrap();
+    let pass = CloudLayerPass::new(&gpu).unwrap();
+    for method in [LayerMethod::Eddington, LayerMethod::FourStream] {
+        for (extinction_per_m, sun_elevation) in [(1.0, 30.0), (0.04, -10.0)] {
+            for camera in [camera(2200.0, 0.0), camera(5000.0, -30.0)] {
+                let settings = LayerSettings {
+                    method,
+                    extinction_per_m,
+                    steps: 32,
+                    shadow_steps: 6,
+                    ..LayerSettings::default()
+                };
+                let params = params(&camera, sun_elevation, &settings);
+                let image = pass.render(&gpu, (&params, &inputs), None).unwrap();
+                let bad = image
+                    .iter()
+                    .flatten()
+                    .filter(|v| !v.is_finite() || **v < 0.0)
+                    .count();
+                assert_eq!(
+                    bad, 0,
+                    "{method}, extinction {extinction_per_m}, sun {sun_elevation}"
+                );
+                assert!(
+                    image.iter().any(|p| p[3] < 0.5),
+                    "{method}: no cloud in view"
+                );
+            }
+        }
+    }
+}

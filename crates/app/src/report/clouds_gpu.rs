@@ -8,8 +8,6 @@
 
 use anyhow::{Context, ensure};
 use atmosphere_core::clouds::layer::orders::ScatteringOrders;
-use atmosphere_core::clouds::layer::presets::MarchQuality;
-use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
@@ -61,8 +59,9 @@ pub fn measure_all(
 ) -> anyhow::Result<GpuTimes> {
     let mut renderer = Renderer::headless().context("the GPU frame times need an adapter")?;
     let adapter = renderer.gpu().adapter_summary();
-    let measured =
-        |row: &CloudRow, scene: &ViewScene| *row != CloudRow::Spheres || scene.view.spheres;
+    let measured = |row: &CloudRow, scene: &ViewScene| {
+        !matches!(row, CloudRow::Spheres { .. }) || scene.view.spheres
+    };
     let total = rows
         .iter()
         .flat_map(|r| scenes.iter().filter(move |s| measured(r, s)))
@@ -93,10 +92,7 @@ fn measure(
     row: &CloudRow,
     scene: &ViewScene,
 ) -> anyhow::Result<PairedFrame> {
-    let march = row
-        .march()
-        .unwrap_or_else(|| MarchQuality::Offline.apply(LayerSettings::default()));
-    let settings = scene.cloud_with(&march);
+    let settings = scene.cloud_with(&row.cloud_settings());
     let clouds = FrameClouds {
         settings,
         light: frame_light(scene.air(), frame, &settings)?,
@@ -108,7 +104,7 @@ fn measure(
     };
     let step = match row {
         CloudRow::Layer { .. } => "clouds",
-        CloudRow::Spheres => "cloud_spheres",
+        CloudRow::Spheres { .. } => "cloud_spheres",
     };
     let (mut cloudy, mut clear) = (Vec::new(), Vec::new());
     for k in 0..=FRAMES {

@@ -32,9 +32,10 @@ pub enum CloudRow {
         quality: MarchQuality,
         sun_light: SunLight,
     },
-    /// The cloud spheres (frames' settings: 5 spheres, always the octaves' light), on
-    /// the views that measure them.
-    Spheres,
+    /// The cloud spheres (frames' settings: 5 spheres) lit as the layer's `method` lights
+    /// them (riley: the octaves; eddington, four-stream: their slab), on the views that
+    /// measure them.
+    Spheres { method: LayerMethod },
 }
 
 impl fmt::Display for CloudRow {
@@ -45,20 +46,35 @@ impl fmt::Display for CloudRow {
                 quality,
                 sun_light,
             } => write!(f, "{method} {quality} {sun_light}"),
-            CloudRow::Spheres => f.write_str("spheres"),
+            CloudRow::Spheres {
+                method: LayerMethod::Riley,
+            } => f.write_str("spheres"),
+            CloudRow::Spheres { method } => write!(f, "spheres {method}"),
         }
     }
 }
 
 impl CloudRow {
-    /// A row as `--variant` writes it: `spheres`, or a method (riley, octaves, eddington, four-stream), a
-    /// quality (interactive, offline) and a sun light (march, map) in any order, the
-    /// method required, the others by default offline and march. Errors name the
-    /// word and what it may be.
+    /// A row as `--variant` writes it: `spheres` (lit as riley lights them) or
+    /// `spheres METHOD`, or a method (riley, octaves, eddington, four-stream), a quality
+    /// (interactive, offline) and a sun light (march, map) in any order, the method
+    /// required, the others by default offline and march. Errors name the word and what
+    /// it may be.
     pub fn parse(text: &str) -> anyhow::Result<CloudRow> {
         let words: Vec<&str> = text.split_whitespace().collect();
-        if words == ["spheres"] {
-            return Ok(CloudRow::Spheres);
+        match words.as_slice() {
+            ["spheres"] => {
+                return Ok(CloudRow::Spheres {
+                    method: LayerMethod::Riley,
+                });
+            }
+            ["spheres", method] => {
+                let method = method
+                    .parse::<LayerMethod>()
+                    .map_err(|e| anyhow::anyhow!("clouds variant \"{text}\": {e}"))?;
+                return Ok(CloudRow::Spheres { method });
+            }
+            _ => {}
         }
         let (mut method, mut quality, mut sun_light) = (None, None, None);
         for word in &words {
@@ -102,7 +118,19 @@ impl CloudRow {
                     ..LayerSettings::default()
                 })
             }),
-            CloudRow::Spheres => None,
+            CloudRow::Spheres { .. } => None,
+        }
+    }
+
+    /// The layer's settings a row's clouds take: the march's, or for the spheres the
+    /// offline preset with their method.
+    pub fn cloud_settings(&self) -> LayerSettings {
+        match *self {
+            CloudRow::Spheres { method } => MarchQuality::Offline.apply(LayerSettings {
+                method,
+                ..LayerSettings::default()
+            }),
+            CloudRow::Layer { .. } => self.march().unwrap_or_default(),
         }
     }
 
@@ -110,7 +138,7 @@ impl CloudRow {
     pub fn form(&self) -> CloudForm {
         match self {
             CloudRow::Layer { .. } => CloudForm::Layer,
-            CloudRow::Spheres => CloudForm::Spheres,
+            CloudRow::Spheres { .. } => CloudForm::Spheres,
         }
     }
 
@@ -118,7 +146,7 @@ impl CloudRow {
     pub fn method(&self) -> Option<LayerMethod> {
         match self {
             CloudRow::Layer { method, .. } => Some(*method),
-            CloudRow::Spheres => None,
+            CloudRow::Spheres { .. } => None,
         }
     }
 }
@@ -143,7 +171,13 @@ pub fn cloud_rows() -> Vec<CloudRow> {
             }
         }
     }
-    rows.push(CloudRow::Spheres);
+    for method in [
+        LayerMethod::Riley,
+        LayerMethod::Eddington,
+        LayerMethod::FourStream,
+    ] {
+        rows.push(CloudRow::Spheres { method });
+    }
     rows
 }
 
@@ -167,23 +201,19 @@ impl RowAnswers {
 /// `row` on `scene`; `None` where the row is not measured on the view (the spheres
 /// away from orbit).
 pub fn answer(row: &CloudRow, scene: &ViewScene) -> anyhow::Result<Option<RowAnswers>> {
-    if *row == CloudRow::Spheres && !scene.view.spheres {
+    if matches!(row, CloudRow::Spheres { .. }) && !scene.view.spheres {
         return Ok(None);
     }
-    let march = row.march().unwrap_or_else(|| {
-        // The spheres take the layer's cloud and its octaves whatever the march.
-        MarchQuality::Offline.apply(LayerSettings::default())
-    });
-    let clouds = scene.marched(&march)?;
+    let clouds = scene.marched(&row.cloud_settings())?;
     let camera = scene.rays[0].origin_m;
     let sun = scene.rays[0].sun_direction.normalize();
     let start = Instant::now();
     let maps = match row {
         CloudRow::Layer { .. } => clouds.maps(camera, sun)?,
-        CloudRow::Spheres => RayMaps::default(),
+        CloudRow::Spheres { .. } => RayMaps::default(),
     };
     let spheres = match row {
-        CloudRow::Spheres => Some(clouds.spheres(sun)?),
+        CloudRow::Spheres { .. } => Some(clouds.spheres(sun)?),
         CloudRow::Layer { .. } => None,
     };
     let per_frame_s = start.elapsed().as_secs_f64();
@@ -229,5 +259,13 @@ mod tests {
         assert!(e.contains("\"fast\"") && e.contains("interactive"), "{e}");
         let e = CloudRow::parse("offline map").unwrap_err().to_string();
         assert!(e.contains("names no method"), "{e}");
+        assert_eq!(
+            CloudRow::parse("spheres four-stream").unwrap(),
+            CloudRow::Spheres {
+                method: LayerMethod::FourStream
+            }
+        );
+        let e = CloudRow::parse("spheres fast").unwrap_err().to_string();
+        assert!(e.contains("\"fast\"") && e.contains("four-stream"), "{e}");
     }
 }

@@ -48,6 +48,17 @@ pub struct SphereCrossing {
     pub scaled_transmittance: Vec<f64>,
 }
 
+/// A crossing of shell `shell` from `start` to `end` along the unit `direction`, of mean
+/// extinction `extinction` (m^-1, positive).
+#[derive(Clone, Copy, Debug)]
+pub struct ShellSegment {
+    pub shell: usize,
+    pub start: DVec3,
+    pub end: DVec3,
+    pub direction: DVec3,
+    pub extinction: f64,
+}
+
 impl SphereCrossing {
     /// A crossing of no cloud.
     pub fn clear(waves: usize) -> SphereCrossing {
@@ -144,9 +155,6 @@ impl CloudSpheres {
         light: &CloudLight,
         orders: &ScatteringOrders,
     ) -> SphereCrossing {
-        if self.method.is_slab() {
-            return shade_slab(self, origin, direction, crossing, light, orders);
-        }
         let k = crossing.shell;
         let start = origin + direction * crossing.t0;
         let end = origin + direction * crossing.t1;
@@ -155,6 +163,16 @@ impl CloudSpheres {
         let waves = light.sun_irradiance.len();
         if sigma <= 0.0 {
             return SphereCrossing::clear(waves);
+        }
+        if self.method.is_slab() {
+            let segment = ShellSegment {
+                shell: k,
+                start,
+                end,
+                direction,
+                extinction: sigma,
+            };
+            return shade_slab(self, &segment, light, orders);
         }
         let tau_v = sigma * (crossing.t1 - crossing.t0);
         let sun = light.sun_direction;

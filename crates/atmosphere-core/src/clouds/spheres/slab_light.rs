@@ -20,8 +20,7 @@
 use glam::DVec3;
 
 use super::attenuation::SHADOWED_DEPTH;
-use super::field::{CloudSpheres, SphereCrossing};
-use super::shells::Crossing;
+use super::field::{CloudSpheres, ShellSegment, SphereCrossing};
 use crate::clouds::layer::eddington::MIN_SUN_COSINE;
 use crate::clouds::layer::four_stream::FourStreamSlab;
 use crate::clouds::layer::march::{CloudLight, SlabGeometry, peak_share, slab_parts, slab_source};
@@ -36,27 +35,25 @@ pub const SLAB_STEPS: usize = 4;
 /// The crossing's light under the spheres' slab method (the module's equations).
 pub fn shade_slab(
     spheres: &CloudSpheres,
-    origin: DVec3,
-    direction: DVec3,
-    crossing: &Crossing,
+    segment: &ShellSegment,
     light: &CloudLight,
     orders: &ScatteringOrders,
 ) -> SphereCrossing {
     let waves = light.sun_irradiance.len();
-    let k = crossing.shell;
-    let start = origin + direction * crossing.t0;
-    let end = origin + direction * crossing.t1;
-    let sigma = spheres.clouds().extinction(k, (start + end) / 2.0);
+    let ShellSegment {
+        shell: k,
+        start,
+        end,
+        direction,
+        extinction: sigma,
+    } = *segment;
     let mut shaded = SphereCrossing::clear(waves);
-    if sigma <= 0.0 {
-        return shaded;
-    }
     let method = spheres.method();
     let albedo = spheres.albedo();
     let scales: Vec<f64> = (0..waves)
         .map(|w| 1.0 - albedo * peak_share(method, orders, w))
         .collect();
-    let length = crossing.t1 - crossing.t0;
+    let length = (end - start).length();
     let d = sigma * length / SLAB_STEPS as f64;
     let nu = direction.dot(light.sun_direction);
     let inner = spheres.shells().bounds_m(k).0;
