@@ -52,7 +52,7 @@ fn a_tiny_view_gives_rows_with_finite_errors_and_reuses_its_reference() {
     let rows = [
         CloudRow::parse("riley interactive march").unwrap(),
         CloudRow::parse("octaves offline map").unwrap(),
-        CloudRow::Spheres,
+        CloudRow::parse("spheres").unwrap(),
     ];
     let results: Vec<_> = rows
         .iter()
