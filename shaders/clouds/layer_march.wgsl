@@ -165,7 +165,11 @@ fn march_layer(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32) -> vec4<f32> {
     let up = normalize(o + d * t0);
     let albedo = layer.medium.y;
     let g = asymmetry();
-    let scale = 1.0 - albedo * slab_peak_share(LAYER_METHOD == 3u, g, phase_moments());
+    // The delta-scaling of the slab methods' extinction (unread by the others).
+    var scale = vec3<f32>(1.0);
+    if slab_method {
+        scale = 1.0 - albedo * slab_peak_share(LAYER_METHOD == 3u, g, phase_moments());
+    }
     for (var i = 0u; i < layer.counts.x; i++) {
         let p = o + d * (t0 + (f32(i) + 0.5) * dt);
         let sigma = layer_extinction(p, layer.noise.x);

@@ -2,8 +2,8 @@
 //! device at 1280 x 720: the hillaire frame of a flight view under the layer (500 m up,
 //! looking 10 degrees above the horizon, sun 30 degrees up) through the `Renderer` (its per-step GPU
 //! times), then the cloud layer pass of the same view over the generated cover: the
-//! three methods at the default march (48 view, 8 shadow steps) and at the interactive
-//! preset
+//! riley, octaves and eddington at the default march (48 view, 8 shadow steps), those
+//! and four-stream at the interactive preset
 //! (`MarchQuality`, whose sun light is the sun map's, filled before the march and timed
 //! with it), the interactive preset with a shadow march instead (`sun_light = march`),
 //! and octaves at the offline preset (Riley's march does not converge

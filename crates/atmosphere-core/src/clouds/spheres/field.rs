@@ -27,49 +27,15 @@ use glam::DVec3;
 
 use super::attenuation::{AttenuationTextures, SHADOWED_DEPTH};
 use super::cloud_textures::CloudTextures;
+use super::crossing::{ShellSegment, SphereCrossing};
 use super::settings::SphereSettings;
 use super::shells::{Crossing, Shells, roots};
-use super::slab_light::shade_slab;
+use super::slab_light::{SlabColumn, shade_slab};
 use crate::clouds::error::CloudError;
 use crate::clouds::layer::field::CloudLayer;
 use crate::clouds::layer::march::{CloudLight, OCTAVE_A, OCTAVE_B, OCTAVE_C};
 use crate::clouds::layer::orders::ScatteringOrders;
 use crate::clouds::layer::settings::LayerMethod;
-
-/// The light one crossing sends towards its start, per wavelength: `radiance` seen
-/// through the real medium in front of it, `scaled_radiance` (the slab methods' diffuse
-/// light and the broad part of the sun's, `slab_light.rs`; zero for the octaves) through
-/// the delta-scaled one, and the crossing's transmittance through either.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SphereCrossing {
-    pub radiance: Vec<f64>,
-    pub scaled_radiance: Vec<f64>,
-    pub transmittance: Vec<f64>,
-    pub scaled_transmittance: Vec<f64>,
-}
-
-/// A crossing of shell `shell` from `start` to `end` along the unit `direction`, of mean
-/// extinction `extinction` (m^-1, positive).
-#[derive(Clone, Copy, Debug)]
-pub struct ShellSegment {
-    pub shell: usize,
-    pub start: DVec3,
-    pub end: DVec3,
-    pub direction: DVec3,
-    pub extinction: f64,
-}
-
-impl SphereCrossing {
-    /// A crossing of no cloud.
-    pub fn clear(waves: usize) -> SphereCrossing {
-        SphereCrossing {
-            radiance: vec![0.0; waves],
-            scaled_radiance: vec![0.0; waves],
-            transmittance: vec![1.0; waves],
-            scaled_transmittance: vec![1.0; waves],
-        }
-    }
-}
 
 /// The spheres of a layer, lit by one sun.
 #[derive(Clone, Debug)]
@@ -211,7 +177,7 @@ impl CloudSpheres {
     /// The sun's optical depth at `point` inside shell `k` of mean extinction `sigma`:
     /// the attenuation texture at the sphere under it, its own path through the shell
     /// swapped for the point's.
-    pub fn sun_depth_at(&self, k: usize, point: DVec3, sigma: f64, sun: DVec3) -> f64 {
+    fn sun_depth_at(&self, k: usize, point: DVec3, sigma: f64, sun: DVec3) -> f64 {
         let g = self.attenuation.depth(k, point);
         if g >= SHADOWED_DEPTH {
             return SHADOWED_DEPTH;
@@ -223,6 +189,28 @@ impl CloudSpheres {
             roots(r, p.dot(sun) / r, outer).map_or(0.0, |(_, far)| far.max(0.0))
         };
         (g + sigma * (path(point) - path(sphere))).clamp(0.0, SHADOWED_DEPTH)
+    }
+}
+
+impl SlabColumn for CloudSpheres {
+    fn method(&self) -> LayerMethod {
+        self.method
+    }
+
+    fn albedo(&self) -> f64 {
+        self.albedo
+    }
+
+    fn inner_radius_m(&self, k: usize) -> f64 {
+        self.shells.bounds_m(k).0
+    }
+
+    fn sun_depth_at(&self, k: usize, point: DVec3, sigma: f64, sun: DVec3) -> f64 {
+        CloudSpheres::sun_depth_at(self, k, point, sigma, sun)
+    }
+
+    fn depth_below(&self, k: usize, point: DVec3) -> f64 {
+        (0..k).map(|j| self.clouds.depth(j, point)).sum()
     }
 }
 

@@ -20,7 +20,7 @@
 use glam::DVec3;
 
 use super::attenuation::SHADOWED_DEPTH;
-use super::field::{CloudSpheres, ShellSegment, SphereCrossing};
+use super::crossing::{ShellSegment, SphereCrossing};
 use crate::clouds::layer::eddington::MIN_SUN_COSINE;
 use crate::clouds::layer::four_stream::FourStreamSlab;
 use crate::clouds::layer::march::{CloudLight, SlabGeometry, peak_share, slab_parts, slab_source};
@@ -32,9 +32,24 @@ use crate::clouds::layer::settings::LayerMethod;
 /// deck's top).
 pub const SLAB_STEPS: usize = 4;
 
+/// What the slab light reads of the spheres (`field.rs`'s `CloudSpheres`).
+pub trait SlabColumn {
+    /// The layer's method (a slab method).
+    fn method(&self) -> LayerMethod;
+    /// The droplets' single-scattering albedo.
+    fn albedo(&self) -> f64;
+    /// The inner radius of shell `k`, m.
+    fn inner_radius_m(&self, k: usize) -> f64;
+    /// The sun's optical depth at `point` inside shell `k` of mean extinction `sigma`
+    /// towards the unit `sun`.
+    fn sun_depth_at(&self, k: usize, point: DVec3, sigma: f64, sun: DVec3) -> f64;
+    /// The vertical optical depth of the shells below shell `k` at `point`.
+    fn depth_below(&self, k: usize, point: DVec3) -> f64;
+}
+
 /// The crossing's light under the spheres' slab method (the module's equations).
 pub fn shade_slab(
-    spheres: &CloudSpheres,
+    spheres: &impl SlabColumn,
     segment: &ShellSegment,
     light: &CloudLight,
     orders: &ScatteringOrders,
@@ -56,13 +71,13 @@ pub fn shade_slab(
     let length = (end - start).length();
     let d = sigma * length / SLAB_STEPS as f64;
     let nu = direction.dot(light.sun_direction);
-    let inner = spheres.shells().bounds_m(k).0;
+    let inner = spheres.inner_radius_m(k);
     let sun = light.sun_direction;
     // Where a point lies in its column: its sun depth, the sun's cosine, the slab.
     let place = |p: DVec3| {
         let up = p.normalize();
         let tau_sun = spheres.sun_depth_at(k, p, sigma, sun);
-        let below: f64 = (0..k).map(|j| spheres.clouds().depth(j, p)).sum();
+        let below = spheres.depth_below(k, p);
         let slab = SlabGeometry {
             mu0: sun.dot(up),
             mu_out: -direction.dot(up),
