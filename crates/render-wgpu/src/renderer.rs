@@ -10,7 +10,7 @@ use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
-use crate::clouds::frame_clouds::{FrameClouds, plan_after_model, plan_clouds};
+use crate::clouds::frame_clouds::{FrameClouds, front_sun_map, plan_after_model, plan_clouds};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
 use crate::clouds::frame_sun_map::FrameSunMap;
 use crate::clouds::layer_inputs::LayerInputs;
@@ -455,7 +455,9 @@ impl Renderer {
             }
             if let Some(front) = front {
                 let front_surface = c.front_surface();
+                let front_map = front_sun_map(self.sun_map.texture(), frame, &clouds.settings);
                 let front_io = PassIo {
+                    sun_map: &front_map,
                     hdr: &c.front,
                     surface: &front_surface,
                     has_surface: true,

@@ -7,6 +7,7 @@
 pub mod baseline;
 pub mod beams;
 pub mod clouds;
+pub mod clouds_orbit;
 pub mod flight;
 pub mod optics;
 pub mod shafts;
@@ -363,7 +364,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         + beam_variants.len() * beams::frames_per_variant(args.frames)
         + cloud_qualities
             .iter()
-            .map(|&q| clouds::frames_per_quality(q, args.frames))
+            .map(|&q| {
+                clouds::frames_per_quality(q, args.frames)
+                    + clouds_orbit::frames_per_quality(args.frames)
+            })
             .sum::<usize>();
     let progress = Progress::new("bench", "frames", total as u64);
     let mut results = Vec::new();
@@ -390,6 +394,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         size,
         &progress,
     )?;
+    let orbit_results = clouds_orbit::measure(
+        &mut renderer,
+        &atmosphere,
+        &cloud_qualities,
+        size,
+        &progress,
+    )?;
     progress.finish();
     let mut text = markdown(&adapter, args, &results);
     if let Some(path) = &args.beams_scene {
@@ -399,6 +410,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let size = (args.width, args.height);
         text.push_str(&clouds::markdown(&adapter, size, &cloud_results));
         text.push_str(&clouds::shafts_markdown(&shaft_results));
+        text.push_str(&clouds_orbit::markdown(&orbit_results));
     }
     std::io::stdout().lock().write_all(text.as_bytes())?;
     if let Some(path) = &args.out {

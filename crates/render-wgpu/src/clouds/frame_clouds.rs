@@ -13,6 +13,7 @@ use atmosphere_core::clouds::spheres::handover::{CloudForm, sphere_weight};
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::sky_model::SkyModel;
 
+use crate::clouds::sun_map_texture::SunMapTexture;
 use crate::frame::Frame;
 use crate::frame::plan::{FramePlan, StepKind};
 use crate::gpu::error::RenderError;
@@ -97,6 +98,23 @@ pub fn why_nothing_in_front(frame: &Frame, settings: &LayerSettings) -> Option<&
     let (base_m, top_m) = settings.radii_m(frame.atmosphere.bottom_radius_m);
     let r = frame.camera_position_m.length();
     (base_m <= r && r <= top_m).then_some(CAMERA_IN_LAYER)
+}
+
+/// The sun map the model's second run in front of the cloud binds: the frame's `map`
+/// with the camera below the layer's base, where the cloud's shadow in the air lies in
+/// front of the cloud; above it the same without that shadow, which then lies behind
+/// the cloud ([`SunMapTexture::without_air_shadow`]).
+pub fn front_sun_map(
+    map: &SunMapTexture,
+    frame: &Frame,
+    settings: &LayerSettings,
+) -> SunMapTexture {
+    let (base_m, _) = settings.radii_m(frame.atmosphere.bottom_radius_m);
+    if frame.camera_position_m.length() < base_m {
+        map.clone()
+    } else {
+        map.without_air_shadow()
+    }
 }
 
 /// The light of `model` (the frame's model on the CPU, at the GPU's three wavelengths)

@@ -81,13 +81,16 @@ impl SunMapUniform {
 }
 
 /// The map's texture, parameters and per-pixel transmittance.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct SunMapTexture {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
     pixels: wgpu::Texture,
     pixels_view: wgpu::TextureView,
     params: wgpu::Buffer,
+    /// The same parameters with the cloud's shadow in the air off
+    /// ([`SunMapTexture::without_air_shadow`]).
+    params_without_air: wgpu::Buffer,
 }
 
 impl SunMapTexture {
@@ -96,8 +99,12 @@ impl SunMapTexture {
         let pixels = map_texture(gpu, "cloud sun map pixels", (1, 1), PIXELS_FORMAT);
         let params = uniform_buffer(&gpu.device, "cloud sun map", size_of::<SunMapUniform>());
         gpu.write_uniform(&params, &SunMapUniform::default());
+        let size = size_of::<SunMapUniform>();
+        let params_without_air = uniform_buffer(&gpu.device, "cloud sun map, no air", size);
+        gpu.write_uniform(&params_without_air, &SunMapUniform::default());
         let texture = map_texture(gpu, "cloud sun map", (2, 2), SUN_MAP_FORMAT);
         SunMapTexture {
+            params_without_air,
             view: texture.create_view(&Default::default()),
             texture,
             pixels_view: pixels.create_view(&Default::default()),
@@ -117,6 +124,7 @@ impl SunMapTexture {
     ) -> Result<(), RenderError> {
         let Some(params) = params else {
             gpu.write_uniform(&self.params, &SunMapUniform::default());
+            gpu.write_uniform(&self.params_without_air, &SunMapUniform::default());
             return Ok(());
         };
         let [n, levels, _, _] = params.counts;
@@ -138,7 +146,20 @@ impl SunMapTexture {
             self.pixels_view = self.pixels.create_view(&Default::default());
         }
         gpu.write_uniform(&self.params, params);
+        gpu.write_uniform(&self.params_without_air, &params.shading_air(false));
         Ok(())
+    }
+
+    /// The same map for the model's second run in front of the cloud (`cloud_front`)
+    /// when the camera is above the layer: every ray enters the cloud before it reaches
+    /// the air below the base, so the cloud's shadow in the air lies behind the cloud,
+    /// where the composite dims it with the rest of the light behind
+    /// (`clouds/layer/composite.rs`), and the run in front takes none of it.
+    pub fn without_air_shadow(&self) -> SunMapTexture {
+        SunMapTexture {
+            params: self.params_without_air.clone(),
+            ..self.clone()
+        }
     }
 
     /// The map (the fill pass writes it; tests read it back).

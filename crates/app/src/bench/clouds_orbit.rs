@@ -1,0 +1,171 @@
+//! `atmos bench --clouds QUALITY`, the orbit view: what the cloud spheres add to a whole
+//! hillaire frame 400 km up over the generated cover, as a user gets them (the spheres'
+//! step, the model's second run for the air in front of the cloud, the composite and the
+//! cloud's shadow in the air), against the hillaire sky pass. Each frame with clouds is
+//! interleaved with the same frame without them; medians of the pairs' differences of
+//! wall-clock time after a warm-up pair, as the flight view's rows (`clouds.rs`).
+
+use std::fmt::Write as _;
+
+use atmosphere_core::atmosphere::Atmosphere;
+use atmosphere_core::clouds::layer::presets::MarchQuality;
+use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::spheres::handover::CloudForm;
+use atmosphere_core::clouds::spheres::settings::SphereSettings;
+use atmosphere_core::models::id::ModelId;
+use atmosphere_core::models::registry::prepare;
+use render_wgpu::Renderer;
+use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::frame::plan::FramePlan;
+use render_wgpu::frame::{Frame, LocalView, location_rotation};
+
+use crate::bench::timing::{median, step_gpu_ms, timed};
+use crate::progress::Progress;
+
+/// The orbit view: 400 km over (25 N, 30 W), looking 60 degrees below the horizon
+/// towards azimuth 200, the sun 40 degrees up at azimuth 120.
+const ORBIT: LocalView = LocalView {
+    altitude_m: 400_000.0,
+    view_zenith_deg: 150.0,
+    view_azimuth_deg: -200.0,
+    sun_zenith_deg: 50.0,
+    sun_azimuth_deg: -120.0,
+};
+const LATITUDE_DEG: f64 = 25.0;
+const LONGITUDE_DEG: f64 = -30.0;
+
+/// What the spheres of one quality added to the orbit view's frame, ms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OrbitTimes {
+    pub quality: MarchQuality,
+    /// Median of the pairs' differences of wall-clock time, spheres less none.
+    pub added_wall_ms: f64,
+    /// Median wall-clock time of the frame without clouds.
+    pub clear_wall_ms: f64,
+    /// Median GPU time of the hillaire pass in the frames without clouds.
+    pub sky_pass_ms: Option<f64>,
+    /// The cloud steps the frame with clouds ran, as its plan names them.
+    pub steps: Vec<&'static str>,
+}
+
+/// The hillaire frame of the orbit view in `atmosphere` at `size`.
+fn orbit_frame(atmosphere: &Atmosphere, size: (u32, u32)) -> Frame {
+    let place = location_rotation(LATITUDE_DEG, LONGITUDE_DEG);
+    let atmosphere = atmosphere.clone();
+    Frame {
+        camera_position_m: place * ORBIT.position_m(atmosphere.bottom_radius_m),
+        orientation: place * ORBIT.orientation(),
+        vertical_fov_deg: 60.0,
+        sun_direction: place * ORBIT.sun_direction(),
+        atmosphere,
+        model: ModelId::Hillaire,
+        settings: Default::default(),
+        exposure_ev100: 14.0,
+        width: size.0,
+        height: size.1,
+        terrain: None,
+    }
+}
+
+/// Frames the orbit view renders for one quality (the warm-up pair included).
+pub fn frames_per_quality(frames: usize) -> usize {
+    2 * (1 + frames)
+}
+
+/// The cloud steps `plan` ran, in order.
+fn cloud_steps(plan: &FramePlan) -> Vec<&'static str> {
+    plan.steps
+        .iter()
+        .map(|s| s.name)
+        .filter(|name| name.starts_with("cloud"))
+        .collect()
+}
+
+/// Measures the spheres of each of `qualities` on the orbit view, `frames` pairs each;
+/// the renderer's cloud inputs are set by the caller.
+pub fn measure(
+    renderer: &mut Renderer,
+    atmosphere: &Atmosphere,
+    qualities: &[MarchQuality],
+    (size, frames): ((u32, u32), usize),
+    progress: &Progress,
+) -> anyhow::Result<Vec<OrbitTimes>> {
+    let frame = orbit_frame(atmosphere, size);
+    let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
+    let mut out = Vec::new();
+    for &quality in qualities {
+        let settings = quality.apply(LayerSettings::default());
+        let clouds = FrameClouds {
+            settings,
+            light: frame_light(model.as_ref(), &frame, &settings)?,
+            form: CloudForm::Auto,
+            spheres: SphereSettings::default(),
+            prune: true,
+            shafts: true,
+        };
+        let (mut added, mut clear, mut sky, mut steps) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for k in 0..=frames {
+            renderer.set_clouds(None)?;
+            let (plan, clear_ms) = timed(renderer, &frame)?;
+            progress.inc();
+            renderer.set_clouds(Some(clouds.clone()))?;
+            let (cloudy, cloudy_ms) = timed(renderer, &frame)?;
+            progress.inc();
+            anyhow::ensure!(
+                cloudy.runs("cloud_spheres"),
+                "the orbit view's plan has no cloud spheres: {cloudy}"
+            );
+            // The first pair warms up: shaders compile, the attenuation textures are made.
+            if k > 0 {
+                added.push(cloudy_ms - clear_ms);
+                clear.push(clear_ms);
+                sky.extend(step_gpu_ms(&plan, "hillaire"));
+                steps = cloud_steps(&cloudy);
+            }
+        }
+        out.push(OrbitTimes {
+            quality,
+            added_wall_ms: median(&added).unwrap_or(f64::NAN),
+            clear_wall_ms: median(&clear).unwrap_or(f64::NAN),
+            sky_pass_ms: (sky.len() == frames).then(|| median(&sky)).flatten(),
+            steps,
+        });
+    }
+    renderer.set_clouds(None)?;
+    Ok(out)
+}
+
+/// The Markdown table of `results`.
+pub fn markdown(results: &[OrbitTimes]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "\nThe cloud spheres from orbit: a hillaire frame 400 km up over ({LATITUDE_DEG} N, \
+         {} W), looking 60 degrees down, the sun 40 degrees up, the generated cover; each \
+         frame with the spheres (and their shadow in the air) interleaved with the same \
+         frame without clouds; medians.\n",
+        -LONGITUDE_DEG
+    );
+    let _ = writeln!(
+        out,
+        "| cloud quality | cloud steps | added wall ms | frame without clouds, wall ms | added / frame without clouds | hillaire pass, GPU ms | added / hillaire pass |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    for r in results {
+        let ratio = r.sky_pass_ms.map(|s| r.added_wall_ms / s);
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.1} | {:.1} | {:.2} | {} | {} |",
+            r.quality,
+            r.steps.join(", "),
+            r.added_wall_ms,
+            r.clear_wall_ms,
+            r.added_wall_ms / r.clear_wall_ms,
+            r.sky_pass_ms
+                .map_or_else(|| "-".into(), |v| format!("{v:.1}")),
+            ratio.map_or_else(|| "-".into(), |x| format!("{x:.2}"))
+        );
+    }
+    out
+}
