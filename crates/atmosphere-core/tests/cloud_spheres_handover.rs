@@ -97,7 +97,7 @@ fn along_single_rays_the_spheres_follow_a_fine_march() {
             };
             let settings = SphereSettings {
                 count,
-                attenuation_width: 64,
+                attenuation_width: 256,
                 ..SphereSettings::default()
             };
             let spheres = CloudSpheres::new(&deck, &settings, sun).unwrap();

@@ -22,11 +22,18 @@ struct Taps {
     weight: vec4<f32>,
 }
 
-fn grid_taps(w: u32, h: u32, p: vec3<f32>) -> Taps {
+// The continuous texel coordinates of p's direction on a w x h equirectangular grid,
+// whose integers are texel centres.
+fn grid_coordinates(w: u32, h: u32, p: vec3<f32>) -> vec2<f32> {
     let lat = atan2(p.z, length(p.xy));
     let lon = atan2(p.y, p.x);
-    let x = (lon + PI) / (2.0 * PI) * f32(w) - 0.5;
-    let y = (0.5 * PI - lat) / PI * f32(h) - 0.5;
+    return vec2<f32>((lon + PI) / (2.0 * PI) * f32(w) - 0.5, (0.5 * PI - lat) / PI * f32(h) - 0.5);
+}
+
+fn grid_taps(w: u32, h: u32, p: vec3<f32>) -> Taps {
+    let c = grid_coordinates(w, h, p);
+    let x = c.x;
+    let y = c.y;
     let x0 = floor(x);
     let fx = x - x0;
     let i0 = u32((i32(x0) % i32(w) + i32(w)) % i32(w));
@@ -59,16 +66,37 @@ fn cloud_depth(k: u32, p: vec3<f32>) -> f32 {
         cloud_depths[base + t.index.z], cloud_depths[base + t.index.w]));
 }
 
+// The cubic B-spline's weights of texels -1 to 2 around fraction t past texel 0 (geo's
+// `cubic_bspline_weights`).
+fn cubic_bspline_weights(t: f32) -> vec4<f32> {
+    let t2 = t * t;
+    let t3 = t2 * t;
+    let s = 1.0 - t;
+    return vec4<f32>(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0,
+        t3) / 6.0;
+}
+
 // The optical depth towards the sun of sphere k at p's direction: -ln of G_k's
-// bilinear attenuation ratio, at most SHADOWED_DEPTH.
+// attenuation ratio read by the cubic B-spline of 4 x 4 texels (geo's `bspline_taps`:
+// no creases along the lines between texel centres), at most SHADOWED_DEPTH.
 fn sun_depth(k: u32, p: vec3<f32>) -> f32 {
     let w = spheres.grids.z;
     let h = spheres.grids.w;
-    let t = grid_taps(w, h, p);
+    let c = grid_coordinates(w, h, p);
+    let corner = vec2<i32>(floor(c)) - vec2<i32>(1);
+    let wx = cubic_bspline_weights(c.x - floor(c.x));
+    let wy = cubic_bspline_weights(c.y - floor(c.y));
     let base = k * w * h;
-    let ratio = dot(t.weight, vec4<f32>(
-        sun_ratios[base + t.index.x], sun_ratios[base + t.index.y],
-        sun_ratios[base + t.index.z], sun_ratios[base + t.index.w]));
+    var ratio = 0.0;
+    for (var b = 0; b < 4; b++) {
+        let row = u32(clamp(corner.y + b, 0, i32(h) - 1));
+        var along = 0.0;
+        for (var a = 0; a < 4; a++) {
+            let column = u32(((corner.x + a) % i32(w) + i32(w)) % i32(w));
+            along += wx[a] * sun_ratios[base + row * w + column];
+        }
+        ratio += wy[b] * along;
+    }
     return min(-log(max(ratio, exp(-SHADOWED_DEPTH))), SHADOWED_DEPTH);
 }
 

@@ -64,9 +64,86 @@ pub fn bilinear_taps(width: usize, height: usize, lat_rad: f64, lon_rad: f64) ->
         (j1 * width + i1, fx * fy),
     ]
 }
+
+/// The cubic B-spline's weights of the four texels around fraction `t` in [0, 1) past
+/// texel 0 (texels -1, 0, 1, 2), summing to 1.
+pub fn cubic_bspline_weights(t: f64) -> [f64; 4] {
+    let (t2, t3) = (t * t, t * t * t);
+    [
+        (1.0 - t).powi(3) / 6.0,
+        (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0,
+        (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0,
+        t3 / 6.0,
+    ]
+}
+
+/// The sixteen texels around a point and their cubic B-spline weights (summing to 1),
+/// as [`bilinear_taps`] gives its four: a read whose value and slope are continuous
+/// across the lines between texel centres, where a bilinear read has creases. Columns
+/// wrap around the planet; rows past the poles repeat the first and last.
+pub fn bspline_taps(width: usize, height: usize, lat_rad: f64, lon_rad: f64) -> [(usize, f64); 16] {
+    let x = (lon_rad + PI) / TAU * width as f64 - 0.5;
+    let y = (FRAC_PI_2 - lat_rad) / PI * height as f64 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (wx, wy) = (cubic_bspline_weights(x - x0), cubic_bspline_weights(y - y0));
+    let mut taps = [(0, 0.0); 16];
+    for (b, &weight_y) in wy.iter().enumerate() {
+        let row = (y0 as i64 - 1 + b as i64).clamp(0, height as i64 - 1) as usize;
+        for (a, &weight_x) in wx.iter().enumerate() {
+            let column = (x0 as i64 - 1 + a as i64).rem_euclid(width as i64) as usize;
+            taps[4 * b + a] = (row * width + column, weight_x * weight_y);
+        }
+    }
+    taps
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A row-major field over a `width` x `height` grid, read at (lat, lon) by `taps`.
+    fn read(taps: &[(usize, f64)], field: &[f64]) -> f64 {
+        taps.iter().map(|&(n, w)| w * field[n]).sum()
+    }
+
+    #[test]
+    fn the_bspline_read_keeps_linear_fields_and_has_no_creases() {
+        let (width, height) = (64, 32);
+        // Linear in the column away from the seam: the spline reproduces it exactly.
+        let field: Vec<f64> = (0..width * height)
+            .map(|n| 3.0 + 0.5 * (n % width) as f64)
+            .collect();
+        for t in [0.0, 0.1, 0.5, 0.93] {
+            let weights = cubic_bspline_weights(t);
+            assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+            let (_, lon) = texel_centre(width, height, 20, 10);
+            let lon = lon + t * TAU / width as f64;
+            let (lat, _) = texel_centre(width, height, 20, 10);
+            let value = read(&bspline_taps(width, height, lat, lon), &field);
+            assert!(
+                (value - (3.0 + 0.5 * (20.0 + t))).abs() < 1e-12,
+                "{t}: {value}"
+            );
+        }
+        // One bright texel: the slope across the line through its centre (where a
+        // bilinear read turns sharply) is continuous for the spline.
+        let mut spike = vec![0.0; width * height];
+        spike[10 * width + 20] = 1.0;
+        let (lat, centre) = texel_centre(width, height, 20, 10);
+        let h = 1e-4 * TAU / width as f64;
+        let slope = |taps: &dyn Fn(f64) -> f64, lon: f64| (taps(lon + h) - taps(lon)) / h;
+        let spline = |lon: f64| read(&bspline_taps(width, height, lat, lon), &spike);
+        let bilinear = |lon: f64| read(&bilinear_taps(width, height, lat, lon), &spike);
+        // The slope just east of the centre less the slope just west of it.
+        let jump =
+            |f: &dyn Fn(f64) -> f64| (slope(f, centre + h) - slope(f, centre - 2.0 * h)).abs();
+        let bilinear_jump = jump(&bilinear);
+        assert!(
+            bilinear_jump > 1.0,
+            "the bilinear read's kink: {bilinear_jump}"
+        );
+        assert!(jump(&spline) < 1e-3 * bilinear_jump, "{}", jump(&spline));
+    }
 
     #[test]
     fn lat_lon_round_trip_and_frame() {

@@ -7,11 +7,15 @@
 //! shell's mean extinction (`cloud_textures.rs`) times its length, the same sum the
 //! paper's blending forms, computed on the sphere's texture grid. A texel whose sun ray
 //! meets the ground lies in the planet's shadow and holds exp(-[`SHADOWED_DEPTH`]). As
-//! in the paper the texels hold the attenuation ratio exp(-tau), read bilinearly: where
-//! a texel's neighbours are clear and it is opaque, the ratio's interpolation passes
-//! light and the optical depth's would not (at 1,024 texels around the planet, a
-//! cloud's edge spans 40 km of one texel). The octaves of the light (`field.rs`) read
-//! tau = -ln of the interpolated ratio.
+//! in the paper the texels hold the attenuation ratio exp(-tau): where a texel's
+//! neighbours are clear and it is opaque, the ratio's interpolation passes light and the
+//! optical depth's would not (at 1,024 texels around the planet, a cloud's edge spans
+//! 40 km of one texel). The ratio is read by a cubic B-spline of 4 x 4 texels
+//! (`geo/equirectangular.rs`'s `bspline_taps`), not bilinearly: inside a deck tau runs to
+//! tens within a texel or two, and light that goes as exp(-b tau) showed a bilinear
+//! read's creases, along the lines between texel centres, as streaks along meridians
+//! and parallels (docs/clouds.md, "Limits of the spheres"). The octaves of the light
+//! (`field.rs`) read tau = -ln of the interpolated ratio.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -20,7 +24,7 @@ use super::cloud_textures::CloudTextures;
 use super::settings::SphereSettings;
 use super::shells::Shells;
 use crate::clouds::error::CloudError;
-use crate::geo::equirectangular::{bilinear_taps, direction, lat_lon, texel_centre};
+use crate::geo::equirectangular::{bspline_taps, direction, lat_lon, texel_centre};
 
 /// The optical depth held in the planet's shadow: exp(-80) is no light, and still a
 /// normal f32 on the GPU.
@@ -91,11 +95,12 @@ impl AttenuationTextures {
     }
 
     /// The optical depth towards the sun of sphere `k` at the planet-fixed `point`'s
-    /// direction: -ln of the bilinear ratio, at most [`SHADOWED_DEPTH`].
+    /// direction: -ln of the ratio read by the cubic B-spline, at most
+    /// [`SHADOWED_DEPTH`].
     pub fn depth(&self, k: usize, point: DVec3) -> f64 {
         let (lat, lon) = lat_lon(point);
         let layer = &self.ratios[k.min(self.count - 1) * self.width * self.height..];
-        let ratio: f64 = bilinear_taps(self.width, self.height, lat, lon)
+        let ratio: f64 = bspline_taps(self.width, self.height, lat, lon)
             .iter()
             .map(|&(n, w)| w * f64::from(layer[n]))
             .sum();
