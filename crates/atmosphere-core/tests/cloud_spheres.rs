@@ -48,7 +48,7 @@ fn deck(cover: f32, extinction_per_m: f64, octaves: u32) -> CloudLayer {
 }
 
 /// The spheres of `layer` with attenuation textures of 256 texels around: their read,
-/// a cubic B-spline, blurs the sun's column by about a texel, 1.4 degrees here, where
+/// a quadratic B-spline, blurs the sun's column by about a texel, 1.4 degrees here, where
 /// the closed forms below hold to 1e-3 (at 16 texels, 22.5 degrees, the slant columns
 /// of the texels around an overhead sun's put 4 % into the read at its texel).
 fn spheres(layer: &CloudLayer, count: u32, sun: DVec3) -> CloudSpheres {

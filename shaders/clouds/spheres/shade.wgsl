@@ -66,32 +66,30 @@ fn cloud_depth(k: u32, p: vec3<f32>) -> f32 {
         cloud_depths[base + t.index.z], cloud_depths[base + t.index.w]));
 }
 
-// The cubic B-spline's weights of texels -1 to 2 around fraction t past texel 0 (geo's
-// `cubic_bspline_weights`).
-fn cubic_bspline_weights(t: f32) -> vec4<f32> {
-    let t2 = t * t;
-    let t3 = t2 * t;
-    let s = 1.0 - t;
-    return vec4<f32>(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0,
-        t3) / 6.0;
+// The quadratic B-spline's weights of texels -1, 0 and 1 around offset t in [-0.5, 0.5]
+// from texel 0's centre (geo's `quadratic_bspline_weights`).
+fn quadratic_bspline_weights(t: f32) -> vec3<f32> {
+    return vec3<f32>(0.5 * (0.5 - t) * (0.5 - t), 0.75 - t * t, 0.5 * (0.5 + t) * (0.5 + t));
 }
 
 // The optical depth towards the sun of sphere k at p's direction: -ln of G_k's
-// attenuation ratio read by the cubic B-spline of 4 x 4 texels (geo's `bspline_taps`:
-// no creases along the lines between texel centres), at most SHADOWED_DEPTH.
+// attenuation ratio read by the quadratic B-spline of 3 x 3 texels (geo's
+// `bspline_taps`: no creases along the lines between texel centres), at most
+// SHADOWED_DEPTH.
 fn sun_depth(k: u32, p: vec3<f32>) -> f32 {
     let w = spheres.grids.z;
     let h = spheres.grids.w;
     let c = grid_coordinates(w, h, p);
-    let corner = vec2<i32>(floor(c)) - vec2<i32>(1);
-    let wx = cubic_bspline_weights(c.x - floor(c.x));
-    let wy = cubic_bspline_weights(c.y - floor(c.y));
+    let nearest = round(c);
+    let corner = vec2<i32>(nearest) - vec2<i32>(1);
+    let wx = quadratic_bspline_weights(c.x - nearest.x);
+    let wy = quadratic_bspline_weights(c.y - nearest.y);
     let base = k * w * h;
     var ratio = 0.0;
-    for (var b = 0; b < 4; b++) {
+    for (var b = 0; b < 3; b++) {
         let row = u32(clamp(corner.y + b, 0, i32(h) - 1));
         var along = 0.0;
-        for (var a = 0; a < 4; a++) {
+        for (var a = 0; a < 3; a++) {
             let column = u32(((corner.x + a) % i32(w) + i32(w)) % i32(w));
             along += wx[a] * sun_ratios[base + row * w + column];
         }

@@ -65,33 +65,35 @@ pub fn bilinear_taps(width: usize, height: usize, lat_rad: f64, lon_rad: f64) ->
     ]
 }
 
-/// The cubic B-spline's weights of the four texels around fraction `t` in [0, 1) past
-/// texel 0 (texels -1, 0, 1, 2), summing to 1.
-pub fn cubic_bspline_weights(t: f64) -> [f64; 4] {
-    let (t2, t3) = (t * t, t * t * t);
+/// The quadratic B-spline's weights of texels -1, 0 and 1 around offset `t` in
+/// [-0.5, 0.5] from texel 0's centre, summing to 1.
+pub fn quadratic_bspline_weights(t: f64) -> [f64; 3] {
     [
-        (1.0 - t).powi(3) / 6.0,
-        (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0,
-        (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0,
-        t3 / 6.0,
+        (0.5 - t).powi(2) / 2.0,
+        0.75 - t * t,
+        (0.5 + t).powi(2) / 2.0,
     ]
 }
 
-/// The sixteen texels around a point and their cubic B-spline weights (summing to 1),
+/// The nine texels around a point and their quadratic B-spline weights (summing to 1),
 /// as [`bilinear_taps`] gives its four: a read whose value and slope are continuous
-/// across the lines between texel centres, where a bilinear read has creases. Columns
-/// wrap around the planet; rows past the poles repeat the first and last.
-pub fn bspline_taps(width: usize, height: usize, lat_rad: f64, lon_rad: f64) -> [(usize, f64); 16] {
+/// everywhere, where a bilinear read has creases (its slope jumps) along the lines
+/// between texel centres. Columns wrap around the planet; rows past the poles repeat
+/// the first and last.
+pub fn bspline_taps(width: usize, height: usize, lat_rad: f64, lon_rad: f64) -> [(usize, f64); 9] {
     let x = (lon_rad + PI) / TAU * width as f64 - 0.5;
     let y = (FRAC_PI_2 - lat_rad) / PI * height as f64 - 0.5;
-    let (x0, y0) = (x.floor(), y.floor());
-    let (wx, wy) = (cubic_bspline_weights(x - x0), cubic_bspline_weights(y - y0));
-    let mut taps = [(0, 0.0); 16];
+    let (x0, y0) = (x.round(), y.round());
+    let (wx, wy) = (
+        quadratic_bspline_weights(x - x0),
+        quadratic_bspline_weights(y - y0),
+    );
+    let mut taps = [(0, 0.0); 9];
     for (b, &weight_y) in wy.iter().enumerate() {
         let row = (y0 as i64 - 1 + b as i64).clamp(0, height as i64 - 1) as usize;
         for (a, &weight_x) in wx.iter().enumerate() {
             let column = (x0 as i64 - 1 + a as i64).rem_euclid(width as i64) as usize;
-            taps[4 * b + a] = (row * width + column, weight_x * weight_y);
+            taps[3 * b + a] = (row * width + column, weight_x * weight_y);
         }
     }
     taps
@@ -113,8 +115,8 @@ mod tests {
         let field: Vec<f64> = (0..width * height)
             .map(|n| 3.0 + 0.5 * (n % width) as f64)
             .collect();
-        for t in [0.0, 0.1, 0.5, 0.93] {
-            let weights = cubic_bspline_weights(t);
+        for t in [0.0f64, 0.1, 0.5, 0.93] {
+            let weights = quadratic_bspline_weights(t - t.round());
             assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-15);
             let (_, lon) = texel_centre(width, height, 20, 10);
             let lon = lon + t * TAU / width as f64;
@@ -126,7 +128,8 @@ mod tests {
             );
         }
         // One bright texel: the slope across the line through its centre (where a
-        // bilinear read turns sharply) is continuous for the spline.
+        // bilinear read turns sharply) is continuous for the spline, and across the line
+        // half-way to the next centre (where the spline's pieces meet).
         let mut spike = vec![0.0; width * height];
         spike[10 * width + 20] = 1.0;
         let (lat, centre) = texel_centre(width, height, 20, 10);
@@ -143,6 +146,10 @@ mod tests {
             "the bilinear read's kink: {bilinear_jump}"
         );
         assert!(jump(&spline) < 1e-3 * bilinear_jump, "{}", jump(&spline));
+        let half = 0.5 * TAU / width as f64;
+        let jump_at =
+            |f: &dyn Fn(f64) -> f64, at: f64| (slope(f, at + h) - slope(f, at - 2.0 * h)).abs();
+        assert!(jump_at(&spline, centre + half) < 1e-3 * bilinear_jump);
     }
 
     #[test]

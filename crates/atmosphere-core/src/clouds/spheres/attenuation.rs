@@ -10,7 +10,7 @@
 //! in the paper the texels hold the attenuation ratio exp(-tau): where a texel's
 //! neighbours are clear and it is opaque, the ratio's interpolation passes light and the
 //! optical depth's would not (at 1,024 texels around the planet, a cloud's edge spans
-//! 40 km of one texel). The ratio is read by a cubic B-spline of 4 x 4 texels
+//! 40 km of one texel). The ratio is read by a quadratic B-spline of 3 x 3 texels
 //! (`geo/equirectangular.rs`'s `bspline_taps`), not bilinearly: inside a deck tau runs to
 //! tens within a texel or two, and light that goes as exp(-b tau) showed a bilinear
 //! read's creases, along the lines between texel centres, as streaks along meridians
@@ -95,7 +95,7 @@ impl AttenuationTextures {
     }
 
     /// The optical depth towards the sun of sphere `k` at the planet-fixed `point`'s
-    /// direction: -ln of the ratio read by the cubic B-spline, at most
+    /// direction: -ln of the ratio read by the quadratic B-spline, at most
     /// [`SHADOWED_DEPTH`].
     pub fn depth(&self, k: usize, point: DVec3) -> f64 {
         let (lat, lon) = lat_lon(point);
