@@ -25,6 +25,7 @@ use atmosphere_core::models::sky_model::SkyModel;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_cloud_shafts::CLOUD_SHAFTS;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::frame::plan::FramePlan;
 use render_wgpu::frame::{Frame, LocalView, location_rotation};
 
 use crate::bench::timing::{median, step_gpu_ms, timed};
@@ -41,8 +42,8 @@ const FLIGHT: LocalView = LocalView {
     sun_zenith_deg: 60.0,
     sun_azimuth_deg: -120.0,
 };
-const LATITUDE_DEG: f64 = 25.0;
-const LONGITUDE_DEG: f64 = -30.0;
+pub const LATITUDE_DEG: f64 = 25.0;
+pub const LONGITUDE_DEG: f64 = -30.0;
 
 /// What one quality measured, ms.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,15 +58,16 @@ pub struct CloudTimes {
     pub sky_pass_ms: Option<f64>,
 }
 
-/// The hillaire frame of the flight view in `atmosphere` at `size`.
-fn flight_frame(atmosphere: &Atmosphere, size: (u32, u32)) -> Frame {
+/// The hillaire frame of `view` over (25 N, 30 W) in `atmosphere` at `size`, 60 degrees
+/// of vertical field (the flight view, and the orbit view of `clouds_orbit.rs`).
+pub fn bench_frame(view: &LocalView, atmosphere: &Atmosphere, size: (u32, u32)) -> Frame {
     let place = location_rotation(LATITUDE_DEG, LONGITUDE_DEG);
     let atmosphere = atmosphere.clone();
     Frame {
-        camera_position_m: place * FLIGHT.position_m(atmosphere.bottom_radius_m),
-        orientation: place * FLIGHT.orientation(),
+        camera_position_m: place * view.position_m(atmosphere.bottom_radius_m),
+        orientation: place * view.orientation(),
         vertical_fov_deg: 60.0,
-        sun_direction: place * FLIGHT.sun_direction(),
+        sun_direction: place * view.sun_direction(),
         atmosphere,
         model: ModelId::Hillaire,
         settings: Default::default(),
@@ -178,6 +180,44 @@ fn measure_shafts(
     })
 }
 
+/// One round of [`interleaved_pairs`]: the frame without clouds and with them, each
+/// with its plan and wall-clock time, ms.
+#[derive(Debug)]
+pub struct Pair {
+    pub clear: (FramePlan, f64),
+    pub cloudy: (FramePlan, f64),
+}
+
+/// Renders `frame` on `renderer` without clouds and with `clouds`, interleaved, `frames`
+/// times after a warm-up pair (shaders compile, tables and textures are made); every
+/// frame with clouds must run the step `step`. Leaves the clouds on.
+pub fn interleaved_pairs(
+    renderer: &mut Renderer,
+    frame: &Frame,
+    clouds: &FrameClouds,
+    (step, frames): (&str, usize),
+    progress: &Progress,
+) -> anyhow::Result<Vec<Pair>> {
+    let mut pairs = Vec::new();
+    for k in 0..=frames {
+        renderer.set_clouds(None)?;
+        let clear = timed(renderer, frame)?;
+        progress.inc();
+        renderer.set_clouds(Some(clouds.clone()))?;
+        let cloudy = timed(renderer, frame)?;
+        progress.inc();
+        anyhow::ensure!(
+            cloudy.0.runs(step),
+            "the bench view's plan has no {step}: {}",
+            cloudy.0
+        );
+        if k > 0 {
+            pairs.push(Pair { clear, cloudy });
+        }
+    }
+    Ok(pairs)
+}
+
 /// Measures each of `qualities` on `renderer` in `atmosphere` at `size`, `frames` pairs
 /// each, and what the cloud shafts add to each.
 pub fn measure(
@@ -187,7 +227,7 @@ pub fn measure(
     (size, frames): ((u32, u32), usize),
     progress: &Progress,
 ) -> anyhow::Result<(Vec<CloudTimes>, Vec<ShaftTimes>)> {
-    let frame = flight_frame(atmosphere, size);
+    let frame = bench_frame(&FLIGHT, atmosphere, size);
     let cover = CloudFlags::default().cover_grid()?;
     renderer.set_cloud_inputs(&cover, &droplet_orders()?)?;
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
@@ -205,23 +245,10 @@ pub fn measure(
             shafts: false,
         };
         let (mut added, mut clear, mut sky) = (Vec::new(), Vec::new(), Vec::new());
-        for k in 0..=frames {
-            renderer.set_clouds(None)?;
-            let (plan, clear_ms) = timed(renderer, &frame)?;
-            progress.inc();
-            renderer.set_clouds(Some(clouds.clone()))?;
-            let (cloudy, cloudy_ms) = timed(renderer, &frame)?;
-            progress.inc();
-            anyhow::ensure!(
-                cloudy.runs("clouds"),
-                "the flight view's plan has no clouds: {cloudy}"
-            );
-            // The first pair warms up: shaders compile, tables are built.
-            if k > 0 {
-                added.push(cloudy_ms - clear_ms);
-                clear.push(clear_ms);
-                sky.extend(step_gpu_ms(&plan, "hillaire"));
-            }
+        for pair in interleaved_pairs(renderer, &frame, &clouds, ("clouds", frames), progress)? {
+            added.push(pair.cloudy.1 - pair.clear.1);
+            clear.push(pair.clear.1);
+            sky.extend(step_gpu_ms(&pair.clear.0, "hillaire"));
         }
         out.push(CloudTimes {
             quality,

@@ -15,14 +15,14 @@ use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::spheres::handover::CloudForm;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
-use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_clouds::{FrameClouds, frame_light};
+use render_wgpu::frame::LocalView;
 use render_wgpu::frame::plan::FramePlan;
-use render_wgpu::frame::{Frame, LocalView, location_rotation};
 
-use crate::bench::timing::{median, timed};
+use crate::bench::clouds::{LATITUDE_DEG, LONGITUDE_DEG, bench_frame, interleaved_pairs};
+use crate::bench::timing::median;
 use crate::progress::Progress;
 
 /// The orbit view: 400 km over (25 N, 30 W), looking 60 degrees below the horizon
@@ -34,8 +34,6 @@ const ORBIT: LocalView = LocalView {
     sun_zenith_deg: 50.0,
     sun_azimuth_deg: -120.0,
 };
-const LATITUDE_DEG: f64 = 25.0;
-const LONGITUDE_DEG: f64 = -30.0;
 
 /// What the spheres of one quality added to the orbit view's frame, ms.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,25 +45,6 @@ pub struct OrbitTimes {
     pub clear_wall_ms: f64,
     /// The cloud steps the frame with clouds ran, as its plan names them.
     pub steps: Vec<&'static str>,
-}
-
-/// The hillaire frame of the orbit view in `atmosphere` at `size`.
-fn orbit_frame(atmosphere: &Atmosphere, size: (u32, u32)) -> Frame {
-    let place = location_rotation(LATITUDE_DEG, LONGITUDE_DEG);
-    let atmosphere = atmosphere.clone();
-    Frame {
-        camera_position_m: place * ORBIT.position_m(atmosphere.bottom_radius_m),
-        orientation: place * ORBIT.orientation(),
-        vertical_fov_deg: 60.0,
-        sun_direction: place * ORBIT.sun_direction(),
-        atmosphere,
-        model: ModelId::Hillaire,
-        settings: Default::default(),
-        exposure_ev100: 14.0,
-        width: size.0,
-        height: size.1,
-        terrain: None,
-    }
 }
 
 /// Frames the orbit view renders for one quality (the warm-up pair included).
@@ -91,7 +70,7 @@ pub fn measure(
     (size, frames): ((u32, u32), usize),
     progress: &Progress,
 ) -> anyhow::Result<Vec<OrbitTimes>> {
-    let frame = orbit_frame(atmosphere, size);
+    let frame = bench_frame(&ORBIT, atmosphere, size);
     let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
     let mut out = Vec::new();
     for &quality in qualities {
@@ -104,25 +83,19 @@ pub fn measure(
             prune: true,
             shafts: true,
         };
-        let (mut added, mut clear, mut steps) = (Vec::new(), Vec::new(), Vec::new());
-        for k in 0..=frames {
-            renderer.set_clouds(None)?;
-            let (_, clear_ms) = timed(renderer, &frame)?;
-            progress.inc();
-            renderer.set_clouds(Some(clouds.clone()))?;
-            let (cloudy, cloudy_ms) = timed(renderer, &frame)?;
-            progress.inc();
-            anyhow::ensure!(
-                cloudy.runs("cloud_spheres"),
-                "the orbit view's plan has no cloud spheres: {cloudy}"
-            );
-            // The first pair warms up: shaders compile, the attenuation textures are made.
-            if k > 0 {
-                added.push(cloudy_ms - clear_ms);
-                clear.push(clear_ms);
-                steps = cloud_steps(&cloudy);
-            }
-        }
+        let pairs = interleaved_pairs(
+            renderer,
+            &frame,
+            &clouds,
+            ("cloud_spheres", frames),
+            progress,
+        )?;
+        let added: Vec<f64> = pairs.iter().map(|p| p.cloudy.1 - p.clear.1).collect();
+        let clear: Vec<f64> = pairs.iter().map(|p| p.clear.1).collect();
+        let steps = pairs
+            .last()
+            .map(|p| cloud_steps(&p.cloudy.0))
+            .unwrap_or_default();
         out.push(OrbitTimes {
             quality,
             added_wall_ms: median(&added).unwrap_or(f64::NAN),
