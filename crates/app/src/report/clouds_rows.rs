@@ -104,33 +104,25 @@ impl CloudRow {
         })
     }
 
-    /// The march settings of a layer row (`None` for the spheres).
-    pub fn march(&self) -> Option<LayerSettings> {
+    /// The layer's settings a row's clouds take: the march's, or for the spheres the
+    /// offline preset with their method.
+    pub fn cloud_settings(&self) -> LayerSettings {
         match *self {
             CloudRow::Layer {
                 method,
                 quality,
                 sun_light,
-            } => Some(LayerSettings {
+            } => LayerSettings {
                 sun_light,
                 ..quality.apply(LayerSettings {
                     method,
                     ..LayerSettings::default()
                 })
-            }),
-            CloudRow::Spheres { .. } => None,
-        }
-    }
-
-    /// The layer's settings a row's clouds take: the march's, or for the spheres the
-    /// offline preset with their method.
-    pub fn cloud_settings(&self) -> LayerSettings {
-        match *self {
+            },
             CloudRow::Spheres { method } => MarchQuality::Offline.apply(LayerSettings {
                 method,
                 ..LayerSettings::default()
             }),
-            CloudRow::Layer { .. } => self.march().unwrap_or_default(),
         }
     }
 
@@ -247,9 +239,7 @@ mod tests {
     fn rows_read_back_and_bad_words_are_named() {
         for row in cloud_rows() {
             assert_eq!(CloudRow::parse(&row.to_string()).unwrap(), row);
-            if let Some(march) = row.march() {
-                assert!(march.check().is_ok(), "{row}");
-            }
+            assert!(row.cloud_settings().check().is_ok(), "{row}");
         }
         assert_eq!(
             CloudRow::parse("octaves").unwrap().to_string(),

@@ -73,20 +73,26 @@ pub fn shade_slab(
     let nu = direction.dot(light.sun_direction);
     let inner = spheres.inner_radius_m(k);
     let sun = light.sun_direction;
-    // Where a point lies in its column: its sun depth, the sun's cosine, the slab.
-    let place = |p: DVec3| {
+    // Where a point lies in its column: its sun depth, the sun's cosine, the slab (the
+    // depth below only where `below`: four streams read it once, at the middle).
+    let place = |p: DVec3, below: bool| {
         let up = p.normalize();
         let tau_sun = spheres.sun_depth_at(k, p, sigma, sun);
-        let below = spheres.depth_below(k, p);
+        let tau_below = if below {
+            sigma * (p.length() - inner).max(0.0) + spheres.depth_below(k, p)
+        } else {
+            0.0
+        };
         let slab = SlabGeometry {
             mu0: sun.dot(up),
             mu_out: -direction.dot(up),
-            tau_below: sigma * (p.length() - inner).max(0.0) + below,
+            tau_below,
         };
         (tau_sun, slab)
     };
-    let solved: Vec<FourStreamSlab> = if method == LayerMethod::FourStream {
-        let (tau_sun, middle) = place((start + end) / 2.0);
+    let four_streams = method == LayerMethod::FourStream;
+    let solved: Vec<FourStreamSlab> = if four_streams {
+        let (tau_sun, middle) = place((start + end) / 2.0, true);
         let mu0 = middle.mu0.max(MIN_SUN_COSINE);
         (0..waves)
             .map(|w| {
@@ -97,9 +103,10 @@ pub fn shade_slab(
     } else {
         Vec::new()
     };
+    let step_real = (-d).exp();
     for step in 0..SLAB_STEPS {
         let p = start + direction * (length * (step as f64 + 0.5) / SLAB_STEPS as f64);
-        let (tau_sun, slab) = place(p);
+        let (tau_sun, slab) = place(p, !four_streams);
         let lit = if tau_sun >= SHADOWED_DEPTH { 0.0 } else { 1.0 };
         for w in 0..waves {
             let (scaled, real, sky) = match solved.get(w) {
@@ -111,7 +118,6 @@ pub fn shade_slab(
                 None => slab_source(method, w, tau_sun, orders, &slab, nu, albedo),
             };
             let sun = lit * light.sun_irradiance[w];
-            let step_real = (-d).exp();
             let step_scaled = (-scales[w] * d).exp();
             shaded.radiance[w] += shaded.transmittance[w] * (1.0 - step_real) * albedo * sun * real;
             shaded.scaled_radiance[w] += shaded.scaled_transmittance[w] * (1.0 - step_scaled)
