@@ -8,10 +8,12 @@
 // (`clouds/frame_march.wgsl`), and T_front the atmosphere's transmittance from the
 // camera to the cloud's entry, exp(-tau) of the columns integrated by the midpoint rule
 // over FRONT_STEPS steps. Pixels without cloud (T_cloud = 1) keep L_full exactly.
+// From above the layer with the spheres at a reduced resolution, L_front is the model's
+// run at the spheres' reduced rays, ended where each enters the layer
+// (`clouds/frame_front.rs`), read at the pixel by `reduced_front` through the reduced
+// rays' transmittance (CPU twin: atmosphere-core's `clouds/layer/front_upsample.rs`).
 
-#import common/frame_params.wgsl
-
-const FRONT_STEPS: u32 = 32u;
+#import clouds/front_transmittance.wgsl
 
 @group(0) @binding(2) var full_image: texture_2d<f32>;
 @group(0) @binding(3) var front_image: texture_2d<f32>;
@@ -21,21 +23,69 @@ const FRONT_STEPS: u32 = 32u;
 @group(0) @binding(5) var cloud_front: texture_2d<f32>;
 @group(0) @binding(6) var hdr: texture_storage_2d<rgba16float, write>;
 // y: 1 when the model's second run wrote `front_image`, 0 when the camera is inside the
-// layer and it did not run (no air in front of the cloud; x is the march's).
+// layer and it did not run (no air in front of the cloud; x is the march's); z: 1 when
+// `front_image` holds every pixel, the divisor k when it holds the reduced rays (one per
+// k x k pixels) whose entries `reduced_entries` holds.
 @group(0) @binding(7) var<uniform> composite_flags: vec4<u32>;
+// w: where each reduced ray enters the layer, m (0: it does not).
+@group(0) @binding(8) var reduced_entries: texture_2d<f32>;
+// rgb: each reduced ray's transmittance to its entry
+// (`clouds/front_reduced_transmittance.wgsl`).
+@group(0) @binding(9) var reduced_transmittance: texture_2d<f32>;
 
-// Transmittance of the atmosphere from the camera to `distance_m` along `direction`.
-fn front_transmittance(direction: vec3<f32>, distance_m: f32) -> vec3<f32> {
-    let s = view_segment(direction, distance_m);
-    if !s.hit {
-        return vec3<f32>(1.0);
+// How far (in reduced pixels, each way) `reduced_front` looks for a reduced ray that
+// enters the layer where none of the pixel's bilinear taps does.
+const FRONT_SEARCH: i32 = 2;
+
+// The air's radiance in front of the cloud per unit of its opacity 1 - T_front at
+// reduced ray `texel` (its mean source, which changes across the image more slowly than
+// the radiance where the ray grazes the layer's top).
+fn front_source(texel: vec2<i32>) -> vec3<f32> {
+    let opacity = 1.0 - textureLoad(reduced_transmittance, texel, 0).rgb;
+    return textureLoad(front_image, texel, 0).rgb / max(opacity, vec3<f32>(1e-6));
+}
+
+// L_front at full pixel `px`, whose transmittance to the cloud is `t_front`, from the
+// reduced run: (1 - t_front) times the mean source of its four bilinear taps
+// (`layer/upsample.rs`'s map) over those whose ray enters the layer, else of the nearest
+// such reduced ray within FRONT_SEARCH of the pixel's nearest one; 0 where there is none.
+fn reduced_front(px: vec2<u32>, t_front: vec3<f32>) -> vec3<f32> {
+    let low = vec2<i32>(textureDimensions(front_image));
+    let p = (vec2<f32>(px) + 0.5) * vec2<f32>(low) / vec2<f32>(frame.size_px.xy) - 0.5;
+    let uv = clamp(p, vec2<f32>(0.0), vec2<f32>(low - vec2<i32>(1)));
+    let i0 = vec2<i32>(floor(uv));
+    let f = uv - vec2<f32>(i0);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var k = 0; k < 4; k++) {
+        let step = vec2<i32>(k & 1, k >> 1u);
+        let texel = min(i0 + step, low - vec2<i32>(1));
+        let w = select(1.0 - f.x, f.x, step.x == 1) * select(1.0 - f.y, f.y, step.y == 1);
+        if w > 0.0 && textureLoad(reduced_entries, texel, 0).w > 0.0 {
+            sum += w * front_source(texel);
+            weight += w;
+        }
     }
-    let dt = s.length / f32(FRONT_STEPS);
-    var column = vec3<f32>(0.0);
-    for (var k = 0u; k < FRONT_STEPS; k++) {
-        column += dt * densities(altitude_from_q(q_along(s, (f32(k) + 0.5) * dt)));
+    if weight > 0.0 {
+        return (1.0 - t_front) * sum / weight;
     }
-    return exp(-optical_depth(column));
+    let nearest = vec2<i32>(floor(uv + 0.5));
+    var best = 1e30;
+    var found = vec3<f32>(0.0);
+    for (var j = -FRONT_SEARCH; j <= FRONT_SEARCH; j++) {
+        for (var i = -FRONT_SEARCH; i <= FRONT_SEARCH; i++) {
+            let texel = nearest + vec2<i32>(i, j);
+            let inside = all(texel >= vec2<i32>(0)) && all(texel < low);
+            let offset = vec2<f32>(texel) - p;
+            let distance2 = dot(offset, offset);
+            if inside && distance2 < best
+                && textureLoad(reduced_entries, texel, 0).w > 0.0 {
+                best = distance2;
+                found = front_source(texel);
+            }
+        }
+    }
+    return (1.0 - t_front) * found;
 }
 
 @compute @workgroup_size(8, 8)
@@ -51,8 +101,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         var front = vec3<f32>(0.0);
         var t_front = vec3<f32>(1.0);
         if entry_m > 0.0 && composite_flags.y == 1u {
-            front = textureLoad(front_image, id.xy, 0).rgb;
             t_front = front_transmittance(pixel_direction(id.xy), entry_m);
+            if composite_flags.z > 1u {
+                front = reduced_front(id.xy, t_front);
+            } else {
+                front = textureLoad(front_image, id.xy, 0).rgb;
+            }
         }
         out = front + t_front * cloud.rgb + cloud.a * max(full - front, vec3<f32>(0.0));
     }

@@ -20,12 +20,15 @@ mod support;
 use atmosphere_core::clouds::cover::grid::CoverGrid;
 use atmosphere_core::clouds::layer::composite::composite;
 use atmosphere_core::clouds::layer::field::CloudLayer;
-use atmosphere_core::clouds::layer::march::CloudLight;
+use atmosphere_core::clouds::layer::front_upsample::{ReducedFront, front_at};
+use atmosphere_core::clouds::layer::march::{CloudLight, CloudSegment};
 use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
+use atmosphere_core::clouds::layer::upsample::{marched_coordinate, reduced_size};
 use atmosphere_core::clouds::phase::CloudPhase;
 use atmosphere_core::clouds::spheres::composite::spheres_only;
 use atmosphere_core::clouds::spheres::field::CloudSpheres;
 use atmosphere_core::clouds::spheres::handover::{CloudForm, sphere_weight};
+use atmosphere_core::clouds::spheres::reduced::{SphereView, span, spheres_image};
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::geo::equirectangular::lat_lon;
 use atmosphere_core::models::id::ModelId;
@@ -189,8 +192,20 @@ fn orbit_frame_as_the_cpu(renderer: &mut Renderer, method: LayerMethod) {
         "the spheres must change the frame: {clouded} of {} pixels",
         gpu.len()
     );
+    let (worst, outside, far) = against(&gpu, &cpu, brightest);
+    println!("{method} orbit frame: worst {worst:.3} of the tolerance, {outside} values outside");
+    assert!(
+        outside * 100 <= 3 * cpu.len() && far == 0,
+        "{outside} values outside the tolerance, {far} four times outside; worst {worst:.2}"
+    );
+}
+
+/// How `image` (radiance per pixel) compares with `cpu` by the module's tolerance (of the
+/// brightest value `brightest`): the worst error as a share of it, the values outside
+/// it, and those outside four times it.
+fn against(image: &[[f32; 4]], cpu: &[RayRadiance], brightest: f64) -> (f64, usize, usize) {
     let (mut worst, mut outside, mut far) = (0.0f64, 0, 0);
-    for (g, c) in gpu.iter().zip(&cpu) {
+    for (g, c) in image.iter().zip(cpu) {
         for w in 0..3 {
             let error = (f64::from(g[w]) - c.radiance[w]).abs();
             let allowed = RELATIVE * c.radiance[w] + OF_BRIGHTEST * brightest;
@@ -199,11 +214,152 @@ fn orbit_frame_as_the_cpu(renderer: &mut Renderer, method: LayerMethod) {
             far += usize::from(error > OUTLIER_FACTOR * allowed);
         }
     }
-    println!("{method} orbit frame: worst {worst:.3} of the tolerance, {outside} values outside");
-    assert!(
-        outside * 100 <= 3 * cpu.len() && far == 0,
-        "{outside} values outside the tolerance, {far} four times outside; worst {worst:.2}"
-    );
+    (worst, outside, far)
+}
+
+/// From orbit with the spheres at divisor 3 the model's second run takes only their
+/// reduced rays (`clouds/frame_front.rs`): the frame against its CPU twin (the reduced
+/// spheres of `reduced.rs`, the air in front from `front_upsample.rs`), and the twin
+/// against the same spheres with every pixel's own air in front, looking down and
+/// across the limb.
+#[test]
+fn from_orbit_the_reduced_run_in_front_of_the_spheres_keeps_the_frame() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud spheres' reduced front") else {
+        return;
+    };
+    renderer
+        .set_cloud_inputs(&cover(), &support::clouds::orders())
+        .unwrap();
+    for pitch_deg in [50.0, 22.0] {
+        let frame = frame(4e5, pitch_deg, (64, 36));
+        let mut clouds = clouds(&frame, CloudForm::Auto);
+        clouds.spheres.resolution_divisor = 3;
+        renderer.set_clouds(Some(clouds.clone())).unwrap();
+        let plan = renderer.render(&frame).unwrap();
+        assert!(plan.runs("cloud_front"), "{plan}");
+        let gpu = renderer.read_hdr().unwrap();
+        let [twin, exact, no_front] = cpu_reduced_frames(&frame, &clouds.light, 3);
+        let brightest = exact
+            .iter()
+            .flat_map(|p| p.radiance.iter().copied())
+            .fold(0.0, f64::max);
+        let as_image = |frame: &[RayRadiance]| -> Vec<[f32; 4]> {
+            let f = |p: &RayRadiance, w: usize| p.radiance[w] as f32;
+            frame
+                .iter()
+                .map(|p| [f(p, 0), f(p, 1), f(p, 2), 1.0])
+                .collect()
+        };
+        let (worst, outside, far) = against(&gpu, &twin, brightest);
+        let (twin_worst, twin_outside, twin_far) = against(&as_image(&twin), &exact, brightest);
+        let (_, without, _) = against(&as_image(&no_front), &exact, brightest);
+        println!(
+            "{pitch_deg} degrees down: GPU against the twin worst {worst:.3} of the \
+             tolerance, {outside} values outside; the twin against every pixel's front \
+             worst {twin_worst:.3}, {twin_outside} outside; without the air in front \
+             {without} outside"
+        );
+        let values = 3 * twin.len();
+        assert!(
+            outside * 100 <= 3 * values && far == 0,
+            "GPU: {outside} values outside the tolerance, {far} four times; worst {worst:.2}"
+        );
+        assert!(
+            twin_outside * 100 <= values && twin_far == 0,
+            "reduced front: {twin_outside} values outside the tolerance, {twin_far} four \
+             times; worst {twin_worst:.2}"
+        );
+        // The test can fail: the air in front matters here.
+        assert!(
+            without * 10 > values,
+            "{without} of {values} values need the air in front"
+        );
+    }
+}
+
+/// The CPU's frames of the spheres at `divisor` composited with riley's answers, the air
+/// in front of the cloud from the reduced rays (the GPU's twin), from each pixel's own
+/// ray, and left out.
+fn cpu_reduced_frames(frame: &Frame, light: &CloudLight, divisor: u32) -> [Vec<RayRadiance>; 3] {
+    let model = prepare(frame.model, &frame.atmosphere, &frame.settings).unwrap();
+    let phase = CloudPhase::new(PhaseFunction::HenyeyGreenstein { g: 0.0 }).unwrap();
+    let layer = CloudLayer::new(settings(), frame.atmosphere.bottom_radius_m, cover(), phase);
+    let spheres = CloudSpheres::new(
+        &layer.unwrap(),
+        &SphereSettings::default(),
+        light.sun_direction,
+    )
+    .unwrap();
+    let orders = support::clouds::orders();
+    let size = (frame.width, frame.height);
+    let origin = frame.camera_position_m;
+    let direction = |x: f64, y: f64| frame.direction_through(x + 0.5, y + 0.5).normalize();
+    let view = SphereView {
+        origin,
+        size,
+        direction: &direction,
+        end_m: &|_, _| f64::INFINITY,
+    };
+    let image = spheres_image(&spheres, &orders, light, &view, divisor).unwrap();
+    let ray_to = |direction: DVec3, t: f64| ViewRay {
+        origin_m: origin,
+        direction,
+        sun_direction: frame.sun_direction.normalize(),
+        max_distance_m: Some(t),
+    };
+    let low = reduced_size(size.0, size.1, divisor);
+    let rays: Vec<(RayRadiance, f64)> = (0..low.1)
+        .flat_map(|j| (0..low.0).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            let x = marched_coordinate(i, low.0, size.0);
+            let d = direction(x, marched_coordinate(j, low.1, size.1));
+            match span(spheres.shells(), origin, d, f64::INFINITY) {
+                Some((t0, _)) => (model.radiance(&ray_to(d, t0)).unwrap(), t0),
+                None => (RayRadiance::unattenuated(3), 0.0),
+            }
+        })
+        .collect();
+    let three = |v: &[f64]| [v[0], v[1], v[2]];
+    let radiance: Vec<[f64; 3]> = rays.iter().map(|(r, _)| three(&r.radiance)).collect();
+    let transmittance: Vec<[f64; 3]> = rays.iter().map(|(r, _)| three(&r.transmittance)).collect();
+    let entry_m: Vec<f64> = rays.iter().map(|(_, t0)| *t0).collect();
+    let reduced = ReducedFront {
+        size: low,
+        radiance: &radiance,
+        transmittance: &transmittance,
+        entry_m: &entry_m,
+    };
+    let mut frames: [Vec<RayRadiance>; 3] = Default::default();
+    for (k, c) in image.iter().enumerate() {
+        let (x, y) = (k as u32 % size.0, k as u32 / size.0);
+        let ray = frame.pixel_ray(x, y);
+        let full = model.radiance(&ray).unwrap();
+        let cloud = CloudSegment {
+            radiance: c[..3].to_vec(),
+            transmittance: vec![c[3]; 3],
+        };
+        let entry = span(spheres.shells(), origin, ray.direction, f64::INFINITY);
+        let Some((t0, _)) = entry.filter(|_| c[3] < 1.0) else {
+            frames.iter_mut().for_each(|f| f.push(full.clone()));
+            continue;
+        };
+        let exact = model.radiance(&ray_to(ray.direction, t0)).unwrap();
+        let twin = RayRadiance {
+            radiance: front_at(&reduced, size, (x, y), three(&exact.transmittance))
+                .unwrap_or([0.0; 3])
+                .to_vec(),
+            ..exact.clone()
+        };
+        let none = RayRadiance {
+            radiance: vec![0.0; 3],
+            transmittance: vec![1.0; 3],
+            ..exact.clone()
+        };
+        for (f, front) in frames.iter_mut().zip([&twin, &exact, &none]) {
+            f.push(composite(&full, front, &cloud));
+        }
+    }
+    frames
 }
 
 #[test]

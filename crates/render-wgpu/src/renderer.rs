@@ -11,6 +11,7 @@ use atmosphere_core::models::id::ModelId;
 use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
 use crate::clouds::frame_clouds::{FrameClouds, front_sun_map, plan_after_model, plan_clouds};
+use crate::clouds::frame_front::{FrontRun, encode_front};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
 use crate::clouds::frame_sun_map::FrameSunMap;
 use crate::clouds::layer_inputs::LayerInputs;
@@ -326,10 +327,17 @@ impl Renderer {
             _ => Targets::new(&self.gpu, frame.width, frame.height),
         };
         if let (Some(_), Some(clouds)) = (clouds_step, &self.clouds) {
-            let divisor = clouds.settings.resolution_divisor;
-            if targets.clouds.as_ref().is_none_or(|c| c.divisor != divisor) {
+            let divisors = (
+                clouds.settings.resolution_divisor,
+                clouds.spheres.resolution_divisor,
+            );
+            if targets
+                .clouds
+                .as_ref()
+                .is_none_or(|c| !c.made_for(divisors.0, divisors.1))
+            {
                 let size = (frame.width, frame.height);
-                targets.clouds = Some(CloudTargets::new(&self.gpu, size, divisor));
+                targets.clouds = Some(CloudTargets::new(&self.gpu, size, divisors));
             }
         }
         if let Some(texels) = surface {
@@ -454,25 +462,19 @@ impl Renderer {
                 return Err(e);
             }
             if let Some(front) = front {
-                let front_surface = c.front_surface();
-                let front_map = front_sun_map(self.sun_map.texture(), frame, &clouds.settings);
-                let front_io = PassIo {
-                    sun_map: &front_map,
-                    hdr: &c.front,
-                    surface: &front_surface,
-                    has_surface: true,
-                    has_sea: false,
-                    ..io
+                let run = FrontRun {
+                    io: &io,
+                    frame: frame_uniform,
+                    targets: c,
+                    sun_map: &front_sun_map(self.sun_map.texture(), frame, &clouds.settings),
+                    divisor: steps.front_divisor,
                 };
-                model.encode_passes(
-                    &mut FrameRecorder {
-                        gpu,
-                        io: &front_io,
-                        encoder: &mut encoder,
-                        timer,
-                    },
-                    front,
-                );
+                let recorded =
+                    encode_front(model.as_mut(), gpu, (&mut encoder, timer), &run, front);
+                if let Err(e) = recorded {
+                    self.targets = Some(targets);
+                    return Err(e);
+                }
             }
             if let Some(composite) = composite {
                 pass.encode_composite(

@@ -152,6 +152,22 @@ pub struct CloudSteps {
     /// Whether the march's upsample composites each pixel over the model's, so that the
     /// composite is no step of its own ([`COMPOSITE_IN_UPSAMPLE`]).
     pub composite_in_upsample: bool,
+    /// 1 when the model's second run takes every pixel, else the divisor of its reduced
+    /// run ([`front_divisor`]).
+    pub front_divisor: u32,
+}
+
+/// The divisor of the model's second run in front of the cloud (`clouds/frame_front.rs`):
+/// the spheres' resolution divisor where they run at a reduced resolution and the camera
+/// is above the layer's top, so that every ray's cloud starts on the sphere of the top;
+/// else 1, every pixel.
+pub fn front_divisor(frame: &Frame, clouds: &FrameClouds, spheres_run: bool) -> u32 {
+    let (_, top_m) = clouds.settings.radii_m(frame.atmosphere.bottom_radius_m);
+    let above = frame.camera_position_m.length() > top_m;
+    match spheres_run && above {
+        true => clouds.spheres.resolution_divisor.max(1),
+        false => 1,
+    }
 }
 
 /// The cloud steps of `frame` in `plan` (`None`: no clouds, or pruned with the reason
@@ -212,6 +228,7 @@ pub fn plan_clouds(
             && spheres.is_none()
             && clouds.settings.resolution_divisor > 1
             && front.is_some(),
+        front_divisor: front_divisor(frame, clouds, spheres.is_some()),
     };
     Ok((Some(steps), front.is_none()))
 }

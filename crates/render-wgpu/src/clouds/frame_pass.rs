@@ -24,10 +24,11 @@ use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::{LayerCamera, LayerUniform};
 use crate::clouds::march_variants::MarchVariants;
 use crate::clouds::spheres::frame_spheres::{FrameSpherePass, SphereImages, SphereScene};
+use crate::clouds::spheres::reduced_targets::{ReducedSphereTargets, TRANSMITTANCE_FORMAT};
 use crate::clouds::sun_map_texture::{SUN_MAP_BINDING, SunMapTexture};
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
-use crate::frame::surface_buffer::{ALBEDO_FORMAT, GEOMETRY_FORMAT};
+use crate::frame::surface_buffer::{GEOMETRY_FORMAT, black_albedo};
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
@@ -67,32 +68,22 @@ pub struct CloudTargets {
     /// image and segments.
     pub divisor: u32,
     reduced: Option<[wgpu::Texture; 2]>,
+    /// The spheres' reduced images, where their resolution divisor is above 1.
+    pub spheres_reduced: Option<ReducedSphereTargets>,
 }
 
 impl CloudTargets {
     /// The targets of a frame of `width` x `height` whose layer is marched at one pixel
-    /// in `divisor` x `divisor`.
-    pub fn new(gpu: &GpuContext, (width, height): (u32, u32), divisor: u32) -> CloudTargets {
+    /// in `divisor` x `divisor` and whose spheres are shaded at one in
+    /// `spheres_divisor` x `spheres_divisor`.
+    pub fn new(
+        gpu: &GpuContext,
+        (width, height): (u32, u32),
+        (divisor, spheres_divisor): (u32, u32),
+    ) -> CloudTargets {
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
         let image = |label, format| texture_2d(&gpu.device, label, (width, height), format, usage);
-        let front_albedo = texture_2d(
-            &gpu.device,
-            "cloud front albedo",
-            (width, height),
-            ALBEDO_FORMAT,
-            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        );
-        let black = vec![[0u8, 0, 0, 255]; width as usize * height as usize];
-        gpu.queue.write_texture(
-            front_albedo.as_image_copy(),
-            bytemuck::cast_slice(&black),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(width * 4),
-                rows_per_image: Some(height),
-            },
-            front_albedo.size(),
-        );
+        let front_albedo = black_albedo(gpu, "cloud front albedo", (width, height));
         CloudTargets {
             full: image("cloud full", HDR_FORMAT),
             front: image("cloud front", HDR_FORMAT),
@@ -121,7 +112,16 @@ impl CloudTargets {
                     ),
                 ]
             }),
+            spheres_reduced: (spheres_divisor > 1)
+                .then(|| ReducedSphereTargets::new(gpu, (width, height), spheres_divisor)),
         }
+    }
+
+    /// Whether these were made for a layer's `divisor` and the spheres'
+    /// `spheres_divisor`.
+    pub fn made_for(&self, divisor: u32, spheres_divisor: u32) -> bool {
+        let spheres = self.spheres_reduced.as_ref().map_or(1, |r| r.divisor);
+        self.divisor == divisor && spheres == spheres_divisor.max(1)
     }
 
     /// Views of the second run's surface, for its `PassIo`.
@@ -180,6 +180,9 @@ pub struct CloudFramePass {
     upsample_over: ComputePipeline,
     march_list_over: MarchVariants,
     composite: ComputePipeline,
+    /// The spheres' reduced rays' transmittance in front of the cloud, which the
+    /// composite reads with the model's reduced run.
+    front_transmittance: ComputePipeline,
     spheres: FrameSpherePass,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
@@ -250,6 +253,14 @@ impl CloudFramePass {
             texture_entry(5, D2),
             storage_texture_entry(6, HDR_FORMAT, D2),
             uniform_entry(7, 16),
+            texture_entry(8, D2),
+            texture_entry(9, D2),
+        ];
+        let front_transmittance = [
+            uniform_entry(0, size_of::<AtmosphereUniform>()),
+            uniform_entry(1, size_of::<FrameUniform>()),
+            texture_entry(2, D2),
+            storage_texture_entry(3, TRANSMITTANCE_FORMAT, D2),
         ];
         Ok(CloudFramePass {
             march: MarchVariants::new("clouds/frame_march.wgsl", "cloud frame march", &march),
@@ -268,6 +279,13 @@ impl CloudFramePass {
                 "main",
                 "cloud composite",
                 &composite,
+            )?,
+            front_transmittance: ComputePipeline::new(
+                gpu,
+                "clouds/front_reduced_transmittance.wgsl",
+                "main",
+                "cloud front transmittance, reduced",
+                &front_transmittance,
             )?,
             spheres: FrameSpherePass::new(gpu)?,
             params: uniform_buffer(&gpu.device, "cloud frame", size_of::<LayerUniform>()),
@@ -289,7 +307,7 @@ impl CloudFramePass {
         let flags = [
             u32::from(scene.has_surface),
             u32::from(scene.has_front),
-            0,
+            steps.front_divisor,
             0,
         ];
         gpu.write_uniform(&self.flags, &flags);
@@ -317,6 +335,7 @@ impl CloudFramePass {
             layer: &targets.cloud,
             out: &targets.spheres,
             front: &targets.front_geometry,
+            reduced: targets.spheres_reduced.as_ref(),
         };
         let writes = timer.map(|t| t.compute_writes(step));
         self.spheres.encode(gpu, encoder, &spheres, &images, writes)
@@ -454,7 +473,8 @@ impl CloudFramePass {
 
     /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and
     /// `frame` uniforms (after [`CloudFramePass::encode_clouds`], whose flags it reads),
-    /// taking the spheres' image when `steps` ran them.
+    /// taking the spheres' image when `steps` ran them and the model's reduced run in
+    /// front of the cloud when it ran reduced (`frame_front.rs`).
     pub fn encode_composite(
         &self,
         gpu: &GpuContext,
@@ -465,17 +485,44 @@ impl CloudFramePass {
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let reduced = targets
+            .spheres_reduced
+            .as_ref()
+            .filter(|_| steps.front_divisor > 1);
         let views = [
             view(&targets.full),
-            view(&targets.front),
+            view(reduced.map_or(&targets.front, |r| &r.front)),
             view(match steps.spheres {
                 Some(_) => &targets.spheres,
                 None => &targets.cloud,
             }),
             view(&targets.front_geometry),
             view(hdr),
+            view(reduced.map_or(&targets.front_geometry, |r| &r.front_geometry)),
+            view(reduced.map_or(&targets.front_geometry, |r| &r.front_transmittance)),
         ];
-        let [full, front, cloud, geometry, out] = &views;
+        let [full, front, cloud, geometry, out, entries, transmittance] = &views;
+        let mut timestamps = timestamps;
+        if let Some(reduced) = reduced {
+            let (start, end) = split_timestamps(timestamps);
+            timestamps = end;
+            let bind_group = self.front_transmittance.bind_group(
+                gpu,
+                &[
+                    uniforms.0.as_entire_binding(),
+                    reduced.frame.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(entries),
+                    wgpu::BindingResource::TextureView(&view(&reduced.front_transmittance)),
+                ],
+            );
+            self.front_transmittance.dispatch(
+                encoder,
+                "cloud front transmittance, reduced",
+                &bind_group,
+                texel_groups(&reduced.front_transmittance),
+                start,
+            );
+        }
         let bind_group = self.composite.bind_group(
             gpu,
             &[
@@ -487,6 +534,8 @@ impl CloudFramePass {
                 wgpu::BindingResource::TextureView(geometry),
                 wgpu::BindingResource::TextureView(out),
                 self.flags.as_entire_binding(),
+                wgpu::BindingResource::TextureView(entries),
+                wgpu::BindingResource::TextureView(transmittance),
             ],
         );
         self.composite.dispatch(

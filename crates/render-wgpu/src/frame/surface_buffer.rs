@@ -59,6 +59,30 @@ pub fn check_surface(surface: &[SurfaceTexel], pixels: usize) -> Result<(), Rend
     }
 }
 
+/// An albedo texture of `size`, 0 and Lambertian everywhere: the surface of a model's run
+/// ended where its rays enter a cloud, which reflects nothing.
+pub fn black_albedo(gpu: &GpuContext, label: &str, (width, height): (u32, u32)) -> wgpu::Texture {
+    let albedo = texture_2d(
+        &gpu.device,
+        label,
+        (width, height),
+        ALBEDO_FORMAT,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    let black = vec![[0u8, 0, 0, 255]; width as usize * height as usize];
+    gpu.queue.write_texture(
+        albedo.as_image_copy(),
+        bytemuck::cast_slice(&black),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(width * 4),
+            rows_per_image: Some(height),
+        },
+        albedo.size(),
+    );
+    albedo
+}
+
 fn unorm8(a: f32) -> u8 {
     (a.clamp(0.0, 1.0) * 255.0).round() as u8
 }

@@ -6,7 +6,9 @@
 //! the ray march of a view ray ([`march`]), its
 //! interactive, offline and finest settings ([`presets`]), the reduced-resolution march's
 //! interpolation ([`upsample`]), in frames
-//! by the segment each ray marched ([`segment_upsample`]), and its compositing with a sky model's light ([`composite`]); the
+//! by the segment each ray marched ([`segment_upsample`]), and its compositing with a
+//! sky model's light ([`composite`], the air in front of the cloud from a reduced run
+//! [`front_upsample`]); the
 //! sun's attenuation through the layer over the view's region, once a frame
 //! ([`sun_map`]), the surface in its shadow ([`shadowed_surface`]) and the air under it
 //! ([`air_shadow`], at a reduced resolution [`air_shadow_upsample`]).
@@ -19,6 +21,7 @@ pub mod droplets;
 pub mod eddington;
 pub mod field;
 pub mod four_stream;
+pub mod front_upsample;
 pub mod march;
 pub mod orders;
 pub mod presets;

@@ -10,10 +10,10 @@
 
 use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
-use atmosphere_core::clouds::layer::upsample::reduced_size;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 
 use crate::clouds::layer_uniform::LayerCamera;
+use crate::clouds::spheres::reduced_targets::{ReducedSphereTargets, SPAN_FORMAT};
 use crate::clouds::spheres::sphere_cache::SphereCache;
 use crate::clouds::spheres::sphere_uniform::SphereUniform;
 use crate::clouds::spheres::sphere_variants::SphereVariants;
@@ -28,8 +28,6 @@ use crate::gpu::readback::read_texture;
 
 /// The format of the cloud images the pass reads (the layer's) and writes.
 pub const CLOUD_IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// The reduced rays' spans of the layer, (t0, t1) per ray.
-const SPAN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
 /// What the spheres of a frame are made of and seen from.
 #[derive(Debug)]
@@ -58,6 +56,8 @@ pub struct SphereImages<'a> {
     pub out: &'a wgpu::Texture,
     /// Where each ray enters the cloud (`surface_buffer.rs`'s geometry layout).
     pub front: &'a wgpu::Texture,
+    /// The reduced images, needed where the spheres' resolution divisor is above 1.
+    pub reduced: Option<&'a ReducedSphereTargets>,
 }
 
 /// The compiled passes (every pixel; reduced and upsampled) and their parameter buffers.
@@ -90,6 +90,7 @@ impl FrameSpherePass {
             entries[2],
             entries[3],
             entries[4],
+            entries[5],
             entries[6],
             entries[7],
             storage_texture_entry(9, SPAN_FORMAT, D2),
@@ -193,27 +194,20 @@ impl FrameSpherePass {
             );
             return Ok(());
         }
-        let size = reduced_size(images.out.width(), images.out.height(), divisor);
-        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-        let image = texture_2d(
-            &gpu.device,
-            "cloud spheres reduced",
-            size,
-            CLOUD_IMAGE_FORMAT,
-            usage,
-        );
-        let spans = texture_2d(
-            &gpu.device,
-            "cloud spheres reduced spans",
-            size,
-            SPAN_FORMAT,
-            usage,
-        );
-        let groups = texel_groups(&image);
-        let (image, spans) = (view(&image), view(&spans));
+        let Some(reduced) = images.reduced.filter(|r| r.divisor == divisor) else {
+            return Err(RenderError::Frame(format!(
+                "the cloud spheres' reduced images were not made for resolution divisor \
+                 {divisor}"
+            )));
+        };
+        let (image, spans) = (&reduced.image, &reduced.spans);
+        let groups = texel_groups(image);
+        let (image, spans) = (view(image), view(spans));
+        let reduced_front = view(&reduced.front_geometry);
         let (start, end) = split_timestamps(timestamps);
         let reduced = [
             (4, wgpu::BindingResource::TextureView(&image)),
+            (5, wgpu::BindingResource::TextureView(&reduced_front)),
             (9, wgpu::BindingResource::TextureView(&spans)),
         ];
         let pipeline = self.reduced.for_method(gpu, method)?;
@@ -273,10 +267,13 @@ impl FrameSpherePass {
             GEOMETRY_FORMAT,
             usage,
         );
+        let divisor = scene.spheres.resolution_divisor;
+        let reduced = (divisor > 1).then(|| ReducedSphereTargets::new(gpu, size, divisor));
         let images = SphereImages {
             layer: &layer,
             out: &out,
             front: &front,
+            reduced: reduced.as_ref(),
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         self.encode(gpu, &mut encoder, scene, &images, None)?;

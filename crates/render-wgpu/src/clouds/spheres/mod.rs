@@ -4,9 +4,11 @@
 //! as storage buffers, [`sphere_pass`] the pass writing each pixel's radiance and
 //! transmittance of the spheres; in renderer frames, [`sphere_cache`] the spheres made
 //! for the frame's sun and kept while it stays, and [`frame_spheres`] the pass ended on
-//! the frame's surface and blended with the layer across the hand-over.
+//! the frame's surface and blended with the layer across the hand-over, with
+//! [`reduced_targets`] its images at a reduced resolution.
 
 pub mod frame_spheres;
+pub mod reduced_targets;
 pub mod sphere_cache;
 pub mod sphere_inputs;
 pub mod sphere_pass;
