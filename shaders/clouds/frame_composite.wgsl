@@ -10,8 +10,8 @@
 // over FRONT_STEPS steps. Pixels without cloud (T_cloud = 1) keep L_full exactly.
 // From above the layer with the spheres at a reduced resolution, L_front is the model's
 // run at the spheres' reduced rays, ended where each enters the layer
-// (`clouds/frame_front.rs`), read at the pixel by `reduced_front` through the reduced
-// rays' transmittance (CPU twin: atmosphere-core's `clouds/layer/front_upsample.rs`).
+// (`clouds/frame_front.rs`), and T_front that of the same rays, both read at the pixel
+// by `reduced_front` (CPU twin: atmosphere-core's `clouds/layer/front_upsample.rs`).
 
 #import clouds/front_transmittance.wgsl
 
@@ -37,55 +37,72 @@
 // enters the layer where none of the pixel's bilinear taps does.
 const FRONT_SEARCH: i32 = 2;
 
-// The air's radiance in front of the cloud per unit of its opacity 1 - T_front at
-// reduced ray `texel` (its mean source, which changes across the image more slowly than
-// the radiance where the ray grazes the layer's top).
-fn front_source(texel: vec2<i32>) -> vec3<f32> {
-    let opacity = 1.0 - textureLoad(reduced_transmittance, texel, 0).rgb;
-    return textureLoad(front_image, texel, 0).rgb / max(opacity, vec3<f32>(1e-6));
+// The air in front of the cloud at a pixel: its transmittance and radiance.
+struct AirInFront {
+    transmittance: vec3<f32>,
+    radiance: vec3<f32>,
 }
 
-// L_front at full pixel `px`, whose transmittance to the cloud is `t_front`, from the
-// reduced run: (1 - t_front) times the mean source of its four bilinear taps
-// (`layer/upsample.rs`'s map) over those whose ray enters the layer, else of the nearest
-// such reduced ray within FRONT_SEARCH of the pixel's nearest one; 0 where there is none.
-fn reduced_front(px: vec2<u32>, t_front: vec3<f32>) -> vec3<f32> {
+// A reduced ray's optical depth in front of the cloud and its mean source, its radiance
+// per unit of opacity 1 - T_front, which changes across the image more slowly than the
+// radiance where the rays graze the layer's top.
+struct FrontTap {
+    depth: vec3<f32>,
+    source: vec3<f32>,
+}
+
+fn front_tap(texel: vec2<i32>) -> FrontTap {
+    let t = textureLoad(reduced_transmittance, texel, 0).rgb;
+    let l = textureLoad(front_image, texel, 0).rgb;
+    return FrontTap(-log(max(t, vec3<f32>(1e-30))), l / max(1.0 - t, vec3<f32>(1e-6)));
+}
+
+// The air in front of the cloud at full pixel `px` from the reduced rays: the mean
+// optical depth and source of its four bilinear taps (`layer/upsample.rs`'s map) over
+// those whose ray enters the layer, else those of the nearest such reduced ray within
+// FRONT_SEARCH of the pixel's nearest one; no air where there is none. The radiance is
+// (1 - T) times the source.
+fn reduced_front(px: vec2<u32>) -> AirInFront {
     let low = vec2<i32>(textureDimensions(front_image));
     let p = (vec2<f32>(px) + 0.5) * vec2<f32>(low) / vec2<f32>(frame.size_px.xy) - 0.5;
     let uv = clamp(p, vec2<f32>(0.0), vec2<f32>(low - vec2<i32>(1)));
     let i0 = vec2<i32>(floor(uv));
     let f = uv - vec2<f32>(i0);
-    var sum = vec3<f32>(0.0);
+    var sum = FrontTap(vec3<f32>(0.0), vec3<f32>(0.0));
     var weight = 0.0;
     for (var k = 0; k < 4; k++) {
         let step = vec2<i32>(k & 1, k >> 1u);
         let texel = min(i0 + step, low - vec2<i32>(1));
         let w = select(1.0 - f.x, f.x, step.x == 1) * select(1.0 - f.y, f.y, step.y == 1);
         if w > 0.0 && textureLoad(reduced_entries, texel, 0).w > 0.0 {
-            sum += w * front_source(texel);
+            let tap = front_tap(texel);
+            sum.depth += w * tap.depth;
+            sum.source += w * tap.source;
             weight += w;
         }
     }
     if weight > 0.0 {
-        return (1.0 - t_front) * sum / weight;
-    }
-    let nearest = vec2<i32>(floor(uv + 0.5));
-    var best = 1e30;
-    var found = vec3<f32>(0.0);
-    for (var j = -FRONT_SEARCH; j <= FRONT_SEARCH; j++) {
-        for (var i = -FRONT_SEARCH; i <= FRONT_SEARCH; i++) {
-            let texel = nearest + vec2<i32>(i, j);
-            let inside = all(texel >= vec2<i32>(0)) && all(texel < low);
-            let offset = vec2<f32>(texel) - p;
-            let distance2 = dot(offset, offset);
-            if inside && distance2 < best
-                && textureLoad(reduced_entries, texel, 0).w > 0.0 {
-                best = distance2;
-                found = front_source(texel);
+        sum.depth /= weight;
+        sum.source /= weight;
+    } else {
+        let nearest = vec2<i32>(floor(uv + 0.5));
+        var best = 1e30;
+        for (var j = -FRONT_SEARCH; j <= FRONT_SEARCH; j++) {
+            for (var i = -FRONT_SEARCH; i <= FRONT_SEARCH; i++) {
+                let texel = nearest + vec2<i32>(i, j);
+                let inside = all(texel >= vec2<i32>(0)) && all(texel < low);
+                let offset = vec2<f32>(texel) - p;
+                let distance2 = dot(offset, offset);
+                if inside && distance2 < best
+                    && textureLoad(reduced_entries, texel, 0).w > 0.0 {
+                    best = distance2;
+                    sum = front_tap(texel);
+                }
             }
         }
     }
-    return (1.0 - t_front) * found;
+    let t = exp(-sum.depth);
+    return AirInFront(t, (1.0 - t) * sum.source);
 }
 
 @compute @workgroup_size(8, 8)
@@ -101,10 +118,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         var front = vec3<f32>(0.0);
         var t_front = vec3<f32>(1.0);
         if entry_m > 0.0 && composite_flags.y == 1u {
-            t_front = front_transmittance(pixel_direction(id.xy), entry_m);
             if composite_flags.z > 1u {
-                front = reduced_front(id.xy, t_front);
+                let air = reduced_front(id.xy);
+                t_front = air.transmittance;
+                front = air.radiance;
             } else {
+                t_front = front_transmittance(pixel_direction(id.xy), entry_m);
                 front = textureLoad(front_image, id.xy, 0).rgb;
             }
         }

@@ -344,10 +344,10 @@ fn cpu_reduced_frames(frame: &Frame, light: &CloudLight, divisor: u32) -> [Vec<R
             continue;
         };
         let exact = model.radiance(&ray_to(ray.direction, t0)).unwrap();
+        let air = front_at(&reduced, size, (x, y));
         let twin = RayRadiance {
-            radiance: front_at(&reduced, size, (x, y), three(&exact.transmittance))
-                .unwrap_or([0.0; 3])
-                .to_vec(),
+            radiance: air.map_or(vec![0.0; 3], |a| a.radiance.to_vec()),
+            transmittance: air.map_or(vec![1.0; 3], |a| a.transmittance.to_vec()),
             ..exact.clone()
         };
         let none = RayRadiance {

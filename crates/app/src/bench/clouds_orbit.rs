@@ -1,7 +1,8 @@
 //! `atmos bench --clouds QUALITY`, the orbit view: what the cloud spheres add to a whole
 //! hillaire frame 400 km up over the generated cover, as a user gets them (the spheres'
-//! step, the model's second run for the air in front of the cloud, the composite and the
-//! cloud's shadow in the air), against the frame without clouds, which from orbit is the
+//! step at the quality's resolution divisor, as `render` and the viewer take it, the
+//! model's second run for the air in front of the cloud, the composite and the cloud's
+//! shadow in the air), against the frame without clouds, which from orbit is the
 //! hillaire sky pass and the tone map. Each frame with clouds is interleaved with the
 //! same frame without them; medians of the pairs' differences of wall-clock time after a
 //! warm-up pair, as the flight view's rows (`clouds.rs`). Both sides are wall-clock
@@ -79,7 +80,10 @@ pub fn measure(
             settings,
             light: frame_light(model.as_ref(), &frame, &settings)?,
             form: CloudForm::Auto,
-            spheres: SphereSettings::default(),
+            spheres: SphereSettings {
+                resolution_divisor: quality.sphere_resolution_divisor(),
+                ..SphereSettings::default()
+            },
             prune: true,
             shafts: true,
         };

@@ -1,15 +1,15 @@
 //! The air in front of a cloud (L_front of `composite.rs`) from a run of the sky model at
 //! a reduced resolution: from above the layer the cloud's entry is where each ray meets
 //! the sphere of the layer's top, a smooth function of the pixel. The model's run at the
-//! reduced rays of `upsample.rs` (ended where each enters the layer) is divided by each
-//! ray's opacity 1 - T_front to its entry, the mean source of the air in front
-//! (L_front = the integral of J e^-tau dtau, the mean J times 1 - e^-tau), which changes
-//! across the image more slowly than the radiance where rays graze the layer's top and
-//! the air before the cloud grows fast from pixel to pixel. A full pixel takes (1 -
-//! T_front) at its own ray times the mean source of its four bilinear taps, kept where
-//! the tap's ray enters the layer; where none does (a pixel on the rim of the layer's
-//! top as seen from the camera) that of the nearest reduced ray within [`FRONT_SEARCH`]
-//! of the pixel's nearest one that enters it; where there is none, no air. The GPU's
+//! reduced rays of `upsample.rs` (ended where each enters the layer) and each ray's
+//! transmittance T_front to its entry give the optical depth tau in front and the mean
+//! source of the air there (L_front = the integral of J e^-tau dtau, the mean J times
+//! 1 - e^-tau), which changes across the image more slowly than the radiance where rays
+//! graze the layer's top and the air before the cloud grows fast from pixel to pixel. A
+//! full pixel takes the mean depth and source of its four bilinear taps, kept where the
+//! tap's ray enters the layer; where none does (a pixel on the rim of the layer's top as
+//! seen from the camera) those of the nearest reduced ray within [`FRONT_SEARCH`] of the
+//! pixel's nearest one that enters it; where there is none, no air. The GPU's
 //! `clouds/frame_composite.wgsl` (`reduced_front`) follows this.
 
 use crate::clouds::layer::upsample::bilinear_taps;
@@ -30,38 +30,54 @@ pub struct ReducedFront<'a> {
     pub entry_m: &'a [f64],
 }
 
+/// The air in front of the cloud at a full pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AirInFront {
+    pub transmittance: [f64; 3],
+    pub radiance: [f64; 3],
+}
+
 impl ReducedFront<'_> {
-    /// The mean source in front of reduced ray `i`.
-    fn source(&self, i: usize) -> [f64; 3] {
-        std::array::from_fn(|c| {
-            self.radiance[i][c] / (1.0 - self.transmittance[i][c]).max(MIN_OPACITY)
-        })
+    /// Reduced ray `i`'s optical depth in front of the cloud and its mean source.
+    fn tap(&self, i: usize) -> ([f64; 3], [f64; 3]) {
+        let t = self.transmittance[i];
+        (
+            t.map(|t| -t.max(1e-30).ln()),
+            std::array::from_fn(|c| self.radiance[i][c] / (1.0 - t[c]).max(MIN_OPACITY)),
+        )
     }
 }
 
-/// L_front at full pixel `(x, y)` of a `full`-sized image, whose transmittance to its
-/// entry is `t_front`, from `reduced`; `None` where no reduced ray near it enters the
-/// layer.
+/// The air in front of the cloud at full pixel `(x, y)` of a `full`-sized image, from
+/// `reduced`: the optical depth and the source read as the module says, the radiance
+/// (1 - T) times the source; `None` where no reduced ray near it enters the layer.
 pub fn front_at(
     reduced: &ReducedFront<'_>,
     full: (u32, u32),
     (x, y): (u32, u32),
-    t_front: [f64; 3],
-) -> Option<[f64; 3]> {
+) -> Option<AirInFront> {
     let enters = |i: usize| reduced.entry_m[i] > 0.0;
-    let in_front = |source: [f64; 3]| std::array::from_fn(|c| (1.0 - t_front[c]) * source[c]);
-    let mut sum = [0.0; 3];
+    let air = |(depth, source): ([f64; 3], [f64; 3])| {
+        let transmittance = depth.map(|d| (-d).exp());
+        AirInFront {
+            transmittance,
+            radiance: std::array::from_fn(|c| (1.0 - transmittance[c]) * source[c]),
+        }
+    };
+    let (mut depth, mut source) = ([0.0; 3], [0.0; 3]);
     let mut weight = 0.0;
     for (i, w) in bilinear_taps(full, reduced.size, (x, y)) {
         if w > 0.0 && enters(i) {
-            for (s, j) in sum.iter_mut().zip(reduced.source(i)) {
-                *s += w * j;
+            let (d, s) = reduced.tap(i);
+            for c in 0..3 {
+                depth[c] += w * d[c];
+                source[c] += w * s[c];
             }
             weight += w;
         }
     }
     if weight > 0.0 {
-        return Some(in_front(sum.map(|s| s / weight)));
+        return Some(air((depth.map(|d| d / weight), source.map(|s| s / weight))));
     }
     let (w, h) = (i64::from(reduced.size.0), i64::from(reduced.size.1));
     let coordinate =
@@ -82,7 +98,7 @@ pub fn front_at(
             }
         }
     }
-    best.map(|(_, index)| in_front(reduced.source(index)))
+    best.map(|(_, index)| air(reduced.tap(index)))
 }
 
 #[cfg(test)]
@@ -93,64 +109,68 @@ mod tests {
     const FULL: (u32, u32) = (40, 22);
     const DIVISOR: u32 = 3;
 
-    /// The opacity of the air in front at the full image's fractional pixel (x, y): a
-    /// ray that grazes more air towards the right.
-    fn opacity(x: f64, _: f64) -> f64 {
-        0.02 * (0.1 * x).exp()
+    /// The optical depth in front at the full image's fractional pixel (x, y), growing
+    /// towards the right as the rays graze more air.
+    fn depth(x: f64, y: f64) -> f64 {
+        0.02 + 0.004 * x + 0.001 * y
     }
 
-    /// A reduced run whose mean source is the field `f` of the full image's fractional
-    /// pixel, entering the layer where `enters` says: radiance, transmittance, entry.
-    fn reduced(
-        f: impl Fn(f64, f64) -> f64,
-        enters: impl Fn(f64, f64) -> bool,
-    ) -> Vec<([f64; 3], [f64; 3], f64)> {
-        let size = reduced_size(FULL.0, FULL.1, DIVISOR);
-        (0..size.1)
-            .flat_map(|j| (0..size.0).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                let x = marched_coordinate(i, size.0, FULL.0);
-                let y = marched_coordinate(j, size.1, FULL.1);
-                let l = f(x, y) * opacity(x, y);
-                let t = 1.0 - opacity(x, y);
-                let entry = if enters(x, y) { 1e5 } else { 0.0 };
-                ([l, 2.0 * l, 3.0 * l], [t; 3], entry)
-            })
-            .collect()
+    /// The reduced rays of the mean source `f` and depth [`depth`] of the full image's
+    /// fractional pixel (the channels' sources 1, 2 and 3 times it), entering the layer
+    /// where `enters` says.
+    struct Rays {
+        radiance: Vec<[f64; 3]>,
+        transmittance: Vec<[f64; 3]>,
+        entry_m: Vec<f64>,
     }
 
-    /// The transmittance in front of full pixel (x, y).
-    fn t_front(x: u32, y: u32) -> [f64; 3] {
-        [1.0 - opacity(f64::from(x), f64::from(y)); 3]
+    impl Rays {
+        fn new(f: impl Fn(f64, f64) -> f64, enters: impl Fn(f64, f64) -> bool) -> Rays {
+            let size = reduced_size(FULL.0, FULL.1, DIVISOR);
+            let mut rays = Rays {
+                radiance: Vec::new(),
+                transmittance: Vec::new(),
+                entry_m: Vec::new(),
+            };
+            for j in 0..size.1 {
+                for i in 0..size.0 {
+                    let x = marched_coordinate(i, size.0, FULL.0);
+                    let y = marched_coordinate(j, size.1, FULL.1);
+                    let t = (-depth(x, y)).exp();
+                    let l = f(x, y) * (1.0 - t);
+                    rays.radiance.push([l, 2.0 * l, 3.0 * l]);
+                    rays.transmittance.push([t; 3]);
+                    rays.entry_m.push(if enters(x, y) { 1e5 } else { 0.0 });
+                }
+            }
+            rays
+        }
+
+        fn front(&self) -> ReducedFront<'_> {
+            ReducedFront {
+                size: reduced_size(FULL.0, FULL.1, DIVISOR),
+                radiance: &self.radiance,
+                transmittance: &self.transmittance,
+                entry_m: &self.entry_m,
+            }
+        }
     }
 
-    fn unzip3(rays: &[([f64; 3], [f64; 3], f64)]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<f64>) {
-        (
-            rays.iter().map(|r| r.0).collect(),
-            rays.iter().map(|r| r.1).collect(),
-            rays.iter().map(|r| r.2).collect(),
-        )
-    }
-
-    /// The source is read bilinearly, the opacity at the pixel's own ray: a field whose
-    /// radiance grows exponentially across the image but whose source is linear is read
-    /// exactly.
+    /// The depth and the source are read bilinearly: where both are linear across the
+    /// image they are read exactly, and with them the radiance, which is not linear.
     #[test]
-    fn a_linear_source_is_read_exactly_where_every_ray_enters() {
+    fn a_linear_depth_and_source_are_read_exactly_where_every_ray_enters() {
         let f = |x: f64, y: f64| 1.0 + 0.05 * x - 0.02 * y;
-        let rays = reduced(f, |_, _| true);
-        let (radiance, transmittance, entry_m) = unzip3(&rays);
-        let front = ReducedFront {
-            size: reduced_size(FULL.0, FULL.1, DIVISOR),
-            radiance: &radiance,
-            transmittance: &transmittance,
-            entry_m: &entry_m,
-        };
+        let rays = Rays::new(f, |_, _| true);
         // Away from the edges, where the taps' clamp holds the value.
         for y in 2..FULL.1 - 2 {
             for x in 2..FULL.0 - 2 {
-                let l = front_at(&front, FULL, (x, y), t_front(x, y)).unwrap();
-                let want = f(f64::from(x), f64::from(y)) * opacity(f64::from(x), f64::from(y));
+                let air = front_at(&rays.front(), FULL, (x, y)).unwrap();
+                let (px, py) = (f64::from(x), f64::from(y));
+                let t = (-depth(px, py)).exp();
+                let want = f(px, py) * (1.0 - t);
+                assert!((air.transmittance[1] - t).abs() < 1e-12, "({x}, {y})");
+                let l = air.radiance;
                 assert!((l[0] - want).abs() < 1e-12, "({x}, {y}): {} {want}", l[0]);
                 assert!((l[2] - 3.0 * want).abs() < 1e-12);
             }
@@ -159,18 +179,11 @@ mod tests {
 
     #[test]
     fn rays_that_do_not_enter_are_left_out_and_the_nearest_entering_one_stands_in() {
-        // Rays left of x = 20 enter with radiance 1, the others do not (radiance 100,
-        // which must never be read).
+        // Rays left of x = 20 enter with source 1, the others do not (source 100, which
+        // must never be read: every pixel that finds air has source 1, those between
+        // the last entering column and the next included).
         let f = |x: f64, _: f64| if x < 20.0 { 1.0 } else { 100.0 };
-        let enters = |x: f64, _: f64| x < 20.0;
-        let rays = reduced(f, enters);
-        let (radiance, transmittance, entry_m) = unzip3(&rays);
-        let front = ReducedFront {
-            size: reduced_size(FULL.0, FULL.1, DIVISOR),
-            radiance: &radiance,
-            transmittance: &transmittance,
-            entry_m: &entry_m,
-        };
+        let rays = Rays::new(f, |x, _| x < 20.0);
         let size = reduced_size(FULL.0, FULL.1, DIVISOR);
         let last_entering = (0..size.0)
             .filter(|&i| marched_coordinate(i, size.0, FULL.0) < 20.0)
@@ -182,20 +195,15 @@ mod tests {
                 // pixels of it the last entering column is found.
                 let u = (f64::from(x) + 0.5) * f64::from(size.0) / f64::from(FULL.0) - 0.5;
                 let nearest = (u.clamp(0.0, f64::from(size.0 - 1)) + 0.5).floor() as u32;
-                match front_at(&front, FULL, (x, y), t_front(x, y)) {
-                    Some(l) => {
-                        let want = opacity(f64::from(x), f64::from(y));
-                        assert!((l[0] - want).abs() < 1e-12 * want, "({x}, {y})");
+                match front_at(&rays.front(), FULL, (x, y)) {
+                    Some(air) => {
+                        let source = air.radiance[0] / (1.0 - air.transmittance[0]);
+                        assert!((source - 1.0).abs() < 1e-9, "({x}, {y}): {source}");
                         assert!(nearest <= last_entering + 2, "({x}, {y})");
                     }
                     None => assert!(nearest > last_entering + 2, "({x}, {y})"),
                 }
             }
         }
-        // A pixel between the last entering column and the next takes the entering one
-        // alone.
-        let between = (marched_coordinate(last_entering, size.0, FULL.0) + 1.0) as u32;
-        let l = front_at(&front, FULL, (between, 5), [0.5; 3]).unwrap();
-        assert!((l[1] - 0.5 * 2.0).abs() < 1e-12, "{l:?}");
     }
 }
