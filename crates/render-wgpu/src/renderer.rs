@@ -10,7 +10,7 @@ use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
-use crate::clouds::frame_clouds::{FrameClouds, front_sun_map, plan_after_model, plan_clouds};
+use crate::clouds::frame_clouds::{FrameClouds, plan_after_model, plan_clouds};
 use crate::clouds::frame_front::{FrontRun, encode_front};
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
 use crate::clouds::frame_sun_map::FrameSunMap;
@@ -456,25 +456,23 @@ impl Renderer {
                 model_pixels: &c.full,
                 hdr: &targets.hdr,
             };
-            let marched = pass.encode_clouds(gpu, &mut encoder, &scene, c, (&steps, timer));
+            let marched = pass
+                .encode_clouds(gpu, &mut encoder, &scene, c, (&steps, timer))
+                .and_then(|()| {
+                    let Some(step) = front else { return Ok(()) };
+                    let run = FrontRun {
+                        io: &io,
+                        uniform: frame_uniform,
+                        scene: &scene,
+                        targets: c,
+                        pass,
+                        divisor: steps.front_divisor,
+                    };
+                    encode_front(model.as_mut(), gpu, (&mut encoder, timer), &run, step)
+                });
             if let Err(e) = marched {
                 self.targets = Some(targets);
                 return Err(e);
-            }
-            if let Some(front) = front {
-                let run = FrontRun {
-                    io: &io,
-                    frame: frame_uniform,
-                    targets: c,
-                    sun_map: &front_sun_map(self.sun_map.texture(), frame, &clouds.settings),
-                    divisor: steps.front_divisor,
-                };
-                let recorded =
-                    encode_front(model.as_mut(), gpu, (&mut encoder, timer), &run, front);
-                if let Err(e) = recorded {
-                    self.targets = Some(targets);
-                    return Err(e);
-                }
             }
             if let Some(composite) = composite {
                 pass.encode_composite(

@@ -3,9 +3,7 @@
 // ceil(W / divisor) x ceil(H / divisor) shades the full image's ray through the
 // fractional pixel ((i + 0.5) W / w - 0.5, (j + 0.5) H / h - 0.5), ended on the surface
 // of the full pixel nearest to it, and keeps the ray's span of the layer for
-// `frame_upsample.wgsl` and where the span starts (binding 5, the surface the sky
-// model's reduced run in front of the cloud ends on; `clouds/frame_front.rs`). CPU twin:
-// atmosphere-core's `clouds/spheres/reduced.rs`.
+// `frame_upsample.wgsl`. CPU twin: atmosphere-core's `clouds/spheres/reduced.rs`.
 
 #import clouds/spheres/frame_inputs.wgsl
 
@@ -28,12 +26,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let along = spheres_along(o, d, end);
     let t = sphere_span(o, d, end);
     var segment = vec2<f32>(0.0);
-    var entry = vec4<f32>(0.0);
     if t.x < t.y {
         segment = t;
-        entry = vec4<f32>(normalize(o + d * t.x), t.x);
     }
     textureStore(sphere_image, id.xy, along.cloud);
     textureStore(reduced_segments, id.xy, vec4<f32>(segment, 0.0, 0.0));
-    textureStore(cloud_front, id.xy, entry);
 }

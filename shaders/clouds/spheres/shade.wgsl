@@ -7,6 +7,7 @@
 
 #import clouds/spheres/params.wgsl
 #import clouds/slab_source.wgsl
+#import common/sphere_roots.wgsl
 
 // The spheres' light: 0 the octaves, 2 delta-Eddington's slab, 3 the four-stream slab
 // (the layer's LAYER_METHOD codes); a pipeline holds one (render-wgpu's
@@ -96,27 +97,6 @@ fn sun_depth(k: u32, p: vec3<f32>) -> f32 {
         ratio += wy[b] * along;
     }
     return min(-log(max(ratio, exp(-SHADOWED_DEPTH))), SHADOWED_DEPTH);
-}
-
-// The two distances (near, far) where the line through a point at radius r with
-// direction cosine mu meets the sphere of `radius`; x > y when it misses (`roots`).
-fn sphere_roots(r: f32, mu: f32, radius: f32) -> vec2<f32> {
-    let b = r * mu;
-    let c = (r - radius) * (r + radius);
-    let disc = b * b - c;
-    if disc < 0.0 {
-        return vec2<f32>(1.0, -1.0);
-    }
-    var s = 1.0;
-    if b < 0.0 {
-        s = -1.0;
-    }
-    let q = -(b + s * sqrt(disc));
-    if q == 0.0 {
-        return vec2<f32>(0.0);
-    }
-    let other = c / q;
-    return vec2<f32>(min(q, other), max(q, other));
 }
 
 // The sun's optical depth at `p` inside shell k of mean extinction `sigma`: G_k at the

@@ -157,15 +157,20 @@ pub struct CloudSteps {
     pub front_divisor: u32,
 }
 
+/// How much coarser than the spheres' reduced image the model's reduced run in front of
+/// them is, per axis: the air in front changes across the image with the planet's
+/// geometry, not the cloud's.
+pub const FRONT_GRID_SCALE: u32 = 2;
+
 /// The divisor of the model's second run in front of the cloud (`clouds/frame_front.rs`):
-/// the spheres' resolution divisor where they run at a reduced resolution and the camera
-/// is above the layer's top, so that every ray's cloud starts on the sphere of the top;
-/// else 1, every pixel.
+/// [`FRONT_GRID_SCALE`] times the spheres' resolution divisor where they run at a
+/// reduced resolution and the camera is above the layer's top, so that every ray's cloud
+/// starts on the sphere of the top; else 1, every pixel.
 pub fn front_divisor(frame: &Frame, clouds: &FrameClouds, spheres_run: bool) -> u32 {
     let (_, top_m) = clouds.settings.radii_m(frame.atmosphere.bottom_radius_m);
     let above = frame.camera_position_m.length() > top_m;
-    match spheres_run && above {
-        true => clouds.spheres.resolution_divisor.max(1),
+    match spheres_run && above && clouds.spheres.resolution_divisor > 1 {
+        true => FRONT_GRID_SCALE * clouds.spheres.resolution_divisor,
         false => 1,
     }
 }

@@ -19,12 +19,13 @@
 //! cloud spheres (`spheres/frame_spheres.rs`) take the march's place, or blend with it in
 //! the band, and the composite reads their image.
 
-use crate::clouds::frame_clouds::{CloudSteps, FrameClouds};
+use crate::clouds::frame_clouds::{CloudSteps, FRONT_GRID_SCALE, FrameClouds};
+use crate::clouds::front_targets::{ReducedFrontTargets, TRANSMITTANCE_FORMAT};
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::{LayerCamera, LayerUniform};
 use crate::clouds::march_variants::MarchVariants;
 use crate::clouds::spheres::frame_spheres::{FrameSpherePass, SphereImages, SphereScene};
-use crate::clouds::spheres::reduced_targets::{ReducedSphereTargets, TRANSMITTANCE_FORMAT};
+use crate::clouds::spheres::reduced_targets::ReducedSphereTargets;
 use crate::clouds::sun_map_texture::{SUN_MAP_BINDING, SunMapTexture};
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
@@ -68,8 +69,10 @@ pub struct CloudTargets {
     /// image and segments.
     pub divisor: u32,
     reduced: Option<[wgpu::Texture; 2]>,
-    /// The spheres' reduced images, where their resolution divisor is above 1.
+    /// The spheres' reduced images, where their resolution divisor is above 1, and the
+    /// model's reduced run in front of them (`frame_front.rs`).
     pub spheres_reduced: Option<ReducedSphereTargets>,
+    pub front_reduced: Option<ReducedFrontTargets>,
 }
 
 impl CloudTargets {
@@ -114,6 +117,10 @@ impl CloudTargets {
             }),
             spheres_reduced: (spheres_divisor > 1)
                 .then(|| ReducedSphereTargets::new(gpu, (width, height), spheres_divisor)),
+            front_reduced: (spheres_divisor > 1).then(|| {
+                let divisor = FRONT_GRID_SCALE * spheres_divisor;
+                ReducedFrontTargets::new(gpu, (width, height), divisor)
+            }),
         }
     }
 
@@ -180,9 +187,8 @@ pub struct CloudFramePass {
     upsample_over: ComputePipeline,
     march_list_over: MarchVariants,
     composite: ComputePipeline,
-    /// The spheres' reduced rays' transmittance in front of the cloud, which the
-    /// composite reads with the model's reduced run.
-    front_transmittance: ComputePipeline,
+    /// The rays of the model's reduced run in front of the cloud (`frame_front.rs`).
+    pub front_rays: ComputePipeline,
     spheres: FrameSpherePass,
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
@@ -256,11 +262,12 @@ impl CloudFramePass {
             texture_entry(8, D2),
             texture_entry(9, D2),
         ];
-        let front_transmittance = [
+        let front_rays = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
-            texture_entry(2, D2),
-            storage_texture_entry(3, TRANSMITTANCE_FORMAT, D2),
+            uniform_entry(2, 16),
+            storage_texture_entry(3, GEOMETRY_FORMAT, D2),
+            storage_texture_entry(4, TRANSMITTANCE_FORMAT, D2),
         ];
         Ok(CloudFramePass {
             march: MarchVariants::new("clouds/frame_march.wgsl", "cloud frame march", &march),
@@ -280,12 +287,12 @@ impl CloudFramePass {
                 "cloud composite",
                 &composite,
             )?,
-            front_transmittance: ComputePipeline::new(
+            front_rays: ComputePipeline::new(
                 gpu,
-                "clouds/front_reduced_transmittance.wgsl",
+                "clouds/front_rays.wgsl",
                 "main",
-                "cloud front transmittance, reduced",
-                &front_transmittance,
+                "cloud front reduced rays",
+                &front_rays,
             )?,
             spheres: FrameSpherePass::new(gpu)?,
             params: uniform_buffer(&gpu.device, "cloud frame", size_of::<LayerUniform>()),
@@ -486,43 +493,22 @@ impl CloudFramePass {
     ) {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let reduced = targets
-            .spheres_reduced
+            .front_reduced
             .as_ref()
             .filter(|_| steps.front_divisor > 1);
         let views = [
             view(&targets.full),
-            view(reduced.map_or(&targets.front, |r| &r.front)),
+            view(reduced.map_or(&targets.front, |r| &r.radiance)),
             view(match steps.spheres {
                 Some(_) => &targets.spheres,
                 None => &targets.cloud,
             }),
             view(&targets.front_geometry),
             view(hdr),
-            view(reduced.map_or(&targets.front_geometry, |r| &r.front_geometry)),
-            view(reduced.map_or(&targets.front_geometry, |r| &r.front_transmittance)),
+            view(reduced.map_or(&targets.front_geometry, |r| &r.entries)),
+            view(reduced.map_or(&targets.front_geometry, |r| &r.transmittance)),
         ];
         let [full, front, cloud, geometry, out, entries, transmittance] = &views;
-        let mut timestamps = timestamps;
-        if let Some(reduced) = reduced {
-            let (start, end) = split_timestamps(timestamps);
-            timestamps = end;
-            let bind_group = self.front_transmittance.bind_group(
-                gpu,
-                &[
-                    uniforms.0.as_entire_binding(),
-                    reduced.frame.as_entire_binding(),
-                    wgpu::BindingResource::TextureView(entries),
-                    wgpu::BindingResource::TextureView(&view(&reduced.front_transmittance)),
-                ],
-            );
-            self.front_transmittance.dispatch(
-                encoder,
-                "cloud front transmittance, reduced",
-                &bind_group,
-                texel_groups(&reduced.front_transmittance),
-                start,
-            );
-        }
         let bind_group = self.composite.bind_group(
             gpu,
             &[

@@ -5,7 +5,7 @@
 //! pipelines per light method; [`frame_clouds`] the
 //! layer of a renderer frame and the planner's rule, [`frame_pass`] its march and its
 //! composite with the frame's sky model, [`frame_front`] the model's second run in front
-//! of the cloud; [`sun_map_texture`] and [`sun_map_pass`] the
+//! of the cloud ([`front_targets`] its images at a reduced resolution); [`sun_map_texture`] and [`sun_map_pass`] the
 //! layer's attenuation of the sun over the view's region, which shades the surface,
 //! and [`frame_sun_map`] its place in a renderer frame, [`frame_cloud_shafts`] the
 //! planner's rule for its shadow in the air and [`air_shadow_pass`] that shadow per
@@ -18,6 +18,7 @@ pub mod frame_clouds;
 pub mod frame_front;
 pub mod frame_pass;
 pub mod frame_sun_map;
+pub mod front_targets;
 pub mod layer_inputs;
 pub mod layer_pass;
 pub mod layer_uniform;

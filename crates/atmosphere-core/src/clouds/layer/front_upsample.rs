@@ -6,7 +6,7 @@
 //! source of the air there (L_front = the integral of J e^-tau dtau, the mean J times
 //! 1 - e^-tau), which changes across the image more slowly than the radiance where rays
 //! graze the layer's top and the air before the cloud grows fast from pixel to pixel. A
-//! full pixel takes the mean depth and source of its four bilinear taps, kept where the
+//! full pixel takes the mean tau and source of its four bilinear taps, kept where the
 //! tap's ray enters the layer; where none does (a pixel on the rim of the layer's top as
 //! seen from the camera) those of the nearest reduced ray within [`FRONT_SEARCH`] of the
 //! pixel's nearest one that enters it; where there is none, no air. The GPU's
@@ -157,7 +157,7 @@ mod tests {
     }
 
     /// The depth and the source are read bilinearly: where both are linear across the
-    /// image they are read exactly, and with them the radiance, which is not linear.
+    /// image they are read exactly, and with them the radiance, which is not.
     #[test]
     fn a_linear_depth_and_source_are_read_exactly_where_every_ray_enters() {
         let f = |x: f64, y: f64| 1.0 + 0.05 * x - 0.02 * y;

@@ -90,7 +90,6 @@ impl FrameSpherePass {
             entries[2],
             entries[3],
             entries[4],
-            entries[5],
             entries[6],
             entries[7],
             storage_texture_entry(9, SPAN_FORMAT, D2),
@@ -203,11 +202,9 @@ impl FrameSpherePass {
         let (image, spans) = (&reduced.image, &reduced.spans);
         let groups = texel_groups(image);
         let (image, spans) = (view(image), view(spans));
-        let reduced_front = view(&reduced.front_geometry);
         let (start, end) = split_timestamps(timestamps);
         let reduced = [
             (4, wgpu::BindingResource::TextureView(&image)),
-            (5, wgpu::BindingResource::TextureView(&reduced_front)),
             (9, wgpu::BindingResource::TextureView(&spans)),
         ];
         let pipeline = self.reduced.for_method(gpu, method)?;
