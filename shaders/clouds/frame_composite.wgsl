@@ -36,6 +36,10 @@
 // How far (in reduced pixels, each way) `reduced_front` looks for a reduced ray that
 // enters the layer where none of the pixel's bilinear taps does.
 const FRONT_SEARCH: i32 = 2;
+// A tap whose entry lies further than this share of the pixel's own from it marks a
+// pixel whose depth in front changes too fast across the taps to be read from them:
+// near the limb of the layer's top, which it integrates itself (FRONT_STEPS).
+const FRONT_ENTRY_TOLERANCE: f32 = 0.1;
 
 // The air in front of the cloud at a pixel: its transmittance and radiance.
 struct AirInFront {
@@ -57,12 +61,14 @@ fn front_tap(texel: vec2<i32>) -> FrontTap {
     return FrontTap(-log(max(t, vec3<f32>(1e-30))), l / max(1.0 - t, vec3<f32>(1e-6)));
 }
 
-// The air in front of the cloud at full pixel `px` from the reduced rays: the mean
-// optical depth and source of its four bilinear taps (`layer/upsample.rs`'s map) over
-// those whose ray enters the layer, else those of the nearest such reduced ray within
-// FRONT_SEARCH of the pixel's nearest one; no air where there is none. The radiance is
-// (1 - T) times the source.
-fn reduced_front(px: vec2<u32>) -> AirInFront {
+// The air in front of the cloud at full pixel `px`, whose ray enters the layer at
+// `entry_m`, from the reduced rays: the mean optical depth and source of its four
+// bilinear taps (`layer/upsample.rs`'s map) over those whose ray enters the layer, else
+// those of the nearest such reduced ray within FRONT_SEARCH of the pixel's nearest one;
+// no air where there is none. Where that ray, or a kept tap's, enters further than
+// FRONT_ENTRY_TOLERANCE of `entry_m` from it, the depth is the pixel's own. The radiance
+// is (1 - T) times the source.
+fn reduced_front(px: vec2<u32>, entry_m: f32) -> AirInFront {
     let low = vec2<i32>(textureDimensions(front_image));
     let p = (vec2<f32>(px) + 0.5) * vec2<f32>(low) / vec2<f32>(frame.size_px.xy) - 0.5;
     let uv = clamp(p, vec2<f32>(0.0), vec2<f32>(low - vec2<i32>(1)));
@@ -70,11 +76,14 @@ fn reduced_front(px: vec2<u32>) -> AirInFront {
     let f = uv - vec2<f32>(i0);
     var sum = FrontTap(vec3<f32>(0.0), vec3<f32>(0.0));
     var weight = 0.0;
+    var steep = false;
     for (var k = 0; k < 4; k++) {
         let step = vec2<i32>(k & 1, k >> 1u);
         let texel = min(i0 + step, low - vec2<i32>(1));
         let w = select(1.0 - f.x, f.x, step.x == 1) * select(1.0 - f.y, f.y, step.y == 1);
-        if w > 0.0 && textureLoad(reduced_entries, texel, 0).w > 0.0 {
+        let entry = textureLoad(reduced_entries, texel, 0).w;
+        if w > 0.0 && entry > 0.0 {
+            steep = steep || abs(entry - entry_m) > FRONT_ENTRY_TOLERANCE * entry_m;
             let tap = front_tap(texel);
             sum.depth += w * tap.depth;
             sum.source += w * tap.source;
@@ -85,6 +94,7 @@ fn reduced_front(px: vec2<u32>) -> AirInFront {
         sum.depth /= weight;
         sum.source /= weight;
     } else {
+        steep = true;
         let nearest = vec2<i32>(floor(uv + 0.5));
         var best = 1e30;
         for (var j = -FRONT_SEARCH; j <= FRONT_SEARCH; j++) {
@@ -101,7 +111,10 @@ fn reduced_front(px: vec2<u32>) -> AirInFront {
             }
         }
     }
-    let t = exp(-sum.depth);
+    var t = exp(-sum.depth);
+    if steep {
+        t = front_transmittance(pixel_direction(px), entry_m);
+    }
     return AirInFront(t, (1.0 - t) * sum.source);
 }
 
@@ -119,7 +132,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         var t_front = vec3<f32>(1.0);
         if entry_m > 0.0 && composite_flags.y == 1u {
             if composite_flags.z > 1u {
-                let air = reduced_front(id.xy);
+                let air = reduced_front(id.xy, entry_m);
                 t_front = air.transmittance;
                 front = air.radiance;
             } else {

@@ -444,6 +444,28 @@ fn inside_the_layer_the_interactive_upsample_composites_and_matches_the_cpu() {
     assert!(checked.marched > 0, "no pixel was marched itself");
 }
 
+/// Above the layer's top the model's run in front of the cloud takes one ray per
+/// `FRONT_GRID_SCALE` x 3 pixels each way (`clouds/frame_front.rs`), and the frame still
+/// matches the CPU's, whose air in front is every pixel's own.
+#[test]
+fn above_the_layer_the_reduced_run_in_front_keeps_the_frame_as_the_cpu() {
+    let Some(mut renderer) = support::renderer_or_skip("cloud frames above the layer") else {
+        return;
+    };
+    let mut frame = frame(ModelId::Nishita);
+    frame.camera_position_m = DVec3::X * (frame.atmosphere.bottom_radius_m + 5_000.0);
+    let pitch = (-30f64).to_radians();
+    let forward = DVec3::new(pitch.sin(), pitch.cos(), 0.0);
+    frame.orientation = look_orientation(forward, DVec3::X).unwrap();
+    let checked = interactive_against_cpu(&mut renderer, &frame, LayerMethod::Octaves);
+    assert!(checked.plan.runs("cloud_front"), "{}", checked.plan);
+    let clouded = checked.segments.iter().filter(|s| s.is_some()).count();
+    assert!(
+        clouded * 2 > checked.segments.len(),
+        "{clouded} pixels see the layer"
+    );
+}
+
 /// Renders `frame` over `surface` with `clouds` and returns the HDR image and the plan.
 fn render(
     renderer: &mut Renderer,

@@ -157,20 +157,24 @@ pub struct CloudSteps {
     pub front_divisor: u32,
 }
 
-/// How much coarser than the spheres' reduced image the model's reduced run in front of
-/// them is, per axis: the air in front changes across the image with the planet's
+/// How much coarser than the cloud's reduced image the model's reduced run in front of
+/// it is, per axis: the air in front changes across the image with the planet's
 /// geometry, not the cloud's.
 pub const FRONT_GRID_SCALE: u32 = 2;
 
-/// The divisor of the model's second run in front of the cloud (`clouds/frame_front.rs`):
-/// [`FRONT_GRID_SCALE`] times the spheres' resolution divisor where they run at a
-/// reduced resolution and the camera is above the layer's top, so that every ray's cloud
-/// starts on the sphere of the top; else 1, every pixel.
+/// The divisor of the model's second run in front of the cloud (`clouds/frame_front.rs`)
+/// with the camera above the layer's top, where every ray's cloud starts on the sphere
+/// of the top: [`FRONT_GRID_SCALE`] times the resolution divisor of the cloud the frame
+/// shows (the spheres' where they run, else the layer's march's) where that is above 1;
+/// else 1, every pixel.
 pub fn front_divisor(frame: &Frame, clouds: &FrameClouds, spheres_run: bool) -> u32 {
     let (_, top_m) = clouds.settings.radii_m(frame.atmosphere.bottom_radius_m);
-    let above = frame.camera_position_m.length() > top_m;
-    match spheres_run && above && clouds.spheres.resolution_divisor > 1 {
-        true => FRONT_GRID_SCALE * clouds.spheres.resolution_divisor,
+    let cloud_divisor = match spheres_run {
+        true => clouds.spheres.resolution_divisor,
+        false => clouds.settings.resolution_divisor,
+    };
+    match frame.camera_position_m.length() > top_m && cloud_divisor > 1 {
+        true => FRONT_GRID_SCALE * cloud_divisor,
         false => 1,
     }
 }
@@ -364,6 +368,48 @@ mod tests {
             .iter()
             .find(|(n, _)| *n == name)
             .map(|(_, why)| *why)
+    }
+
+    #[test]
+    fn the_run_in_front_is_reduced_only_above_the_layer_with_a_reduced_cloud() {
+        let clouds = |layer: u32, spheres: u32| FrameClouds {
+            settings: LayerSettings {
+                resolution_divisor: layer,
+                ..LayerSettings::default()
+            },
+            light: CloudLight {
+                sun_direction: DVec3::Z,
+                sun_irradiance: vec![1.5; 3],
+                sky_irradiance: vec![0.1; 3],
+                up: DVec3::Z,
+            },
+            form: CloudForm::Auto,
+            spheres: SphereSettings {
+                resolution_divisor: spheres,
+                ..SphereSettings::default()
+            },
+            prune: true,
+            shafts: true,
+        };
+        // The default layer lies between 1.5 and 3 km.
+        let (below, inside, above) = (
+            frame(500.0, -DVec3::Z),
+            frame(2e3, -DVec3::Z),
+            frame(4e5, -DVec3::Z),
+        );
+        assert_eq!(
+            front_divisor(&above, &clouds(1, 3), true),
+            3 * FRONT_GRID_SCALE
+        );
+        assert_eq!(
+            front_divisor(&above, &clouds(2, 1), false),
+            2 * FRONT_GRID_SCALE
+        );
+        assert_eq!(front_divisor(&above, &clouds(2, 1), true), 1);
+        for f in [&below, &inside] {
+            assert_eq!(front_divisor(f, &clouds(3, 3), true), 1);
+            assert_eq!(front_divisor(f, &clouds(3, 3), false), 1);
+        }
     }
 
     #[test]

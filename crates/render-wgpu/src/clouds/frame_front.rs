@@ -1,10 +1,10 @@
 //! The sky model's second run in a frame with clouds (`cloud_front`): its passes again,
 //! each ray ended where it enters the cloud (L_front of atmosphere-core's
 //! `clouds/layer/composite.rs`), for the composite. Every pixel's, on the full
-//! image's entries; or, from above the layer with the spheres at a reduced resolution,
-//! one ray's per `divisor` x `divisor` pixels (`frame_clouds.rs`'s `front_divisor`),
-//! ended where it enters the sphere of the layer's top, which is where the spheres'
-//! cloud starts (`clouds/front_rays.wgsl` finds the entries and the atmosphere's
+//! image's entries; or, from above the layer with the cloud (the spheres, or the layer's
+//! march) at a reduced resolution, one ray's per `divisor` x `divisor` pixels
+//! (`frame_clouds.rs`'s `front_divisor`), ended where it enters the sphere of the layer's
+//! top, which is where the cloud of every pixel starts (`clouds/front_rays.wgsl` finds the entries and the atmosphere's
 //! transmittance to them first; `front_targets.rs`). The composite reads them at each
 //! pixel (`frame_composite.wgsl`'s `reduced_front`, twin of
 //! `clouds/layer/front_upsample.rs`): the air in front changes smoothly across the
@@ -74,11 +74,7 @@ pub fn encode_front(
         );
         return Ok(());
     }
-    let Some(reduced) = targets
-        .front_reduced
-        .as_ref()
-        .filter(|r| r.divisor == run.divisor)
-    else {
+    let Some(reduced) = targets.front_reduced(run.divisor) else {
         return Err(RenderError::Frame(format!(
             "the cloud targets hold no reduced run in front for resolution divisor {}",
             run.divisor

@@ -69,10 +69,11 @@ pub struct CloudTargets {
     /// image and segments.
     pub divisor: u32,
     reduced: Option<[wgpu::Texture; 2]>,
-    /// The spheres' reduced images, where their resolution divisor is above 1, and the
-    /// model's reduced run in front of them (`frame_front.rs`).
+    /// The spheres' reduced images, where their resolution divisor is above 1.
     pub spheres_reduced: Option<ReducedSphereTargets>,
-    pub front_reduced: Option<ReducedFrontTargets>,
+    /// The model's reduced runs in front of the cloud (`frame_front.rs`), one for each
+    /// of the layer's and the spheres' divisors above 1.
+    pub front_reduced: Vec<ReducedFrontTargets>,
 }
 
 impl CloudTargets {
@@ -87,7 +88,7 @@ impl CloudTargets {
         let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
         let image = |label, format| texture_2d(&gpu.device, label, (width, height), format, usage);
         let front_albedo = black_albedo(gpu, "cloud front albedo", (width, height));
-        CloudTargets {
+        let mut targets = CloudTargets {
             full: image("cloud full", HDR_FORMAT),
             front: image("cloud front", HDR_FORMAT),
             cloud: image("cloud image", CLOUD_FORMAT),
@@ -117,11 +118,21 @@ impl CloudTargets {
             }),
             spheres_reduced: (spheres_divisor > 1)
                 .then(|| ReducedSphereTargets::new(gpu, (width, height), spheres_divisor)),
-            front_reduced: (spheres_divisor > 1).then(|| {
-                let divisor = FRONT_GRID_SCALE * spheres_divisor;
-                ReducedFrontTargets::new(gpu, (width, height), divisor)
-            }),
+            front_reduced: Vec::new(),
+        };
+        for cloud_divisor in [divisor, spheres_divisor] {
+            let d = FRONT_GRID_SCALE * cloud_divisor;
+            if cloud_divisor > 1 && targets.front_reduced(d).is_none() {
+                let run = ReducedFrontTargets::new(gpu, (width, height), d);
+                targets.front_reduced.push(run);
+            }
         }
+        targets
+    }
+
+    /// The model's reduced run in front of the cloud at `divisor`, if these hold one.
+    pub fn front_reduced(&self, divisor: u32) -> Option<&ReducedFrontTargets> {
+        self.front_reduced.iter().find(|r| r.divisor == divisor)
     }
 
     /// Whether these were made for a layer's `divisor` and the spheres'
@@ -492,10 +503,7 @@ impl CloudFramePass {
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let reduced = targets
-            .front_reduced
-            .as_ref()
-            .filter(|_| steps.front_divisor > 1);
+        let reduced = targets.front_reduced(steps.front_divisor);
         let views = [
             view(&targets.full),
             view(reduced.map_or(&targets.front, |r| &r.radiance)),

@@ -9,13 +9,20 @@
 //! full pixel takes the mean tau and source of its four bilinear taps, kept where the
 //! tap's ray enters the layer; where none does (a pixel on the rim of the layer's top as
 //! seen from the camera) those of the nearest reduced ray within [`FRONT_SEARCH`] of the
-//! pixel's nearest one that enters it; where there is none, no air. The GPU's
-//! `clouds/frame_composite.wgsl` (`reduced_front`) follows this.
+//! pixel's nearest one that enters it; where there is none, no source. Where that ray,
+//! or a kept tap's, enters the layer further than [`FRONT_ENTRY_TOLERANCE`] of the
+//! pixel's own entry from it (near the limb of the layer's top, where tau grows fast
+//! from pixel to pixel), or none was found, the pixel's tau is its own, integrated along
+//! its ray. The GPU's `clouds/frame_composite.wgsl` (`reduced_front`) follows this.
 
 use crate::clouds::layer::upsample::bilinear_taps;
 
 /// How far, in reduced pixels each way, the search for an entering ray looks.
 pub const FRONT_SEARCH: i64 = 2;
+
+/// The share of a pixel's entry distance beyond which a tap's entry marks the pixel as
+/// one whose depth in front is its own.
+pub const FRONT_ENTRY_TOLERANCE: f64 = 0.1;
 
 /// Below this opacity the source divides by it instead (a ray through almost no air).
 const MIN_OPACITY: f64 = 1e-6;
@@ -48,26 +55,25 @@ impl ReducedFront<'_> {
     }
 }
 
-/// The air in front of the cloud at full pixel `(x, y)` of a `full`-sized image, from
-/// `reduced`: the optical depth and the source read as the module says, the radiance
-/// (1 - T) times the source; `None` where no reduced ray near it enters the layer.
+/// The air in front of the cloud at full pixel `(x, y)` of a `full`-sized image, whose
+/// ray enters the layer at `entry_m`, from `reduced`, read as the module says;
+/// `own_transmittance` gives the pixel's own transmittance to its entry where it needs
+/// it.
 pub fn front_at(
     reduced: &ReducedFront<'_>,
     full: (u32, u32),
     (x, y): (u32, u32),
-) -> Option<AirInFront> {
-    let enters = |i: usize| reduced.entry_m[i] > 0.0;
-    let air = |(depth, source): ([f64; 3], [f64; 3])| {
-        let transmittance = depth.map(|d| (-d).exp());
-        AirInFront {
-            transmittance,
-            radiance: std::array::from_fn(|c| (1.0 - transmittance[c]) * source[c]),
-        }
-    };
+    entry_m: f64,
+    own_transmittance: impl FnOnce() -> [f64; 3],
+) -> AirInFront {
+    let steep_at =
+        |i: usize| (reduced.entry_m[i] - entry_m).abs() > FRONT_ENTRY_TOLERANCE * entry_m;
     let (mut depth, mut source) = ([0.0; 3], [0.0; 3]);
     let mut weight = 0.0;
+    let mut steep = false;
     for (i, w) in bilinear_taps(full, reduced.size, (x, y)) {
-        if w > 0.0 && enters(i) {
+        if w > 0.0 && reduced.entry_m[i] > 0.0 {
+            steep |= steep_at(i);
             let (d, s) = reduced.tap(i);
             for c in 0..3 {
                 depth[c] += w * d[c];
@@ -77,8 +83,31 @@ pub fn front_at(
         }
     }
     if weight > 0.0 {
-        return Some(air((depth.map(|d| d / weight), source.map(|s| s / weight))));
+        depth = depth.map(|d| d / weight);
+        source = source.map(|s| s / weight);
+    } else {
+        steep = true;
+        if let Some(i) = nearest_entering(reduced, full, (x, y)) {
+            (depth, source) = reduced.tap(i);
+        }
     }
+    let transmittance = match steep {
+        true => own_transmittance(),
+        false => depth.map(|d| (-d).exp()),
+    };
+    AirInFront {
+        transmittance,
+        radiance: std::array::from_fn(|c| (1.0 - transmittance[c]) * source[c]),
+    }
+}
+
+/// The reduced ray nearest to full pixel `(x, y)` that enters the layer, within
+/// [`FRONT_SEARCH`] of the pixel's nearest reduced ray.
+fn nearest_entering(
+    reduced: &ReducedFront<'_>,
+    full: (u32, u32),
+    (x, y): (u32, u32),
+) -> Option<usize> {
     let (w, h) = (i64::from(reduced.size.0), i64::from(reduced.size.1));
     let coordinate =
         |x: u32, full: u32, low: i64| (f64::from(x) + 0.5) * low as f64 / f64::from(full) - 0.5;
@@ -93,12 +122,12 @@ pub fn front_at(
             }
             let index = (j * w + i) as usize;
             let distance2 = (i as f64 - p.0).powi(2) + (j as f64 - p.1).powi(2);
-            if enters(index) && best.is_none_or(|(d, _)| distance2 < d) {
+            if reduced.entry_m[index] > 0.0 && best.is_none_or(|(d, _)| distance2 < d) {
                 best = Some((distance2, index));
             }
         }
     }
-    best.map(|(_, index)| air(reduced.tap(index)))
+    best.map(|(_, index)| index)
 }
 
 #[cfg(test)]
@@ -165,7 +194,8 @@ mod tests {
         // Away from the edges, where the taps' clamp holds the value.
         for y in 2..FULL.1 - 2 {
             for x in 2..FULL.0 - 2 {
-                let air = front_at(&rays.front(), FULL, (x, y)).unwrap();
+                let own = || unreachable!("({x}, {y}) needs no depth of its own");
+                let air = front_at(&rays.front(), FULL, (x, y), 1e5, own);
                 let (px, py) = (f64::from(x), f64::from(y));
                 let t = (-depth(px, py)).exp();
                 let want = f(px, py) * (1.0 - t);
@@ -195,15 +225,35 @@ mod tests {
                 // pixels of it the last entering column is found.
                 let u = (f64::from(x) + 0.5) * f64::from(size.0) / f64::from(FULL.0) - 0.5;
                 let nearest = (u.clamp(0.0, f64::from(size.0 - 1)) + 0.5).floor() as u32;
-                match front_at(&rays.front(), FULL, (x, y)) {
-                    Some(air) => {
+                let air = front_at(&rays.front(), FULL, (x, y), 1e5, || [0.5; 3]);
+                match nearest <= last_entering + 2 {
+                    true => {
                         let source = air.radiance[0] / (1.0 - air.transmittance[0]);
                         assert!((source - 1.0).abs() < 1e-9, "({x}, {y}): {source}");
-                        assert!(nearest <= last_entering + 2, "({x}, {y})");
                     }
-                    None => assert!(nearest > last_entering + 2, "({x}, {y})"),
+                    // None found: the pixel's own depth, and no source.
+                    false => assert_eq!((air.radiance[0], air.transmittance[0]), (0.0, 0.5)),
                 }
             }
         }
+    }
+
+    /// A pixel whose ray enters the layer far from where its taps' rays do takes its own
+    /// depth, and the taps' source.
+    #[test]
+    fn a_pixel_far_from_its_taps_entries_takes_its_own_depth() {
+        let rays = Rays::new(|_, _| 2.0, |_, _| true);
+        let own = [0.4, 0.5, 0.6];
+        for entry_m in [0.85e5, 1.2e5] {
+            let air = front_at(&rays.front(), FULL, (20, 10), entry_m, || own);
+            assert_eq!(air.transmittance, own);
+            for c in 0..3 {
+                let want = (1.0 - own[c]) * 2.0 * (c + 1) as f64;
+                assert!((air.radiance[c] - want).abs() < 1e-12, "{air:?}");
+            }
+        }
+        // Within the tolerance the taps' depth stands.
+        let air = front_at(&rays.front(), FULL, (20, 10), 0.95e5, || own);
+        assert_ne!(air.transmittance, own);
     }
 }
