@@ -343,9 +343,9 @@ mod tests {
         assert_eq!(why_no_clouds(&f, &empty, 1.0), Some(NO_CLOUD_IN_COVER));
     }
 
-    fn planned(altitude_m: f64, form: CloudForm) -> (FramePlan, Option<CloudSteps>) {
-        let f = frame(altitude_m, -DVec3::Z);
-        let clouds = FrameClouds {
+    /// The default cloud in `form`, the sun overhead.
+    fn clouds(form: CloudForm) -> FrameClouds {
+        FrameClouds {
             settings: LayerSettings::default(),
             light: CloudLight {
                 sun_direction: DVec3::Z,
@@ -357,7 +357,12 @@ mod tests {
             spheres: SphereSettings::default(),
             prune: true,
             shafts: true,
-        };
+        }
+    }
+
+    fn planned(altitude_m: f64, form: CloudForm) -> (FramePlan, Option<CloudSteps>) {
+        let f = frame(altitude_m, -DVec3::Z);
+        let clouds = clouds(form);
         let mut plan = FramePlan::default();
         let (steps, _) = plan_clouds(&f, Some(&clouds), Some(1.0), &mut plan).unwrap();
         (plan, steps)
@@ -372,24 +377,11 @@ mod tests {
 
     #[test]
     fn the_run_in_front_is_reduced_only_above_the_layer_with_a_reduced_cloud() {
-        let clouds = |layer: u32, spheres: u32| FrameClouds {
-            settings: LayerSettings {
-                resolution_divisor: layer,
-                ..LayerSettings::default()
-            },
-            light: CloudLight {
-                sun_direction: DVec3::Z,
-                sun_irradiance: vec![1.5; 3],
-                sky_irradiance: vec![0.1; 3],
-                up: DVec3::Z,
-            },
-            form: CloudForm::Auto,
-            spheres: SphereSettings {
-                resolution_divisor: spheres,
-                ..SphereSettings::default()
-            },
-            prune: true,
-            shafts: true,
+        let clouds = |layer: u32, spheres: u32| {
+            let mut c = clouds(CloudForm::Auto);
+            c.settings.resolution_divisor = layer;
+            c.spheres.resolution_divisor = spheres;
+            c
         };
         // The default layer lies between 1.5 and 3 km.
         let (below, inside, above) = (
