@@ -59,7 +59,7 @@ pub struct CloudTimes {
 }
 
 /// The hillaire frame of `view` over (25 N, 30 W) in `atmosphere` at `size`, 60 degrees
-/// of vertical field (the flight view, and the orbit view of `clouds_orbit.rs`).
+/// of vertical field (the flight view, and the views of `clouds_whole_frames.rs`).
 pub fn bench_frame(view: &LocalView, atmosphere: &Atmosphere, size: (u32, u32)) -> Frame {
     let place = location_rotation(LATITUDE_DEG, LONGITUDE_DEG);
     let atmosphere = atmosphere.clone();

@@ -7,7 +7,7 @@
 pub mod baseline;
 pub mod beams;
 pub mod clouds;
-pub mod clouds_orbit;
+pub mod clouds_whole_frames;
 pub mod flight;
 pub mod optics;
 pub mod shafts;
@@ -366,7 +366,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             .iter()
             .map(|&q| {
                 clouds::frames_per_quality(q, args.frames)
-                    + clouds_orbit::frames_per_quality(args.frames)
+                    + clouds_whole_frames::frames_per_quality(args.frames)
             })
             .sum::<usize>();
     let progress = Progress::new("bench", "frames", total as u64);
@@ -394,7 +394,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         size,
         &progress,
     )?;
-    let orbit_results = clouds_orbit::measure(
+    let whole_results = clouds_whole_frames::measure(
         &mut renderer,
         &atmosphere,
         &cloud_qualities,
@@ -410,7 +410,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let size = (args.width, args.height);
         text.push_str(&clouds::markdown(&adapter, size, &cloud_results));
         text.push_str(&clouds::shafts_markdown(&shaft_results));
-        text.push_str(&clouds_orbit::markdown(&orbit_results));
+        text.push_str(&clouds_whole_frames::markdown(&whole_results));
     }
     std::io::stdout().lock().write_all(text.as_bytes())?;
     if let Some(path) = &args.out {
