@@ -37,9 +37,8 @@ use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::layer_uniform::LayerCamera;
-use render_wgpu::clouds::spheres::frame_spheres::{
-    CLOUD_IMAGE_FORMAT, FrameSpherePass, SphereScene,
-};
+use render_wgpu::clouds::spheres::frame_spheres::{FrameSpherePass, SphereScene};
+use render_wgpu::clouds::spheres::image_formats::CLOUD_IMAGE_FORMAT;
 use render_wgpu::clouds::spheres::sphere_cache::SphereCache;
 use render_wgpu::clouds::spheres::sphere_inputs::SphereInputs;
 use render_wgpu::clouds::spheres::sphere_pass::CloudSpherePass;

@@ -13,7 +13,8 @@ use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 
 use crate::clouds::layer_uniform::LayerCamera;
-use crate::clouds::spheres::reduced_targets::{ReducedSphereTargets, SPAN_FORMAT};
+use crate::clouds::spheres::image_formats::{CLOUD_IMAGE_FORMAT, SPAN_FORMAT};
+use crate::clouds::spheres::reduced_targets::ReducedSphereTargets;
 use crate::clouds::spheres::sphere_cache::SphereCache;
 use crate::clouds::spheres::sphere_uniform::SphereUniform;
 use crate::clouds::spheres::sphere_variants::SphereVariants;
@@ -25,9 +26,6 @@ use crate::gpu::pipeline::{
     texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::gpu::readback::read_texture;
-
-/// The format of the cloud images the pass reads (the layer's) and writes.
-pub const CLOUD_IMAGE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// What the spheres of a frame are made of and seen from.
 #[derive(Debug)]

@@ -5,9 +5,11 @@
 //! transmittance of the spheres; in renderer frames, [`sphere_cache`] the spheres made
 //! for the frame's sun and kept while it stays, and [`frame_spheres`] the pass ended on
 //! the frame's surface and blended with the layer across the hand-over, with
-//! [`reduced_targets`] its images at a reduced resolution.
+//! [`reduced_targets`] its images at a reduced resolution and [`image_formats`] the
+//! images' formats.
 
 pub mod frame_spheres;
+pub mod image_formats;
 pub mod reduced_targets;
 pub mod sphere_cache;
 pub mod sphere_inputs;

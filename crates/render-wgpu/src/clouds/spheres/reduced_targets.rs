@@ -4,12 +4,9 @@
 
 use atmosphere_core::clouds::layer::upsample::reduced_size;
 
-use crate::clouds::spheres::frame_spheres::CLOUD_IMAGE_FORMAT;
+use crate::clouds::spheres::image_formats::{CLOUD_IMAGE_FORMAT, SPAN_FORMAT};
 use crate::gpu::context::GpuContext;
 use crate::gpu::pipeline::texture_2d;
-
-/// The reduced rays' spans of the layer, (t0, t1) per ray.
-pub const SPAN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
 /// The reduced images of one frame size and divisor.
 #[derive(Debug)]
