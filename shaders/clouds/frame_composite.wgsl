@@ -65,9 +65,9 @@ fn front_tap(texel: vec2<i32>) -> FrontTap {
 // `entry_m`, from the reduced rays: the mean optical depth and source of its four
 // bilinear taps (`layer/upsample.rs`'s map) over those whose ray enters the layer, else
 // those of the nearest such reduced ray within FRONT_SEARCH of the pixel's nearest one;
-// no air where there is none. Where that ray, or a kept tap's, enters further than
-// FRONT_ENTRY_TOLERANCE of `entry_m` from it, the depth is the pixel's own. The radiance
-// is (1 - T) times the source.
+// no source where there is none. Where that ray, or a kept tap's, enters further than
+// FRONT_ENTRY_TOLERANCE of `entry_m` from it, or none is found, the depth is the pixel's
+// own. The radiance is (1 - T) times the source.
 fn reduced_front(px: vec2<u32>, entry_m: f32) -> AirInFront {
     let low = vec2<i32>(textureDimensions(front_image));
     let p = (vec2<f32>(px) + 0.5) * vec2<f32>(low) / vec2<f32>(frame.size_px.xy) - 0.5;

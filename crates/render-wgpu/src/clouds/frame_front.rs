@@ -1,14 +1,14 @@
 //! The sky model's second run in a frame with clouds (`cloud_front`): its passes again,
 //! each ray ended where it enters the cloud (L_front of atmosphere-core's
-//! `clouds/layer/composite.rs`), for the composite. Every pixel's, on the full
-//! image's entries; or, from above the layer with the cloud (the spheres, or the layer's
-//! march) at a reduced resolution, one ray's per `divisor` x `divisor` pixels
-//! (`frame_clouds.rs`'s `front_divisor`), ended where it enters the sphere of the layer's
-//! top, which is where the cloud of every pixel starts (`clouds/front_rays.wgsl` finds the entries and the atmosphere's
-//! transmittance to them first; `front_targets.rs`). The composite reads them at each
-//! pixel (`frame_composite.wgsl`'s `reduced_front`, twin of
-//! `clouds/layer/front_upsample.rs`): the air in front changes smoothly across the
-//! image, and the run costs a divisor squared less.
+//! `clouds/layer/composite.rs`), for the composite. Every pixel's, on the full image's
+//! entries; or, from above the layer with the cloud (the spheres, or the layer's march)
+//! at a reduced resolution, one ray's per `divisor` x `divisor` pixels
+//! (`frame_clouds.rs`'s `front_divisor`), ended where it enters the sphere of the
+//! layer's top, which is where every pixel's cloud starts (`clouds/front_rays.wgsl`
+//! finds the entries and the atmosphere's transmittance to them first;
+//! `front_targets.rs`). The composite reads them at each pixel (`frame_composite.wgsl`'s
+//! `reduced_front`, twin of `clouds/layer/front_upsample.rs`): the air in front changes
+//! smoothly across the image, and the run costs a divisor squared less.
 
 use crate::clouds::frame_clouds::front_sun_map;
 use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
