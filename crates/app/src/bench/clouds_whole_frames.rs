@@ -16,7 +16,7 @@ use std::fmt::Write as _;
 use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::clouds::layer::presets::MarchQuality;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
-use atmosphere_core::clouds::spheres::handover::{CloudForm, HANDOVER_END_M};
+use atmosphere_core::clouds::spheres::handover::{CloudForm, sphere_weight};
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 use atmosphere_core::models::registry::prepare;
 use render_wgpu::Renderer;
@@ -95,8 +95,8 @@ pub fn measure(
     for (view, local) in &VIEWS {
         let frame = bench_frame(local, atmosphere, size);
         let model = prepare(frame.model, &frame.atmosphere, &frame.settings)?;
-        // The cloud's form at the view's altitude, whose step the frame must run.
-        let step = match local.altitude_m >= HANDOVER_END_M {
+        // The step of the cloud's form at the view's altitude, which the frame must run.
+        let step = match sphere_weight(CloudForm::Auto, local.altitude_m) > 0.0 {
             true => "cloud_spheres",
             false => "clouds",
         };
