@@ -1,7 +1,7 @@
 // Library: the atmosphere's transmittance from a frame's camera to where a ray enters the
 // cloud, exp(-tau) of the columns integrated by the midpoint rule over FRONT_STEPS steps
 // (the composite's T_front, `clouds/frame_composite.wgsl`, and its reduced rays',
-// `clouds/front_reduced_transmittance.wgsl`; CPU: the model's own transmittance).
+// `clouds/front_rays.wgsl`; CPU: the model's own transmittance).
 
 #import common/frame_params.wgsl
 

@@ -38,7 +38,7 @@ use atmosphere_core::optics::phase::PhaseFunction;
 use glam::DVec3;
 use render_wgpu::Renderer;
 use render_wgpu::clouds::frame_clouds::{
-    ABOVE_HANDOVER, FRONT_GRID_SCALE, FrameClouds, frame_light,
+    ABOVE_HANDOVER, COMPOSITE_IN_SPHERES, FRONT_GRID_SCALE, FrameClouds, frame_light,
 };
 use render_wgpu::frame::surface_buffer::SurfaceTexel;
 use render_wgpu::frame::{Frame, look_orientation};
@@ -243,6 +243,12 @@ fn from_orbit_the_reduced_run_in_front_of_the_spheres_keeps_the_frame() {
         renderer.set_clouds(Some(clouds.clone())).unwrap();
         let plan = renderer.render(&frame).unwrap();
         assert!(plan.runs("cloud_front"), "{plan}");
+        // The spheres' upsample composites, its listed pixels' pass where the taps cannot.
+        let composite = plan
+            .skipped
+            .iter()
+            .find(|(name, _)| *name == "cloud_composite");
+        assert_eq!(composite.map(|s| s.1), Some(COMPOSITE_IN_SPHERES), "{plan}");
         let gpu = renderer.read_hdr().unwrap();
         let divisors = (3, 3 * FRONT_GRID_SCALE);
         let ([twin, exact, no_front], missing) =

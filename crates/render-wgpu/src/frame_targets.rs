@@ -1,7 +1,7 @@
 //! The renderer's images of one size: the HDR and display targets, the surface buffer
 //! the rays end on, and the cloud steps' images once a frame of that size has clouds.
 
-use crate::clouds::frame_pass::CloudTargets;
+use crate::clouds::cloud_targets::CloudTargets;
 use crate::frame::surface_buffer::SurfaceBuffer;
 use crate::gpu::context::GpuContext;
 use crate::gpu::formats::{HDR_FORMAT, LDR_FORMAT};

@@ -10,9 +10,10 @@ use atmosphere_core::hydrometeors::render::LitVolume;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::shafts::{MIN_SHAFT_SAMPLES, SHAFT_SAMPLES};
 
+use crate::clouds::cloud_targets::CloudTargets;
 use crate::clouds::frame_clouds::{FrameClouds, plan_after_model, plan_clouds};
-use crate::clouds::frame_front::{FrontRun, encode_front};
-use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
+use crate::clouds::frame_pass::{CloudFramePass, MarchScene};
+use crate::clouds::frame_steps::{AfterModel, encode_after_model};
 use crate::clouds::frame_sun_map::FrameSunMap;
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::sun_map_pass::PixelInputs;
@@ -455,34 +456,20 @@ impl Renderer {
                 sun_map: self.sun_map.texture(),
                 model_pixels: &c.full,
                 hdr: &targets.hdr,
+                uniforms: (&self.atmosphere, &self.frame),
             };
-            let marched = pass
-                .encode_clouds(gpu, &mut encoder, &scene, c, (&steps, timer))
-                .and_then(|()| {
-                    let Some(step) = front else { return Ok(()) };
-                    let run = FrontRun {
-                        io: &io,
-                        uniform: frame_uniform,
-                        scene: &scene,
-                        targets: c,
-                        pass,
-                        divisor: steps.front_divisor,
-                    };
-                    encode_front(model.as_mut(), gpu, (&mut encoder, timer), &run, step)
-                });
-            if let Err(e) = marched {
+            let after = AfterModel {
+                pass,
+                scene: &scene,
+                targets: c,
+                io: &io,
+                uniform: frame_uniform,
+                steps: (steps, front, composite),
+            };
+            let encoded = encode_after_model(model.as_mut(), gpu, (&mut encoder, timer), &after);
+            if let Err(e) = encoded {
                 self.targets = Some(targets);
                 return Err(e);
-            }
-            if let Some(composite) = composite {
-                pass.encode_composite(
-                    gpu,
-                    &mut encoder,
-                    (&self.atmosphere, &self.frame),
-                    (c, &steps),
-                    &targets.hdr,
-                    timer.map(|t| t.compute_writes(composite)),
-                );
             }
         }
         if let (Some(step), Some(pass)) = (volumes_step, self.volumes_pass.as_ref()) {

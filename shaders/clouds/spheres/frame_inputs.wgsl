@@ -9,15 +9,15 @@
 
 // Where the sky model's second run ends its rays: xyz the outward vertical at the
 // cloud's entry, w the entry distance, m; 0 where the pixel sees no cloud.
-@group(0) @binding(5) var cloud_front: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(25) var cloud_front: texture_storage_2d<rgba32float, write>;
 // The frame's surface: xyz the normal, w the distance along the pixel's ray, m (0: none).
-@group(0) @binding(6) var frame_surface: texture_2d<f32>;
-// x: 1 when the frame has a surface (binding 6 holds it), else 0; y: the spheres'
-// weight w in [0, 1], the layer's march (binding 8) taking 1 - w; z: the resolution
+@group(0) @binding(26) var frame_surface: texture_2d<f32>;
+// x: 1 when the frame has a surface (binding 26 holds it), else 0; y: the spheres'
+// weight w in [0, 1], the layer's march (binding 28) taking 1 - w; z: the resolution
 // divisor; w: the layer's densest extinction, m^-1.
-@group(0) @binding(7) var<uniform> frame_spheres: vec4<f32>;
+@group(0) @binding(27) var<uniform> frame_spheres: vec4<f32>;
 // The layer's march of this frame (rgb radiance, a transmittance), read where w < 1.
-@group(0) @binding(8) var layer_image: texture_2d<f32>;
+@group(0) @binding(28) var layer_image: texture_2d<f32>;
 
 // Where the ray of full pixel `px` ends: on the frame's surface, else far away.
 fn surface_end(px: vec2<u32>) -> f32 {
@@ -48,18 +48,30 @@ fn sphere_span(o: vec3<f32>, d: vec3<f32>, end_m: f32) -> vec2<f32> {
     return vec2<f32>(max(top.x, 0.0), t1);
 }
 
-// Writes full pixel `px`, whose ray runs along `d`: the spheres' `cloud` blended with the
-// layer's march by the hand-over's weight, and where the ray enters the cloud (`first_m`,
-// the spheres' first crossing; not positive: none, or the camera inside the layer).
-fn store_frame_pixel(px: vec2<u32>, d: vec3<f32>, spheres_cloud: vec4<f32>, first_m: f32) {
+// The cloud of full pixel `px`: the spheres' `spheres_cloud` blended with the layer's
+// march by the hand-over's weight.
+fn frame_cloud(px: vec2<u32>, spheres_cloud: vec4<f32>) -> vec4<f32> {
     let w = frame_spheres.y;
-    var cloud = spheres_cloud;
     if w < 1.0 {
-        cloud = mix(textureLoad(layer_image, px, 0), cloud, w);
+        return mix(textureLoad(layer_image, px, 0), spheres_cloud, w);
     }
+    return spheres_cloud;
+}
+
+// Where the ray enters `cloud` (the spheres' first crossing `first_m`), m; 0 where it
+// sees none or the camera is inside the layer (`first_m` not positive).
+fn entry_distance(cloud: vec4<f32>, first_m: f32) -> f32 {
+    return select(0.0, first_m, cloud.a < 1.0 && first_m > 0.0);
+}
+
+// Writes full pixel `px`, whose ray runs along `d`: the spheres' `cloud` blended with the
+// layer's march (`frame_cloud`), and where the ray enters the cloud (`entry_distance`).
+fn store_frame_pixel(px: vec2<u32>, d: vec3<f32>, spheres_cloud: vec4<f32>, first_m: f32) {
+    let cloud = frame_cloud(px, spheres_cloud);
+    let entry_m = entry_distance(cloud, first_m);
     var front = vec4<f32>(0.0);
-    if cloud.a < 1.0 && first_m > 0.0 {
-        front = vec4<f32>(normalize(spheres.camera_m.xyz + d * first_m), first_m);
+    if entry_m > 0.0 {
+        front = vec4<f32>(normalize(spheres.camera_m.xyz + d * entry_m), entry_m);
     }
     textureStore(sphere_image, px, cloud);
     textureStore(cloud_front, px, front);

@@ -8,7 +8,7 @@
 #import clouds/spheres/frame_inputs.wgsl
 
 // (t0, t1) of the ray's span of the layer; (0, 0) where it has none.
-@group(0) @binding(9) var reduced_segments: texture_storage_2d<rg32float, write>;
+@group(0) @binding(29) var reduced_segments: texture_storage_2d<rg32float, write>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -27,18 +27,18 @@ struct SphereParams {
     grids: vec4<u32>,
 }
 
-@group(0) @binding(0) var<uniform> spheres: SphereParams;
+@group(0) @binding(20) var<uniform> spheres: SphereParams;
 // Cloud textures T_k: the vertical optical depth of shell k, [k][j][i] on the cover's
 // equirectangular grid (`clouds::spheres::cloud_textures`).
-@group(0) @binding(1) var<storage, read> cloud_depths: array<f32>;
+@group(0) @binding(21) var<storage, read> cloud_depths: array<f32>;
 // Attenuation textures G_k: the sun's attenuation ratio exp(-tau) at sphere k,
 // [k][j][i] (`clouds::spheres::attenuation`).
-@group(0) @binding(2) var<storage, read> sun_ratios: array<f32>;
+@group(0) @binding(22) var<storage, read> sun_ratios: array<f32>;
 // The droplets' phase function A_1 at ANGLES angles from 0 to 180 degrees, per
 // wavelength (`clouds::layer::orders::ScatteringOrders`'s first row).
-@group(0) @binding(3) var<storage, read> single_phase: array<f32>;
+@group(0) @binding(23) var<storage, read> single_phase: array<f32>;
 // rgb: the spheres' radiance towards the camera; a: their transmittance.
-@group(0) @binding(4) var sphere_image: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(24) var sphere_image: texture_storage_2d<rgba32float, write>;
 
 const ANGLES: u32 = 1024u;
 const PI: f32 = 3.14159265358979;

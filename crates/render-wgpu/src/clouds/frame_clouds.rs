@@ -33,6 +33,12 @@ pub const CAMERA_IN_LAYER: &str = "the camera is inside the cloud layer";
 pub const COMPOSITE_IN_UPSAMPLE: &str =
     "the camera is inside the cloud layer: the upsample composites each pixel";
 
+/// Why the composite is no step of its own from above the layer with the spheres and the
+/// model's run in front of them at reduced resolutions: the spheres' upsample composites
+/// each pixel, reading the reduced run (`spheres/frame_spheres.rs`).
+pub const COMPOSITE_IN_SPHERES: &str =
+    "the spheres' upsample composites each pixel with the reduced run in front";
+
 /// Why the planner leaves out the spheres under the hand-over band (`CloudForm::Auto`).
 pub const BELOW_HANDOVER: &str = "the camera is below the hand-over to the cloud spheres (50 km)";
 /// Why the planner leaves out the layer's march above the hand-over band.
@@ -152,6 +158,11 @@ pub struct CloudSteps {
     /// Whether the march's upsample composites each pixel over the model's, so that the
     /// composite is no step of its own ([`COMPOSITE_IN_UPSAMPLE`]).
     pub composite_in_upsample: bool,
+    /// Whether the spheres' upsample composites each pixel, so that the composite is no
+    /// step of its own ([`COMPOSITE_IN_SPHERES`]): the spheres run at a reduced
+    /// resolution and the model's run in front is reduced, which needs nothing the
+    /// spheres write and so runs before them.
+    pub composite_in_spheres: bool,
     /// 1 when the model's second run takes every pixel, else the divisor of its reduced
     /// run ([`front_divisor`]).
     pub front_divisor: u32,
@@ -229,6 +240,7 @@ pub fn plan_clouds(
     if let Some(why) = front {
         plan.skip("cloud_front", why);
     }
+    let front_divisor = front_divisor(frame, clouds, spheres.is_some());
     let steps = CloudSteps {
         march,
         spheres,
@@ -237,7 +249,9 @@ pub fn plan_clouds(
             && spheres.is_none()
             && clouds.settings.resolution_divisor > 1
             && front.is_some(),
-        front_divisor: front_divisor(frame, clouds, spheres.is_some()),
+        // The run in front is reduced only with the spheres' divisor above 1.
+        composite_in_spheres: spheres.is_some() && front_divisor > 1,
+        front_divisor,
     };
     Ok((Some(steps), front.is_none()))
 }
@@ -259,11 +273,16 @@ pub fn plan_after_model(
     } else {
         None
     };
-    let composite = if steps.composite_in_upsample {
-        plan.skip("cloud_composite", COMPOSITE_IN_UPSAMPLE);
-        None
-    } else {
-        run("cloud_composite")
+    let composite = match (steps.composite_in_upsample, steps.composite_in_spheres) {
+        (true, _) => {
+            plan.skip("cloud_composite", COMPOSITE_IN_UPSAMPLE);
+            None
+        }
+        (_, true) => {
+            plan.skip("cloud_composite", COMPOSITE_IN_SPHERES);
+            None
+        }
+        _ => run("cloud_composite"),
     };
     (steps, front, composite)
 }

@@ -10,8 +10,9 @@
 //! `reduced_front`, twin of `clouds/layer/front_upsample.rs`): the air in front changes
 //! smoothly across the image, and the run costs a divisor squared less.
 
+use crate::clouds::cloud_targets::CloudTargets;
 use crate::clouds::frame_clouds::front_sun_map;
-use crate::clouds::frame_pass::{CloudFramePass, CloudTargets, MarchScene};
+use crate::clouds::frame_pass::{CloudFramePass, MarchScene};
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::RenderError;

@@ -19,137 +19,28 @@
 //! cloud spheres (`spheres/frame_spheres.rs`) take the march's place, or blend with it in
 //! the band, and the composite reads their image.
 
-use crate::clouds::frame_clouds::{CloudSteps, FRONT_GRID_SCALE, FrameClouds};
-use crate::clouds::front_targets::{ReducedFrontTargets, TRANSMITTANCE_FORMAT};
+use crate::clouds::cloud_targets::{CLOUD_FORMAT, CloudTargets, SEGMENT_FORMAT};
+use crate::clouds::composite_inputs::CompositeInputs;
+use crate::clouds::frame_clouds::{CloudSteps, FrameClouds};
+use crate::clouds::front_targets::TRANSMITTANCE_FORMAT;
 use crate::clouds::layer_inputs::LayerInputs;
 use crate::clouds::layer_uniform::{LayerCamera, LayerUniform};
 use crate::clouds::march_variants::MarchVariants;
 use crate::clouds::spheres::frame_spheres::{FrameSpherePass, SphereImages, SphereScene};
-use crate::clouds::spheres::reduced_targets::ReducedSphereTargets;
 use crate::clouds::sun_map_texture::{SUN_MAP_BINDING, SunMapTexture};
 use crate::frame::Frame;
 use crate::frame::atmosphere_uniform::AtmosphereUniform;
-use crate::frame::surface_buffer::{GEOMETRY_FORMAT, black_albedo};
+use crate::frame::surface_buffer::GEOMETRY_FORMAT;
 use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
 use crate::gpu::pipeline::{
     ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
-    texel_groups, texture_2d, texture_entry, uniform_buffer, uniform_entry,
+    texel_groups, texture_entry, uniform_buffer, uniform_entry,
 };
 use crate::gpu::pixel_list::PixelList;
 use crate::gpu::timer::GpuTimer;
-use atmosphere_core::clouds::layer::upsample::reduced_size;
-
-const CLOUD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-/// The reduced march's segments, (t0, t1) per ray.
-const SEGMENT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
-
-/// The images (and the list of pixels to march) of one frame size the cloud steps write
-/// and read.
-#[derive(Debug)]
-pub struct CloudTargets {
-    /// The model's pixels, whole (L_full).
-    pub full: wgpu::Texture,
-    /// The model's pixels ended at the cloud (L_front).
-    pub front: wgpu::Texture,
-    /// The cloud's radiance (rgb) and transmittance (a) of the layer's march.
-    pub cloud: wgpu::Texture,
-    /// The same of the spheres (blended with the march in the hand-over band).
-    pub spheres: wgpu::Texture,
-    /// The second run's surface: the cloud's entry (`surface_buffer.rs`'s layout).
-    pub front_geometry: wgpu::Texture,
-    /// Its albedo: 0, Lambertian.
-    pub front_albedo: wgpu::Texture,
-    /// The pixels a reduced march's upsample leaves to the listed march, or why the
-    /// device cannot hold a list of this size.
-    pub march_list: Result<PixelList, String>,
-    /// The resolution divisor these were made for, and above 1 the reduced march's
-    /// image and segments.
-    pub divisor: u32,
-    reduced: Option<[wgpu::Texture; 2]>,
-    /// The spheres' reduced images, where their resolution divisor is above 1.
-    pub spheres_reduced: Option<ReducedSphereTargets>,
-    /// The model's reduced runs in front of the cloud (`frame_front.rs`), one for each
-    /// of the layer's and the spheres' divisors above 1.
-    pub front_reduced: Vec<ReducedFrontTargets>,
-}
-
-impl CloudTargets {
-    /// The targets of a frame of `width` x `height` whose layer is marched at one pixel
-    /// in `divisor` x `divisor` and whose spheres are shaded at one in
-    /// `spheres_divisor` x `spheres_divisor`.
-    pub fn new(
-        gpu: &GpuContext,
-        (width, height): (u32, u32),
-        (divisor, spheres_divisor): (u32, u32),
-    ) -> CloudTargets {
-        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-        let image = |label, format| texture_2d(&gpu.device, label, (width, height), format, usage);
-        let front_albedo = black_albedo(gpu, "cloud front albedo", (width, height));
-        let mut targets = CloudTargets {
-            full: image("cloud full", HDR_FORMAT),
-            front: image("cloud front", HDR_FORMAT),
-            cloud: image("cloud image", CLOUD_FORMAT),
-            spheres: image("cloud spheres image", CLOUD_FORMAT),
-            front_geometry: image("cloud front geometry", GEOMETRY_FORMAT),
-            front_albedo,
-            march_list: PixelList::new(gpu, "cloud frame", (width, height)),
-            divisor,
-            reduced: (divisor > 1).then(|| {
-                let size = reduced_size(width, height, divisor);
-                [
-                    texture_2d(
-                        &gpu.device,
-                        "cloud reduced image",
-                        size,
-                        CLOUD_FORMAT,
-                        usage,
-                    ),
-                    texture_2d(
-                        &gpu.device,
-                        "cloud reduced segments",
-                        size,
-                        SEGMENT_FORMAT,
-                        usage,
-                    ),
-                ]
-            }),
-            spheres_reduced: (spheres_divisor > 1)
-                .then(|| ReducedSphereTargets::new(gpu, (width, height), spheres_divisor)),
-            front_reduced: Vec::new(),
-        };
-        for cloud_divisor in [divisor, spheres_divisor] {
-            let d = FRONT_GRID_SCALE * cloud_divisor;
-            if cloud_divisor > 1 && targets.front_reduced(d).is_none() {
-                let run = ReducedFrontTargets::new(gpu, (width, height), d);
-                targets.front_reduced.push(run);
-            }
-        }
-        targets
-    }
-
-    /// The model's reduced run in front of the cloud at `divisor`, if these hold one.
-    pub fn front_reduced(&self, divisor: u32) -> Option<&ReducedFrontTargets> {
-        self.front_reduced.iter().find(|r| r.divisor == divisor)
-    }
-
-    /// Whether these were made for a layer's `divisor` and the spheres'
-    /// `spheres_divisor`.
-    pub fn made_for(&self, divisor: u32, spheres_divisor: u32) -> bool {
-        let spheres = self.spheres_reduced.as_ref().map_or(1, |r| r.divisor);
-        self.divisor == divisor && spheres == spheres_divisor.max(1)
-    }
-
-    /// Views of the second run's surface, for its `PassIo`.
-    pub fn front_surface(&self) -> [wgpu::TextureView; 2] {
-        [
-            self.front_geometry.create_view(&Default::default()),
-            self.front_albedo.create_view(&Default::default()),
-        ]
-    }
-}
 
 /// The layer's camera for `frame`: the frame's camera, axes and field of view.
 pub fn frame_camera(frame: &Frame) -> LayerCamera {
@@ -184,6 +75,9 @@ pub struct MarchScene<'a> {
     /// composites ([`CloudSteps::composite_in_upsample`]).
     pub model_pixels: &'a wgpu::Texture,
     pub hdr: &'a wgpu::Texture,
+    /// The frame's atmosphere and frame uniforms, which the spheres' upsample binds when
+    /// it composites ([`CloudSteps::composite_in_spheres`]).
+    pub uniforms: (&'a wgpu::Buffer, &'a wgpu::Buffer),
 }
 
 /// The march (full or reduced, and the upsample) and composite pipelines and their
@@ -261,18 +155,8 @@ impl CloudFramePass {
             MarchVariants::new("clouds/frame_march_list.wgsl", label, &list)
                 .with_constant("OVER_MODEL", f64::from(u8::from(over_model)))
         };
-        let composite = [
-            uniform_entry(0, size_of::<AtmosphereUniform>()),
-            uniform_entry(1, size_of::<FrameUniform>()),
-            texture_entry(2, D2),
-            texture_entry(3, D2),
-            texture_entry(4, D2),
-            texture_entry(5, D2),
-            storage_texture_entry(6, HDR_FORMAT, D2),
-            uniform_entry(7, 16),
-            texture_entry(8, D2),
-            texture_entry(9, D2),
-        ];
+        let mut composite = CompositeInputs::layout_entries().to_vec();
+        composite.extend([texture_entry(4, D2), texture_entry(5, D2)]);
         let front_rays = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -349,11 +233,16 @@ impl CloudFramePass {
             has_surface: scene.has_surface,
             weight: steps.weight,
         };
+        let composite = steps.composite_in_spheres.then(|| {
+            let textures = targets.composite_textures(steps.front_divisor, scene.hdr);
+            CompositeInputs::new(scene.uniforms, &self.flags, textures)
+        });
         let images = SphereImages {
             layer: &targets.cloud,
             out: &targets.spheres,
             front: &targets.front_geometry,
             reduced: targets.spheres_reduced.as_ref(),
+            composite: composite.as_ref(),
         };
         let writes = timer.map(|t| t.compute_writes(step));
         self.spheres.encode(gpu, encoder, &spheres, &images, writes)
@@ -502,36 +391,21 @@ impl CloudFramePass {
         hdr: &wgpu::Texture,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
+        let textures = targets.composite_textures(steps.front_divisor, hdr);
+        let inputs = CompositeInputs::new(uniforms, &self.flags, textures);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let reduced = targets.front_reduced(steps.front_divisor);
-        let views = [
-            view(&targets.full),
-            view(reduced.map_or(&targets.front, |r| &r.radiance)),
-            view(match steps.spheres {
-                Some(_) => &targets.spheres,
-                None => &targets.cloud,
-            }),
-            view(&targets.front_geometry),
-            view(hdr),
-            view(reduced.map_or(&targets.front_geometry, |r| &r.entries)),
-            view(reduced.map_or(&targets.front_geometry, |r| &r.transmittance)),
+        let cloud = view(match steps.spheres {
+            Some(_) => &targets.spheres,
+            None => &targets.cloud,
+        });
+        let geometry = view(&targets.front_geometry);
+        let read = [
+            (4, wgpu::BindingResource::TextureView(&cloud)),
+            (5, wgpu::BindingResource::TextureView(&geometry)),
         ];
-        let [full, front, cloud, geometry, out, entries, transmittance] = &views;
-        let bind_group = self.composite.bind_group(
-            gpu,
-            &[
-                uniforms.0.as_entire_binding(),
-                uniforms.1.as_entire_binding(),
-                wgpu::BindingResource::TextureView(full),
-                wgpu::BindingResource::TextureView(front),
-                wgpu::BindingResource::TextureView(cloud),
-                wgpu::BindingResource::TextureView(geometry),
-                wgpu::BindingResource::TextureView(out),
-                self.flags.as_entire_binding(),
-                wgpu::BindingResource::TextureView(entries),
-                wgpu::BindingResource::TextureView(transmittance),
-            ],
-        );
+        let bind_group = self
+            .composite
+            .bind_group_numbered(gpu, &[inputs.bindings().as_slice(), &read].concat());
         self.composite.dispatch(
             encoder,
             "cloud composite",

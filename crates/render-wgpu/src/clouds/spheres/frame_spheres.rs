@@ -6,12 +6,18 @@
 //! layer (docs/clouds.md, "Cloud spheres in frames"). With the spheres' resolution
 //! divisor above 1, one ray per divisor x divisor pixels is shaded
 //! (`frame_reduced.wgsl`) and brought to full size by the span each ray crossed
-//! (`frame_upsample.wgsl`, twin of atmosphere-core's `clouds/spheres/reduced.rs`).
+//! (`frame_upsample.wgsl`, twin of atmosphere-core's `clouds/spheres/reduced.rs`), the
+//! pixels it cannot interpolate listed and shaded by an indirect dispatch; from above the
+//! layer, where the model's run in front of the cloud is reduced and needs nothing the
+//! spheres write, the upsample and the listed pixels' pass composite each pixel with the
+//! model's runs at once (`frame_upsample.wgsl`'s compositing entry points,
+//! `clouds/composite_pixel.wgsl`), and the composite is no pass of its own.
 
 use atmosphere_core::clouds::layer::march::CloudLight;
 use atmosphere_core::clouds::layer::settings::LayerSettings;
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 
+use crate::clouds::composite_inputs::CompositeInputs;
 use crate::clouds::layer_uniform::LayerCamera;
 use crate::clouds::spheres::image_formats::{CLOUD_IMAGE_FORMAT, SPAN_FORMAT};
 use crate::clouds::spheres::reduced_targets::ReducedSphereTargets;
@@ -25,6 +31,7 @@ use crate::gpu::pipeline::{
     read_only_storage_buffer_entry, split_timestamps, storage_texture_entry, texel_groups,
     texture_2d, texture_entry, uniform_buffer, uniform_entry,
 };
+use crate::gpu::pixel_list::PixelList;
 use crate::gpu::readback::read_texture;
 
 /// What the spheres of a frame are made of and seen from.
@@ -56,14 +63,33 @@ pub struct SphereImages<'a> {
     pub front: &'a wgpu::Texture,
     /// The reduced images, needed where the spheres' resolution divisor is above 1.
     pub reduced: Option<&'a ReducedSphereTargets>,
+    /// What the composite binds, where the upsample composites each pixel with the
+    /// model's runs instead of writing `out` and `front` (with `reduced` only).
+    pub composite: Option<&'a CompositeInputs>,
 }
 
-/// The compiled passes (every pixel; reduced and upsampled) and their parameter buffers.
+/// What the reduced spheres' passes bind: the spheres' inputs, and with them the layer's
+/// march and what the upsample and the listed pixels' pass write (the images, or the
+/// composite's inputs).
+struct ReducedRun<'a> {
+    method: atmosphere_core::clouds::layer::settings::LayerMethod,
+    inputs: &'a [(u32, wgpu::BindingResource<'a>)],
+    bindings: &'a [(u32, wgpu::BindingResource<'a>)],
+    composite: bool,
+    /// The full-size passes' workgroups.
+    size: [u32; 3],
+}
+
+/// The compiled passes (every pixel; reduced, upsampled and the listed pixels, the last
+/// two also compositing) and their parameter buffers.
 #[derive(Debug)]
 pub struct FrameSpherePass {
     pipeline: SphereVariants,
     reduced: SphereVariants,
-    upsample: SphereVariants,
+    /// The upsample and the listed pixels' pass, writing the images or (index 1)
+    /// compositing.
+    upsample: [SphereVariants; 2],
+    listed: [SphereVariants; 2],
     params: wgpu::Buffer,
     flags: wgpu::Buffer,
 }
@@ -72,15 +98,15 @@ impl FrameSpherePass {
     pub fn new(gpu: &GpuContext) -> Result<FrameSpherePass, GpuError> {
         use wgpu::TextureViewDimension::D2;
         let entries = [
-            uniform_entry(0, size_of::<SphereUniform>()),
-            read_only_storage_buffer_entry(1, 4),
-            read_only_storage_buffer_entry(2, 4),
-            read_only_storage_buffer_entry(3, 4),
-            storage_texture_entry(4, CLOUD_IMAGE_FORMAT, D2),
-            storage_texture_entry(5, GEOMETRY_FORMAT, D2),
-            texture_entry(6, D2),
-            uniform_entry(7, 16),
-            texture_entry(8, D2),
+            uniform_entry(20, size_of::<SphereUniform>()),
+            read_only_storage_buffer_entry(21, 4),
+            read_only_storage_buffer_entry(22, 4),
+            read_only_storage_buffer_entry(23, 4),
+            storage_texture_entry(24, CLOUD_IMAGE_FORMAT, D2),
+            storage_texture_entry(25, GEOMETRY_FORMAT, D2),
+            texture_entry(26, D2),
+            uniform_entry(27, 16),
+            texture_entry(28, D2),
         ];
         let reduced = [
             entries[0],
@@ -90,29 +116,70 @@ impl FrameSpherePass {
             entries[4],
             entries[6],
             entries[7],
-            storage_texture_entry(9, SPAN_FORMAT, D2),
+            storage_texture_entry(29, SPAN_FORMAT, D2),
         ];
         let mut upsample = entries.to_vec();
-        upsample.extend([texture_entry(9, D2), texture_entry(10, D2)]);
+        upsample.extend([
+            texture_entry(29, D2),
+            texture_entry(30, D2),
+            PixelList::list_entry(31),
+            PixelList::dispatch_entry(32),
+        ]);
+        let mut listed = entries.to_vec();
+        listed.extend([
+            texture_entry(29, D2),
+            texture_entry(30, D2),
+            PixelList::list_entry(31),
+        ]);
+        // The compositing entries write neither the spheres' image nor their front.
+        let composited = |entries: &[wgpu::BindGroupLayoutEntry]| {
+            let mut out: Vec<_> = entries
+                .iter()
+                .filter(|e| ![24, 25].contains(&e.binding))
+                .copied()
+                .collect();
+            out.extend(CompositeInputs::layout_entries());
+            out
+        };
         let pipeline = |shader, label, entries: &[wgpu::BindGroupLayoutEntry]| {
             SphereVariants::new(gpu, shader, label, entries)
         };
+        let shader = "clouds/spheres/frame_upsample.wgsl";
         Ok(FrameSpherePass {
             pipeline: pipeline(
-                "clouds/spheres/frame_image.wgsl",
+                ("clouds/spheres/frame_image.wgsl", "main"),
                 "cloud spheres in frames",
                 &entries,
             )?,
             reduced: pipeline(
-                "clouds/spheres/frame_reduced.wgsl",
+                ("clouds/spheres/frame_reduced.wgsl", "main"),
                 "cloud spheres in frames, reduced",
                 &reduced,
             )?,
-            upsample: pipeline(
-                "clouds/spheres/frame_upsample.wgsl",
-                "cloud spheres in frames, upsample",
-                &upsample,
-            )?,
+            upsample: [
+                pipeline(
+                    (shader, "main"),
+                    "cloud spheres in frames, upsample",
+                    &upsample,
+                )?,
+                pipeline(
+                    (shader, "composite"),
+                    "cloud spheres in frames, upsample and composite",
+                    &composited(&upsample),
+                )?,
+            ],
+            listed: [
+                pipeline(
+                    (shader, "listed"),
+                    "cloud spheres in frames, listed pixels",
+                    &listed,
+                )?,
+                pipeline(
+                    (shader, "listed_composite"),
+                    "cloud spheres in frames, listed pixels composited",
+                    &composited(&listed),
+                )?,
+            ],
             params: uniform_buffer(
                 &gpu.device,
                 "cloud spheres in frames",
@@ -166,66 +233,118 @@ impl FrameSpherePass {
         let (layer, out, front) = (view(images.layer), view(images.out), view(images.front));
         let method = made.spheres.method();
         let inputs = [
-            (0, self.params.as_entire_binding()),
-            (1, made.inputs.cloud_depths.as_entire_binding()),
-            (2, made.inputs.sun_ratios.as_entire_binding()),
-            (3, made.inputs.single_phase.as_entire_binding()),
-            (6, wgpu::BindingResource::TextureView(scene.surface)),
-            (7, self.flags.as_entire_binding()),
+            (20, self.params.as_entire_binding()),
+            (21, made.inputs.cloud_depths.as_entire_binding()),
+            (22, made.inputs.sun_ratios.as_entire_binding()),
+            (23, made.inputs.single_phase.as_entire_binding()),
+            (26, wgpu::BindingResource::TextureView(scene.surface)),
+            (27, self.flags.as_entire_binding()),
         ];
-        let written = [
-            (4, wgpu::BindingResource::TextureView(&out)),
-            (5, wgpu::BindingResource::TextureView(&front)),
-            (8, wgpu::BindingResource::TextureView(&layer)),
-        ];
-        if divisor <= 1 {
-            let pipeline = self.pipeline.for_method(gpu, method)?;
-            let bind_group =
-                pipeline.bind_group_numbered(gpu, &[inputs.as_slice(), &written].concat());
-            pipeline.dispatch(
-                encoder,
-                "cloud spheres in frames",
-                &bind_group,
-                texel_groups(images.out),
-                timestamps,
-            );
-            return Ok(());
+        // The layer's march, and what the full-size passes write.
+        let mut written = vec![(28, wgpu::BindingResource::TextureView(&layer))];
+        match images.composite {
+            Some(composite) => written.extend(composite.bindings()),
+            None => written.extend([
+                (24, wgpu::BindingResource::TextureView(&out)),
+                (25, wgpu::BindingResource::TextureView(&front)),
+            ]),
         }
-        let Some(reduced) = images.reduced.filter(|r| r.divisor == divisor) else {
-            return Err(RenderError::Frame(format!(
-                "the cloud spheres' reduced images were not made for resolution divisor \
-                 {divisor}"
-            )));
-        };
-        let (image, spans) = (&reduced.image, &reduced.spans);
-        let groups = texel_groups(image);
-        let (image, spans) = (view(image), view(spans));
+        let bindings = [inputs.as_slice(), &written].concat();
+        if divisor > 1 {
+            let reduced = images.reduced.filter(|r| r.divisor == divisor);
+            let Some(reduced) = reduced else {
+                return Err(RenderError::Frame(format!(
+                    "the cloud spheres' reduced images were not made for resolution \
+                     divisor {divisor}"
+                )));
+            };
+            let run = ReducedRun {
+                method,
+                inputs: &inputs,
+                bindings: &bindings,
+                composite: images.composite.is_some(),
+                size: texel_groups(images.out),
+            };
+            return self.encode_reduced(gpu, encoder, &run, reduced, timestamps);
+        }
+        if images.composite.is_some() {
+            return Err(RenderError::Frame(
+                "the cloud spheres composite only at a reduced resolution".into(),
+            ));
+        }
+        let pipeline = self.pipeline.for_method(gpu, method)?;
+        let bind_group = pipeline.bind_group_numbered(gpu, &bindings);
+        pipeline.dispatch(
+            encoder,
+            "cloud spheres in frames",
+            &bind_group,
+            texel_groups(images.out),
+            timestamps,
+        );
+        Ok(())
+    }
+
+    /// Records the reduced spheres of `run` into `reduced`, their upsample and the listed
+    /// pixels' pass (timed from the first's start to the last's end).
+    fn encode_reduced(
+        &self,
+        gpu: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        run: &ReducedRun<'_>,
+        reduced: &ReducedSphereTargets,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), RenderError> {
+        let list = reduced.list.as_ref().map_err(|e| {
+            RenderError::Frame(format!(
+                "cloud spheres at a reduced resolution: {e}; use the offline quality \
+                 (resolution divisor 1) or a smaller frame"
+            ))
+        })?;
+        list.reset(gpu);
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let (image, spans) = (view(&reduced.image), view(&reduced.spans));
         let (start, end) = split_timestamps(timestamps);
-        let reduced = [
-            (4, wgpu::BindingResource::TextureView(&image)),
-            (9, wgpu::BindingResource::TextureView(&spans)),
+        let written = [
+            (24, wgpu::BindingResource::TextureView(&image)),
+            (29, wgpu::BindingResource::TextureView(&spans)),
         ];
-        let pipeline = self.reduced.for_method(gpu, method)?;
-        let bind_group = pipeline.bind_group_numbered(gpu, &[inputs.as_slice(), &reduced].concat());
+        let pipeline = self.reduced.for_method(gpu, run.method)?;
+        let bind_group = pipeline.bind_group_numbered(gpu, &[run.inputs, &written].concat());
         pipeline.dispatch(
             encoder,
             "cloud spheres in frames, reduced",
             &bind_group,
-            groups,
+            texel_groups(&reduced.image),
             start,
         );
         let read = [
-            (9, wgpu::BindingResource::TextureView(&image)),
-            (10, wgpu::BindingResource::TextureView(&spans)),
+            (29, wgpu::BindingResource::TextureView(&image)),
+            (30, wgpu::BindingResource::TextureView(&spans)),
+            (31, list.list.as_entire_binding()),
+            (32, list.dispatch.as_entire_binding()),
         ];
-        let pipeline = self.upsample.for_method(gpu, method)?;
-        let bind_group =
-            pipeline.bind_group_numbered(gpu, &[inputs.as_slice(), &written, &read].concat());
+        let variant = usize::from(run.composite);
+        let pipeline = self.upsample[variant].for_method(gpu, run.method)?;
+        let bind_group = pipeline.bind_group_numbered(gpu, &[run.bindings, &read].concat());
         pipeline.dispatch(
             encoder,
             "cloud spheres in frames, upsample",
             &bind_group,
-            texel_groups(images.out),
+            run.size,
+            None,
+        );
+        let listed = [
+            (29, wgpu::BindingResource::TextureView(&image)),
+            (30, wgpu::BindingResource::TextureView(&spans)),
+            (31, list.list.as_entire_binding()),
+        ];
+        let pipeline = self.listed[variant].for_method(gpu, run.method)?;
+        let bind_group = pipeline.bind_group_numbered(gpu, &[run.bindings, &listed].concat());
+        pipeline.dispatch_indirect(
+            encoder,
+            "cloud spheres in frames, listed pixels",
+            &bind_group,
+            &list.dispatch,
             end,
         );
         Ok(())
@@ -269,6 +388,7 @@ impl FrameSpherePass {
             out: &out,
             front: &front,
             reduced: reduced.as_ref(),
+            composite: None,
         };
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         self.encode(gpu, &mut encoder, scene, &images, None)?;

@@ -1,12 +1,14 @@
 //! The images of a frame's cloud spheres shaded at a reduced resolution
 //! (`frame_reduced.wgsl`), one ray per `divisor` x `divisor` pixels: the spheres and
-//! their spans of the layer, which the upsample (`frame_upsample.wgsl`) reads.
+//! their spans of the layer, which the upsample (`frame_upsample.wgsl`) reads, and the
+//! list of the full pixels it leaves to its listed pixels' pass.
 
 use atmosphere_core::clouds::layer::upsample::reduced_size;
 
 use crate::clouds::spheres::image_formats::{CLOUD_IMAGE_FORMAT, SPAN_FORMAT};
 use crate::gpu::context::GpuContext;
 use crate::gpu::pipeline::texture_2d;
+use crate::gpu::pixel_list::PixelList;
 
 /// The reduced images of one frame size and divisor.
 #[derive(Debug)]
@@ -16,6 +18,9 @@ pub struct ReducedSphereTargets {
     pub image: wgpu::Texture,
     /// Each reduced ray's span of the layer.
     pub spans: wgpu::Texture,
+    /// The full pixels the upsample cannot interpolate, or why the device cannot hold a
+    /// list of this size.
+    pub list: Result<PixelList, String>,
 }
 
 impl ReducedSphereTargets {
@@ -28,6 +33,7 @@ impl ReducedSphereTargets {
             divisor,
             image: image("cloud spheres reduced", CLOUD_IMAGE_FORMAT),
             spans: image("cloud spheres reduced spans", SPAN_FORMAT),
+            list: PixelList::new(gpu, "cloud spheres", (width, height)),
         }
     }
 }

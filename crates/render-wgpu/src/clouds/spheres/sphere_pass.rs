@@ -28,16 +28,16 @@ impl CloudSpherePass {
     pub fn new(gpu: &GpuContext) -> Result<CloudSpherePass, GpuError> {
         use wgpu::TextureViewDimension::D2;
         let entries = [
-            uniform_entry(0, size_of::<SphereUniform>()),
-            read_only_storage_buffer_entry(1, 4),
-            read_only_storage_buffer_entry(2, 4),
-            read_only_storage_buffer_entry(3, 4),
-            storage_texture_entry(4, IMAGE_FORMAT, D2),
+            uniform_entry(20, size_of::<SphereUniform>()),
+            read_only_storage_buffer_entry(21, 4),
+            read_only_storage_buffer_entry(22, 4),
+            read_only_storage_buffer_entry(23, 4),
+            storage_texture_entry(24, IMAGE_FORMAT, D2),
         ];
         Ok(CloudSpherePass {
             pipeline: SphereVariants::new(
                 gpu,
-                "clouds/spheres/image.wgsl",
+                ("clouds/spheres/image.wgsl", "main"),
                 "cloud spheres",
                 &entries,
             )?,
@@ -60,14 +60,14 @@ impl CloudSpherePass {
         gpu.write_uniform(&self.params, params);
         let view = image.create_view(&Default::default());
         let pipeline = self.pipeline.for_method(gpu, method)?;
-        let bind_group = pipeline.bind_group(
+        let bind_group = pipeline.bind_group_numbered(
             gpu,
             &[
-                self.params.as_entire_binding(),
-                inputs.cloud_depths.as_entire_binding(),
-                inputs.sun_ratios.as_entire_binding(),
-                inputs.single_phase.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&view),
+                (20, self.params.as_entire_binding()),
+                (21, inputs.cloud_depths.as_entire_binding()),
+                (22, inputs.sun_ratios.as_entire_binding()),
+                (23, inputs.single_phase.as_entire_binding()),
+                (24, wgpu::BindingResource::TextureView(&view)),
             ],
         );
         pipeline.dispatch(

@@ -13,10 +13,11 @@ use crate::gpu::context::GpuContext;
 use crate::gpu::error::GpuError;
 use crate::gpu::pipeline::ComputePipeline;
 
-/// Entry point `main` of one spheres shader, compiled lazily per light.
+/// One entry point of one spheres shader, compiled lazily per light.
 #[derive(Debug)]
 pub struct SphereVariants {
     shader: &'static str,
+    entry: &'static str,
     label: &'static str,
     entries: Vec<wgpu::BindGroupLayoutEntry>,
     built: [OnceLock<ComputePipeline>; 3],
@@ -33,16 +34,17 @@ fn light_of(method: LayerMethod) -> (u32, usize) {
 }
 
 impl SphereVariants {
-    /// The variants of `shader`'s `main` with one bind group of `entries`; the octaves'
-    /// is compiled now, so that a shader error shows at once.
+    /// The variants of `shader`'s entry point `entry` with one bind group of `entries`;
+    /// the octaves' is compiled now, so that a shader error shows at once.
     pub fn new(
         gpu: &GpuContext,
-        shader: &'static str,
+        (shader, entry): (&'static str, &'static str),
         label: &'static str,
         entries: &[wgpu::BindGroupLayoutEntry],
     ) -> Result<SphereVariants, GpuError> {
         let variants = SphereVariants {
             shader,
+            entry,
             label,
             entries: entries.to_vec(),
             built: Default::default(),
@@ -64,7 +66,7 @@ impl SphereVariants {
         let pipeline = ComputePipeline::with_constants(
             gpu,
             self.shader,
-            "main",
+            self.entry,
             self.label,
             &self.entries,
             &[("SPHERE_LIGHT", f64::from(light))],
