@@ -38,6 +38,9 @@ pub struct CloudTargets {
     /// The pixels a reduced march's upsample leaves to the listed march, or why the
     /// device cannot hold a list of this size.
     pub march_list: Result<PixelList, String>,
+    /// The pixels the composite cannot read from the reduced run's taps (where the
+    /// device cannot hold the list, the composite takes every pixel by the whole rule).
+    pub composite_list: Result<PixelList, String>,
     /// The resolution divisor these were made for, and above 1 the reduced march's
     /// image and segments.
     pub divisor: u32,
@@ -69,6 +72,7 @@ impl CloudTargets {
             front_geometry: image("cloud front geometry", GEOMETRY_FORMAT),
             front_albedo,
             march_list: PixelList::new(gpu, "cloud frame", (width, height)),
+            composite_list: PixelList::new(gpu, "cloud composite", (width, height)),
             divisor,
             reduced: (divisor > 1).then(|| {
                 let size = reduced_size(width, height, divisor);

@@ -91,7 +91,9 @@ pub struct CloudFramePass {
     /// The upsample and the listed march that composite over the model's pixels.
     upsample_over: ComputePipeline,
     march_list_over: MarchVariants,
-    composite: ComputePipeline,
+    /// The composite by the whole rule, from the reduced run's taps (listing the pixels
+    /// that need more) and of the listed pixels.
+    composite: [ComputePipeline; 3],
     /// The rays of the model's reduced run in front of the cloud (`frame_front.rs`).
     pub front_rays: ComputePipeline,
     spheres: FrameSpherePass,
@@ -157,6 +159,13 @@ impl CloudFramePass {
         };
         let mut composite = CompositeInputs::layout_entries().to_vec();
         composite.extend([texture_entry(4, D2), texture_entry(5, D2)]);
+        let mut from_taps = composite.clone();
+        from_taps.extend([PixelList::list_entry(10), PixelList::dispatch_entry(11)]);
+        let mut composite_listed = composite.clone();
+        composite_listed.push(PixelList::list_entry(10));
+        let composite_pass = |entry, label, entries: &[wgpu::BindGroupLayoutEntry]| {
+            ComputePipeline::new(gpu, "clouds/frame_composite.wgsl", entry, label, entries)
+        };
         let front_rays = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -175,13 +184,15 @@ impl CloudFramePass {
             march_list: list_variant(false, "cloud frame listed march"),
             upsample_over: upsample_variant(true, "cloud frame upsample over the model")?,
             march_list_over: list_variant(true, "cloud frame listed march over the model"),
-            composite: ComputePipeline::new(
-                gpu,
-                "clouds/frame_composite.wgsl",
-                "main",
-                "cloud composite",
-                &composite,
-            )?,
+            composite: [
+                composite_pass("main", "cloud composite", &composite)?,
+                composite_pass("from_taps", "cloud composite from taps", &from_taps)?,
+                composite_pass(
+                    "listed",
+                    "cloud composite, listed pixels",
+                    &composite_listed,
+                )?,
+            ],
             front_rays: ComputePipeline::new(
                 gpu,
                 "clouds/front_rays.wgsl",
@@ -381,7 +392,9 @@ impl CloudFramePass {
     /// Records the composite of `targets` into `hdr`, with the frame's `atmosphere` and
     /// `frame` uniforms (after [`CloudFramePass::encode_clouds`], whose flags it reads),
     /// taking the spheres' image when `steps` ran them and the model's reduced run in
-    /// front of the cloud when it ran reduced (`frame_front.rs`).
+    /// front of the cloud when it ran reduced (`frame_front.rs`): from its taps, the
+    /// pixels that need more listed for a pass of their own (timed from the first's
+    /// start to the second's end).
     pub fn encode_composite(
         &self,
         gpu: &GpuContext,
@@ -403,15 +416,43 @@ impl CloudFramePass {
             (4, wgpu::BindingResource::TextureView(&cloud)),
             (5, wgpu::BindingResource::TextureView(&geometry)),
         ];
-        let bind_group = self
-            .composite
-            .bind_group_numbered(gpu, &[inputs.bindings().as_slice(), &read].concat());
-        self.composite.dispatch(
+        let bindings = [inputs.bindings().as_slice(), &read].concat();
+        let [whole, from_taps, listed] = &self.composite;
+        let list = targets.composite_list.as_ref().ok();
+        let Some(list) = list.filter(|_| steps.front_divisor > 1) else {
+            let bind_group = whole.bind_group_numbered(gpu, &bindings);
+            whole.dispatch(
+                encoder,
+                "cloud composite",
+                &bind_group,
+                texel_groups(hdr),
+                timestamps,
+            );
+            return;
+        };
+        list.reset(gpu);
+        let (start, end) = split_timestamps(timestamps);
+        let lists = [
+            (10, list.list.as_entire_binding()),
+            (11, list.dispatch.as_entire_binding()),
+        ];
+        let bind_group =
+            from_taps.bind_group_numbered(gpu, &[bindings.as_slice(), &lists].concat());
+        from_taps.dispatch(
             encoder,
-            "cloud composite",
+            "cloud composite from taps",
             &bind_group,
             texel_groups(hdr),
-            timestamps,
+            start,
+        );
+        let bind_group =
+            listed.bind_group_numbered(gpu, &[bindings.as_slice(), &lists[..1]].concat());
+        listed.dispatch_indirect(
+            encoder,
+            "cloud composite, listed pixels",
+            &bind_group,
+            &list.dispatch,
+            end,
         );
     }
 }
