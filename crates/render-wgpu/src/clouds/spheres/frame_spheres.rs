@@ -14,7 +14,7 @@
 //! `clouds/composite_pixel.wgsl`), and the composite is no pass of its own.
 
 use atmosphere_core::clouds::layer::march::CloudLight;
-use atmosphere_core::clouds::layer::settings::LayerSettings;
+use atmosphere_core::clouds::layer::settings::{LayerMethod, LayerSettings};
 use atmosphere_core::clouds::spheres::settings::SphereSettings;
 
 use crate::clouds::composite_inputs::CompositeInputs;
@@ -72,7 +72,7 @@ pub struct SphereImages<'a> {
 /// march and what the upsample and the listed pixels' pass write (the images, or the
 /// composite's inputs).
 struct ReducedRun<'a> {
-    method: atmosphere_core::clouds::layer::settings::LayerMethod,
+    method: LayerMethod,
     inputs: &'a [(u32, wgpu::BindingResource<'a>)],
     bindings: &'a [(u32, wgpu::BindingResource<'a>)],
     composite: bool,
