@@ -395,6 +395,43 @@ mod tests {
     }
 
     #[test]
+    fn the_spheres_composite_only_where_they_and_the_run_in_front_are_reduced() {
+        let plan_with = |altitude_m: f64, form: CloudForm, divisor: u32| {
+            let f = frame(altitude_m, -DVec3::Z);
+            let mut c = clouds(form);
+            c.spheres.resolution_divisor = divisor;
+            c.settings.resolution_divisor = divisor;
+            let mut plan = FramePlan::default();
+            let (steps, front_needed) = plan_clouds(&f, Some(&c), Some(1.0), &mut plan).unwrap();
+            let (steps, _, composite) = plan_after_model(steps.unwrap(), front_needed, &mut plan);
+            (plan, steps, composite)
+        };
+        // From orbit and in the hand-over band the reduced spheres composite.
+        for altitude_m in [4e5, 75e3] {
+            let (plan, steps, composite) = plan_with(altitude_m, CloudForm::Auto, 3);
+            assert!(steps.composite_in_spheres && steps.front_divisor > 1);
+            assert!(composite.is_none());
+            assert_eq!(
+                skipped_why(&plan, "cloud_composite"),
+                Some(COMPOSITE_IN_SPHERES)
+            );
+        }
+        // Every pixel shaded (the offline quality): the composite is a pass of its own.
+        let (plan, steps, composite) = plan_with(4e5, CloudForm::Auto, 1);
+        assert!(!steps.composite_in_spheres && composite.is_some());
+        assert!(plan.runs("cloud_composite"));
+        // The spheres forced below the layer's top: the run in front takes every pixel
+        // and ends on the spheres' entries, so it runs after them and the composite too.
+        let (_, steps, composite) = plan_with(500.0, CloudForm::Spheres, 3);
+        assert!(!steps.composite_in_spheres && steps.front_divisor == 1);
+        assert!(composite.is_some());
+        // The march above the deck: its composite is a pass of its own.
+        let (_, steps, composite) = plan_with(5e3, CloudForm::Auto, 3);
+        assert!(!steps.composite_in_spheres && !steps.composite_in_upsample);
+        assert!(steps.front_divisor > 1 && composite.is_some());
+    }
+
+    #[test]
     fn the_run_in_front_is_reduced_only_above_the_layer_with_a_reduced_cloud() {
         let clouds = |layer: u32, spheres: u32| {
             let mut c = clouds(CloudForm::Auto);

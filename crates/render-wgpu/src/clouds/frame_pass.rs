@@ -17,7 +17,10 @@
 //! pixels. With `sun_light = map` the marches read the frame's sun map
 //! (`clouds/frame_sun_map.rs`, filled before them) at 33 and 35. Above the hand-over the
 //! cloud spheres (`spheres/frame_spheres.rs`) take the march's place, or blend with it in
-//! the band, and the composite reads their image.
+//! the band, and the composite reads their image (or, from above the layer at a reduced
+//! resolution, their upsample composites). With the model's run in front reduced the
+//! composite reads each pixel's air in front from the run's taps and lists the pixels
+//! that need more for a pass over the list alone.
 
 use crate::clouds::cloud_targets::{CLOUD_FORMAT, CloudTargets, SEGMENT_FORMAT};
 use crate::clouds::composite_inputs::CompositeInputs;
