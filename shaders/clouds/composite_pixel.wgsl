@@ -177,8 +177,8 @@ fn store_composite(px: vec2<u32>, cloud: vec4<f32>, entry_m: f32) {
 // `store_composite` where the model's run in front is reduced (`composite_flags.z` above
 // 1) and the pixel's air in front is read from its bilinear taps alone; false, with
 // nothing written, where it needs the nearest tap or its own depth, which the caller
-// leaves to a pass that takes `store_composite`'s path: on a software rasteriser a loop
-// compiled into a pass costs every invocation of it.
+// leaves to a pass that takes `store_composite`'s path: on a software rasteriser a
+// group of invocations pays for a branch any of them takes.
 fn store_composite_from_taps(px: vec2<u32>, cloud: vec4<f32>, entry_m: f32) -> bool {
     let full = textureLoad(full_image, px, 0).rgb;
     var air = NO_AIR;

@@ -5,8 +5,8 @@
 // (`FROM_TAPS`, the pipeline's variant) `main` reads each pixel's air in front from its
 // bilinear taps and lists the pixels that need more (`common/pixel_list.wgsl`) for
 // `listed` to composite by the whole rule, by an indirect dispatch over the list alone:
-// on a software rasteriser the search and the per-pixel integration compiled into a
-// pass cost every invocation of it. From above the layer with the spheres at a reduced
+// on a software rasteriser a group of invocations pays for a branch any of them takes,
+// and a loop compiled into a pass costs even where none runs it. From above the layer with the spheres at a reduced
 // resolution their upsample composites instead, and these passes do not run.
 
 #import clouds/composite_pixel.wgsl

@@ -10,8 +10,9 @@
 // cloud), or the air in front needs more, the pixel is listed (`common/pixel_list.wgsl`)
 // and `listed` or `listed_composite` takes it, by an indirect dispatch over the list
 // alone: shaded along its own ray, composited with the composite's whole rule. On a
-// software rasteriser a march compiled into a pass costs every invocation of it
-// (docs/clouds.md, "At a reduced resolution").
+// software rasteriser a group of invocations pays for a branch any of them takes, and a
+// march compiled into a pass costs even where none runs it (docs/clouds.md, "At a
+// reduced resolution").
 
 #import clouds/spheres/frame_composite_pixel.wgsl
 #import clouds/segment_taps.wgsl
