@@ -38,6 +38,7 @@ use crate::frame::uniform::FrameUniform;
 use crate::gpu::context::GpuContext;
 use crate::gpu::error::{GpuError, RenderError};
 use crate::gpu::formats::HDR_FORMAT;
+use crate::gpu::lazy_pipeline::LazyPipeline;
 use crate::gpu::pipeline::{
     ComputePipeline, read_only_storage_buffer_entry, split_timestamps, storage_texture_entry,
     texel_groups, texture_entry, uniform_buffer, uniform_entry,
@@ -94,9 +95,11 @@ pub struct CloudFramePass {
     /// The upsample and the listed march that composite over the model's pixels.
     upsample_over: ComputePipeline,
     march_list_over: MarchVariants,
-    /// The composite by the whole rule, from the reduced run's taps (listing the pixels
-    /// that need more) and of the listed pixels.
-    composite: [ComputePipeline; 3],
+    /// The composite by the whole rule.
+    composite: ComputePipeline,
+    /// The composite from the reduced run's taps, listing the pixels that need more, and
+    /// of the listed pixels: compiled on first use, by frames from above the layer.
+    composite_from_taps: [LazyPipeline; 2],
     /// The rays of the model's reduced run in front of the cloud (`frame_front.rs`).
     pub front_rays: ComputePipeline,
     spheres: FrameSpherePass,
@@ -166,9 +169,7 @@ impl CloudFramePass {
         from_taps.extend([PixelList::list_entry(10), PixelList::dispatch_entry(11)]);
         let mut composite_listed = composite.clone();
         composite_listed.push(PixelList::list_entry(10));
-        let composite_pass = |entry, label, entries: &[wgpu::BindGroupLayoutEntry]| {
-            ComputePipeline::new(gpu, "clouds/frame_composite.wgsl", entry, label, entries)
-        };
+        let composite_shader = "clouds/frame_composite.wgsl";
         let front_rays = [
             uniform_entry(0, size_of::<AtmosphereUniform>()),
             uniform_entry(1, size_of::<FrameUniform>()),
@@ -187,14 +188,24 @@ impl CloudFramePass {
             march_list: list_variant(false, "cloud frame listed march"),
             upsample_over: upsample_variant(true, "cloud frame upsample over the model")?,
             march_list_over: list_variant(true, "cloud frame listed march over the model"),
-            composite: [
-                composite_pass("main", "cloud composite", &composite)?,
-                composite_pass("from_taps", "cloud composite from taps", &from_taps)?,
-                composite_pass(
-                    "listed",
+            composite: ComputePipeline::new(
+                gpu,
+                composite_shader,
+                "main",
+                "cloud composite",
+                &composite,
+            )?,
+            composite_from_taps: [
+                LazyPipeline::new(
+                    (composite_shader, "from_taps"),
+                    "cloud composite from taps",
+                    &from_taps,
+                ),
+                LazyPipeline::new(
+                    (composite_shader, "listed"),
                     "cloud composite, listed pixels",
                     &composite_listed,
-                )?,
+                ),
             ],
             front_rays: ComputePipeline::new(
                 gpu,
@@ -406,7 +417,7 @@ impl CloudFramePass {
         (targets, steps): (&CloudTargets, &CloudSteps),
         hdr: &wgpu::Texture,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
-    ) {
+    ) -> Result<(), RenderError> {
         let textures = targets.composite_textures(steps.front_divisor, hdr);
         let inputs = CompositeInputs::new(uniforms, &self.flags, textures);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
@@ -420,19 +431,20 @@ impl CloudFramePass {
             (5, wgpu::BindingResource::TextureView(&geometry)),
         ];
         let bindings = [inputs.bindings().as_slice(), &read].concat();
-        let [whole, from_taps, listed] = &self.composite;
         let list = targets.composite_list.as_ref().ok();
         let Some(list) = list.filter(|_| steps.front_divisor > 1) else {
-            let bind_group = whole.bind_group_numbered(gpu, &bindings);
-            whole.dispatch(
+            let bind_group = self.composite.bind_group_numbered(gpu, &bindings);
+            self.composite.dispatch(
                 encoder,
                 "cloud composite",
                 &bind_group,
                 texel_groups(hdr),
                 timestamps,
             );
-            return;
+            return Ok(());
         };
+        let [from_taps, listed] = &self.composite_from_taps;
+        let (from_taps, listed) = (from_taps.get(gpu)?, listed.get(gpu)?);
         list.reset(gpu);
         let (start, end) = split_timestamps(timestamps);
         let lists = [
@@ -457,5 +469,6 @@ impl CloudFramePass {
             &list.dispatch,
             end,
         );
+        Ok(())
     }
 }

@@ -64,7 +64,7 @@ pub fn encode_after_model(
             (targets, &steps),
             after.scene.hdr,
             timer.map(|t| t.compute_writes(slot)),
-        );
+        )?;
     }
     Ok(())
 }

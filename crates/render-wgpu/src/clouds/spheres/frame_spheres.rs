@@ -77,7 +77,7 @@ struct ReducedRun<'a> {
     bindings: &'a [(u32, wgpu::BindingResource<'a>)],
     composite: bool,
     /// The full-size passes' workgroups.
-    size: [u32; 3],
+    groups: [u32; 3],
 }
 
 /// The compiled passes (every pixel; reduced, upsampled and the listed pixels, the last
@@ -162,23 +162,25 @@ impl FrameSpherePass {
                     "cloud spheres in frames, upsample",
                     &upsample,
                 )?,
-                pipeline(
+                SphereVariants::lazy(
                     (shader, "composite"),
                     "cloud spheres in frames, upsample and composite",
                     &composited(&upsample),
-                )?,
+                ),
             ],
+            // Compiled on first use: only frames with pixels to list, or from above the
+            // layer, take them.
             listed: [
-                pipeline(
+                SphereVariants::lazy(
                     (shader, "listed"),
                     "cloud spheres in frames, listed pixels",
                     &listed,
-                )?,
-                pipeline(
+                ),
+                SphereVariants::lazy(
                     (shader, "listed_composite"),
                     "cloud spheres in frames, listed pixels composited",
                     &composited(&listed),
-                )?,
+                ),
             ],
             params: uniform_buffer(
                 &gpu.device,
@@ -263,7 +265,7 @@ impl FrameSpherePass {
                 inputs: &inputs,
                 bindings: &bindings,
                 composite: images.composite.is_some(),
-                size: texel_groups(images.out),
+                groups: texel_groups(images.out),
             };
             return self.encode_reduced(gpu, encoder, &run, reduced, timestamps);
         }
@@ -330,16 +332,12 @@ impl FrameSpherePass {
             encoder,
             "cloud spheres in frames, upsample",
             &bind_group,
-            run.size,
+            run.groups,
             None,
         );
-        let listed = [
-            (29, wgpu::BindingResource::TextureView(&image)),
-            (30, wgpu::BindingResource::TextureView(&spans)),
-            (31, list.list.as_entire_binding()),
-        ];
+        // The listed pixels' pass reads all but the dispatch it is given.
         let pipeline = self.listed[variant].for_method(gpu, run.method)?;
-        let bind_group = pipeline.bind_group_numbered(gpu, &[run.bindings, &listed].concat());
+        let bind_group = pipeline.bind_group_numbered(gpu, &[run.bindings, &read[..3]].concat());
         pipeline.dispatch_indirect(
             encoder,
             "cloud spheres in frames, listed pixels",

@@ -38,19 +38,29 @@ impl SphereVariants {
     /// the octaves' is compiled now, so that a shader error shows at once.
     pub fn new(
         gpu: &GpuContext,
-        (shader, entry): (&'static str, &'static str),
+        shader_entry: (&'static str, &'static str),
         label: &'static str,
         entries: &[wgpu::BindGroupLayoutEntry],
     ) -> Result<SphereVariants, GpuError> {
-        let variants = SphereVariants {
+        let variants = SphereVariants::lazy(shader_entry, label, entries);
+        variants.for_method(gpu, LayerMethod::Octaves)?;
+        Ok(variants)
+    }
+
+    /// The same with none compiled yet: for an entry point of a shader whose other entry
+    /// point is compiled at once, which only some frames take.
+    pub fn lazy(
+        (shader, entry): (&'static str, &'static str),
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+    ) -> SphereVariants {
+        SphereVariants {
             shader,
             entry,
             label,
             entries: entries.to_vec(),
             built: Default::default(),
-        };
-        variants.for_method(gpu, LayerMethod::Octaves)?;
-        Ok(variants)
+        }
     }
 
     /// The pipeline lighting the spheres as the layer's `method` does.
