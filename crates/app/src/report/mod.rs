@@ -30,6 +30,7 @@ pub mod optics_scene;
 pub mod optics_views;
 pub mod paired_frames;
 pub mod plot;
+pub mod reference_batches;
 pub mod reference_cache;
 pub mod shafts;
 pub mod variants;
@@ -144,6 +145,7 @@ fn report_skies(args: &ReportArgs) -> anyhow::Result<()> {
         &args.out.join("reference.csv"),
         &views,
         |view| reference_cache::reference_settings(view, &base, args.twilight_max_paths),
+        |view| reference_cache::reference_batches(view, &base),
         recompute,
     )?;
     let single_base = ModelSettings {
@@ -154,6 +156,7 @@ fn report_skies(args: &ReportArgs) -> anyhow::Result<()> {
         &args.out.join("reference_single.csv"),
         &views,
         |_| single_base.clone(),
+        |_| 1,
         recompute,
     )?;
     if args.reference_only {

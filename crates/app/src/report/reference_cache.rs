@@ -4,8 +4,13 @@
 //! carry a fingerprint of that view, its atmosphere and the reference's settings for it,
 //! so adding or changing a view computes only that view and keeps the others.
 //!
+//! A view may pool several batches, independent runs of the reference
+//! (`reference_batches.rs`); the fingerprint is that of one batch's settings, so asking
+//! for more batches computes only the new ones.
+//!
 //! The file: a title line, the column header, then per view a line
-//! `# view <id> fingerprint <16 hex digits>` followed by its rays in order.
+//! `# view <id> fingerprint <16 hex digits>`, followed by ` batches <n>` where it pools
+//! more than one, and then its rays in order.
 
 use std::collections::BTreeMap;
 use std::fs;
@@ -21,6 +26,7 @@ use rayon::prelude::*;
 
 use crate::files::write_atomically;
 use crate::progress::Progress;
+use crate::report::reference_batches::{batch_settings, pool_batch};
 use crate::report::view_sections::fingerprint_of;
 use crate::report::views::ReportView;
 
@@ -31,6 +37,8 @@ pub type ReferenceRadiance = Vec<Vec<RayRadiance>>;
 const TITLE: &str = "# atmos report reference radiance, one fingerprint per view";
 /// What starts the line naming a view and its fingerprint.
 const VIEW_MARK: &str = "# view ";
+/// What follows the fingerprint of a view that pools more than one batch.
+const BATCHES_MARK: &str = " batches ";
 
 /// The reference's settings for `view`: `base`, with the path cap `twilight_max_paths`
 /// where the sun is below the horizon and higher orders are computed (there the light of
@@ -92,6 +100,22 @@ const NAUTICAL_PATH_FACTOR: usize = 8;
 /// path (docs/models/reference.md, "Sixteen independent runs").
 const UMBRA_PATH_FACTOR: usize = 2;
 
+/// How many batches of `reference_settings`' paths `view`'s reference pools: several
+/// in nautical twilight from inside the atmosphere, where even the towards-light paths
+/// leave the judged rays' luminance about 3 % uncertain at `UMBRA_PATH_FACTOR` times
+/// the cap, as much as a good model's error; one elsewhere.
+pub fn reference_batches(view: &ReportView, base: &ModelSettings) -> usize {
+    let umbra = !view.is_daytime()
+        && base.max_orders != Some(1)
+        && view.sun_zenith_deg > NAUTICAL_SUN_ZENITH_DEG
+        && camera_inside_atmosphere(view);
+    if umbra { UMBRA_BATCHES } else { 1 }
+}
+
+/// Batches in nautical twilight from inside the atmosphere: four halve the standard
+/// error of one.
+const UMBRA_BATCHES: usize = 4;
+
 /// A stable 64-bit hash (FNV-1a) of everything one view's reference answers depend on:
 /// the view, its atmosphere and the reference's settings.
 pub fn fingerprint(view: &ReportView, settings: &ModelSettings) -> anyhow::Result<String> {
@@ -105,20 +129,24 @@ pub fn fingerprint(view: &ReportView, settings: &ModelSettings) -> anyhow::Resul
 #[derive(Clone, Debug, PartialEq)]
 struct CachedView {
     fingerprint: String,
+    batches: usize,
     answers: Vec<RayRadiance>,
 }
 
-/// Reads the views of the cache at `path` whose fingerprint matches, computes the others
-/// (in parallel, with progress; the views `recompute` names are computed whatever the
-/// cache holds) with the settings `settings_for` gives each view, and writes the cache
-/// of exactly these views.
+/// Reads the views of the cache at `path` whose fingerprint and batches match, computes
+/// the others (in parallel, with progress; the views `recompute` names are computed
+/// whatever the cache holds) with the settings `settings_for` gives each view, pooling
+/// the batches `batches_for` asks (a view cached with fewer batches keeps them and gets
+/// the rest), and writes the cache of exactly these views.
 pub fn load_or_compute(
     path: &Path,
     views: &[ReportView],
     settings_for: impl Fn(&ReportView) -> ModelSettings,
+    batches_for: impl Fn(&ReportView) -> usize,
     recompute: impl Fn(&ReportView) -> bool,
 ) -> anyhow::Result<ReferenceRadiance> {
     let settings: Vec<ModelSettings> = views.iter().map(&settings_for).collect();
+    let batches: Vec<usize> = views.iter().map(|v| batches_for(v).max(1)).collect();
     let wavelengths = settings
         .first()
         .map_or(0, |s: &ModelSettings| s.wavelengths_nm.len());
@@ -138,21 +166,35 @@ pub fn load_or_compute(
         }
     }
     let mut reference = Vec::with_capacity(views.len());
+    let mut done = vec![0; views.len()];
     let mut missing = Vec::new();
     for (i, (view, key)) in views.iter().zip(&keys).enumerate() {
-        match cached.remove(view.id) {
-            Some(c)
-                if c.fingerprint == *key
-                    && c.answers.len() == view.columns * view.rows
-                    && !recompute(view) =>
-            {
+        let found = cached.remove(view.id);
+        let usable = found.as_ref().is_some_and(|c| {
+            c.fingerprint == *key
+                && c.answers.len() == view.columns * view.rows
+                && c.batches <= batches[i]
+                && !recompute(view)
+        });
+        match found {
+            Some(c) if usable && c.batches == batches[i] => reference.push(c.answers),
+            Some(c) if usable => {
+                eprintln!(
+                    "report: adding batches {}-{} to view {} of {}",
+                    c.batches + 1,
+                    batches[i],
+                    view.id,
+                    path.display()
+                );
+                done[i] = c.batches;
                 reference.push(c.answers);
+                missing.push(i);
             }
             found => {
                 let why = if recompute(view) {
                     "asked to recompute it"
                 } else if found.is_some() {
-                    "its view, atmosphere or settings changed"
+                    "its view, atmosphere, settings or batches changed"
                 } else {
                     "not in the cache"
                 };
@@ -172,13 +214,21 @@ pub fn load_or_compute(
     }
     let total = missing
         .iter()
-        .map(|&i| views[i].columns * views[i].rows)
+        .map(|&i| views[i].columns * views[i].rows * (batches[i] - done[i]))
         .sum::<usize>();
     let progress = Progress::new("reference", "rays", total as u64);
     for &i in &missing {
-        reference[i] = compute(&views[i], &settings[i], &progress)?;
-        // Written after each view, so an interrupted run keeps what it finished.
-        write(path, &reference, views, &keys)?;
+        for batch in done[i]..batches[i] {
+            let answers = compute(&views[i], &batch_settings(&settings[i], batch), &progress)?;
+            reference[i] = if batch == 0 {
+                answers
+            } else {
+                pool_batch(&reference[i], batch, &answers)
+            };
+            done[i] = batch + 1;
+            // Written after each batch, so an interrupted run keeps what it finished.
+            write(path, &reference, views, &keys, &done)?;
+        }
     }
     progress.finish();
     Ok(reference)
@@ -210,12 +260,14 @@ fn header(wavelengths: usize) -> String {
     columns.join(",")
 }
 
-/// Writes the views that have answers (a view not computed yet is left out).
+/// Writes the views that have answers (a view not computed yet is left out), each with
+/// the number of batches it pools.
 fn write(
     path: &Path,
     reference: &[Vec<RayRadiance>],
     views: &[ReportView],
     keys: &[String],
+    batches: &[usize],
 ) -> anyhow::Result<()> {
     let wavelengths = reference
         .iter()
@@ -223,11 +275,15 @@ fn write(
         .next()
         .map_or(0, |r| r.radiance.len());
     let mut text = format!("{TITLE}\n{}\n", header(wavelengths));
-    for ((view, answers), key) in views.iter().zip(reference).zip(keys) {
+    for (((view, answers), key), n) in views.iter().zip(reference).zip(keys).zip(batches) {
         if answers.is_empty() {
             continue;
         }
-        text.push_str(&format!("{VIEW_MARK}{} fingerprint {key}\n", view.id));
+        text.push_str(&format!("{VIEW_MARK}{} fingerprint {key}", view.id));
+        if *n > 1 {
+            text.push_str(&format!("{BATCHES_MARK}{n}"));
+        }
+        text.push('\n');
         for (i, a) in answers.iter().enumerate() {
             let numbers = a
                 .radiance
@@ -265,6 +321,13 @@ fn read(path: &Path, wavelengths: usize) -> anyhow::Result<BTreeMap<String, Cach
             let Some((id, key)) = rest.split_once(" fingerprint ") else {
                 bail!("{}: expected \"# view <id> fingerprint <hex>\"", bad());
             };
+            let (key, batches) = match key.split_once(BATCHES_MARK) {
+                None => (key, 1),
+                Some((key, n)) => match n.parse::<usize>() {
+                    Ok(n) if n >= 1 => (key, n),
+                    _ => bail!("{}: batches {n:?} is not a count from 1", bad()),
+                },
+            };
             if views.contains_key(id) {
                 bail!("{}: view {id} appears twice", bad());
             }
@@ -272,6 +335,7 @@ fn read(path: &Path, wavelengths: usize) -> anyhow::Result<BTreeMap<String, Cach
                 id.to_string(),
                 CachedView {
                     fingerprint: key.to_string(),
+                    batches,
                     answers: Vec::new(),
                 },
             );
@@ -339,7 +403,7 @@ mod tests {
             .iter()
             .map(|v| fingerprint(v, &settings).unwrap())
             .collect();
-        write(&path, &reference, &views, &keys).unwrap();
+        write(&path, &reference, &views, &keys, &vec![1; views.len()]).unwrap();
         let read_back = read(&path, 3).unwrap();
         assert_eq!(read_back.len(), views.len());
         for ((view, expected), key) in views.iter().zip(&reference).zip(&keys) {
@@ -371,8 +435,9 @@ mod tests {
             .map(|v| fingerprint(v, &settings).unwrap())
             .collect();
         keys[1] = "0000000000000000".into();
-        write(&path, &made_up, &views, &keys).unwrap();
-        let reference = load_or_compute(&path, &views, |_| settings.clone(), |_| false).unwrap();
+        write(&path, &made_up, &views, &keys, &vec![1; views.len()]).unwrap();
+        let reference =
+            load_or_compute(&path, &views, |_| settings.clone(), |_| 1, |_| false).unwrap();
         assert_eq!(reference[0], made_up[0]);
         assert_ne!(reference[1], made_up[1]);
         assert_eq!(reference[2].len(), 2);
@@ -401,13 +466,64 @@ mod tests {
             .iter()
             .map(|v| fingerprint(v, &settings).unwrap())
             .collect();
-        write(&path, &made_up, &views, &keys).unwrap();
+        write(&path, &made_up, &views, &keys, &vec![1; views.len()]).unwrap();
         let again = views[1].id;
-        let reference =
-            load_or_compute(&path, &views, |_| settings.clone(), |v| v.id == again).unwrap();
+        let reference = load_or_compute(
+            &path,
+            &views,
+            |_| settings.clone(),
+            |_| 1,
+            |v| v.id == again,
+        )
+        .unwrap();
         assert_eq!(reference[0], made_up[0]);
         assert_ne!(reference[1], made_up[1]);
         assert!(reference[1][0].radiance[0] > 0.0);
+    }
+
+    #[test]
+    fn a_view_asked_for_more_batches_keeps_the_ones_it_has_and_pools_the_rest() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("reference.csv");
+        let mut settings = ModelSettings::default();
+        settings.options.set(MAX_PATHS.key, 1024);
+        let views: Vec<ReportView> = report_views(2, 1)
+            .into_iter()
+            .filter(|v| v.id == "twilight")
+            .collect();
+        let key = fingerprint(&views[0], &settings).unwrap();
+        // A made-up first batch, brighter than the view's own answers.
+        let first: Vec<RayRadiance> = (0..2)
+            .map(|_| RayRadiance {
+                radiance: vec![1.0; 3],
+                transmittance: vec![0.5; 3],
+                radiance_std_error: vec![0.1; 3],
+            })
+            .collect();
+        write(
+            &path,
+            std::slice::from_ref(&first),
+            &views,
+            &[key.clone()],
+            &[1],
+        )
+        .unwrap();
+        let two = load_or_compute(&path, &views, |_| settings.clone(), |_| 2, |_| false).unwrap();
+        let second = compute(&views[0], &batch_settings(&settings, 1), &Progress::Quiet).unwrap();
+        assert_eq!(two[0], pool_batch(&first, 1, &second));
+        let cached = read(&path, 3).unwrap();
+        assert_eq!(cached[views[0].id].batches, 2);
+        assert_eq!(cached[views[0].id].fingerprint, key);
+        assert!(fs::read_to_string(&path).unwrap().contains(" batches 2\n"));
+        // Asked again for two, nothing is computed; for one, the view starts afresh.
+        let again = load_or_compute(&path, &views, |_| settings.clone(), |_| 2, |_| false).unwrap();
+        assert_eq!(again, two);
+        let one = load_or_compute(&path, &views, |_| settings.clone(), |_| 1, |_| false).unwrap();
+        assert_eq!(
+            one[0],
+            compute(&views[0], &settings, &Progress::Quiet).unwrap()
+        );
+        assert_eq!(read(&path, 3).unwrap()[views[0].id].batches, 1);
     }
 
     #[test]
@@ -471,6 +587,21 @@ mod tests {
         for view in [terminator, civil] {
             assert_eq!(option(view, 1 << 17, TOWARDS_LIGHT), None, "{}", view.id);
         }
+        // And pooled from batches there alone, for the whole reference, not its single
+        // scattering.
+        for view in &views {
+            let expected = if view.id == "nautical" {
+                UMBRA_BATCHES
+            } else {
+                1
+            };
+            assert_eq!(reference_batches(view, &base), expected, "{}", view.id);
+        }
+        let single = ModelSettings {
+            max_orders: Some(1),
+            ..base.clone()
+        };
+        assert_eq!(reference_batches(nautical, &single), 1);
     }
 
     #[test]
@@ -480,7 +611,7 @@ mod tests {
         let views = report_views(1, 1);
         let settings = ModelSettings::default();
         let keys = vec![fingerprint(&views[0], &settings).unwrap()];
-        write(&path, &[answers(0, 1)], &views[..1], &keys).unwrap();
+        write(&path, &[answers(0, 1)], &views[..1], &keys, &[1]).unwrap();
         let good = fs::read_to_string(&path).unwrap();
 
         fs::write(&path, good.replace(TITLE, "# something else")).unwrap();
@@ -499,5 +630,10 @@ mod tests {
         fs::write(&path, without_section).unwrap();
         let e = format!("{:#}", read(&path, 3).unwrap_err());
         assert!(e.contains("outside its section"), "{e}");
+
+        let key = &keys[0];
+        fs::write(&path, good.replace(key, &format!("{key} batches 0"))).unwrap();
+        let e = format!("{:#}", read(&path, 3).unwrap_err());
+        assert!(e.contains("line 3") && e.contains("batches \"0\""), "{e}");
     }
 }
