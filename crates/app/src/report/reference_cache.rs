@@ -504,7 +504,7 @@ mod tests {
             &path,
             std::slice::from_ref(&first),
             &views,
-            &[key.clone()],
+            std::slice::from_ref(&key),
             &[1],
         )
         .unwrap();
