@@ -98,5 +98,21 @@ pub fn report_variants() -> Vec<Variant> {
             None,
             &["r=16", "mu=64", "mu_s=16", "nu=4"],
         ),
+        Variant::new(
+            ModelId::Bruneton,
+            None,
+            &[
+                "mu_s=86",
+                "min_mu_s=-0.31",
+                "mu_s_knee=true",
+                "nu=16",
+                "nu_by_angle=true",
+                "nu_edge=true",
+                "e_mu_s=512",
+                "sphere_zenith=128",
+                "sphere_azimuth=64",
+                "mie_directions=8",
+            ],
+        ),
     ]
 }
