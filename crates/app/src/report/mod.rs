@@ -32,6 +32,7 @@ pub mod paired_frames;
 pub mod plot;
 pub mod reference_batches;
 pub mod reference_cache;
+pub mod reference_cache_file;
 pub mod shafts;
 pub mod variants;
 pub mod view_sections;
