@@ -101,9 +101,9 @@ pub fn reference_batches(view: &ReportView, base: &ModelSettings) -> usize {
     if umbra { UMBRA_BATCHES } else { 1 }
 }
 
-/// Batches in nautical twilight from inside the atmosphere: three divide the standard
-/// error of one by sqrt(3).
-const UMBRA_BATCHES: usize = 3;
+/// Batches in nautical twilight from inside the atmosphere: four halve the standard
+/// error of one.
+const UMBRA_BATCHES: usize = 4;
 
 /// A stable 64-bit hash (FNV-1a) of everything one view's reference answers depend on:
 /// the view, its atmosphere and the reference's settings.
