@@ -90,9 +90,10 @@ const NAUTICAL_PATH_FACTOR: usize = 8;
 const UMBRA_PATH_FACTOR: usize = 2;
 
 /// How many batches of `reference_settings`' paths `view`'s reference pools: several
-/// in nautical twilight from inside the atmosphere, where even the towards-light paths
-/// leave the judged rays' luminance about 3 % uncertain at `UMBRA_PATH_FACTOR` times
-/// the cap, as much as a good model's error; one elsewhere.
+/// in nautical twilight from inside the atmosphere, where one run of the towards-light
+/// paths at `UMBRA_PATH_FACTOR` times the cap leaves the judged rays' luminance as
+/// uncertain as a good model's error (docs/models/reference.md, "Pooled batches"); one
+/// elsewhere.
 pub fn reference_batches(view: &ReportView, base: &ModelSettings) -> usize {
     let umbra = !view.is_daytime()
         && base.max_orders != Some(1)
