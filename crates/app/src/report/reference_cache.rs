@@ -48,7 +48,7 @@ pub fn reference_settings(
     }
     let (factor, towards_light) = if view.sun_zenith_deg <= NAUTICAL_SUN_ZENITH_DEG {
         (1, false)
-    } else if camera_inside_atmosphere(view) {
+    } else if umbra_seen_from_inside(view, base) {
         (UMBRA_PATH_FACTOR, true)
     } else {
         (NAUTICAL_PATH_FACTOR, false)
@@ -95,11 +95,21 @@ const UMBRA_PATH_FACTOR: usize = 2;
 /// uncertain as a good model's error (docs/models/reference.md, "Pooled batches"); one
 /// elsewhere.
 pub fn reference_batches(view: &ReportView, base: &ModelSettings) -> usize {
-    let umbra = !view.is_daytime()
+    if umbra_seen_from_inside(view, base) {
+        UMBRA_BATCHES
+    } else {
+        1
+    }
+}
+
+/// Whether `view` is the case whose paths are drawn towards the light and pooled from
+/// batches: higher orders, the sun more than 6 deg down, the camera inside the
+/// atmosphere.
+fn umbra_seen_from_inside(view: &ReportView, base: &ModelSettings) -> bool {
+    !view.is_daytime()
         && base.max_orders != Some(1)
         && view.sun_zenith_deg > NAUTICAL_SUN_ZENITH_DEG
-        && camera_inside_atmosphere(view);
-    if umbra { UMBRA_BATCHES } else { 1 }
+        && camera_inside_atmosphere(view)
 }
 
 /// Batches in nautical twilight from inside the atmosphere: four halve the standard
