@@ -81,6 +81,45 @@ fn tables_and_frames_match_the_cpu_with_the_nu_edge_weights() {
     }
 }
 
+/// The fourth coordinate as the azimuth between the view's and the sun's vertical planes
+/// (`nu_by_azimuth`), with the sun's axis down to 18 deg below the horizon: every table,
+/// then frames of nautical twilight from the ground (the view slice) and of the
+/// terminator from orbit (the 3D textures), whose rays towards the sun lie in or near
+/// its vertical plane.
+#[test]
+fn tables_and_frames_match_the_cpu_with_the_azimuth_axis() {
+    let Some(gpu) = gpu_or_skip("bruneton azimuth axis") else {
+        return;
+    };
+    let mut options = REDUCED.to_vec();
+    options.extend(["nu_by_azimuth=true", "min_mu_s=-0.31", "mu_s_knee=true"]);
+    let errors = compare_tables(&gpu, "earth", &options);
+    // As with the twilight sun angles, single Mie's worst texel sits on the shadow's edge.
+    assert!(errors[1] < 0.15, "{errors:?}");
+    assert!(
+        [errors[0], errors[2], errors[3]].iter().all(|e| *e < 1e-2),
+        "{errors:?}"
+    );
+    let mut renderer = Renderer::new(gpu).unwrap();
+    let mut in_the_sun_s_plane = view(2.0, 60.0, 102.0);
+    in_the_sun_s_plane.sun_azimuth_deg = 0.0;
+    for (name, v, fov) in [
+        (
+            "nautical twilight, towards the sun",
+            in_the_sun_s_plane,
+            90.0,
+        ),
+        (
+            "the terminator from orbit",
+            view(400_000.0, 110.0, 100.0),
+            40.0,
+        ),
+    ] {
+        let f = frame("earth", settings(&options), v, fov, 48, 27);
+        check(&mut renderer, name, &f, MAX_RELATIVE_ERROR);
+    }
+}
+
 /// The twilight settings: S and E down to the sun 20 deg below the horizon, u_nu linear
 /// in the scattering angle.
 const TWILIGHT: [&str; 6] = [

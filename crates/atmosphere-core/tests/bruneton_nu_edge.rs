@@ -122,17 +122,17 @@ fn the_clamped_weights_are_the_nominal_ones_away_from_the_edge_and_finite_at_the
     };
     // The sun 60 deg up, the view horizontal: nu spans [-0.87, 0.87]; 0.1 lies between
     // two texels that are both inside it.
-    let axis = NuAxis::new(&edge, 8, 0.1);
+    let axis = NuAxis::new(&edge, 8, 0.0, 0.5, 0.1);
     assert_eq!(axis.weight(0.0, 0.5), axis.nominal_weight);
     // A ray just inside the lower end: the lower texel holds the end's value, so the
     // read leans on it far more than its nominal weight says.
     let (low, _) = nu_range(0.0, 0.5);
-    let near = NuAxis::new(&edge, 8, low + 0.01);
+    let near = NuAxis::new(&edge, 8, 0.0, 0.5, low + 0.01);
     assert!(near.weight(0.0, 0.5) < 0.5 * near.nominal_weight);
     // View or sun at a pole: the range is one point; no NaN, a weight in [0, 1].
     for &(mu, mu_s) in &[(1.0, 0.3), (-1.0, 0.3), (0.2, 1.0), (0.2, -1.0), (1.0, 1.0)] {
         for &nu in &[-1.0, -0.3, 0.3, 0.999, 1.0] {
-            let w = NuAxis::new(&edge, 8, nu).weight(mu, mu_s);
+            let w = NuAxis::new(&edge, 8, mu, mu_s, nu).weight(mu, mu_s);
             assert!((0.0..=1.0).contains(&w), "mu {mu} mu_s {mu_s} nu {nu}: {w}");
         }
     }

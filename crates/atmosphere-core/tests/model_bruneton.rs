@@ -66,6 +66,7 @@ fn parameterization_round_trips() {
         mu_s_knee: false,
         geometric_mu_s: false,
         nu_edge: false,
+        nu_by_azimuth: false,
     };
     let knee = AngleMapping {
         min_mu_s: -0.31,

@@ -456,7 +456,8 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             density_nodes,
             sun_disk,
             sun_angular_radius,
-            nu_edge
+            nu_edge,
+            nu_by_azimuth
         ]
     );
     assert_layout!(

@@ -72,6 +72,9 @@ struct BrunetonParams {
     // 1 when look-ups weigh their nu texels between the texels' positions clamped to the
     // ray's range of nu.
     nu_edge: u32,
+    // 1 when the fourth coordinate is the azimuth between the view's and the sun's
+    // vertical planes.
+    nu_by_azimuth: u32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

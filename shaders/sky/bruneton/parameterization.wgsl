@@ -245,8 +245,27 @@ fn nu_edge_weight(a: Axis, u: f32, mu: f32, mu_s: f32) -> f32 {
     return clamp((u - lower) / (upper - lower), 0.0, 1.0);
 }
 
-// The nu axis of a look-up at (mu, mu_s, nu) (`NuAxis`).
+// `azimuth_unit`: u = 1 - phi / pi of the azimuth phi between the view's and the sun's
+// vertical planes, phi = atan2(sqrt(s^2 - c^2), c) with c = nu - mu mu_s and
+// s^2 = (1 - mu^2)(1 - mu_s^2) (1 at the zenith, where every phi is one direction).
+fn azimuth_unit(mu: f32, mu_s: f32, nu: f32) -> f32 {
+    let c = nu - mu * mu_s;
+    let s2 = max((1.0 - mu * mu) * (1.0 - mu_s * mu_s), 0.0);
+    return clamp(1.0 - atan2(safe_sqrt(s2 - c * c), c) / PI, 0.0, 1.0);
+}
+
+// `nu_at_azimuth_unit`: the view-sun cosine at azimuth coordinate u.
+fn nu_at_azimuth_unit(mu: f32, mu_s: f32, u: f32) -> f32 {
+    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
+    return clamp(mu * mu_s + s * cos(PI * (1.0 - u)), -1.0, 1.0);
+}
+
+// The nu axis of a look-up at (mu, mu_s, nu) (`NuAxis`): by azimuth with
+// `nu_by_azimuth`, else by u_nu with `nu_edge`'s weight.
 fn nu_axis(mu: f32, mu_s: f32, nu: f32) -> Axis {
+    if bruneton.nu_by_azimuth == 1u {
+        return axis(azimuth_unit(mu, mu_s, nu), bruneton.nu_size);
+    }
     let u = u_nu(nu);
     let a = axis(u, bruneton.nu_size);
     return Axis(a.i, nu_edge_weight(a, u, mu, mu_s));
@@ -280,7 +299,12 @@ fn texel(ir: u32, imu: u32, imus: u32, inu: u32) -> Texel {
         t.mu = horizon_mu_of(t.q, t.r);
     }
     t.mu_s = mu_s_from_u(texel_unit(imus, bruneton.mu_s_size));
-    t.nu = clamp_nu(t.mu, t.mu_s, nu_from_u(texel_unit(inu, bruneton.nu_size)));
+    let u = texel_unit(inu, bruneton.nu_size);
+    if bruneton.nu_by_azimuth == 1u {
+        t.nu = nu_at_azimuth_unit(t.mu, t.mu_s, u);
+    } else {
+        t.nu = clamp_nu(t.mu, t.mu_s, nu_from_u(u));
+    }
     return t;
 }
 

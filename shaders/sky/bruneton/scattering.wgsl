@@ -37,8 +37,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let tx = texel_of_index(index);
     let ray = row_ray(tx);
-    let u = u_nu(tx.nu);
-    let nu_at = axis(u, bruneton.nu_size);
     let n = bruneton.view_samples;
     var nodes = start_nodes(ray, n);
     var sum = vec3<f32>(0.0);
@@ -47,8 +45,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let p = table_position(node.q, node.r, ray.r_mu + node.t, 0.0, 0.0, ray.ground);
         let mu_s_t = node_sun_cosine(ray, node, tx.mu_s, tx.nu);
         let s = axis(u_mu_s(mu_s_t), bruneton.mu_s_size);
-        // With `nu_edge` the node's mu and mu_s bound nu, so the weight moves along the ray.
-        let wnu = nu_edge_weight(nu_at, u, clamp((ray.r_mu + node.t) / node.r, -1.0, 1.0), mu_s_t);
+        // The node's mu and mu_s move the nu weight along the ray with `nu_edge` (they
+        // bound nu) and the texels too with `nu_by_azimuth` (they turn the ray's nu
+        // into another azimuth).
+        let nu_at = nu_axis(clamp((ray.r_mu + node.t) / node.r, -1.0, 1.0), mu_s_t, tx.nu);
+        let wnu = nu_at.w;
         let geometric = geometric_pair(s.i);
         let a = along_mu_s(plane_entry(p, s.i, nu_at.i), plane_entry(p, s.i + 1u, nu_at.i), s.w, geometric);
         let b = along_mu_s(plane_entry(p, s.i, nu_at.i + 1u), plane_entry(p, s.i + 1u, nu_at.i + 1u), s.w, geometric);

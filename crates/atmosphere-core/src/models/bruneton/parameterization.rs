@@ -141,6 +141,14 @@ pub struct AngleMapping {
     /// range of nu the ray's (mu, mu_s) allow ([`NuAxis::weight`]) rather than by their
     /// nominal u_nu (the paper).
     pub nu_edge: bool,
+    /// The fourth coordinate is the azimuth phi between the view's and the sun's
+    /// vertical planes, u = 1 - phi / pi ([`azimuth_unit`]), instead of a function of nu
+    /// alone: every texel then holds a direction its (mu, mu_s) allows, so no texel is
+    /// clamped to the edge of its range of nu and a look-up is continuous across texels
+    /// (with nu, a ray in the sun's vertical plane reads texels clamped at other mu, and
+    /// its radiance jumps where its nu crosses a texel). Excludes `nu_by_angle` and
+    /// `nu_edge`.
+    pub nu_by_azimuth: bool,
 }
 
 impl AngleMapping {
@@ -151,6 +159,7 @@ impl AngleMapping {
         mu_s_knee: false,
         geometric_mu_s: false,
         nu_edge: false,
+        nu_by_azimuth: false,
     };
 
     /// The lowest sun cosine of the paper's curve: `min_mu_s`, or the knee (-0.2) when
@@ -260,6 +269,24 @@ pub fn clamp_nu(mu: f64, mu_s: f64, nu: f64) -> f64 {
     nu.clamp(low, high)
 }
 
+/// The unit coordinate of the azimuth phi between the view's and the sun's vertical
+/// planes, u = 1 - phi / pi (1 towards the sun), from nu = mu mu_s + s cos(phi) with
+/// s = sqrt((1 - mu^2)(1 - mu_s^2)): phi = atan2(sqrt(s^2 - c^2), c), c = nu - mu mu_s,
+/// with no division, so that a view or sun at the zenith (s = 0, where every phi is the
+/// same direction) gives u = 1 and a nu just outside its range by rounding the edge.
+pub fn azimuth_unit(mu: f64, mu_s: f64, nu: f64) -> f64 {
+    let c = nu - mu * mu_s;
+    let s2 = ((1.0 - mu * mu) * (1.0 - mu_s * mu_s)).max(0.0);
+    1.0 - safe_sqrt(s2 - c * c).atan2(c) / std::f64::consts::PI
+}
+
+/// Inverse of [`azimuth_unit`]: the view-sun cosine at unit azimuth coordinate u for view
+/// and sun zenith cosines mu and mu_s.
+pub fn nu_at_azimuth_unit(mu: f64, mu_s: f64, u: f64) -> f64 {
+    let s = safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
+    (mu * mu_s + s * (std::f64::consts::PI * (1.0 - u)).cos()).clamp(-1.0, 1.0)
+}
+
 /// A view-sun cosine's place along the nu axis: its lower texel, the nominal weight of
 /// the next, and what [`NuAxis::weight`] needs to move that weight for a ray's (mu, mu_s).
 #[derive(Clone, Copy, Debug)]
@@ -274,9 +301,14 @@ pub struct NuAxis {
 }
 
 impl NuAxis {
-    /// Where nu falls on an axis of `n` texels of `angles`.
-    pub fn new(angles: &AngleMapping, n: usize, nu: f64) -> NuAxis {
-        let u = angles.u_nu(nu);
+    /// Where nu falls on an axis of `n` texels of `angles` for a ray of view and sun
+    /// zenith cosines mu and mu_s (which only `nu_by_azimuth` reads here).
+    pub fn new(angles: &AngleMapping, n: usize, mu: f64, mu_s: f64, nu: f64) -> NuAxis {
+        let u = if angles.nu_by_azimuth {
+            azimuth_unit(mu, mu_s, nu)
+        } else {
+            angles.u_nu(nu)
+        };
         let (lower, nominal_weight) = axis(u, n);
         let units = [texel_unit(lower, n), texel_unit((lower + 1).min(n - 1), n)];
         NuAxis {
@@ -416,7 +448,12 @@ pub fn texel_parameters(
         mu = crate::optics::geometry::horizon_mu(r, radii.bottom_m) + 1e-12;
     }
     let mu_s = size.angles.mu_s_from_u(texel_unit(imus, size.mu_s));
-    let nu = clamp_nu(mu, mu_s, size.angles.nu_from_u(texel_unit(inu, size.nu)));
+    let u = texel_unit(inu, size.nu);
+    let nu = if size.angles.nu_by_azimuth {
+        nu_at_azimuth_unit(mu, mu_s, u)
+    } else {
+        clamp_nu(mu, mu_s, size.angles.nu_from_u(u))
+    };
     (r, mu, mu_s, nu, ground)
 }
 
@@ -440,7 +477,7 @@ pub fn table_position(
         (if ground { imu } else { imu + half }, wmu),
         axis(size.angles.u_mu_s(mu_s), size.mu_s),
         {
-            let nu_axis = NuAxis::new(&size.angles, size.nu, nu);
+            let nu_axis = NuAxis::new(&size.angles, size.nu, mu, mu_s, nu);
             (nu_axis.lower, nu_axis.weight(mu, mu_s))
         },
     ]

@@ -114,12 +114,14 @@ pub const MU_S_KNEE: &str = "mu_s_knee";
 pub const GEOMETRIC_MU_S: &str = "geometric_mu_s";
 pub const DENSITY_NODES: &str = "density_nodes";
 pub const NU_EDGE: &str = "nu_edge";
+pub const NU_BY_AZIMUTH: &str = "nu_by_azimuth";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
     /// `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`, `sun_disk`, `mie_directions`,
-    /// `geometric_mu_s`, `density_nodes`, `nu_edge`; the paper's values where absent.
+    /// `geometric_mu_s`, `density_nodes`, `nu_edge`, `nu_by_azimuth`; the paper's values
+    /// where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -135,6 +137,8 @@ impl BrunetonSettings {
                         geometric_mu_s: o
                             .flag(GEOMETRIC_MU_S, d.scattering_size.angles.geometric_mu_s)?,
                         nu_edge: o.flag(NU_EDGE, d.scattering_size.angles.nu_edge)?,
+                        nu_by_azimuth: o
+                            .flag(NU_BY_AZIMUTH, d.scattering_size.angles.nu_by_azimuth)?,
                     },
                 },
                 irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),
@@ -177,6 +181,14 @@ impl BrunetonSettings {
                 "bruneton setting mu={} must be even (half the rays meet the ground)",
                 s.mu
             )));
+        }
+        if s.angles.nu_by_azimuth && (s.angles.nu_by_angle || s.angles.nu_edge) {
+            return Err(ModelError::Settings(
+                "bruneton setting nu_by_azimuth=true replaces nu_by_angle and nu_edge \
+                 (its texels span only the directions their mu and mu_s allow): set those \
+                 false"
+                    .to_string(),
+            ));
         }
         if !self.mie_directions.is_multiple_of(8) {
             return Err(ModelError::Settings(format!(

@@ -17,7 +17,8 @@ use crate::optics::geometry::radius_at;
 #[derive(Clone, Copy, Debug)]
 struct RayNode {
     r: f64,
-    /// The view's zenith cosine at the node (for `nu_edge`'s weights).
+    /// The view's zenith cosine at the node (for `nu_edge`'s weights and
+    /// `nu_by_azimuth`'s texels).
     mu: f64,
     /// r / r_t and t / r_t, with r the ray's start and t the node's distance: the sun
     /// cosine there is mu_s r / r_t + nu t / r_t.
@@ -248,11 +249,13 @@ impl Builder<'_> {
                 .iter()
                 .map(|n| n.weighted_transmittance.map(|t| t as f32))
                 .collect();
+            let by_azimuth = size.angles.nu_by_azimuth;
             for &(mu_s, nu) in texels {
-                let nu_axis = NuAxis::new(&size.angles, size.nu, nu);
-                let inu = nu_axis.lower;
+                let nu_axis = NuAxis::new(&size.angles, size.nu, nodes[0].mu, mu_s, nu);
                 // The nu weight moves along the ray with `nu_edge` (the node's mu and
-                // mu_s bound its nu), else it is the texel's own.
+                // mu_s bound its nu), and the texels too with `nu_by_azimuth` (the node's
+                // mu and mu_s turn the ray's nu into another azimuth); else both are the
+                // texel's own.
                 let fixed = (!size.angles.nu_edge).then_some(nu_axis.nominal_weight as f32);
                 let mut sum = [0.0f32; 3];
                 for ((node, plane), t) in nodes
@@ -261,7 +264,13 @@ impl Builder<'_> {
                     .zip(&weights)
                 {
                     let mu_s_t = node.sun_cosine(mu_s, nu);
-                    let wnu = fixed.unwrap_or_else(|| nu_axis.weight(node.mu, mu_s_t) as f32);
+                    let (inu, wnu) = if by_azimuth {
+                        let at = NuAxis::new(&size.angles, size.nu, node.mu, mu_s_t, nu);
+                        (at.lower, at.nominal_weight as f32)
+                    } else {
+                        let w = fixed.unwrap_or_else(|| nu_axis.weight(node.mu, mu_s_t) as f32);
+                        (nu_axis.lower, w)
+                    };
                     let (imus, wmus) = mu_s_axis.at(mu_s_t);
                     let lo = &plane[inu * size.mu_s + imus..];
                     let hi = &plane[(inu + 1) * size.mu_s + imus..];

@@ -82,6 +82,9 @@ pub struct BrunetonUniform {
     /// 1 when look-ups weigh their nu texels between the texels' positions clamped to
     /// the ray's range of nu (`AngleMapping::nu_edge`).
     pub nu_edge: u32,
+    /// 1 when the fourth coordinate is the azimuth between the view's and the sun's
+    /// vertical planes (`AngleMapping::nu_by_azimuth`).
+    pub nu_by_azimuth: u32,
 }
 
 impl BrunetonUniform {
@@ -145,6 +148,7 @@ impl BrunetonUniform {
             sun_disk: u32::from(settings.sun_disk),
             sun_angular_radius: atmosphere.sun.angular_radius_rad as f32,
             nu_edge: u32::from(s.angles.nu_edge),
+            nu_by_azimuth: u32::from(s.angles.nu_by_azimuth),
         }
     }
 }
