@@ -82,17 +82,23 @@ fn tables_and_frames_match_the_cpu_with_the_nu_edge_weights() {
 }
 
 /// The fourth coordinate as the azimuth between the view's and the sun's vertical planes
-/// (`nu_by_azimuth`), with the sun's axis down to 18 deg below the horizon: every table,
+/// (`nu_by_azimuth`) and the sky's mu texels spread towards the zenith (`mu_zenith`),
+/// with the sun's axis down to 18 deg below the horizon: every table,
 /// then frames of nautical twilight from the ground (the view slice) and of the
 /// terminator from orbit (the 3D textures), whose rays towards the sun lie in or near
 /// its vertical plane.
 #[test]
-fn tables_and_frames_match_the_cpu_with_the_azimuth_axis() {
+fn tables_and_frames_match_the_cpu_with_the_azimuth_axis_and_the_zenith_texels() {
     let Some(gpu) = gpu_or_skip("bruneton azimuth axis") else {
         return;
     };
     let mut options = REDUCED.to_vec();
-    options.extend(["nu_by_azimuth=true", "min_mu_s=-0.31", "mu_s_knee=true"]);
+    options.extend([
+        "nu_by_azimuth=true",
+        "mu_zenith=true",
+        "min_mu_s=-0.31",
+        "mu_s_knee=true",
+    ]);
     let errors = compare_tables(&gpu, "earth", &options);
     // As with the twilight sun angles, single Mie's worst texel sits on the shadow's edge.
     assert!(errors[1] < 0.15, "{errors:?}");

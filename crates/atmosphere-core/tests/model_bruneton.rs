@@ -67,6 +67,7 @@ fn parameterization_round_trips() {
         geometric_mu_s: false,
         nu_edge: false,
         nu_by_azimuth: false,
+        mu_zenith: false,
     };
     let knee = AngleMapping {
         min_mu_s: -0.31,
@@ -121,24 +122,54 @@ fn parameterization_round_trips() {
     // By angle, u_nu is linear in the scattering angle: 90 deg in the middle.
     assert!((twilight.u_nu(0.0) - 0.5).abs() < 1e-15);
     assert!((twilight.u_nu(0.5) - 2.0 / 3.0).abs() < 1e-12);
-    // Texels of reachable (r, mu) fall back on themselves with weight 0 (nu is left out:
-    // it is clamped to what mu and mu_s allow).
-    let size = BrunetonSettings::default().scattering_size;
-    for &(ir, imu, imus, inu) in &[
-        (0, 70, 3, 2),
-        (5, 10, 31, 7),
-        (31, 127, 0, 0),
-        (17, 40, 12, 4),
-    ] {
-        let (r, mu, mu_s, nu, ground) = texel_parameters(&m, &size, ir, imu, imus, inu);
-        let p = table_position(&m, &size, r, mu, mu_s, nu, ground);
-        let got = [ir, imu, imus, inu];
-        for (k, (i, w)) in p.iter().enumerate().take(3) {
-            let at = if *w > 0.5 { i + 1 } else { *i };
-            let off = w.min(1.0 - w);
-            assert!(at == got[k] && off < 1e-6, "axis {k}: {p:?} for {got:?}");
+    // Texels of reachable (r, mu) fall back on themselves with weight 0 (by nu, nu is
+    // left out: it is clamped to what mu and mu_s allow; by azimuth it is not), also with
+    // the sky's texels spread towards the zenith.
+    let paper = BrunetonSettings::default().scattering_size;
+    let spread = ScatteringSize {
+        angles: AngleMapping {
+            mu_zenith: true,
+            nu_by_azimuth: true,
+            ..AngleMapping::PAPER
+        },
+        ..paper
+    };
+    for (size, axes) in [(paper, 3), (spread, 4)] {
+        for &(ir, imu, imus, inu) in &[
+            (0, 70, 3, 2),
+            (5, 10, 31, 7),
+            (31, 127, 0, 0),
+            (17, 40, 12, 4),
+            (9, 65, 20, 5),
+            (3, 100, 8, 6),
+        ] {
+            let (r, mu, mu_s, nu, ground) = texel_parameters(&m, &size, ir, imu, imus, inu);
+            let p = table_position(&m, &size, r, mu, mu_s, nu, ground);
+            let got = [ir, imu, imus, inu];
+            for (k, (i, w)) in p.iter().enumerate().take(axes) {
+                let at = if *w > 0.5 { i + 1 } else { *i };
+                let off = w.min(1.0 - w);
+                assert!(at == got[k] && off < 1e-6, "axis {k}: {p:?} for {got:?}");
+            }
         }
     }
+    // The sky's spread: its inverse, its ends, and from the ground the texels above 45
+    // deg up (t = 0.03 there): 2 of the paper's 64, 7 spread.
+    let zenith = AngleMapping {
+        mu_zenith: true,
+        ..AngleMapping::PAPER
+    };
+    for k in 0..=50 {
+        let t = k as f64 / 50.0;
+        assert!((zenith.sky_t(zenith.sky_x_mu(t)) - t).abs() < 1e-12, "{t}");
+    }
+    assert_eq!((zenith.sky_x_mu(0.0), zenith.sky_x_mu(1.0)), (0.0, 1.0));
+    let above_45 = |angles: &AngleMapping| {
+        let x = angles.sky_x_mu(m.x_mu(m.bottom_m, 45f64.to_radians().sin(), false));
+        (x * 63.0).floor() as usize + 1
+    };
+    assert_eq!(above_45(&AngleMapping::PAPER), 2);
+    assert_eq!(above_45(&zenith), 7);
 }
 
 /// Daytime rays: camera on the ground, at 1 km and at 10 km; sky, horizon-near, down

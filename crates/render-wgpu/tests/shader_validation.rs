@@ -457,7 +457,8 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             sun_disk,
             sun_angular_radius,
             nu_edge,
-            nu_by_azimuth
+            nu_by_azimuth,
+            mu_zenith
         ]
     );
     assert_layout!(

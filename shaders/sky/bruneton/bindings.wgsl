@@ -75,6 +75,8 @@ struct BrunetonParams {
     // 1 when the fourth coordinate is the azimuth between the view's and the sun's
     // vertical planes.
     nu_by_azimuth: u32,
+    // 1 when the sky half of the mu axis spreads its texels towards the zenith.
+    mu_zenith: u32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

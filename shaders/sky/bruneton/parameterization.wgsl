@@ -99,7 +99,25 @@ fn x_mu(q: f32, r: f32, r_mu: f32, ground: bool) -> f32 {
     if d.y <= d.x {
         return 0.0;
     }
-    return clamp((top_distance(q, r_mu) - d.x) / (d.y - d.x), 0.0, 1.0);
+    return sky_x_mu(clamp((top_distance(q, r_mu) - d.x) / (d.y - d.x), 0.0, 1.0));
+}
+
+// `AngleMapping::sky_x_mu`: the sky half's unit coordinate from the paper's t, with
+// `mu_zenith` (t + sqrt(t)) / 2.
+fn sky_x_mu(t: f32) -> f32 {
+    if bruneton.mu_zenith == 1u {
+        return 0.5 * (t + sqrt(max(t, 0.0)));
+    }
+    return t;
+}
+
+// `AngleMapping::sky_t`: the inverse, t = s^2 with s = (sqrt(1 + 8 x) - 1) / 2.
+fn sky_t(x: f32) -> f32 {
+    if bruneton.mu_zenith == 1u {
+        let s = 0.5 * (sqrt(1.0 + 8.0 * max(x, 0.0)) - 1.0);
+        return s * s;
+    }
+    return x;
 }
 
 // `Radii::mu_from_x`.
@@ -112,7 +130,7 @@ fn mu_from_x(q: f32, r: f32, x: f32, ground: bool) -> f32 {
         }
         return clamp(-(q + end * end) / (2.0 * r * end), -1.0, 1.0);
     }
-    let end = d.x + x * (d.y - d.x);
+    let end = d.x + sky_t(x) * (d.y - d.x);
     if end <= 0.0 {
         return 1.0;
     }

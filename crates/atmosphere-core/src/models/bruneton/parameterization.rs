@@ -149,6 +149,13 @@ pub struct AngleMapping {
     /// its radiance jumps where its nu crosses a texel). Excludes `nu_by_angle` and
     /// `nu_edge`.
     pub nu_by_azimuth: bool,
+    /// The sky half of the mu axis spreads its texels towards the zenith: its unit
+    /// coordinate is (t + sqrt(t)) / 2 of the paper's t, the distance to the top mapped
+    /// from its range ([`AngleMapping::sky_x_mu`]). Near the zenith d - d_min grows as
+    /// the square of the zenith angle, so at the paper's t the whole sky above 55 deg
+    /// falls within one texel from the ground at 64 texels; sqrt(t) is linear in the
+    /// angle there. At the horizon the texels are 3/4 of the paper's density.
+    pub mu_zenith: bool,
 }
 
 impl AngleMapping {
@@ -160,6 +167,7 @@ impl AngleMapping {
         geometric_mu_s: false,
         nu_edge: false,
         nu_by_azimuth: false,
+        mu_zenith: false,
     };
 
     /// The lowest sun cosine of the paper's curve: `min_mu_s`, or the knee (-0.2) when
@@ -222,6 +230,27 @@ impl AngleMapping {
     /// Whether E is read geometrically between its mu_s texels `i` and `i + 1` of `n`.
     pub fn irradiance_geometric_pair(&self, i: usize, n: usize) -> bool {
         self.geometric_mu_s && i + 1 < n && self.irradiance_mu_s(texel_unit(i + 1, n)) <= 0.0
+    }
+
+    /// The unit coordinate within the sky half of the mu axis from the paper's t in
+    /// [0, 1] (0 at the zenith): t itself, or with `mu_zenith` (t + sqrt(t)) / 2.
+    pub fn sky_x_mu(&self, t: f64) -> f64 {
+        if self.mu_zenith {
+            0.5 * (t + t.max(0.0).sqrt())
+        } else {
+            t
+        }
+    }
+
+    /// Inverse of [`AngleMapping::sky_x_mu`]: with `mu_zenith` t = s^2 for the root
+    /// s = (sqrt(1 + 8 x) - 1) / 2 of s^2 + s = 2 x.
+    pub fn sky_t(&self, x: f64) -> f64 {
+        if self.mu_zenith {
+            let s = 0.5 * ((1.0 + 8.0 * x.max(0.0)).sqrt() - 1.0);
+            s * s
+        } else {
+            x
+        }
     }
 
     /// u_nu: (1 + nu) / 2 (the paper), or 1 - acos(nu) / pi.
@@ -439,6 +468,7 @@ pub fn texel_parameters(
     let half = size.half_mu();
     let ground = imu < half;
     let x = texel_unit(if ground { imu } else { imu - half }, half);
+    let x = if ground { x } else { size.angles.sky_t(x) };
     let mut mu = radii.mu_from_x(r, x, ground);
     // Keep the texel on its side of the horizon (rounding at the horizon itself).
     let hits = ray_hits_ground(r, mu, radii.bottom_m);
@@ -471,6 +501,11 @@ pub fn table_position(
 ) -> [(usize, f64); 4] {
     let half = size.half_mu();
     let x_mu = radii.x_mu(r, mu, ground);
+    let x_mu = if ground {
+        x_mu
+    } else {
+        size.angles.sky_x_mu(x_mu)
+    };
     let (imu, wmu) = axis(x_mu, half);
     [
         axis(radii.u_r(r), size.r),

@@ -115,13 +115,14 @@ pub const GEOMETRIC_MU_S: &str = "geometric_mu_s";
 pub const DENSITY_NODES: &str = "density_nodes";
 pub const NU_EDGE: &str = "nu_edge";
 pub const NU_BY_AZIMUTH: &str = "nu_by_azimuth";
+pub const MU_ZENITH: &str = "mu_zenith";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
     /// `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`, `sun_disk`, `mie_directions`,
-    /// `geometric_mu_s`, `density_nodes`, `nu_edge`, `nu_by_azimuth`; the paper's values
-    /// where absent.
+    /// `geometric_mu_s`, `density_nodes`, `nu_edge`, `nu_by_azimuth`, `mu_zenith`; the
+    /// paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -139,6 +140,7 @@ impl BrunetonSettings {
                         nu_edge: o.flag(NU_EDGE, d.scattering_size.angles.nu_edge)?,
                         nu_by_azimuth: o
                             .flag(NU_BY_AZIMUTH, d.scattering_size.angles.nu_by_azimuth)?,
+                        mu_zenith: o.flag(MU_ZENITH, d.scattering_size.angles.mu_zenith)?,
                     },
                 },
                 irradiance_size: (o.count(&E_MU_S, d.irradiance_size.0)?, d.irradiance_size.1),

@@ -85,6 +85,9 @@ pub struct BrunetonUniform {
     /// 1 when the fourth coordinate is the azimuth between the view's and the sun's
     /// vertical planes (`AngleMapping::nu_by_azimuth`).
     pub nu_by_azimuth: u32,
+    /// 1 when the sky half of the mu axis spreads its texels towards the zenith
+    /// (`AngleMapping::mu_zenith`).
+    pub mu_zenith: u32,
 }
 
 impl BrunetonUniform {
@@ -149,6 +152,7 @@ impl BrunetonUniform {
             sun_angular_radius: atmosphere.sun.angular_radius_rad as f32,
             nu_edge: u32::from(s.angles.nu_edge),
             nu_by_azimuth: u32::from(s.angles.nu_by_azimuth),
+            mu_zenith: u32::from(s.angles.mu_zenith),
         }
     }
 }
