@@ -4,27 +4,20 @@
 //! sun's vertical plane, where the paper's nu axis holds texels clamped to the edge of
 //! their range at other mu and the read jumps where the ray's nu crosses a texel.
 
-use atmosphere_core::atmosphere::Atmosphere;
+mod common;
+
 use atmosphere_core::models::bruneton::BrunetonSettings;
 use atmosphere_core::models::bruneton::parameterization::{
     AngleMapping, NuAxis, Radii, ScatteringSize, azimuth_unit, nu_at_azimuth_unit, nu_range,
-    texel_parameters,
 };
 use atmosphere_core::models::bruneton::tables::Table4;
 use atmosphere_core::models::options::ModelOptions;
+use common::bruneton_tables::{earth_radii, table_of};
 
 const AZIMUTH: AngleMapping = AngleMapping {
     nu_by_azimuth: true,
     ..AngleMapping::PAPER
 };
-
-fn earth_radii() -> Radii {
-    let a = Atmosphere::preset("earth").unwrap();
-    Radii {
-        bottom_m: a.bottom_radius_m,
-        top_m: a.top_radius_m,
-    }
-}
 
 #[test]
 fn the_azimuth_coordinate_inverts_and_stays_within_the_range_of_nu() {
@@ -68,13 +61,7 @@ fn direction_table(radii: &Radii, angles: AngleMapping) -> Table4 {
         nu: 16,
         angles,
     };
-    let mut table = Table4::zeros(size);
-    for (i, v) in table.data.iter_mut().enumerate() {
-        let (ir, imu, imus, inu) = size.coords(i);
-        let (_, mu, _, nu, _) = texel_parameters(radii, &size, ir, imu, imus, inu);
-        *v = [field(mu, nu) as f32; 3];
-    }
-    table
+    table_of(radii, size, field)
 }
 
 fn field(mu: f64, nu: f64) -> f64 {

@@ -4,8 +4,9 @@
 //! as if it lay a texel's spacing away. A table holding a smooth function of each texel's
 //! true (clamped) nu, read at rays near the edges, shows the difference.
 
+mod common;
+
 use atmosphere_core::analysis::stability::run_with;
-use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::bruneton::BrunetonSettings;
 use atmosphere_core::models::bruneton::parameterization::{
     AngleMapping, NuAxis, Radii, ScatteringSize, nu_range, table_position, texel_parameters,
@@ -14,20 +15,13 @@ use atmosphere_core::models::bruneton::tables::Table4;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::options::ModelOptions;
 use atmosphere_core::models::sky_model::ModelSettings;
+use common::bruneton_tables::{earth_radii, table_of};
 
 /// A function of the true view-sun cosine growing towards the sun, linear along the
 /// table's nu axis: linear interpolation between the texels' true positions reads it
 /// exactly, so what a read loses is the weighting alone.
 fn lobe(angles: &AngleMapping, nu: f64) -> f64 {
     1.0 + 4.0 * angles.u_nu(nu)
-}
-
-fn earth_radii() -> Radii {
-    let a = Atmosphere::preset("earth").unwrap();
-    Radii {
-        bottom_m: a.bottom_radius_m,
-        top_m: a.top_radius_m,
-    }
 }
 
 /// A table of `angles` whose every texel holds `lobe` of its clamped nu.
@@ -39,13 +33,7 @@ fn lobe_table(radii: &Radii, angles: AngleMapping) -> Table4 {
         nu: 16,
         angles,
     };
-    let mut table = Table4::zeros(size);
-    for (i, v) in table.data.iter_mut().enumerate() {
-        let (ir, imu, imus, inu) = size.coords(i);
-        let (_, _, _, nu, _) = texel_parameters(radii, &size, ir, imu, imus, inu);
-        *v = [lobe(&angles, nu) as f32; 3];
-    }
-    table
+    table_of(radii, size, |_, nu| lobe(&angles, nu))
 }
 
 /// Relative errors of the table read at rays on its (r, mu, mu_s) texels whose nu lies

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod beams;
+pub mod bruneton_tables;
 pub mod hillaire;
 pub mod voxel_ball;
 
