@@ -86,7 +86,8 @@ fn distance_range(q: f32, r: f32, ground: bool) -> vec2<f32> {
     return vec2<f32>((h2 - q) / (atmosphere.top_radius_m + r), rho + sqrt(h2));
 }
 
-// `Radii::x_mu`: the unit coordinate within the half of the mu axis chosen by `ground`.
+// `Radii::x_mu`, then on the sky's half `AngleMapping::sky_x_mu` (as `table_position`
+// does): the unit coordinate within the half of the mu axis chosen by `ground`.
 fn x_mu(q: f32, r: f32, r_mu: f32, ground: bool) -> f32 {
     let d = distance_range(q, r, ground);
     if ground {
@@ -120,7 +121,7 @@ fn sky_t(x: f32) -> f32 {
     return x;
 }
 
-// `Radii::mu_from_x`.
+// `Radii::mu_from_x` of the sky half's t = `sky_t(x)` (as `texel_parameters` does).
 fn mu_from_x(q: f32, r: f32, x: f32, ground: bool) -> f32 {
     let d = distance_range(q, r, ground);
     if ground {

@@ -37,6 +37,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let tx = texel_of_index(index);
     let ray = row_ray(tx);
+    let u = u_nu(tx.nu);
+    let nu_texel = axis(u, bruneton.nu_size);
     let n = bruneton.view_samples;
     var nodes = start_nodes(ray, n);
     var sum = vec3<f32>(0.0);
@@ -47,8 +49,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let s = axis(u_mu_s(mu_s_t), bruneton.mu_s_size);
         // The node's mu and mu_s move the nu weight along the ray with `nu_edge` (they
         // bound nu) and the texels too with `nu_by_azimuth` (they turn the ray's nu
-        // into another azimuth).
-        let nu_at = nu_axis(clamp((ray.r_mu + node.t) / node.r, -1.0, 1.0), mu_s_t, tx.nu);
+        // into another azimuth); else both are the texel's own.
+        let mu_t = clamp((ray.r_mu + node.t) / node.r, -1.0, 1.0);
+        var nu_at = nu_texel;
+        if bruneton.nu_by_azimuth == 1u {
+            nu_at = axis(azimuth_unit(mu_t, mu_s_t, tx.nu), bruneton.nu_size);
+        } else {
+            nu_at.w = nu_edge_weight(nu_texel, u, mu_t, mu_s_t);
+        }
         let wnu = nu_at.w;
         let geometric = geometric_pair(s.i);
         let a = along_mu_s(plane_entry(p, s.i, nu_at.i), plane_entry(p, s.i + 1u, nu_at.i), s.w, geometric);

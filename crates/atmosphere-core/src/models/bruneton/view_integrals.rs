@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::models::bruneton::builder::{Builder, to_f32};
 use crate::models::bruneton::node_placement::{FINE_PER_NODE, crowded_distance, density_distances};
 use crate::models::bruneton::parameterization::{
-    AngleMapping, NuAxis, table_position, texel_parameters,
+    AngleMapping, NuAxis, axis, azimuth_unit, table_position, texel_parameters,
 };
 use crate::models::bruneton::tables::{Table4, along_mu_s};
 use crate::optics::column::optical_depth;
@@ -265,8 +265,8 @@ impl Builder<'_> {
                 {
                     let mu_s_t = node.sun_cosine(mu_s, nu);
                     let (inu, wnu) = if by_azimuth {
-                        let at = NuAxis::new(&size.angles, size.nu, node.mu, mu_s_t, nu);
-                        (at.lower, at.nominal_weight as f32)
+                        let (i, w) = axis(azimuth_unit(node.mu, mu_s_t, nu), size.nu);
+                        (i, w as f32)
                     } else {
                         let w = fixed.unwrap_or_else(|| nu_axis.weight(node.mu, mu_s_t) as f32);
                         (nu_axis.lower, w)
