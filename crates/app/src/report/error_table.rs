@@ -4,7 +4,8 @@
 //! Columns: `model`, `setting` (the setting's `key=value` items, `orders=N` first; empty
 //! for the paper's values), `view` (a report view's id), `rms_percent` (relative RMS
 //! luminance error over the rays the report judges; empty where the reference is not
-//! converged on any ray of the view), `gpu_ms` (a 1280 x 720 frame on the report's GPU adapter; empty
+//! converged on any ray of the view), `max_percent` (the largest relative error of those
+//! rays; empty where `rms_percent` is), `gpu_ms` (a 1280 x 720 frame on the report's GPU adapter; empty
 //! where not measured), `cpu_frame_s` (the same frame on one CPU thread).
 
 use anyhow::{Context, bail};
@@ -14,7 +15,7 @@ use crate::report::measure::VariantResult;
 use crate::report::views::ReportView;
 
 /// The header line.
-const HEADER: &str = "model,setting,view,rms_percent,gpu_ms,cpu_frame_s";
+const HEADER: &str = "model,setting,view,rms_percent,max_percent,gpu_ms,cpu_frame_s";
 
 /// One setting on one view.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,6 +26,8 @@ pub struct ErrorRow {
     pub view: String,
     /// `None` where the report judged no ray of the view (`judged_rays.rs`).
     pub rms_percent: Option<f64>,
+    /// The largest relative error of the judged rays; `None` with `rms_percent`.
+    pub max_percent: Option<f64>,
     pub gpu_ms: Option<f64>,
     pub cpu_frame_s: f64,
 }
@@ -45,6 +48,7 @@ pub fn rows(results: &[VariantResult], views: &[ReportView]) -> Vec<ErrorRow> {
                 setting: setting.clone(),
                 view: view.id.to_string(),
                 rms_percent: (result.luminance.count > 0).then_some(100.0 * result.luminance.rms),
+                max_percent: (result.luminance.count > 0).then_some(100.0 * result.luminance.max),
                 gpu_ms: r.gpu.as_ref().and_then(|g| g.per_view_ms.get(i).copied()),
                 cpu_frame_s: result.frame_seconds(),
             });
@@ -58,17 +62,22 @@ pub fn to_csv(rows: &[ErrorRow]) -> String {
     let mut text = format!("{HEADER}\n");
     for r in rows {
         text.push_str(&format!(
-            "{},{},{},{},{},{:.4}\n",
+            "{},{},{},{},{},{},{:.4}\n",
             r.model,
             r.setting,
             r.view,
-            r.rms_percent
-                .map_or_else(String::new, |p| format!("{p:.3}")),
+            percent(r.rms_percent),
+            percent(r.max_percent),
             r.gpu_ms.map_or_else(String::new, |ms| format!("{ms:.2}")),
             r.cpu_frame_s
         ));
     }
     text
+}
+
+/// A percentage to three decimals; empty for `None`.
+fn percent(value: Option<f64>) -> String {
+    value.map_or_else(String::new, |p| format!("{p:.3}"))
 }
 
 /// Reads the CSV; a malformed line is an error naming it.
@@ -82,26 +91,26 @@ pub fn parse(text: &str) -> anyhow::Result<Vec<ErrorRow>> {
         .map(|(n, line)| {
             let at = || format!("error table line {}", n + 2);
             let fields: Vec<&str> = line.split(',').collect();
-            let [model, setting, view, rms, gpu, cpu] = fields[..] else {
-                bail!("{}: {} fields, expected 6", at(), fields.len());
+            let [model, setting, view, rms, max, gpu, cpu] = fields[..] else {
+                bail!("{}: {} fields, expected 7", at(), fields.len());
             };
             let number = |text: &str| text.parse::<f64>().with_context(at);
+            let optional = |text: &str| {
+                if text.is_empty() {
+                    Ok(None)
+                } else {
+                    number(text).map(Some)
+                }
+            };
             Ok(ErrorRow {
                 model: model
                     .parse()
                     .map_err(|_| anyhow::anyhow!("{}: no model '{model}'", at()))?,
                 setting: setting.to_string(),
                 view: view.to_string(),
-                rms_percent: if rms.is_empty() {
-                    None
-                } else {
-                    Some(number(rms)?)
-                },
-                gpu_ms: if gpu.is_empty() {
-                    None
-                } else {
-                    Some(number(gpu)?)
-                },
+                rms_percent: optional(rms)?,
+                max_percent: optional(max)?,
+                gpu_ms: optional(gpu)?,
                 cpu_frame_s: number(cpu)?,
             })
         })
@@ -120,6 +129,7 @@ mod tests {
                 setting: "orders=2 view_samples=30".into(),
                 view: "noon".into(),
                 rms_percent: Some(6.5),
+                max_percent: Some(14.125),
                 gpu_ms: Some(12.25),
                 cpu_frame_s: 0.37,
             },
@@ -128,6 +138,7 @@ mod tests {
                 setting: String::new(),
                 view: "nautical".into(),
                 rms_percent: None,
+                max_percent: None,
                 gpu_ms: None,
                 cpu_frame_s: 0.47,
             },

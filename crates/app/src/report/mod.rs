@@ -20,6 +20,7 @@ pub mod gpu_time;
 pub mod judged_rays;
 pub mod markdown;
 pub mod measure;
+pub mod mirror_rays;
 pub mod optics;
 pub mod optics_errors;
 pub mod optics_gpu;
@@ -164,6 +165,8 @@ fn report_skies(args: &ReportArgs) -> anyhow::Result<()> {
         eprintln!("report: reference caches written to {}", args.out.display());
         return Ok(());
     }
+    let reference = mirror_rays::pool_mirror_rays(&views, reference);
+    let single = mirror_rays::pool_mirror_rays(&views, single);
     let color = SpectrumToColor::new(&base.wavelengths_nm)?;
     let mut results = Vec::with_capacity(variants.len());
     for (i, variant) in variants.iter().enumerate() {

@@ -33,6 +33,18 @@ impl ReportView {
         self.sun_zenith_deg < 90.0
     }
 
+    /// The index of ray `i`'s mirror image about the sun's vertical plane, where the
+    /// optical axis lies in that plane (the same row, the column counted from the other
+    /// side); `None` elsewhere and for a middle column, its own mirror.
+    pub fn mirror_ray(&self, i: usize) -> Option<usize> {
+        if self.look_azimuth_deg.rem_euclid(180.0) != 0.0 {
+            return None;
+        }
+        let (row, column) = (i / self.columns, i % self.columns);
+        let mirror = row * self.columns + self.columns - 1 - column;
+        (mirror != i).then_some(mirror)
+    }
+
     /// The rays through the pixel centres, row by row from the top left.
     pub fn rays(&self, atmosphere: &Atmosphere) -> Vec<ViewRay> {
         let origin = DVec3::new(0.0, 0.0, atmosphere.bottom_radius_m + self.altitude_m);

@@ -65,7 +65,7 @@ fn setting_options(row: &ErrorRow) -> Option<ModelOptions> {
     ModelOptions::parse(&items).ok()
 }
 
-/// "1.6 % on ground, noon · 12 ms GPU" for `model` with `options` on `view`: the row of
+/// "1.6 % (largest 4.2 %) on ground, noon · 12 ms GPU" for `model` with `options` on `view`: the row of
 /// the report setting equal to `options`, else the paper's values (and it says so).
 pub fn line_for(
     rows: &[ErrorRow],
@@ -89,10 +89,11 @@ pub fn line_for(
         || "GPU not measured".to_string(),
         |ms| format!("{ms:.0} ms GPU"),
     );
-    let error = row.rms_percent.map_or_else(
-        || "error unknown (reference not converged)".to_string(),
-        |rms| format!("{rms:.1} %"),
-    );
+    let error = match (row.rms_percent, row.max_percent) {
+        (Some(rms), Some(max)) => format!("{rms:.1} % (largest {max:.1} %)"),
+        (Some(rms), None) => format!("{rms:.1} %"),
+        (None, _) => "error unknown (reference not converged)".to_string(),
+    };
     Some(format!("{error} on {} · {gpu}{note}", view.title))
 }
 
@@ -159,6 +160,7 @@ mod tests {
             setting: setting.into(),
             view: view.id.into(),
             rms_percent: Some(rms),
+            max_percent: Some(2.0 * rms),
             gpu_ms: Some(12.0),
             cpu_frame_s: 1.0,
         };
@@ -166,11 +168,11 @@ mod tests {
         let options = |items: &[&str]| ModelOptions::parse(items).unwrap();
         assert_eq!(
             line_for(&rows, ModelId::Nishita, &options(&["samples=16"]), view).unwrap(),
-            "27.8 % on ground, noon · 12 ms GPU"
+            "27.8 % (largest 55.6 %) on ground, noon · 12 ms GPU"
         );
         assert_eq!(
             line_for(&rows, ModelId::Nishita, &options(&["samples=7"]), view).unwrap(),
-            "27.2 % on ground, noon · 12 ms GPU (paper's values)"
+            "27.2 % (largest 54.4 %) on ground, noon · 12 ms GPU (paper's values)"
         );
         assert_eq!(line_for(&rows, ModelId::Riley, &options(&[]), view), None);
     }
