@@ -39,6 +39,7 @@ fn pool_view(view: &ReportView, answers: &[RayRadiance]) -> Vec<RayRadiance> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::report::reference_batches::tests::ray;
     use crate::report::views::report_views;
     use atmosphere_core::atmosphere::Atmosphere;
     use atmosphere_core::models::id::ModelId;
@@ -50,14 +51,6 @@ mod tests {
             .into_iter()
             .find(|v| v.id == id)
             .unwrap()
-    }
-
-    fn ray(radiance: f64, std_error: f64) -> RayRadiance {
-        RayRadiance {
-            radiance: vec![radiance],
-            transmittance: vec![0.5],
-            radiance_std_error: vec![std_error],
-        }
     }
 
     #[test]

@@ -50,10 +50,11 @@ pub fn pool_batch(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn ray(radiance: f64, std_error: f64) -> RayRadiance {
+    /// A ray's answer at one wavelength, for the pooling tests here and in `mirror_rays.rs`.
+    pub(crate) fn ray(radiance: f64, std_error: f64) -> RayRadiance {
         RayRadiance {
             radiance: vec![radiance],
             transmittance: vec![0.5],
