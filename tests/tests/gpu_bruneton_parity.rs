@@ -43,6 +43,26 @@ fn tables_match_the_cpu_with_the_mie_quadrature() {
     assert!(errors.iter().all(|e| *e < 1e-2), "{errors:?}");
 }
 
+/// Mie's quadrature in the texel's frame, split at the view and the horizon
+/// (`mie_horizon`), in the hazy atmosphere whose bright horizon it is for.
+#[test]
+fn tables_match_the_cpu_with_the_mie_quadrature_in_the_horizon_frame() {
+    let Some(gpu) = gpu_or_skip("bruneton tables with the Mie quadrature in the horizon frame")
+    else {
+        return;
+    };
+    let mut options = REDUCED.to_vec();
+    options.extend(["mie_directions=8", "mie_horizon=true"]);
+    let errors = compare_tables(&gpu, "hazy", &options);
+    // The multiple part's worst texel (1.4e-2) is the ground's horizon texel, whose view
+    // lies on the step from sky to ground, the phase function's peak on it.
+    assert!(errors[2] < 2e-2, "{errors:?}");
+    assert!(
+        [errors[0], errors[1], errors[3]].iter().all(|e| *e < 1e-2),
+        "{errors:?}"
+    );
+}
+
 /// Nodes along each texel's ray placed by density (`density_nodes`), in the hazy
 /// atmosphere whose boundary layer they are for.
 #[test]

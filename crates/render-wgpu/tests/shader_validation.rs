@@ -458,7 +458,8 @@ fn bruneton_uniforms_match_their_wgsl_layouts() {
             sun_angular_radius,
             nu_edge,
             nu_by_azimuth,
-            mu_zenith
+            mu_zenith,
+            mie_horizon
         ]
     );
     assert_layout!(

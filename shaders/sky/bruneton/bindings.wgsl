@@ -77,6 +77,8 @@ struct BrunetonParams {
     nu_by_azimuth: u32,
     // 1 when the sky half of the mu axis spreads its texels towards the zenith.
     mu_zenith: u32,
+    // 1 when Mie's quadrature lays its directions out in the texel's frame.
+    mie_horizon: u32,
 }
 
 @group(0) @binding(2) var<uniform> bruneton: BrunetonParams;

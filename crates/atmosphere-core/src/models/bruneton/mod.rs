@@ -175,7 +175,11 @@ impl Bruneton {
             sun_transmittances: channels.transmittances(&self.transmittance),
             delta_m,
             mie_quadrature: (delta_m.is_some() && self.settings.mie_directions > 0).then(|| {
-                MieQuadrature::new(&self.atmosphere.mie.phase, self.settings.mie_directions)
+                MieQuadrature::new(
+                    &self.atmosphere.mie.phase,
+                    self.settings.mie_directions,
+                    self.settings.mie_horizon,
+                )
             }),
             max_orders: self.max_orders.unwrap_or(self.settings.order_limit),
         }

@@ -50,6 +50,9 @@ pub struct BrunetonSettings {
     /// quadrature of n x n directions about each texel's view direction with the exact
     /// phase function (`mie_quadrature.rs`).
     pub mie_directions: usize,
+    /// That quadrature's directions laid out in the texel's frame, split at the view and
+    /// at the horizon (`mie_quadrature.rs`), instead of about the view: off by default.
+    pub mie_horizon: bool,
 }
 
 impl Default for BrunetonSettings {
@@ -71,6 +74,7 @@ impl Default for BrunetonSettings {
             order_limit: 32,
             sun_disk: false,
             mie_directions: 0,
+            mie_horizon: false,
         }
     }
 }
@@ -116,13 +120,14 @@ pub const DENSITY_NODES: &str = "density_nodes";
 pub const NU_EDGE: &str = "nu_edge";
 pub const NU_BY_AZIMUTH: &str = "nu_by_azimuth";
 pub const MU_ZENITH: &str = "mu_zenith";
+pub const MIE_HORIZON: &str = "mie_horizon";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
-    /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`, `order_threshold`,
-    /// `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`, `sun_disk`, `mie_directions`,
-    /// `geometric_mu_s`, `density_nodes`, `nu_edge`, `nu_by_azimuth`, `mu_zenith`; the
-    /// paper's values where absent.
+    /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`,
+    /// `order_threshold`, `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`,
+    /// `sun_disk`, `mie_directions`, `mie_horizon`, `geometric_mu_s`, `density_nodes`,
+    /// `nu_edge`, `nu_by_azimuth`, `mu_zenith`; the paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
             Ok(BrunetonSettings {
@@ -154,6 +159,7 @@ impl BrunetonSettings {
                 order_limit: o.count(&ORDER_LIMIT, d.order_limit as usize)? as u32,
                 sun_disk: o.flag(SUN_DISK, d.sun_disk)?,
                 mie_directions: o.count(&MIE_DIRECTIONS, d.mie_directions)?,
+                mie_horizon: o.flag(MIE_HORIZON, d.mie_horizon)?,
                 ..d
             })
         })
@@ -189,6 +195,13 @@ impl BrunetonSettings {
                 "bruneton setting nu_by_azimuth=true replaces nu_by_angle and nu_edge \
                  (its texels span only the directions their mu and mu_s allow): set those \
                  false"
+                    .to_string(),
+            ));
+        }
+        if self.mie_horizon && self.mie_directions == 0 {
+            return Err(ModelError::Settings(
+                "bruneton setting mie_horizon=true lays out the directions of Mie's \
+                 quadrature: set mie_directions to a multiple of 8 too"
                     .to_string(),
             ));
         }

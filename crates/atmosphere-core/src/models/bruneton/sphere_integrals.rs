@@ -178,7 +178,8 @@ impl Builder<'_> {
                 let (ir, imus) = (pair % size.r, pair / size.r);
                 let (r, _, mu_s, _, _) = texel_parameters(&self.radii, &size, ir, 0, imus, 0);
                 let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
-                let theta_h = horizon_mu(r, self.radii.bottom_m).acos();
+                let mu_horizon = horizon_mu(r, self.radii.bottom_m);
+                let theta_h = mu_horizon.acos();
                 let mut thetas = self.theta_nodes(0.0, theta_h, panels);
                 thetas.extend(self.theta_nodes(theta_h, PI, panels));
                 // Moments per channel: L0, Fx, Fz, Mxx, Myy, Mzz, Mxz.
@@ -217,7 +218,7 @@ impl Builder<'_> {
                             .filter(|_| self.mie_quadrature.is_none())
                             .map(|_| self.incoming(previous, previous_irradiance, r, mu, mu_s, nu));
                         let j_quadrature = self.mie_quadrature.as_ref().map(|quadrature| {
-                            quadrature.integrate(DVec3::new(vx, vy, vz), |w| {
+                            quadrature.integrate(DVec3::new(vx, vy, vz), mu_horizon, |w| {
                                 let mu_w = w.z.clamp(-1.0, 1.0);
                                 let nu_w = (w.x * sin_s + w.z * mu_s).clamp(-1.0, 1.0);
                                 self.incoming(previous, previous_irradiance, r, mu_w, mu_s, nu_w)
@@ -310,9 +311,9 @@ mod tests {
             mie: single_mie.as_ref(),
         };
         let delta_m = builder.scattering_density(previous, PreviousIrradiance::Direct);
-        builder.mie_quadrature = Some(MieQuadrature::new(&atmosphere.mie.phase, 16));
+        builder.mie_quadrature = Some(MieQuadrature::new(&atmosphere.mie.phase, 16, false));
         let quadrature = builder.scattering_density(previous, PreviousIrradiance::Direct);
-        let finer = MieQuadrature::new(&atmosphere.mie.phase, 64);
+        let finer = MieQuadrature::new(&atmosphere.mie.phase, 64, false);
         let coarse = builder.mie_quadrature.clone().unwrap();
         let size = builder.settings.scattering_size;
         let (mut squares_quadrature, mut squares_delta_m, mut count) = (0.0, 0.0, 0.0);
@@ -324,7 +325,7 @@ mod tests {
                 let vx = (nu - mu * mu_s) / sin_s;
                 let view = DVec3::new(vx, (1.0 - mu * mu - vx * vx).max(0.0).sqrt(), mu);
                 let mie = |q: &MieQuadrature| {
-                    q.integrate(view, |w| {
+                    q.integrate(view, horizon_mu(r, builder.radii.bottom_m), |w| {
                         let nu_w = (w.x * sin_s + w.z * mu_s).clamp(-1.0, 1.0);
                         builder.incoming(previous, PreviousIrradiance::Direct, r, w.z, mu_s, nu_w)
                     })[1]

@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 use crate::sky::bruneton::store::{DENSITY_SAMPLES, StoreLayout, StoreTable};
 use crate::sky::bruneton::store_chunks::StoreChunks;
 
-/// WGSL `BrunetonParams`, 156 bytes: the sizes of the tables and of the sphere integrals,
+/// WGSL `BrunetonParams`, 160 bytes: the sizes of the tables and of the sphere integrals,
 /// the store's offsets (texels), and what the build depends on besides the atmosphere.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -88,6 +88,9 @@ pub struct BrunetonUniform {
     /// 1 when the sky half of the mu axis spreads its texels towards the zenith
     /// (`AngleMapping::mu_zenith`).
     pub mu_zenith: u32,
+    /// 1 when Mie's quadrature lays its directions out in the texel's frame, split at
+    /// the view and the horizon (`BrunetonSettings::mie_horizon`).
+    pub mie_horizon: u32,
 }
 
 impl BrunetonUniform {
@@ -153,6 +156,7 @@ impl BrunetonUniform {
             nu_edge: u32::from(s.angles.nu_edge),
             nu_by_azimuth: u32::from(s.angles.nu_by_azimuth),
             mu_zenith: u32::from(s.angles.mu_zenith),
+            mie_horizon: u32::from(settings.mie_horizon),
         }
     }
 }
