@@ -51,9 +51,12 @@ impl MieQuadrature {
         let panels = (directions / 8).max(1);
         let step = 1.0 / panels as f64;
         let azimuth_weight = 2.0 * PI / directions as f64;
-        let polar = (0..panels)
+        let units: Vec<(f64, f64)> = (0..panels)
             .flat_map(|p| mapped(&GAUSS_LEGENDRE_8, step * p as f64, step * (p + 1) as f64))
-            .map(|(u, w)| {
+            .collect();
+        let polar = units
+            .iter()
+            .map(|&(u, w)| {
                 let psi = PI * u * u;
                 let (s, c) = psi.sin_cos();
                 (c, s, w * 2.0 * PI * u * s * azimuth_weight * phase.eval(c))
@@ -64,9 +67,6 @@ impl MieQuadrature {
                 let (s, c) = (azimuth_weight * (j as f64 + 0.5)).sin_cos();
                 (c, s)
             })
-            .collect();
-        let units = (0..panels)
-            .flat_map(|p| mapped(&GAUSS_LEGENDRE_8, step * p as f64, step * (p + 1) as f64))
             .collect();
         MieQuadrature {
             polar,

@@ -109,7 +109,7 @@ pub const ORDER_LIMIT: Setting<usize> = setting("order_limit", 1..=63);
 /// The lowest sun cosine of S and E: from -0.6 (127 deg) to -0.05 (93 deg).
 pub const MIN_MU_S: Setting<f64> = setting("min_mu_s", -0.6..=-0.05);
 /// Directions of Mie's Delta J quadrature per axis (0: delta-M); the GPU's loop runs
-/// their square.
+/// their square, or with `mie_horizon` six times it (at most 24576 trips).
 pub const MIE_DIRECTIONS: Setting<usize> = setting("mie_directions", 0..=64);
 /// Keys of the switches (`true` or `false`).
 pub const NU_BY_ANGLE: &str = "nu_by_angle";
