@@ -77,14 +77,15 @@ impl MieQuadrature {
 
     /// Sum over the nodes of weight x p_M x `radiance(direction)` about the unit vector
     /// `view` (z up), per channel; `horizon_mu`, the cosine of the zenith angle of the
-    /// ground's horizon, splits the zenith angles of the texel's frame.
+    /// ground's horizon, splits the zenith angles of the texel's frame where the
+    /// quadrature has that layout (`None`: the layout about the view for this order).
     pub fn integrate(
         &self,
         view: DVec3,
-        horizon_mu: f64,
+        horizon_mu: Option<f64>,
         mut radiance: impl FnMut(DVec3) -> [f64; 3],
     ) -> [f64; 3] {
-        if let Some((phase, units)) = &self.horizon_frame {
+        if let (Some((phase, units)), Some(horizon_mu)) = (&self.horizon_frame, horizon_mu) {
             return in_horizon_frame(phase, units, view, horizon_mu, radiance);
         }
         let (a, b) = orthonormal_basis(view);
@@ -163,7 +164,7 @@ mod tests {
             for horizon_frame in [false, true] {
                 let q = MieQuadrature::new(&phase, 16, horizon_frame);
                 let view = DVec3::new(0.3, 0.1, 0.2).normalize();
-                let total = q.integrate(view, -0.05, |_| [1.0; 3])[0];
+                let total = q.integrate(view, Some(-0.05), |_| [1.0; 3])[0];
                 assert!(
                     (total - 1.0).abs() < 5e-3,
                     "{phase:?} {horizon_frame}: {total}"
@@ -179,7 +180,7 @@ mod tests {
         let q = MieQuadrature::new(&PhaseFunction::HenyeyGreenstein { g }, 32, false);
         let view = DVec3::new(0.3, -0.5, 0.8).normalize();
         let d = DVec3::new(-0.2, 0.9, 0.1).normalize();
-        let got = q.integrate(view, 0.0, |w| [1.0 + w.dot(d); 3])[0];
+        let got = q.integrate(view, Some(0.0), |w| [1.0 + w.dot(d); 3])[0];
         let want = 1.0 + g * view.dot(d);
         assert!((got - want).abs() < 2e-3, "{got} against {want}");
     }
@@ -272,7 +273,8 @@ mod tests {
                     let view = DVec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin());
                     let want = converged(&phase, view, horizon_mu, radiance);
                     let error = |q: &MieQuadrature| {
-                        (q.integrate(view, horizon_mu, |w| [radiance(w); 3])[0] / want - 1.0).abs()
+                        (q.integrate(view, Some(horizon_mu), |w| [radiance(w); 3])[0] / want - 1.0)
+                            .abs()
                     };
                     worst_frame = worst_frame.max(error(&in_frame));
                     worst_view = worst_view.max(error(&about_view));

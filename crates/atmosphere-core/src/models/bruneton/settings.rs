@@ -53,6 +53,10 @@ pub struct BrunetonSettings {
     /// That quadrature's directions laid out in the texel's frame, split at the view and
     /// at the horizon (`mie_quadrature.rs`), instead of about the view: off by default.
     pub mie_horizon: bool,
+    /// With `mie_horizon`, the texel's frame for order two alone (whose incoming light,
+    /// scattered once, holds the sharp band and step at the horizon), the layout about
+    /// the view for the later orders: off by default (every order).
+    pub mie_horizon_order_two: bool,
 }
 
 impl Default for BrunetonSettings {
@@ -75,6 +79,7 @@ impl Default for BrunetonSettings {
             sun_disk: false,
             mie_directions: 0,
             mie_horizon: false,
+            mie_horizon_order_two: false,
         }
     }
 }
@@ -121,12 +126,14 @@ pub const NU_EDGE: &str = "nu_edge";
 pub const NU_BY_AZIMUTH: &str = "nu_by_azimuth";
 pub const MU_ZENITH: &str = "mu_zenith";
 pub const MIE_HORIZON: &str = "mie_horizon";
+pub const MIE_HORIZON_ORDER_TWO: &str = "mie_horizon_order_two";
 
 impl BrunetonSettings {
     /// The settings from `key=value` options: `r`, `mu`, `mu_s`, `nu` (S's size),
     /// `e_mu_s` (E's sun angles), `view_samples`, `sphere_zenith`, `sphere_azimuth`,
     /// `order_threshold`, `order_limit`, `min_mu_s`, `nu_by_angle`, `mu_s_knee`,
-    /// `sun_disk`, `mie_directions`, `mie_horizon`, `geometric_mu_s`, `density_nodes`,
+    /// `sun_disk`, `mie_directions`, `mie_horizon`, `mie_horizon_order_two`,
+    /// `geometric_mu_s`, `density_nodes`,
     /// `nu_edge`, `nu_by_azimuth`, `mu_zenith`; the paper's values where absent.
     pub fn from_options(options: &ModelOptions) -> Result<BrunetonSettings, ModelError> {
         options.read_settings("bruneton", BrunetonSettings::validate, |o, d| {
@@ -160,6 +167,7 @@ impl BrunetonSettings {
                 sun_disk: o.flag(SUN_DISK, d.sun_disk)?,
                 mie_directions: o.count(&MIE_DIRECTIONS, d.mie_directions)?,
                 mie_horizon: o.flag(MIE_HORIZON, d.mie_horizon)?,
+                mie_horizon_order_two: o.flag(MIE_HORIZON_ORDER_TWO, d.mie_horizon_order_two)?,
                 ..d
             })
         })
@@ -202,6 +210,13 @@ impl BrunetonSettings {
             return Err(ModelError::Settings(
                 "bruneton setting mie_horizon=true lays out the directions of Mie's \
                  quadrature: set mie_directions to a multiple of 8 too"
+                    .to_string(),
+            ));
+        }
+        if self.mie_horizon_order_two && !self.mie_horizon {
+            return Err(ModelError::Settings(
+                "bruneton setting mie_horizon_order_two=true narrows mie_horizon to order \
+                 two: set mie_horizon=true too"
                     .to_string(),
             ));
         }

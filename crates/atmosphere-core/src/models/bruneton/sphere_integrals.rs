@@ -172,6 +172,9 @@ impl Builder<'_> {
         let dm = self.delta_m;
         let phis = self.phi_nodes();
         let panels = self.theta_panels();
+        // `mie_horizon_order_two`: the texel's frame for the light scattered once alone.
+        let in_horizon_frame =
+            !self.settings.mie_horizon_order_two || matches!(previous, Previous::Single { .. });
         let blocks: Vec<(usize, usize, Vec<[f32; 3]>)> = (0..size.r * size.mu_s)
             .into_par_iter()
             .map(|pair| {
@@ -179,6 +182,7 @@ impl Builder<'_> {
                 let (r, _, mu_s, _, _) = texel_parameters(&self.radii, &size, ir, 0, imus, 0);
                 let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
                 let mu_horizon = horizon_mu(r, self.radii.bottom_m);
+                let mie_horizon = in_horizon_frame.then_some(mu_horizon);
                 let theta_h = mu_horizon.acos();
                 let mut thetas = self.theta_nodes(0.0, theta_h, panels);
                 thetas.extend(self.theta_nodes(theta_h, PI, panels));
@@ -218,7 +222,7 @@ impl Builder<'_> {
                             .filter(|_| self.mie_quadrature.is_none())
                             .map(|_| self.incoming(previous, previous_irradiance, r, mu, mu_s, nu));
                         let j_quadrature = self.mie_quadrature.as_ref().map(|quadrature| {
-                            quadrature.integrate(DVec3::new(vx, vy, vz), mu_horizon, |w| {
+                            quadrature.integrate(DVec3::new(vx, vy, vz), mie_horizon, |w| {
                                 let mu_w = w.z.clamp(-1.0, 1.0);
                                 let nu_w = (w.x * sin_s + w.z * mu_s).clamp(-1.0, 1.0);
                                 self.incoming(previous, previous_irradiance, r, mu_w, mu_s, nu_w)
@@ -325,7 +329,7 @@ mod tests {
                 let vx = (nu - mu * mu_s) / sin_s;
                 let view = DVec3::new(vx, (1.0 - mu * mu - vx * vx).max(0.0).sqrt(), mu);
                 let mie = |q: &MieQuadrature| {
-                    q.integrate(view, horizon_mu(r, builder.radii.bottom_m), |w| {
+                    q.integrate(view, Some(horizon_mu(r, builder.radii.bottom_m)), |w| {
                         let nu_w = (w.x * sin_s + w.z * mu_s).clamp(-1.0, 1.0);
                         builder.incoming(previous, PreviousIrradiance::Direct, r, w.z, mu_s, nu_w)
                     })[1]

@@ -256,13 +256,22 @@ impl Tables {
     }
 
     /// Writes the parameters of every step for `uniform`, those of order 2 with
-    /// `previous_is_single` set.
+    /// `previous_is_single` set; with `mie_horizon_order_two` the later orders' Mie
+    /// quadrature about the view.
     pub fn write_params(&self, gpu: &GpuContext, uniform: &BrunetonUniform) {
         let first = BrunetonUniform {
             previous_is_single: 1,
             ..*uniform
         };
-        gpu.write_uniform(&self.params, uniform);
+        let later = BrunetonUniform {
+            mie_horizon: if self.settings.mie_horizon_order_two {
+                0
+            } else {
+                uniform.mie_horizon
+            },
+            ..*uniform
+        };
+        gpu.write_uniform(&self.params, &later);
         gpu.write_uniform(&self.params_first, &first);
     }
 
