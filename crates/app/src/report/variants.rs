@@ -114,6 +114,8 @@ pub fn report_variants() -> Vec<Variant> {
                 "sphere_zenith=128",
                 "sphere_azimuth=64",
                 "mie_directions=8",
+                "mie_horizon=true",
+                "mie_horizon_order_two=true",
                 "order_threshold=0.002",
             ],
         ),
