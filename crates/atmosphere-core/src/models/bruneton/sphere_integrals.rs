@@ -173,7 +173,7 @@ impl Builder<'_> {
         let phis = self.phi_nodes();
         let panels = self.theta_panels();
         // `mie_horizon_order_two`: the texel's frame for the light scattered once alone.
-        let in_horizon_frame =
+        let horizon_frame_this_order =
             !self.settings.mie_horizon_order_two || matches!(previous, Previous::Single { .. });
         let blocks: Vec<(usize, usize, Vec<[f32; 3]>)> = (0..size.r * size.mu_s)
             .into_par_iter()
@@ -182,7 +182,7 @@ impl Builder<'_> {
                 let (r, _, mu_s, _, _) = texel_parameters(&self.radii, &size, ir, 0, imus, 0);
                 let sin_s = (1.0 - mu_s * mu_s).max(0.0).sqrt();
                 let mu_horizon = horizon_mu(r, self.radii.bottom_m);
-                let mie_horizon = in_horizon_frame.then_some(mu_horizon);
+                let mie_horizon = horizon_frame_this_order.then_some(mu_horizon);
                 let theta_h = mu_horizon.acos();
                 let mut thetas = self.theta_nodes(0.0, theta_h, panels);
                 thetas.extend(self.theta_nodes(theta_h, PI, panels));
