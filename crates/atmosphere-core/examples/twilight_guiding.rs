@@ -68,7 +68,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 single,
                 guiding,
                 &mut sampler,
-            );
+            )?;
             println!(
                 "{elevation},{azimuth},{single:.4e},{guiding:?},{:.4e},{:.4},{:.2}",
                 e.mean,

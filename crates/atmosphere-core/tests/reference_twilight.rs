@@ -8,11 +8,16 @@ use atmosphere_core::models::sky_model::{ModelSettings, ViewRay};
 use atmosphere_core::numerics::sampling::Sampler;
 use atmosphere_core::optics::column::Fineness;
 use atmosphere_core::reference::{
-    Estimate, Guiding, MAX_PATHS, Reference, ViewPath, single_scattering,
+    Estimate, Guiding, MAX_PATHS, Reference, SHARED_GROUND, ViewPath, single_scattering,
 };
 
 /// The reference at 550 nm drawing exactly `paths` paths per estimate.
 fn reference(a: &Atmosphere, paths: usize, seed: u64) -> Reference {
+    reference_with(a, paths, seed, false)
+}
+
+/// The same, the ground's light shared by the rays that end on it in the umbra or not.
+fn reference_with(a: &Atmosphere, paths: usize, seed: u64, shared_ground: bool) -> Reference {
     let mut settings = ModelSettings {
         wavelengths_nm: vec![550.0],
         target_relative_error: 1e-6,
@@ -20,6 +25,7 @@ fn reference(a: &Atmosphere, paths: usize, seed: u64) -> Reference {
         ..ModelSettings::default()
     };
     settings.options.set(MAX_PATHS.key, paths);
+    settings.options.set(SHARED_GROUND, shared_ground);
     Reference::prepare(a, &settings).unwrap()
 }
 
@@ -45,8 +51,9 @@ fn estimate(
     let spectra = Spectra::new(a, &[550.0]);
     let single = single_scattering(a, &spectra, &path, ray.sun_direction, None)[0];
     let mut sampler = Sampler::new(seed);
-    let e =
-        reference.multiple_scattering(&path, ray.sun_direction, 0, single, guiding, &mut sampler);
+    let e = reference
+        .multiple_scattering(&path, ray.sun_direction, 0, single, guiding, &mut sampler)
+        .unwrap();
     (e, single)
 }
 
@@ -111,4 +118,45 @@ fn guided_standard_error_is_honest_in_nautical_twilight() {
         spread > 0.5 * reported && spread < 2.0 * reported,
         "spread {spread:e} vs reported {reported:e}"
     );
+}
+
+/// The ground's light shared by the rays that end on it in the umbra
+/// (`shared_ground=true`) has the expected value of each ray's own: on ground rays in
+/// civil twilight (sun 96 deg, where each ray's own estimate converges) and in nautical
+/// twilight (102 deg, each ray's own at many paths) the two agree within four combined
+/// standard errors, and the shared one's error is the smaller.
+#[test]
+fn the_grounds_shared_light_agrees_with_each_rays_own() {
+    let a = Atmosphere::preset("earth").unwrap();
+    for (sun_zenith, look, paths) in [
+        (96.0, (-20.0, 30.0), 1 << 14),
+        (102.0, (-10.0, 0.0), 1 << 16),
+    ] {
+        let own = reference_with(&a, paths, 3, false);
+        let shared = reference_with(&a, 1 << 14, 4, true);
+        let (mine, _) = estimate(&a, &own, sun_zenith, look, Guiding::TowardsLitAir, 5);
+        let (ours, _) = estimate(&a, &shared, sun_zenith, look, Guiding::TowardsLitAir, 6);
+        let combined = mine.std_error.hypot(ours.std_error);
+        eprintln!("sun {sun_zenith} look {look:?}: own {mine:?}, shared {ours:?}");
+        assert!(
+            ours.mean > 0.0 && (ours.mean - mine.mean).abs() < 4.0 * combined,
+            "sun {sun_zenith} look {look:?}: own {mine:?} vs shared {ours:?}"
+        );
+        assert!(ours.std_error < mine.std_error, "{ours:?} vs {mine:?}");
+    }
+}
+
+/// A ray that does not end on the ground draws exactly the same paths with the ground's
+/// light shared or not (the report keeps such rays from its cache when it turns the
+/// setting on).
+#[test]
+fn shared_ground_leaves_the_rays_of_the_sky_as_they_were() {
+    let a = Atmosphere::preset("earth").unwrap();
+    let own = reference_with(&a, 1 << 12, 3, false);
+    let shared = reference_with(&a, 1 << 12, 3, true);
+    for look in [(30.0, 10.0), (1.0, 120.0)] {
+        let (mine, _) = estimate(&a, &own, 102.0, look, Guiding::TowardsLitAir, 5);
+        let (ours, _) = estimate(&a, &shared, 102.0, look, Guiding::TowardsLitAir, 5);
+        assert_eq!(mine, ours, "look {look:?}");
+    }
 }

@@ -34,6 +34,7 @@ pub mod plot;
 pub mod reference_batches;
 pub mod reference_cache;
 pub mod reference_cache_file;
+pub mod reference_ground_rays;
 pub mod shafts;
 pub mod variants;
 pub mod view_sections;

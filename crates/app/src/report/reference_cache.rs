@@ -17,12 +17,15 @@ use atmosphere_core::atmosphere::Atmosphere;
 use atmosphere_core::models::id::ModelId;
 use atmosphere_core::models::registry::prepare;
 use atmosphere_core::models::sky_model::{ModelSettings, RayRadiance};
-use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings, TOWARDS_LIGHT};
+use atmosphere_core::reference::{MAX_PATHS, ReferenceSettings, SHARED_GROUND, TOWARDS_LIGHT};
 use rayon::prelude::*;
 
 use crate::progress::Progress;
 use crate::report::reference_batches::{batch_settings, pool_batch};
-use crate::report::reference_cache_file::{read, write};
+use crate::report::reference_cache_file::{CachedView, read, write};
+use crate::report::reference_ground_rays::{
+    fingerprint_without_shared_ground, ground_rays, recompute_ground_rays,
+};
 use crate::report::view_sections::fingerprint_of;
 use crate::report::views::ReportView;
 
@@ -34,8 +37,9 @@ pub type ReferenceRadiance = Vec<Vec<RayRadiance>>;
 /// order two and up is nearly all the radiance and its paths are the least efficient),
 /// and where the sun is more than 6 deg down: from inside the atmosphere, the later
 /// events of the paths in the umbra drawn towards the light (`towards_light`) at
-/// `UMBRA_PATH_FACTOR` times the cap; from above it, `NAUTICAL_PATH_FACTOR` times the
-/// cap. A cap equal to the reference's default is left unset, so the fingerprints stay
+/// `UMBRA_PATH_FACTOR` times the cap, and the light of the ground in the umbra shared
+/// by the rays that end on it (`shared_ground`); from above it, `NAUTICAL_PATH_FACTOR`
+/// times the cap. A cap equal to the reference's default is left unset, so the fingerprints stay
 /// those of the plain settings.
 pub fn reference_settings(
     view: &ReportView,
@@ -61,6 +65,7 @@ pub fn reference_settings(
     }
     if towards_light {
         settings.options.set(TOWARDS_LIGHT, true);
+        settings.options.set(SHARED_GROUND, true);
     }
     settings
 }
@@ -130,7 +135,9 @@ pub fn fingerprint(view: &ReportView, settings: &ModelSettings) -> anyhow::Resul
 /// the others (in parallel, with progress; the views `recompute` names are computed
 /// whatever the cache holds) with the settings `settings_for` gives each view, pooling
 /// the batches `batches_for` asks (a view cached with fewer batches keeps them and gets
-/// the rest), and writes the cache of exactly these views.
+/// the rest; one cached with every batch but without `shared_ground` keeps its rays
+/// that do not end on the ground, `reference_ground_rays.rs`), and writes the cache of
+/// exactly these views.
 pub fn load_or_compute(
     path: &Path,
     views: &[ReportView],
@@ -161,16 +168,34 @@ pub fn load_or_compute(
     let mut reference = Vec::with_capacity(views.len());
     let mut done = vec![0; views.len()];
     let mut missing = Vec::new();
+    let mut ground_missing = Vec::new();
     for (i, (view, key)) in views.iter().zip(&keys).enumerate() {
         let found = cached.remove(view.id);
-        let usable = found.as_ref().is_some_and(|c| {
-            c.fingerprint == *key
-                && c.answers.len() == view.columns * view.rows
+        let fits = |c: &CachedView| {
+            c.answers.len() == view.columns * view.rows
                 && c.batches <= batches[i]
                 && !recompute(view)
+        };
+        let usable = found
+            .as_ref()
+            .is_some_and(|c| c.fingerprint == *key && fits(c));
+        let without_shared_ground = fingerprint_without_shared_ground(view, &settings[i])?;
+        let sky_usable = found.as_ref().is_some_and(|c| {
+            Some(&c.fingerprint) == without_shared_ground.as_ref()
+                && c.batches == batches[i]
+                && fits(c)
         });
         match found {
             Some(c) if usable && c.batches == batches[i] => reference.push(c.answers),
+            Some(c) if sky_usable => {
+                eprintln!(
+                    "report: computing the ground's rays of view {} of {} again (shared_ground)",
+                    view.id,
+                    path.display()
+                );
+                reference.push(c.answers);
+                ground_missing.push(i);
+            }
             Some(c) if usable => {
                 eprintln!(
                     "report: adding batches {}-{} to view {} of {}",
@@ -201,15 +226,29 @@ pub fn load_or_compute(
             }
         }
     }
-    if missing.is_empty() {
+    if missing.is_empty() && ground_missing.is_empty() {
         eprintln!("report: reference radiance from {}", path.display());
         return Ok(reference);
     }
-    let total = missing
+    let mut total = missing
         .iter()
         .map(|&i| views[i].columns * views[i].rows * (batches[i] - done[i]))
         .sum::<usize>();
+    for &i in &ground_missing {
+        total += ground_rays(&views[i])?.len() * batches[i];
+    }
     let progress = Progress::new("reference", "rays", total as u64);
+    for &i in &ground_missing {
+        reference[i] = recompute_ground_rays(
+            &views[i],
+            &settings[i],
+            batches[i],
+            &reference[i],
+            &progress,
+        )?;
+        done[i] = batches[i];
+        write(path, &reference, views, &keys, &done)?;
+    }
     for &i in &missing {
         for batch in done[i]..batches[i] {
             let answers = compute(&views[i], &batch_settings(&settings[i], batch), &progress)?;
@@ -329,6 +368,47 @@ mod tests {
         assert_eq!(reference[0], made_up[0]);
         assert_ne!(reference[1], made_up[1]);
         assert!(reference[1][0].radiance[0] > 0.0);
+    }
+
+    #[test]
+    fn turning_on_shared_ground_computes_the_ground_rays_alone_in_every_batch() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("reference.csv");
+        let mut without = ModelSettings::default();
+        without.options.set(MAX_PATHS.key, 256);
+        let mut with = without.clone();
+        with.options.set(SHARED_GROUND, true);
+        // Sunset from the ground on a 1 x 2 grid: a ray of the sky above a ray of the
+        // ground (lit, so quick: the splicing is what is tested here).
+        let views: Vec<ReportView> = report_views(1, 2)
+            .into_iter()
+            .filter(|v| v.id == "sunset")
+            .collect();
+        assert_eq!(ground_rays(&views[0]).unwrap(), vec![1]);
+        let made_up = answers(3, 2);
+        let old_key = fingerprint(&views[0], &without).unwrap();
+        write(
+            &path,
+            std::slice::from_ref(&made_up),
+            &views,
+            std::slice::from_ref(&old_key),
+            &[2],
+        )
+        .unwrap();
+        let spliced = load_or_compute(&path, &views, |_| with.clone(), |_| 2, |_| false).unwrap();
+        assert_eq!(spliced[0][0], made_up[0]);
+        let ground = |batch| {
+            compute(&views[0], &batch_settings(&with, batch), &Progress::Quiet).unwrap()[1].clone()
+        };
+        let pooled = pool_batch(&[ground(0)], 1, &[ground(1)]);
+        assert_eq!(spliced[0][1], pooled[0]);
+        let cached = read(&path, 3).unwrap();
+        assert_eq!(cached[views[0].id].batches, 2);
+        assert_eq!(
+            cached[views[0].id].fingerprint,
+            fingerprint(&views[0], &with).unwrap()
+        );
+        assert_eq!(cached[views[0].id].answers, spliced[0]);
     }
 
     #[test]

@@ -43,6 +43,11 @@ impl ModelOptions {
         self.values.insert(key.to_string(), value.to_string());
     }
 
+    /// Removes one key (nothing where it is not set).
+    pub fn remove(&mut self, key: &str) {
+        self.values.remove(key);
+    }
+
     /// True when no key is set.
     pub fn is_empty(&self) -> bool {
         self.values.is_empty()

@@ -13,7 +13,6 @@
 use std::f64::consts::PI;
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::atmosphere::Atmosphere;
 use crate::numerics::sampling::orthonormal_basis;
@@ -44,18 +43,19 @@ impl LightProxy {
     /// The table for `atmosphere` from `incoming(position, direction)`, the rough
     /// once-scattered radiance arriving at a point from a direction with the sun towards
     /// `sun` (which only sets the frame: `PathTracer::rough_incoming`); `None` where no
-    /// cell sees any sunlit air.
+    /// cell sees any sunlit air. Built on the calling thread: the reference builds it on
+    /// first use inside a `OnceLock` while rays run in parallel, and a parallel build
+    /// there could hand the building thread another ray that waits on the same lock.
     pub fn new(
         atmosphere: &Atmosphere,
         sun: DVec3,
-        incoming: impl Fn(DVec3, DVec3) -> f64 + Sync,
+        incoming: impl Fn(DVec3, DVec3) -> f64,
     ) -> Option<LightProxy> {
         let bottom = atmosphere.bottom_radius_m;
         let top = atmosphere.top_radius_m - bottom;
         let (across, _) = orthonormal_basis(sun);
         let directions = sphere_directions();
         let values: Vec<f64> = (0..ALTITUDES * MU_S_NODES)
-            .into_par_iter()
             .map(|cell| {
                 let h = altitude_node(cell / MU_S_NODES, top);
                 let mu_s = mu_s_node(cell % MU_S_NODES);

@@ -6,6 +6,7 @@
 //! the requested fraction of the radiance. f64 throughout. See docs/models/reference.md
 //! for why this split, and how convergence is checked.
 
+mod ground_light;
 mod guide;
 #[cfg(test)]
 mod guide_tests;
@@ -27,13 +28,14 @@ use std::sync::OnceLock;
 
 use glam::DVec3;
 
+use ground_light::{GroundLight, NODE_RAYS};
 pub use guide::{DirectionGuide, Guiding};
 use last_event::{LastEvent, LastEvents};
 pub use light_proxy::LightProxy;
 pub use majorant::DensityBounds;
 pub use path_tracer::PathTracer;
 use scatterer::Scatterer;
-pub use settings::{MAX_PATHS, MIN_PATHS, ReferenceSettings, TOWARDS_LIGHT};
+pub use settings::{MAX_PATHS, MIN_PATHS, ReferenceSettings, SHARED_GROUND, TOWARDS_LIGHT};
 pub use single_scattering::single_scattering;
 pub use sun::disk_mean_transmittance;
 pub use view_path::{RayEnd, ViewPath};
@@ -58,6 +60,10 @@ const BATCH: usize = 256;
 /// A standard error below this fraction of the solar irradiance (sr^-1) counts as
 /// darkness and is not refined further; far below the ground in nautical twilight.
 const DARKNESS: f64 = 1e-14;
+/// Paths a node of the ground's shared light (`ground_light.rs`) draws at each
+/// wavelength, over all its rays, in units of a ray's `max_paths`: one node stands for
+/// every ground ray near the camera.
+const GROUND_PATH_FACTOR: usize = 4;
 
 /// The reference model, prepared for one atmosphere.
 #[derive(Debug)]
@@ -76,6 +82,11 @@ pub struct Reference {
     /// Per wavelength, the light arriving at each point, built the first time a path at
     /// that wavelength is guided through the umbra.
     light: Vec<OnceLock<Option<LightProxy>>>,
+    /// Whether rays ending on the ground in the umbra take the ground's light from
+    /// `ground` instead of drawing it themselves.
+    shared_ground: bool,
+    /// The ground's light of order two and up, by node of mu_s, estimated on first use.
+    ground: GroundLight,
 }
 
 /// Monte Carlo estimate of orders two and up, at one wavelength.
@@ -108,6 +119,8 @@ impl Reference {
             bounds: DensityBounds::new(atmosphere),
             mie_sampler: PhaseSampler::new(&atmosphere.mie.phase),
             light: empty_light(settings.wavelengths_nm.len()),
+            shared_ground: own.shared_ground,
+            ground: GroundLight::default(),
         })
     }
 
@@ -142,7 +155,10 @@ impl Reference {
 
     /// Orders two and up along a discretised view ray at wavelength index `w`, refined
     /// until the standard error is below `target` times (`known` + the estimate), with
-    /// directions guided towards sunlit air or not (the same expected value).
+    /// directions guided towards sunlit air or not (the same expected value). With
+    /// `shared_ground=true` and every order, a ray that ends on the ground in the umbra
+    /// takes the ground's light from shared nodes (`ground_light.rs`) and draws only its
+    /// air's; the error returned is then the two parts' combined.
     pub fn multiple_scattering(
         &self,
         path: &ViewPath,
@@ -151,15 +167,67 @@ impl Reference {
         known: f64,
         guiding: Guiding,
         sampler: &mut Sampler,
-    ) -> Estimate {
+    ) -> Result<Estimate, ModelError> {
         let none = Estimate {
             mean: 0.0,
             std_error: 0.0,
             paths: 0,
         };
         if self.settings.max_orders == Some(1) {
-            return none;
+            return Ok(none);
         }
+        let ext = self.base.spectra.extinction[w];
+        let ground_mass =
+            (-optical_depth(path.total_column, ext)).exp() * self.atmosphere.ground_albedo;
+        let shared = match path.end {
+            RayEnd::Ground(point)
+                if self.shared_ground
+                    && self.settings.max_orders.is_none()
+                    && self.tracer(w, sun_direction).in_umbra(point) =>
+            {
+                let sky = |ray: &ViewRay, seed: u64| self.sky_from_ground(ray, seed, guiding);
+                let g = self.ground.reflected(
+                    w,
+                    (point, path.direction, sun_direction),
+                    (guiding as u8, self.settings.seed),
+                    self.atmosphere.bottom_radius_m,
+                    &sky,
+                )?;
+                Some((ground_mass * g.mean, ground_mass * g.std_error))
+            }
+            _ => None,
+        };
+        let air = self.draw_last_events(
+            path,
+            sun_direction,
+            w,
+            known + shared.map_or(0.0, |s| s.0),
+            (guiding, self.max_paths, shared.is_none()),
+            sampler,
+        );
+        Ok(match shared {
+            Some((mean, std_error)) => Estimate {
+                mean: air.mean + mean,
+                std_error: air.std_error.hypot(std_error),
+                paths: air.paths,
+            },
+            None => air,
+        })
+    }
+
+    /// Orders two and up along `path` from paths drawn from its last events: the nodes
+    /// of the view ray and, where `with_ground`, the ground it ends on; at most
+    /// `max_paths`, fewer once the standard error is below the target times (`known` +
+    /// the estimate).
+    fn draw_last_events(
+        &self,
+        path: &ViewPath,
+        sun_direction: DVec3,
+        w: usize,
+        known: f64,
+        (guiding, max_paths, with_ground): (Guiding, usize, bool),
+        sampler: &mut Sampler,
+    ) -> Estimate {
         let ext = self.base.spectra.extinction[w];
         let (br, bm) = (
             self.base.spectra.rayleigh_scattering[w],
@@ -179,7 +247,7 @@ impl Reference {
                     * (br * n.densities[0] + bm * n.densities[1]),
             })
             .chain(match path.end {
-                RayEnd::Ground(point) => Some(LastEvent {
+                RayEnd::Ground(point) if with_ground => Some(LastEvent {
                     position: point,
                     scatterer: Scatterer::Ground(point.normalize()),
                     mass: (-optical_depth(path.total_column, ext)).exp()
@@ -192,7 +260,11 @@ impl Reference {
         let Some(last) =
             LastEvents::new(events, path.direction, &unguided, guiding != Guiding::Off)
         else {
-            return none;
+            return Estimate {
+                mean: 0.0,
+                std_error: 0.0,
+                paths: 0,
+            };
         };
         let light = if guiding == Guiding::TowardsLitAir && last.is_guided() {
             self.light_proxy(w, &unguided)
@@ -227,7 +299,7 @@ impl Reference {
             let std_error = (variance / n as f64).sqrt();
             let converged = std_error <= self.settings.target_relative_error * (known + mean)
                 || std_error <= darkness;
-            if n >= self.max_paths || (n >= MIN_PATHS && converged) {
+            if n >= max_paths || (n >= MIN_PATHS && converged) {
                 return Estimate {
                     mean,
                     std_error,
@@ -235,6 +307,42 @@ impl Reference {
                 };
             }
         }
+    }
+
+    /// The sky's radiance, every order, along `ray` from a ground point (for the nodes of
+    /// `ground_light.rs`), per wavelength: single scattering by quadrature and the
+    /// higher orders from `GROUND_PATH_FACTOR` times `max_paths` / `NODE_RAYS` paths.
+    fn sky_from_ground(
+        &self,
+        ray: &ViewRay,
+        seed: u64,
+        guiding: Guiding,
+    ) -> Result<Vec<f64>, ModelError> {
+        let path = ViewPath::new(&self.atmosphere, ray, Fineness::VIEW)?;
+        let single = single_scattering(
+            &self.atmosphere,
+            &self.base.spectra,
+            &path,
+            ray.sun_direction,
+            None,
+        );
+        let paths = (self.max_paths.saturating_mul(GROUND_PATH_FACTOR) / NODE_RAYS).max(MIN_PATHS);
+        Ok(single
+            .iter()
+            .enumerate()
+            .map(|(w, l1)| {
+                let mut sampler = Sampler::new(mix_seed(&[seed, w as u64]));
+                let ms = self.draw_last_events(
+                    &path,
+                    ray.sun_direction,
+                    w,
+                    *l1,
+                    (guiding, paths, true),
+                    &mut sampler,
+                );
+                l1 + ms.mean
+            })
+            .collect())
     }
 }
 
@@ -257,8 +365,9 @@ impl SkyModel for Reference {
             || PhaseSampler::new(&atmosphere.mie.phase),
         );
         self.bounds = DensityBounds::new(atmosphere);
-        // Rebuilt on first use: it depends on every optical property and the albedo.
+        // Rebuilt on first use: they depend on every optical property and the albedo.
         self.light = empty_light(self.light.len());
+        self.ground = GroundLight::default();
         Ok(update.rebuilt())
     }
 
@@ -303,7 +412,7 @@ impl Reference {
         let mut std_error = Vec::with_capacity(single.len());
         for (w, l1) in single.iter().enumerate() {
             let mut sampler = Sampler::new(mix_seed(&[seed, w as u64]));
-            let ms = self.multiple_scattering(&path, sun, w, *l1, self.guiding, &mut sampler);
+            let ms = self.multiple_scattering(&path, sun, w, *l1, self.guiding, &mut sampler)?;
             radiance.push(l1 + ms.mean);
             std_error.push(ms.std_error);
         }

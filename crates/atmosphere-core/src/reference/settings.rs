@@ -1,6 +1,7 @@
 //! The reference's own settings: how many Monte Carlo paths it may draw per ray and
 //! wavelength before it stops short of its target error (and reports the error reached),
-//! and whether paths through the umbra draw their later events towards the light.
+//! whether paths through the umbra draw their later events towards the light, and
+//! whether rays ending on the ground in the umbra share the ground's light.
 
 use crate::models::error::ModelError;
 use crate::models::options::{ModelOptions, Setting};
@@ -19,6 +20,9 @@ pub const MAX_PATHS: Setting<usize> = Setting {
 /// The key of [`ReferenceSettings::towards_light`].
 pub const TOWARDS_LIGHT: &str = "towards_light";
 
+/// The key of [`ReferenceSettings::shared_ground`].
+pub const SHARED_GROUND: &str = "shared_ground";
+
 /// The reference's settings read from `key=value` options.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReferenceSettings {
@@ -26,6 +30,10 @@ pub struct ReferenceSettings {
     /// Paths guided through the umbra draw their later events towards the light as well
     /// as their directions (`towards_light.rs`); off: by delta tracking.
     pub towards_light: bool,
+    /// Rays that end on the ground in the umbra take the light the ground reflects from
+    /// nodes of mu_s shared by every such ray (`ground_light.rs`); off: each ray draws
+    /// it with its own paths.
+    pub shared_ground: bool,
 }
 
 impl Default for ReferenceSettings {
@@ -34,6 +42,7 @@ impl Default for ReferenceSettings {
         ReferenceSettings {
             max_paths: 1 << 17,
             towards_light: false,
+            shared_ground: false,
         }
     }
 }
@@ -49,6 +58,7 @@ impl ReferenceSettings {
                 Ok(ReferenceSettings {
                     max_paths: reader.count(&MAX_PATHS, defaults.max_paths)?,
                     towards_light: reader.flag(TOWARDS_LIGHT, defaults.towards_light)?,
+                    shared_ground: reader.flag(SHARED_GROUND, defaults.shared_ground)?,
                 })
             },
         )
@@ -70,9 +80,14 @@ mod tests {
             assert!(e.contains("outside 256..=67108864"), "{e}");
         }
         let e = read(&["paths=3"]).unwrap_err().to_string();
-        assert!(e.contains("its settings: max_paths, towards_light"), "{e}");
+        assert!(
+            e.contains("its settings: max_paths, towards_light, shared_ground"),
+            "{e}"
+        );
         assert!(read(&["towards_light=true"]).unwrap().towards_light);
         assert!(!read(&[]).unwrap().towards_light);
+        assert!(read(&["shared_ground=true"]).unwrap().shared_ground);
+        assert!(!read(&[]).unwrap().shared_ground);
         let e = read(&["towards_light=2"]).unwrap_err().to_string();
         assert!(e.contains("towards_light"), "{e}");
     }
