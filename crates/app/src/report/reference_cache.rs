@@ -514,8 +514,14 @@ mod tests {
             option(nautical, 1 << 17, TOWARDS_LIGHT),
             Some("true".into())
         );
+        // And its ground's light shared by its ground rays there alone.
+        assert_eq!(
+            option(nautical, 1 << 17, SHARED_GROUND),
+            Some("true".into())
+        );
         for view in [terminator, civil] {
             assert_eq!(option(view, 1 << 17, TOWARDS_LIGHT), None, "{}", view.id);
+            assert_eq!(option(view, 1 << 17, SHARED_GROUND), None, "{}", view.id);
         }
         // And pooled from batches there alone, for the whole reference, not its single
         // scattering.
