@@ -24,7 +24,7 @@ use crate::progress::Progress;
 use crate::report::reference_batches::{batch_settings, pool_batch};
 use crate::report::reference_cache_file::{CachedView, read, write};
 use crate::report::reference_ground_rays::{
-    fingerprint_without_shared_ground, ground_rays, recompute_ground_rays,
+    ground_rays, recompute_ground_rays, without_shared_ground,
 };
 use crate::report::view_sections::fingerprint_of;
 use crate::report::views::ReportView;
@@ -179,11 +179,11 @@ pub fn load_or_compute(
         let usable = found
             .as_ref()
             .is_some_and(|c| c.fingerprint == *key && fits(c));
-        let without_shared_ground = fingerprint_without_shared_ground(view, &settings[i])?;
+        let sky_key = without_shared_ground(&settings[i])
+            .map(|s| fingerprint(view, &s))
+            .transpose()?;
         let sky_usable = found.as_ref().is_some_and(|c| {
-            Some(&c.fingerprint) == without_shared_ground.as_ref()
-                && c.batches == batches[i]
-                && fits(c)
+            Some(&c.fingerprint) == sky_key.as_ref() && c.batches == batches[i] && fits(c)
         });
         match found {
             Some(c) if usable && c.batches == batches[i] => reference.push(c.answers),

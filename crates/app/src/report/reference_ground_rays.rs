@@ -19,25 +19,21 @@ use rayon::prelude::*;
 
 use crate::progress::Progress;
 use crate::report::reference_batches::{batch_settings, pool_batch};
-use crate::report::reference_cache::fingerprint;
 use crate::report::views::ReportView;
 
-/// The fingerprint the cache holds for `view` when it was computed with `settings` less
-/// `shared_ground`; `None` where `settings` do not share the ground's light.
-pub fn fingerprint_without_shared_ground(
-    view: &ReportView,
-    settings: &ModelSettings,
-) -> anyhow::Result<Option<String>> {
+/// `settings` less `shared_ground`, whose rays of the sky are the same; `None` where
+/// `settings` do not share the ground's light.
+pub fn without_shared_ground(settings: &ModelSettings) -> Option<ModelSettings> {
     if !settings
         .options
         .items()
         .any(|(k, v)| k == SHARED_GROUND && v == "true")
     {
-        return Ok(None);
+        return None;
     }
     let mut without = settings.clone();
     without.options.remove(SHARED_GROUND);
-    fingerprint(view, &without).map(Some)
+    Some(without)
 }
 
 /// The indices of `view`'s rays that end on the ground.
