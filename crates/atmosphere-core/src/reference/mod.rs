@@ -176,9 +176,6 @@ impl Reference {
         if self.settings.max_orders == Some(1) {
             return Ok(none);
         }
-        let ext = self.base.spectra.extinction[w];
-        let ground_mass =
-            (-optical_depth(path.total_column, ext)).exp() * self.atmosphere.ground_albedo;
         let shared = match path.end {
             RayEnd::Ground(point)
                 if self.shared_ground
@@ -193,6 +190,9 @@ impl Reference {
                     self.atmosphere.bottom_radius_m,
                     &sky,
                 )?;
+                let ground_mass =
+                    (-optical_depth(path.total_column, self.base.spectra.extinction[w])).exp()
+                        * self.atmosphere.ground_albedo;
                 Some((ground_mass * g.mean, ground_mass * g.std_error))
             }
             _ => None,
